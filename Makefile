@@ -1,0 +1,33 @@
+# abrdf - the two commands of the README's quick start, and their parts.
+#   make run    install what is missing, build, run the main job on the built-in defaults
+#   make test   install what is missing, build, run the whole test suite (normal + ASan/UBSan)
+BUILD      ?= build
+BUILD_ASAN ?= build-asan
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+
+.PHONY: all setup build build-asan run test test-asan clean
+
+all: build
+
+setup:
+	@scripts/setup.sh
+
+build: setup
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD) -j $(JOBS)
+
+build-asan: setup
+	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=Debug -DABRDF_SANITIZE=ON
+	cmake --build $(BUILD_ASAN) -j $(JOBS)
+
+run: build
+	$(BUILD)/tools/abrdf models
+	$(BUILD)/tools/abrdf eval disney_specular --wi 0.3,0,1 --wo -0.2,0.1,1 --set r=0.3
+	$(BUILD)/tools/abrdf eval f_2e --wi 0.3,0,1 --wo -0.3,0,1 --set n=300
+
+test: build build-asan
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD_ASAN) && ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD) $(BUILD_ASAN)

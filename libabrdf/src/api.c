@@ -1,0 +1,170 @@
+/* api.c - the public entry points: validation, world <-> local frame, shading, converters. */
+#include <math.h>
+#include <string.h>
+
+#include "abrdf_internal.h"
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static int finite3(const double v[3])
+{
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+/* Normalise v into out; 0 (and out = 0) for zero, tiny or non-finite vectors. */
+static int normalise3(const double v[3], double out[3])
+{
+    out[0] = out[1] = out[2] = 0.0;
+    if (!finite3(v)) return 0;
+    /* Scale first so that squaring cannot overflow or underflow. */
+    double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+    if (!(m > 0.0)) return 0;
+    double s[3] = {v[0] / m, v[1] / m, v[2] / m};
+    double len = sqrt(dot3(s, s));
+    for (int c = 0; c < 3; ++c) out[c] = s[c] / len;
+    return 1;
+}
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame *frame)
+{
+    static const abrdf_frame identity = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
+    if (!frame) return ABRDF_E_NULL;
+    *frame = identity;
+    double nn[3];
+    if (!n || !normalise3(n, nn)) return ABRDF_E_GEOMETRY;
+    /* Tangent: Gram-Schmidt of t against n; if t is missing or (nearly) parallel to n, the
+     * axis least aligned with n, which is deterministic and never parallel. The 1e-6
+     * threshold on |t_perp| keeps the normalisation well conditioned. */
+    double tt[3] = {0, 0, 0};
+    int have_t = 0;
+    if (t && finite3(t)) {
+        double tn[3];
+        if (normalise3(t, tn)) {
+            double d = dot3(tn, nn);
+            for (int c = 0; c < 3; ++c) tt[c] = tn[c] - d * nn[c];
+            have_t = sqrt(dot3(tt, tt)) > 1e-6;
+        }
+    }
+    if (!have_t) {
+        double ax[3] = {0, 0, 0};
+        int k = fabs(nn[0]) <= fabs(nn[1]) ? (fabs(nn[0]) <= fabs(nn[2]) ? 0 : 2)
+                                           : (fabs(nn[1]) <= fabs(nn[2]) ? 1 : 2);
+        ax[k] = 1.0;
+        double d = dot3(ax, nn);
+        for (int c = 0; c < 3; ++c) tt[c] = ax[c] - d * nn[c];
+    }
+    normalise3(tt, frame->t);
+    memcpy(frame->n, nn, sizeof nn);
+    cross3(frame->n, frame->t, frame->b);
+    return ABRDF_OK;
+}
+
+static void to_local(const abrdf_frame *fr, const double v[3], double out[3])
+{
+    out[0] = dot3(v, fr->t);
+    out[1] = dot3(v, fr->b);
+    out[2] = dot3(v, fr->n);
+}
+
+int abrdf_eval_local(abrdf_model model, const abrdf_params *params, const double wi[3],
+                     const double wo[3], double f[3])
+{
+    return abrdf_eval(model, params, NULL, wi, wo, f);
+}
+
+int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
+               const double wi[3], const double wo[3], double f[3])
+{
+    if (!f) return ABRDF_E_NULL;
+    f[0] = f[1] = f[2] = 0.0;
+    if (!params || !wi || !wo) return ABRDF_E_NULL;
+    int st = abrdf_params_check(model, params, NULL, 0);
+    if (st != ABRDF_OK) return st;
+    double i[3], o[3], li[3], lo[3];
+    if (!normalise3(wi, i) || !normalise3(wo, o)) return ABRDF_OK; /* degenerate: f = 0 */
+    if (frame) {
+        if (!finite3(frame->n) || !finite3(frame->t) || !finite3(frame->b)) return ABRDF_OK;
+        to_local(frame, i, li);
+        to_local(frame, o, lo);
+    } else {
+        memcpy(li, i, sizeof li);
+        memcpy(lo, o, sizeof lo);
+    }
+    abrdf__eval_local_d(model, params, li, lo, f);
+    return ABRDF_OK;
+}
+
+int abrdf_eval_batch(abrdf_model model, const abrdf_params *params, const abrdf_batch *b)
+{
+    if (!params || !b) return ABRDF_E_NULL;
+    if (b->count && (!b->wi_x || !b->wi_y || !b->wi_z || !b->wo_x || !b->wo_y || !b->wo_z ||
+                     !b->f_r || !b->f_g || !b->f_b))
+        return ABRDF_E_NULL;
+    int st = abrdf_params_check(model, params, NULL, 0);
+    if (st != ABRDF_OK) {
+        for (size_t i = 0; i < b->count; ++i) b->f_r[i] = b->f_g[i] = b->f_b[i] = 0.0f;
+        return st;
+    }
+    abrdf__eval_batch_f(model, params, b);
+    return ABRDF_OK;
+}
+
+int abrdf_shade(abrdf_model diffuse, abrdf_model specular, const abrdf_params *params,
+                const abrdf_frame *frame, const double wi[3], const double wo[3],
+                const double light[3], const double ambient[3], double out[3])
+{
+    if (!out) return ABRDF_E_NULL;
+    out[0] = out[1] = out[2] = 0.0;
+    if (!params || !wi || !wo || !light || !ambient) return ABRDF_E_NULL;
+    double fd[3] = {0, 0, 0}, fs[3] = {0, 0, 0};
+    int st;
+    if (diffuse != ABRDF_MODEL_COUNT && (st = abrdf_eval(diffuse, params, frame, wi, wo, fd)))
+        return st;
+    if (specular != ABRDF_MODEL_COUNT && (st = abrdf_eval(specular, params, frame, wi, wo, fs)))
+        return st;
+    double i[3], ni[3] = {0, 0, 1};
+    double cos_i = 0.0;
+    if (normalise3(wi, i)) cos_i = fmax(0.0, dot3(i, frame ? frame->n : ni));
+    for (int c = 0; c < 3; ++c) {
+        double v = ambient[c] + light[c] * cos_i * (fd[c] + fs[c]); /* Sec. 1, pixel intensity */
+        out[c] = (v >= 0.0 && isfinite(v)) ? v : 0.0;
+    }
+    return ABRDF_OK;
+}
+
+/* ---- converters (docs/CONVERTERS.md gives their errors) ------------------------------ */
+
+static double clamp01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; }
+
+double abrdf_r_to_alpha_g(double r) { r = clamp01(r); return r * r; }
+double abrdf_alpha_g_to_r(double alpha_g) { return sqrt(clamp01(alpha_g)); }
+
+/* Walter et al. 2007, Sec. 5.2: Blinn-Phong with exponent n matches Beckmann of roughness
+ * alpha_b when n = 2/alpha_b^2 - 2; used here for the GGX alpha_g as well. */
+double abrdf_alpha_g_to_n(double alpha_g)
+{
+    double a = fmax(alpha_g, ABRDF__ALPHA_G_MIN);
+    if (!(a < 1.0)) return 0.0;
+    return 2.0 / (a * a) - 2.0;
+}
+
+double abrdf_n_to_alpha_g(double n)
+{
+    if (!(n >= 0.0)) n = 0.0;
+    if (isinf(n)) return 0.0;
+    return sqrt(2.0 / (n + 2.0));
+}
+
+/* POV-Ray 3.7 `specular ... roughness rough` raises N.H to 1/rough. */
+double abrdf_n_to_pov_roughness(double n) { return n > 0.0 && isfinite(n) ? 1.0 / n : 1.0; }
+double abrdf_pov_roughness_to_n(double rough) { return rough > 0.0 && isfinite(rough) ? 1.0 / rough : 0.0; }

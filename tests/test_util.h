@@ -1,0 +1,16 @@
+/* test_util.h - helpers shared by the Check suites: directions, relative comparison,
+ * and a runner that prints Check's summary line. */
+#ifndef ABRDF_TEST_UTIL_H
+#define ABRDF_TEST_UTIL_H
+#include <check.h>
+#include "abrdf.h"
+
+/* Unit direction from polar angle theta and azimuth phi (degrees), local frame. */
+void tu_dir(double theta_deg, double phi_deg, double out[3]);
+/* |a - b| <= rel * max(|a|, |b|) + abs_tol */
+int tu_close(double a, double b, double rel, double abs_tol);
+/* Evaluate model with params in the local frame; returns channel 0 and asserts OK. */
+double tu_eval1(abrdf_model m, const abrdf_params *p, const double wi[3], const double wo[3]);
+/* Run one suite, print the summary, return the process exit status. */
+int tu_run(Suite *s);
+#endif

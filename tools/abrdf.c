@@ -1,0 +1,42 @@
+/* abrdf.c - the `abrdf` command: dispatch to subcommands. */
+#include <string.h>
+
+#include "cli.h"
+
+static const cli_command commands[] = {
+    {"models", "list every model with its formula, parameters and needs", cmd_models},
+    {"eval", "evaluate a model's f_r for one direction pair", cmd_eval},
+    {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
+};
+#define COMMAND_COUNT (sizeof commands / sizeof commands[0])
+
+static void usage(FILE *f)
+{
+    fprintf(f, "abrdf %s - adaptive selection of surface reflectance models\n\n"
+               "usage: abrdf COMMAND [options]   (abrdf COMMAND --help for its options)\n\n"
+               "commands:\n", abrdf_version());
+    for (size_t i = 0; i < COMMAND_COUNT; ++i)
+        fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return CLI_EXIT_USAGE;
+    }
+    if (cli_is_help(argv[1])) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        printf("abrdf %s\n", abrdf_version());
+        return 0;
+    }
+    for (size_t i = 0; i < COMMAND_COUNT; ++i)
+        if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+    char names[256] = "";
+    for (size_t i = 0; i < COMMAND_COUNT; ++i) strcat(strcat(names, i ? ", " : ""), commands[i].name);
+    fprintf(stderr, "abrdf: unknown command '%s'; commands: %s\n", argv[1], names);
+    return CLI_EXIT_USAGE;
+}
