@@ -265,6 +265,18 @@ ABRDF_API int abrdf_shade(abrdf_model diffuse, abrdf_model specular,
                           const double wi[3], const double wo[3],
                           const double light[3], const double ambient[3], double out[3]);
 
+/* ---- error analysis of the Table-1 approximations (the paper's Tables 2 and 3) ----------- */
+/* Maximum relative error (percent) in the highlight zone and maximum absolute error over
+ * [0, 1] of approximation `approx` (ABRDF_F2 ... ABRDF_FKUB) against Blinn-Phong cos^n,
+ * computed from first principles (docs/TABLES.md defines the highlight zone). */
+typedef struct abrdf_approx_error {
+    double max_rel_pct;  /* max |f - c^n| / c^n * 100 over the highlight zone */
+    double max_abs;      /* max |f - c^n| over c in [0, 1] */
+    double zone_cos;     /* the highlight zone is c in [zone_cos, 1] */
+} abrdf_approx_error;
+
+ABRDF_API int abrdf_approx_error_eval(abrdf_model approx, double n, abrdf_approx_error *out);
+
 /* ---- roughness converters (documented with their error in docs/CONVERTERS.md) -------- */
 ABRDF_API double abrdf_r_to_alpha_g(double r);         /* alpha_g = r^2 */
 ABRDF_API double abrdf_alpha_g_to_r(double alpha_g);   /* r = sqrt(alpha_g) */
