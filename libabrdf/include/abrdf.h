@@ -277,6 +277,15 @@ typedef struct abrdf_approx_error {
 
 ABRDF_API int abrdf_approx_error_eval(abrdf_model approx, double n, abrdf_approx_error *out);
 
+/* ---- cost model (the paper's Table 4, or a calibration measured on the host) ------------- */
+typedef struct abrdf_costs {
+    double cost[ABRDF_MODEL_COUNT]; /* cost of one evaluation per model; < 0 = unknown */
+    const char *unit;               /* "cycles (paper Table 4, AMD Zen 4)" or "ns/eval" */
+} abrdf_costs;
+
+/* The paper's Table 4 cycle counts (models the table does not list are < 0). */
+ABRDF_API int abrdf_costs_paper(abrdf_costs *out);
+
 /* ---- roughness converters (documented with their error in docs/CONVERTERS.md) -------- */
 ABRDF_API double abrdf_r_to_alpha_g(double r);         /* alpha_g = r^2 */
 ABRDF_API double abrdf_alpha_g_to_r(double alpha_g);   /* r = sqrt(alpha_g) */
