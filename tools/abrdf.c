@@ -35,8 +35,14 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < COMMAND_COUNT; ++i)
         if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
-    char names[256] = "";
-    for (size_t i = 0; i < COMMAND_COUNT; ++i) strcat(strcat(names, i ? ", " : ""), commands[i].name);
-    fprintf(stderr, "abrdf: unknown command '%s'; commands: %s\n", argv[1], names);
+    char names[512] = "", near[256] = "";
+    for (size_t i = 0; i < COMMAND_COUNT; ++i) {
+        strcat(strcat(names, i ? ", " : ""), commands[i].name);
+        if (cli_is_near(argv[1], commands[i].name)) strcat(strcat(near, *near ? ", " : ""), commands[i].name);
+    }
+    if (*near)
+        fprintf(stderr, "abrdf: unknown command '%s'; did you mean %s? commands: %s\n", argv[1], near, names);
+    else
+        fprintf(stderr, "abrdf: unknown command '%s'; commands: %s\n", argv[1], names);
     return CLI_EXIT_USAGE;
 }

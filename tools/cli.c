@@ -75,20 +75,29 @@ int cli_edit_distance(const char *a, const char *b)
     return d[la][lb];
 }
 
+/* A name is "near" a model name when it is a prefix of it or within an edit distance that
+ * grows with its length (a third of it, at least 1), so short typos do not match everything. */
+int cli_is_near(const char *typed, const char *name)
+{
+    size_t lt = strlen(typed);
+    int limit = lt / 3 > 1 ? (int)(lt / 3) : 1;
+    return (lt >= 3 && !strncmp(typed, name, lt)) || cli_edit_distance(typed, name) <= limit;
+}
+
 int cli_model(const char *cmd, const char *name, abrdf_model *out)
 {
     if (name && abrdf_model_find(name, out) == ABRDF_OK) return 0;
-    /* Nearest names first; all names if nothing is close. */
+    /* One line: the problem, the nearest names if any, then every valid name. */
     char near[512] = "", all[2048] = "";
     for (int i = 0; i < abrdf_model_count(); ++i) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)i);
         if (!m) continue;
-        if (name && cli_edit_distance(name, m->name) <= 2 && strlen(near) + strlen(m->name) + 3 < sizeof near)
+        if (name && cli_is_near(name, m->name) && strlen(near) + strlen(m->name) + 3 < sizeof near)
             strcat(strcat(near, *near ? ", " : ""), m->name);
         if (strlen(all) + strlen(m->name) + 3 < sizeof all) strcat(strcat(all, *all ? ", " : ""), m->name);
     }
     if (!name) return cli_fail(cmd, "missing model name; models: %s", all);
-    if (*near) return cli_fail(cmd, "unknown model '%s'; did you mean: %s?", name, near);
+    if (*near) return cli_fail(cmd, "unknown model '%s'; did you mean %s? models: %s", name, near, all);
     return cli_fail(cmd, "unknown model '%s'; models: %s", name, all);
 }
 
@@ -114,21 +123,30 @@ int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const cha
     if (kl >= sizeof key) return cli_fail(cmd, "unknown parameter in '%s'; %s parameters: %s", assign, m->name, names);
     memcpy(key, assign, kl);
     key[kl] = '\0';
-    int id = -1, used = 0;
+    int id = -1;
+    const abrdf_model_param *mp = NULL;
     if (abrdf_param_find(key, &id) == ABRDF_OK)
-        for (int i = 0; i < m->param_count; ++i) used |= m->params[i].id == id;
-    if (!used) return cli_fail(cmd, "unknown parameter '%s' for %s; parameters: %s", key, m->name, names);
+        for (int i = 0; i < m->param_count; ++i)
+            if (m->params[i].id == id) mp = &m->params[i];
+    if (!mp) return cli_fail(cmd, "unknown parameter '%s' for %s; parameters: %s", key, m->name, names);
     const abrdf_param_info *pi = abrdf_param_get(id);
+    const char *want = pi->kind == ABRDF_PARAM_RGB ? "a number or R,G,B" : "one number";
     double v[3];
     int count = 1;
     if (strchr(eq + 1, ',')) {
         if (pi->kind != ABRDF_PARAM_RGB || !cli_parse_vec3(eq + 1, v))
-            return cli_fail(cmd, "parameter '%s' needs %s, got '%s'", key,
-                            pi->kind == ABRDF_PARAM_RGB ? "a number or R,G,B" : "one number", eq + 1);
+            return cli_fail(cmd, "parameter '%s' needs %s in [%g, %g], got '%s'", key, want, mp->min,
+                            mp->max, eq + 1);
         count = 3;
     } else if (!cli_parse_double(eq + 1, &v[0])) {
-        return cli_fail(cmd, "parameter '%s': '%s' is not a finite number", key, eq + 1);
+        return cli_fail(cmd, "parameter '%s' needs %s in [%g, %g], got '%s' (not a finite number)", key,
+                        want, mp->min, mp->max, eq + 1);
     }
+    /* The model's range, which may be narrower than the parameter's own (abrdf_model_param). */
+    for (int c = 0; c < count; ++c)
+        if (!(v[c] >= mp->min && v[c] <= mp->max))
+            return cli_fail(cmd, "parameter '%s' = %s is outside %s's range [%g, %g]", key, eq + 1,
+                            m->name, mp->min, mp->max);
     if (abrdf_param_set(p, id, v, count) != ABRDF_OK)
         return cli_fail(cmd, "parameter '%s' = %s is outside [%g, %g]%s", key, eq + 1, pi->min, pi->max,
                         pi->kind == ABRDF_PARAM_INT ? " or not a whole number" : "");

@@ -33,6 +33,8 @@ int cli_model(const char *cmd, const char *name, abrdf_model *out);
 int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const char *assign);
 /* Levenshtein distance, for "did you mean" suggestions. */
 int cli_edit_distance(const char *a, const char *b);
+/* True if `typed` is close enough to `name` to suggest it (prefix or small edit distance). */
+int cli_is_near(const char *typed, const char *name);
 /* Write s as a JSON string literal. */
 void cli_json_string(FILE *f, const char *s);
 /* True if argv[i] is "-h" or "--help". */

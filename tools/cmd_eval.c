@@ -1,4 +1,5 @@
 /* cmd_eval.c - `abrdf eval MODEL --wi X,Y,Z --wo X,Y,Z [...]`: one f_r evaluation. */
+#include <math.h>
 #include <string.h>
 
 #include "cli.h"
@@ -49,7 +50,13 @@ int cmd_eval(int argc, char **argv)
     }
     abrdf_model model;
     if (cli_model(cmd, name, &model)) return CLI_EXIT_USAGE;
-    if (!have_wi || !have_wo) return cli_fail(cmd, "both --wi and --wo are required");
+    if (!have_wi || !have_wo)
+        return cli_fail(cmd, "missing %s X,Y,Z (direction toward the %s); required: --wi and --wo",
+                        have_wi ? "--wo" : "--wi", have_wi ? "viewer" : "light");
+    if (!(fabs(wi[0]) + fabs(wi[1]) + fabs(wi[2]) > 0.0))
+        return cli_fail(cmd, "--wi 0,0,0 has zero length; give a direction toward the light");
+    if (!(fabs(wo[0]) + fabs(wo[1]) + fabs(wo[2]) > 0.0))
+        return cli_fail(cmd, "--wo 0,0,0 has zero length; give a direction toward the viewer");
     abrdf_params p;
     abrdf_params_init(model, &p);
     for (int i = 0; i < nsets; ++i)

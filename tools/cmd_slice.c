@@ -55,17 +55,22 @@ int cmd_slice(int argc, char **argv)
     const double deg = 3.14159265358979323846 / 180.0;
     double wi[3] = {-sin(theta_i * deg), 0.0, cos(theta_i * deg)};
     if (csv) {
-        printf("# abrdf %s slice: model=%s (%s), theta_i=%g deg, plane of incidence x-z\n",
-               abrdf_version(), m->name, m->equation, theta_i);
-        printf("# wi=(-sin theta_i, 0, cos theta_i), wo=(sin theta_o, 0, cos theta_o); f_r in 1/sr\n");
+        /* '#' lines describe the run completely: model, geometry, every parameter, columns. */
+        printf("# abrdf %s slice\n# model: %s (%s, %s)\n", abrdf_version(), m->name, m->title, m->equation);
+        printf("# geometry: plane of incidence x-z, normal +z; wi = (-sin theta_i, 0, cos theta_i), "
+               "theta_i = %.17g deg; wo = (sin theta_o, 0, cos theta_o)\n", theta_i);
+        printf("# rows: %ld, theta_o from -90 to 90 deg in %ld equal steps; theta_o = +theta_i is the "
+               "mirror direction\n", steps + 1, steps);
         printf("# params:");
         for (int k = 0; k < m->param_count; ++k) {
             double v[3];
             int c = abrdf_param_read(&p, m->params[k].id, v);
-            printf(" %s=%g", abrdf_param_get(m->params[k].id)->name, v[0]);
-            for (int j = 1; j < c; ++j) printf(",%g", v[j]);
+            printf(" %s=%.17g", abrdf_param_get(m->params[k].id)->name, v[0]);
+            for (int j = 1; j < c; ++j) printf(",%.17g", v[j]);
         }
-        printf("\ntheta_o_deg,f_r,f_g,f_b,fcos_r,fcos_g,fcos_b\n");
+        printf("\n# columns: theta_o_deg; f_r,f_g,f_b = BRDF f_r per RGB channel in 1/sr (no cosine); "
+               "fcos_r,fcos_g,fcos_b = f * max(0, cos theta_o)\n");
+        printf("theta_o_deg,f_r,f_g,f_b,fcos_r,fcos_g,fcos_b\n");
     } else {
         printf("%s, theta_i = %g deg\n%10s %14s %14s %14s %14s\n", m->name, theta_i, "theta_o",
                "f_r", "f_g", "f_b", "f_r*cos");
@@ -77,7 +82,7 @@ int cmd_slice(int argc, char **argv)
         abrdf_eval(model, &p, NULL, wi, wo, f);
         double c = fmax(0.0, wo[2]);
         if (csv)
-            printf("%.6g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", th, f[0], f[1], f[2], f[0] * c, f[1] * c, f[2] * c);
+            printf("%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", th, f[0], f[1], f[2], f[0] * c, f[1] * c, f[2] * c);
         else
             printf("%10.3f %14.6g %14.6g %14.6g %14.6g\n", th, f[0], f[1], f[2], f[0] * c);
     }
