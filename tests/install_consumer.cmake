@@ -1,0 +1,81 @@
+# install_consumer.cmake - installs the current build into a fresh temporary prefix and
+# builds + runs examples/quickstart.c against that installed tree three ways:
+#   1. pkg-config:   cc quickstart.c $(pkg-config --cflags --libs abrdf)
+#   2. find_package: abrdf::abrdf         (shared; its NEEDED entries must name libabrdf)
+#   3. find_package: abrdf::abrdf_static  (static; must not need libabrdf.so at run time)
+#   cmake -DBUILD_DIR=.. -DEXAMPLES=.. -DWORK=.. -DCC=.. -DPKG_CONFIG=.. -DOBJDUMP=..
+#         [-DEXTRA_FLAGS="-fsanitize=..."] -P install_consumer.cmake
+foreach(var BUILD_DIR EXAMPLES WORK CC PKG_CONFIG)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "install_consumer: -D${var}=... is required")
+  endif()
+endforeach()
+separate_arguments(extra UNIX_COMMAND "${EXTRA_FLAGS}")
+set(expected "disney_specular f_r = 0.166823 0.166823 0.166823")
+
+function(step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "install_consumer: ${what} failed (${rc}):\n${ARGN}\n${out}\n${err}")
+  endif()
+  set(step_out "${out}" PARENT_SCOPE)
+endfunction()
+
+function(expect_output what)
+  if(NOT step_out MATCHES "${expected}")
+    message(FATAL_ERROR "install_consumer: ${what} printed '${step_out}', expected '${expected}'")
+  endif()
+  message(STATUS "install_consumer: ${what}: ${step_out}")
+endfunction()
+
+file(REMOVE_RECURSE "${WORK}")
+set(prefix "${WORK}/prefix")
+step("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}")
+file(GLOB_RECURSE pc_files "${prefix}/*/abrdf.pc")
+file(GLOB_RECURSE config_files "${prefix}/*/abrdfConfig.cmake")
+if(NOT pc_files OR NOT config_files OR NOT EXISTS "${prefix}/include/abrdf.h")
+  message(FATAL_ERROR "install_consumer: the install lacks abrdf.pc, abrdfConfig.cmake or abrdf.h")
+endif()
+list(GET pc_files 0 pc)
+get_filename_component(pc_dir "${pc}" DIRECTORY)
+get_filename_component(libdir "${pc_dir}" DIRECTORY)
+
+# 1. pkg-config, seeing only the temporary prefix.
+set(ENV{PKG_CONFIG_LIBDIR} "${pc_dir}")
+unset(ENV{PKG_CONFIG_PATH})
+step("pkg-config" "${PKG_CONFIG}" --cflags --libs abrdf)
+string(STRIP "${step_out}" pc_flags)
+separate_arguments(pc_flags UNIX_COMMAND "${pc_flags}")
+step("cc via pkg-config" "${CC}" "${EXAMPLES}/quickstart.c" ${pc_flags} ${extra} -o "${WORK}/quickstart_pc")
+set(ENV{LD_LIBRARY_PATH} "${libdir}")
+step("quickstart (pkg-config)" "${WORK}/quickstart_pc")
+expect_output("pkg-config build")
+unset(ENV{LD_LIBRARY_PATH})
+
+# 2 + 3. find_package from a separate CMake project (no package registry, only the prefix).
+step("configure examples" "${CMAKE_COMMAND}" -S "${EXAMPLES}" -B "${WORK}/consumer"
+     "-DCMAKE_C_COMPILER=${CC}" "-DCMAKE_C_FLAGS=${EXTRA_FLAGS}" -DCMAKE_BUILD_TYPE=Release
+     "-DCMAKE_PREFIX_PATH=${prefix}" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+file(STRINGS "${WORK}/consumer/CMakeCache.txt" found REGEX "^abrdf_DIR:")
+string(FIND "${found}" "${prefix}/" at)
+if(NOT at GREATER -1)
+  message(FATAL_ERROR "install_consumer: find_package found '${found}', not the temporary prefix")
+endif()
+step("build examples" "${CMAKE_COMMAND}" --build "${WORK}/consumer")
+step("quickstart (find_package, shared)" "${WORK}/consumer/quickstart")
+expect_output("find_package abrdf::abrdf")
+step("quickstart (find_package, static)" "${WORK}/consumer/quickstart_static")
+expect_output("find_package abrdf::abrdf_static")
+
+# Shared really links the shared library; static really does not.
+if(OBJDUMP)
+  step("objdump" "${OBJDUMP}" -p "${WORK}/consumer/quickstart")
+  if(NOT step_out MATCHES "NEEDED +libabrdf\\.so")
+    message(FATAL_ERROR "install_consumer: quickstart does not link libabrdf.so")
+  endif()
+  step("objdump" "${OBJDUMP}" -p "${WORK}/consumer/quickstart_static")
+  if(step_out MATCHES "libabrdf\\.so")
+    message(FATAL_ERROR "install_consumer: quickstart_static depends on libabrdf.so")
+  endif()
+  message(STATUS "install_consumer: shared/static linkage confirmed by objdump -p")
+endif()
