@@ -291,8 +291,8 @@ ABRDF_API double abrdf_r_to_alpha_g(double r);         /* alpha_g = r^2 */
 ABRDF_API double abrdf_alpha_g_to_r(double alpha_g);   /* r = sqrt(alpha_g) */
 ABRDF_API double abrdf_alpha_g_to_n(double alpha_g);   /* Blinn-Phong n = 2/alpha_g^2 - 2 */
 ABRDF_API double abrdf_n_to_alpha_g(double n);         /* alpha_g = sqrt(2/(n + 2)) */
-ABRDF_API double abrdf_n_to_pov_roughness(double n);   /* POV-Ray roughness = 1/n */
-ABRDF_API double abrdf_pov_roughness_to_n(double rough);
+ABRDF_API double abrdf_n_to_pov_roughness(double n);   /* POV-Ray roughness = 1/n; n = 0 -> 0 */
+ABRDF_API double abrdf_pov_roughness_to_n(double rough); /* n = 1/rough; rough = 0 -> 0 */
 
 #ifdef __cplusplus
 }

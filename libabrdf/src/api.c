@@ -1,4 +1,5 @@
 /* api.c - the public entry points: validation, world <-> local frame, shading, converters. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -165,6 +166,20 @@ double abrdf_n_to_alpha_g(double n)
     return sqrt(2.0 / (n + 2.0));
 }
 
-/* POV-Ray 3.7 `specular ... roughness rough` raises N.H to 1/rough. */
-double abrdf_n_to_pov_roughness(double n) { return n > 0.0 && isfinite(n) ? 1.0 / n : 1.0; }
-double abrdf_pov_roughness_to_n(double rough) { return rough > 0.0 && isfinite(rough) ? 1.0 / rough : 0.0; }
+/* POV-Ray 3.7 `finish { specular k roughness rough }` evaluates k (N.H)^(1/rough) (the
+ * parser stores 1/rough as the exponent, source/backend/parser/parstxtr.cpp; the lobe is in
+ * source/backend/render/trace.cpp, ComputeSpecularColour). Roughness 0 is read as exponent 0 ("Zero roughness used."), so
+ * n = 0 maps to 0. POV-Ray keeps roughness in single precision, so the result is clamped
+ * to [FLT_MIN, FLT_MAX]: a smaller value would become 0 there (exponent 0), a larger one Inf. */
+double abrdf_n_to_pov_roughness(double n)
+{
+    if (!(n > 0.0)) return 0.0;
+    double rough = 1.0 / n;
+    return rough > FLT_MIN ? (rough < FLT_MAX ? rough : FLT_MAX) : FLT_MIN;
+}
+double abrdf_pov_roughness_to_n(double rough)
+{
+    if (!(rough > 0.0) || isinf(rough)) return 0.0;
+    double n = 1.0 / rough; /* Inf only for subnormal rough, which POV-Ray cannot hold */
+    return n < DBL_MAX ? n : DBL_MAX;
+}
