@@ -37,8 +37,10 @@ int main(int argc, char **argv)
         if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
     char names[512] = "", near[256] = "";
     for (size_t i = 0; i < COMMAND_COUNT; ++i) {
-        strcat(strcat(names, i ? ", " : ""), commands[i].name);
-        if (cli_is_near(argv[1], commands[i].name)) strcat(strcat(near, *near ? ", " : ""), commands[i].name);
+        size_t len = strlen(commands[i].name) + 3;
+        if (strlen(names) + len < sizeof names) strcat(strcat(names, i ? ", " : ""), commands[i].name);
+        if (cli_is_near(argv[1], commands[i].name) && strlen(near) + len < sizeof near)
+            strcat(strcat(near, *near ? ", " : ""), commands[i].name);
     }
     if (*near)
         fprintf(stderr, "abrdf: unknown command '%s'; did you mean %s? commands: %s\n", argv[1], near, names);
