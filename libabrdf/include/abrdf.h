@@ -398,7 +398,7 @@ typedef enum abrdf_step_kind {
 } abrdf_step_kind;
 
 #define ABRDF_SELECT_MAX_STEPS 24
-#define ABRDF_SELECT_TEXT 192
+#define ABRDF_SELECT_TEXT 256
 
 typedef struct abrdf_select_step {
     abrdf_step_kind kind;

@@ -61,9 +61,9 @@ static const abrdf_select_rules rules = {
             "Fresnel transmission and absorption (Eq. 15)",
         [ABRDF_SURFACE_LAYERED_PLATE] = "transparent plate: adding of layer energies and "
             "roughnesses, multiple scattering included (Eq. 16)",
-        [ABRDF_SURFACE_LAYERED_METAL] = "metal under a coat (Eq. 16): Weidlich-Wilkie (Eq. 15) "
-            "is especially poor for a smooth metal under a rough coat (one refraction, no "
-            "inter-reflection between coat and metal)",
+        [ABRDF_SURFACE_LAYERED_METAL] = "metal under a coat (Eq. 16); Weidlich-Wilkie (Eq. 15) "
+            "is poor for a smooth metal under a rough coat: one refraction, no inter-reflection "
+            "between coat and metal",
     },
     /* Table 8 of the paper; boundaries half-open [a, b) (MODELS.md B9). */
     .nmse_class_max = {1e-4, 2.5e-4, 1e-3},
@@ -201,6 +201,23 @@ static void short_unit(const char *unit, char *buf, size_t size)
     buf[n] = '\0';
 }
 
+/* Errors below this are rounding noise of an exact match (f_m at n = m): shown as 0. */
+#define TIDY_ERR 1e-9
+static double tidy(double e) { return fabs(e) < TIDY_ERR ? 0.0 : e; }
+
+/* "rel 1.58% <= 2%, abs 0.0344 <= 0.05"; a criterion without limit shows only the value. */
+static void criteria_text(const abrdf_approx_error *e, const abrdf_tolerance *t, char *buf,
+                          size_t size)
+{
+    char rel[48], ab[48];
+    double r = tidy(e->max_rel_pct), a = tidy(e->max_abs);
+    if (isinf(t->max_rel_pct)) snprintf(rel, sizeof rel, "rel %.3g%%", r);
+    else snprintf(rel, sizeof rel, "rel %.3g%% %s %g%%", r, e->max_rel_pct <= t->max_rel_pct ? "<=" : ">", t->max_rel_pct);
+    if (isinf(t->max_abs)) snprintf(ab, sizeof ab, "abs %.3g", a);
+    else snprintf(ab, sizeof ab, "abs %.3g %s %g", a, e->max_abs <= t->max_abs ? "<=" : ">", t->max_abs);
+    snprintf(buf, size, "%s, %s", rel, ab);
+}
+
 static void cost_text(double cost, const char *unit, char *buf, size_t size)
 {
     if (cost >= 0.0) snprintf(buf, size, "%g %s", cost, unit);
@@ -308,7 +325,7 @@ static void fill_params(const abrdf_material *m, abrdf_model spec, double n, dou
 
 /* ---- the two branches of Fig. 2 ------------------------------------------------------- */
 
-static void performance(abrdf_selection *out, const abrdf_tolerance *tol,
+static void performance(abrdf_selection *out, abrdf_surface type, const abrdf_tolerance *tol,
                         const abrdf_costs *costs, const char *unit)
 {
     char rl[32], al[32], cs[48];
@@ -317,6 +334,10 @@ static void performance(abrdf_selection *out, const abrdf_tolerance *tol,
     add_step(out, ABRDF_STEP_GOAL, ABRDF_MODEL_COUNT, -1.0, -1.0, 1,
              "goal performance: Lambert diffuse + the cheapest Table-1 approximation of "
              "Blinn-Phong within rel %s and abs %s", rl, al);
+    if (type != ABRDF_SURFACE_GENERAL)
+        add_step(out, ABRDF_STEP_SURFACE, ABRDF_MODEL_COUNT, -1.0, -1.0, 1,
+                 "surface %s: not used by the performance branch (Fig. 2 branches on the goal "
+                 "first)", surface_names[type]);
     add_step(out, ABRDF_STEP_DIFFUSE, rules.perf_diffuse, -1.0, -1.0, 1,
              "diffuse: %s (Eq. 1)", abrdf_select_model_name(rules.perf_diffuse));
 
@@ -338,9 +359,10 @@ static void performance(abrdf_selection *out, const abrdf_tolerance *tol,
         }
         int rel_ok = e.max_rel_pct <= tol->max_rel_pct, abs_ok = e.max_abs <= tol->max_abs;
         int ranked = cost >= 0.0, ok = rel_ok && abs_ok && ranked;
+        char crit[112];
+        criteria_text(&e, tol, crit, sizeof crit);
         abrdf_select_step *s = add_step(out, ABRDF_STEP_CANDIDATE, c, e.max_rel_pct,
-            tol->max_rel_pct, ok, "%s: rel %.3g%% %s %s, abs %.3g %s %s, %s: %s", name,
-            e.max_rel_pct, rel_ok ? "<=" : ">", rl, e.max_abs, abs_ok ? "<=" : ">", al, cs,
+            tol->max_rel_pct, ok, "%s: %s, %s: %s", name, crit, cs,
             !(rel_ok && abs_ok) ? "rejected" : ranked ? "passes" : "passes, but cannot be ranked");
         if (s) {
             s->value2 = e.max_abs;
@@ -364,9 +386,11 @@ static void performance(abrdf_selection *out, const abrdf_tolerance *tol,
         out->err_rel_pct = best_err.max_rel_pct;
         out->err_abs = best_err.max_abs;
         cost_text(best_cost, unit, cs, sizeof cs);
+        char crit[112];
+        criteria_text(&best_err, tol, crit, sizeof crit);
         abrdf_select_step *s = add_step(out, ABRDF_STEP_CHEAPEST, c, best_err.max_rel_pct,
-            tol->max_rel_pct, 1, "%s: rel %.3g%% <= %s, abs %.3g <= %s, %s: cheapest that passes",
-            abrdf_select_model_name(c), best_err.max_rel_pct, rl, best_err.max_abs, al, cs);
+            tol->max_rel_pct, 1, "%s: %s, %s: cheapest that passes", abrdf_select_model_name(c),
+            crit, cs);
         if (s) {
             s->value2 = best_err.max_abs;
             s->threshold2 = tol->max_abs;
@@ -494,11 +518,7 @@ int abrdf_select(const abrdf_material *m, abrdf_goal goal, const abrdf_tolerance
              m->name ? "material " : "", m->name ? m->name : "explicit material", nt, rt);
 
     if (goal == ABRDF_GOAL_PERFORMANCE) {
-        if (m->type != ABRDF_SURFACE_GENERAL)
-            add_step(out, ABRDF_STEP_SURFACE, ABRDF_MODEL_COUNT, -1.0, -1.0, 1,
-                     "surface %s: not used by the performance branch (Fig. 2 branches on the "
-                     "goal first)", surface_names[m->type]);
-        performance(out, &t, costs, unit);
+        performance(out, m->type, &t, costs, unit);
     } else {
         photoreal(out, m, n_given, n_raw);
     }
