@@ -7,6 +7,8 @@ static const cli_command commands[] = {
     {"models", "list every model with its formula, parameters and needs", cmd_models},
     {"eval", "evaluate a model's f_r for one direction pair", cmd_eval},
     {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
+    {"tables", "the paper's Tables 2, 3, 4 recomputed, beside the published values", cmd_tables},
+    {"calibrate", "measure ns/eval of every model on this machine; write a cost file", cmd_calibrate},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
