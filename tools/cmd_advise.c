@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "costs.h"
 #include "data_path.h"
 #include "materials.h"
 
@@ -32,6 +33,7 @@ static void usage(FILE *f)
         "  --type T               general, cloth_rough, cloth_shiny, hair, layered_plastic,\n"
         "                         layered_plate, layered_metal\n"
         "  --materials FILE       extra material file (same format; overrides by name)\n"
+        "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table 4)\n"
         "  --list                 list the materials\n"
         "  --json                 machine-readable output\n",
         abrdf_select_rules_get()->default_max_rel_pct, abrdf_select_rules_get()->default_max_abs);
@@ -281,7 +283,7 @@ static void print_json(const abrdf_selection *s, const mat_entry *e, const abrdf
 
 int cmd_advise(int argc, char **argv)
 {
-    const char *name = NULL, *files[MAX_FILES];
+    const char *name = NULL, *files[MAX_FILES], *costs_file = NULL;
     int nfiles = 0, list = 0, json = 0;
     abrdf_goal goal = ABRDF_GOAL_PHOTOREAL;
     abrdf_tolerance tol = {abrdf_select_rules_get()->default_max_rel_pct,
@@ -336,6 +338,9 @@ int cmd_advise(int argc, char **argv)
             if (!v) return cli_fail(CMD, "--materials needs a file");
             if (nfiles == MAX_FILES) return cli_fail(CMD, "at most %d --materials files", MAX_FILES);
             files[nfiles++] = v;
+        } else if (!strcmp(a, "--costs")) {
+            if (!v) return cli_fail(CMD, "--costs needs a file (abrdf calibrate writes one)");
+            costs_file = v;
         } else if (a[0] == '-' && a[1] == '-') {
             return cli_fail(CMD, "unknown option '%s' (abrdf advise --help)", a);
         } else {
@@ -392,8 +397,16 @@ int cmd_advise(int argc, char **argv)
     if (has_red) m.redness = red;
     if (has_type) m.type = type;
 
+    abrdf_costs costs;
+    if (costs_file) {
+        char err[512];
+        if (costs_load(costs_file, &costs, NULL, err, sizeof err)) {
+            mat_table_free(&table);
+            return cli_fail(CMD, "%s", err);
+        }
+    }
     abrdf_selection sel;
-    if (abrdf_select(&m, goal, &tol, NULL, &sel) != ABRDF_OK) {
+    if (abrdf_select(&m, goal, &tol, costs_file ? &costs : NULL, &sel) != ABRDF_OK) {
         rc = cli_fail(CMD, "%s", sel.message);
     } else if (json) {
         print_json(&sel, e, &tol);

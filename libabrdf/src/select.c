@@ -442,7 +442,7 @@ static void photoreal(abrdf_selection *out, const abrdf_material *m, int n_given
                  aniso ? "anisotropic GGX, Eqs. 5, 7, 8, 9" : "GGX, Eqs. 5, 6, 8, 9");
         add_step(out, ABRDF_STEP_DIFFUSE, out->diffuse, -1.0, -1.0, 1, "diffuse: %s (Eq. 3)",
                  abrdf_select_model_name(out->diffuse));
-        out->err_rel_pct = out->err_abs = 0.0; /* the microfacet lobe is the reference */
+        /* The microfacet lobe is the reference of the paper's image experiment: no error. */
         return;
     }
     out->diffuse = rules.smooth_diffuse;
