@@ -3,7 +3,7 @@
 #   scripts/setup.sh            build + test dependencies (Debian packages)
 set -euo pipefail
 
-debs=(build-essential cmake pkg-config check)
+debs=(build-essential cmake pkg-config check python3)
 
 missing=()
 for p in "${debs[@]}"; do

@@ -72,7 +72,7 @@ int cmd_calibrate(int argc, char **argv)
     abrdf_costs costs;
     double unit_ns;
     fprintf(stderr, "abrdf calibrate: timing");
-    int rc = measure_all(&mo, &costs, &unit_ns, progress);
+    int rc = measure_models(&mo, NULL, 0, &costs, &unit_ns, progress);
     fprintf(stderr, "\n");
     if (rc != 0) {
         fprintf(stderr, "abrdf %s: out of memory\n", cmd);

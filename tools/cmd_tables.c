@@ -96,6 +96,13 @@ int tab_row(tab_grid *g, const char *label)
     return g->rows++;
 }
 
+/* A cell for printing: round-off residue of a difference shows as 0, not -0.0000. */
+static double cell(const tab_grid *g, int r, int c)
+{
+    double v = g->v[r][c];
+    return fabs(v) < 1e-9 ? 0.0 : v;
+}
+
 static int column_used(const tab_grid *g, int c)
 {
     for (int r = 0; r < g->rows; ++r)
@@ -120,7 +127,7 @@ void tab_markdown(const tab_grid *g)
             if (isnan(g->v[r][c])) printf(" — |");
             else {
                 printf(" ");
-                printf(g->fmt[c], g->v[r][c]);
+                printf(g->fmt[c], cell(g, r, c));
                 printf(" |");
             }
         }
@@ -142,7 +149,7 @@ void tab_csv(const tab_grid *g, const char *tag_name, const char *tag, int heade
         if (tag) printf(",%s", tag);
         for (int c = 0; c < g->cols; ++c) {
             printf(",");
-            if (!isnan(g->v[r][c])) printf(g->fmt[c], g->v[r][c]);
+            if (!isnan(g->v[r][c])) printf(g->fmt[c], cell(g, r, c));
         }
         printf("\n");
     }

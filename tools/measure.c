@@ -160,20 +160,23 @@ double measure_unit_ns(measure_set *s, const measure_opts *o)
     return time_batches(s, s->pairs, run_unit, &n, o);
 }
 
-int measure_all(const measure_opts *o, abrdf_costs *out, double *unit_ns,
-                void (*progress)(const char *name))
+int measure_models(const measure_opts *o, const abrdf_model *models, int count,
+                   abrdf_costs *out, double *unit_ns, void (*progress)(const char *name))
 {
     for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) out->cost[i] = -1.0;
     out->unit = COSTS_UNIT;
     measure_set *s = measure_set_new(o->pairs);
     if (!s) return -1;
     if (progress) progress(COSTS_UNIT_NAME);
+    measure_unit_ns(s, o); /* untimed warm-up: clock frequency, page faults, caches */
     *unit_ns = measure_unit_ns(s, o);
-    for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)i);
+    int n = models ? count : ABRDF_MODEL_COUNT;
+    for (int i = 0; i < n; ++i) {
+        abrdf_model id = models ? models[i] : (abrdf_model)i;
+        const abrdf_model_info *m = abrdf_model_get(id);
         if (!m) continue;
         if (progress) progress(m->name);
-        out->cost[i] = measure_model_ns(s, (abrdf_model)i, o);
+        out->cost[id] = measure_model_ns(s, id, o);
     }
     measure_set_free(s);
     return 0;

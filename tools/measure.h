@@ -26,9 +26,10 @@ double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o
 /* Median ns/eval of the unit: a bare loop H = normalise(wi + wo), powf(H.z, n), n = 100. */
 double measure_unit_ns(measure_set *s, const measure_opts *o);
 
-/* Measure every registered model into out (unit COSTS_UNIT) and the unit into *unit_ns.
- * progress (may be NULL) is called with each model's name before it is timed. */
-int measure_all(const measure_opts *o, abrdf_costs *out, double *unit_ns,
-                void (*progress)(const char *name));
+/* Measure `models` (count of them; NULL = every registered model) into out (unit
+ * COSTS_UNIT; the others < 0) and the unit into *unit_ns. progress (may be NULL) is called
+ * with each name before it is timed. Returns 0, or -1 if out of memory. */
+int measure_models(const measure_opts *o, const abrdf_model *models, int count,
+                   abrdf_costs *out, double *unit_ns, void (*progress)(const char *name));
 
 #endif

@@ -42,8 +42,13 @@ int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *p
         measure_opts mo;
         measure_defaults(&mo, 1);
         mo.reps = o->reps;
+        /* only what the table shows: its models and the library's Blinn-Phong */
+        abrdf_model which[ABRDF_MODEL_COUNT];
+        int count = 0;
+        for (int i = 0; i < ABRDF_MODEL_COUNT; ++i)
+            if (lib.cost[i] >= 0.0 || i == ABRDF_BLINN_PHONG) which[count++] = (abrdf_model)i;
         fprintf(stderr, "abrdf tables 4: measuring ");
-        if (measure_all(&mo, &meas, &unit_ns, progress) != 0) {
+        if (measure_models(&mo, which, count, &meas, &unit_ns, progress) != 0) {
             fprintf(stderr, "\nabrdf tables: out of memory\n");
             return 1;
         }

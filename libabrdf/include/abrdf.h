@@ -43,6 +43,8 @@
  *   abrdf_eval_local         the same, directions already in the local frame
  *   abrdf_eval_batch         float structure-of-arrays batch evaluation, local frame
  *   abrdf_shade              the paper's pixel intensity I = ka Ia + Il cos (f_d + f_s)
+ *   abrdf_approx_error_eval  errors of a Table-1 approximation vs Blinn-Phong (Tables 2-3)
+ *   abrdf_costs_paper        the paper's Table 4 cycle counts as a cost model
  *   abrdf_r_to_alpha_g, abrdf_alpha_g_to_r, abrdf_alpha_g_to_n, abrdf_n_to_alpha_g,
  *   abrdf_n_to_pov_roughness, abrdf_pov_roughness_to_n   roughness converters
  *   abrdf_surface_name, abrdf_surface_find, abrdf_goal_name, abrdf_goal_find   selection names
