@@ -315,4 +315,8 @@ static Suite *suite(void)
     return s;
 }
 
-int main(void) { return tu_run(suite()); }
+int main(void)
+{
+    setvbuf(stdout, NULL, _IONBF, 0); /* measurements print even if a check aborts */
+    return tu_run(suite());
+}

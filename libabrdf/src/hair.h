@@ -96,4 +96,29 @@ void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const
 void abrdf__marschner_eval(const abrdf_params *p, const double wi[3], const double wo[3],
                            double f[3]);
 
+/* ---- Huang, Hullin, Hanika 2022 (hair_huang.c) -------------------------------------- */
+
+/* Default quadrature: the entry microfacet normal on an N1 x N1 midpoint grid of the VNDF
+ * square, the internal-reflection normal (TRT) on N2 x N2 per entry node
+ * (docs/SPECIAL_HAIR.md gives the convergence that chose them). */
+#define ABRDF__HUANG_N1 6
+#define ABRDF__HUANG_N2 3
+
+typedef struct abrdf__huang {
+    double eta;         /* index of refraction */
+    double alpha;       /* GGX roughness (not squared), [0.001, 1] */
+    double tilt;        /* cuticle tilt of the mesonormals (rad), = -cuticle_tilt */
+    double b;           /* minor/major axis ratio, (0, 1] */
+    double sigma_a[3];  /* absorption per unit (major) radius */
+    int refine;         /* Simpson step divisor in h (1 = Cycles' steps) */
+    int n1, n2;         /* VNDF midpoint grid sizes per dimension (entry, internal) */
+} abrdf__huang;
+
+void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m);
+/* Fibre function S (hair.h convention); lobes: R (1), TT (2), TRT (4), TRRT+ (8). */
+void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double wo[3],
+                        unsigned lobes, double s[3]);
+void abrdf__huang_eval(const abrdf_params *p, const double wi[3], const double wo[3],
+                       double f[3]);
+
 #endif /* ABRDF_HAIR_H */

@@ -115,6 +115,15 @@ static const abrdf_model_param mp_marschner[] = {
     {P_R, 0.13, 0.01, 1.0}};
 #define CIT_MARSCHNER "S. R. Marschner, H. W. Jensen, M. Cammarano, S. Worley, P. Hanrahan, " \
     "Light scattering from human hair fibers, ACM TOG 22(3), 2003"
+/* Huang: Cycles' Principled Hair (Huang) defaults: r = GGX alpha 0.3 (not squared, clamped
+ * to >= 0.001 as Cycles does), offset 2 deg, aspect ratio 0.85; r >= 0.05 bounds the cost
+ * (the h step is 0.7 r). */
+static const abrdf_model_param mp_huang[] = {
+    {P_ETA, 1.55, 1.0, 4.0}, {P_MELANIN, 0.8, 0.0, 1.0}, {P_REDNESS, 1.0, 0.0, 1.0},
+    {P_CUTICLE_TILT, 2.0, -10.0, 10.0}, {P_ASPECT_RATIO, 0.85, 0.01, 1.0},
+    {P_R, 0.3, 0.05, 1.0}};
+#define CIT_HUANG "W. Huang, M. B. Hullin, J. Hanika, A microfacet-based hair scattering model, " \
+    "Computer Graphics Forum 41(4), 2022"
 #define HAIR_NEEDS (ABRDF_NEEDS_TANGENT | ABRDF_NEEDS_INTEGRATION | ABRDF_NEEDS_FRESNEL)
 /* ---- end hair models --------------------------------------------------------------- */
 
@@ -176,6 +185,8 @@ static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
     /* hair */
     [ABRDF_MARSCHNER] = {ABRDF_MARSCHNER, "marschner", "Marschner hair (R, TT, TRT)",
         "Sec. 2 (named)", CIT_MARSCHNER, HAIR_NEEDS, 0, -1, PARAMS(mp_marschner)},
+    [ABRDF_HUANG] = {ABRDF_HUANG, "huang", "Huang-Hullin-Hanika microfacet hair (far field)",
+        "Eqs. 12-14", CIT_HUANG, HAIR_NEEDS, 0, -1, PARAMS(mp_huang)},
 };
 
 /* ---- lookups ----------------------------------------------------------------------- */

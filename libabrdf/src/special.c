@@ -6,13 +6,14 @@
 
 static int is_hair(abrdf_model model)
 {
-    return model == ABRDF_MARSCHNER;
+    return model == ABRDF_MARSCHNER || model == ABRDF_HUANG;
 }
 
 static void eval_hair(abrdf_model model, const abrdf_params *p, const double wi[3],
                       const double wo[3], double f[3])
 {
     if (model == ABRDF_MARSCHNER) abrdf__marschner_eval(p, wi, wo, f);
+    else if (model == ABRDF_HUANG) abrdf__huang_eval(p, wi, wo, f);
 }
 /* ---- end hair ----------------------------------------------------------------------- */
 
