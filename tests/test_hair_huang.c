@@ -89,10 +89,9 @@ START_TEST(quadrature_convergence)
 END_TEST
 
 /* White furnace, melanin 0: R + TT + TRT (the paper's Eqs. 12-14) stay below 1 and lose
- * more energy as the section gets more eccentric (no multiple-scattering compensation).
- * Cycles' TRRT+ series is not energy-bounded: for a lossless fibre every path that is
- * totally reflected inside counts its whole entry transmission; the total stays <= 1.05
- * for round and near-round (0.85) fibres only (docs/SPECIAL_HAIR.md). */
+ * more energy as the section gets more eccentric (no multiple-scattering compensation);
+ * TRRT+ takes up part of it; the total stays <= 1 + 2% (quadrature) at every aspect ratio
+ * and at theta_o = 0, 45, 80 deg for the default fibre. Printed for docs/SPECIAL_HAIR.md. */
 START_TEST(white_furnace_eccentricity)
 {
     const double asp[] = {1.0, 0.85, 0.5, 0.2};
@@ -108,7 +107,17 @@ START_TEST(white_furnace_eccentricity)
         ck_assert_msg(e <= 1.0 && e > 0.2, "R+TT+TRT albedo %.4f", e);
         if (k >= 1) ck_assert_msg(e <= prev + 5e-3, "loss must grow with eccentricity: %.4f", e);
         prev = e;
-        if (asp[k] >= 0.85) ck_assert_msg(e + t <= 1.05, "total albedo %.4f", e + t);
+        ck_assert_msg(e + t <= 1.02 && e + t > 0.7, "total albedo %.4f", e + t);
+    }
+    const double deg[] = {45.0, 80.0};
+    for (int k = 0; k < 2; ++k) {
+        abrdf__huang m;
+        setup(&m, 0.0, 0.85);
+        m.n1 = 4;
+        m.n2 = 2;
+        double a = fibre_albedo(&m, deg[k] * PI / 180, 15u, 12);
+        printf("huang white furnace b=0.85 theta_o=%.0f: total %.4f\n", deg[k], a);
+        ck_assert_msg(a <= 1.02 && a > 0.6, "total albedo %.4f at %g deg", a, deg[k]);
     }
 }
 END_TEST

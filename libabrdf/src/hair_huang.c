@@ -245,7 +245,7 @@ static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
 
 /* TT + TRT + TRRT+ (RGB): Simpson over h, nested midpoint rules over the VNDF squares. */
 static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr,
-                           unsigned lobes, double out[3])
+                           double sp_i, double cp_i, unsigned lobes, double out[3])
 {
     const double b = m->b, eta = m->eta, inv_eta = 1.0 / eta, al = m->alpha;
     const double a2 = al * al, e2 = 1.0 - b * b;
@@ -260,6 +260,9 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
         double cos_mi1 = dot(wi, wmi);
         if (!(cos_mi1 > 0.0)) continue; /* the VNDF needs a visible mesonormal */
         double weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
+        /* Projected width of this surface element seen from wi, |dh/dgamma| cos(theta_i):
+         * the light TRRT+ receives here (R, TT, TRT carry it through cos_mi1). */
+        double proj = fabs(cp_i * cos(gmi) + b * sp_i * sin(gmi)) * cos_theta(wi);
         for (int j1 = 0; j1 < n1 * n1; ++j1) {
             v3 wh1 = vndf_map(al, wi, wmi, (j1 / n1 + 0.5) / n1, (j1 % n1 + 0.5) / n1);
             double cos_hi1 = dot(wi, wh1);
@@ -310,7 +313,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 double wgt2 = wgt * w2;
                 v3 wtr = neg(reflect_dir(wt, wh2));
                 double rr[3];
-                for (int c = 0; c < 3; ++c) rr[c] = wgt2 * trrt(t1, r2, at[c]);
+                for (int c = 0; c < 3; ++c) rr[c] = wgt2 * proj * trrt(t1, r2, at[c]);
                 if (dot(neg(wtr), wo) < inv_eta - 1e-5) { /* total internal reflection */
                     for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
                     continue;
@@ -352,7 +355,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
     double mlong = longitudinal_m(sin_theta(wi), cos_theta(wi), sin_theta(wo), cos_theta(wo), 4.0 * al);
     double k = 2.0 / 3.0 * res;
     for (int c = 0; c < 3; ++c) {
-        double trrt_term = (lobes & 8u) ? s_trrt[c] * mlong / (2.0 * ABRDF__PI) * (2.0 / ABRDF__PI) : 0.0;
+        double trrt_term = (lobes & 8u) ? s_trrt[c] * mlong / (2.0 * ABRDF__PI) : 0.0;
         out[c] = ((s_tt[c] + s_trt[c]) * inv_eta * inv_eta + trrt_term) * k;
     }
 }
@@ -388,7 +391,7 @@ void abrdf__huang_fibre(const abrdf__huang *m, const double wi_[3], const double
     double area = ci * 2.0 * radius; /* projected width 2 (far field) times cos(theta_i), radius from dh */
     double r = (lobes & 1u) ? lobe_r(m, wi, wo, g0, g1 - g0) : 0.0;
     double res[3] = {0, 0, 0};
-    if (lobes & 14u) lobes_residual(m, wi, wo, g0, g1 - g0, lobes, res);
+    if (lobes & 14u) lobes_residual(m, wi, wo, g0, g1 - g0, sp_i, cp_i, lobes, res);
     for (int c = 0; c < 3; ++c) s[c] = (r + res[c]) / area;
 }
 
