@@ -204,6 +204,66 @@ static double trrt(double t1, double r2, double a)
     return t1 * r2 * r2 * tavg * a * a * a / (1.0 - a * (1.0 - tavg));
 }
 
+/* ---- energy compensation (Cycles' ggx_glass_E tables, regenerated) ------------------ */
+
+/* Single-scattering albedo (reflection + transmission) of a rough GGX dielectric interface
+ * of relative index eta, lit at cosine mu: the VNDF expectation of
+ * F G2(i, o_r)/G1(i) + (1 - F) G2(i, o_t)/G1(i), by an n x n midpoint rule on the VNDF
+ * square (tools/gen_hair_tables.c tabulates it; hair_tables.c). */
+double abrdf__ggx_glass_albedo(double alpha, double mu, double eta, int n)
+{
+    v3 wi = mk(sqrt(fmax(0.0, 1.0 - mu * mu)), 0.0, mu), nz = mk(0, 0, 1);
+    double a2 = alpha * alpha, li = ggx_lambda(a2, mu), sum = 0.0;
+    for (int j = 0; j < n * n; ++j) {
+        v3 h = vndf_map(alpha, wi, nz, (j / n + 0.5) / n, (j % n + 0.5) / n);
+        double c = dot(wi, h);
+        if (!(c > 0.0)) continue;
+        double cos_t;
+        double f = fresnel(c, eta, &cos_t);
+        v3 o_r = reflect_dir(neg(wi), h);
+        if (o_r.z > 0.0) sum += f * (1.0 + li) / (1.0 + li + ggx_lambda(a2, o_r.z));
+        if (f < 1.0) {
+            v3 o_t = refract_dir(wi, h, cos_t, 1.0 / eta);
+            if (o_t.z < 0.0) sum += (1.0 - f) * (1.0 + li) / (1.0 + li + ggx_lambda(a2, o_t.z));
+        }
+    }
+    return sum / (n * n);
+}
+
+/* Trilinear lookup with Cycles' conventions (lookup_table_read_3D): the table's grid
+ * nodes sit at x, y, z = k/(N - 1), coordinates are clamped to [0, 1]. */
+static double table_read(const double *t, double x, double y, double z)
+{
+    const int n = ABRDF__HAIR_E_N;
+    double c[3] = {x, y, z};
+    int i0[3], i1[3];
+    double f[3];
+    for (int k = 0; k < 3; ++k) {
+        double u = fmin(fmax(c[k], 0.0), 1.0) * (n - 1);
+        i0[k] = (int)u < n - 1 ? (int)u : n - 1;
+        i1[k] = i0[k] + 1 < n ? i0[k] + 1 : n - 1;
+        f[k] = u - i0[k];
+    }
+    double v = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        int ix = k & 1 ? i1[0] : i0[0], iy = k & 2 ? i1[1] : i0[1], iz = k & 4 ? i1[2] : i0[2];
+        double w = (k & 1 ? f[0] : 1 - f[0]) * (k & 2 ? f[1] : 1 - f[1]) * (k & 4 ? f[2] : 1 - f[2]);
+        v += w * t[(iz * n + iy) * n + ix];
+    }
+    return v;
+}
+
+/* 1/E: the factor that lifts a single microfacet interaction to the energy of all its
+ * bounces (Cycles' bsdf_hair_huang_energy_scale); 1 when compensation is off. */
+static double energy_scale(const abrdf__huang *m, double mu, double eta)
+{
+    if (!m->compensate) return 1.0;
+    const double *t = eta < 1.0 ? abrdf__hair_glass_inv_e : abrdf__hair_glass_e;
+    double z = sqrt(fabs((eta - 1.0) / (eta + 1.0)));
+    double e = table_read(t, sqrt(m->alpha), mu, z);
+    return 1.0 / fmax(e, ABRDF__HAIR_E_MIN);
+}
+
 /* ---- the model ------------------------------------------------------------------------ */
 void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
 {
@@ -215,6 +275,7 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
     m->refine = 1;
     m->n1 = ABRDF__HUANG_N1;
     m->n2 = ABRDF__HUANG_N2;
+    m->compensate = 1;
 }
 
 /* Simpson intervals over a range of length hr with step at most res/refine (even count). */
@@ -237,7 +298,8 @@ static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
         v3 wm = sphg_dir(m->tilt, gm, b);
         if (!visible2(wi, wo, mk(wm.x, 0.0, wm.z), wh)) continue;
         double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
-        sum += w * ggx_d(a2, dot(wm, wh)) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc_length(e2, gm);
+        sum += w * ggx_d(a2, dot(wm, wh)) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) *
+               arc_length(e2, gm) * energy_scale(m, dot(wm, wi), m->eta);
     }
     sum *= 2.0 / 3.0 * res;
     return 0.25 * fresnel(dot(wi, wh), m->eta, NULL) * sum; /* Eq. 12 */
@@ -269,6 +331,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
             if (!(cos_hi1 > 0.0)) continue;
             double cos_t1;
             double t1 = 1.0 - fresnel(cos_hi1, eta, &cos_t1);
+            double scale1 = energy_scale(m, cos_mi1, eta);
             v3 wt = refract_dir(wi, wh1, cos_t1, inv_eta);
             double phi_t = dir_phi(wt);
             double gmt = 2.0 * to_phi(phi_t, b) - gmi;
@@ -276,6 +339,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
             double cos_mo1 = dot(neg(wt), wmi), cos_mi2 = dot(neg(wt), wmt);
             if (!visible2(wi, neg(wt), wmi, wh1) || !visible2(wi, neg(wt), wmi_, wh1)) continue;
             double g1o = ggx_go(a2, cos_mi1, cos_mo1);
+            double scale2 = energy_scale(m, cos_mi2, inv_eta);
             double ct_t = fmax(cos_theta(wt), ABRDF__HAIR_COS_MIN);
             double chord = len(add(to_point(gmi, b), neg(to_point(gmt + ABRDF__PI, b))));
             double at[3];
@@ -293,8 +357,8 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                     double cos_mh2 = dot(wmt, wh2);
                     if (cos_mh2 >= 0.0) {
                         double cos_hi2 = dot(neg(wt), wh2), cos_ho2 = dot(neg(wo), wh2);
-                        double t2 = 1.0 - fresnel(cos_hi2, inv_eta, NULL);
-                        double v = wgt * t1 * t2 * ggx_d(a2, cos_mh2) * g1o *
+                        double t2 = (1.0 - fresnel(cos_hi2, inv_eta, NULL)) * scale2;
+                        double v = wgt * t1 * scale1 * t2 * ggx_d(a2, cos_mh2) * g1o *
                                    ggx_g(a2, cos_mi2, dot(neg(wo), wmt)) / cos_mo1 * cos_mi1 *
                                    cos_hi2 * cos_ho2 * rn * rn * arc_length(e2, gmt);
                         if (isfinite(v))
@@ -309,11 +373,11 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 v3 wh2 = vndf_map(al, neg(wt), wmt, (j2 / n2 + 0.5) / n2, (j2 % n2 + 0.5) / n2);
                 double cos_hi2 = dot(neg(wt), wh2);
                 if (!(cos_hi2 > 0.0)) continue;
-                double r2 = fresnel(cos_hi2, inv_eta, NULL);
+                double r2f = fresnel(cos_hi2, inv_eta, NULL), r2 = r2f * scale2;
                 double wgt2 = wgt * w2;
                 v3 wtr = neg(reflect_dir(wt, wh2));
                 double rr[3];
-                for (int c = 0; c < 3; ++c) rr[c] = wgt2 * proj * trrt(t1, r2, at[c]);
+                for (int c = 0; c < 3; ++c) rr[c] = wgt2 * proj * trrt(t1, r2f, at[c]);
                 if (dot(neg(wtr), wo) < inv_eta - 1e-5) { /* total internal reflection */
                     for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
                     continue;
@@ -336,10 +400,10 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 }
                 double cos_hi3 = dot(wh3, wtr), cos_ho3 = dot(wh3, neg(wo));
                 double cos_mi3 = dot(wmtr, wtr), cos_mo2 = dot(wmt, neg(wtr));
-                double t3 = 1.0 - fresnel(cos_hi3, inv_eta, NULL);
+                double t3 = (1.0 - fresnel(cos_hi3, inv_eta, NULL)) * energy_scale(m, cos_mi3, inv_eta);
                 double ct_tr = fmax(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
                 double chord2 = len(add(to_point(gmtr, b), neg(to_point(gmt, b))));
-                double v = wgt2 * t1 * r2 * t3 * ggx_d(a2, cos_mh3) * g1o *
+                double v = wgt2 * t1 * scale1 * r2 * t3 * ggx_d(a2, cos_mh3) * g1o *
                            ggx_go(a2, cos_mi2, cos_mo2) * ggx_g(a2, cos_mi3, dot(wmtr, neg(wo))) /
                            (cos_mo1 * cos_mo2) * cos_mi1 * cos_mi2 * cos_hi3 * cos_ho3 * rn3 * rn3 *
                            arc_length(e2, gmtr);
