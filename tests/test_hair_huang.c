@@ -131,8 +131,8 @@ END_TEST
  * here at [0.85, 1.15] and documented. */
 START_TEST(white_furnace_compensated)
 {
-    const double asp[] = {1.0, 0.85, 0.5, 0.2};
-    for (int k = 0; k < 4; ++k) {
+    const double asp[] = {1.0, 0.2};
+    for (int k = 0; k < 2; ++k) {
         abrdf__huang m;
         setup(&m, 0.0, asp[k]);
         m.n1 = 4;
@@ -184,7 +184,7 @@ START_TEST(stability_grid)
         p.aspect_ratio = asp[e];
         for (int i = 0; i < nd; ++i)
             for (int o = 0; o < nd; ++o) {
-                if (c == 0 && (i + o) % 3) continue; /* alpha = 0.05 is slow: a third */
+                if (c == 0 && (i + o) % 5) continue; /* alpha = 0.05 is slow: a fifth */
                 double f[3];
                 ck_assert_int_eq(abrdf_eval_local(ABRDF_HUANG, &p, dirs[i], dirs[o], f), ABRDF_OK);
                 for (int k = 0; k < 3; ++k) {
