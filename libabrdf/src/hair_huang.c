@@ -362,7 +362,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                                    ggx_g(a2, cos_mi2, dot(neg(wo), wmt)) / cos_mo1 * cos_mi1 *
                                    cos_hi2 * cos_ho2 * rn * rn * arc_length(e2, gmt);
                         if (isfinite(v))
-                            for (int c = 0; c < 3; ++c) s_tt[c] += v * at[c];
+                            for (int c = 0; c < 3; ++c) s_tt[c] += v * at[c]; /* Eq. 13 */
                     }
                 }
             }
@@ -410,7 +410,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 if (isfinite(v) && (lobes & 4u))
                     for (int c = 0; c < 3; ++c) {
                         double atr = m->sigma_a[c] > 0.0 ? exp(-m->sigma_a[c] / ct_tr * chord2) : 1.0;
-                        s_trt[c] += v * at[c] * atr;
+                        s_trt[c] += v * at[c] * atr; /* Eq. 14 */
                     }
                 for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
             }

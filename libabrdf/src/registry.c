@@ -184,7 +184,7 @@ static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
         REC | EC | SPE, -1, PARAMS(mp_clearcoat)},
     /* hair */
     [ABRDF_MARSCHNER] = {ABRDF_MARSCHNER, "marschner", "Marschner hair (R, TT, TRT)",
-        "Sec. 2 (named)", CIT_MARSCHNER, HAIR_NEEDS, 0, -1, PARAMS(mp_marschner)},
+        "special surfaces (named)", CIT_MARSCHNER, HAIR_NEEDS, 0, -1, PARAMS(mp_marschner)},
     [ABRDF_HUANG] = {ABRDF_HUANG, "huang", "Huang-Hullin-Hanika microfacet hair (far field)",
         "Eqs. 12-14", CIT_HUANG, HAIR_NEEDS, 0, -1, PARAMS(mp_huang)},
 };
