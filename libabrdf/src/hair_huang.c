@@ -5,26 +5,31 @@
  * ratio b) whose surface is a GGX microfacet surface (alpha = r, not squared) with scales
  * tilted by the cuticle angle. Far field: the scattered light is averaged over the
  * fibre's projected width h.
- *   R   = F(wi.wh) / 4 * integral D(wm.wh) G2(wm.wi, wm.wo) arc(gamma) dgamma/dh dh   (Eq. 12)
- *   TT  = integral over h and the entry microfacet wh1 of T1 A_t T2 D2 G ... with the
- *         generalised half vector wh2 ~ -wt + wo/eta at the exit                     (Eq. 13)
+ *   R   = F(wi.wh) / 4 * integral D(wm.wh) G2(wm.wi, wm.wo) arc(gamma) S_E dgamma (Eq. 12)
+ *   TT  = integral over gamma and the entry microfacet wh1 of T1 A_t T2 D2 G ... with the
+ *         generalised half vector wh2 ~ -wt + wo/eta at the exit                    (Eq. 13)
  *   TRT = the same with an internal reflection at wh2 and the exit half vector
- *         wh3 ~ wtr + wo/eta                                                         (Eq. 14)
- *   plus TRRT+ as a geometric series times Chiang's longitudinal M(v = 4 alpha) / (2 pi).
+ *         wh3 ~ wtr + wo/eta                                                        (Eq. 14)
+ *   plus TRRT+ as a geometric series times Chiang's longitudinal M(v = 4 alpha) / (2 pi),
+ *   S = (R + (TT + TRT)/eta^2 + TRRT+) / (2 cos(theta_view) radius).
  * The structure, frame and h-interval logic follow Blender Cycles
  * src/kernel/closure/bsdf_principled_hair_huang.h (MODELS.md B7.3), in double.
  *
- * What differs from Cycles (docs/SPECIAL_HAIR.md):
+ * What differs from Cycles (docs/SPECIAL_HAIR.md has the measurements):
  *  - DETERMINISTIC integration. Cycles draws one GGX visible-normal (VNDF) sample per h node
  *    for the entry microfacet and one for the internal reflection. Here the VNDF sampling
  *    map is integrated by an n1 x n1 (entry) and n2 x n2 (internal reflection) midpoint
  *    product rule on its unit square: the expectation Cycles estimates, computed by
- *    quadrature. h uses composite Simpson with Cycles' steps (<= 0.7 alpha for R,
- *    <= 0.8 alpha for the rest) divided by a refinement factor.
- *  - No energy compensation: Cycles divides each microfacet interaction by a tabulated
- *    glass albedo E(alpha, mu, eta). That table is not reproduced here, so this model loses
- *    the energy of multiple microfacet bounces (measured in docs/SPECIAL_HAIR.md).
- *  - No near field: the whole projected width h in [-1, 1] is integrated.
+ *    quadrature.
+ *  - Composite Simpson over the surface parameter gamma instead of h (Cycles' steps,
+ *    <= 0.7 alpha for R and <= 0.8 alpha for the rest, divided by a refinement factor):
+ *    dgamma/dh is singular at the silhouette and Simpson in h over-weights it.
+ *  - TRRT+ is weighted by the projected width |dh/dgamma| cos(theta_view) of each element
+ *    instead of Cycles' constant 2/pi, which lets it grow as 1/cos(theta_view).
+ *  - The energy compensation S_E = 1/E(sqrt(alpha), mu, eta) reads tables this project
+ *    generates by quadrature (tools/gen_hair_tables.c -> hair_tables.c), not Cycles'
+ *    Monte Carlo tables.
+ *  - No near field: the whole visible projected width is integrated.
  *  - The cross-section's major axis is the local +y (along the ribbon, B), the minor axis
  *    +z (N); Cycles' local frame (X major axis, Y tangent, Z) is (w.y, w.x, w.z) here.
  *  - cuticle_tilt is Blender's "offset" (degrees); the model's tilt is its negative. */
@@ -348,7 +353,8 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
             double wgt = weight * w1;
 
             /* TT: exit through the microfacet with generalised half vector wh2 (Eq. 13) */
-            if ((lobes & 2u) && dot(wo, wt) >= inv_eta - 1e-5) { /* else total reflection */
+            /* exit possible only if wo is within the critical cone (1e-5: Cycles' tolerance) */
+            if ((lobes & 2u) && dot(wo, wt) >= inv_eta - 1e-5) {
                 v3 wh2 = add(neg(wt), scl(wo, inv_eta));
                 double l2 = dot(wh2, wh2);
                 if (l2 > HALF_LEN2_MIN) {
