@@ -131,6 +131,14 @@ typedef enum abrdf_model {
     ABRDF_MODEL_COUNT
 } abrdf_model;
 
+/* ---- hair models (marschner, huang) ----
+ * The fibre runs along the tangent T (local +x), on a "ribbon" with normal N, as BRDF
+ * Explorer evaluates hair over a tangent field. With S the fibre scattering function in
+ * pbrt-v4's convention (a lossless fibre has integral S dwi = 1 over the sphere), the
+ * models return f_r = S / |N.wi| for wi, wo above the ribbon, 0 otherwise, so that
+ * f_r * N.wi = S. Absorption comes from melanin/redness (Cycles' mapping). Hair f_r is not
+ * reciprocal; docs/SPECIAL_HAIR.md gives the measured asymmetry. */
+
 /* What a model needs from the caller or the renderer (bit flags of abrdf_model_info.needs). */
 #define ABRDF_NEEDS_TANGENT     0x01u  /* uses T and B (anisotropy, fibres) */
 #define ABRDF_NEEDS_FRESNEL     0x02u  /* evaluates a Fresnel term */

@@ -104,6 +104,29 @@ static const abrdf_model_param mp_clearcoat[] = {KS, {P_CLEARCOAT_GLOSS, 1.0, 0.
 #define CIT_CT "R. L. Cook, K. E. Torrance, A reflectance model for computer graphics, ACM TOG 1(1), 1982"
 #define CIT_WALTER "B. Walter et al., Microfacet models for refraction through rough surfaces, EGSR 2007; " CIT_BURLEY
 
+/* ---- hair models (hair.h) ---------------------------------------------------------- */
+/* Defaults: brown hair with Cycles' Principled Hair defaults (melanin 0.8, redness 1.0),
+ * eta 1.55 (keratin). Marschner: r is the longitudinal width beta_R in radians (the paper's
+ * 5-10 deg -> 0.13 rad), the axis ratio a in [0.75, 1] where its eccentricity trick keeps
+ * eta* >= 1 (it needs a^2 >= 1/2). */
+static const abrdf_model_param mp_marschner[] = {
+    {P_ETA, 1.55, 1.0, 4.0}, {P_MELANIN, 0.8, 0.0, 1.0}, {P_REDNESS, 1.0, 0.0, 1.0},
+    {P_CUTICLE_TILT, 3.0, -10.0, 10.0}, {P_ASPECT_RATIO, 0.9, 0.75, 1.0},
+    {P_R, 0.13, 0.01, 1.0}};
+#define CIT_MARSCHNER "S. R. Marschner, H. W. Jensen, M. Cammarano, S. Worley, P. Hanrahan, " \
+    "Light scattering from human hair fibers, ACM TOG 22(3), 2003"
+/* Huang: Cycles' Principled Hair (Huang) defaults: r = GGX alpha 0.3 (not squared, clamped
+ * to >= 0.001 as Cycles does), offset 2 deg, aspect ratio 0.85; r >= 0.05 bounds the cost
+ * (the h step is 0.7 r). */
+static const abrdf_model_param mp_huang[] = {
+    {P_ETA, 1.55, 1.0, 4.0}, {P_MELANIN, 0.8, 0.0, 1.0}, {P_REDNESS, 1.0, 0.0, 1.0},
+    {P_CUTICLE_TILT, 2.0, -10.0, 10.0}, {P_ASPECT_RATIO, 0.85, 0.01, 1.0},
+    {P_R, 0.3, 0.05, 1.0}};
+#define CIT_HUANG "W. Huang, M. B. Hullin, J. Hanika, A microfacet-based hair scattering model, " \
+    "Computer Graphics Forum 41(4), 2022"
+#define HAIR_NEEDS (ABRDF_NEEDS_TANGENT | ABRDF_NEEDS_INTEGRATION | ABRDF_NEEDS_FRESNEL)
+/* ---- end hair models --------------------------------------------------------------- */
+
 static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
     [ABRDF_LAMBERT] = {ABRDF_LAMBERT, "lambert", "Lambert", "Eq. 1", CIT_LAMBERT,
         0, REC | EC | DIF, -1, PARAMS(mp_kd)},
@@ -159,6 +182,11 @@ static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
     [ABRDF_DISNEY_CLEARCOAT] = {ABRDF_DISNEY_CLEARCOAT, "disney_clearcoat",
         "Disney clearcoat (GTR1)", "Sec. 3 (named)", CIT_BURLEY, ABRDF_NEEDS_FRESNEL,
         REC | EC | SPE, -1, PARAMS(mp_clearcoat)},
+    /* hair */
+    [ABRDF_MARSCHNER] = {ABRDF_MARSCHNER, "marschner", "Marschner hair (R, TT, TRT)",
+        "special surfaces (named)", CIT_MARSCHNER, HAIR_NEEDS, 0, -1, PARAMS(mp_marschner)},
+    [ABRDF_HUANG] = {ABRDF_HUANG, "huang", "Huang-Hullin-Hanika microfacet hair (far field)",
+        "Eqs. 12-14", CIT_HUANG, HAIR_NEEDS, 0, -1, PARAMS(mp_huang)},
 };
 
 /* ---- lookups ----------------------------------------------------------------------- */
