@@ -112,6 +112,11 @@ START_TEST(np_white_furnace)
             a = clq_albedo(ABRDF_NEUBELT_PETTINEO, &p, th[j], fmax(0.05, rs[i] * rs[i]), 96, 0);
             ck_assert_msg(a <= 1.0, "sheen only r=%g th=%g: rho = %.6f", rs[i], th[j], a);
         }
+    /* the grazing limit sqrt(k_amp) / (2 sqrt(pi)) = 2.82 at k_amp = 100, alpha = 0.1 */
+    p.k_amp = 100.0;
+    p.r = sqrt(0.1);
+    double g = clq_albedo(ABRDF_NEUBELT_PETTINEO, &p, 89.9, 0.05, 128, 0);
+    ck_assert_msg(g > 2.5 && g < 3.0, "k_amp 100 at 89.9 deg: rho = %.4f", g);
     ck_assert(!(abrdf_model_get(ABRDF_NEUBELT_PETTINEO)->props & ABRDF_PROP_ENERGY_CONSERVING));
 }
 END_TEST
