@@ -396,6 +396,17 @@ START_TEST(belcour_white_furnace)
                 ck_assert_msg(a >= 0.75 && a <= 0.95, "coat over conductor: rho(0) = %.5f", a);
         }
     }
+    /* a less dense layer inside (TIR at its top from below) over a conductor (measured 0.918,
+     * 0.875, 0.497) */
+    abrdf_params_init(ABRDF_BELCOUR, &p);
+    p.layer_count = 3;
+    set_layer(&p, 0, 1.5, 0.0, 0.3, 0.0, 0.0);
+    set_layer(&p, 1, 0.6, 0.0, 0.3, 0.0, 0.0);
+    set_layer(&p, 2, 1.0, 10.0, 0.3, 0.0, 0.0);
+    for (int t = 0; t < 3; ++t) {
+        double a = clq_albedo(ABRDF_BELCOUR, &p, th[t], 0.09, 96, 0);
+        ck_assert_msg(a <= 1.0 + 3e-3 && a > 0.4, "TIR stack th %g: rho = %.5f", th[t], a);
+    }
     ck_assert(abrdf_model_get(ABRDF_BELCOUR)->props & ABRDF_PROP_ENERGY_CONSERVING);
 }
 END_TEST
