@@ -16,10 +16,15 @@
  *   complex relative index eta + i kappa, as the runtime lobes use). Changing variables to
  *   the half vector (dwo = 4 (wi.h) dwh) and to the GGX cumulative u in theta_h,
  *   tan^2(theta_h) = alpha^2 u / (1 - u), for which D(h) cos(theta_h) dwh = du dphi / (2 pi):
- *     FGD = 1/(2 pi) int_0^1 int_0^2pi F G (wi.h) / (cos_i cos_h) dphi du,
- *   integrated by Gauss-Legendre of order N in u and in phi (the integrand is even in
- *   phi), N^2 points. For each u the phi interval ends where wo crosses the horizon, so the
- *   cut-off is not inside the quadrature (it would limit Gauss-Legendre to first order).
+ *     FGD = 1/(2 pi) int_0^1 int_0^2pi F G (wi.h) / (cos_i cos_h) dphi du.
+ *   Quadrature (each step removes what would slow Gauss-Legendre down to first order):
+ *   - u = 1 - (1 - v)^2 cancels the 1/cos_h ~ 1/sqrt(1 - u) of grazing facets;
+ *   - the integrand is even in phi, and for each u the phi interval ends where wo crosses
+ *     the horizon, so the cut-off is not inside the quadrature;
+ *   - the theta_h at which that interval opens or closes split v into smooth pieces;
+ *   - for a dielectric with eta < 1, F = 1 beyond the critical angle and has an infinite
+ *     slope there: FGD = E_ss + int (F - 1) over the facets below the critical angle only.
+ *   Gauss-Legendre of order N in v and in phi per piece (at most MAX_PIECES pieces).
  * TIR(cos, alpha, eta): light at cos inside the denser medium meets the rough interface,
  *   relative index eta = n_outside / n_inside < 1; the fraction of the visible-normal
  *   distribution D_wi(h) = G1(wi) (wi.h)+ D(h) / cos_i whose facets do not totally reflect

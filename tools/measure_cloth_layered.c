@@ -119,12 +119,12 @@ int main(int argc, char **argv)
         a = sqrt(2.0 / (p.n + 2.0)); /* lobe width of cos^n */
     }
     if (a < 0.02) a = 0.02;
-    printf("model %s, quadrature width a = %g, orders %d and %d (theta_h) x %d and %d (phi)\n",
-           abrdf_model_get(m)->name, a, order, 2 * order, 2 * order, 4 * order);
+    printf("model %s, quadrature width a = %g, order N in theta_h x 2N azimuths\n",
+           abrdf_model_get(m)->name, a);
     const double th[3] = {0.0, 45.0, 80.0};
     for (int k = 0; k < 3; ++k)
-        printf("albedo(%2.0f deg) = %.5f (order %d: %.5f)\n", th[k], albedo(m, &p, th[k], a, 2 * order),
-               order, albedo(m, &p, th[k], a, order));
+        printf("albedo(%2.0f deg) = %.5f (order %d), %.5f (order %d)\n", th[k],
+               albedo(m, &p, th[k], a, 2 * order), 2 * order, albedo(m, &p, th[k], a, order), order);
     unsigned s = 12345u;
     double worst = 0.0;
     for (int i = 0; i < 100000; ++i) {
