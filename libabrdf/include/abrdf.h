@@ -156,7 +156,7 @@ typedef enum abrdf_model {
 
 /* One interface of a layer stack with the medium below it (layered models). */
 typedef struct abrdf_layer {
-    double eta;        /* relative index of refraction of the interface, [1, 4] */
+    double eta;        /* relative index of refraction of the interface, [0.25, 4] */
     double kappa;      /* extinction coefficient (conductor if > 0), [0, 10] */
     double r;          /* perceptual roughness of the interface, [0, 1] */
     double sigma_a[3]; /* absorption of the medium below, 1/unit depth, [0, 1e4] */
