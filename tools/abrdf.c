@@ -7,6 +7,7 @@ static const cli_command commands[] = {
     {"models", "list every model with its formula, parameters and needs", cmd_models},
     {"eval", "evaluate a model's f_r for one direction pair", cmd_eval},
     {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
+    {"compare", "NMSE (the paper's metric), PSNR, max error and Table-8 class of two images", cmd_compare},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
