@@ -9,6 +9,8 @@ static const cli_command commands[] = {
     {"render", "render a scene (docs/SCENES.md) to EXR + PNG preview with the built-in ray tracer", cmd_render},
     {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
     {"compare", "NMSE (the paper's metric), PSNR, max error and Table-8 class of two images", cmd_compare},
+    {"tables", "the paper's Tables 2, 3, 4, 6, 7 recomputed, beside the published values", cmd_tables},
+    {"calibrate", "measure ns/eval of every model on this machine; write a cost file", cmd_calibrate},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
