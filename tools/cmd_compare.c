@@ -135,7 +135,8 @@ int cmd_compare(int argc, char **argv)
         else printf("PSNR       %s\n", m.psnr > 0 ? "inf (identical)" : "-inf (no positive value)");
         printf("max error  %.6e at pixel (%d, %d) channel %c\n", m.max_abs, m.max_x, m.max_y, "RGB"[m.max_c]);
         if (diff) printf("diff map   %s (0 .. %.6e)\n", diff, m.max_abs);
-        printf("result     %s (NMSE < %g)\n", pass ? "PASS" : m.nmse_defined ? "FAIL" : "UNDEFINED", threshold);
+        if (!m.nmse_defined) printf("result     UNDEFINED\n");
+        else printf("result     %s (NMSE %s %g)\n", pass ? "PASS" : "FAIL", pass ? "<" : ">=", threshold);
     }
     if (!m.nmse_defined) {
         fprintf(stderr, "abrdf compare: NMSE is undefined because the reference %s is all black\n", files[0]);
