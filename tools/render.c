@@ -3,6 +3,7 @@
  * occluder, box-filtered stratified supersampling, rows shared by pthreads. Each pixel is a
  * pure function of the scene and its coordinates, so the image is bit-identical for any
  * number of threads. */
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
@@ -175,10 +176,12 @@ static int closest_hit(const render_scene *rs, const double o[3], const double d
 static int occluded(const render_scene *rs, const int *occ, int count, const double o[3],
                     const double d[3], double tmax, render_stats *st)
 {
+    int all = count == 1 && occ[0] < 0;
+    if (all) count = rs->object_count;
     for (int k = 0; k < count; ++k) {
         double t;
         ++st->occluder_tests;
-        if (geom_intersect(&rs->objects[occ[k]], o, d, 0.0, tmax, &t, NULL)) return 1;
+        if (geom_intersect(&rs->objects[all ? k : occ[k]], o, d, 0.0, tmax, &t, NULL)) return 1;
     }
     return 0;
 }
@@ -305,7 +308,8 @@ static void render_row(const render_scene *rs, const render_options *opt, int j,
                 shade(rs, obj, p, n, wo, L, st);
                 for (int c = 0; c < 3; ++c) sum[c] += L[c];
             }
-        for (int c = 0; c < 3; ++c) row[3 * i + c] = (float)(sum[c] / opt->spp);
+        /* A point light on a surface is an infinite irradiance: keep the file finite. */
+        for (int c = 0; c < 3; ++c) row[3 * i + c] = (float)fmin(sum[c] / opt->spp, FLT_MAX);
     }
 }
 
