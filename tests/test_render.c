@@ -17,12 +17,12 @@ typedef struct result {
 } result;
 
 /* Render scene text at its own resolution (size 0) or size x size. */
-static result render_text_at(const char *text, int spp, int threads, int size)
+static result render_text_at(const char *text, int spp, int threads, int size, int full)
 {
     scene s;
     char err[512];
     ck_assert_msg(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
-    render_options opt = {size, size, spp, 0, threads, 0};
+    render_options opt = {size, size, spp, 0, threads, 0, full};
     render_scene rs;
     ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
     result r = {rs.width, rs.height, malloc((size_t)rs.width * rs.height * 3 * sizeof(float)), {0}};
@@ -33,7 +33,7 @@ static result render_text_at(const char *text, int spp, int threads, int size)
     return r;
 }
 
-static result render_text(const char *text, int spp, int threads) { return render_text_at(text, spp, threads, 0); }
+static result render_text(const char *text, int spp, int threads) { return render_text_at(text, spp, threads, 0, 0); }
 
 static const float *pixel(const result *r, int i, int j) { return r->rgb + 3 * ((size_t)j * r->w + i); }
 
@@ -123,7 +123,7 @@ START_TEST(bit_identical_for_any_thread_count)
     render_stats st[3];
     int threads[3] = {1, 2, 2};
     for (int k = 0; k < 3; ++k) {
-        render_options opt = {64, 64, 4, k == 2, threads[k], 0};
+        render_options opt = {64, 64, 4, k == 2, threads[k], 0, 0};
         render_scene rs;
         ck_assert(render_prepare(&s, &opt, &rs, err, sizeof err) == 0);
         img[k] = malloc(64 * 64 * 3 * sizeof(float));
@@ -157,13 +157,39 @@ END_TEST
 START_TEST(robot_casts_shadow_rays_and_shadows_darken)
 {
     load_robot();
-    result r = render_text_at(robot, 1, 2, 128);
+    result r = render_text_at(robot, 1, 2, 128, 0);
     ck_assert(r.st.shadow_rays > 0 && r.st.occluder_tests >= r.st.shadow_rays);
     ck_assert_uint_eq(r.st.tangent_frames, 0);
     ck_assert_uint_eq(r.st.ambient_terms, r.st.hits);
     /* Some lit samples are blocked: fewer BRDF evaluations than lit samples would need. */
     ck_assert(r.st.brdf_evals < 2 * (r.st.shadow_rays + r.st.shadow_rays_skipped));
     free(r.rgb);
+}
+END_TEST
+
+/* The plan skips only work that cannot change the image: rendering with every effect
+ * everywhere (shadow rays toward every object, tangent frames, ambient) gives the same
+ * pixels up to rounding, while doing more work. A shadow the plan wrongly skipped would
+ * differ by the whole direct light. */
+static void expect_plan_is_exact(const char *text, int size)
+{
+    result a = render_text_at(text, 1, 2, size, 0), b = render_text_at(text, 1, 2, size, 1);
+    double worst = 0;
+    for (size_t k = 0; k < (size_t)a.w * a.h * 3; ++k)
+        worst = fmax(worst, fabs(a.rgb[k] - b.rgb[k]) / fmax(1e-3, fabs(b.rgb[k])));
+    ck_assert_msg(worst < 1e-5, "planned vs full render: rel diff %g", worst);
+    ck_assert(b.st.occluder_tests > a.st.occluder_tests);
+    ck_assert(b.st.tangent_frames > a.st.tangent_frames);
+    free(a.rgb);
+    free(b.rgb);
+}
+
+START_TEST(plan_changes_no_pixel)
+{
+    load_robot();
+    expect_plan_is_exact(robot, 96);
+    expect_plan_is_exact(read_file(SCENES_DIR "/sphere.scene"), 64);
+    expect_plan_is_exact(read_file(FUZZ_CORPUS "/shapes.scene"), 64);
 }
 END_TEST
 
@@ -248,7 +274,7 @@ START_TEST(unresolvable_materials_are_refused)
     scene s;
     char err[512];
     ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
-    render_options opt = {8, 8, 1, 0, 1, 0};
+    render_options opt = {8, 8, 1, 0, 1, 0, 0};
     render_scene rs;
     ck_assert_int_eq(render_prepare(&s, &opt, &rs, err, sizeof err), -1);
     ck_assert_ptr_nonnull(strstr(err, "adaptive"));
@@ -270,6 +296,7 @@ static Suite *suite(void)
     tcase_add_test(tp, single_sphere_casts_no_shadow_rays);
     tcase_add_test(tp, robot_casts_shadow_rays_and_shadows_darken);
     tcase_add_test(tp, separated_objects_need_no_shadow_rays);
+    tcase_add_test(tp, plan_changes_no_pixel);
     tcase_add_test(tp, tangent_frames_only_for_anisotropic_materials);
     tcase_add_test(tp, fresnel_counted_only_where_a_lobe_has_it);
     tcase_add_test(tp, unresolvable_materials_are_refused);

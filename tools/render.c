@@ -102,6 +102,16 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         for (int k = 0; k < 3; ++k) rl->e[k] = sl->color[k] * sl->intensity;
     }
     if (abrdf__render_plan_shadows(rs)) goto oom;
+    if (opt->full) { /* the naive renderer the plan is measured against */
+        for (int i = 0; i < rs->material_count; ++i) rs->materials[i].use_tangent = rs->materials[i].use_ambient = 1;
+        int n = rs->object_count;
+        for (int k = 0; k <= rs->light_count * n; ++k) rs->occ_start[k] = k;
+        int *all = realloc(rs->occ, ((size_t)rs->light_count * n + 1) * sizeof *all);
+        if (!all) goto oom;
+        rs->occ = all;
+        for (int k = 0; k < rs->light_count * n; ++k) all[k] = -1; /* test every object */
+        for (int l = 0; l < rs->light_count; ++l) rs->lights[l].shadow_receivers = n;
+    }
     return 0;
 oom:
     render_release(rs);

@@ -81,6 +81,7 @@ typedef struct render_options {
     int jitter;          /* jitter inside the strata (deterministic hash) */
     int threads;         /* >= 1 */
     int progress;        /* draw a progress bar on stderr */
+    int full;            /* ignore the effect plan: every effect everywhere (for comparison) */
 } render_options;
 
 int render_prepare(const scene *s, const render_options *opt, render_scene *rs, char *err,
