@@ -62,8 +62,17 @@ int abrdf__render_plan_shadows(render_scene *rs)
             int any = 0;
             /* A light with no energy lights nothing; nothing to shadow. */
             int dark = !(lt->e[0] > 0 || lt->e[1] > 0 || lt->e[2] > 0);
+            size_t first = len;
             for (int j = 0; j < n && !dark; ++j) {
                 if (!may_occlude(rs, lt, i, j)) continue;
+                /* A long list is no cheaper than testing everything: store "all" (-1) and
+                 * keep the plan's memory linear in lights x objects. */
+                if (len - first == RENDER_OCC_LIST_MAX) {
+                    len = first;
+                    rs->occ[len++] = -1;
+                    any = 1;
+                    break;
+                }
                 if (len == cap) {
                     int *g = realloc(rs->occ, 2 * cap * sizeof *g);
                     if (!g) return -1;
@@ -120,7 +129,11 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
     fprintf(f, "shadows:\n");
     for (int l = 0; l < rs->light_count; ++l) {
         const render_light *lt = &rs->lights[l];
-        int pairs = rs->occ_start[(l + 1) * n] - rs->occ_start[l * n];
+        int pairs = 0;
+        for (int i = 0; i < n; ++i) {
+            int a = rs->occ_start[l * n + i], b = rs->occ_start[l * n + i + 1];
+            pairs += b - a == 1 && rs->occ[a] < 0 ? n : b - a;
+        }
         fprintf(f, "  light %d (%s, line %d): ", l, lt->kind == SCENE_LIGHT_POINT ? "point" : "directional",
                 s->lights[l].line);
         if (!(lt->e[0] > 0 || lt->e[1] > 0 || lt->e[2] > 0))

@@ -3,6 +3,7 @@
  * occluder, box-filtered stratified supersampling, rows shared by pthreads. Each pixel is a
  * pure function of the scene and its coordinates, so the image is bit-identical for any
  * number of threads. */
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
@@ -47,8 +48,8 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     for (int i = 0; i < s->material_count; ++i) {
         const scene_material *m = &s->materials[i];
         if (m->kind == SCENE_MAT_TABLE || m->kind == SCENE_MAT_ADAPTIVE) {
-            snprintf(err, err_size, "material '%s' (line %d) is %s; this build has no material "
-                     "table and no abrdf_select, so it cannot be resolved",
+            snprintf(err, err_size, "material '%s' (line %d) is %s and not resolved to models "
+                     "(scene_select_materials)",
                      m->name, m->line, m->kind == SCENE_MAT_TABLE ? "a material-table entry" : "adaptive");
             return -1;
         }
@@ -101,6 +102,16 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         for (int k = 0; k < 3; ++k) rl->e[k] = sl->color[k] * sl->intensity;
     }
     if (abrdf__render_plan_shadows(rs)) goto oom;
+    if (opt->full) { /* the naive renderer the plan is measured against */
+        for (int i = 0; i < rs->material_count; ++i) rs->materials[i].use_tangent = rs->materials[i].use_ambient = 1;
+        int n = rs->object_count;
+        for (int k = 0; k <= rs->light_count * n; ++k) rs->occ_start[k] = k;
+        int *all = realloc(rs->occ, ((size_t)rs->light_count * n + 1) * sizeof *all);
+        if (!all) goto oom;
+        rs->occ = all;
+        for (int k = 0; k < rs->light_count * n; ++k) all[k] = -1; /* test every object */
+        for (int l = 0; l < rs->light_count; ++l) rs->lights[l].shadow_receivers = n;
+    }
     return 0;
 oom:
     render_release(rs);
@@ -175,10 +186,12 @@ static int closest_hit(const render_scene *rs, const double o[3], const double d
 static int occluded(const render_scene *rs, const int *occ, int count, const double o[3],
                     const double d[3], double tmax, render_stats *st)
 {
+    int all = count == 1 && occ[0] < 0;
+    if (all) count = rs->object_count;
     for (int k = 0; k < count; ++k) {
         double t;
         ++st->occluder_tests;
-        if (geom_intersect(&rs->objects[occ[k]], o, d, 0.0, tmax, &t, NULL)) return 1;
+        if (geom_intersect(&rs->objects[all ? k : occ[k]], o, d, 0.0, tmax, &t, NULL)) return 1;
     }
     return 0;
 }
@@ -305,7 +318,8 @@ static void render_row(const render_scene *rs, const render_options *opt, int j,
                 shade(rs, obj, p, n, wo, L, st);
                 for (int c = 0; c < 3; ++c) sum[c] += L[c];
             }
-        for (int c = 0; c < 3; ++c) row[3 * i + c] = (float)(sum[c] / opt->spp);
+        /* A point light on a surface is an infinite irradiance: keep the file finite. */
+        for (int c = 0; c < 3; ++c) row[3 * i + c] = (float)fmin(sum[c] / opt->spp, FLT_MAX);
     }
 }
 

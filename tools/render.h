@@ -59,6 +59,8 @@ typedef struct render_light {
     int shadow_receivers;   /* objects for which some occluder is possible */
 } render_light;
 
+#define RENDER_OCC_LIST_MAX 64
+
 typedef struct render_scene {
     const scene *src;
     int width, height;
@@ -68,7 +70,8 @@ typedef struct render_scene {
     geom_object *objects;
     render_material *materials;
     render_light *lights;
-    /* Occluder candidates of (light l, receiver i): occ[occ_start[l*N+i] .. occ_start[l*N+i+1]) */
+    /* Occluder candidates of (light l, receiver i): occ[occ_start[l*N+i] .. occ_start[l*N+i+1]);
+     * a single -1 means every object (more than RENDER_OCC_LIST_MAX candidates). */
     int *occ_start, *occ;
 } render_scene;
 
@@ -78,6 +81,7 @@ typedef struct render_options {
     int jitter;          /* jitter inside the strata (deterministic hash) */
     int threads;         /* >= 1 */
     int progress;        /* draw a progress bar on stderr */
+    int full;            /* ignore the effect plan: every effect everywhere (for comparison) */
 } render_options;
 
 int render_prepare(const scene *s, const render_options *opt, render_scene *rs, char *err,
