@@ -98,6 +98,43 @@ START_TEST(box_filter_matches_camera_model)
 }
 END_TEST
 
+/* The pixel footprint as other renderers can reproduce it: k x k strata centres of a W x H
+ * image are the pixel centres of a kW x kH image, so averaging k x k blocks of the larger
+ * one-sample image gives the supersampled image. */
+START_TEST(strata_centres_equal_block_average_of_larger_image)
+{
+    const char *text = "camera position=0.3,0.2,4 look_at=0,0,0 fov=30 resolution=7,5\n"
+                       "light directional direction=1,1,1\n"
+                       "material m diffuse=lambert specular=disney_specular kd=0.5 r=0.3\n"
+                       "sphere material=m radius=1\n";
+    scene s;
+    char err[256];
+    ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
+    render_options small = {7, 5, 9, 0, 2, 0, 0}, big = {21, 15, 1, 0, 2, 0, 0};
+    float a[7 * 5 * 3], b[21 * 15 * 3];
+    render_scene rs;
+    ck_assert(render_prepare(&s, &small, &rs, err, sizeof err) == 0);
+    ck_assert(render_image(&rs, &small, a, NULL) == 0);
+    render_release(&rs);
+    ck_assert(render_prepare(&s, &big, &rs, err, sizeof err) == 0);
+    ck_assert(render_image(&rs, &big, b, NULL) == 0);
+    render_release(&rs);
+    int nonzero = 0;
+    for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 7; ++i)
+            for (int c = 0; c < 3; ++c) {
+                double sum = 0;
+                for (int y = 0; y < 3; ++y)
+                    for (int x = 0; x < 3; ++x) sum += b[3 * ((3 * j + y) * 21 + 3 * i + x) + c];
+                float v = a[3 * (j * 7 + i) + c];
+                nonzero += v > 0;
+                ck_assert_msg(tu_close(v, sum / 9, 1e-6, 1e-12), "(%d,%d) %.9g vs %.9g", i, j, v, sum / 9);
+            }
+    ck_assert(nonzero > 10);
+    scene_free(&s);
+}
+END_TEST
+
 static char *read_file(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -290,6 +327,7 @@ static Suite *suite(void)
     tcase_add_test(tv, point_light_falls_off_with_distance_squared);
     tcase_add_test(tv, box_filter_matches_camera_model);
     tcase_add_test(tv, bit_identical_for_any_thread_count);
+    tcase_add_test(tv, strata_centres_equal_block_average_of_larger_image);
     tcase_set_timeout(tv, 120);
     suite_add_tcase(s, tv);
     TCase *tp = tcase_create("plan");

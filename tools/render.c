@@ -103,14 +103,13 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     }
     if (abrdf__render_plan_shadows(rs)) goto oom;
     if (opt->full) { /* the naive renderer the plan is measured against */
-        for (int i = 0; i < rs->material_count; ++i) rs->materials[i].use_tangent = rs->materials[i].use_ambient = 1;
+        for (int i = 0; i < rs->material_count; ++i) rs->materials[i].full = 1;
         int n = rs->object_count;
         for (int k = 0; k <= rs->light_count * n; ++k) rs->occ_start[k] = k;
         int *all = realloc(rs->occ, ((size_t)rs->light_count * n + 1) * sizeof *all);
         if (!all) goto oom;
         rs->occ = all;
         for (int k = 0; k < rs->light_count * n; ++k) all[k] = -1; /* test every object */
-        for (int l = 0; l < rs->light_count; ++l) rs->lights[l].shadow_receivers = n;
     }
     return 0;
 oom:
@@ -222,7 +221,8 @@ static void shade(const render_scene *rs, int obj, const double p[3], const doub
     const scene_object *so = &rs->src->objects[obj];
     const render_material *m = &rs->materials[so->material];
     out[0] = out[1] = out[2] = 0;
-    if (m->use_ambient) {
+    int tangent = m->use_tangent || m->full;
+    if (m->use_ambient || m->full) {
         for (int c = 0; c < 3; ++c) out[c] = m->ambient[c];
         ++st->ambient_terms;
     }
@@ -257,16 +257,16 @@ static void shade(const render_scene *rs, int obj, const double p[3], const doub
             ++st->shadow_rays_skipped;
         }
         double f[3] = {0, 0, 0}, fl[3], li[3], lo[3];
-        if (m->use_tangent && !have_frame) {
+        if (tangent && !have_frame) {
             double t[3];
             geom_tangent(so, &rs->objects[obj].xf, p, t);
             abrdf_frame_make(n, t, &frame);
             have_frame = 1;
             ++st->tangent_frames;
         }
-        if (!m->use_tangent) iso_local(n, wi, wo, li, lo);
+        if (!tangent) iso_local(n, wi, wo, li, lo);
         for (int k = 0; k < m->lobe_count; ++k) {
-            if (m->use_tangent) abrdf_eval(m->lobes[k], &m->params, &frame, wi, wo, fl);
+            if (tangent) abrdf_eval(m->lobes[k], &m->params, &frame, wi, wo, fl);
             else abrdf_eval_local(m->lobes[k], &m->params, li, lo, fl);
             unsigned needs = abrdf_model_get(m->lobes[k])->needs;
             ++st->brdf_evals;

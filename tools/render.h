@@ -50,6 +50,7 @@ typedef struct render_material {
     int use_tangent;     /* some lobe needs a tangent frame (and is not isotropic here) */
     unsigned needs;      /* union of the lobes' ABRDF_NEEDS_* */
     int used;            /* some object uses it */
+    int full;            /* --full: frames and ambient regardless of the plan */
 } render_material;
 
 typedef struct render_light {
