@@ -126,7 +126,7 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
     int n = rs->object_count;
     fprintf(f, "effect plan: %d objects, %d lights, %d materials, %dx%d, %d spp, %d threads\n",
             n, rs->light_count, rs->material_count, rs->width, rs->height, opt->spp, opt->threads);
-    if (opt->full) {
+    if (rs->full) {
         fprintf(f, "--full: the plan below is ignored; every light casts shadow rays toward every "
                    "object, every material builds tangent frames and adds the ambient term\n");
     }

@@ -102,20 +102,25 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         for (int k = 0; k < 3; ++k) rl->e[k] = sl->color[k] * sl->intensity;
     }
     if (abrdf__render_plan_shadows(rs)) goto oom;
-    if (opt->full) { /* the naive renderer the plan is measured against */
-        for (int i = 0; i < rs->material_count; ++i) rs->materials[i].full = 1;
-        int n = rs->object_count;
-        for (int k = 0; k <= rs->light_count * n; ++k) rs->occ_start[k] = k;
-        int *all = realloc(rs->occ, ((size_t)rs->light_count * n + 1) * sizeof *all);
-        if (!all) goto oom;
-        rs->occ = all;
-        for (int k = 0; k < rs->light_count * n; ++k) all[k] = -1; /* test every object */
-    }
     return 0;
 oom:
     render_release(rs);
     snprintf(err, err_size, "out of memory");
     return -1;
+}
+
+int render_plan_ignore(render_scene *rs)
+{
+    int n = rs->object_count, pairs = rs->light_count * n;
+    int *all = malloc(((size_t)pairs + 1) * sizeof *all);
+    if (!all) return -1;
+    for (int k = 0; k < pairs; ++k) all[k] = -1; /* -1: test every object */
+    for (int k = 0; k <= pairs; ++k) rs->occ_start[k] = k;
+    free(rs->occ);
+    rs->occ = all;
+    for (int i = 0; i < rs->material_count; ++i) rs->materials[i].full = 1;
+    rs->full = 1;
+    return 0;
 }
 
 int render_set_model(scene *s, abrdf_model model, char *err, size_t err_size)

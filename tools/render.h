@@ -17,6 +17,7 @@
  *   render_image        render linear RGB into a caller's buffer (threads, deterministic)
  *   render_stats_print  print the work counters
  *   render_set_model    replace every material's models by one model (CLI --model)
+ *   render_plan_ignore  do every effect everywhere (to measure the plan against)
  *   render_release      free what render_prepare allocated
  */
 #ifndef ABRDF_RENDER_H
@@ -50,7 +51,7 @@ typedef struct render_material {
     int use_tangent;     /* some lobe needs a tangent frame (and is not isotropic here) */
     unsigned needs;      /* union of the lobes' ABRDF_NEEDS_* */
     int used;            /* some object uses it */
-    int full;            /* --full: frames and ambient regardless of the plan */
+    int full;            /* render_plan_ignore: frames and ambient regardless of the plan */
 } render_material;
 
 typedef struct render_light {
@@ -74,6 +75,7 @@ typedef struct render_scene {
     /* Occluder candidates of (light l, receiver i): occ[occ_start[l*N+i] .. occ_start[l*N+i+1]);
      * a single -1 means every object (more than RENDER_OCC_LIST_MAX candidates). */
     int *occ_start, *occ;
+    int full;                   /* render_plan_ignore was applied */
 } render_scene;
 
 typedef struct render_options {
@@ -82,12 +84,15 @@ typedef struct render_options {
     int jitter;          /* jitter inside the strata (deterministic hash) */
     int threads;         /* >= 1 */
     int progress;        /* draw a progress bar on stderr */
-    int full;            /* ignore the effect plan: every effect everywhere (for comparison) */
 } render_options;
 
 int render_prepare(const scene *s, const render_options *opt, render_scene *rs, char *err,
                    size_t err_size);
 void render_release(render_scene *rs);
+/* Ignore the effect plan: every light shadow-tests every object, every material builds
+ * tangent frames and adds the ambient term (`--full`, to measure what the plan saves).
+ * Returns 0 or -1 (out of memory; rs unchanged). */
+int render_plan_ignore(render_scene *rs);
 void render_explain(const render_scene *rs, const render_options *opt, FILE *f);
 /* rgb: width*height*3 floats, top row first. Returns 0, or -1 if threads cannot start. */
 int render_image(const render_scene *rs, const render_options *opt, float *rgb,
