@@ -45,5 +45,6 @@ int cmd_render(int argc, char **argv);
 int cmd_tables(int argc, char **argv);
 int cmd_calibrate(int argc, char **argv);
 int cmd_advise(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
 
 #endif
