@@ -60,6 +60,32 @@ START_TEST(lambert_centre_pixel_directional)
 }
 END_TEST
 
+/* A diffuse + specular pair is the paper's I = ka Ia + Il cos (f_d + f_s): the centre pixel
+ * equals abrdf_shade for the same directions. */
+START_TEST(pair_matches_abrdf_shade)
+{
+    const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
+                       "light directional direction=0.3,0.4,0.8660254037844386 color=1,0.8,0.6 intensity=2\n"
+                       "ambient 0.05\n"
+                       "material m diffuse=disney_diffuse specular=disney_specular kd=0.4,0.3,0.2 r=0.35 f0=0.9\n"
+                       "sphere material=m radius=1\n";
+    result r = render_text(text, 1, 2);
+    abrdf_params p;
+    abrdf_params_init(ABRDF_DISNEY_DIFFUSE, &p);
+    p.kd[0] = 0.4, p.kd[1] = 0.3, p.kd[2] = 0.2;
+    p.r = 0.35;
+    p.f0[0] = p.f0[1] = p.f0[2] = 0.9;
+    double wi[3] = {0.3, 0.4, 0.8660254037844386}, wo[3] = {0, 0, 1}, light[3] = {2, 1.6, 1.2};
+    double l = sqrt(wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2]);
+    for (int c = 0; c < 3; ++c) wi[c] /= l;
+    double ambient[3] = {0.4 * 0.05, 0.3 * 0.05, 0.2 * 0.05}, want[3];
+    ck_assert_int_eq(abrdf_shade(ABRDF_DISNEY_DIFFUSE, ABRDF_DISNEY_SPECULAR, &p, NULL, wi, wo, light, ambient, want), ABRDF_OK);
+    for (int c = 0; c < 3; ++c)
+        ck_assert_msg(tu_close(pixel(&r, 16, 16)[c], want[c], 1e-6, 0), "c%d %.9g vs %.9g", c, pixel(&r, 16, 16)[c], want[c]);
+    free(r.rgb);
+}
+END_TEST
+
 START_TEST(point_light_falls_off_with_distance_squared)
 {
     const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
@@ -316,6 +342,18 @@ START_TEST(unresolvable_materials_are_refused)
     render_scene rs;
     ck_assert_int_eq(render_prepare(&s, &opt, &rs, err, sizeof err), -1);
     ck_assert_ptr_nonnull(strstr(err, "adaptive"));
+    /* spp must be a square: 3 samples cannot form a k x k grid of strata. */
+    s.materials[0].kind = SCENE_MAT_MODELS;
+    s.materials[0].lobe_count = 1;
+    s.materials[0].lobes[0] = ABRDF_LAMBERT;
+    abrdf_params_init(ABRDF_LAMBERT, &s.materials[0].params);
+    ck_assert_int_eq(render_prepare(&s, &opt, &rs, err, sizeof err), 0);
+    float rgb[8 * 8 * 3];
+    opt.spp = 3;
+    ck_assert_int_eq(render_image(&rs, &opt, rgb, NULL), -1);
+    opt.spp = 4;
+    ck_assert_int_eq(render_image(&rs, &opt, rgb, NULL), 0);
+    render_release(&rs);
     scene_free(&s);
 }
 END_TEST
@@ -325,6 +363,7 @@ static Suite *suite(void)
     Suite *s = suite_create("render");
     TCase *tv = tcase_create("values");
     tcase_add_test(tv, lambert_centre_pixel_directional);
+    tcase_add_test(tv, pair_matches_abrdf_shade);
     tcase_add_test(tv, point_light_falls_off_with_distance_squared);
     tcase_add_test(tv, box_filter_matches_camera_model);
     tcase_add_test(tv, bit_identical_for_any_thread_count);

@@ -187,7 +187,7 @@ int cmd_render(int argc, char **argv)
     clock_t c0 = clock();
     clock_gettime(CLOCK_MONOTONIC, &t0);
     if (render_image(&rs, &opt, rgb, &st)) {
-        fprintf(stderr, "abrdf render: cannot start threads\n");
+        fprintf(stderr, "abrdf render: --spp %d is not a square\n", opt.spp);
         goto done;
     }
     clock_gettime(CLOCK_MONOTONIC, &t1);

@@ -374,18 +374,17 @@ static void add_stats(render_stats *a, const render_stats *b)
 int render_image(const render_scene *rs, const render_options *opt, float *rgb,
                  render_stats *stats)
 {
+    long k = lround(sqrt((double)opt->spp));
+    if (opt->spp < 1 || k * k != opt->spp) return -1; /* strata form a k x k grid */
     int nt = opt->threads < 1 ? 1 : opt->threads > 64 ? 64 : opt->threads;
     worker w[64];
     pthread_t th[64];
     pthread_mutex_t lock;
-    int next_row = 0, rows_done = 0, started = 0, st = 0;
+    int next_row = 0, rows_done = 0, started = 0;
     if (pthread_mutex_init(&lock, NULL)) return -1;
     for (int t = 0; t < nt; ++t) {
         w[t] = (worker){rs, opt, rgb, {0}, &lock, &next_row, &rows_done};
-        if (t > 0 && pthread_create(&th[t], NULL, work, &w[t])) {
-            st = -1;
-            break;
-        }
+        if (t > 0 && pthread_create(&th[t], NULL, work, &w[t])) break;
         started = t + 1;
     }
     work(&w[0]); /* the calling thread works too; rows left by failed starts are done here */
@@ -395,7 +394,7 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb,
         memset(stats, 0, sizeof *stats);
         for (int t = 0; t < started; ++t) add_stats(stats, &w[t].stats);
     }
-    return st == 0 || next_row >= rs->height ? 0 : -1;
+    return 0;
 }
 
 void render_stats_print(const render_stats *s, FILE *f)

@@ -94,7 +94,9 @@ void render_release(render_scene *rs);
  * Returns 0 or -1 (out of memory; rs unchanged). */
 int render_plan_ignore(render_scene *rs);
 void render_explain(const render_scene *rs, const render_options *opt, FILE *f);
-/* rgb: width*height*3 floats, top row first. Returns 0, or -1 if threads cannot start. */
+/* rgb: width*height*3 floats, top row first. Returns 0, or -1 if spp is not a square
+ * k*k >= 1 or no mutex can be made (nothing rendered). Threads that cannot start leave their rows to the caller's
+ * thread, so the image is always complete. */
 int render_image(const render_scene *rs, const render_options *opt, float *rgb,
                  render_stats *stats);
 void render_stats_print(const render_stats *st, FILE *f);
