@@ -223,6 +223,8 @@ START_TEST(robot_casts_shadow_rays_and_shadows_darken)
     load_robot();
     result r = render_text_at(robot, 1, 2, 128, 0);
     ck_assert(r.st.shadow_rays > 0 && r.st.occluder_tests >= r.st.shadow_rays);
+    /* Primary rays test only the objects whose bounds project onto their pixel. */
+    ck_assert(r.st.primary_tests * 4 < r.st.primary_rays * 35);
     ck_assert_uint_eq(r.st.tangent_frames, 0);
     ck_assert_uint_eq(r.st.ambient_terms, r.st.hits);
     /* Some lit samples are blocked: fewer BRDF evaluations than lit samples would need. */
@@ -242,8 +244,10 @@ static void expect_plan_is_exact(const char *text, int size)
     for (size_t k = 0; k < (size_t)a.w * a.h * 3; ++k)
         worst = fmax(worst, fabs(a.rgb[k] - b.rgb[k]) / fmax(1e-3, fabs(b.rgb[k])));
     ck_assert_msg(worst < 1e-5, "planned vs full render: rel diff %g", worst);
-    ck_assert(b.st.occluder_tests > a.st.occluder_tests);
-    ck_assert(b.st.tangent_frames > a.st.tangent_frames);
+    ck_assert_uint_eq(a.st.hits, b.st.hits); /* primary visibility is exact */
+    ck_assert(b.st.primary_tests >= a.st.primary_tests);
+    ck_assert(b.st.occluder_tests >= a.st.occluder_tests);
+    ck_assert(b.st.tangent_frames >= a.st.tangent_frames);
     free(a.rgb);
     free(b.rgb);
 }
@@ -254,6 +258,19 @@ START_TEST(plan_changes_no_pixel)
     expect_plan_is_exact(robot, 96);
     expect_plan_is_exact(read_file(SCENES_DIR "/sphere.scene"), 64);
     expect_plan_is_exact(read_file(FUZZ_CORPUS "/shapes.scene"), 64);
+    /* Culling at the image edges and behind the eye: a wide view from inside a ring of
+     * objects, one of them around the eye, one straddling the image plane's side. */
+    expect_plan_is_exact("camera position=0,0,0 look_at=0,0,-1 fov=150 resolution=40,30\n"
+                         "light point position=0,3,0 intensity=20\n"
+                         "ambient 0.1\n"
+                         "material m diffuse=lambert specular=disney_specular_aniso r=0.3 anisotropic=0.5\n"
+                         "sphere material=m radius=1 translate=0,0,-3\n"
+                         "sphere material=m radius=1 translate=0,0,3\n"
+                         "box material=m size=1,1,1 translate=4,0,-0.2\n"
+                         "capsule material=m radius=0.5 height=4 rotate=0,0,90 translate=-3,-1,0.4\n"
+                         "cylinder material=m radius=0.3 height=1 translate=0,5,-0.5\n"
+                         "box material=m size=20,20,20 translate=0,0,0\n",
+                         40);
 }
 END_TEST
 

@@ -13,6 +13,7 @@
 #include "render.h"
 
 int abrdf__render_plan_shadows(render_scene *rs);
+int abrdf__render_plan_visibility(render_scene *rs, int cull);
 void abrdf__render_plan_material(render_material *m, const double ia[3], const double ka[3]);
 
 static const double DEG = 3.14159265358979323846 / 180.0;
@@ -37,6 +38,9 @@ void render_release(render_scene *rs)
     free(rs->lights);
     free(rs->occ_start);
     free(rs->occ);
+    free(rs->vis_start);
+    free(rs->vis);
+    free(rs->vis_cols);
     memset(rs, 0, sizeof *rs);
 }
 
@@ -101,7 +105,7 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         memcpy(rl->direction, sl->direction, sizeof rl->direction);
         for (int k = 0; k < 3; ++k) rl->e[k] = sl->color[k] * sl->intensity;
     }
-    if (abrdf__render_plan_shadows(rs)) goto oom;
+    if (abrdf__render_plan_shadows(rs) || abrdf__render_plan_visibility(rs, 1)) goto oom;
     return 0;
 oom:
     render_release(rs);
@@ -112,6 +116,7 @@ oom:
 int render_plan_ignore(render_scene *rs)
 {
     int n = rs->object_count, pairs = rs->light_count * n;
+    if (abrdf__render_plan_visibility(rs, 0)) return -1;
     int *all = malloc(((size_t)pairs + 1) * sizeof *all);
     if (!all) return -1;
     for (int k = 0; k < pairs; ++k) all[k] = -1; /* -1: test every object */
@@ -169,16 +174,21 @@ typedef struct worker {
     int *next_row, *rows_done;
 } worker;
 
-static int closest_hit(const render_scene *rs, const double o[3], const double d[3], double *t,
-                       double n[3])
+/* Closest hit of a camera ray through pixel (i, j): only the objects the plan lists for
+ * row j and whose column range holds i. */
+static int closest_hit(const render_scene *rs, int i, int j, const double o[3], const double d[3],
+                       double *t, double n[3], render_stats *st)
 {
     int best = -1;
     double tmax = INFINITY;
-    for (int i = 0; i < rs->object_count; ++i) {
+    for (int q = rs->vis_start[j]; q < rs->vis_start[j + 1]; ++q) {
+        int k = rs->vis[q];
+        if (i < rs->vis_cols[2 * k] || i > rs->vis_cols[2 * k + 1]) continue;
         double ti, ni[3];
-        if (geom_intersect(&rs->objects[i], o, d, 0.0, tmax, &ti, ni)) {
+        ++st->primary_tests;
+        if (geom_intersect(&rs->objects[k], o, d, 0.0, tmax, &ti, ni)) {
             tmax = ti;
-            best = i;
+            best = k;
             memcpy(n, ni, sizeof ni);
         }
     }
@@ -315,7 +325,7 @@ static void render_row(const render_scene *rs, const render_options *opt, int j,
                 normalize(d);
                 ++st->primary_rays;
                 double t, n[3];
-                int obj = closest_hit(rs, rs->eye, d, &t, n);
+                int obj = closest_hit(rs, i, j, rs->eye, d, &t, n, st);
                 if (obj < 0) continue; /* background is black */
                 ++st->hits;
                 double p[3], wo[3] = {-d[0], -d[1], -d[2]}, L[3];
@@ -359,6 +369,7 @@ static void *work(void *arg)
 static void add_stats(render_stats *a, const render_stats *b)
 {
     a->primary_rays += b->primary_rays;
+    a->primary_tests += b->primary_tests;
     a->hits += b->hits;
     a->shadow_rays += b->shadow_rays;
     a->shadow_rays_skipped += b->shadow_rays_skipped;
@@ -400,12 +411,12 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb,
 void render_stats_print(const render_stats *s, FILE *f)
 {
     fprintf(f, "counters:\n"
-               "  primary rays        %llu\n  hits                %llu\n"
+               "  primary rays        %llu\n  primary tests       %llu\n  hits                %llu\n"
                "  shadow rays         %llu\n  shadow rays skipped %llu (plan: unoccludable)\n"
                "  occluder tests      %llu\n  tangent frames      %llu\n"
                "  brdf evals          %llu\n  fresnel evals       %llu\n"
                "  layer evals         %llu\n  integration evals   %llu\n  ambient terms       %llu\n",
-            s->primary_rays, s->hits, s->shadow_rays, s->shadow_rays_skipped, s->occluder_tests,
+            s->primary_rays, s->primary_tests, s->hits, s->shadow_rays, s->shadow_rays_skipped, s->occluder_tests,
             s->tangent_frames, s->brdf_evals, s->fresnel_evals, s->layer_evals,
             s->integration_evals, s->ambient_terms);
 }

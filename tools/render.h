@@ -29,6 +29,7 @@
 /* Work counters: what the renderer actually did. */
 typedef struct render_stats {
     unsigned long long primary_rays;
+    unsigned long long primary_tests;       /* ray/object tests made by primary rays */
     unsigned long long hits;
     unsigned long long shadow_rays;         /* cast: the plan lists an occluder */
     unsigned long long shadow_rays_skipped; /* lit samples the plan proved unoccludable */
@@ -75,6 +76,10 @@ typedef struct render_scene {
     /* Occluder candidates of (light l, receiver i): occ[occ_start[l*N+i] .. occ_start[l*N+i+1]);
      * a single -1 means every object (more than RENDER_OCC_LIST_MAX candidates). */
     int *occ_start, *occ;
+    /* Primary visibility: the objects whose bounding sphere projects onto image row j are
+     * vis[vis_start[j] .. vis_start[j+1]), in object order; object k covers columns
+     * [vis_cols[2k], vis_cols[2k+1]]. */
+    int *vis_start, *vis, *vis_cols;
     int full;                   /* render_plan_ignore was applied */
 } render_scene;
 
