@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render.h"
+#include "plan.h"
 
 static void sub3(const double a[3], const double b[3], double o[3])
 {
@@ -43,10 +43,8 @@ static int may_occlude(const render_scene *rs, const render_light *l, int i, int
     return d <= a->bound + b->bound;
 }
 
-int abrdf__render_plan_shadows(render_scene *rs);
-
 /* Build occ_start/occ; returns 0 or -1 on allocation failure. */
-int abrdf__render_plan_shadows(render_scene *rs)
+int plan_shadows(render_scene *rs)
 {
     int n = rs->object_count, nl = rs->light_count;
     rs->occ_start = calloc((size_t)nl * (size_t)n + 1, sizeof *rs->occ_start);
@@ -119,11 +117,9 @@ static int raster_range(double c, double z, double r, double scale, int size, in
     return 1;
 }
 
-int abrdf__render_plan_visibility(render_scene *rs, int cull);
-
 /* Per-row lists of the objects primary rays can hit; cull = 0 lists every object
  * everywhere (render_plan_ignore). Returns 0 or -1 on allocation failure. */
-int abrdf__render_plan_visibility(render_scene *rs, int cull)
+int plan_visibility(render_scene *rs, int cull)
 {
     int n = rs->object_count, H = rs->height, W = rs->width;
     int *rows = malloc(2 * (size_t)n * sizeof *rows);
@@ -167,9 +163,7 @@ int abrdf__render_plan_visibility(render_scene *rs, int cull)
 }
 
 /* Material part of the plan. */
-void abrdf__render_plan_material(render_material *m, const double ia[3], const double ka[3]);
-
-void abrdf__render_plan_material(render_material *m, const double ia[3], const double ka[3])
+void plan_material(render_material *m, const double ia[3], const double ka[3])
 {
     m->needs = 0;
     m->use_tangent = 0;

@@ -10,11 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render.h"
-
-int abrdf__render_plan_shadows(render_scene *rs);
-int abrdf__render_plan_visibility(render_scene *rs, int cull);
-void abrdf__render_plan_material(render_material *m, const double ia[3], const double ka[3]);
+#include "plan.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
@@ -95,7 +91,7 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         m->lobe_count = sm->lobe_count;
         memcpy(m->lobes, sm->lobes, sizeof m->lobes);
         m->params = sm->params;
-        abrdf__render_plan_material(m, s->ambient, sm->ka);
+        plan_material(m, s->ambient, sm->ka);
     }
     for (int l = 0; l < s->light_count; ++l) {
         const scene_light *sl = &s->lights[l];
@@ -105,7 +101,7 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         memcpy(rl->direction, sl->direction, sizeof rl->direction);
         for (int k = 0; k < 3; ++k) rl->e[k] = sl->color[k] * sl->intensity;
     }
-    if (abrdf__render_plan_shadows(rs) || abrdf__render_plan_visibility(rs, 1)) goto oom;
+    if (plan_shadows(rs) || plan_visibility(rs, 1)) goto oom;
     return 0;
 oom:
     render_release(rs);
@@ -116,7 +112,7 @@ oom:
 int render_plan_ignore(render_scene *rs)
 {
     int n = rs->object_count, pairs = rs->light_count * n;
-    if (abrdf__render_plan_visibility(rs, 0)) return -1;
+    if (plan_visibility(rs, 0)) return -1;
     int *all = malloc(((size_t)pairs + 1) * sizeof *all);
     if (!all) return -1;
     for (int k = 0; k < pairs; ++k) all[k] = -1; /* -1: test every object */
