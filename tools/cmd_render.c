@@ -32,7 +32,7 @@ static int usage(void)
            "  --threads N       worker threads; default: online CPUs\n"
            "  --explain         print the effect plan (what is simulated and why) and counters\n"
            "  --stats           print the work counters (and the render time on stderr)\n"
-           "  --full            ignore the effect plan: shadow rays to every object, tangent\n"
+           "  --full            ignore the effect plan: every ray tests every object, tangent\n"
            "                    frames and ambient everywhere (to measure what the plan saves)\n"
            "  --config/--display/--view   OpenColorIO preview transform (default: built-in sRGB)\n");
     return 0;

@@ -1,6 +1,6 @@
-/* plan.c - the effect plan: before rendering, decide which work the scene needs (shadow
- * rays per light and receiver, tangent frames, Fresnel, layers, integration, ambient) and
- * explain why. The renderer does only what is planned (render.c). */
+/* plan.c - the effect plan: before rendering, decide which work the scene needs (objects
+ * per pixel, shadow rays per light and receiver, tangent frames, Fresnel, layers,
+ * integration, ambient) and explain why. The renderer does only what is planned (render.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -198,8 +198,8 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
     fprintf(f, "effect plan: %d objects, %d lights, %d materials, %dx%d, %d spp, %d threads\n",
             n, rs->light_count, rs->material_count, rs->width, rs->height, opt->spp, opt->threads);
     if (rs->full) {
-        fprintf(f, "--full: the plan below is ignored; every light casts shadow rays toward every "
-                   "object, every material builds tangent frames and adds the ambient term\n");
+        fprintf(f, "--full: the plan below is ignored; camera and shadow rays test every object, "
+                   "every material builds tangent frames and adds the ambient term\n");
     }
     fprintf(f, "primary rays: %s\n",
             rs->full ? "every object tested for every pixel"
