@@ -38,7 +38,7 @@ static const tg_vals furnace[] = {
     {"ks", 1, {S(1.0)}},
     {"n", 5, {S(0.0), S(1.0), S(4.0), S(20.0), S(100.0)}},
     {"r", 3, {S(0.3), S(0.6), S(1.0)}},
-    {"anisotropic", 3, {S(0.0), S(0.5), S(1.0)}},
+    {"anisotropic", 2, {S(0.5), S(1.0)}}, /* 0 is the isotropic model (test_closed_form) */
     {"sigma", 4, {S(0.1), S(0.3), S(0.8), S(1.5707963267948966)}},
     {"clearcoat_gloss", 2, {S(0.0), S(0.5)}},
 };
@@ -256,7 +256,7 @@ double tg_albedo(abrdf_model model, const abrdf_params *p, const double wi[3], i
     int nb = 0;
     double mur = fmin(1.0, fmax(0.0, wi[2]));
     for (int k = 0; k <= panels; ++k) bp[nb++] = (double)k / panels;
-    for (int k = 1; k <= 12; ++k) {
+    for (int k = 1; k <= 10; ++k) {
         double d = ldexp(1.0, -k);
         if (mur - d > 0.0) bp[nb++] = mur - d;
         if (mur + d < 1.0) bp[nb++] = mur + d;

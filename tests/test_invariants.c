@@ -35,7 +35,7 @@ static const char *nonreciprocal_reason(const char *name)
 /* ---- direction grid ----------------------------------------------------------------- */
 
 static const double grid_theta[] = {0.0, 5.0, 20.0, 40.0, 60.0, 75.0, 85.0, 89.0, 89.9};
-static const double grid_phi[] = {0.0, 40.0, 100.0, 180.0, 250.0, 320.0};
+static const double grid_phi[] = {0.0, 100.0, 180.0, 250.0};
 #define NT (sizeof grid_theta / sizeof *grid_theta)
 #define NP (sizeof grid_phi / sizeof *grid_phi)
 #define NDIR (NT * NP)
@@ -188,8 +188,8 @@ static double albedo_bound(const abrdf_model_info *m, const abrdf_params *p, con
  * at most QUAD_MAX_LEVEL doublings. The bound is checked as albedo + |last difference| <=
  * bound + QUAD_TOL: a case whose lobe the quadrature cannot fully resolve still passes if it
  * stays below the bound by more than its error estimate, and fails otherwise (inconclusive
- * counts as failure; such a case is first refined two levels further). Models without the flag are measured once, coarsely (level 1), for
- * the report only. */
+ * counts as failure; such a case is first refined two levels further). Models without the
+ * flag are measured once, at level 1 without an error estimate, for the report only. */
 #define QUAD_TOL 1e-4
 #define QUAD_MAX_LEVEL 3
 
@@ -212,6 +212,7 @@ START_TEST(white_furnace)
         int nphi_i = (m->needs & ABRDF_NEEDS_TANGENT) ? 2 : 1; /* phi_i = 0 and 90 deg */
         int ns = tg_param_sets(m->id, TG_FURNACE, sets, MAX_SETS);
         double model_max = 0.0, model_err = 0.0;
+        long evals0 = evals;
         for (int s = 0; s < ns; ++s) {
             const char *why;
             double bound = albedo_bound(m, &sets[s].p, &why);
@@ -223,8 +224,8 @@ START_TEST(white_furnace)
                     tu_dir(thetas[t], 90.0 * ph, wi);
                     double v = ec ? tg_albedo_converged(m->id, &sets[s].p, wi, QUAD_TOL,
                                                         QUAD_MAX_LEVEL, &diff, &level, &evals)
-                                  : tg_albedo_converged(m->id, &sets[s].p, wi, 0.0, 1, &diff,
-                                                        &level, &evals);
+                                  : tg_albedo(m->id, &sets[s].p, wi, 8, 64, &evals);
+                    if (!ec) diff = NAN;
                     if (ec && !(v + diff <= bound + QUAD_TOL)) /* inconclusive: refine more */
                         v = tg_albedo_converged(m->id, &sets[s].p, wi, QUAD_TOL,
                                                 QUAD_MAX_LEVEL + 2, &diff, &level, &evals);
@@ -245,9 +246,9 @@ START_TEST(white_furnace)
                 printf("\n");
             }
         }
-        printf("  %-22s max albedo %.4f (+- %.1g)%s\n", m->name, model_max, model_err,
-               ec ? "" : (model_max > 1.0 + QUAD_TOL ? "; exceeds 1: not energy conserving"
-                                                      : "; below 1 on this grid"));
+        printf("  %-22s max albedo %.4f (+- %.1g)%s [%ld evaluations]\n", m->name, model_max,
+               model_err, ec ? "" : (model_max > 1.0 + QUAD_TOL ? "; exceeds 1: not energy "
+                                     "conserving" : "; below 1 on this grid"), evals - evals0);
     }
     printf("white furnace: %ld evaluations\n", evals);
     ck_assert_msg(fails == 0, "%d energy-conserving cases exceed (or cannot be shown below) "
