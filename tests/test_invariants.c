@@ -23,6 +23,8 @@ static const struct { const char *name, *why; } nonreciprocal[] = {
                         "for wi and wo; the model has no reciprocal form (MODELS.md B8.1)"},
     {"belcour", "the lobe statistics are computed for the incident direction only "
                 "(MODELS.md B8.2)"},
+    {"huang", "the energy compensation S_E(w_m.w_i) and the visible h-range depend on the "
+              "incident direction only (MODELS.md B7.3)"},
 };
 
 static const char *nonreciprocal_reason(const char *name)
