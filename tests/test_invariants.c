@@ -19,12 +19,12 @@
  * ABRDF_PROP_RECIPROCAL must be listed here (and in docs/MODELS.md), and must measurably
  * break reciprocity on the grid (otherwise its flag is probably just missing). */
 static const struct { const char *name, *why; } nonreciprocal[] = {
-    {"weidlich_wilkie", "refraction into the layer and the exit transmission T21(wo) differ "
-                        "for wi and wo; the model has no reciprocal form (MODELS.md B8.1)"},
-    {"belcour", "the lobe statistics are computed for the incident direction only "
-                "(MODELS.md B8.2)"},
-    {"huang", "the energy compensation S_E(w_m.w_i) and the visible h-range depend on the "
-              "incident direction only (MODELS.md B7.3)"},
+    {"kajiya_kay", "its diffuse term kd sin(T, L) depends on the light direction only (a "
+                   "radiance-like fur lobe, MODELS.md B6.4); the specular bracket is symmetric"},
+    {"marschner", "f_r = S / cos(theta_i): the fibre's projected width is taken for the "
+                  "incident direction (the scattering function S itself is reciprocal)"},
+    {"huang", "h is integrated over the viewer's projected width, and the energy compensation "
+              "S_E(w_m.w_i) depends on the incident direction only (MODELS.md B7.3)"},
 };
 
 static const char *nonreciprocal_reason(const char *name)
@@ -100,7 +100,7 @@ static int is_finite_nonneg(const double f[3])
 START_TEST(finite_nonnegative_reciprocal)
 {
     static tg_set sets[MAX_SETS];
-    long bad = 0, asym_bad = 0, evals = 0;
+    long bad = 0, asym_bad = 0, evals = 0, flag_bad = 0;
     grid_make();
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
@@ -141,17 +141,23 @@ START_TEST(finite_nonnegative_reciprocal)
             const char *why = nonreciprocal_reason(m->name);
             printf("reciprocity %-22s NOT reciprocal (max asymmetry %.3g): %s\n", m->name, worst,
                    why ? why : "NO REASON RECORDED");
-            ck_assert_msg(why != NULL, "%s lacks ABRDF_PROP_RECIPROCAL but no reason is recorded "
-                          "in nonreciprocal[] (tests/test_invariants.c) and docs/MODELS.md",
-                          m->name);
-            ck_assert_msg(worst > 1e-9, "%s is reciprocal on the grid (%.3g): set the flag?",
-                          m->name, worst);
+            if (!why) {
+                ++flag_bad;
+                printf("  %s lacks ABRDF_PROP_RECIPROCAL but no reason is recorded in "
+                       "nonreciprocal[] (tests/test_invariants.c) and docs/MODELS.md\n", m->name);
+            }
+            if (!(worst > 1e-9)) {
+                ++flag_bad;
+                printf("  %s is reciprocal on the grid (%.3g): set the flag?\n", m->name, worst);
+            }
         }
     }
     printf("invariants: %ld evaluations, %ld non-finite/negative/failed, %ld asymmetric\n", evals,
            bad, asym_bad);
     ck_assert_msg(bad == 0, "%ld evaluations were not finite, non-negative and OK", bad);
     ck_assert_msg(asym_bad == 0, "%ld reciprocity violations", asym_bad);
+    ck_assert_msg(flag_bad == 0, "%ld models with an unexplained or missing reciprocity flag",
+                  flag_bad);
 }
 END_TEST
 
@@ -319,6 +325,7 @@ START_TEST(float_batch_matches_double)
         for (int i = 0; i < m->param_count; ++i)
             uses_n |= !strcmp(abrdf_param_get(m->params[i].id)->name, "n");
         double worst_rel = 0.0; /* largest relative error where f > 1e-3 of the set's max */
+        long fails0 = fails;
         for (int s = 0; s < ns; ++s) {
             ck_assert_int_eq(abrdf_eval_batch(m->id, &sets[s].p, &b), ABRDF_OK);
             double peak = 0.0;
@@ -355,8 +362,8 @@ START_TEST(float_batch_matches_double)
                 }
             }
         }
-        printf("float vs double %-22s %2d sets: max relative error %.3g (where f > 1e-3 peak)\n",
-               m->name, ns, worst_rel);
+        printf("float vs double %-22s %2d sets: max relative error %.3g (where f > 1e-3 peak)%s\n",
+               m->name, ns, worst_rel, fails > fails0 ? "  OUTSIDE TOLERANCE" : "");
     }
     printf("float vs double: %ld evaluations, %ld pairs needed the sensitivity term, %ld "
            "failures\n", evals, sens_used, fails);
