@@ -383,6 +383,7 @@ START_TEST(frame_invariance)
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
         if (!m) continue;
         int ns = tg_param_sets(m->id, TG_TYPICAL, sets, 8);
+        double rel = (m->needs & ABRDF_NEEDS_INTEGRATION) ? 1e-3 : 1e-8, worst = 0.0;
         for (int s = 0; s < ns; ++s) {
             double peak = 0.0; /* the set's largest value on the grid */
             for (int k = 0; k < grid.count; k += 7) {
@@ -406,13 +407,21 @@ START_TEST(frame_invariance)
                 /* The rotation rounds the directions by ~1e-16. Sharp lobes amplify that by
                  * up to n or 1/alpha_g^2 (1e-8 relative); a lobe c^n with n < 1 has an
                  * infinite slope at c = 0, where the 1e-16 becomes (1e-16)^n: 1e-8 of the
-                 * set's peak for the smallest exponent on the grid, n = 0.5. */
-                for (int c = 0; c < 3; ++c)
-                    if (!tu_close(a[c], b[c], 1e-8, 1e-7 * peak) && fails++ < MAX_REPORT)
+                 * set's peak for the smallest exponent on the grid, n = 0.5. A model that
+                 * integrates inside eval places its nodes relative to the directions, so a
+                 * 1e-16 rotation can move a node across a kink of the integrand: the result
+                 * is then invariant only to its quadrature accuracy, taken as 1e-3. */
+                for (int c = 0; c < 3; ++c) {
+                    double d = fabs(a[c] - b[c]) / fmax(fmax(fabs(a[c]), fabs(b[c])), 1e-300);
+                    if (fabs(a[c] - b[c]) > 1e-7 * peak && d > worst) worst = d;
+                    if (!tu_close(a[c], b[c], rel, 1e-7 * peak) && fails++ < MAX_REPORT)
                         printf("FRAME %s [%s]: world %.17g local %.17g\n", m->name,
                                sets[s].label, a[c], b[c]);
+                }
             }
         }
+        printf("frame invariance %-22s max relative difference %.3g (tolerance %.0e)\n",
+               m->name, worst, rel);
     }
     ck_assert_msg(fails == 0, "%ld world/local mismatches", fails);
 }
