@@ -207,7 +207,8 @@ START_TEST(white_furnace)
     static const double thetas[] = {0.0, 45.0, 80.0, 89.0};
     long evals = 0;
     int fails = 0;
-    printf("white furnace: directional albedo (largest channel) at theta_i = 0/45/80/89 deg\n");
+    printf("white furnace: directional albedo (largest channel) at theta_i = 0/45/80/89 deg;"
+           " EC = flagged energy conserving (converged, +- the last refinement's change)\n");
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
         if (!m) continue;
@@ -247,16 +248,20 @@ START_TEST(white_furnace)
                                diff, why, bound);
                     }
                 }
-                printf("  %-22s %-2s [%s%s] %.4f %.4f %.4f %.4f  (+- %.1g %.1g %.1g %.1g)",
-                       m->name, ec ? "EC" : "-", sets[s].label, ph ? " phi_i=90" : "", a[0],
-                       a[1], a[2], a[3], e[0], e[1], e[2], e[3]);
-                if (ec) printf("  bound %.4f", bound);
+                printf("  %-22s %-2s [%s%s] %.4f %.4f %.4f %.4f", m->name, ec ? "EC" : "-",
+                       sets[s].label, ph ? " phi_i=90" : "", a[0], a[1], a[2], a[3]);
+                if (ec)
+                    printf("  (+- %.1g %.1g %.1g %.1g)  bound %.4f", e[0], e[1], e[2], e[3], bound);
                 printf("\n");
             }
         }
-        printf("  %-22s max albedo %.4f (+- %.1g)%s [%ld evaluations]\n", m->name, model_max,
-               model_err, ec ? "" : (model_max > 1.0 + QUAD_TOL ? "; exceeds 1: not energy "
-                                     "conserving" : "; below 1 on this grid"), evals - evals0);
+        if (ec)
+            printf("  %-22s max albedo %.4f (+- %.1g) [%ld evaluations]\n", m->name, model_max,
+                   model_err, evals - evals0);
+        else
+            printf("  %-22s max albedo %.4f%s [%ld evaluations]\n", m->name, model_max,
+                   model_max > 1.0 + QUAD_TOL ? "; exceeds 1: not energy conserving"
+                                              : "; below 1 on this grid", evals - evals0);
     }
     printf("white furnace: %ld evaluations\n", evals);
     ck_assert_msg(fails == 0, "%d energy-conserving cases exceed (or cannot be shown below) "
