@@ -404,14 +404,16 @@ START_TEST(rgb_channels)
         double w[3] = {0.2, 0.5, 1.0}, f[3], f1[3];
         for (int c = 0; c < 3; ++c) p.kd[c] = p.ks[c] = w[c];
         ck_assert_int_eq(abrdf_eval_local(m->id, &p, g.wi, g.wo, f), ABRDF_OK);
-        for (int c = 0; c < 3; ++c) { /* channel c equals a grey evaluation with weight w[c] */
+        for (int c = 0; c < 3; ++c) { /* channel c equals channel c of a grey evaluation with
+                                        * weight w[c] (models may colour channels themselves) */
             q = p;
             for (int d = 0; d < 3; ++d) {
                 q.kd[d] = q.ks[d] = w[c];
                 q.f0[d] = p.f0[c];
             }
             ck_assert_int_eq(abrdf_eval_local(m->id, &q, g.wi, g.wo, f1), ABRDF_OK);
-            ck_assert_msg(tu_close(f[c], f1[0], 1e-14, 0.0), "%s channel %d", m->name, c);
+            ck_assert_msg(tu_close(f[c], f1[c], 1e-14, 0.0), "%s channel %d: %.17g vs %.17g",
+                          m->name, c, f[c], f1[c]);
         }
     }
 }
