@@ -59,7 +59,10 @@ static inline void FN(k_neubelt_pettineo)(const kp *p, const geo *g, R f[3])
 static inline void FN(k_kajiya_kay)(const kp *p, const geo *g, R f[3])
 {
     R tl = FN(clampr)(g->ix, K(-1), K(1)), tv = FN(clampr)(g->ox, K(-1), K(1));
-    R sl = FN(safe_sqrt)(K(1) - tl * tl), sv = FN(safe_sqrt)(K(1) - tv * tv);
+    /* sin(T, w) = |T x w| = sqrt(w_y^2 + w_z^2) for T = +x: unlike sqrt(1 - (T.w)^2) it does
+     * not cancel when w is close to the fibre (float lost 1% of sin there). */
+    R sl = FN(clampr)(sqrt(g->iy * g->iy + g->iz * g->iz), K(0), K(1));
+    R sv = FN(clampr)(sqrt(g->oy * g->oy + g->oz * g->oz), K(0), K(1));
     R spec = FN(pow_pos)(sl * sv - tl * tv, p->n); /* cosine to the mirror cone */
     for (int c = 0; c < 3; ++c) f[c] = p->kd[c] * sl + p->ks[c] * spec; /* Eq. 11 */
 }
