@@ -44,5 +44,6 @@ int cmd_models(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
 int cmd_slice(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_export(int argc, char **argv);
 
 #endif
