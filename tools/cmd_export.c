@@ -8,7 +8,7 @@
 static int usage(void)
 {
     printf("usage: abrdf export --pov SCENE -o OUT.pov [--model NAME [--set NAME=VALUE ...]]\n"
-           "                    [--width W] [--height H] [--no-shadows]\n\n"
+           "                    [--width W] [--height H] [--no-shadows | --native]\n\n"
            "Writes SCENE (docs/SCENES.md) as POV-Ray 3.7 SDL that shades every object with the\n"
            "library's models (povray_macros/abrdf.inc, docs/POVRAY.md): same camera, lights,\n"
            "primitives and materials. Render it with +L<abrdf>/povray_macros, linear HDR (+FE).\n\n"
@@ -16,7 +16,10 @@ static int usage(void)
            "  --width/--height   the resolution written in the header comment (aspect ratio\n"
            "                     of the camera); default the scene's\n"
            "  --no-shadows       emissive mode even with one light (no shadows); with several\n"
-           "                     lights this is the only mode\n");
+           "                     lights this is the only mode\n"
+           "  --native           POV-Ray's own finishes instead of function pigments (fast path):\n"
+           "                     lambert, phong, blinn_phong only; directional lights only;\n"
+           "                     phong/blinn_phong then lack the factor N.wi (docs/POVRAY.md)\n");
     return 0;
 }
 
@@ -24,7 +27,7 @@ int cmd_export(int argc, char **argv)
 {
     const char *cmd = "export", *path = NULL, *out = NULL, *model_name = NULL;
     const char *sets[64];
-    int nsets = 0, pov = 0, no_shadows = 0;
+    int nsets = 0, pov = 0, no_shadows = 0, native = 0;
     render_options opt;
     memset(&opt, 0, sizeof opt);
     opt.spp = 1;
@@ -34,6 +37,7 @@ int cmd_export(int argc, char **argv)
         if (cli_is_help(a)) return usage();
         if (!strcmp(a, "--pov")) pov = 1;
         else if (!strcmp(a, "--no-shadows")) no_shadows = 1;
+        else if (!strcmp(a, "--native")) native = 1;
         else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--set")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
@@ -60,6 +64,7 @@ int cmd_export(int argc, char **argv)
     if (!path) return cli_fail(cmd, "missing SCENE (abrdf export --help)");
     if (!out) return cli_fail(cmd, "missing -o OUT.pov");
     if (nsets && !model_name) return cli_fail(cmd, "--set needs --model");
+    if (native && no_shadows) return cli_fail(cmd, "--native uses POV-Ray's lights (with shadows); drop --no-shadows");
 
     scene s;
     char err[512];
@@ -92,7 +97,7 @@ int cmd_export(int argc, char **argv)
         goto done;
     }
     prepared = 1;
-    export_pov_options eo = {!no_shadows && rs.light_count == 1, path};
+    export_pov_options eo = {!native && !no_shadows && rs.light_count == 1, native, path};
     if (!(f = fopen(out, "w"))) {
         fprintf(stderr, "abrdf export: cannot write %s\n", out);
         goto done;

@@ -51,16 +51,26 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
                  "export without them", rs->light_count);
         return -1;
     }
+    for (int l = 0; opt->native && l < rs->light_count; ++l)
+        if (rs->lights[l].kind == SCENE_LIGHT_POINT) {
+            snprintf(err, err_size, "--native: POV-Ray's light fading is 2 / (1 + (d/D)^p), never the "
+                     "1/d^2 of a point light; export without --native");
+            return -1;
+        }
     double extent = rs->eps / 1e-9; /* render.c: eps = 1e-9 * scene size */
     fprintf(f, "// %s - exported by `abrdf export --pov` (docs/POVRAY.md).\n", opt->source);
     fprintf(f, "// Render linear HDR without antialiasing, e.g. with k x k supersampling:\n"
                "//   povray +I<this file> +O<out>.exr +FE +W%d +H%d -A +L<abrdf>/povray_macros\n"
                "// and average k x k pixel blocks (k = 1 here): the samples are those of\n"
                "// `abrdf render --spp k*k` (stratum centres).\n", rs->width, rs->height);
-    fprintf(f, "// Shadows: %s\n", opt->lit ? "POV-Ray's light_source and shadow test (one light)."
-                                           : "none (emissive mode: each pigment sums every light unoccluded).");
-    fprintf(f, "#version 3.7;\nglobal_settings { assumed_gamma 1 ambient_light 0 max_trace_level 1 }\n");
-    fprintf(f, "#include \"abrdf.inc\"\n#include \"abrdf_shading.inc\"\n\n");
+    fprintf(f, "// Shading: %s\n",
+            opt->native ? "POV-Ray's own finishes (abrdf_native.inc), its lights and shadows."
+            : opt->lit ? "function pigments; POV-Ray's light_source and shadow test (one light)."
+                       : "function pigments, emissive: each pigment sums every light unoccluded (no shadows).");
+    fprintf(f, "#version 3.7;\nglobal_settings { assumed_gamma 1 ambient_light %d max_trace_level 1 }\n",
+            opt->native ? 1 : 0);
+    fprintf(f, "#include \"abrdf.inc\"\n#include \"abrdf_shading.inc\"  // shapes, transforms\n%s\n",
+            opt->native ? "#include \"abrdf_native.inc\"\n" : "");
     fprintf(f, "#declare Abrdf_Eye = ");
     vec(f, rs->eye, 1);
     fprintf(f, ";\ncamera { perspective location Abrdf_Eye\n  direction ");
@@ -80,17 +90,19 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
     }
     if (rs->light_count == 0) fprintf(f, "  {1, 0, 1, 0, 0, 0, 0}  // no light: a black one\n");
     fprintf(f, "}\n");
-    if (opt->lit) {
-        const render_light *lt = &rs->lights[0];
+    /* Lit: the pigment holds E, the light is white; native: the light carries E. */
+    for (int l = 0; (opt->lit || opt->native) && l < rs->light_count; ++l) {
+        const render_light *lt = &rs->lights[l];
+        double e[3] = {1, 1, 1};
+        if (opt->native) memcpy(e, lt->e, sizeof e);
+        fprintf(f, "light_source { ");
         if (lt->kind == SCENE_LIGHT_POINT) {
-            fprintf(f, "light_source { ");
             vec(f, lt->position, 1);
-            fprintf(f, " color rgb 1 }\n");
+            fprintf(f, " color rgb <%.17g, %.17g, %.17g> }\n", e[0], e[1], e[2]);
         } else {
             /* far beyond the scene: POV-Ray's parallel light shadows up to its location */
-            fprintf(f, "light_source { ");
             vec(f, lt->direction, 1e6 * fmax(extent, 1.0));
-            fprintf(f, " color rgb 1 parallel point_at <0, 0, 0> }\n");
+            fprintf(f, " color rgb <%.17g, %.17g, %.17g> parallel point_at <0, 0, 0> }\n", e[0], e[1], e[2]);
         }
     }
     fprintf(f, "\n");
@@ -111,6 +123,13 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
         double dims[3] = {o->radius, o->height, 0};
         if (o->shape == SCENE_BOX) memcpy(dims, o->size, sizeof dims);
         fprintf(f, "object { Abrdf_Shape(\"%s\", <%.17g, %.17g, %.17g>)\n", shapes[o->shape], dims[0], dims[1], dims[2]);
+        if (opt->native) {
+            fprintf(f, "  Abrdf_Native_Texture(Abrdf_Mat_%d, <%.17g, %.17g, %.17g>)\n", o->material,
+                    m->use_ambient ? m->ambient[0] : 0.0, m->use_ambient ? m->ambient[1] : 0.0,
+                    m->use_ambient ? m->ambient[2] : 0.0);
+            fprintf(f, "  Abrdf_Xform_Matrix(Abrdf_M) }\n");
+            continue;
+        }
         fprintf(f, "  Abrdf_Shaded_Texture(Abrdf_Mat_%d, \"%s\", <%.17g, %.17g, %.17g>, Abrdf_M,\n", o->material,
                 shapes[o->shape], dims[0], dims[1], dims[2]);
         fprintf(f, "    array[4] {%d, %.17g, %.17g, %.17g}, Abrdf_Eye, Abrdf_Lights,\n", (int)o->tangent,
