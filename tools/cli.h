@@ -45,5 +45,8 @@ int cmd_eval(int argc, char **argv);
 int cmd_slice(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_export(int argc, char **argv);
+int cmd_tables(int argc, char **argv);
+int cmd_calibrate(int argc, char **argv);
+int cmd_advise(int argc, char **argv);
 
 #endif

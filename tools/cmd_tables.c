@@ -1,0 +1,156 @@
+/* cmd_tables.c - `abrdf tables N`: the paper's tables recomputed, beside the published ones. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cli.h"
+#include "tables.h"
+
+static const table_gen generators[] = {
+    {"2", "maximum relative error (%) of the Table-1 approximations in the highlight zone", tables_error},
+    {"3", "maximum absolute error of the Table-1 approximations", tables_error},
+    {"4", "cost: the paper's Zen 4 cycles beside ns/eval measured on this machine", tables_cost},
+};
+#define GEN_COUNT (sizeof generators / sizeof generators[0])
+
+static int usage(void)
+{
+    printf("usage: abrdf tables N [--csv | --markdown] [--paper FILE] [--costs FILE] [--reps N]\n\n"
+           "Recomputes table N of Zavalniuk & Romanyuk 2024 and prints it beside the published\n"
+           "values (data/paper_tables.csv) with the difference and, for Tables 2-3, the mean\n"
+           "absolute deviation per model. Markdown by default.\n"
+           "  --paper FILE   published values from FILE instead of the installed data file\n"
+           "  --costs FILE   Table 4: ns/eval from a cost file (abrdf calibrate -o FILE)\n"
+           "                 instead of measuring now\n"
+           "  --reps N       Table 4: repetitions when measuring now (default 3, quick)\n\n"
+           "tables:\n");
+    for (size_t i = 0; i < GEN_COUNT; ++i) printf("  %-3s %s\n", generators[i].id, generators[i].summary);
+    return 0;
+}
+
+int cmd_tables(int argc, char **argv)
+{
+    const char *cmd = "tables";
+    const char *id = NULL, *paper_path = NULL;
+    tables_opts o = {0, NULL, 3};
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i];
+        long v;
+        if (cli_is_help(a)) return usage();
+        if (!strcmp(a, "--csv")) o.csv = 1;
+        else if (!strcmp(a, "--markdown")) o.csv = 0;
+        else if (!strcmp(a, "--paper")) {
+            if (i + 1 >= argc) return cli_fail(cmd, "--paper needs a file");
+            paper_path = argv[++i];
+        } else if (!strcmp(a, "--costs")) {
+            if (i + 1 >= argc) return cli_fail(cmd, "--costs needs a cost file (abrdf calibrate -o FILE)");
+            o.costs_path = argv[++i];
+        } else if (!strcmp(a, "--reps")) {
+            if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, 1000, &v))
+                return cli_fail(cmd, "--reps needs a whole number in [1, 1000]");
+            o.reps = (int)v;
+        } else if (a[0] == '-' && a[1]) {
+            return cli_fail(cmd, "unknown option '%s'; options: --csv --markdown --paper --costs --reps", a);
+        } else if (!id) {
+            id = a;
+        } else {
+            return cli_fail(cmd, "unexpected argument '%s' (one table at a time)", a);
+        }
+    }
+    char ids[64] = "";
+    for (size_t i = 0; i < GEN_COUNT; ++i) strcat(strcat(ids, i ? ", " : ""), generators[i].id);
+    if (!id) return cli_fail(cmd, "which table? available: %s", ids);
+    const table_gen *gen = NULL;
+    for (size_t i = 0; i < GEN_COUNT; ++i)
+        if (!strcmp(id, generators[i].id)) gen = &generators[i];
+    if (!gen) return cli_fail(cmd, "no table '%s'; available: %s", id, ids);
+
+    paper_data paper;
+    char err[1200];
+    if (paper_data_load(paper_path, &paper, err, sizeof err) != 0) {
+        fprintf(stderr, "abrdf %s: %s\n", cmd, err);
+        return 1;
+    }
+    int rc = gen->run(gen, &o, &paper);
+    paper_data_free(&paper);
+    return rc;
+}
+
+/* ---- grid printer ------------------------------------------------------------------ */
+
+void tab_init(tab_grid *g, const char *title, const char *corner, int cols, const char *fmt)
+{
+    memset(g, 0, sizeof *g);
+    g->title = title;
+    g->corner = corner;
+    g->cols = cols;
+    for (int c = 0; c < TAB_MAX_COLS; ++c) g->fmt[c] = fmt;
+    for (int r = 0; r < TAB_MAX_ROWS; ++r)
+        for (int c = 0; c < TAB_MAX_COLS; ++c) g->v[r][c] = NAN;
+}
+
+int tab_row(tab_grid *g, const char *label)
+{
+    if (g->rows == TAB_MAX_ROWS) return TAB_MAX_ROWS - 1; /* generators stay far below */
+    snprintf(g->row[g->rows], sizeof g->row[0], "%s", label);
+    return g->rows++;
+}
+
+/* A cell for printing: round-off residue of a difference shows as 0, not -0.0000. */
+static double cell(const tab_grid *g, int r, int c)
+{
+    double v = g->v[r][c];
+    return fabs(v) < 1e-9 ? 0.0 : v;
+}
+
+static int column_used(const tab_grid *g, int c)
+{
+    for (int r = 0; r < g->rows; ++r)
+        if (!isnan(g->v[r][c])) return 1;
+    return 0;
+}
+
+void tab_markdown(const tab_grid *g)
+{
+    if (g->title) printf("### %s\n\n", g->title);
+    printf("| %s |", g->corner);
+    for (int c = 0; c < g->cols; ++c)
+        if (column_used(g, c)) printf(" %s |", g->col[c]);
+    printf("\n|---|");
+    for (int c = 0; c < g->cols; ++c)
+        if (column_used(g, c)) printf("---:|");
+    printf("\n");
+    for (int r = 0; r < g->rows; ++r) {
+        printf("| %s |", g->row[r]);
+        for (int c = 0; c < g->cols; ++c) {
+            if (!column_used(g, c)) continue;
+            if (isnan(g->v[r][c])) printf(" — |");
+            else {
+                printf(" ");
+                printf(g->fmt[c], cell(g, r, c));
+                printf(" |");
+            }
+        }
+        printf("\n");
+    }
+    printf("\n");
+}
+
+void tab_csv(const tab_grid *g, const char *tag_name, const char *tag, int header)
+{
+    if (header) {
+        printf("%s", g->corner);
+        if (tag_name) printf(",%s", tag_name);
+        for (int c = 0; c < g->cols; ++c) printf(",%s", g->col[c]);
+        printf("\n");
+    }
+    for (int r = 0; r < g->rows; ++r) {
+        printf("%s", g->row[r]);
+        if (tag) printf(",%s", tag);
+        for (int c = 0; c < g->cols; ++c) {
+            printf(",");
+            if (!isnan(g->v[r][c])) printf(g->fmt[c], cell(g, r, c));
+        }
+        printf("\n");
+    }
+}

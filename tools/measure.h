@@ -1,0 +1,35 @@
+/* measure.h - timing of model evaluation on this machine: ns per evaluation on the float
+ * batch path over random front-facing direction pairs (abrdf calibrate, abrdf tables 4). */
+#ifndef ABRDF_MEASURE_H
+#define ABRDF_MEASURE_H
+#include <stddef.h>
+#include "abrdf.h"
+
+typedef struct measure_opts {
+    int reps;           /* timed repetitions; the median is reported */
+    size_t pairs;       /* direction pairs per batch (structure of arrays, warm in cache) */
+    double rep_seconds; /* each repetition repeats the batch until it lasts this long */
+} measure_opts;
+
+/* Defaults: 7 repetitions of 4096 pairs, 20 ms each (quick: 3 repetitions of 5 ms). */
+void measure_defaults(measure_opts *o, int quick);
+
+typedef struct measure_set measure_set;
+
+/* Fixed-seed random unit directions on the upper hemisphere; NULL if out of memory. */
+measure_set *measure_set_new(size_t pairs);
+void measure_set_free(measure_set *s);
+
+/* Median ns/eval of `model` (its default parameters) via abrdf_eval_batch. Models that
+ * integrate numerically use at most 256 of the pairs. Returns < 0 on error. */
+double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o);
+/* Median ns/eval of the unit: a bare loop H = normalise(wi + wo), powf(H.z, n), n = 100. */
+double measure_unit_ns(measure_set *s, const measure_opts *o);
+
+/* Measure `models` (count of them; NULL = every registered model) into out (unit
+ * COSTS_UNIT; the others < 0) and the unit into *unit_ns. progress (may be NULL) is called
+ * with each name before it is timed. Returns 0, or -1 if out of memory. */
+int measure_models(const measure_opts *o, const abrdf_model *models, int count,
+                   abrdf_costs *out, double *unit_ns, void (*progress)(const char *name));
+
+#endif
