@@ -27,8 +27,14 @@ def main():
     abrdf, fkub_c, out = sys.argv[1:4]
     reg = json.loads(subprocess.run([abrdf, "models", "--json"], check=True,
                                     capture_output=True, text=True).stdout)
+    rules = json.loads(subprocess.run([abrdf, "advise", "--rules", "--json"], check=True,
+                                      capture_output=True, text=True).stdout)
     models = reg["models"]
-    rows = re.findall(r"^\s*\{([-0-9.e, ]+)\},?\s*$", open(fkub_c).read(), re.M)
+    fkub_src = open(fkub_c).read()
+    rows = re.findall(r"^\s*\{([-0-9.e, ]+)\},?\s*$", fkub_src, re.M)
+    base = re.search(r"\*x0 = pow\(([-0-9.e]+), 1\.0 / n\);", fkub_src)
+    if not base:
+        sys.exit("gen_pov_params: no '*x0 = pow(BASE, 1.0 / n);' in " + fkub_c)
     grid = [[float(v) for v in r.split(",")] for r in rows]
     if len(grid) < 2:
         sys.exit("gen_pov_params: no fkub grid rows in " + fkub_c)
@@ -88,6 +94,8 @@ def main():
         w("  ln(%s), <%s, %s, %s>" % (repr(r[0]), repr(r[1]), repr(r[2]), repr(r[3])))
     w("}")
     w("#declare abrdf__fkub_abd = function { spline { abrdf__fkub_spline } }")
+    w("// below the zone start x0 = BASE^(1/n) the cubic is zero")
+    w("#declare ABRDF__FKUB_X0_BASE = %s;" % base.group(1))
     w("")
 
     # Range check: every parameter of every lobe, with the model's own range.
@@ -205,6 +213,31 @@ def main():
     w("  #end")
     w("  F")
     w("#end")
+    w("")
+    # The selection flowchart's rules (abrdf_select_rules, `abrdf advise --rules --json`) and
+    # the paper's Table-4 costs of the candidates (registry), for abrdf_select.inc.
+    cycles = {m["name"]: m["paper_cycles"] for m in models}
+    w("// Selection rules (abrdf advise --rules --json) for abrdf_select.inc.")
+    w("#declare ABRDF_RULE_SMOOTH_R_MAX = %s;" % repr(float(rules["smooth_r_max"])))
+    w("#declare ABRDF_RULE_ANISO_MIN = %s;" % repr(float(rules["aniso_min"])))
+    w("#declare ABRDF_RULE_DEFAULT_MAX_REL_PCT = %s;" % repr(float(rules["default_max_rel_pct"])))
+    w("#declare ABRDF_RULE_DEFAULT_MAX_ABS = %s;" % repr(float(rules["default_max_abs"])))
+    w("#declare ABRDF_RULE_N_MIN = %s;" % repr(float(rules["n_min"])))
+    w("#declare ABRDF_RULE_N_MAX = %s;" % repr(float(rules["n_max"])))
+    for k in ("perf_diffuse", "perf_fallback", "rough_diffuse", "rough_specular",
+              "rough_specular_aniso", "smooth_diffuse", "smooth_specular"):
+        w("#declare ABRDF_RULE_%s = \"%s\";" % (k.upper(), rules[k]))
+    cands = rules["candidates"]
+    w("#declare ABRDF_RULE_CANDIDATES = array[%d] {%s}" % (
+        len(cands), ", ".join('"%s"' % c for c in cands)))
+    w("// cost of each candidate: the paper's Table 4 (cycles); -1 = unknown")
+    w("#declare ABRDF_RULE_CANDIDATE_COST = array[%d] {%s}" % (
+        len(cands), ", ".join(str(cycles.get(c)) if cycles.get(c) is not None else "-1" for c in cands)))
+    special = rules["special"]
+    w("#declare ABRDF_RULE_SURFACES = array[%d] {\"general\", %s}" % (
+        len(special) + 1, ", ".join('"%s"' % k for k in special)))
+    w("#declare ABRDF_RULE_SURFACE_MODEL = array[%d] {\"\", %s}" % (
+        len(special) + 1, ", ".join('"%s"' % v["model"] for v in special.values())))
     w("")
     w("#version ABRDF_PARAMS_INC_TEMP;")
     w("#end")

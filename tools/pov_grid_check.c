@@ -22,7 +22,9 @@
 #include "abrdf.h"
 #include "image_io.h"
 
-enum { NA = 12, NB = 12, NC = 12, COLS = 48, CELLS = NA * NB * NC, ROWS = CELLS / COLS };
+/* The grid, then NM cells of the sweep wi = wo (model_grid.pov). */
+enum { NA = 12, NB = 12, NC = 12, NM = 576, COLS = 48, GRID = NA * NB * NC, CELLS = GRID + NM,
+       ROWS = CELLS / COLS };
 #define PI 3.14159265358979323846
 #define BAR 1e-4
 
@@ -118,6 +120,7 @@ static int check(const char *work, const abrdf_model_info *m, int s, double *nms
     for (int k = 0; k < CELLS; ++k) {
         int a = k / (NB * NC), b = (k / NC) % NB, c = k % NC;
         double ti = (a + 0.5) * PI / (2 * NA), to = (b + 0.5) * PI / (2 * NB), ph = c * 2 * PI / NC;
+        if (k >= GRID) ti = to = (k - GRID + 0.5) * PI / (2 * NM), ph = 0;
         double wi[3] = {sin(ti), 0, cos(ti)};
         double wo[3] = {sin(to) * cos(ph), sin(to) * sin(ph), cos(to)};
         double f[3];

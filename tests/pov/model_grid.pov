@@ -3,7 +3,9 @@
 //   Declare=ABRDF_GRID_MODEL=<id>  Declare=ABRDF_GRID_SET=<0|1|2>
 // Grid: theta_i = (a + 1/2) pi / (2 NA), theta_o = (b + 1/2) pi / (2 NB), phi = c 2 pi / NC;
 // wi = (sin ti, 0, cos ti), wo = (sin to cos phi, sin to sin phi, cos to). Cell k = (a NB + b) NC + c
-// is pixel row floor(k / COLS), columns 3 (k mod COLS) + channel.
+// is pixel row floor(k / COLS), columns 3 (k mod COLS) + channel. Then NM cells of the
+// sweep wi = wo (N.H = cos t), which resolves narrow lobes in N.H: k = NA NB NC + j, wi = wo =
+// (sin t, 0, cos t), t = (j + 1/2) pi / (2 NM).
 // A pixel holds f_r of its channel split so that POV-Ray's half-float EXR keeps ~22 bits:
 //   R = e + 512 (e = floor(log2 f)), G = hi = floor(f 2^(10-e)) / 1024, B = frac(f 2^(10-e)),
 //   f = (G + B / 1024) 2^e; all zero for f < 2^-400 (read as 0).
@@ -11,8 +13,8 @@
 global_settings { assumed_gamma 1 }
 #include "abrdf.inc"
 
-#declare NA = 12; #declare NB = 12; #declare NC = 12; #declare COLS = 48;
-#declare ROWS = NA * NB * NC / COLS;
+#declare NA = 12; #declare NB = 12; #declare NC = 12; #declare NM = 576; #declare COLS = 48;
+#declare ROWS = (NA * NB * NC + NM) / COLS;
 
 #declare D = Abrdf_Default(ABRDF_GRID_MODEL);
 #switch (ABRDF_GRID_SET)
@@ -43,10 +45,12 @@ global_settings { assumed_gamma 1 }
     select(ch - 1.5, F1c(sin(ti), 0, cos(ti), sin(to) * cos(ph), sin(to) * sin(ph), cos(to)),
                      F2c(sin(ti), 0, cos(ti), sin(to) * cos(ph), sin(to) * sin(ph), cos(to))))
 }
-#declare Fcell = function(k, ch) {
+#declare Fgrid = function(k, ch) {
   Fch(ch, (floor(k / (NB * NC)) + 0.5) * pi / (2 * NA), (mod(floor(k / NC), NB) + 0.5) * pi / (2 * NB),
       mod(k, NC) * 2 * pi / NC)
 }
+#declare Fmirror = function(j, ch) { Fch(ch, (j + 0.5) * pi / (2 * NM), (j + 0.5) * pi / (2 * NM), 0) }
+#declare Fcell = function(k, ch) { select(k - NA * NB * NC, Fgrid(k, ch), Fmirror(k - NA * NB * NC, ch)) }
 // pixel (px, py) -> f; x = px + 1/2, y = -(py + 1/2) on the plane z = 0
 #declare Fpix = function(x, y) { Fcell(floor(-y) * COLS + floor(floor(x) / 3), mod(floor(x), 3)) }
 #declare Tiny = pow(2, -400);
