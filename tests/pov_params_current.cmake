@@ -1,14 +1,15 @@
 # pov_params_current.cmake - regenerates povray_macros/abrdf_params.inc from the C registry
 # (tools/gen_pov_params.py) and requires it to equal the committed include byte for byte.
 #   cmake -DPYTHON=<python3> -DGEN=<gen_pov_params.py> -DABRDF=<abrdf> -DFKUB=<fkub_table.c>
+#         -DMODELS_INC=<abrdf_models.inc>
 #         -DOUT=<new include> -DREF=<committed include> -P pov_params_current.cmake
-foreach(var PYTHON GEN ABRDF FKUB OUT REF)
+foreach(var PYTHON GEN ABRDF FKUB MODELS_INC OUT REF)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "pov_params_current: -D${var}=... is required")
   endif()
 endforeach()
 file(REMOVE "${OUT}")
-execute_process(COMMAND "${PYTHON}" "${GEN}" "${ABRDF}" "${FKUB}" "${OUT}" RESULT_VARIABLE rc)
+execute_process(COMMAND "${PYTHON}" "${GEN}" "${ABRDF}" "${FKUB}" "${MODELS_INC}" "${OUT}" RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "pov_params_current: ${GEN} failed (${rc})")
 endif()

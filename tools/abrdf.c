@@ -9,7 +9,8 @@ static const cli_command commands[] = {
     {"export", "write a scene for another renderer (--pov: POV-Ray 3.7 SDL through abrdf.inc)", cmd_export},
     {"render", "render a scene (docs/SCENES.md) to EXR + PNG preview with the built-in ray tracer", cmd_render},
     {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
-    {"tables", "the paper's Tables 2, 3, 4 recomputed, beside the published values", cmd_tables},
+    {"compare", "NMSE (the paper's metric), PSNR, max error and Table-8 class of two images", cmd_compare},
+    {"tables", "the paper's Tables 2, 3, 4, 6, 7 recomputed, beside the published values", cmd_tables},
     {"calibrate", "measure ns/eval of every model on this machine; write a cost file", cmd_calibrate},
     {"advise", "choose the models for a material by the paper's flowchart, and say why", cmd_advise},
 };

@@ -6,7 +6,11 @@ come from the library itself (`abrdf models --json` and libabrdf/src/fkub_table.
 they cannot drift from the C code; CTest (pov_params_current) re-runs this script and
 fails if the committed include differs.
 
-    tools/gen_pov_params.py ABRDF_BINARY FKUB_TABLE_C OUT_INC
+    tools/gen_pov_params.py ABRDF_BINARY FKUB_TABLE_C MODELS_INC OUT_INC
+
+A model is "ported" when MODELS_INC (povray_macros/abrdf_models.inc) defines its function
+abrdf_<model>; the others get constructors and defaults, and Abrdf_Lobe_Fn stops with an
+#error naming them.
 """
 import json
 import re
@@ -24,7 +28,8 @@ def num(x):
 
 
 def main():
-    abrdf, fkub_c, out = sys.argv[1:4]
+    abrdf, fkub_c, models_inc, out = sys.argv[1:5]
+    kernels = set(re.findall(r"^#declare abrdf_(\w+) = function", open(models_inc).read(), re.M))
     reg = json.loads(subprocess.run([abrdf, "models", "--json"], check=True,
                                     capture_output=True, text=True).stdout)
     rules = json.loads(subprocess.run([abrdf, "advise", "--rules", "--json"], check=True,
@@ -83,6 +88,9 @@ def main():
         len(models), ", ".join('"%s"' % m["name"] for m in models)))
     for i, m in enumerate(models):
         w("#declare ABRDF_ID_%s = %d;" % (m["name"].upper(), i))
+    w("// true where abrdf_models.inc has the model's function")
+    w("#declare ABRDF_PORTED = array[%d] {%s}" % (
+        len(models), ", ".join("true" if m["name"] in kernels else "false" for m in models)))
     for s in slots:
         w("#declare ABRDF_SLOT_%s = %d;%s" % (s.upper(), first[s],
                                               "  // R, G, B" if kind[s] == "rgb" else ""))
@@ -200,6 +208,10 @@ def main():
     w("  #switch (Id)")
     for i, m in enumerate(models):
         w("    #case (%d)" % i)
+        if m["name"] not in kernels:
+            w("      #error \"Abrdf_Lobe_Fn: %s has no POV-Ray twin yet (docs/POVRAY.md, Limits)\\n\"" % m["name"])
+            w("    #break")
+            continue
         args = []
         for p in m["params"]:
             k = first[p["name"]]

@@ -11,7 +11,8 @@
  *
  * POV-Ray 3.7 writes EXR as half floats (11 significant bits, relative spacing 2^-10); the
  * scene splits each value into exponent, high and low mantissa pixels (model_grid.pov) so
- * the comparison resolves ~2^-22 relative. */
+ * the comparison resolves ~2^-22 relative. Models without a POV-Ray function (pov_ported.h)
+ * are listed as such and not rendered. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,6 +22,7 @@
 
 #include "abrdf.h"
 #include "image_io.h"
+#include "pov_ported.h"
 
 /* The grid, then NM cells of the sweep wi = wo (model_grid.pov). */
 enum { NA = 12, NB = 12, NC = 12, NM = 576, COLS = 48, GRID = NA * NB * NC, CELLS = GRID + NM,
@@ -154,7 +156,9 @@ int main(int argc, char **argv)
         if (!m) continue; /* POV-Ray ids number the registered models in registry order */
         int wanted = argc == 5;
         for (int i = 5; i < argc; ++i) wanted |= strcmp(argv[i], m->name) == 0;
-        if (wanted) {
+        if (wanted && !pov_ported(argv[2], m->name)) {
+            printf("| %s | - | no POV-Ray twin | (not in povray_macros/abrdf_models.inc) |\n", m->name);
+        } else if (wanted) {
             chosen[nchosen++] = m;
             for (int s = 0; s < 3; ++s) {
                 if (running == JOBS) {
@@ -169,7 +173,7 @@ int main(int argc, char **argv)
     while (running > 0 && wait(NULL) > 0) --running;
 
     double worst_nmse = 0, worst_rel = 0;
-    printf("| model | params | NMSE | max rel. error |\n|---|---|---|---|\n");
+    printf("\n| model | params | NMSE | max rel. error |\n|---|---|---|---|\n");
     for (int i = 0; i < nchosen; ++i) {
         const abrdf_model_info *m = chosen[i];
         {

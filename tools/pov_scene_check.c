@@ -10,7 +10,8 @@
  * the pigment, no POV-Ray light), "native:PATH" with --native (POV-Ray's own finishes);
  * otherwise a one-light scene uses POV-Ray's light and shadows. --report prints the table
  * without failing (for the native mapping, whose phong/blinn_phong lack N.wi by design).
- * POV-Ray's own trace CPU time of each render is printed too.
+ * POV-Ray's own trace CPU time of each render is printed too. A model without a POV-Ray
+ * function (pov_ported.h) is listed as such and not rendered.
  * SIZE is the width = height in pixels; k = 2 (abrdf render --spp 4). */
 #include <math.h>
 #include <stdio.h>
@@ -22,6 +23,7 @@
 #include "abrdf.h"
 #include "image_io.h"
 #include "metrics.h"
+#include "pov_ported.h"
 
 #define K 2          /* samples per pixel side */
 #define JOBS 8       /* concurrent jobs: POV-Ray idles through much of a small render */
@@ -180,7 +182,7 @@ int main(int argc, char **argv)
 
     int running = 0;
     for (int m = 0; m < nmodels; ++m)
-        for (int s = 0; s < nscenes; ++s) {
+        for (int s = 0; s < nscenes && (!strcmp(models[m], "scene") || pov_ported(argv[3], models[m])); ++s) {
             if (running == JOBS) {
                 wait(NULL);
                 --running;
@@ -200,6 +202,11 @@ int main(int argc, char **argv)
     printf("\n");
     for (int m = 0; m < nmodels; ++m) {
         printf("| %s |", strcmp(models[m], "scene") ? models[m] : "(scene's materials)");
+        if (strcmp(models[m], "scene") && !pov_ported(argv[3], models[m])) {
+            for (int s = 0; s < nscenes; ++s) printf(" no POV-Ray twin | | |");
+            printf("\n");
+            continue;
+        }
         for (int s = 0; s < nscenes; ++s) {
             abrdf_metrics mt;
             if (compare(argv[4], scenes[s], models[m], size, &mt)) {

@@ -17,7 +17,12 @@
 #define FN(name) ABRDF__CAT(name, ABRDF_SFX)
 
 /* ---- guards ---------------------------------------------------------------------- */
-static inline R FN(clampr)(R x, R lo, R hi) { return x < lo ? lo : (x > hi ? hi : x); }
+/* Two plain selects (no nested or unordered compares) so batch loops vectorise; NaN -> lo. */
+static inline R FN(clampr)(R x, R lo, R hi)
+{
+    R y = x > lo ? x : lo;
+    return y < hi ? y : hi;
+}
 static inline R FN(pos)(R x) { return x > K(0) ? x : K(0); }  /* NaN -> 0 as well */
 static inline R FN(safe_sqrt)(R x) { return sqrt(FN(pos)(x)); }
 static inline R FN(safe_div)(R a, R b) { return b != K(0) ? a / b : K(0); }
