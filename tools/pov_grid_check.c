@@ -75,7 +75,7 @@ static double decode(const float *px)
 
 /* Renders of one (model, set): POV-Ray spends most of a tiny render's wall time idle, so
  * up to JOBS renders run at once (each with one render thread). */
-#define JOBS 12
+#define JOBS 6
 
 static void out_path(char *out, size_t size, const char *work, const abrdf_model_info *m, int s)
 {

@@ -26,7 +26,7 @@
 #include "pov_ported.h"
 
 #define K 2          /* samples per pixel side */
-#define JOBS 8       /* concurrent jobs: POV-Ray idles through much of a small render */
+#define JOBS 6       /* concurrent jobs: POV-Ray idles through much of a small render */
 #define BAR 1e-4
 #define MAX_SCENES 8
 
