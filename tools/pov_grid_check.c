@@ -63,6 +63,23 @@ static int make_params(const abrdf_model_info *m, int s, abrdf_params *p)
     st = st ? st : set_param(p, m, "sigma", &q->sigma, 1);
     st = st ? st : set_param(p, m, "anisotropic", &q->anisotropic, 1);
     st = st ? st : set_param(p, m, "clearcoat_gloss", &q->clearcoat_gloss, 1);
+    /* layer stacks, as model_grid.pov: {eta, kappa, r, sigma_a r, g, b, depth} */
+    static const double layers[3][4][7] = {
+        {{0}},
+        {{1.5, 0, 0.1, 0.5, 1, 2, 0.3}, {1.2, 0, 0.3, 0, 0, 0, 0}, {0.3, 3, 0.25, 0, 0, 0, 0}, {1.5, 0, 0.1, 0, 0, 0, 0}},
+        {{1.5, 0, 0.05, 0, 0, 0, 0}, {0.7, 0, 0.4, 0.1, 0.1, 0.1, 1}, {1.5, 0, 0.1, 0, 0, 0, 0}, {1.5, 0, 0.1, 0, 0, 0, 0}},
+    };
+    double count = s == 1 ? 3 : 2;
+    st = st ? st : set_param(p, m, "layer_count", &count, 1);
+    for (int k = 0; k < 4 && !st; ++k) {
+        static const char *names[] = {"eta", "kappa", "r", "sigma_a", "depth"};
+        static const int at[] = {0, 1, 2, 3, 6}, cnt[] = {1, 1, 1, 3, 1};
+        for (int j = 0; j < 5 && !st; ++j) {
+            char name[32];
+            snprintf(name, sizeof name, "layer%d_%s", k, names[j]);
+            st = set_param(p, m, name, &layers[s][k][at[j]], cnt[j]);
+        }
+    }
     return st;
 }
 

@@ -35,6 +35,25 @@ global_settings { assumed_gamma 1 }
   #declare D[ABRDF_SLOT_F0] = F0.x; #declare D[ABRDF_SLOT_F0 + 1] = F0.y; #declare D[ABRDF_SLOT_F0 + 2] = F0.z;
   #declare D[ABRDF_SLOT_N] = Nexp; #declare D[ABRDF_SLOT_R] = Rough; #declare D[ABRDF_SLOT_SIGMA] = Sigma;
   #declare D[ABRDF_SLOT_ANISOTROPIC] = Aniso; #declare D[ABRDF_SLOT_CLEARCOAT_GLOSS] = Gloss;
+  // layer stacks (layered models): set 1 a coat with absorption over a dielectric over a
+  // rough conductor; set 2 a denser coat over a less dense layer (total internal reflection)
+  #if (ABRDF_GRID_SET = 1)
+    #declare Layers = array[4][7] {
+      {1.5, 0, 0.1, 0.5, 1, 2, 0.3}, {1.2, 0, 0.3, 0, 0, 0, 0}, {0.3, 3, 0.25, 0, 0, 0, 0}, {1.5, 0, 0.1, 0, 0, 0, 0}}
+    #declare D[ABRDF_SLOT_LAYER_COUNT] = 3;
+  #else
+    #declare Layers = array[4][7] {
+      {1.5, 0, 0.05, 0, 0, 0, 0}, {0.7, 0, 0.4, 0.1, 0.1, 0.1, 1}, {1.5, 0, 0.1, 0, 0, 0, 0}, {1.5, 0, 0.1, 0, 0, 0, 0}}
+    #declare D[ABRDF_SLOT_LAYER_COUNT] = 2;
+  #end
+  #declare Slots = array[4] {ABRDF_SLOT_LAYER0_ETA, ABRDF_SLOT_LAYER1_ETA, ABRDF_SLOT_LAYER2_ETA, ABRDF_SLOT_LAYER3_ETA}
+  #declare Lk = 0;
+  #while (Lk < 4)
+    // slot order of a layer: eta, kappa, r, sigma_a (3), depth
+    #declare Lj = 0;
+    #while (Lj < 7) #declare D[Slots[Lk] + Lj] = Layers[Lk][Lj]; #declare Lj = Lj + 1; #end
+    #declare Lk = Lk + 1;
+  #end
   Abrdf__Check(D, "model_grid.pov")
 #end
 
