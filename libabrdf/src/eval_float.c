@@ -44,16 +44,23 @@ ABRDF__KERNEL_MODELS(ABRDF__BATCH_FN)
                            b->f_r, b->f_g, b->f_b);                                        \
         break;
 
+/* Double-only models per element, on the same footing as the scalar path: the float
+ * inputs are renormalised in double first (they are unit only to 2^-24, and an integrating
+ * model need not tolerate that), degenerate vectors give 0, and a value beyond float's
+ * range gives 0 like the closed-form loops, never Inf. */
+static float abrdf__to_float(double v) { return v >= 0.0 && v <= ABRDF__FLT_MAX ? (float)v : 0.0f; }
+
 static void abrdf__batch_special(abrdf_model model, const abrdf_params *p, const abrdf_batch *b)
 {
     for (size_t i = 0; i < b->count; ++i) {
         double wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
         double wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
-        double f[3];
-        abrdf__eval_special(model, p, wi, wo, f);
-        b->f_r[i] = (float)f[0];
-        b->f_g[i] = (float)f[1];
-        b->f_b[i] = (float)f[2];
+        double ui[3], uo[3], f[3] = {0.0, 0.0, 0.0};
+        if (abrdf__normalise3(wi, ui) && abrdf__normalise3(wo, uo))
+            abrdf__eval_special(model, p, ui, uo, f);
+        b->f_r[i] = abrdf__to_float(f[0]);
+        b->f_g[i] = abrdf__to_float(f[1]);
+        b->f_b[i] = abrdf__to_float(f[2]);
     }
 }
 
