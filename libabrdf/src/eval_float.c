@@ -16,7 +16,15 @@
 #else
 #define ABRDF__NOINLINE
 #endif
-#define ABRDF__KEEP(ok, x) (((ok) & ((x) >= 0.0f) & ((x) <= ABRDF__FLT_MAX)) ? (x) : 0.0f)
+/* The guard as a chain of float selects, each on one float compare: an int flag combined
+ * with float compares is a mixed mask GCC's vectoriser rejects. NaN fails every compare. */
+static inline float abrdf__keep(float ci, float co, float x)
+{
+    float y = x >= 0.0f ? x : 0.0f;
+    y = y <= ABRDF__FLT_MAX ? y : 0.0f;
+    y = ci > 0.0f ? y : 0.0f;
+    return co > 0.0f ? y : 0.0f;
+}
 #define ABRDF__BATCH_FN(ID, KERNEL)                                                        \
     ABRDF__NOINLINE static void FN(batch_##KERNEL)(const kp *restrict k, size_t n,                         \
                                    const float *restrict ix, const float *restrict iy,     \
@@ -30,10 +38,9 @@
             float v[3];                                                                    \
             FN(geo_make)(&g, ix[i], iy[i], iz[i], ox[i], oy[i], oz[i]);                    \
             FN(KERNEL)(k, &g, v);                                                          \
-            int ok = (g.ci > 0.0f) & (g.co > 0.0f);                                        \
-            fr[i] = ABRDF__KEEP(ok, v[0]);                                                 \
-            fg[i] = ABRDF__KEEP(ok, v[1]);                                                 \
-            fb[i] = ABRDF__KEEP(ok, v[2]);                                                 \
+            fr[i] = abrdf__keep(g.ci, g.co, v[0]);                                         \
+            fg[i] = abrdf__keep(g.ci, g.co, v[1]);                                         \
+            fb[i] = abrdf__keep(g.ci, g.co, v[2]);                                         \
         }                                                                                  \
     }
 ABRDF__KERNEL_MODELS(ABRDF__BATCH_FN)

@@ -74,19 +74,20 @@ static inline void FN(geo_make)(geo *g, R ix, R iy, R iz, R ox, R oy, R oz)
     g->co = FN(clampr)(oz, K(-1), K(1));
     R hx = ix + ox, hy = iy + oy, hz = iz + oz;
     R len2 = hx * hx + hy * hy + hz * hz;
-    int ok = len2 > K(ABRDF__HALF_LEN2_MIN);
-    R len = sqrt(ok ? len2 : K(1));
-    R inv = ok ? K(1) / len : K(0);
-    g->hx = ok ? hx * inv : K(0);
-    g->hy = ok ? hy * inv : K(0);
-    g->hz = ok ? hz * inv : K(1);
+    /* Every select tests a float compare directly (no int flag): GCC's vectoriser cannot
+     * mix an int mask with float compares ("relevant stmt not supported"). */
+    R len = sqrt(len2 > K(ABRDF__HALF_LEN2_MIN) ? len2 : K(1));
+    R inv = len2 > K(ABRDF__HALF_LEN2_MIN) ? K(1) / len : K(0);
+    g->hx = len2 > K(ABRDF__HALF_LEN2_MIN) ? hx * inv : K(0);
+    g->hy = len2 > K(ABRDF__HALF_LEN2_MIN) ? hy * inv : K(0);
+    g->hz = len2 > K(ABRDF__HALF_LEN2_MIN) ? hz * inv : K(1);
     g->ch = FN(clampr)(g->hz, K(-1), K(1));
     g->sh2 = FN(clampr)(g->hx * g->hx + g->hy * g->hy, K(0), K(1));
     /* cos(theta_d) = wi.H = |wi + wo| / 2 for unit vectors. The norm form is bitwise
      * symmetric in wi and wo (reciprocity to the last bit), and it does not cancel when
      * wi ~ -wo: wi.H there loses ~1e-4 relative in float for inputs that are unit only to
      * float precision. */
-    g->cd = ok ? FN(clampr)(K(0.5) * len, K(0), K(1)) : K(0);
+    g->cd = len2 > K(ABRDF__HALF_LEN2_MIN) ? FN(clampr)(K(0.5) * len, K(0), K(1)) : K(0);
     g->rv = FN(clampr)(-ix * ox - iy * oy + iz * oz, K(-1), K(1));
 }
 
