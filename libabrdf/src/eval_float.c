@@ -1,6 +1,7 @@
 /* eval_float.c - the float structure-of-arrays batch path. One loop per model, with the
  * model's kernel inlined, so the compiler can vectorise it. */
 #define ABRDF_REAL float
+#define ABRDF_BATCH_FLOAT 1 /* kernel.h: clampg */
 #define ABRDF_SFX f
 #include "k_all.h"
 #include "special.h"
@@ -16,14 +17,20 @@
 #else
 #define ABRDF__NOINLINE
 #endif
-/* The guard as a chain of float selects, each on one float compare: an int flag combined
- * with float compares is a mixed mask GCC's vectoriser rejects. NaN fails every compare. */
-static inline float abrdf__keep(float ci, float co, float x)
+/* The guard as float arithmetic on single float compares: an int flag combined with float
+ * compares is a mixed mask GCC's vectoriser rejects, and a select whose other arm is 0 is
+ * one compare and one AND. front is 1 for front-facing pairs, else 0; y is finite and
+ * >= 0 (NaN fails both compares), so y * front is exact. */
+static inline float abrdf__front(float ci, float co)
+{
+    float w = ci > 0.0f ? 1.0f : 0.0f;
+    return co > 0.0f ? w : 0.0f;
+}
+static inline float abrdf__keep(float front, float x)
 {
     float y = x >= 0.0f ? x : 0.0f;
     y = y <= ABRDF__FLT_MAX ? y : 0.0f;
-    y = ci > 0.0f ? y : 0.0f;
-    return co > 0.0f ? y : 0.0f;
+    return y * front;
 }
 #define ABRDF__BATCH_FN(ID, KERNEL)                                                        \
     ABRDF__NOINLINE static void FN(batch_##KERNEL)(const kp *restrict k, size_t n,                         \
@@ -38,9 +45,10 @@ static inline float abrdf__keep(float ci, float co, float x)
             float v[3];                                                                    \
             FN(geo_make)(&g, ix[i], iy[i], iz[i], ox[i], oy[i], oz[i]);                    \
             FN(KERNEL)(k, &g, v);                                                          \
-            fr[i] = abrdf__keep(g.ci, g.co, v[0]);                                         \
-            fg[i] = abrdf__keep(g.ci, g.co, v[1]);                                         \
-            fb[i] = abrdf__keep(g.ci, g.co, v[2]);                                         \
+            float front = abrdf__front(g.ci, g.co);                                         \
+            fr[i] = abrdf__keep(front, v[0]);                                              \
+            fg[i] = abrdf__keep(front, v[1]);                                              \
+            fb[i] = abrdf__keep(front, v[2]);                                              \
         }                                                                                  \
     }
 ABRDF__KERNEL_MODELS(ABRDF__BATCH_FN)
