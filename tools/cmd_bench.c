@@ -188,6 +188,12 @@ out:
     return rc;
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
 /* ---- output --------------------------------------------------------------------------- */
 
 static void json_num(FILE *f, double v)
@@ -196,10 +202,28 @@ static void json_num(FILE *f, double v)
     else fputs("null", f);
 }
 
+/* The batch-path targets (docs/BENCHMARKS.md): slowest Table-1 approximation's speedup,
+ * f_2e's, and full Disney (disney_diffuse + disney_specular) float cost in units. */
+typedef struct targets {
+    double approx_min_speedup, f2e_speedup, disney_full_ratio;
+} targets;
+
+static targets compute_targets(const row *rows, int count, double unit_ns)
+{
+    targets t = {INFINITY, NAN, 0};
+    for (int i = 0; i < count; ++i) {
+        const row *r = &rows[i];
+        if (r->ref == REF_BLINN_PHONG) t.approx_min_speedup = fmin(t.approx_min_speedup, unit_ns / r->f_def);
+        if (r->m->id == ABRDF_F_2E) t.f2e_speedup = unit_ns / r->f_def;
+        if (r->m->id == ABRDF_DISNEY_DIFFUSE || r->m->id == ABRDF_DISNEY_SPECULAR) t.disney_full_ratio += r->f_def / unit_ns;
+    }
+    return t;
+}
+
 static void print_json(FILE *f, const row *rows, int count, double unit_ns, double drift,
                        const measure_opts *mo, int size)
 {
-    fprintf(f, "{\"unit\": \"powf_blinn_phong\", \"unit_drift\": %.4g, \"pairs\": %zu, \"reps\": %d, "
+    fprintf(f, "{\"unit\": \"powf_blinn_phong\", \"unit_spread\": %.4g, \"pairs\": %zu, \"reps\": %d, "
             "\"robot_size\": %d, \"approx_n\": %g, \"spec_alpha_g\": %g,\n \"unit_ns\": %.4g,\n \"models\": [",
             drift, mo->pairs, mo->reps, size, APPROX_N, SPEC_ALPHA_G, unit_ns);
     for (int i = 0; i < count; ++i) {
@@ -231,14 +255,18 @@ static void print_json(FILE *f, const row *rows, int count, double unit_ns, doub
         json_num(f, r->t3_abs);
         fputc('}', f);
     }
-    fprintf(f, "\n]}\n");
+    targets t = compute_targets(rows, count, unit_ns);
+    fprintf(f, "\n], \"targets\": {\"approx_min_speedup\": %.6g, \"approx_target\": 20, \"f_2e_speedup\": %.6g, "
+            "\"f_2e_target\": 10, \"full_disney_ratio\": %.6g, \"full_disney_target\": 3}}\n",
+            t.approx_min_speedup, t.f2e_speedup, t.disney_full_ratio);
 }
 
 static void print_table(FILE *f, const row *rows, int count, double unit_ns, double drift,
                         const measure_opts *mo, int size)
 {
-    fprintf(f, "Cost: ns/eval as a ratio to powf Blinn-Phong (unit, timed in this run; drift between\n"
-            "its first and last timing %.1f%%), %zu pairs, median of %d. 'speedup' = unit / float cost.\n"
+    fprintf(f, "Cost: ns/eval as a ratio to powf Blinn-Phong (the unit), each model divided by the unit\n"
+            "timed just before it (spread of the unit's timings (max - min) / median: %.1f%%),\n"
+            "%zu pairs, median of %d. 'speedup' = unit / float cost.\n"
             "Accuracy: robot %dx%d NMSE vs the reference; Table 2 = max rel. error %% in the highlight\n"
             "zone, Table 3 = max abs. error, both at n = %g.\n\n", 100 * drift, mo->pairs, mo->reps,
             size, size, APPROX_N);
@@ -259,6 +287,13 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
         fprintf(f, "%-22s %8.3f %8.2f %8.3f %-14s %-16s %10s %6s %8s %8s\n", r->m->name, r->f_def / unit_ns,
                 unit_ns / r->f_def, r->d_def / unit_ns, range, ref_name[r->ref], nm, bn, t2, t3);
     }
+    targets t = compute_targets(rows, count, unit_ns);
+    fprintf(f, "\nTargets (float batch path vs the unit):\n"
+            "  Table-1 approximations >= 20x faster: slowest is %.2fx  %s\n"
+            "  f_2e >= 10x faster: %.2fx  %s\n"
+            "  full Disney (disney_diffuse + disney_specular) <= 3x the unit: %.2fx  %s\n",
+            t.approx_min_speedup, t.approx_min_speedup >= 20 ? "met" : "missed", t.f2e_speedup,
+            t.f2e_speedup >= 10 ? "met" : "missed", t.disney_full_ratio, t.disney_full_ratio <= 3 ? "met" : "missed");
 }
 
 /* Pareto plot: robot NMSE (log) vs float cost ratio (log), one colour per reference, the
@@ -413,26 +448,43 @@ int cmd_bench(int argc, char **argv)
         r->nmse = r->best_n = r->t2_rel = r->t3_abs = NAN;
         sweep(r, quick);
     }
-    /* Cost: the unit first and last (its drift says how steady the machine was). */
+    /* Cost: the unit is timed again just before each model, and each model's ns are
+     * divided by that neighbouring unit, so that a change of the machine's load or clock
+     * during the run cancels in the ratios. Stored below as ns in units of the median unit. */
     fprintf(stderr, "abrdf bench: timing");
     measure_unit_ns(set, &mo); /* warm-up: clock frequency, page faults, caches */
-    double unit0 = measure_unit_ns(set, &mo);
+    double *units = malloc(sizeof(double) * (size_t)count);
+    if (!units) {
+        measure_set_free(set);
+        free(rows);
+        fprintf(stderr, "abrdf bench: out of memory\n");
+        return 1;
+    }
     for (int i = 0; i < count; ++i) {
         row *r = &rows[i];
         fprintf(stderr, " %s", r->m->name);
+        double u = units[i] = measure_unit_ns(set, &mo);
         abrdf_params p;
         abrdf_params_init(r->m->id, &p);
-        r->f_def = measure_model_params_ns(set, r->m->id, &p, 0, &mo);
-        r->d_def = measure_model_params_ns(set, r->m->id, &p, 1, &mo);
+        r->f_def = measure_model_params_ns(set, r->m->id, &p, 0, &mo) / u;
+        r->d_def = measure_model_params_ns(set, r->m->id, &p, 1, &mo) / u;
         for (int k = 0; k < r->nvals; ++k) {
             set_vary(&p, r->vary, r->vals[k]);
-            r->f_ns[k] = measure_model_params_ns(set, r->m->id, &p, 0, &mo);
-            r->d_ns[k] = measure_model_params_ns(set, r->m->id, &p, 1, &mo);
+            r->f_ns[k] = measure_model_params_ns(set, r->m->id, &p, 0, &mo) / u;
+            r->d_ns[k] = measure_model_params_ns(set, r->m->id, &p, 1, &mo) / u;
         }
     }
-    double unit1 = measure_unit_ns(set, &mo);
     measure_set_free(set);
-    double unit_ns = 0.5 * (unit0 + unit1), drift = fabs(unit1 - unit0) / unit_ns;
+    double umin = INFINITY, umax = 0;
+    for (int i = 0; i < count; ++i) umin = fmin(umin, units[i]), umax = fmax(umax, units[i]);
+    qsort(units, (size_t)count, sizeof(double), cmp_double);
+    double unit_ns = units[count / 2], drift = (umax - umin) / unit_ns;
+    free(units);
+    for (int i = 0; i < count; ++i) { /* back to ns of the median unit */
+        row *r = &rows[i];
+        r->f_def *= unit_ns, r->d_def *= unit_ns;
+        for (int k = 0; k < r->nvals; ++k) r->f_ns[k] *= unit_ns, r->d_ns[k] *= unit_ns;
+    }
     fprintf(stderr, "\nabrdf bench: robot renders\n");
     char err[512] = "";
     int rc = 0;
