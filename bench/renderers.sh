@@ -9,7 +9,8 @@
 #            time (start-up and EXR writing included)
 #   povray   the same scene from `abrdf export --pov --native` (POV-Ray's own `specular`
 #            finish, its lights and shadows), -A (one ray per pixel), +WT2: POV-Ray's own
-#            "Trace Time", and the process wall time (parsing included)
+#            "Trace Time" (wall), its CPU time (user + sys of the run minus that of a 1x1
+#            run of the same file: parsing and start-up removed), and the process wall time
 #   cycles   bench/cycles_scene.py in .venv (bpy; scripts/setup_bench.sh): Principled BSDF,
 #            1 sample, CPU, 2 threads, no bounces: the wall time of bpy.ops.render.render
 #            (sync + BVH + tracing); skipped if .venv has no bpy
@@ -46,14 +47,23 @@ for name in sphere robot; do
   # POV-Ray: native finish, 1 ray per pixel, 2 threads
   "$abrdf" export --pov "$scene" -o "$out/$name.pov" --model blinn_phong --set n=100 --native
   : >"$out/p"
-  for ((i = 0; i < repeats; ++i)); do
+  : >"$out/p1"
+  pov() { # W H: "TRACE_WALL PROCESS_WALL PROCESS_CPU" of one povray run
+    local t0 trace cpu
     t0=$(now)
-    trace=$(cd "$out" && povray +I"$name.pov" +O"$name.png" +W"$w" +H"$h" -D -A +WT2 \
-      +L"$root/povray_macros" 2>&1 | sed -n 's/.*Trace Time:.*(\([0-9.]*\) seconds).*/\1/p')
-    echo "$trace $(awk "BEGIN{print $(now) - $t0}")" >>"$out/p"
+    trace=$(cd "$out" && /usr/bin/time -f "cpu %U %S" povray +I"$name.pov" +O"$name.png" +W"$1" +H"$2" \
+      -D -A +WT2 +L"$root/povray_macros" 2>&1 | sed -n -e 's/.*Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' \
+      -e 's/^cpu \([0-9.]*\) \([0-9.]*\)$/cpu \1 \2/p' | tr '\n' ' ')
+    echo "$trace $(awk "BEGIN{print $(now) - $t0}")" |
+      awk '{print $1, $5, $3 + $4}'
+  }
+  for ((i = 0; i < repeats; ++i)); do
+    pov "$w" "$h" >>"$out/p"
+    pov 1 1 >>"$out/p1" # parsing and start-up only: subtracted from the CPU time
   done
   p_trace=$(cut -d' ' -f1 "$out/p" | min)
   p_proc=$(cut -d' ' -f2 "$out/p" | min)
+  p_cpu=$(awk -v a="$(cut -d' ' -f3 "$out/p" | min)" -v b="$(cut -d' ' -f3 "$out/p1" | min)" 'BEGIN{print a - b}')
   # Cycles
   c_render=NA
   c_proc=NA
@@ -64,10 +74,10 @@ for name in sphere robot; do
     c_proc=$(awk "BEGIN{print $(now) - $t0}")
   fi
   echo "$name ${w}x${h}, 1 spp, 2 threads, best of $repeats:"
-  awk -v aw="$a_wall" -v ac="$a_cpu" -v ap="$a_proc" -v pt="$p_trace" -v pp="$p_proc" \
+  awk -v aw="$a_wall" -v ac="$a_cpu" -v ap="$a_proc" -v pt="$p_trace" -v pp="$p_proc" -v pc="$p_cpu" \
       -v cr="$c_render" -v cp="$c_proc" 'BEGIN {
     printf "  abrdf ray tracing (renderer timer)      wall %.4f s, CPU %.4f s; process %.3f s\n", aw, ac, ap
-    printf "  POV-Ray trace time / abrdf ray tracing  x%.1f   (process wall: x%.1f)\n", pt / aw, pp / ap
+    printf "  POV-Ray trace time / abrdf ray tracing  x%.1f wall, x%.1f CPU   (process wall: x%.1f)\n", pt / aw, pc / ac, pp / ap
     if (cr != "NA")
       printf "  Cycles render / abrdf ray tracing       x%.1f   (Cycles render / POV-Ray trace: x%.2f)\n", cr / aw, cr / pt
     else
