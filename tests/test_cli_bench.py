@@ -2,7 +2,7 @@
 """test_cli_bench.py - `abrdf bench` (docs/BENCHMARKS.md): the quick run's JSON lists every
 model of `abrdf models --json` with finite, positive cost ratios on both paths; the
 accuracy columns are where the references say; the Pareto plot is well-formed SVG; the
-renderer comparison reports its three variants. No timing thresholds: only structure,
+renderer comparison reports its four variants. No timing thresholds: only structure,
 finiteness and values that do not depend on the machine's speed.
 
     python3 test_cli_bench.py PATH/TO/abrdf        (CTest passes the built binary)
@@ -103,12 +103,13 @@ class QuickBench(unittest.TestCase):
 
 
 class RenderBench(unittest.TestCase):
-    def test_three_variants(self):
+    def test_four_variants(self):
         rc, out, err = run("bench", "--render", "--quick", "--json")
         self.assertEqual(rc, 0, err)
         d = json.loads(out)
         names = [v["name"] for v in d["variants"]]
-        self.assertEqual(names, ["full_disney", "adaptive_photoreal", "adaptive_performance"])
+        self.assertEqual(names, ["full_disney", "adaptive_photoreal", "adaptive_performance",
+                                 "performance_exact_bp"])
         ref = d["variants"][0]
         self.assertEqual(ref["time_ratio"], 1)
         self.assertEqual(ref["image_nmse"], 0)
@@ -119,6 +120,13 @@ class RenderBench(unittest.TestCase):
         for m in ref["materials"]:
             self.assertEqual(m["models"], "disney_diffuse + disney_specular")
             self.assertEqual(m["nmse"], 0)
+        # the exact variant has Blinn-Phong where the performance variant has an approximation
+        for perf, exact in zip(d["variants"][2]["materials"], d["variants"][3]["materials"]):
+            self.assertNotIn("blinn_phong", perf["models"])
+            self.assertIn("blinn_phong", exact["models"])
+        split = d["performance_vs_exact_bp"]
+        self.assertTrue(math.isfinite(split["image_nmse"]) and split["image_nmse"] > 0)
+        self.assertEqual(len(split["materials"]), 3)
 
 
 class Errors(unittest.TestCase):

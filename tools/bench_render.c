@@ -68,9 +68,18 @@ int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrd
 
 /* ---- `abrdf bench --render` ----------------------------------------------------------- */
 
-enum { V_DISNEY, V_PHOTOREAL, V_PERFORMANCE, V_COUNT };
+/* V_PERF_EXACT is V_PERFORMANCE with each Table-1 approximation replaced by the Blinn-Phong
+ * lobe it approximates (same parameters): it splits (c)'s error into the approximation's
+ * (c vs d) and the Blinn-Phong family's against the microfacet reference (d vs a). */
+enum { V_DISNEY, V_PHOTOREAL, V_PERFORMANCE, V_PERF_EXACT, V_COUNT };
 static const char *const variant_name[V_COUNT] = {"full_disney", "adaptive_photoreal",
-                                                  "adaptive_performance"};
+                                                  "adaptive_performance", "performance_exact_bp"};
+
+static int is_table1(abrdf_model m)
+{
+    return m == ABRDF_F2 || m == ABRDF_F4 || m == ABRDF_F8 || m == ABRDF_F16 || m == ABRDF_FS ||
+           m == ABRDF_FKV || m == ABRDF_FKUB;
+}
 
 /* The robot with its materials as variant v makes them. */
 static int variant_scene(int v, scene *s, char *err, size_t err_size)
@@ -90,6 +99,10 @@ static int variant_scene(int v, scene *s, char *err, size_t err_size)
         scene_free(s);
         return -1;
     }
+    if (v == V_PERF_EXACT)
+        for (int i = 0; i < s->material_count; ++i)
+            for (int l = 0; l < s->materials[i].lobe_count; ++l)
+                if (is_table1(s->materials[i].lobes[l])) s->materials[i].lobes[l] = ABRDF_BLINN_PHONG;
     return 0;
 }
 
@@ -180,11 +193,13 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads)
     }
     free(t);
 
-    double nmse[V_COUNT][MAX_MATERIALS], whole[V_COUNT];
+    double nmse[V_COUNT][MAX_MATERIALS], whole[V_COUNT], approx[MAX_MATERIALS];
     for (int v = 0; v < V_COUNT; ++v) whole[v] = masked_nmse(img[v], img[V_DISNEY], NULL, pixels);
+    double approx_whole = masked_nmse(img[V_PERFORMANCE], img[V_PERF_EXACT], NULL, pixels);
     for (int i = 0; i < nm; ++i) {
         if (material_mask(i, w, h, threads, mask, err, sizeof err)) goto out;
         for (int v = 0; v < V_COUNT; ++v) nmse[v][i] = masked_nmse(img[v], img[V_DISNEY], mask, pixels);
+        approx[i] = masked_nmse(img[V_PERFORMANCE], img[V_PERF_EXACT], mask, pixels);
     }
 
     char lb[128];
@@ -204,10 +219,17 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads)
             }
             fprintf(out, "]}");
         }
-        fprintf(out, "\n]}\n");
+        fprintf(out, "\n], \"performance_vs_exact_bp\": {\"image_nmse\": %.6g, \"materials\": [", approx_whole);
+        for (int i = 0; i < nm; ++i) {
+            fprintf(out, "%s{\"material\": ", i ? ", " : "");
+            cli_json_string(out, sv[0].materials[i].name);
+            fprintf(out, ", \"nmse\": %.6g}", isfinite(approx[i]) ? approx[i] : -1.0);
+        }
+        fprintf(out, "]}}\n");
     } else {
         fprintf(out, "Robot %dx%d, 1 spp, %d thread(s), median of %d renders per variant.\n"
-                "Reference (a): every material disney_diffuse + disney_specular.\n\n", w, h, threads, reps);
+                "Reference (a): every material disney_diffuse + disney_specular. performance_exact_bp:\n"
+                "adaptive_performance with each Table-1 approximation replaced by Blinn-Phong.\n\n", w, h, threads, reps);
         fprintf(out, "%-22s %10s %12s %10s\n", "variant", "time/(a)", "image NMSE", "class");
         for (int v = 0; v < V_COUNT; ++v)
             fprintf(out, "%-22s %10.3f %12.3g %10s\n", variant_name[v], sec[v] / sec[V_DISNEY], whole[v],
@@ -218,6 +240,10 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads)
                 lobe_names(&sv[v].materials[i], lb, sizeof lb);
                 fprintf(out, "%-8s %-22s %-36s %12.3g\n", sv[v].materials[i].name, variant_name[v], lb, nmse[v][i]);
             }
+        fprintf(out, "\nadaptive_performance vs performance_exact_bp (the approximation's own error):\n"
+                "  image %.3g", approx_whole);
+        for (int i = 0; i < nm; ++i) fprintf(out, ", %s %.3g", sv[0].materials[i].name, approx[i]);
+        fprintf(out, "\n");
     }
     rc = 0;
     goto out;
