@@ -12,6 +12,7 @@ static const cli_command commands[] = {
     {"compare", "NMSE (the paper's metric), PSNR, max error and Table-8 class of two images", cmd_compare},
     {"tables", "the paper's Tables 2, 3, 4, 6, 7 recomputed, beside the published values", cmd_tables},
     {"calibrate", "measure ns/eval of every model on this machine; write a cost file", cmd_calibrate},
+    {"bench", "what accuracy costs in time: cost ratios, image errors, Pareto plot; --render", cmd_bench},
     {"advise", "choose the models for a material by the paper's flowchart, and say why", cmd_advise},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])

@@ -49,5 +49,6 @@ int cmd_compare(int argc, char **argv);
 int cmd_tables(int argc, char **argv);
 int cmd_calibrate(int argc, char **argv);
 int cmd_advise(int argc, char **argv);
+int cmd_bench(int argc, char **argv);
 
 #endif

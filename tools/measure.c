@@ -18,7 +18,8 @@
 
 struct measure_set {
     size_t pairs;
-    float *buf; /* 9 arrays of `pairs` floats: wi xyz, wo xyz, f rgb */
+    float *buf;  /* 9 arrays of `pairs` floats: wi xyz, wo xyz, f rgb */
+    double *dir; /* the same directions in double, interleaved wi[3] wo[3] per pair */
 };
 
 void measure_defaults(measure_opts *o, int quick)
@@ -26,6 +27,7 @@ void measure_defaults(measure_opts *o, int quick)
     o->reps = quick ? 3 : 7;
     o->pairs = 4096;
     o->rep_seconds = quick ? 0.005 : 0.02;
+    o->integrating_pairs = INTEGRATING_PAIRS;
 }
 
 static double now_seconds(void)
@@ -60,8 +62,9 @@ measure_set *measure_set_new(size_t pairs)
     if (!s) return NULL;
     s->pairs = pairs;
     s->buf = malloc(9 * pairs * sizeof(float));
-    if (!s->buf) {
-        free(s);
+    s->dir = malloc(6 * pairs * sizeof(double));
+    if (!s->buf || !s->dir) {
+        measure_set_free(s);
         return NULL;
     }
     uint64_t seed = 0x9E3779B97F4A7C15ULL;
@@ -71,6 +74,8 @@ measure_set *measure_set_new(size_t pairs)
         hemisphere(&seed, &b[3 * pairs + i], &b[4 * pairs + i], &b[5 * pairs + i]);
     }
     memset(b + 6 * pairs, 0, 3 * pairs * sizeof(float));
+    for (size_t i = 0; i < pairs; ++i)
+        for (int c = 0; c < 6; ++c) s->dir[6 * i + (size_t)c] = b[(size_t)c * pairs + i];
     return s;
 }
 
@@ -78,6 +83,7 @@ void measure_set_free(measure_set *s)
 {
     if (!s) return;
     free(s->buf);
+    free(s->dir);
     free(s);
 }
 
@@ -95,12 +101,27 @@ typedef int (*batch_fn)(void *ctx, const abrdf_batch *b);
 typedef struct model_ctx {
     abrdf_model model;
     abrdf_params params;
+    const double *dir; /* double path: interleaved directions (measure_set.dir) */
 } model_ctx;
 
 static int run_model(void *ctx, const abrdf_batch *b)
 {
     const model_ctx *c = ctx;
     return abrdf_eval_batch(c->model, &c->params, b);
+}
+
+/* The double scalar reference path, one abrdf_eval_local call per pair. */
+static int run_model_double(void *ctx, const abrdf_batch *b)
+{
+    const model_ctx *c = ctx;
+    double f[3], acc = 0.0;
+    for (size_t i = 0; i < b->count; ++i) {
+        if (abrdf_eval_local(c->model, &c->params, c->dir + 6 * i, c->dir + 6 * i + 3, f) != ABRDF_OK)
+            return -1;
+        acc += f[0];
+    }
+    measure_sink = (float)acc;
+    return 0;
 }
 
 static int run_unit(void *ctx, const abrdf_batch *b)
@@ -144,14 +165,23 @@ static double time_batches(measure_set *s, size_t pairs, batch_fn fn, void *ctx,
 
 double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o)
 {
+    abrdf_params p;
+    if (abrdf_params_init(model, &p) != ABRDF_OK) return -1.0;
+    return measure_model_params_ns(s, model, &p, 0, o);
+}
+
+double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
+                               int double_path, const measure_opts *o)
+{
     const abrdf_model_info *m = abrdf_model_get(model);
     if (!m) return -1.0;
     model_ctx ctx;
     ctx.model = model;
-    abrdf_params_init(model, &ctx.params);
+    ctx.params = *p;
+    ctx.dir = s->dir;
     size_t pairs = s->pairs;
-    if ((m->needs & ABRDF_NEEDS_INTEGRATION) && pairs > INTEGRATING_PAIRS) pairs = INTEGRATING_PAIRS;
-    return time_batches(s, pairs, run_model, &ctx, o);
+    if ((m->needs & ABRDF_NEEDS_INTEGRATION) && pairs > o->integrating_pairs) pairs = o->integrating_pairs;
+    return time_batches(s, pairs, double_path ? run_model_double : run_model, &ctx, o);
 }
 
 double measure_unit_ns(measure_set *s, const measure_opts *o)

@@ -9,6 +9,7 @@ typedef struct measure_opts {
     int reps;           /* timed repetitions; the median is reported */
     size_t pairs;       /* direction pairs per batch (structure of arrays, warm in cache) */
     double rep_seconds; /* each repetition repeats the batch until it lasts this long */
+    size_t integrating_pairs; /* pairs for models that integrate numerically (slow) */
 } measure_opts;
 
 /* Defaults: 7 repetitions of 4096 pairs, 20 ms each (quick: 3 repetitions of 5 ms). */
@@ -21,8 +22,12 @@ measure_set *measure_set_new(size_t pairs);
 void measure_set_free(measure_set *s);
 
 /* Median ns/eval of `model` (its default parameters) via abrdf_eval_batch. Models that
- * integrate numerically use at most 256 of the pairs. Returns < 0 on error. */
+ * integrate numerically use at most o->integrating_pairs of the pairs. Returns < 0 on error. */
 double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o);
+/* The same for parameters p, on the float batch path (double_path 0) or the double scalar
+ * reference path abrdf_eval_local (double_path 1, one call per pair). */
+double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
+                               int double_path, const measure_opts *o);
 /* Median ns/eval of the unit: a bare loop H = normalise(wi + wo), powf(H.z, n), n = 100. */
 double measure_unit_ns(measure_set *s, const measure_opts *o);
 

@@ -1,6 +1,7 @@
 /* eval_float.c - the float structure-of-arrays batch path. One loop per model, with the
  * model's kernel inlined, so the compiler can vectorise it. */
 #define ABRDF_REAL float
+#define ABRDF_BATCH_FLOAT 1 /* kernel.h: clampg */
 #define ABRDF_SFX f
 #include "k_all.h"
 #include "special.h"
@@ -16,7 +17,21 @@
 #else
 #define ABRDF__NOINLINE
 #endif
-#define ABRDF__KEEP(ok, x) (((ok) & ((x) >= 0.0f) & ((x) <= ABRDF__FLT_MAX)) ? (x) : 0.0f)
+/* The guard as float arithmetic on single float compares: an int flag combined with float
+ * compares is a mixed mask GCC's vectoriser rejects, and a select whose other arm is 0 is
+ * one compare and one AND. front is 1 for front-facing pairs, else 0; y is finite and
+ * >= 0 (NaN fails both compares), so y * front is exact. */
+static inline float abrdf__front(float ci, float co)
+{
+    float w = ci > 0.0f ? 1.0f : 0.0f;
+    return co > 0.0f ? w : 0.0f;
+}
+static inline float abrdf__keep(float front, float x)
+{
+    float y = x >= 0.0f ? x : 0.0f;
+    y = y <= ABRDF__FLT_MAX ? y : 0.0f;
+    return y * front;
+}
 #define ABRDF__BATCH_FN(ID, KERNEL)                                                        \
     ABRDF__NOINLINE static void FN(batch_##KERNEL)(const kp *restrict k, size_t n,                         \
                                    const float *restrict ix, const float *restrict iy,     \
@@ -30,10 +45,10 @@
             float v[3];                                                                    \
             FN(geo_make)(&g, ix[i], iy[i], iz[i], ox[i], oy[i], oz[i]);                    \
             FN(KERNEL)(k, &g, v);                                                          \
-            int ok = (g.ci > 0.0f) & (g.co > 0.0f);                                        \
-            fr[i] = ABRDF__KEEP(ok, v[0]);                                                 \
-            fg[i] = ABRDF__KEEP(ok, v[1]);                                                 \
-            fb[i] = ABRDF__KEEP(ok, v[2]);                                                 \
+            float front = abrdf__front(g.ci, g.co);                                         \
+            fr[i] = abrdf__keep(front, v[0]);                                              \
+            fg[i] = abrdf__keep(front, v[1]);                                              \
+            fb[i] = abrdf__keep(front, v[2]);                                              \
         }                                                                                  \
     }
 ABRDF__KERNEL_MODELS(ABRDF__BATCH_FN)

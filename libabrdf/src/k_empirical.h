@@ -78,6 +78,10 @@ static inline void FN(k_fkub)(const kp *p, const geo *g, R f[3])
     R c = FN(pos)(g->ch);
     R t = K(1) - c; /* the cubic written about c = 1 (fkub_table.c) */
     R v = K(1) + t * (p->fkub[0] + t * (p->fkub[1] + t * p->fkub[2]));
-    v = c >= p->fkub_x0 ? FN(clampr)(v, K(0), K(1)) : K(0);
+    /* zero below the zone, then clamp to [0, 1]: the same values as clamping inside the
+     * zone (NaN -> 0), written as selects with a zero arm, which vectorise to compare+and */
+    v = c >= p->fkub_x0 ? v : K(0);
+    v = v > K(0) ? v : K(0);
+    v = v < K(1) ? v : K(1);
     FN(lobe_out)(p, v, f);
 }

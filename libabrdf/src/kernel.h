@@ -26,6 +26,22 @@ static inline R FN(clampr)(R x, R lo, R hi)
 static inline R FN(pos)(R x) { return x > K(0) ? x : K(0); }  /* NaN -> 0 as well */
 static inline R FN(safe_sqrt)(R x) { return sqrt(FN(pos)(x)); }
 static inline R FN(safe_div)(R a, R b) { return b != K(0) ? a / b : K(0); }
+/* Clamp of a geometric quantity (cosines, sin^2) that is in range up to rounding for unit
+ * inputs. The double path clamps (it is the reference). The float batch path does not:
+ * there the clamps cost more than half of a Table-1 approximation's time (GCC expands each
+ * select pair into compare/and/or mask sequences under IEEE semantics), every kernel
+ * tolerates a 1-ulp excursion, and a NaN still ends as 0 (it fails the front-facing test or
+ * the final >= 0 guard of eval_float.c). */
+static inline R FN(clampg)(R x, R lo, R hi)
+{
+#ifdef ABRDF_BATCH_FLOAT
+    (void)lo;
+    (void)hi;
+    return x;
+#else
+    return FN(clampr)(x, lo, hi);
+#endif
+}
 /* pow with the base clamped to >= 0: C's pow(negative, non-integer) is NaN, and an even
  * power of a negative base would give a spurious lobe (MODELS.md B0). */
 static inline R FN(pow_pos)(R x, R e) { return pow(FN(pos)(x), e); }
@@ -57,7 +73,7 @@ typedef struct FN(abrdf__kp) {
 typedef struct FN(abrdf__geo) {
     R ix, iy, iz;   /* wi */
     R ox, oy, oz;   /* wo */
-    R ci, co;       /* cos_i = N.wi, cos_o = N.wo, clamped to [-1, 1] */
+    R ci, co;       /* cos_i = N.wi, cos_o = N.wo, clamped to [-1, 1] (clampg) */
     R hx, hy, hz;   /* H; +z when wi ~ -wo (then the pair is rejected as back-facing) */
     R ch;           /* N.H */
     R sh2;          /* |N x H|^2 = sin^2(theta_h), without the cancellation of 1 - ch^2 */
@@ -70,24 +86,25 @@ static inline void FN(geo_make)(geo *g, R ix, R iy, R iz, R ox, R oy, R oz)
 {
     g->ix = ix; g->iy = iy; g->iz = iz;
     g->ox = ox; g->oy = oy; g->oz = oz;
-    g->ci = FN(clampr)(iz, K(-1), K(1));
-    g->co = FN(clampr)(oz, K(-1), K(1));
+    g->ci = FN(clampg)(iz, K(-1), K(1));
+    g->co = FN(clampg)(oz, K(-1), K(1));
     R hx = ix + ox, hy = iy + oy, hz = iz + oz;
     R len2 = hx * hx + hy * hy + hz * hz;
-    int ok = len2 > K(ABRDF__HALF_LEN2_MIN);
-    R len = sqrt(ok ? len2 : K(1));
-    R inv = ok ? K(1) / len : K(0);
-    g->hx = ok ? hx * inv : K(0);
-    g->hy = ok ? hy * inv : K(0);
-    g->hz = ok ? hz * inv : K(1);
-    g->ch = FN(clampr)(g->hz, K(-1), K(1));
-    g->sh2 = FN(clampr)(g->hx * g->hx + g->hy * g->hy, K(0), K(1));
+    /* Every select tests a float compare directly (no int flag): GCC's vectoriser cannot
+     * mix an int mask with float compares ("relevant stmt not supported"). */
+    R len = sqrt(len2 > K(ABRDF__HALF_LEN2_MIN) ? len2 : K(1));
+    R inv = len2 > K(ABRDF__HALF_LEN2_MIN) ? K(1) / len : K(0);
+    g->hx = len2 > K(ABRDF__HALF_LEN2_MIN) ? hx * inv : K(0);
+    g->hy = len2 > K(ABRDF__HALF_LEN2_MIN) ? hy * inv : K(0);
+    g->hz = len2 > K(ABRDF__HALF_LEN2_MIN) ? hz * inv : K(1);
+    g->ch = FN(clampg)(g->hz, K(-1), K(1));
+    g->sh2 = FN(clampg)(g->hx * g->hx + g->hy * g->hy, K(0), K(1));
     /* cos(theta_d) = wi.H = |wi + wo| / 2 for unit vectors. The norm form is bitwise
      * symmetric in wi and wo (reciprocity to the last bit), and it does not cancel when
      * wi ~ -wo: wi.H there loses ~1e-4 relative in float for inputs that are unit only to
      * float precision. */
-    g->cd = ok ? FN(clampr)(K(0.5) * len, K(0), K(1)) : K(0);
-    g->rv = FN(clampr)(-ix * ox - iy * oy + iz * oz, K(-1), K(1));
+    g->cd = len2 > K(ABRDF__HALF_LEN2_MIN) ? FN(clampg)(K(0.5) * len, K(0), K(1)) : K(0);
+    g->rv = FN(clampg)(-ix * ox - iy * oy + iz * oz, K(-1), K(1));
 }
 
 /* Both directions strictly above the surface: the only pairs with a non-zero BRDF. */

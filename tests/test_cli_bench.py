@@ -1,0 +1,145 @@
+#!/usr/bin/env python3
+"""test_cli_bench.py - `abrdf bench` (docs/BENCHMARKS.md): the quick run's JSON lists every
+model of `abrdf models --json` with finite, positive cost ratios on both paths; the
+accuracy columns are where the references say; the Pareto plot is well-formed SVG; the
+renderer comparison reports its four variants. No timing thresholds: only structure,
+finiteness and values that do not depend on the machine's speed.
+
+    python3 test_cli_bench.py PATH/TO/abrdf        (CTest passes the built binary)
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+import xml.etree.ElementTree as ET
+
+ABRDF = None
+
+APPROX = ["f2", "f4", "f8", "f16", "fs", "fkv", "fkub"]
+TABLE5 = ["f_phe", "f_be", "f_2e", "f_16e", "f_ge", "f_ctphe", "f_ct2e", "f_ct16e"]
+
+
+def run(*args, timeout=300):
+    p = subprocess.run([ABRDF] + [str(a) for a in args], stdout=subprocess.PIPE,
+                       stderr=subprocess.PIPE, universal_newlines=True, timeout=timeout)
+    return p.returncode, p.stdout, p.stderr
+
+
+class QuickBench(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.svg = os.path.join(cls.tmp.name, "pareto.svg")
+        rc, out, err = run("bench", "--quick", "--json", "--plot", cls.svg)
+        if rc != 0:
+            raise AssertionError("abrdf bench --quick --json failed: " + err)
+        cls.data = json.loads(out)
+        rc, out, _ = run("models", "--json")
+        cls.models = [m["name"] for m in json.loads(out)["models"]]
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def row(self, name):
+        return next(r for r in self.data["models"] if r["name"] == name)
+
+    def test_every_model_once(self):
+        names = [r["name"] for r in self.data["models"]]
+        self.assertEqual(sorted(names), sorted(self.models))
+        self.assertEqual(len(names), len(set(names)))
+
+    def test_ratios_finite_and_positive(self):
+        self.assertTrue(math.isfinite(self.data["unit_ns"]) and self.data["unit_ns"] > 0)
+        for r in self.data["models"]:
+            for k in ("float_ratio", "double_ratio", "float_speedup"):
+                v = r[k]
+                self.assertTrue(isinstance(v, (int, float)) and math.isfinite(v) and v > 0,
+                                "%s %s = %r" % (r["name"], k, v))
+            self.assertAlmostEqual(r["float_ratio"] * r["float_speedup"], 1.0, places=4)
+            if r["sweep"] is not None:
+                s = r["sweep"]
+                self.assertIn(s["param"], ("n", "r"))
+                self.assertEqual(len(s["values"]), len(s["float_ratio"]))
+                self.assertEqual(len(s["values"]), len(s["double_ratio"]))
+                for v in s["float_ratio"] + s["double_ratio"]:
+                    self.assertTrue(math.isfinite(v) and v > 0, r["name"])
+
+    def test_sweeps_where_cost_may_depend_on_a_parameter(self):
+        self.assertEqual(self.row("blinn_phong")["sweep"]["param"], "n")
+        self.assertEqual(self.row("disney_specular")["sweep"]["param"], "r")
+        self.assertIsNone(self.row("lambert")["sweep"])
+
+    def test_accuracy_columns(self):
+        for name in APPROX:
+            r = self.row(name)
+            self.assertEqual(r["reference"], "blinn_phong")
+            self.assertTrue(math.isfinite(r["robot_nmse"]) and r["robot_nmse"] > 0, name)
+            self.assertTrue(r["table2_max_rel_pct"] > 0 and r["table3_max_abs"] > 0, name)
+        for name in TABLE5 + ["cook_torrance"]:
+            r = self.row(name)
+            self.assertEqual(r["reference"], "disney_specular")
+            self.assertTrue(math.isfinite(r["robot_nmse"]) and r["robot_nmse"] > 0, name)
+            self.assertIsNone(r["table2_max_rel_pct"])
+        for name in ("blinn_phong", "disney_specular", "disney_diffuse"):
+            self.assertEqual(self.row(name)["robot_nmse"], 0)
+        self.assertIsNone(self.row("huang")["robot_nmse"])
+        # The Table-2/3 errors are the library's (abrdf tables 2 computes the same).
+        self.assertLess(self.row("f16")["table3_max_abs"], self.row("f2")["table3_max_abs"])
+
+    def test_plot_is_svg_with_a_point_per_model_with_an_error(self):
+        root = ET.parse(self.svg).getroot()
+        self.assertTrue(root.tag.endswith("svg"))
+        texts = [t.text for t in root.iter() if t.tag.endswith("text")]
+        with_error = [r["name"] for r in self.data["models"]
+                      if r["robot_nmse"] is not None and r["robot_nmse"] > 0]
+        for name in with_error:
+            self.assertIn(name, texts)
+        circles = [c for c in root.iter() if c.tag.endswith("circle")]
+        self.assertEqual(len(circles), len(with_error) + 3)  # + the legend's three
+
+
+class RenderBench(unittest.TestCase):
+    def test_four_variants(self):
+        rc, out, err = run("bench", "--render", "--quick", "--json")
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        names = [v["name"] for v in d["variants"]]
+        self.assertEqual(names, ["full_disney", "adaptive_photoreal", "adaptive_performance",
+                                 "performance_exact_bp"])
+        ref = d["variants"][0]
+        self.assertEqual(ref["time_ratio"], 1)
+        self.assertEqual(ref["image_nmse"], 0)
+        for v in d["variants"]:
+            self.assertTrue(math.isfinite(v["time_ratio"]) and v["time_ratio"] > 0)
+            self.assertTrue(math.isfinite(v["image_nmse"]) and v["image_nmse"] >= 0)
+            self.assertEqual([m["material"] for m in v["materials"]], ["shell", "joint", "eye"])
+        for m in ref["materials"]:
+            self.assertEqual(m["models"], "disney_diffuse + disney_specular")
+            self.assertEqual(m["nmse"], 0)
+        # the exact variant has Blinn-Phong where the performance variant has an approximation
+        for perf, exact in zip(d["variants"][2]["materials"], d["variants"][3]["materials"]):
+            self.assertNotIn("blinn_phong", perf["models"])
+            self.assertIn("blinn_phong", exact["models"])
+        split = d["performance_vs_exact_bp"]
+        self.assertTrue(math.isfinite(split["image_nmse"]) and split["image_nmse"] > 0)
+        self.assertEqual(len(split["materials"]), 3)
+
+
+class Errors(unittest.TestCase):
+    def test_unknown_option(self):
+        rc, _, err = run("bench", "--nope")
+        self.assertEqual(rc, 2)
+        self.assertIn("unknown argument", err)
+
+    def test_bad_size(self):
+        rc, _, _ = run("bench", "--size", "3")
+        self.assertEqual(rc, 2)
+
+
+if __name__ == "__main__":
+    ABRDF = sys.argv.pop(1)
+    unittest.main()

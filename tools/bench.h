@@ -1,0 +1,32 @@
+/* bench.h - `abrdf bench`: what accuracy costs in time (docs/BENCHMARKS.md).
+ *
+ *   bench_robot_parse    the built-in robot scene (scenes/robot.scene)
+ *   bench_robot_lobes    render the robot with every material replaced by given lobes
+ *   bench_render_report  `abrdf bench --render`: full Disney vs adaptive photoreal and
+ *                        performance on the robot: time ratios and NMSE per material
+ */
+#ifndef ABRDF_BENCH_H
+#define ABRDF_BENCH_H
+#include <stdio.h>
+#include "abrdf.h"
+#include "scene.h"
+
+/* Returns 0, or -1 with a message in err. */
+int bench_robot_parse(scene *s, char *err, size_t err_size);
+
+/* Every material of s becomes `diffuse` (ABRDF_MODEL_COUNT: none) + `specular`
+ * (ABRDF_MODEL_COUNT: none) with parameters p, no ambient term; rendered at size x size,
+ * 1 sample per pixel (pixel centres), into rgb (size*size*3 floats). *seconds (may be NULL)
+ * receives the wall time of render_image. Returns 0, or -1 with a message in err. */
+int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrdf_model specular,
+                      const abrdf_params *p, float *rgb, double *seconds, char *err,
+                      size_t err_size);
+
+/* Wall-clock seconds (monotonic), for render timings that span threads. */
+double bench_wall_seconds(void);
+
+/* `abrdf bench --render`: writes a table (json 0) or a JSON object (json 1) to out.
+ * size: image size (0 = the scene's); reps: timed renders per variant (median). */
+int bench_render_report(FILE *out, int json, int size, int reps, int threads);
+
+#endif

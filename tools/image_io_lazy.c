@@ -1,0 +1,141 @@
+/* image_io_lazy.c - image_io.h for the abrdf command, loading the OpenImageIO/OpenColorIO
+ * implementation (image_io.cpp, built as the module libabrdf_image_io.so) on first use.
+ *
+ * Why: linking OpenImageIO pulls about 260 shared libraries whose loading and relocation
+ * cost 0.1-1 s at every start (docs/BENCHMARKS.md, "Start-up"), paid by commands that never
+ * touch an image (models, eval, advise, bench, ...). With the module only the commands that
+ * read or write an image pay it, once.
+ *
+ * Where: next to the executable (the build tree), else ABRDF_IMAGE_IO_RELATIVE from the
+ * executable's directory (the installed tree: bin/ -> lib/abrdf/); $ABRDF_IMAGE_IO_MODULE
+ * overrides both. On failure every function returns -1 with the loader's message in err. */
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "image_io.h"
+
+#define MODULE_NAME "libabrdf_image_io.so"
+
+typedef int (*write_linear_fn)(const char *, int, int, const float *, char *, int);
+typedef int (*write_preview_fn)(const char *, int, int, const float *, const char *, const char *,
+                                const char *, char *, int);
+typedef int (*write_heatmap_fn)(const char *, int, int, const float *, double, const char *, char *, int);
+typedef int (*read_fn)(const char *, abrdf_image *, char *, int);
+typedef void (*free_fn)(abrdf_image *);
+typedef int (*is_display_fn)(const char *);
+
+/* The module's entry points; filled once by load() (the tool calls image I/O from its main
+ * thread only). */
+static struct {
+    int tried;
+    char error[512];
+    write_linear_fn write_linear;
+    write_preview_fn write_preview;
+    write_heatmap_fn write_heatmap;
+    read_fn read;
+    free_fn free_image;
+    is_display_fn is_display;
+} mod;
+
+static void *open_in(const char *dir, const char *rel)
+{
+    char path[4096];
+    if (snprintf(path, sizeof path, "%s/%s%s", dir, rel, MODULE_NAME) >= (int)sizeof path) return NULL;
+    if (access(path, R_OK) != 0) return NULL;
+    return dlopen(path, RTLD_NOW | RTLD_LOCAL);
+}
+
+static int load(char *err, int err_size)
+{
+    if (!mod.tried) {
+        mod.tried = 1;
+        void *h = NULL;
+        const char *env = getenv("ABRDF_IMAGE_IO_MODULE");
+        if (env && *env) {
+            h = dlopen(env, RTLD_NOW | RTLD_LOCAL);
+        } else {
+            char exe[4096];
+            ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+            if (n > 0) {
+                exe[n] = 0;
+                char *slash = strrchr(exe, '/');
+                if (slash) *slash = 0;
+                h = open_in(exe, "");
+                if (!h) h = open_in(exe, ABRDF_IMAGE_IO_RELATIVE "/");
+            }
+            if (!h) h = dlopen(MODULE_NAME, RTLD_NOW | RTLD_LOCAL); /* the loader's search path */
+        }
+        if (!h) {
+            const char *e = dlerror();
+            snprintf(mod.error, sizeof mod.error, "cannot load the image I/O module %s: %s",
+                     env && *env ? env : MODULE_NAME, e ? e : "not found");
+        } else {
+            /* POSIX: dlsym's void * converts to a function pointer through this idiom. */
+            *(void **)&mod.write_linear = dlsym(h, "abrdf_image_write_linear");
+            *(void **)&mod.write_preview = dlsym(h, "abrdf_image_write_preview");
+            *(void **)&mod.write_heatmap = dlsym(h, "abrdf_image_write_heatmap");
+            *(void **)&mod.read = dlsym(h, "abrdf_image_read");
+            *(void **)&mod.free_image = dlsym(h, "abrdf_image_free");
+            *(void **)&mod.is_display = dlsym(h, "abrdf_image_is_display_format");
+            if (!mod.write_linear || !mod.write_preview || !mod.write_heatmap || !mod.read ||
+                !mod.free_image || !mod.is_display) {
+                snprintf(mod.error, sizeof mod.error, "the image I/O module lacks an entry point");
+                mod.read = NULL;
+            }
+        }
+    }
+    if (mod.read) return 0;
+    if (err && err_size > 0) snprintf(err, (size_t)err_size, "%s", mod.error);
+    return -1;
+}
+
+int abrdf_image_write_linear(const char *path, int width, int height, const float *rgb,
+                             char *err, int err_size)
+{
+    if (load(err, err_size)) return -1;
+    return mod.write_linear(path, width, height, rgb, err, err_size);
+}
+
+int abrdf_image_write_preview(const char *path, int width, int height, const float *rgb,
+                              const char *config, const char *display, const char *view,
+                              char *err, int err_size)
+{
+    if (load(err, err_size)) return -1;
+    return mod.write_preview(path, width, height, rgb, config, display, view, err, err_size);
+}
+
+int abrdf_image_write_heatmap(const char *path, int width, int height, const float *value,
+                              double vmax, const char *map, char *err, int err_size)
+{
+    if (load(err, err_size)) return -1;
+    return mod.write_heatmap(path, width, height, value, vmax, map, err, err_size);
+}
+
+int abrdf_image_read(const char *path, abrdf_image *img, char *err, int err_size)
+{
+    if (load(err, err_size)) {
+        if (img) img->width = img->height = img->channels = 0, img->pixels = NULL;
+        return -1;
+    }
+    return mod.read(path, img, err, err_size);
+}
+
+void abrdf_image_free(abrdf_image *img)
+{
+    if (!img) return;
+    if (load(NULL, 0) == 0) {
+        mod.free_image(img);
+    } else { /* nothing was read through the module; release as image_io.cpp would */
+        free(img->pixels);
+        img->pixels = NULL;
+    }
+}
+
+int abrdf_image_is_display_format(const char *path)
+{
+    return load(NULL, 0) == 0 ? mod.is_display(path) : 0;
+}
