@@ -130,11 +130,16 @@ static double ggx_go(double alpha2, double ci, double co)
  * Used here as a change of variables for deterministic quadrature, not for sampling. */
 static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
 {
-    /* orthonormal basis s, t around wm (Duff et al. 2017) */
-    double sg = wm.z >= 0.0 ? 1.0 : -1.0;
-    double a = -1.0 / (sg + wm.z), bb = wm.x * wm.y * a;
-    v3 s = mk(1.0 + sg * wm.x * wm.x * a, sg * bb, -sg * wm.x);
-    v3 t = mk(bb, sg + wm.y * wm.y * a, -wm.y);
+    /* Orthonormal basis s, t around wm: s = y x wm / |y x wm|, across the fibre (y is its
+     * axis), t = wm x s. It must be CONTINUOUS in wm: the midpoint nodes are placed in this
+     * basis, and a basis that flips (Duff et al. 2017 flips where wm.z changes sign, i.e. at
+     * the silhouette gamma = +-pi/2, where the Simpson end nodes of a coplanar wi sit) moves
+     * every node and makes S jump by the quadrature error. Mesonormals are at most the
+     * cuticle tilt (<= 10 deg) away from the normal plane of y, so |y x wm| >= cos(10 deg).
+     * For wm = +z (the glass albedo tables) this is s = +x, t = +y, as before. */
+    double sl = sqrt(wm.x * wm.x + wm.z * wm.z);
+    v3 s = sl > 0.0 ? mk(wm.z / sl, 0.0, -wm.x / sl) : mk(1.0, 0.0, 0.0);
+    v3 t = cross(wm, s);
     v3 l = mk(dot(wi, s), dot(wi, t), dot(wi, wm));
     v3 vh = mk(alpha * l.x, alpha * l.y, l.z);
     vh = scl(vh, 1.0 / len(vh));
@@ -283,12 +288,20 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
     m->compensate = 1;
 }
 
-/* Simpson intervals over a range of length hr with step at most res/refine (even count). */
-static int simpson_intervals(double hr, double res, int refine)
+/* Simpson intervals (an even count) for a range of gamma with step at most res/refine.
+ * The count is that of the LARGEST range, pi (the visible half of the section), not of the
+ * actual one: a count that follows the range changes by 2 where the range crosses a
+ * multiple of the step, and S would jump there by the quadrature error. */
+static int simpson_intervals(double res, int refine)
 {
-    return 2 * (int)ceil(hr / res * 0.5) * refine;
+    return 2 * (int)ceil(ABRDF__PI / res * 0.5) * refine;
 }
 
+/* Eq. 12 over [g0, g0 + gr], the gamma range whose mesonormals face the viewer wi, and
+ * restricted here to those that also face wo, as the integrand's visibility requires. The
+ * restriction is done on the range, not node by node: at a node on the boundary (in a
+ * coplanar configuration both boundaries fall on the silhouette, on the end nodes) a 1e-16
+ * rounding of wi or wo decided whether the end node counted, and S jumped by up to 4%. */
 static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
 {
     double b = m->b, a2 = m->alpha * m->alpha, e2 = 1.0 - b * b;
@@ -296,12 +309,18 @@ static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
     double l = len(wh);
     if (!(l > 0.0)) return 0.0;
     wh = scl(wh, 1.0 / l);
-    int n = simpson_intervals(gr, 0.7 * m->alpha, m->refine);
-    double res = gr / n, sum = 0.0;
+    /* The projected mesonormal at gamma is along (b sin gamma, 0, cos gamma): it faces a
+     * direction w for gamma within pi/2 of atan2(b w.x, w.z). h_to_gamma centres the viewer's
+     * range on gc; the branch of wo's centre nearest to it gives the single overlap. */
+    double gc = atan2(wi.z, -b * wi.x) - 0.5 * ABRDF__PI;
+    double go = gc + abrdf__wrap_pi(atan2(b * wo.x, wo.z) - gc);
+    double lo = fmax(g0, go - 0.5 * ABRDF__PI), hi = fmin(g0 + gr, go + 0.5 * ABRDF__PI);
+    if (!(hi > lo)) return 0.0;
+    int n = simpson_intervals(0.7 * m->alpha, m->refine);
+    double res = (hi - lo) / n, sum = 0.0;
     for (int i = 0; i <= n; ++i) {
-        double gm = g0 + i * res;
+        double gm = lo + i * res;
         v3 wm = sphg_dir(m->tilt, gm, b);
-        if (!visible2(wi, wo, mk(wm.x, 0.0, wm.z), wh)) continue;
         double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         sum += w * ggx_d(a2, dot(wm, wh)) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) *
                arc_length(e2, gm) * energy_scale(m, dot(wm, wi), m->eta);
@@ -319,7 +338,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
     const int n1 = m->n1, n2 = m->n2;
     const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
     double s_tt[3] = {0, 0, 0}, s_trt[3] = {0, 0, 0}, s_trrt[3] = {0, 0, 0};
-    int n = simpson_intervals(gr, 0.8 * al, m->refine);
+    int n = simpson_intervals(0.8 * al, m->refine);
     double res = gr / n;
     for (int i = 0; i <= n; ++i) {
         double gmi = g0 + i * res;
@@ -342,7 +361,11 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
             double gmt = 2.0 * to_phi(phi_t, b) - gmi;
             v3 wmt = sphg_dir(-m->tilt, gmt, b), wmt_ = sphg_dir(0.0, gmt, b);
             double cos_mo1 = dot(neg(wt), wmi), cos_mi2 = dot(neg(wt), wmt);
-            if (!visible2(wi, neg(wt), wmi, wh1) || !visible2(wi, neg(wt), wmi_, wh1)) continue;
+            /* wi sees wh1 (cos_hi1 > 0) and, on [g0, g0 + gr], both mesonormals: that range
+             * is built from them, so testing wi.wmi_ > 0 again only let a 1e-16 rounding drop
+             * the end nodes, where it is 0 (S jumped). The refracted ray is tested here. */
+            if (!(dot(neg(wt), wh1) > 0.0 && dot(neg(wt), wmi) > 0.0 && dot(neg(wt), wmi_) > 0.0))
+                continue;
             double g1o = ggx_go(a2, cos_mi1, cos_mo1);
             double scale2 = energy_scale(m, cos_mi2, inv_eta);
             double ct_t = fmax(cos_theta(wt), ABRDF__HAIR_COS_MIN);
