@@ -130,16 +130,13 @@ static double ggx_go(double alpha2, double ci, double co)
  * Used here as a change of variables for deterministic quadrature, not for sampling. */
 static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
 {
-    /* Orthonormal basis s, t around wm: s = y x wm / |y x wm|, across the fibre (y is its
-     * axis), t = wm x s. It must be CONTINUOUS in wm: the midpoint nodes are placed in this
-     * basis, and a basis that flips (Duff et al. 2017 flips where wm.z changes sign, i.e. at
-     * the silhouette gamma = +-pi/2, where the Simpson end nodes of a coplanar wi sit) moves
-     * every node and makes S jump by the quadrature error. Mesonormals are at most the
-     * cuticle tilt (<= 10 deg) away from the normal plane of y, so |y x wm| >= cos(10 deg).
-     * For wm = +z (the glass albedo tables) this is s = +x, t = +y, as before. */
-    double sl = sqrt(wm.x * wm.x + wm.z * wm.z);
-    v3 s = sl > 0.0 ? mk(wm.z / sl, 0.0, -wm.x / sl) : mk(1.0, 0.0, 0.0);
-    v3 t = cross(wm, s);
+    /* orthonormal basis s, t around wm (Duff et al. 2017). It flips where wm.z changes
+     * sign, but the map does not depend on it: t1, t2 below are built from wi's projection,
+     * so the nodes are the same in any basis (checked: identical S to 12 digits). */
+    double sg = wm.z >= 0.0 ? 1.0 : -1.0;
+    double a = -1.0 / (sg + wm.z), bb = wm.x * wm.y * a;
+    v3 s = mk(1.0 + sg * wm.x * wm.x * a, sg * bb, -sg * wm.x);
+    v3 t = mk(bb, sg + wm.y * wm.y * a, -wm.y);
     v3 l = mk(dot(wi, s), dot(wi, t), dot(wi, wm));
     v3 vh = mk(alpha * l.x, alpha * l.y, l.z);
     vh = scl(vh, 1.0 / len(vh));
@@ -343,8 +340,11 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
     for (int i = 0; i <= n; ++i) {
         double gmi = g0 + i * res;
         v3 wmi = sphg_dir(m->tilt, gmi, b), wmi_ = sphg_dir(0.0, gmi, b);
-        double cos_mi1 = dot(wi, wmi);
-        if (!(cos_mi1 > 0.0)) continue; /* the VNDF needs a visible mesonormal */
+        /* The range is built so that wi sees every tilted mesonormal on it: cos_mi1 >= 0,
+         * and 0 at the ends when the tilt hides the silhouette. Skipping cos_mi1 <= 0 let a
+         * 1e-16 rounding drop an end node, whose TRRT+ (weighted by proj, not cos_mi1) is
+         * not 0: S jumped. The VNDF map is continuous through cos_mi1 = 0. */
+        double cos_mi1 = fmax(dot(wi, wmi), 0.0);
         double weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         /* Projected width of this surface element seen from wi, |dh/dgamma| cos(theta_i):
          * the light TRRT+ receives here (R, TT, TRT carry it through cos_mi1). */
