@@ -99,11 +99,16 @@ static double arc_length(double e2, double gamma)
 }
 
 /* ---- GGX pieces (alpha2 = alpha^2), height-correlated Smith ----------------------- */
+/* GGX D from the squared cosine, for a normal known to face the half vector. */
+static double ggx_d_sq(double alpha2, double c2)
+{
+    double k = 1.0 + (alpha2 - 1.0) * c2;
+    return alpha2 / (ABRDF__PI * k * k);
+}
+
 static double ggx_d(double alpha2, double c)
 {
-    if (!(c > 0.0)) return 0.0;
-    double c2 = c * c, k = 1.0 + (alpha2 - 1.0) * c2;
-    return alpha2 / (ABRDF__PI * k * k);
+    return c > 0.0 ? ggx_d_sq(alpha2, c * c) : 0.0;
 }
 
 static double ggx_lambda(double alpha2, double c)
@@ -294,14 +299,33 @@ static int simpson_intervals(double res, int refine)
     return 2 * (int)ceil(ABRDF__PI / res * 0.5) * refine;
 }
 
-/* Eq. 12 over [g0, g0 + gr], the gamma range whose mesonormals face the viewer wi, and
- * restricted here to those that also face wo, as the integrand's visibility requires. The
- * restriction is done on the range, not node by node: at a node on the boundary (in a
- * coplanar configuration both boundaries fall on the silhouette, on the end nodes) a 1e-16
- * rounding of wi or wo decided whether the end node counted, and S jumped by up to 4%. */
-static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
+/* Composite Simpson of Eq. 12's integrand over [lo, hi] with the fixed count n. wm.wh >= 0
+ * holds there up to rounding, and the end nodes have wm.wh = 0 (D = alpha^2/pi, not 0):
+ * hence D from the square. */
+static double simpson_r(const abrdf__huang *m, v3 wi, v3 wo, v3 wh, double lo, double hi, int n)
 {
     double b = m->b, a2 = m->alpha * m->alpha, e2 = 1.0 - b * b;
+    double res = (hi - lo) / n, sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        double gm = lo + i * res;
+        v3 wm = sphg_dir(m->tilt, gm, b);
+        double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
+        double c = dot(wm, wh);
+        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) *
+               arc_length(e2, gm) * energy_scale(m, dot(wm, wi), m->eta);
+    }
+    return sum * 2.0 / 3.0 * res;
+}
+
+/* Eq. 12 over [g0, g0 + gr], the gamma range whose mesonormals face the viewer wi. The
+ * integrand is cut where the projected mesonormal stops facing wo and where D's argument
+ * wm.wh changes sign (GGX D does not vanish at 90 deg). Both cuts are made on the RANGE,
+ * not node by node: with a node on a cut (in a coplanar configuration the cuts fall on the
+ * end nodes), a 1e-16 rounding of wi or wo decided whether it counted, and S jumped by up
+ * to 4%; with the cuts between nodes, S jumped wherever one crossed a node. */
+static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
+{
+    const double pi = ABRDF__PI, b = m->b;
     v3 wh = add(wi, wo);
     double l = len(wh);
     if (!(l > 0.0)) return 0.0;
@@ -309,20 +333,40 @@ static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
     /* The projected mesonormal at gamma is along (b sin gamma, 0, cos gamma): it faces a
      * direction w for gamma within pi/2 of atan2(b w.x, w.z). h_to_gamma centres the viewer's
      * range on gc; the branch of wo's centre nearest to it gives the single overlap. */
-    double gc = atan2(wi.z, -b * wi.x) - 0.5 * ABRDF__PI;
+    double gc = atan2(wi.z, -b * wi.x) - 0.5 * pi;
     double go = gc + abrdf__wrap_pi(atan2(b * wo.x, wo.z) - gc);
-    double lo = fmax(g0, go - 0.5 * ABRDF__PI), hi = fmin(g0 + gr, go + 0.5 * ABRDF__PI);
+    double lo = fmax(g0, go - 0.5 * pi), hi = fmin(g0 + gr, go + 0.5 * pi);
     if (!(hi > lo)) return 0.0;
-    int n = simpson_intervals(0.7 * m->alpha, m->refine);
-    double res = (hi - lo) / n, sum = 0.0;
-    for (int i = 0; i <= n; ++i) {
-        double gm = lo + i * res;
-        v3 wm = sphg_dir(m->tilt, gm, b);
-        double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
-        sum += w * ggx_d(a2, dot(wm, wh)) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) *
-               arc_length(e2, gm) * energy_scale(m, dot(wm, wi), m->eta);
+    /* wm.wh = cos(tilt) |wh_xz| cos(phi - phi_h) + sin(tilt) wh.y, phi the normal's azimuth:
+     * >= 0 on the arc |phi - phi_h| <= a, a = acos(c0), mapped to gamma by to_gamma
+     * (monotone, phi + pi -> gamma + pi). */
+    double hxz = sqrt(wh.x * wh.x + wh.z * wh.z), ct = cos(m->tilt), st = sin(m->tilt);
+    double num = -st * wh.y, den = ct * hxz;
+    double arc_lo = lo - 1.0, arc_hi = hi + 1.0; /* default: the arc covers the range */
+    if (num >= den) return 0.0;                  /* wm.wh <= 0 everywhere */
+    if (num > -den) {
+        double ph = atan2(wh.x, wh.z), a = acos(num / den), gh = to_gamma(ph, b);
+        double d1 = abrdf__wrap_pi(gh - to_gamma(ph - a, b));
+        double d2 = abrdf__wrap_pi(to_gamma(ph + a, b) - gh);
+        /* each half-arc maps into (0, pi); a negative wrap is rounding (or, past pi/2, the
+         * other side of pi) */
+        if (d1 < 0.0) d1 = a > 0.5 * pi ? d1 + 2.0 * pi : 0.0;
+        if (d2 < 0.0) d2 = a > 0.5 * pi ? d2 + 2.0 * pi : 0.0;
+        arc_lo = gh - d1;
+        arc_hi = gh + d2;
+        double k = floor((lo - arc_hi) / (2.0 * pi)); /* first shift reaching the range */
+        arc_lo += 2.0 * pi * k;
+        arc_hi += 2.0 * pi * k;
     }
-    sum *= 2.0 / 3.0 * res;
+    int n = simpson_intervals(0.7 * m->alpha, m->refine);
+    double sum = 0.0;
+    /* the range (<= pi) meets at most two shifted copies of the arc (its gap is > 0) */
+    for (int k = 0; k < 3 && arc_lo <= hi; ++k) {
+        double p0 = fmax(lo, arc_lo), p1 = fmin(hi, arc_hi);
+        if (p1 > p0) sum += simpson_r(m, wi, wo, wh, p0, p1, n);
+        arc_lo += 2.0 * pi;
+        arc_hi += 2.0 * pi;
+    }
     return 0.25 * fresnel(dot(wi, wh), m->eta, NULL) * sum; /* Eq. 12 */
 }
 
