@@ -29,6 +29,9 @@
  *  - The energy compensation S_E = 1/E(sqrt(alpha), mu, eta) reads tables this project
  *    generates by quadrature (tools/gen_hair_tables.c -> hair_tables.c), not Cycles'
  *    Monte Carlo tables.
+ *  - Continuous in the directions: R's range is cut where the mesonormal stops facing wo and
+ *    where D's argument changes sign (Cycles tests each node), nothing the range guarantees
+ *    is re-tested per node, and the Simpson count does not follow the range's length.
  *  - No near field: the whole visible projected width is integrated.
  *  - The cross-section's major axis is the local +y (along the ribbon, B), the minor axis
  *    +z (N); Cycles' local frame (X major axis, Y tangent, Z) is (w.y, w.x, w.z) here.
