@@ -29,6 +29,9 @@
  *  - The energy compensation S_E = 1/E(sqrt(alpha), mu, eta) reads tables this project
  *    generates by quadrature (tools/gen_hair_tables.c -> hair_tables.c), not Cycles'
  *    Monte Carlo tables.
+ *  - Continuous in the directions: R's range is cut where the mesonormal stops facing wo and
+ *    where D's argument changes sign (Cycles tests each node), nothing the range guarantees
+ *    is re-tested per node, and the Simpson count does not follow the range's length.
  *  - No near field: the whole visible projected width is integrated.
  *  - The cross-section's major axis is the local +y (along the ribbon, B), the minor axis
  *    +z (N); Cycles' local frame (X major axis, Y tangent, Z) is (w.y, w.x, w.z) here.
@@ -99,11 +102,16 @@ static double arc_length(double e2, double gamma)
 }
 
 /* ---- GGX pieces (alpha2 = alpha^2), height-correlated Smith ----------------------- */
+/* GGX D from the squared cosine, for a normal known to face the half vector. */
+static double ggx_d_sq(double alpha2, double c2)
+{
+    double k = 1.0 + (alpha2 - 1.0) * c2;
+    return alpha2 / (ABRDF__PI * k * k);
+}
+
 static double ggx_d(double alpha2, double c)
 {
-    if (!(c > 0.0)) return 0.0;
-    double c2 = c * c, k = 1.0 + (alpha2 - 1.0) * c2;
-    return alpha2 / (ABRDF__PI * k * k);
+    return c > 0.0 ? ggx_d_sq(alpha2, c * c) : 0.0;
 }
 
 static double ggx_lambda(double alpha2, double c)
@@ -130,7 +138,9 @@ static double ggx_go(double alpha2, double ci, double co)
  * Used here as a change of variables for deterministic quadrature, not for sampling. */
 static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
 {
-    /* orthonormal basis s, t around wm (Duff et al. 2017) */
+    /* orthonormal basis s, t around wm (Duff et al. 2017). It flips where wm.z changes
+     * sign, but the map does not depend on it: t1, t2 below are built from wi's projection,
+     * so the nodes are the same in any basis (checked: identical S to 12 digits). */
     double sg = wm.z >= 0.0 ? 1.0 : -1.0;
     double a = -1.0 / (sg + wm.z), bb = wm.x * wm.y * a;
     v3 s = mk(1.0 + sg * wm.x * wm.x * a, sg * bb, -sg * wm.x);
@@ -283,30 +293,83 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
     m->compensate = 1;
 }
 
-/* Simpson intervals over a range of length hr with step at most res/refine (even count). */
-static int simpson_intervals(double hr, double res, int refine)
+/* Simpson intervals (an even count) for a range of gamma with step at most res/refine.
+ * The count is that of the LARGEST range, pi (the visible half of the section), not of the
+ * actual one: a count that follows the range changes by 2 where the range crosses a
+ * multiple of the step, and S would jump there by the quadrature error. */
+static int simpson_intervals(double res, int refine)
 {
-    return 2 * (int)ceil(hr / res * 0.5) * refine;
+    return 2 * (int)ceil(ABRDF__PI / res * 0.5) * refine;
 }
 
-static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
+/* Composite Simpson of Eq. 12's integrand over [lo, hi] with the fixed count n. wm.wh >= 0
+ * holds there up to rounding, and the end nodes have wm.wh = 0 (D = alpha^2/pi, not 0):
+ * hence D from the square. */
+static double simpson_r(const abrdf__huang *m, v3 wi, v3 wo, v3 wh, double lo, double hi, int n)
 {
     double b = m->b, a2 = m->alpha * m->alpha, e2 = 1.0 - b * b;
+    double res = (hi - lo) / n, sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        double gm = lo + i * res;
+        v3 wm = sphg_dir(m->tilt, gm, b);
+        double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
+        double c = dot(wm, wh);
+        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) *
+               arc_length(e2, gm) * energy_scale(m, dot(wm, wi), m->eta);
+    }
+    return sum * 2.0 / 3.0 * res;
+}
+
+/* Eq. 12 over [g0, g0 + gr], the gamma range whose mesonormals face the viewer wi. The
+ * integrand is cut where the projected mesonormal stops facing wo and where D's argument
+ * wm.wh changes sign (GGX D does not vanish at 90 deg). Both cuts are made on the RANGE,
+ * not node by node: with a node on a cut (in a coplanar configuration the cuts fall on the
+ * end nodes), a 1e-16 rounding of wi or wo decided whether it counted, and S jumped by up
+ * to 4%; with the cuts between nodes, S jumped wherever one crossed a node. */
+static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
+{
+    const double pi = ABRDF__PI, b = m->b;
     v3 wh = add(wi, wo);
     double l = len(wh);
     if (!(l > 0.0)) return 0.0;
     wh = scl(wh, 1.0 / l);
-    int n = simpson_intervals(gr, 0.7 * m->alpha, m->refine);
-    double res = gr / n, sum = 0.0;
-    for (int i = 0; i <= n; ++i) {
-        double gm = g0 + i * res;
-        v3 wm = sphg_dir(m->tilt, gm, b);
-        if (!visible2(wi, wo, mk(wm.x, 0.0, wm.z), wh)) continue;
-        double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
-        sum += w * ggx_d(a2, dot(wm, wh)) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) *
-               arc_length(e2, gm) * energy_scale(m, dot(wm, wi), m->eta);
+    /* The projected mesonormal at gamma is along (b sin gamma, 0, cos gamma): it faces a
+     * direction w for gamma within pi/2 of atan2(b w.x, w.z). h_to_gamma centres the viewer's
+     * range on gc; the branch of wo's centre nearest to it gives the single overlap. */
+    double gc = atan2(wi.z, -b * wi.x) - 0.5 * pi;
+    double go = gc + abrdf__wrap_pi(atan2(b * wo.x, wo.z) - gc);
+    double lo = fmax(g0, go - 0.5 * pi), hi = fmin(g0 + gr, go + 0.5 * pi);
+    if (!(hi > lo)) return 0.0;
+    /* wm.wh = cos(tilt) |wh_xz| cos(phi - phi_h) + sin(tilt) wh.y, phi the normal's azimuth:
+     * >= 0 on the arc |phi - phi_h| <= a, a = acos(c0), mapped to gamma by to_gamma
+     * (monotone, phi + pi -> gamma + pi). */
+    double hxz = sqrt(wh.x * wh.x + wh.z * wh.z), ct = cos(m->tilt), st = sin(m->tilt);
+    double num = -st * wh.y, den = ct * hxz;
+    double arc_lo = lo - 1.0, arc_hi = hi + 1.0; /* default: the arc covers the range */
+    if (num >= den) return 0.0;                  /* wm.wh <= 0 everywhere */
+    if (num > -den) {
+        double ph = atan2(wh.x, wh.z), a = acos(num / den), gh = to_gamma(ph, b);
+        double d1 = abrdf__wrap_pi(gh - to_gamma(ph - a, b));
+        double d2 = abrdf__wrap_pi(to_gamma(ph + a, b) - gh);
+        /* each half-arc maps into (0, pi); a negative wrap is rounding (or, past pi/2, the
+         * other side of pi) */
+        if (d1 < 0.0) d1 = a > 0.5 * pi ? d1 + 2.0 * pi : 0.0;
+        if (d2 < 0.0) d2 = a > 0.5 * pi ? d2 + 2.0 * pi : 0.0;
+        arc_lo = gh - d1;
+        arc_hi = gh + d2;
+        double k = floor((lo - arc_hi) / (2.0 * pi)); /* first shift reaching the range */
+        arc_lo += 2.0 * pi * k;
+        arc_hi += 2.0 * pi * k;
     }
-    sum *= 2.0 / 3.0 * res;
+    int n = simpson_intervals(0.7 * m->alpha, m->refine);
+    double sum = 0.0;
+    /* the range (<= pi) meets at most two shifted copies of the arc (its gap is > 0) */
+    for (int k = 0; k < 3 && arc_lo <= hi; ++k) {
+        double p0 = fmax(lo, arc_lo), p1 = fmin(hi, arc_hi);
+        if (p1 > p0) sum += simpson_r(m, wi, wo, wh, p0, p1, n);
+        arc_lo += 2.0 * pi;
+        arc_hi += 2.0 * pi;
+    }
     return 0.25 * fresnel(dot(wi, wh), m->eta, NULL) * sum; /* Eq. 12 */
 }
 
@@ -319,13 +382,16 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
     const int n1 = m->n1, n2 = m->n2;
     const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
     double s_tt[3] = {0, 0, 0}, s_trt[3] = {0, 0, 0}, s_trrt[3] = {0, 0, 0};
-    int n = simpson_intervals(gr, 0.8 * al, m->refine);
+    int n = simpson_intervals(0.8 * al, m->refine);
     double res = gr / n;
     for (int i = 0; i <= n; ++i) {
         double gmi = g0 + i * res;
         v3 wmi = sphg_dir(m->tilt, gmi, b), wmi_ = sphg_dir(0.0, gmi, b);
-        double cos_mi1 = dot(wi, wmi);
-        if (!(cos_mi1 > 0.0)) continue; /* the VNDF needs a visible mesonormal */
+        /* The range is built so that wi sees every tilted mesonormal on it: cos_mi1 >= 0,
+         * and 0 at the ends when the tilt hides the silhouette. Skipping cos_mi1 <= 0 let a
+         * 1e-16 rounding drop an end node, whose TRRT+ (weighted by proj, not cos_mi1) is
+         * not 0: S jumped. The VNDF map is continuous through cos_mi1 = 0. */
+        double cos_mi1 = fmax(dot(wi, wmi), 0.0);
         double weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         /* Projected width of this surface element seen from wi, |dh/dgamma| cos(theta_i):
          * the light TRRT+ receives here (R, TT, TRT carry it through cos_mi1). */
@@ -342,7 +408,11 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
             double gmt = 2.0 * to_phi(phi_t, b) - gmi;
             v3 wmt = sphg_dir(-m->tilt, gmt, b), wmt_ = sphg_dir(0.0, gmt, b);
             double cos_mo1 = dot(neg(wt), wmi), cos_mi2 = dot(neg(wt), wmt);
-            if (!visible2(wi, neg(wt), wmi, wh1) || !visible2(wi, neg(wt), wmi_, wh1)) continue;
+            /* wi sees wh1 (cos_hi1 > 0) and, on [g0, g0 + gr], both mesonormals: that range
+             * is built from them, so testing wi.wmi_ > 0 again only let a 1e-16 rounding drop
+             * the end nodes, where it is 0 (S jumped). The refracted ray is tested here. */
+            if (!(dot(neg(wt), wh1) > 0.0 && dot(neg(wt), wmi) > 0.0 && dot(neg(wt), wmi_) > 0.0))
+                continue;
             double g1o = ggx_go(a2, cos_mi1, cos_mo1);
             double scale2 = energy_scale(m, cos_mi2, inv_eta);
             double ct_t = fmax(cos_theta(wt), ABRDF__HAIR_COS_MIN);
