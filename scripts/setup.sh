@@ -3,7 +3,9 @@
 #   scripts/setup.sh            build + test dependencies (Debian packages)
 set -euo pipefail
 
-debs=(build-essential cmake pkg-config check python3)
+debs=(build-essential g++ cmake pkg-config check python3
+      libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
+      python3-openimageio python3-numpy)  # the last two: independent image checks in tests
 
 missing=()
 for p in "${debs[@]}"; do

@@ -43,7 +43,9 @@ int cli_is_help(const char *arg);
 int cmd_models(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
 int cmd_slice(int argc, char **argv);
+int cmd_render(int argc, char **argv);
 int cmd_tables(int argc, char **argv);
 int cmd_calibrate(int argc, char **argv);
+int cmd_advise(int argc, char **argv);
 
 #endif

@@ -47,6 +47,11 @@
  *   abrdf_costs_paper        the paper's Table 4 cycle counts as a cost model
  *   abrdf_r_to_alpha_g, abrdf_alpha_g_to_r, abrdf_alpha_g_to_n, abrdf_n_to_alpha_g,
  *   abrdf_n_to_pov_roughness, abrdf_pov_roughness_to_n   roughness converters
+ *   abrdf_surface_name, abrdf_surface_find, abrdf_goal_name, abrdf_goal_find   selection names
+ *   abrdf_material_init      a material with every field unset or at its default
+ *   abrdf_select_rules_get   the flowchart's thresholds and model choices (one table)
+ *   abrdf_select             the paper's flowchart (Fig. 2): models, parameters, error, cost, trace
+ *   abrdf_select_model_name  stable name of any model id, registered in this build or not
  */
 #ifndef ABRDF_H
 #define ABRDF_H
@@ -295,6 +300,150 @@ ABRDF_API double abrdf_alpha_g_to_n(double alpha_g);   /* Blinn-Phong n = 2/alph
 ABRDF_API double abrdf_n_to_alpha_g(double n);         /* alpha_g = sqrt(2/(n + 2)) */
 ABRDF_API double abrdf_n_to_pov_roughness(double n);   /* POV-Ray roughness = 1/n; n = 0 -> 0 */
 ABRDF_API double abrdf_pov_roughness_to_n(double rough); /* n = 1/rough; rough = 0 -> 0 */
+
+/* ---- adaptive selection: the paper's flowchart (Fig. 2), docs/SELECTION.md ------------ */
+
+/* Surface classes of the flowchart; stable lower-case names as in the comments. */
+typedef enum abrdf_surface {
+    ABRDF_SURFACE_GENERAL = 0,      /* "general"          metals, dielectrics, plastics, ... */
+    ABRDF_SURFACE_CLOTH_ROUGH,      /* "cloth_rough"      wool, cotton, denim */
+    ABRDF_SURFACE_CLOTH_SHINY,      /* "cloth_shiny"      silk, satin, velvet */
+    ABRDF_SURFACE_HAIR,             /* "hair" */
+    ABRDF_SURFACE_LAYERED_PLASTIC,  /* "layered_plastic"  clear coat over a diffuse base */
+    ABRDF_SURFACE_LAYERED_PLATE,    /* "layered_plate"    transparent plate over a base */
+    ABRDF_SURFACE_LAYERED_METAL,    /* "layered_metal"    coat over a metal */
+    ABRDF_SURFACE_COUNT
+} abrdf_surface;
+
+typedef enum abrdf_goal {
+    ABRDF_GOAL_PERFORMANCE = 0,     /* "performance": hard time/hardware limits */
+    ABRDF_GOAL_PHOTOREAL = 1,       /* "photoreal": resources allow microstructure */
+    ABRDF_GOAL_COUNT
+} abrdf_goal;
+
+ABRDF_API const char *abrdf_surface_name(abrdf_surface s);  /* NULL if unknown */
+ABRDF_API int abrdf_surface_find(const char *name, abrdf_surface *out);
+ABRDF_API const char *abrdf_goal_name(abrdf_goal g);        /* NULL if unknown */
+ABRDF_API int abrdf_goal_find(const char *name, abrdf_goal *out);
+
+/* A material as the flowchart reads it (a row of data/materials.csv, or explicit values).
+ * Either n or r may be unset (< 0); abrdf_select derives it from the other. */
+typedef struct abrdf_material {
+    const char *name;        /* for the trace; may be NULL */
+    abrdf_surface type;
+    double n;                /* Blinn-Phong exponent, [0, 1e6]; < 0 = derive from r */
+    double r;                /* perceptual roughness (the paper's alpha), [0, 1]; < 0 = derive from n */
+    double kd[3];            /* diffuse albedo, linear RGB, [0, 1] */
+    double ks[3];            /* specular weight, linear RGB, [0, 1] */
+    double f0[3];            /* Fresnel reflectance at normal incidence, [0, 1]; used if eta <= 0 */
+    double eta;              /* index of refraction of a dielectric or hair fibre, [1, 4];
+                                > 0 replaces f0 by ((eta - 1)/(eta + 1))^2; <= 0 = unset */
+    double anisotropy;       /* Disney anisotropy, [0, 1] */
+    double melanin;          /* hair melanin concentration, [0, 1] */
+    double redness;          /* hair pheomelanin fraction, [0, 1] */
+    int layer_count;         /* layered types: interfaces top (0) to bottom, [0, ABRDF_MAX_LAYERS] */
+    abrdf_layer layers[ABRDF_MAX_LAYERS]; /* eta/kappa relative to the medium above */
+} abrdf_material;
+
+/* Tolerances of the performance branch. INFINITY = no limit; negative or NaN is invalid. */
+typedef struct abrdf_tolerance {
+    double max_rel_pct;      /* max relative error in the highlight zone, percent */
+    double max_abs;          /* max absolute error over [0, 1] */
+} abrdf_tolerance;
+
+/* Every threshold, constant and model choice of the flowchart, in one table
+ * (libabrdf/src/select.c). The OSL and POV-Ray ports are generated from or tested against it. */
+#define ABRDF_SELECT_MAX_CANDIDATES 8
+#define ABRDF_SELECT_NMSE_ROWS 18
+typedef struct abrdf_select_rules {
+    double smooth_r_max;          /* r <= this is smooth (the paper: alpha <= 0.03) */
+    double aniso_min;             /* anisotropy > this selects the anisotropic lobe */
+    double default_max_rel_pct;   /* tolerances when the caller gives none (abrdf's choice) */
+    double default_max_abs;
+    double n_min, n_max;          /* range of an exponent derived from r (f_2e needs n >= 1) */
+    abrdf_model perf_diffuse;     /* performance: Lambert (Eq. 1) */
+    abrdf_model perf_fallback;    /* performance, nothing passes: Blinn-Phong (Eq. 4) */
+    int candidate_count;          /* Table-1 approximations tried by the performance branch */
+    abrdf_model candidates[ABRDF_SELECT_MAX_CANDIDATES];
+    abrdf_model rough_diffuse;    /* photoreal, rough: Disney diffuse (Eq. 3) */
+    abrdf_model rough_specular;   /* photoreal, rough: Disney specular (Eqs. 5, 6, 8, 9) */
+    abrdf_model rough_specular_aniso; /* photoreal, rough, anisotropic (Eq. 7) */
+    abrdf_model smooth_diffuse;   /* photoreal, smooth: Lambert * (1 - F) (Eq. 2) */
+    abrdf_model smooth_specular;  /* photoreal, smooth: f_2E (Table 5) */
+    abrdf_model special[ABRDF_SURFACE_COUNT]; /* photoreal model per surface class;
+                                                 ABRDF_MODEL_COUNT for "general" */
+    const char *special_reason[ABRDF_SURFACE_COUNT]; /* why, for the trace */
+    double nmse_class_max[3];     /* the paper's Table 8: NMSE below [0] no visible difference,
+                                     [1] slight, [2] noticeable, else significant; [a, b) */
+    int nmse_rows;                /* the paper's Table 6, f_2E column: min NMSE vs the GGX lobe */
+    double nmse_alpha_g[ABRDF_SELECT_NMSE_ROWS];
+    double nmse_f2e[ABRDF_SELECT_NMSE_ROWS];
+} abrdf_select_rules;
+
+ABRDF_API const abrdf_select_rules *abrdf_select_rules_get(void);
+
+/* What a trace step decided (abrdf_select_step.kind). */
+typedef enum abrdf_step_kind {
+    ABRDF_STEP_INPUT = 0,   /* the material's n and r, given or derived */
+    ABRDF_STEP_GOAL,        /* the goal and what it asks for */
+    ABRDF_STEP_DIFFUSE,     /* the diffuse model */
+    ABRDF_STEP_CANDIDATE,   /* one Table-1 approximation against the tolerances */
+    ABRDF_STEP_CHEAPEST,    /* the cheapest candidate that passes */
+    ABRDF_STEP_FALLBACK,    /* no candidate passes: Blinn-Phong */
+    ABRDF_STEP_SURFACE,     /* the surface class */
+    ABRDF_STEP_ROUGHNESS,   /* r against the smooth threshold */
+    ABRDF_STEP_ANISOTROPY,  /* anisotropy against its threshold */
+    ABRDF_STEP_EXPONENT,    /* the exponent n given to f_2e */
+    ABRDF_STEP_SPECIAL,     /* the special-surface model */
+    ABRDF_STEP_AVAILABLE,   /* whether the chosen models are built into this library */
+    ABRDF_STEP_KIND_COUNT
+} abrdf_step_kind;
+
+#define ABRDF_SELECT_MAX_STEPS 24
+#define ABRDF_SELECT_TEXT 256
+
+typedef struct abrdf_select_step {
+    abrdf_step_kind kind;
+    abrdf_model model;       /* the model the step is about; ABRDF_MODEL_COUNT if none */
+    double value;            /* the number that decided it (r, relative error %, ...); -1 if none */
+    double threshold;        /* what value was compared with; INFINITY = no limit; -1 if none */
+    double value2;           /* second criterion (absolute error) or -1 */
+    double threshold2;
+    double cost;             /* cost of `model` in the cost unit; < 0 = unknown */
+    int passed;              /* 1 if the comparison held (or the step chose something) */
+    char text[ABRDF_SELECT_TEXT]; /* one human-readable line with the deciding numbers */
+} abrdf_select_step;
+
+typedef struct abrdf_selection {
+    abrdf_goal goal;
+    abrdf_surface type;
+    abrdf_model diffuse;     /* ABRDF_MODEL_COUNT: none (the special model has its own) */
+    abrdf_model specular;    /* the specular lobe, or the whole special-surface model */
+    abrdf_params params;     /* one block for both models (abrdf_shade), filled from the material */
+    double n, r;             /* the exponent and roughness used (given or derived) */
+    double err_rel_pct;      /* predicted max relative error vs Blinn-Phong, %; < 0 = n/a */
+    double err_abs;          /* predicted max absolute error vs Blinn-Phong; < 0 = n/a */
+    double err_nmse;         /* smooth branch: the paper's Table 6 NMSE of f_2E; < 0 = n/a */
+    double cost_diffuse, cost_specular, cost_total; /* in cost_unit; < 0 = unknown */
+    const char *cost_unit;
+    int available;           /* 1 if every chosen model is registered in this library build */
+    int step_count;
+    abrdf_select_step steps[ABRDF_SELECT_MAX_STEPS];
+    char message[ABRDF_SELECT_TEXT]; /* why abrdf_select failed, empty on success */
+} abrdf_selection;
+
+/* Defaults: general surface, n = r = -1 (unset), kd 0.8, ks 1, f0 0.04, eta unset, no
+ * anisotropy, melanin 0.3, redness 0, no layers. */
+ABRDF_API void abrdf_material_init(abrdf_material *m);
+
+/* The paper's flowchart. tol NULL = the rules' defaults; costs NULL = the paper's Table 4.
+ * Returns ABRDF_OK, or ABRDF_E_RANGE / ABRDF_E_NULL with out->message naming the bad field. */
+ABRDF_API int abrdf_select(const abrdf_material *m, abrdf_goal goal, const abrdf_tolerance *tol,
+                           const abrdf_costs *costs, abrdf_selection *out);
+
+/* Stable lower-case name of any model id (also ids reserved for models not built into this
+ * library, e.g. "huang"); NULL for an invalid id. */
+ABRDF_API const char *abrdf_select_model_name(abrdf_model model);
 
 #ifdef __cplusplus
 }

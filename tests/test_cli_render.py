@@ -1,0 +1,105 @@
+"""CLI tests of `abrdf render`: outputs, determinism across threads, errors with file:line,
+usage errors, and the effect plan printed by --explain. Run by CTest with ABRDF (the binary)
+and SCENES (the scenes directory) in the environment."""
+import os
+import re
+import subprocess
+import tempfile
+import unittest
+
+ABRDF = os.environ["ABRDF"]
+SCENES = os.environ["SCENES"]
+
+
+def run(*args):
+    return subprocess.run([ABRDF, "render", *args], capture_output=True, text=True)
+
+
+def counter(out, name):
+    m = re.search(r"^\s+%s\s+(\d+)" % re.escape(name), out, re.M)
+    if not m:
+        raise AssertionError("no counter %r in:\n%s" % (name, out))
+    return int(m.group(1))
+
+
+class Render(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def test_writes_exr_and_png_preview(self):
+        r = run(os.path.join(SCENES, "sphere.scene"), "-o", self.path("s.exr"), "--width", "32", "--height", "24")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(self.path("s.exr"), "rb") as f:
+            self.assertEqual(f.read(4), b"\x76\x2f\x31\x01")  # OpenEXR magic
+        with open(self.path("s.png"), "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_same_image_for_one_and_two_threads(self):
+        robot = os.path.join(SCENES, "robot.scene")
+        outs = []
+        for t in ("1", "2"):
+            r = run(robot, "-o", self.path("r%s.exr" % t), "--width", "48", "--height", "48",
+                    "--threads", t, "--stats", "--no-preview")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            outs.append(r.stdout)
+            self.assertFalse(os.path.exists(self.path("r%s.png" % t)))
+        # The files differ in their DateTime header; idiff with zero tolerance compares pixels.
+        d = subprocess.run(["idiff", "-fail", "0", "-failpercent", "0", "-warn", "0",
+                            self.path("r1.exr"), self.path("r2.exr")], capture_output=True, text=True)
+        self.assertEqual(d.returncode, 0, d.stdout + d.stderr)
+        self.assertEqual(outs[0], outs[1])
+
+    def test_parse_error_names_file_and_line(self):
+        bad = self.path("bad.scene")
+        with open(bad, "w") as f:
+            f.write("camera position=0,0,5 look_at=0,0,0\nsphere radius=1 material=none\n")
+        r = run(bad, "-o", self.path("x.exr"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("%s:2: material 'none' is not defined" % bad, r.stderr)
+        self.assertFalse(os.path.exists(self.path("x.exr")))
+
+    def test_usage_errors(self):
+        sphere = os.path.join(SCENES, "sphere.scene")
+        for args, msg in ((["--spp", "3"], "not a square"), (["--threads", "0"], "--threads"),
+                          (["--bogus"], "unknown option"), (["--set", "r=0.2"], "--set needs --model"),
+                          (["--adaptive"], "--goal"), (["--model", "lambrt"], "did you mean")):
+            r = run(sphere, "-o", self.path("x.exr"), *args)
+            self.assertEqual(r.returncode, 2, args)
+            self.assertIn(msg, r.stderr, args)
+        r = run(sphere)
+        self.assertEqual(r.returncode, 2)
+
+    def test_model_override(self):
+        r = run(os.path.join(SCENES, "sphere.scene"), "-o", self.path("m.exr"), "--width", "16", "--height", "16",
+                "--model", "blinn_phong", "--set", "n=50", "--explain")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("plastic (line 7): blinn_phong", r.stdout)
+        self.assertEqual(counter(r.stdout, "fresnel evals"), 0)
+
+    def test_explain_single_sphere_plans_no_shadow_rays(self):
+        r = run(os.path.join(SCENES, "sphere.scene"), "-o", self.path("e.exr"), "--width", "32", "--height", "32",
+                "--explain")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("no shadow rays - no object can block it", r.stdout)
+        self.assertIn("tangent frames: no", r.stdout)
+        self.assertEqual(counter(r.stdout, "shadow rays"), 0)
+        self.assertGreater(counter(r.stdout, "shadow rays skipped"), 0)
+        self.assertEqual(counter(r.stdout, "tangent frames"), 0)
+
+    def test_explain_robot_plans_shadow_rays(self):
+        r = run(os.path.join(SCENES, "robot.scene"), "-o", self.path("e.exr"), "--width", "32", "--height", "32",
+                "--explain")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertRegex(r.stdout, r"shadow rays for \d+ of 35 receivers")
+        self.assertGreater(counter(r.stdout, "shadow rays"), 0)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

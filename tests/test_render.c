@@ -1,0 +1,308 @@
+/* test_render.c - the renderer against closed forms (one pixel), determinism across thread
+ * counts, and the effect plan proved by the work counters. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render.h"
+#include "test_util.h"
+
+static const double PI = 3.14159265358979323846;
+
+typedef struct result {
+    int w, h;
+    float *rgb;
+    render_stats st;
+} result;
+
+/* Render scene text at its own resolution (size 0) or size x size. */
+static result render_text_at(const char *text, int spp, int threads, int size, int full)
+{
+    scene s;
+    char err[512];
+    ck_assert_msg(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
+    render_options opt = {size, size, spp, 0, threads, 0, full};
+    render_scene rs;
+    ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
+    result r = {rs.width, rs.height, malloc((size_t)rs.width * rs.height * 3 * sizeof(float)), {0}};
+    ck_assert_ptr_nonnull(r.rgb);
+    ck_assert_int_eq(render_image(&rs, &opt, r.rgb, &r.st), 0);
+    render_release(&rs);
+    scene_free(&s);
+    return r;
+}
+
+static result render_text(const char *text, int spp, int threads) { return render_text_at(text, spp, threads, 0, 0); }
+
+static const float *pixel(const result *r, int i, int j) { return r->rgb + 3 * ((size_t)j * r->w + i); }
+
+/* Unit sphere at the origin, camera on +z: the centre pixel of an odd-sized image with one
+ * sample sees (0, 0, 1) with N = +z and wo = +z. */
+START_TEST(lambert_centre_pixel_directional)
+{
+    const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
+                       "light directional direction=0,0.5,0.8660254037844386 intensity=3\n"
+                       "ambient 0.1\n"
+                       "material m model=lambert kd=0.5,0.25,0.125\n"
+                       "sphere material=m radius=1\n";
+    result r = render_text(text, 1, 1);
+    const float *p = pixel(&r, 16, 16);
+    double kd[3] = {0.5, 0.25, 0.125};
+    for (int c = 0; c < 3; ++c) {
+        double want = kd[c] * 0.1 + 3.0 * kd[c] / PI * cos(PI / 6); /* ka*Ia + E kd/pi cos */
+        ck_assert_msg(tu_close(p[c], want, 1e-6, 0), "c%d %.9g vs %.9g", c, p[c], want);
+    }
+    /* The corner sees no object: black background. */
+    ck_assert(pixel(&r, 0, 0)[0] == 0.0f);
+    free(r.rgb);
+}
+END_TEST
+
+START_TEST(point_light_falls_off_with_distance_squared)
+{
+    const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
+                       "light point position=0,0,3 intensity=8\n"
+                       "material m model=lambert kd=0.5\n"
+                       "sphere material=m radius=1\n";
+    result r = render_text(text, 1, 1);
+    double want = 8.0 / 4.0 * 0.5 / PI; /* d = 2, cos = 1 */
+    ck_assert_msg(tu_close(pixel(&r, 16, 16)[0], want, 1e-6, 0), "%.9g vs %.9g", pixel(&r, 16, 16)[0], want);
+    free(r.rgb);
+}
+END_TEST
+
+/* A box filter over the pixel: with 4 x 4 samples the centre pixel is the mean of 16
+ * radiance samples, each computed in closed form here from the same camera model. */
+START_TEST(box_filter_matches_camera_model)
+{
+    const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=9,9\n"
+                       "light directional direction=0,0,1 intensity=1\n"
+                       "material m model=lambert kd=1\n"
+                       "sphere material=m radius=1\n";
+    result r = render_text(text, 16, 2);
+    double h = tan(PI / 12), sum = 0;
+    for (int sy = 0; sy < 4; ++sy)
+        for (int sx = 0; sx < 4; ++sx) {
+            double x = 4 + (sx + 0.5) / 4, y = 4 + (sy + 0.5) / 4;
+            double d[3] = {(2 * x / 9 - 1) * h, (1 - 2 * y / 9) * h, -1};
+            double l = sqrt(d[0] * d[0] + d[1] * d[1] + 1);
+            for (int c = 0; c < 3; ++c) d[c] /= l;
+            /* |o + t d| = 1 with o = (0, 0, 4) */
+            double b = 4 * d[2], t = -b - sqrt(b * b - 15);
+            double nz = 4 + t * d[2];
+            sum += nz / PI; /* E = 1, light along +z: cos = N.z */
+        }
+    ck_assert_msg(tu_close(pixel(&r, 4, 4)[0], sum / 16, 1e-6, 0), "%.9g vs %.9g", pixel(&r, 4, 4)[0], sum / 16);
+    free(r.rgb);
+}
+END_TEST
+
+static char *read_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    ck_assert_msg(f != NULL, "cannot open %s", path);
+    static char buf[1 << 16];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    return buf;
+}
+
+static char robot[1 << 16];
+
+static void load_robot(void) { strcpy(robot, read_file(SCENES_DIR "/robot.scene")); }
+
+START_TEST(bit_identical_for_any_thread_count)
+{
+    load_robot();
+    scene s;
+    char err[256];
+    ck_assert(scene_parse_text("robot", robot, strlen(robot), &s, err, sizeof err) == 0);
+    float *img[3];
+    render_stats st[3];
+    int threads[3] = {1, 2, 2};
+    for (int k = 0; k < 3; ++k) {
+        render_options opt = {64, 64, 4, k == 2, threads[k], 0, 0};
+        render_scene rs;
+        ck_assert(render_prepare(&s, &opt, &rs, err, sizeof err) == 0);
+        img[k] = malloc(64 * 64 * 3 * sizeof(float));
+        ck_assert_int_eq(render_image(&rs, &opt, img[k], &st[k]), 0);
+        render_release(&rs);
+    }
+    ck_assert_msg(memcmp(img[0], img[1], 64 * 64 * 3 * sizeof(float)) == 0, "1 vs 2 threads differ");
+    ck_assert(memcmp(&st[0], &st[1], sizeof st[0]) == 0);
+    /* jitter moves samples: a different image, so the test above could have failed */
+    ck_assert(memcmp(img[0], img[2], 64 * 64 * 3 * sizeof(float)) != 0);
+    for (int k = 0; k < 3; ++k) free(img[k]);
+    scene_free(&s);
+}
+END_TEST
+
+/* ---- the effect plan, proved by counters ------------------------------------------- */
+
+START_TEST(single_sphere_casts_no_shadow_rays)
+{
+    result r = render_text(read_file(SCENES_DIR "/sphere.scene"), 1, 2);
+    ck_assert(r.st.hits > 0 && r.st.brdf_evals > 0);
+    ck_assert_uint_eq(r.st.shadow_rays, 0);
+    ck_assert_uint_eq(r.st.occluder_tests, 0);
+    ck_assert(r.st.shadow_rays_skipped > 0);
+    ck_assert_uint_eq(r.st.tangent_frames, 0); /* isotropic lobes */
+    ck_assert_uint_eq(r.st.ambient_terms, 0);  /* ambient 0 */
+    free(r.rgb);
+}
+END_TEST
+
+START_TEST(robot_casts_shadow_rays_and_shadows_darken)
+{
+    load_robot();
+    result r = render_text_at(robot, 1, 2, 128, 0);
+    ck_assert(r.st.shadow_rays > 0 && r.st.occluder_tests >= r.st.shadow_rays);
+    ck_assert_uint_eq(r.st.tangent_frames, 0);
+    ck_assert_uint_eq(r.st.ambient_terms, r.st.hits);
+    /* Some lit samples are blocked: fewer BRDF evaluations than lit samples would need. */
+    ck_assert(r.st.brdf_evals < 2 * (r.st.shadow_rays + r.st.shadow_rays_skipped));
+    free(r.rgb);
+}
+END_TEST
+
+/* The plan skips only work that cannot change the image: rendering with every effect
+ * everywhere (shadow rays toward every object, tangent frames, ambient) gives the same
+ * pixels up to rounding, while doing more work. A shadow the plan wrongly skipped would
+ * differ by the whole direct light. */
+static void expect_plan_is_exact(const char *text, int size)
+{
+    result a = render_text_at(text, 1, 2, size, 0), b = render_text_at(text, 1, 2, size, 1);
+    double worst = 0;
+    for (size_t k = 0; k < (size_t)a.w * a.h * 3; ++k)
+        worst = fmax(worst, fabs(a.rgb[k] - b.rgb[k]) / fmax(1e-3, fabs(b.rgb[k])));
+    ck_assert_msg(worst < 1e-5, "planned vs full render: rel diff %g", worst);
+    ck_assert(b.st.occluder_tests > a.st.occluder_tests);
+    ck_assert(b.st.tangent_frames > a.st.tangent_frames);
+    free(a.rgb);
+    free(b.rgb);
+}
+
+START_TEST(plan_changes_no_pixel)
+{
+    load_robot();
+    expect_plan_is_exact(robot, 96);
+    expect_plan_is_exact(read_file(SCENES_DIR "/sphere.scene"), 64);
+    expect_plan_is_exact(read_file(FUZZ_CORPUS "/shapes.scene"), 64);
+}
+END_TEST
+
+START_TEST(separated_objects_need_no_shadow_rays)
+{
+    /* Two spheres side by side, light from the camera: neither bounding capsule toward the
+     * light meets the other sphere. Move the light sideways and they can shadow each other. */
+    const char *fmt = "camera position=0,0,10 look_at=0,0,0 resolution=32,32\n"
+                      "light directional direction=%s\n"
+                      "material m model=lambert\n"
+                      "sphere material=m radius=1 translate=-2,0,0\n"
+                      "sphere material=m radius=1 translate=2,0,0\n";
+    char text[512];
+    snprintf(text, sizeof text, fmt, "0,0,1");
+    result a = render_text(text, 1, 1);
+    ck_assert_uint_eq(a.st.shadow_rays, 0);
+    ck_assert(a.st.shadow_rays_skipped > 0);
+    snprintf(text, sizeof text, fmt, "1,0,0");
+    result b = render_text(text, 1, 1);
+    ck_assert(b.st.shadow_rays > 0);
+    free(a.rgb);
+    free(b.rgb);
+}
+END_TEST
+
+static const char *ANISO = "camera position=0,0,4 look_at=0,0,0 resolution=24,24\n"
+                           "light directional direction=1,1,1\n"
+                           "material m model=%s %s\n"
+                           "sphere material=m radius=1 tangent=u\n";
+
+START_TEST(tangent_frames_only_for_anisotropic_materials)
+{
+    char text[512];
+    snprintf(text, sizeof text, ANISO, "disney_specular_aniso", "r=0.4 anisotropic=0.8");
+    result an = render_text(text, 1, 1);
+    ck_assert(an.st.tangent_frames > 0);
+    ck_assert(an.st.tangent_frames <= an.st.hits);
+    snprintf(text, sizeof text, ANISO, "disney_specular_aniso", "r=0.4 anisotropic=0");
+    result a0 = render_text(text, 1, 1);
+    ck_assert_uint_eq(a0.st.tangent_frames, 0);
+    /* The isotropic shortcut gives the frame path's value: a barely anisotropic lobe (with a
+     * frame) against the isotropic lobe (without). */
+    snprintf(text, sizeof text, ANISO, "disney_specular_aniso", "r=0.4 anisotropic=1e-9");
+    result eps = render_text(text, 1, 1);
+    snprintf(text, sizeof text, ANISO, "disney_specular", "r=0.4");
+    result iso = render_text(text, 1, 1);
+    ck_assert(eps.st.tangent_frames > 0);
+    ck_assert_uint_eq(iso.st.tangent_frames, 0);
+    double worst = 0;
+    for (int k = 0; k < 24 * 24 * 3; ++k) {
+        worst = fmax(worst, fabs(eps.rgb[k] - iso.rgb[k]) / fmax(1e-3, fabs(iso.rgb[k])));
+        ck_assert(a0.rgb[k] == a0.rgb[k]);
+    }
+    ck_assert_msg(worst < 1e-5, "frame path vs isotropic path: rel diff %g", worst);
+    free(an.rgb);
+    free(a0.rgb);
+    free(eps.rgb);
+    free(iso.rgb);
+}
+END_TEST
+
+START_TEST(fresnel_counted_only_where_a_lobe_has_it)
+{
+    char text[512];
+    snprintf(text, sizeof text, ANISO, "lambert", "kd=0.5");
+    result l = render_text(text, 1, 1);
+    ck_assert(l.st.brdf_evals > 0);
+    ck_assert_uint_eq(l.st.fresnel_evals, 0);
+    snprintf(text, sizeof text, ANISO, "disney_specular", "r=0.4");
+    result g = render_text(text, 1, 1);
+    ck_assert_uint_eq(g.st.fresnel_evals, g.st.brdf_evals);
+    free(l.rgb);
+    free(g.rgb);
+}
+END_TEST
+
+START_TEST(unresolvable_materials_are_refused)
+{
+    const char *text = "camera position=0,0,4 look_at=0,0,0\n"
+                       "material m adaptive goal=photoreal\n"
+                       "sphere material=m radius=1\n";
+    scene s;
+    char err[512];
+    ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
+    render_options opt = {8, 8, 1, 0, 1, 0, 0};
+    render_scene rs;
+    ck_assert_int_eq(render_prepare(&s, &opt, &rs, err, sizeof err), -1);
+    ck_assert_ptr_nonnull(strstr(err, "adaptive"));
+    scene_free(&s);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+    Suite *s = suite_create("render");
+    TCase *tv = tcase_create("values");
+    tcase_add_test(tv, lambert_centre_pixel_directional);
+    tcase_add_test(tv, point_light_falls_off_with_distance_squared);
+    tcase_add_test(tv, box_filter_matches_camera_model);
+    tcase_add_test(tv, bit_identical_for_any_thread_count);
+    tcase_set_timeout(tv, 120);
+    suite_add_tcase(s, tv);
+    TCase *tp = tcase_create("plan");
+    tcase_add_test(tp, single_sphere_casts_no_shadow_rays);
+    tcase_add_test(tp, robot_casts_shadow_rays_and_shadows_darken);
+    tcase_add_test(tp, separated_objects_need_no_shadow_rays);
+    tcase_add_test(tp, plan_changes_no_pixel);
+    tcase_add_test(tp, tangent_frames_only_for_anisotropic_materials);
+    tcase_add_test(tp, fresnel_counted_only_where_a_lobe_has_it);
+    tcase_add_test(tp, unresolvable_materials_are_refused);
+    tcase_set_timeout(tp, 120);
+    suite_add_tcase(s, tp);
+    return s;
+}
+
+int main(void) { return tu_run(suite()); }

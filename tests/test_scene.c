@@ -1,0 +1,297 @@
+/* test_scene.c - the scene parser (values, defaults, errors naming file:line) and the exact
+ * intersections and normals of every primitive, against closed forms. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "geom.h"
+#include "test_util.h"
+
+static const char *HEAD = "camera position=0,0,5 look_at=0,0,0\n"
+                          "material m model=lambert kd=0.5\n";
+
+/* Parse HEAD + body; returns the parser status, message in err. */
+static int parse(const char *body, scene *s, char *err, size_t size)
+{
+    char text[4096];
+    snprintf(text, sizeof text, "%s%s", HEAD, body);
+    return scene_parse_text("t.scene", text, strlen(text), s, err, size);
+}
+
+START_TEST(parses_values_and_defaults)
+{
+    const char *text = "# a comment\n"
+                       "camera position=1,2,3 look_at=0,0,0 fov=30 resolution=64,32\n"
+                       "light point position=0,5,0 color=1,0.5,0.25 intensity=10\n"
+                       "light directional direction=0,0,2\n"
+                       "ambient 0.1,0.2,0.3\n"
+                       "material a diffuse=lambert specular=disney_specular kd=0.2 r=0.3 f0=0.9\n"
+                       "material b model=disney_specular_aniso anisotropic=0.5   # trailing comment\n"
+                       "sphere material=a radius=2 translate=1,0,0\n"
+                       "box material=b size=1,2,3 rotate=0,90,0 scale=2 tangent=0,0,1\n"
+                       "capsule material=a radius=0.5 height=0 tangent=radial\n";
+    scene s;
+    char err[256];
+    ck_assert_msg(scene_parse_text("x", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
+    ck_assert_int_eq(s.camera.width, 64);
+    ck_assert_int_eq(s.camera.height, 32);
+    ck_assert(s.camera.up[1] == 1.0 && s.camera.fov_deg == 30.0);
+    ck_assert_int_eq(s.light_count, 2);
+    ck_assert(s.lights[0].kind == SCENE_LIGHT_POINT && s.lights[0].intensity == 10.0 && s.lights[0].color[2] == 0.25);
+    ck_assert(s.lights[1].direction[2] == 1.0 && s.lights[1].intensity == 1.0); /* normalised, default */
+    ck_assert(s.ambient[2] == 0.3);
+    ck_assert_int_eq(s.material_count, 2);
+    ck_assert_int_eq(s.materials[0].lobe_count, 2);
+    ck_assert(s.materials[0].lobes[1] == ABRDF_DISNEY_SPECULAR && s.materials[0].params.r == 0.3);
+    ck_assert(s.materials[0].ka[0] == 0.2); /* ka defaults to kd */
+    ck_assert(s.materials[1].ka[0] == 0.0); /* no diffuse albedo: no ambient reflectance */
+    ck_assert_int_eq(s.object_count, 3);
+    ck_assert(s.objects[1].shape == SCENE_BOX && s.objects[1].scale[2] == 2.0 && s.objects[1].material == 1);
+    ck_assert(s.objects[1].tangent == SCENE_TANGENT_AXIS && s.objects[1].tangent_axis[2] == 1.0);
+    ck_assert(s.objects[2].tangent == SCENE_TANGENT_RADIAL && s.objects[0].tangent == SCENE_TANGENT_U);
+    scene_free(&s);
+}
+END_TEST
+
+/* Each malformed body must fail with "t.scene:LINE: " and a message containing `what`. */
+static const struct {
+    const char *body;
+    int line;
+    const char *what;
+} bad[] = {
+    {"sphere material=m\n", 3, "radius"},
+    {"sphere material=m radius=-1\n", 3, "radius"},
+    {"sphere material=nope radius=1\n", 3, "'nope' is not defined"},
+    {"sphere material=m radius=1 colour=1\n", 3, "unknown key 'colour'"},
+    {"sphere material=m radius=1 radius=2\n", 3, "given twice"},
+    {"\n\nteapot material=m\n", 5, "unknown directive 'teapot'"},
+    {"box material=m size=1,2\n", 3, "size"},
+    {"box material=m size=1,0,1\n", 3, "positive"},
+    {"sphere material=m radius=1e400\n", 3, "radius"},
+    {"sphere material=m radius=nan\n", 3, "radius"},
+    {"sphere material=m radius=1 scale=0\n", 3, "scale"},
+    {"sphere material=m radius=1 tangent=w\n", 3, "tangent"},
+    {"sphere material=m radius=1 tangent=0,0,0\n", 3, "tangent"},
+    {"light spot position=0,0,0\n", 3, "unknown light kind"},
+    {"light directional direction=0,0,0\n", 3, "zero"},
+    {"light point position=1,1,1 intensity=-2\n", 3, "intensity"},
+    {"material m model=lambert\n", 3, "defined twice"},
+    {"material q model=lambrt\n", 3, "unknown model 'lambrt'"},
+    {"material q model=lambert r=0.3\n", 3, "not used"},
+    {"material q model=disney_specular r=2\n", 3, "outside"},
+    {"material q model=lambert diffuse=lambert\n", 3, "not both"},
+    {"material q adaptive goal=fast\n", 3, "unknown goal"},
+    {"material q\n", 3, "needs model="},
+    {"camera position=0,0,1 look_at=0,0,0\n", 3, "second camera"},
+    {"ambient -1\n", 3, "negative"},
+    {"ambient\n", 3, "ambient needs"},
+    {"sphere material=m radius=1 stray\n", 3, "unexpected word 'stray'"},
+    {"=5\n", 3, "no key"},
+};
+
+START_TEST(errors_name_file_line_and_problem)
+{
+    scene s;
+    char err[512], want[32];
+    snprintf(want, sizeof want, "t.scene:%d: ", bad[_i].line);
+    ck_assert_msg(parse(bad[_i].body, &s, err, sizeof err) == -1, "accepted: %s", bad[_i].body);
+    ck_assert_msg(strncmp(err, want, strlen(want)) == 0, "'%s' does not start with '%s'", err, want);
+    ck_assert_msg(strstr(err, bad[_i].what) != NULL, "'%s' does not mention '%s'", err, bad[_i].what);
+    ck_assert(s.objects == NULL && s.object_count == 0); /* freed on failure */
+}
+END_TEST
+
+START_TEST(whole_file_errors)
+{
+    scene s;
+    char err[256];
+    ck_assert_int_eq(scene_parse_text("e", "", 0, &s, err, sizeof err), -1);
+    ck_assert_ptr_nonnull(strstr(err, "no camera"));
+    const char *no_obj = "camera position=0,0,5 look_at=0,0,0\n";
+    ck_assert_int_eq(scene_parse_text("e", no_obj, strlen(no_obj), &s, err, sizeof err), -1);
+    ck_assert_ptr_nonnull(strstr(err, "no objects"));
+    const char nul[] = "camera position=0,0,5 look_at=0,0,0\nsph\0ere\n";
+    ck_assert_int_eq(scene_parse_text("e", nul, sizeof nul - 1, &s, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "e:2: NUL") != NULL, "%s", err);
+    ck_assert_int_eq(scene_parse_file("/nonexistent/x.scene", &s, err, sizeof err), -1);
+    ck_assert_ptr_nonnull(strstr(err, "cannot open"));
+}
+END_TEST
+
+/* ---- intersections ----------------------------------------------------------------- */
+
+static scene_object obj(scene_shape shape)
+{
+    scene_object o;
+    memset(&o, 0, sizeof o);
+    o.shape = shape;
+    o.scale[0] = o.scale[1] = o.scale[2] = 1;
+    return o;
+}
+
+/* Hit of the world ray o + t d; asserts the t and the unit world normal. */
+static void expect_hit(const scene_object *so, const double o[3], const double d[3], double t_want,
+                       const double n_want[3])
+{
+    geom_object g;
+    geom_object_make(so, &g);
+    double t, n[3];
+    ck_assert_msg(geom_intersect(&g, o, d, 0.0, INFINITY, &t, n), "%s: no hit", scene_shape_name(so->shape));
+    ck_assert_msg(tu_close(t, t_want, 1e-12, 1e-12), "%s: t %.17g, want %.17g", scene_shape_name(so->shape), t, t_want);
+    for (int c = 0; c < 3; ++c)
+        ck_assert_msg(tu_close(n[c], n_want[c], 1e-12, 1e-12), "%s: n[%d] %.17g, want %.17g",
+                      scene_shape_name(so->shape), c, n[c], n_want[c]);
+}
+
+static void expect_miss(const scene_object *so, const double o[3], const double d[3])
+{
+    geom_object g;
+    geom_object_make(so, &g);
+    double t, n[3];
+    ck_assert_msg(!geom_intersect(&g, o, d, 0.0, INFINITY, &t, n), "%s: unexpected hit at %g",
+                  scene_shape_name(so->shape), t);
+}
+
+START_TEST(sphere_closed_form)
+{
+    scene_object s = obj(SCENE_SPHERE);
+    s.radius = 2;
+    s.translate[0] = 1;
+    /* Ray along -z at x offset 1 + 1 from the centre: z = sqrt(4 - 1), normal (1, 0, sqrt3)/2. */
+    double o[3] = {2, 0, 10}, d[3] = {0, 0, -2}; /* d not unit: t scales */
+    double n[3] = {0.5, 0, sqrt(3.0) / 2};
+    expect_hit(&s, o, d, (10 - sqrt(3.0)) / 2, n);
+    double o2[3] = {3.5, 0, 10};
+    expect_miss(&s, o2, d);
+    /* From inside: the exit point, outward normal. */
+    double oi[3] = {1, 0, 0}, di[3] = {0, 1, 0}, ni[3] = {0, 1, 0};
+    expect_hit(&s, oi, di, 2, ni);
+}
+END_TEST
+
+START_TEST(cylinder_side_and_caps)
+{
+    scene_object c = obj(SCENE_CYLINDER);
+    c.radius = 1, c.height = 2;
+    double o[3] = {0.6, 0, 5}, d[3] = {0, 0, -1}, n[3] = {0.6, 0, 0.8};
+    expect_hit(&c, o, d, 5 - 0.8, n);
+    double oc[3] = {0.3, 5, 0.4}, dc[3] = {0, -1, 0}, nc[3] = {0, 1, 0};
+    expect_hit(&c, oc, dc, 4, nc); /* top cap at y = 1 */
+    double ob[3] = {0.3, -5, 0.4}, db[3] = {0, 1, 0}, nb[3] = {0, -1, 0};
+    expect_hit(&c, ob, db, 4, nb);
+    double om[3] = {0, 1.5, 5};
+    expect_miss(&c, om, d); /* above the side, parallel to the caps */
+    double oo[3] = {1.2, 5, 0};
+    expect_miss(&c, oo, dc); /* outside the cap disc */
+}
+END_TEST
+
+START_TEST(capsule_side_and_round_caps)
+{
+    scene_object c = obj(SCENE_CAPSULE);
+    c.radius = 1, c.height = 2;
+    double o[3] = {0, 0.5, 5}, d[3] = {0, 0, -1}, n[3] = {0, 0, 1};
+    expect_hit(&c, o, d, 4, n);
+    /* Above the segment end y = 1: the sphere about (0, 1, 0); at y = 1.6, z = 0.8. */
+    double o2[3] = {0, 1.6, 5}, n2[3] = {0, 0.6, 0.8};
+    expect_hit(&c, o2, d, 5 - 0.8, n2);
+    double o3[3] = {0, 10, 0}, d3[3] = {0, -1, 0}, n3[3] = {0, 1, 0};
+    expect_hit(&c, o3, d3, 8, n3); /* pole at y = 2 */
+    double o4[3] = {0, -1.6, 5}, n4[3] = {0, -0.6, 0.8};
+    expect_hit(&c, o4, d, 5 - 0.8, n4);
+    double o5[3] = {0, 2.1, 5};
+    expect_miss(&c, o5, d);
+}
+END_TEST
+
+START_TEST(box_faces)
+{
+    scene_object b = obj(SCENE_BOX);
+    b.size[0] = 2, b.size[1] = 4, b.size[2] = 6;
+    double o[3] = {0.5, 0.5, 10}, d[3] = {0, 0, -1}, n[3] = {0, 0, 1};
+    expect_hit(&b, o, d, 7, n);
+    double o2[3] = {-10, 1, 1}, d2[3] = {1, 0, 0}, n2[3] = {-1, 0, 0};
+    expect_hit(&b, o2, d2, 9, n2);
+    double o3[3] = {0, -10, 0}, d3[3] = {0, 1, 0}, n3[3] = {0, -1, 0};
+    expect_hit(&b, o3, d3, 8, n3);
+    double o4[3] = {1.5, 0, 10};
+    expect_miss(&b, o4, d);
+    double oi[3] = {0, 0, 0}, ni[3] = {1, 0, 0};
+    expect_hit(&b, oi, d2, 1, ni); /* from inside: exit face */
+}
+END_TEST
+
+START_TEST(transformed_normals_use_inverse_transpose)
+{
+    /* Sphere scaled to an ellipsoid x^2/4 + y^2 + z^2 = 1, rotated 90 deg about z (long axis
+     * becomes y), moved to (0, 0, -1). Ray along -y from above hits the tip (0, 2, -1). */
+    scene_object e = obj(SCENE_SPHERE);
+    e.radius = 1;
+    e.scale[0] = 2;
+    e.rotate_deg[2] = 90;
+    e.translate[2] = -1;
+    double o[3] = {0, 10, -1}, d[3] = {0, -1, 0}, n[3] = {0, 1, 0};
+    expect_hit(&e, o, d, 8, n);
+    /* Side point of the unrotated ellipsoid at x = 1: y^2 = 3/4; gradient (x/4, y, 0) ->
+     * (0.25, sqrt(.75)) normalised. Here rotated by 90 deg about z: (x, y) -> (-y, x). */
+    double o2[3] = {-10, 1, -1}, d2[3] = {1, 0, 0};
+    double gx = 0.25, gy = sqrt(0.75), gl = sqrt(gx * gx + gy * gy);
+    double n2[3] = {-gy / gl, gx / gl, 0};
+    expect_hit(&e, o2, d2, 10 - sqrt(0.75), n2);
+}
+END_TEST
+
+START_TEST(rotation_order_is_x_then_y_then_z)
+{
+    /* A box long in x (size 4,1,1), rotated x 90 (x stays) then y 90 (x -> -z): the long
+     * axis is z and a ray down the z axis hits at z = 2. The other order would leave it
+     * along y. */
+    scene_object b = obj(SCENE_BOX);
+    b.size[0] = 4, b.size[1] = 1, b.size[2] = 1;
+    b.rotate_deg[0] = 90, b.rotate_deg[1] = 90;
+    double o[3] = {0, 0, 10}, d[3] = {0, 0, -1}, n[3] = {0, 0, 1};
+    expect_hit(&b, o, d, 8, n);
+}
+END_TEST
+
+START_TEST(tangent_rules)
+{
+    scene_object s = obj(SCENE_SPHERE);
+    s.radius = 1;
+    s.translate[1] = 3;
+    geom_xform xf;
+    geom_xform_make(&s, &xf);
+    double p[3] = {1, 3, 0}, t[3];
+    s.tangent = SCENE_TANGENT_U;
+    geom_tangent(&s, &xf, p, t);
+    ck_assert(t[0] == 0 && t[1] == 0 && t[2] == 1);
+    s.tangent = SCENE_TANGENT_V;
+    geom_tangent(&s, &xf, p, t);
+    ck_assert(t[0] == 0 && t[1] == 1 && t[2] == 0);
+    s.tangent = SCENE_TANGENT_RADIAL;
+    geom_tangent(&s, &xf, p, t);
+    ck_assert(t[0] == 1 && t[1] == 0 && t[2] == 0);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+    Suite *s = suite_create("scene");
+    TCase *tp = tcase_create("parser");
+    tcase_add_test(tp, parses_values_and_defaults);
+    tcase_add_loop_test(tp, errors_name_file_line_and_problem, 0, (int)(sizeof bad / sizeof bad[0]));
+    tcase_add_test(tp, whole_file_errors);
+    suite_add_tcase(s, tp);
+    TCase *tg = tcase_create("geometry");
+    tcase_add_test(tg, sphere_closed_form);
+    tcase_add_test(tg, cylinder_side_and_caps);
+    tcase_add_test(tg, capsule_side_and_round_caps);
+    tcase_add_test(tg, box_faces);
+    tcase_add_test(tg, transformed_normals_use_inverse_transpose);
+    tcase_add_test(tg, rotation_order_is_x_then_y_then_z);
+    tcase_add_test(tg, tangent_rules);
+    suite_add_tcase(s, tg);
+    return s;
+}
+
+int main(void) { return tu_run(suite()); }

@@ -1,0 +1,328 @@
+// image_io.cpp - the C interface of image_io.h over OpenImageIO (files) and OpenColorIO
+// (scene-linear <-> display). Nothing here encodes pixels or colour by hand: files are
+// written and read by OpenImageIO, display transforms are OpenColorIO processors, and the
+// false-colour map is OpenImageIO's ImageBufAlgo::color_map.
+#include "image_io.h"
+
+#include <OpenColorIO/OpenColorIO.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace OCIO = OCIO_NAMESPACE;
+namespace OIIO = OIIO_NAMESPACE;
+
+namespace {
+
+// Largest image accepted, in pixels: keeps width*height*3 floats far from size_t overflow
+// and a corrupt header from asking for an absurd allocation.
+const long long kMaxPixels = 1LL << 28;
+
+void set_err(char *err, int err_size, const std::string &msg)
+{
+    if (err && err_size > 0) std::snprintf(err, (size_t)err_size, "%s", msg.c_str());
+}
+
+std::string lower_ext(const char *path)
+{
+    std::string p(path), ext;
+    size_t dot = p.find_last_of('.'), slash = p.find_last_of('/');
+    if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ext = p.substr(dot + 1);
+    for (char &c : ext) c = (char)std::tolower((unsigned char)c);
+    return ext;
+}
+
+// Names used by the built-in configuration (see builtin_config).
+const char *const kSceneLinear = "Linear Rec.709 (sRGB)";
+const char *const kDisplay = "sRGB";
+const char *const kView = "Standard";
+
+// OpenColorIO 2.1 has no built-in ocio:// configs, so the default configuration is assembled
+// here from OpenColorIO's own built-in transforms, following the structure of the ACES
+// "CG" studio config: scene reference ACEScg, display reference CIE XYZ (D65), one display
+// "sRGB" (piecewise sRGB EOTF) with the view "Standard" (no tone mapping). Linear Rec.709
+// with sRGB primaries is the scene_linear role, which is what the renderer writes.
+OCIO::ConstConfigRcPtr builtin_config()
+{
+    OCIO::ConfigRcPtr cfg = OCIO::Config::CreateRaw()->createEditableCopy();
+    cfg->setName("abrdf-builtin-srgb");
+    cfg->setDescription("sRGB display for scene-linear Rec.709, from OpenColorIO built-in transforms");
+    // CreateRaw brings one "raw" colour space, a "raw" view and a "Raw" display; start clean.
+    cfg->clearColorSpaces();
+    cfg->clearDisplays();
+    cfg->clearViewTransforms();
+
+    OCIO::ColorSpaceRcPtr acescg = OCIO::ColorSpace::Create(OCIO::REFERENCE_SPACE_SCENE);
+    acescg->setName("ACEScg");
+    cfg->addColorSpace(acescg);
+
+    OCIO::ColorSpaceRcPtr lin709 = OCIO::ColorSpace::Create(OCIO::REFERENCE_SPACE_SCENE);
+    lin709->setName(kSceneLinear);
+    OCIO::BuiltinTransformRcPtr ap1_to_709 = OCIO::BuiltinTransform::Create();
+    ap1_to_709->setStyle("UTILITY - ACES-AP1_to_LINEAR-REC709_BFD");
+    lin709->setTransform(ap1_to_709, OCIO::COLORSPACE_DIR_FROM_REFERENCE);
+    cfg->addColorSpace(lin709);
+
+    OCIO::ColorSpaceRcPtr xyz = OCIO::ColorSpace::Create(OCIO::REFERENCE_SPACE_DISPLAY);
+    xyz->setName("CIE-XYZ-D65");
+    cfg->addColorSpace(xyz);
+
+    OCIO::ColorSpaceRcPtr srgb = OCIO::ColorSpace::Create(OCIO::REFERENCE_SPACE_DISPLAY);
+    srgb->setName("sRGB - Display");
+    OCIO::BuiltinTransformRcPtr to_srgb = OCIO::BuiltinTransform::Create();
+    to_srgb->setStyle("DISPLAY - CIE-XYZ-D65_to_sRGB");
+    srgb->setTransform(to_srgb, OCIO::COLORSPACE_DIR_FROM_REFERENCE);
+    cfg->addColorSpace(srgb);
+
+    OCIO::ViewTransformRcPtr untone = OCIO::ViewTransform::Create(OCIO::REFERENCE_SPACE_SCENE);
+    untone->setName("Un-tone-mapped");
+    OCIO::BuiltinTransformRcPtr ap1_to_xyz = OCIO::BuiltinTransform::Create();
+    ap1_to_xyz->setStyle("UTILITY - ACES-AP1_to_CIE-XYZ-D65_BFD");
+    untone->setTransform(ap1_to_xyz, OCIO::VIEWTRANSFORM_DIR_FROM_REFERENCE);
+    cfg->addViewTransform(untone);
+
+    cfg->addDisplayView(kDisplay, kView, "Un-tone-mapped", "sRGB - Display", "", "", "");
+    cfg->setActiveDisplays(kDisplay);
+    cfg->setActiveViews(kView);
+    cfg->setRole(OCIO::ROLE_SCENE_LINEAR, kSceneLinear);
+    cfg->setRole(OCIO::ROLE_DEFAULT, kSceneLinear);
+    cfg->setRole(OCIO::ROLE_REFERENCE, "ACEScg");
+    cfg->validate();
+    return cfg;
+}
+
+// The display-view processor from scene_linear of `config` (NULL: built-in) to
+// display/view (NULL: the config's defaults); inverse for reading display-referred files.
+OCIO::ConstCPUProcessorRcPtr display_processor(const char *config, const char *display,
+                                               const char *view, bool inverse)
+{
+    OCIO::ConstConfigRcPtr cfg =
+        (config && *config) ? OCIO::Config::CreateFromFile(config) : builtin_config();
+    std::string disp = (display && *display) ? display : cfg->getDefaultDisplay();
+    std::string v = (view && *view) ? view : cfg->getDefaultView(disp.c_str());
+    if (cfg->getNumViews(disp.c_str()) == 0)
+        throw std::runtime_error("OpenColorIO config has no display '" + disp + "'");
+    bool found = false;
+    for (int i = 0; i < cfg->getNumViews(disp.c_str()); ++i)
+        if (v == cfg->getView(disp.c_str(), i)) found = true;
+    if (!found) throw std::runtime_error("display '" + disp + "' has no view '" + v + "'");
+    OCIO::ConstColorSpaceRcPtr lin = cfg->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
+    if (!lin) throw std::runtime_error("OpenColorIO config has no scene_linear role");
+    OCIO::DisplayViewTransformRcPtr dv = OCIO::DisplayViewTransform::Create();
+    dv->setSrc(lin->getName());
+    dv->setDisplay(disp.c_str());
+    dv->setView(v.c_str());
+    OCIO::ConstProcessorRcPtr proc =
+        cfg->getProcessor(dv, inverse ? OCIO::TRANSFORM_DIR_INVERSE : OCIO::TRANSFORM_DIR_FORWARD);
+    return proc->getDefaultCPUProcessor();
+}
+
+bool valid_size(int width, int height, const void *data, char *err, int err_size)
+{
+    if (width <= 0 || height <= 0 || (long long)width * height > kMaxPixels) {
+        set_err(err, err_size, "invalid image size " + std::to_string(width) + "x" + std::to_string(height));
+        return false;
+    }
+    if (!data) {
+        set_err(err, err_size, "no pixel data");
+        return false;
+    }
+    return true;
+}
+
+// Write w x h x nch floats to path as `type` (UINT8 for display files) via ImageOutput.
+int write_file(const char *path, int width, int height, int nch, const float *data,
+               OIIO::TypeDesc type, const char *colorspace, char *err, int err_size)
+{
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) {
+        set_err(err, err_size, std::string(path) + ": " + OIIO::geterror());
+        return -1;
+    }
+    OIIO::ImageSpec spec(width, height, nch, type);
+    spec.attribute("oiio:ColorSpace", colorspace);
+    spec.attribute("Software", "abrdf");
+    if (!out->open(path, spec) ||
+        !out->write_image(OIIO::TypeDesc::FLOAT, data) || !out->close()) {
+        set_err(err, err_size, std::string(path) + ": " + out->geterror());
+        return -1;
+    }
+    return 0;
+}
+
+}  // namespace
+
+extern "C" int abrdf_image_is_display_format(const char *path)
+{
+    static const char *const display_ext[] = {"png", "jpg", "jpeg", "bmp", "gif", "webp", "ppm", "pgm", "pnm"};
+    if (!path) return 0;
+    std::string ext = lower_ext(path);
+    for (const char *e : display_ext)
+        if (ext == e) return 1;
+    return 0;
+}
+
+extern "C" int abrdf_image_write_linear(const char *path, int width, int height, const float *rgb,
+                                        char *err, int err_size)
+{
+    try {
+        if (!path || !valid_size(width, height, rgb, err, err_size)) {
+            if (!path) set_err(err, err_size, "no output path");
+            return -1;
+        }
+        if (abrdf_image_is_display_format(path)) {
+            set_err(err, err_size, std::string(path) +
+                    ": an 8-bit display format cannot hold scene-linear data; write .exr/.hdr/.tif (or a preview)");
+            return -1;
+        }
+        // 32-bit float where the format has it (EXR, TIFF); .hdr stores its own RGBE encoding.
+        return write_file(path, width, height, 3, rgb, OIIO::TypeDesc::FLOAT, "Linear", err, err_size);
+    } catch (const std::exception &e) {
+        set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
+    } catch (...) {
+        set_err(err, err_size, "unexpected error writing an image");
+    }
+    return -1;
+}
+
+extern "C" int abrdf_image_write_preview(const char *path, int width, int height, const float *rgb,
+                                         const char *config, const char *display, const char *view,
+                                         char *err, int err_size)
+{
+    try {
+        if (!path || !valid_size(width, height, rgb, err, err_size)) {
+            if (!path) set_err(err, err_size, "no output path");
+            return -1;
+        }
+        std::vector<float> buf(rgb, rgb + (size_t)width * height * 3);
+        OCIO::ConstCPUProcessorRcPtr cpu = display_processor(config, display, view, false);
+        OCIO::PackedImageDesc desc(buf.data(), width, height, 3);
+        cpu->apply(desc);
+        // OpenImageIO quantises to 8 bits (clamping to [0,1], rounding to nearest).
+        return write_file(path, width, height, 3, buf.data(), OIIO::TypeDesc::UINT8, "sRGB", err, err_size);
+    } catch (const std::exception &e) {
+        set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
+    } catch (...) {
+        set_err(err, err_size, "unexpected error writing a preview");
+    }
+    return -1;
+}
+
+extern "C" int abrdf_image_write_heatmap(const char *path, int width, int height, const float *value,
+                                         double vmax, const char *map, char *err, int err_size)
+{
+    try {
+        if (!path || !valid_size(width, height, value, err, err_size)) {
+            if (!path) set_err(err, err_size, "no output path");
+            return -1;
+        }
+        OIIO::ImageBuf src(OIIO::ImageSpec(width, height, 1, OIIO::TypeDesc::FLOAT));
+        std::vector<float> v((size_t)width * height);
+        double scale = vmax > 0 ? 1.0 / vmax : 0.0;
+        for (size_t i = 0; i < v.size(); ++i)
+            v[i] = (float)std::min(1.0, std::max(0.0, (double)value[i] * scale));
+        src.set_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, v.data());
+        OIIO::ImageBuf col = OIIO::ImageBufAlgo::color_map(src, 0, (map && *map) ? map : "inferno");
+        if (col.has_error()) {
+            set_err(err, err_size, std::string(path) + ": " + col.geterror());
+            return -1;
+        }
+        // The colour maps are defined in display (sRGB-encoded) values: write them as they are.
+        col.specmod().attribute("oiio:ColorSpace", "sRGB");
+        if (!col.write(path, OIIO::TypeDesc::UINT8)) {
+            set_err(err, err_size, std::string(path) + ": " + col.geterror());
+            return -1;
+        }
+        return 0;
+    } catch (const std::exception &e) {
+        set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
+    } catch (...) {
+        set_err(err, err_size, "unexpected error writing a heat map");
+    }
+    return -1;
+}
+
+extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, int err_size)
+{
+    if (!img) return -1;
+    img->width = img->height = img->channels = 0;
+    img->pixels = nullptr;
+    try {
+        if (!path) {
+            set_err(err, err_size, "no input path");
+            return -1;
+        }
+        auto in = OIIO::ImageInput::open(path);
+        if (!in) {
+            std::string e = OIIO::geterror();
+            set_err(err, err_size, std::string(path) + ": " + (e.empty() ? "cannot open" : e));
+            return -1;
+        }
+        const OIIO::ImageSpec spec = in->spec();
+        int w = spec.width, h = spec.height, nch = spec.nchannels;
+        if (w <= 0 || h <= 0 || nch <= 0 || (long long)w * h > kMaxPixels || spec.deep) {
+            set_err(err, err_size, std::string(path) + ": unsupported image (size " + std::to_string(w) + "x" +
+                    std::to_string(h) + ", " + std::to_string(nch) + " channels" + (spec.deep ? ", deep" : "") + ")");
+            return -1;
+        }
+        std::vector<float> all((size_t)w * h * nch);
+        if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, all.data())) {
+            set_err(err, err_size, std::string(path) + ": " + in->geterror());
+            return -1;
+        }
+        in->close();
+        // RGB from the first three channels; grey (and grey+alpha) is replicated.
+        int colour = (nch >= 3 && spec.alpha_channel != 1 && spec.alpha_channel != 2) ? 3 : 1;
+        float *rgb = (float *)std::malloc((size_t)w * h * 3 * sizeof(float));
+        if (!rgb) {
+            set_err(err, err_size, std::string(path) + ": out of memory");
+            return -1;
+        }
+        for (size_t p = 0; p < (size_t)w * h; ++p)
+            for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = all[p * nch + (colour == 3 ? c : 0)];
+        // Display-referred files (tagged sRGB, or untagged integer data) are decoded to
+        // scene-linear with the inverse of the built-in sRGB display transform.
+        std::string cs = spec.get_string_attribute("oiio:ColorSpace");
+        for (char &c : cs) c = (char)std::tolower((unsigned char)c);
+        bool integer = spec.format.basetype != OIIO::TypeDesc::FLOAT &&
+                       spec.format.basetype != OIIO::TypeDesc::HALF &&
+                       spec.format.basetype != OIIO::TypeDesc::DOUBLE;
+        if (cs == "srgb" || (cs.empty() && integer)) {
+            try {
+                OCIO::ConstCPUProcessorRcPtr cpu = display_processor(nullptr, nullptr, nullptr, true);
+                OCIO::PackedImageDesc desc(rgb, w, h, 3);
+                cpu->apply(desc);
+            } catch (...) {
+                std::free(rgb);
+                throw;
+            }
+        }
+        img->width = w;
+        img->height = h;
+        img->channels = nch;
+        img->pixels = rgb;
+        return 0;
+    } catch (const std::exception &e) {
+        set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
+    } catch (...) {
+        set_err(err, err_size, "unexpected error reading an image");
+    }
+    return -1;
+}
+
+extern "C" void abrdf_image_free(abrdf_image *img)
+{
+    if (!img) return;
+    std::free(img->pixels);
+    img->pixels = nullptr;
+    img->width = img->height = img->channels = 0;
+}

@@ -1,0 +1,120 @@
+/* scene.h - the parsed scene: the one description that the built-in renderer and the
+ * exporters (POV-Ray SDL, Cycles bpy) all read. The text format is defined in
+ * docs/SCENES.md; this header holds only what the file says, with units, and no derived
+ * data (matrices, bounds and the effect plan belong to the renderer, render.h).
+ *
+ * World space is right-handed, y up. Angles in degrees. Colours are linear RGB.
+ *
+ * PUBLIC FUNCTIONS
+ *   scene_parse_file    read and validate a scene file
+ *   scene_parse_text    the same for text in memory (name is used in messages)
+ *   scene_free          release a parsed scene
+ *   scene_shape_name, scene_tangent_name   names as the format spells them
+ */
+#ifndef ABRDF_SCENE_H
+#define ABRDF_SCENE_H
+
+#include <stddef.h>
+#include "abrdf.h"
+
+#define SCENE_NAME_MAX 64         /* material names, table entries, goals (with the NUL) */
+#define SCENE_MAX_OBJECTS 4096    /* keeps a hostile file from exhausting memory */
+#define SCENE_MAX_LIGHTS 64
+#define SCENE_MAX_MATERIALS 256
+#define SCENE_MAX_RESOLUTION 16384
+#define SCENE_MAX_COORD 1e6       /* |coordinate|, size or scale: far from double trouble */
+
+typedef struct scene_camera {
+    double position[3];   /* eye point */
+    double look_at[3];    /* point on the optical axis, != position */
+    double up[3];         /* not parallel to look_at - position */
+    double fov_deg;       /* full vertical field of view, (0, 180) */
+    int width, height;    /* resolution in pixels, [1, SCENE_MAX_RESOLUTION] */
+} scene_camera;
+
+typedef enum scene_light_kind { SCENE_LIGHT_POINT = 0, SCENE_LIGHT_DIRECTIONAL } scene_light_kind;
+
+typedef struct scene_light {
+    scene_light_kind kind;
+    double position[3];   /* point light: its position */
+    double direction[3];  /* directional light: unit vector from the scene TOWARD the light */
+    double color[3];      /* linear RGB, >= 0 */
+    double intensity;     /* >= 0; point: irradiance intensity/d^2 at distance d; directional:
+                             irradiance on a surface facing the light */
+    int line;             /* line of the definition, for messages */
+} scene_light;
+
+/* How a material chooses its models. */
+typedef enum scene_material_kind {
+    SCENE_MAT_MODELS = 0, /* explicit: one model, or a diffuse + specular pair */
+    SCENE_MAT_TABLE,      /* a named entry of the material table (resolved by abrdf_select) */
+    SCENE_MAT_ADAPTIVE    /* the selection picks the models for a goal */
+} scene_material_kind;
+
+#define SCENE_MAX_LOBES 2
+
+typedef struct scene_material {
+    char name[SCENE_NAME_MAX];
+    scene_material_kind kind;
+    int lobe_count;                     /* SCENE_MAT_MODELS: 1 (model=) or 2 (diffuse=, specular=) */
+    abrdf_model lobes[SCENE_MAX_LOBES]; /* summed: f_r = lobes[0] + lobes[1] */
+    abrdf_params params;                /* shared by the lobes; defaults of lobes[0], then lobes[1] */
+    double ka[3];                       /* ambient reflectance: ambient term = ka * scene ambient */
+    char table[SCENE_NAME_MAX];         /* TABLE / ADAPTIVE: material table entry ("" if none) */
+    char goal[SCENE_NAME_MAX];          /* ADAPTIVE: "photoreal" or "performance" */
+    int line;
+} scene_material;
+
+typedef enum scene_shape {
+    SCENE_SPHERE = 0,   /* radius; centred at the origin */
+    SCENE_CYLINDER,     /* radius, height; axis y, y in [-height/2, height/2], flat caps */
+    SCENE_CAPSULE,      /* radius, height; segment y in [-height/2, height/2], round caps */
+    SCENE_BOX,          /* size X,Y,Z; centred at the origin */
+    SCENE_SHAPE_COUNT
+} scene_shape;
+
+/* Tangent field, in object space, projected onto the tangent plane at the hit point. */
+typedef enum scene_tangent {
+    SCENE_TANGENT_U = 0,  /* around the object's y axis: (-z, 0, x) */
+    SCENE_TANGENT_V,      /* along the object's y axis: (0, 1, 0) */
+    SCENE_TANGENT_RADIAL, /* away from the object's y axis: (x, 0, z) */
+    SCENE_TANGENT_AXIS    /* a fixed object-space direction (tangent_axis) */
+} scene_tangent;
+
+typedef struct scene_object {
+    scene_shape shape;
+    double radius;          /* sphere, cylinder, capsule; > 0 */
+    double height;          /* cylinder, capsule; > 0 (capsule: >= 0, 0 is a sphere) */
+    double size[3];         /* box: full extents; > 0 */
+    /* object -> world: p_world = T * Rz * Ry * Rx * S * p_object (scale first, then rotate
+     * about x, y, z in that order, then translate; POV-Ray's and Blender's XYZ order). */
+    double scale[3];        /* > 0 */
+    double rotate_deg[3];
+    double translate[3];
+    scene_tangent tangent;
+    double tangent_axis[3]; /* SCENE_TANGENT_AXIS: non-zero object-space direction */
+    int material;           /* index into scene.materials */
+    int line;
+} scene_object;
+
+typedef struct scene {
+    scene_camera camera;
+    double ambient[3];      /* Ia, linear RGB; the ambient term is ka * Ia */
+    scene_light *lights;
+    int light_count;
+    scene_material *materials;
+    int material_count;
+    scene_object *objects;
+    int object_count;
+} scene;
+
+/* Parse; on failure returns -1, frees everything and writes "NAME:LINE: problem" to err. */
+int scene_parse_file(const char *path, scene *out, char *err, size_t err_size);
+int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,
+                     size_t err_size);
+void scene_free(scene *s);
+
+const char *scene_shape_name(scene_shape shape);
+const char *scene_tangent_name(scene_tangent tangent);
+
+#endif
