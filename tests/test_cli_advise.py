@@ -109,6 +109,17 @@ class Listing(unittest.TestCase):
         self.assertTrue(all(m["source"] for m in d["materials"]))
 
 
+class Rules(unittest.TestCase):
+    def test_rules_json_is_the_flowchart(self):
+        r = json.loads(run("--rules", "--json").stdout)
+        self.assertEqual(r["smooth_r_max"], 0.03)
+        self.assertEqual(r["candidates"], ["f2", "f4", "f8", "f16", "fs", "fkv", "fkub"])
+        self.assertEqual(r["special"]["layered_metal"]["model"], "belcour")
+        self.assertEqual(r["special"]["hair"]["model"], "huang")
+        self.assertEqual(len(r["table6_f2e"]), 18)
+        self.assertIn("smooth if r <= 0.03", run("--rules").stdout)
+
+
 class Files(unittest.TestCase):
     def write(self, text, suffix=".csv"):
         f = tempfile.NamedTemporaryFile("w", suffix=suffix, delete=False)

@@ -17,7 +17,8 @@ static void usage(FILE *f)
 {
     fprintf(f,
         "usage: abrdf advise [MATERIAL] [options]\n"
-        "       abrdf advise --list [--json] [--materials FILE]...\n\n"
+        "       abrdf advise --list [--json] [--materials FILE]...\n"
+        "       abrdf advise --rules [--json]\n\n"
         "Chooses the diffuse and specular models for a material by the paper's flowchart\n"
         "(Zavalniuk & Romanyuk 2024, Fig. 2) and explains every decision (docs/SELECTION.md).\n\n"
         "  MATERIAL               a name from the material table (abrdf advise --list)\n"
@@ -35,6 +36,7 @@ static void usage(FILE *f)
         "  --materials FILE       extra material file (same format; overrides by name)\n"
         "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table 4)\n"
         "  --list                 list the materials\n"
+        "  --rules                the flowchart's thresholds and model choices (abrdf_select_rules)\n"
         "  --json                 machine-readable output\n",
         abrdf_select_rules_get()->default_max_rel_pct, abrdf_select_rules_get()->default_max_abs);
 }
@@ -125,6 +127,52 @@ static void list_materials(const mat_table *t, int json)
                e->source, strlen(e->source) > 70 ? "..." : "");
     }
     printf("%d materials\n", t->count);
+}
+
+/* The rules table, for people and for the ports' generators and tests. */
+static void print_rules(int json)
+{
+    const abrdf_select_rules *R = abrdf_select_rules_get();
+    if (!json) {
+        printf("smooth if r <= %g; anisotropic lobe if anisotropy > %g\n", R->smooth_r_max, R->aniso_min);
+        printf("default tolerances: rel %g%%, abs %g; n derived from r capped at %g, f_2e's n "
+               "clamped to [%g, %g]\n", R->default_max_rel_pct, R->default_max_abs, R->n_max,
+               R->n_min, R->n_max);
+        printf("performance: %s + cheapest of", abrdf_select_model_name(R->perf_diffuse));
+        for (int i = 0; i < R->candidate_count; ++i) printf(" %s", abrdf_select_model_name(R->candidates[i]));
+        printf("; none passes: %s\n", abrdf_select_model_name(R->perf_fallback));
+        printf("photoreal general: rough %s + %s (anisotropic %s); smooth %s + %s\n",
+               abrdf_select_model_name(R->rough_diffuse), abrdf_select_model_name(R->rough_specular),
+               abrdf_select_model_name(R->rough_specular_aniso), abrdf_select_model_name(R->smooth_diffuse),
+               abrdf_select_model_name(R->smooth_specular));
+        for (int i = 1; i < ABRDF_SURFACE_COUNT; ++i)
+            printf("photoreal %s: %s\n", abrdf_surface_name((abrdf_surface)i),
+                   abrdf_select_model_name(R->special[i]));
+        return;
+    }
+    printf("{\"smooth_r_max\": %.17g, \"aniso_min\": %.17g, \"default_max_rel_pct\": %.17g, "
+           "\"default_max_abs\": %.17g, \"n_min\": %.17g, \"n_max\": %.17g,\n",
+           R->smooth_r_max, R->aniso_min, R->default_max_rel_pct, R->default_max_abs, R->n_min, R->n_max);
+    printf(" \"perf_diffuse\": \"%s\", \"perf_fallback\": \"%s\", \"candidates\": [",
+           abrdf_select_model_name(R->perf_diffuse), abrdf_select_model_name(R->perf_fallback));
+    for (int i = 0; i < R->candidate_count; ++i)
+        printf("%s\"%s\"", i ? ", " : "", abrdf_select_model_name(R->candidates[i]));
+    printf("],\n \"rough_diffuse\": \"%s\", \"rough_specular\": \"%s\", \"rough_specular_aniso\": \"%s\", "
+           "\"smooth_diffuse\": \"%s\", \"smooth_specular\": \"%s\",\n \"special\": {",
+           abrdf_select_model_name(R->rough_diffuse), abrdf_select_model_name(R->rough_specular),
+           abrdf_select_model_name(R->rough_specular_aniso), abrdf_select_model_name(R->smooth_diffuse),
+           abrdf_select_model_name(R->smooth_specular));
+    for (int i = 1; i < ABRDF_SURFACE_COUNT; ++i) {
+        printf("%s\"%s\": {\"model\": \"%s\", \"reason\": ", i > 1 ? ", " : "",
+               abrdf_surface_name((abrdf_surface)i), abrdf_select_model_name(R->special[i]));
+        cli_json_string(stdout, R->special_reason[i]);
+        printf("}");
+    }
+    printf("},\n \"nmse_class_max\": [%.17g, %.17g, %.17g], \"table6_f2e\": [",
+           R->nmse_class_max[0], R->nmse_class_max[1], R->nmse_class_max[2]);
+    for (int i = 0; i < R->nmse_rows; ++i)
+        printf("%s[%.17g, %.17g]", i ? ", " : "", R->nmse_alpha_g[i], R->nmse_f2e[i]);
+    printf("]}\n");
 }
 
 /* ---- option values -------------------------------------------------------------------- */
@@ -284,7 +332,7 @@ static void print_json(const abrdf_selection *s, const mat_entry *e, const abrdf
 int cmd_advise(int argc, char **argv)
 {
     const char *name = NULL, *files[MAX_FILES], *costs_file = NULL;
-    int nfiles = 0, list = 0, json = 0;
+    int nfiles = 0, list = 0, json = 0, rules = 0;
     abrdf_goal goal = ABRDF_GOAL_PHOTOREAL;
     abrdf_tolerance tol = {abrdf_select_rules_get()->default_max_rel_pct,
                            abrdf_select_rules_get()->default_max_abs};
@@ -302,6 +350,8 @@ int cmd_advise(int argc, char **argv)
             return 0;
         } else if (!strcmp(a, "--list")) {
             list = 1, takes = 0;
+        } else if (!strcmp(a, "--rules")) {
+            rules = 1, takes = 0;
         } else if (!strcmp(a, "--json")) {
             json = 1, takes = 0;
         } else if (!strcmp(a, "--goal")) {
@@ -351,6 +401,10 @@ int cmd_advise(int argc, char **argv)
         i += takes;
     }
 
+    if (rules) {
+        print_rules(json);
+        return 0;
+    }
     mat_table table = {NULL, 0, 0};
     int rc = load_tables(&table, files, nfiles);
     if (rc) {

@@ -55,7 +55,7 @@ static const abrdf_select_rules rules = {
             "distribution with Fresnel (Eq. 10)",
         [ABRDF_SURFACE_CLOTH_SHINY] = "shiny cloth (silk, satin, velvet): highlight around the "
             "fibre tangent (Eq. 11)",
-        [ABRDF_SURFACE_HAIR] = "hair: microfacet-based R, TT and TRT lobes of an elliptical "
+        [ABRDF_SURFACE_HAIR] = "microfacet-based R, TT and TRT lobes of an elliptical "
             "absorbing fibre (Eqs. 12-14)",
         [ABRDF_SURFACE_LAYERED_PLASTIC] = "plastic under a clear coat: refracted base lobe with "
             "Fresnel transmission and absorption (Eq. 15)",
