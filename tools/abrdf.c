@@ -10,6 +10,7 @@ static const cli_command commands[] = {
     {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
     {"tables", "the paper's Tables 2, 3, 4 recomputed, beside the published values", cmd_tables},
     {"calibrate", "measure ns/eval of every model on this machine; write a cost file", cmd_calibrate},
+    {"export", "write the scene for another renderer (--cycles: Blender/Cycles with OSL)", cmd_export},
     {"advise", "choose the models for a material by the paper's flowchart, and say why", cmd_advise},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])

@@ -47,5 +47,6 @@ int cmd_render(int argc, char **argv);
 int cmd_tables(int argc, char **argv);
 int cmd_calibrate(int argc, char **argv);
 int cmd_advise(int argc, char **argv);
+int cmd_export(int argc, char **argv);
 
 #endif
