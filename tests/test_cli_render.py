@@ -100,6 +100,39 @@ class Render(unittest.TestCase):
         self.assertRegex(r.stdout, r"shadow rays for \d+ of 35 receivers")
         self.assertGreater(counter(r.stdout, "shadow rays"), 0)
 
+    def test_adaptive_robot(self):
+        for goal, specular in (("photoreal", "disney_specular"), ("performance", "lambert + f")):
+            r = run(os.path.join(SCENES, "robot.scene"), "--adaptive", "--goal", goal, "-o", self.path("a.exr"),
+                    "--width", "32", "--height", "32", "--explain")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            m = re.search(r"selection: material 'shell' \(line 11\), goal %s: (.*)" % goal, r.stdout)
+            self.assertIsNotNone(m, r.stdout)
+            self.assertIn(specular, m.group(1))
+            self.assertIn("shell (line 11): %s\n" % m.group(1), r.stdout)  # the plan renders the choice
+            self.assertTrue(os.path.exists(self.path("a.png")))
+
+    def test_material_table_entries(self):
+        scene = self.path("t.scene")
+        with open(scene, "w") as f:
+            f.write("camera position=0,0,4 look_at=0,0,0 resolution=16,16\n"
+                    "light directional direction=0,1,1 intensity=3\n"
+                    "material g table=gold\n"
+                    "material s adaptive goal=photoreal r=0.01 kd=0.2\n"
+                    "sphere material=g radius=1 translate=-1,0,0\n"
+                    "sphere material=s radius=0.5 translate=1,0,0\n")
+        r = run(scene, "-o", self.path("t.exr"), "--explain")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("material 'g' (line 3), goal photoreal, table entry gold: disney_diffuse + disney_specular",
+                      r.stdout)
+        # The paper's smooth branch: alpha <= 0.03 -> Lambert (1 - F) + f_2E.
+        self.assertIn("material 's' (line 4), goal photoreal: lambert_fresnel + f_2e", r.stdout)
+        with open(scene, "a") as f:
+            f.write("material bad table=gld\n")
+        r = run(scene, "-o", self.path("t.exr"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("%s:7: material 'bad': no entry 'gld' in the material table; did you mean: gold" % scene,
+                      r.stderr)
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

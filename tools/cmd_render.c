@@ -8,14 +8,17 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "data_path.h"
 #include "image_io.h"
 #include "render.h"
+#include "scene_select.h"
 
 static int usage(void)
 {
     printf("usage: abrdf render SCENE -o OUT.exr [--width W] [--height H] [--spp N] [--jitter]\n"
            "                    [--model NAME [--set NAME=VALUE ...] | --adaptive --goal G]\n"
-           "                    [--threads N] [--explain] [--stats] [--full] [--no-preview]\n"
+           "                    [--materials FILE ...] [--threads N] [--explain] [--stats]\n"
+           "                    [--full] [--no-preview]\n"
            "                    [--config OCIO] [--display D] [--view V]\n\n"
            "Renders SCENE (docs/SCENES.md) to a linear float image (format from the extension,\n"
            "EXR recommended) and an sRGB PNG preview with the same name (.png).\n"
@@ -25,6 +28,7 @@ static int usage(void)
            "  --model NAME      render every material with this model (shared parameters kept)\n"
            "  --set NAME=VALUE  with --model: set a parameter of every material\n"
            "  --adaptive --goal photoreal|performance   choose models per material (abrdf_select)\n"
+           "  --materials FILE  material-table file merged over data/materials.csv (table= entries)\n"
            "  --threads N       worker threads; default: online CPUs\n"
            "  --explain         print the effect plan (what is simulated and why) and counters\n"
            "  --stats           print the work counters (and the render time on stderr)\n"
@@ -52,8 +56,8 @@ int cmd_render(int argc, char **argv)
 {
     const char *cmd = "render", *path = NULL, *out = NULL, *model_name = NULL, *goal = NULL;
     const char *config = NULL, *display = NULL, *view = NULL;
-    const char *sets[64];
-    int nsets = 0, explain = 0, stats = 0, adaptive = 0, preview = 1;
+    const char *sets[64], *mats[16];
+    int nsets = 0, nmats = 0, explain = 0, stats = 0, adaptive = 0, preview = 1;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     render_options opt = {0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0, 0};
     for (int i = 1; i < argc; ++i) {
@@ -68,7 +72,8 @@ int cmd_render(int argc, char **argv)
         else if (!strcmp(a, "--no-preview")) preview = 0;
         else if (!strcmp(a, "--full")) opt.full = 1;
         else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--goal") || !strcmp(a, "--set") ||
-                 !strcmp(a, "--config") || !strcmp(a, "--display") || !strcmp(a, "--view")) {
+                 !strcmp(a, "--config") || !strcmp(a, "--display") || !strcmp(a, "--view") ||
+                 !strcmp(a, "--materials")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
             if (!strcmp(a, "-o")) out = val;
@@ -77,6 +82,10 @@ int cmd_render(int argc, char **argv)
             else if (!strcmp(a, "--config")) config = val;
             else if (!strcmp(a, "--display")) display = val;
             else if (!strcmp(a, "--view")) view = val;
+            else if (!strcmp(a, "--materials")) {
+                if (nmats == 16) return cli_fail(cmd, "too many --materials files (16 at most)");
+                mats[nmats++] = val;
+            }
             else if (nsets == 64) return cli_fail(cmd, "too many --set options (64 at most)");
             else sets[nsets++] = val;
         } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp") ||
@@ -117,10 +126,28 @@ int cmd_render(int argc, char **argv)
     float *rgb = NULL;
     char *png = NULL;
     render_scene rs;
+    mat_table table = {0};
     int prepared = 0;
-    if (adaptive) {
-        fprintf(stderr, "abrdf render: --adaptive needs abrdf_select and the material table, which "
-                        "this build does not have\n");
+    if (adaptive || scene_needs_table(&s)) {
+        char tpath[1024];
+        if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
+            fprintf(stderr, "abrdf render: material table %s not found (set ABRDF_DATA_DIR)\n", tpath);
+            goto done;
+        }
+        if (mat_table_load(&table, tpath, err, sizeof err)) {
+            fprintf(stderr, "abrdf render: %s\n", err);
+            goto done;
+        }
+    }
+    for (int i = 0; i < nmats; ++i)
+        if (mat_table_load(&table, mats[i], err, sizeof err)) {
+            fprintf(stderr, "abrdf render: %s\n", err);
+            goto done;
+        }
+    abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
+    if (adaptive) abrdf_goal_find(goal, &g);
+    if (scene_select_materials(&s, path, &table, adaptive ? (int)g : -1, explain ? stdout : NULL, err, sizeof err)) {
+        fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
     if (model_name) {
@@ -190,6 +217,7 @@ done:
     if (prepared) render_release(&rs);
     free(png);
     free(rgb);
+    mat_table_free(&table);
     scene_free(&s);
     return rc;
 }

@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "tables.h"
@@ -10,6 +11,8 @@ static const table_gen generators[] = {
     {"2", "maximum relative error (%) of the Table-1 approximations in the highlight zone", tables_error},
     {"3", "maximum absolute error of the Table-1 approximations", tables_error},
     {"4", "cost: the paper's Zen 4 cycles beside ns/eval measured on this machine", tables_cost},
+    {"6", "image experiment: min NMSE over n of f_phe, f_be, f_2e, f_16e vs Disney GGX (robot)", tables_images},
+    {"7", "image experiment: min NMSE over n of f_ge, f_ctphe, f_ct2e, f_ct16e vs Disney GGX", tables_images},
 };
 #define GEN_COUNT (sizeof generators / sizeof generators[0])
 
@@ -22,7 +25,14 @@ static int usage(void)
            "  --paper FILE   published values from FILE instead of the installed data file\n"
            "  --costs FILE   Table 4: ns/eval from a cost file (abrdf calibrate -o FILE)\n"
            "                 instead of measuring now\n"
-           "  --reps N       Table 4: repetitions when measuring now (default 3, quick)\n\n"
+           "  --reps N       Table 4: repetitions when measuring now (default 3, quick)\n"
+           "Tables 6-7 (rendered; docs/TABLES_6_7.md):\n"
+           "  --width W --height H   image size (default 128 x 128)\n"
+           "  --spp N        samples per pixel, a square (default 1: pixel centres)\n"
+           "  --threads N    render threads (default: online CPUs)\n"
+           "  --f0 V         Fresnel F0 of the reference and the Fresnel lobes (default 0.04)\n"
+           "  --kd V         Lambert albedo under the specular (default 0.5; 0: specular only)\n"
+           "  --scene FILE   render another scene than the built-in robot\n\n"
            "tables:\n");
     for (size_t i = 0; i < GEN_COUNT; ++i) printf("  %-3s %s\n", generators[i].id, generators[i].summary);
     return 0;
@@ -32,7 +42,8 @@ int cmd_tables(int argc, char **argv)
 {
     const char *cmd = "tables";
     const char *id = NULL, *paper_path = NULL;
-    tables_opts o = {0, NULL, 3};
+    tables_opts o = {0, NULL, 3, {0}};
+    paper_images_defaults(&o.images);
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         long v;
@@ -49,8 +60,29 @@ int cmd_tables(int argc, char **argv)
             if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, 1000, &v))
                 return cli_fail(cmd, "--reps needs a whole number in [1, 1000]");
             o.reps = (int)v;
+        } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp") ||
+                   !strcmp(a, "--threads")) {
+            long hi = a[2] == 's' ? 4096 : a[2] == 't' ? 64 : 16384;
+            if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, hi, &v))
+                return cli_fail(cmd, "%s needs a whole number in [1, %ld]", a, hi);
+            if (a[2] == 'w') o.images.width = (int)v;
+            else if (a[2] == 'h') o.images.height = (int)v;
+            else if (a[2] == 't') o.images.threads = (int)v;
+            else o.images.spp = (int)v;
+            long k = lround(sqrt((double)v));
+            if (a[2] == 's' && k * k != v) return cli_fail(cmd, "--spp %ld is not a square (1, 4, 9, 16, ...)", v);
+        } else if (!strcmp(a, "--f0") || !strcmp(a, "--kd")) {
+            double d;
+            if (i + 1 >= argc || !cli_parse_double(argv[++i], &d) || d < 0 || d > 1)
+                return cli_fail(cmd, "%s needs a value in [0, 1]", a);
+            if (a[2] == 'f') o.images.f0 = d;
+            else o.images.kd = d;
+        } else if (!strcmp(a, "--scene")) {
+            if (i + 1 >= argc) return cli_fail(cmd, "--scene needs a scene file");
+            o.images.scene_path = argv[++i];
         } else if (a[0] == '-' && a[1]) {
-            return cli_fail(cmd, "unknown option '%s'; options: --csv --markdown --paper --costs --reps", a);
+            return cli_fail(cmd, "unknown option '%s'; options: --csv --markdown --paper --costs --reps "
+                                 "--width --height --spp --threads --f0 --kd --scene", a);
         } else if (!id) {
             id = a;
         } else {
@@ -65,6 +97,7 @@ int cmd_tables(int argc, char **argv)
         if (!strcmp(id, generators[i].id)) gen = &generators[i];
     if (!gen) return cli_fail(cmd, "no table '%s'; available: %s", id, ids);
 
+    o.images.progress = isatty(2);
     paper_data paper;
     char err[1200];
     if (paper_data_load(paper_path, &paper, err, sizeof err) != 0) {

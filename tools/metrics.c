@@ -11,7 +11,7 @@ int abrdf_metrics_compute(const float *test, const float *ref, int width, int he
     *m = (abrdf_metrics){0};
     if (!test || !ref || width <= 0 || height <= 0 || channels <= 0) return ABRDF_METRICS_BAD_ARGS;
     size_t n = (size_t)width * (size_t)height * (size_t)channels;
-    double sse = 0, energy = 0, max_abs = -1;
+    double sse = 0, energy = 0, max_abs = -1, peak = -INFINITY;
     size_t max_i = 0;
     for (size_t i = 0; i < n; ++i) {
         double t = test[i], r = ref[i];
@@ -23,6 +23,7 @@ int abrdf_metrics_compute(const float *test, const float *ref, int width, int he
             return ABRDF_METRICS_NONFINITE;
         }
         double d = t - r;
+        peak = fmax(peak, fmax(t, r));
         sse += d * d;
         energy += r * r;
         if (fabs(d) > max_abs) {
@@ -35,7 +36,9 @@ int abrdf_metrics_compute(const float *test, const float *ref, int width, int he
     m->nmse_defined = energy > 0;
     m->nmse = energy > 0 ? sse / energy : 0;  /* paper Sec. 4, NMSE */
     m->mse = sse / (double)n;
-    m->psnr = m->mse > 0 ? 10 * log10(1 / m->mse) : INFINITY;
+    m->peak = peak;
+    /* Peak = the brightest value present, so that PSNR means something for HDR images too. */
+    m->psnr = !(m->mse > 0) ? INFINITY : peak > 0 ? 10 * log10(peak * peak / m->mse) : -INFINITY;
     m->max_abs = max_abs;
     size_t p = max_i / (size_t)channels;
     m->max_x = (int)(p % (size_t)width);

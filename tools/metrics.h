@@ -20,7 +20,8 @@ typedef struct abrdf_metrics {
     double sse;           /* sum over pixels and channels of (I-R)^2 */
     double ref_energy;    /* sum over pixels and channels of R^2 */
     double mse;           /* sse / (pixels * channels) */
-    double psnr;          /* 10 log10(peak^2 / mse) dB with peak 1 (display white); +inf if mse == 0 */
+    double peak;          /* largest channel value in either image (as OpenImageIO's compare) */
+    double psnr;          /* 10 log10(peak^2 / mse) dB; +inf if mse == 0, -inf if peak <= 0 < mse */
     double max_abs;       /* largest |I - R| over pixels and channels */
     int max_x, max_y;     /* pixel of max_abs (first in row-major order), column x, row y from top */
     int max_c;            /* channel of max_abs (0 R, 1 G, 2 B) */

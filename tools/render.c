@@ -48,8 +48,8 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     for (int i = 0; i < s->material_count; ++i) {
         const scene_material *m = &s->materials[i];
         if (m->kind == SCENE_MAT_TABLE || m->kind == SCENE_MAT_ADAPTIVE) {
-            snprintf(err, err_size, "material '%s' (line %d) is %s; this build has no material "
-                     "table and no abrdf_select, so it cannot be resolved",
+            snprintf(err, err_size, "material '%s' (line %d) is %s and not resolved to models "
+                     "(scene_select_materials)",
                      m->name, m->line, m->kind == SCENE_MAT_TABLE ? "a material-table entry" : "adaptive");
             return -1;
         }

@@ -363,6 +363,7 @@ static int do_material(parser *p, word *w, int n)
         if (abrdf_param_set(&m.params, id, v, cnt) != ABRDF_OK)
             return fail(p, "%s = %s is outside [%g, %g]%s", w[i].key, w[i].val, pi->min, pi->max,
                         pi->kind == ABRDF_PARAM_INT ? " or not a whole number" : "");
+        if (id < 64) m.params_set |= 1ull << id;
     }
     for (int l = 0; l < m.lobe_count; ++l) {
         char msg[256];
@@ -372,6 +373,7 @@ static int do_material(parser *p, word *w, int n)
         kd_used |= abrdf_param_find("kd", &kd_id) == ABRDF_OK && model_uses(m.lobes[l], kd_id);
     }
     /* Default ambient reflectance: the diffuse albedo where the material has one. */
+    m.ka_given = ka_set;
     if (!ka_set && (kd_used || m.kind != SCENE_MAT_MODELS)) memcpy(m.ka, m.params.kd, sizeof m.ka);
     scene_material *grown = realloc(s->materials, (size_t)(s->material_count + 1) * sizeof *grown);
     if (!grown) return fail(p, "out of memory");

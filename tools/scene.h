@@ -47,8 +47,8 @@ typedef struct scene_light {
 /* How a material chooses its models. */
 typedef enum scene_material_kind {
     SCENE_MAT_MODELS = 0, /* explicit: one model, or a diffuse + specular pair */
-    SCENE_MAT_TABLE,      /* a named entry of the material table (resolved by abrdf_select) */
-    SCENE_MAT_ADAPTIVE    /* the selection picks the models for a goal */
+    SCENE_MAT_TABLE,      /* a material-table entry; models chosen by abrdf_select (photoreal) */
+    SCENE_MAT_ADAPTIVE    /* the selection picks the models for a goal (scene_select.h) */
 } scene_material_kind;
 
 #define SCENE_MAX_LOBES 2
@@ -59,7 +59,9 @@ typedef struct scene_material {
     int lobe_count;                     /* SCENE_MAT_MODELS: 1 (model=) or 2 (diffuse=, specular=) */
     abrdf_model lobes[SCENE_MAX_LOBES]; /* summed: f_r = lobes[0] + lobes[1] */
     abrdf_params params;                /* shared by the lobes; defaults of lobes[0], then lobes[1] */
+    unsigned long long params_set;      /* bit `id`: parameter id given in the file (ids < 64) */
     double ka[3];                       /* ambient reflectance: ambient term = ka * scene ambient */
+    int ka_given;                       /* ka given in the file (else it follows kd) */
     char table[SCENE_NAME_MAX];         /* TABLE / ADAPTIVE: material table entry ("" if none) */
     char goal[SCENE_NAME_MAX];          /* ADAPTIVE: "photoreal" or "performance" */
     int line;

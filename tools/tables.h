@@ -5,11 +5,13 @@
 #define ABRDF_TABLES_H
 #include "abrdf.h"
 #include "paper_data.h"
+#include "paper_images.h"
 
 typedef struct tables_opts {
     int csv;                /* 1: CSV, 0: Markdown (default) */
     const char *costs_path; /* Table 4: a cost file instead of measuring now */
     int reps;               /* Table 4: repetitions when measuring now */
+    paper_images_options images; /* Tables 6-7: the rendering set-up */
 } tables_opts;
 
 typedef struct table_gen table_gen;
@@ -43,8 +45,9 @@ void tab_markdown(const tab_grid *g);
  * tag may be NULL (no tag column). */
 void tab_csv(const tab_grid *g, const char *tag_name, const char *tag, int header);
 
-/* The generators (tables_error.c: 2 and 3; tables_cost.c: 4). */
+/* The generators (tables_error.c: 2 and 3; tables_cost.c: 4; paper_images.c: 6 and 7). */
 int tables_error(const table_gen *self, const tables_opts *o, const paper_data *paper);
 int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *paper);
+int tables_images(const table_gen *self, const tables_opts *o, const paper_data *paper);
 
 #endif

@@ -1,0 +1,22 @@
+/* scene_select.h - resolve a scene's material-table and adaptive materials into explicit
+ * models with the paper's flowchart (abrdf_select), before rendering or exporting. */
+#ifndef ABRDF_SCENE_SELECT_H
+#define ABRDF_SCENE_SELECT_H
+
+#include <stdio.h>
+#include "materials.h"
+#include "scene.h"
+
+/* Every SCENE_MAT_TABLE / SCENE_MAT_ADAPTIVE material of s becomes SCENE_MAT_MODELS with the
+ * selection's diffuse + specular models and parameters. force_goal >= 0 (an abrdf_goal)
+ * makes every material adaptive with that goal, explicit ones included (their parameters
+ * describe the material). `table` may be NULL if no material names an entry. If explain is
+ * not NULL, each choice is printed with the selection's trace. Returns 0, or -1 with
+ * "SCENE:LINE: problem" in err. */
+int scene_select_materials(scene *s, const char *scene_name, const mat_table *table,
+                           int force_goal, FILE *explain, char *err, size_t err_size);
+
+/* Does any material need the material table (or does force_goal make them adaptive)? */
+int scene_needs_table(const scene *s);
+
+#endif
