@@ -109,8 +109,16 @@ vector abrdf_to_local(vector v, vector T, vector B, vector N)
     return vector(dot(v, T), dot(v, B), dot(v, N));
 }
 
-// libabrdf's abrdf_frame_make: T by Gram-Schmidt against N; if T is (nearly) parallel to N
-// (|T_perp| <= 1e-6), the world axis least aligned with N.
+// Below this |T_perp| (T and N unit) the tangent is taken as parallel to N. The C library
+// uses 1e-6 in double; in float, T and N computed through transforms carry errors of
+// ~1e-7 each, so a T that is exactly parallel to N (the radial rule on a cylinder's side)
+// leaves |T_perp| ~ 1e-6 of noise, and normalising that noise would give a random frame.
+// 1e-4 keeps such T on the deterministic fallback, as the double-precision C code does.
+#define ABRDF_FRAME_T_PERP_MIN 1e-4
+
+// libabrdf's abrdf_frame_make: T by Gram-Schmidt against N; if T is (nearly) parallel to N,
+// the world axis least aligned with N. A second Gram-Schmidt pass keeps T orthogonal to N
+// to float precision.
 void abrdf_frame_make(vector N, vector T, output vector T_out, output vector B_out)
 {
     vector n = normalize(N);
@@ -120,7 +128,7 @@ void abrdf_frame_make(vector N, vector T, output vector T_out, output vector B_o
     if (tl > 0.0) {
         vector tn = T / tl;
         tt = tn - dot(tn, n) * n;
-        have_t = length(tt) > 1e-6;
+        have_t = length(tt) > ABRDF_FRAME_T_PERP_MIN;
     }
     if (!have_t) {
         vector ax = vector(0);
@@ -129,7 +137,8 @@ void abrdf_frame_make(vector N, vector T, output vector T_out, output vector B_o
         ax[k] = 1.0;
         tt = ax - dot(ax, n) * n;
     }
-    T_out = normalize(tt);
+    tt = normalize(tt);
+    T_out = normalize(tt - dot(tt, n) * n);
     B_out = cross(n, T_out);
 }
 

@@ -7,6 +7,9 @@ Two modes:
            analytic primitives (abrdf_trace.h) and returns the built-in renderer's direct
            lighting as emission (abrdf.h models). Meshes only catch camera rays; a backdrop
            sphere makes every pixel run the shader. The image matches `abrdf render --spp 1`.
+  generic  abrdf_eval.osl, the host-independent evaluation shader, on the meshes with the
+           scene's lights as parameters (one lobe per material, at most four lights, no
+           shadows); exact where the mesh is (boxes), approximate on curved shapes.
   closure  closure mode: meshes with abrdf_material.osl (the models mapped onto Cycles'
            built-in closures), Cycles point/sun lights, path tracing with direct light only.
 
@@ -70,7 +73,10 @@ def shader_material(name, osl_path, inputs=None):
     out = nt.nodes.new("ShaderNodeOutputMaterial")
     node = compile_script_node(nt.nodes.new("ShaderNodeScript"), osl_path)
     for key, value in (inputs or {}).items():
-        node.inputs[key].default_value = value
+        sock = node.inputs[key]
+        if sock.bl_idname == "NodeSocketColor":
+            value = tuple(value) + (1.0,)
+        sock.default_value = value
     nt.links.new(node.outputs["result"], out.inputs["Surface"])
     return mat
 
@@ -141,6 +147,10 @@ def setup_render(sc, s, samples):
     st.color_depth = "32"
     world = bpy.data.worlds.new("black")
     world.color = (0.0, 0.0, 0.0)
+    if world.node_tree is not None:  # a new world's Background node is 0.05 grey: no light
+        for node in world.node_tree.nodes:
+            if node.type == "BACKGROUND":
+                node.inputs["Strength"].default_value = 0.0
     sc.world = world
 
 
@@ -195,6 +205,24 @@ def material_inputs(m):
             "clearcoat_gloss": m["clearcoat_gloss"]}
 
 
+def eval_inputs(s, m):
+    """abrdf_eval.osl's inputs: one lobe, the scene's first four lights, the ambient term."""
+    if len(m["lobes"]) != 1 or len(s["lights"]) > 4:
+        raise ValueError("generic mode: one lobe per material and at most 4 lights")
+    d = material_inputs(m)
+    del d["model2"]
+    d["ka"] = m["ambient"]
+    d["ambient"] = (1.0, 1.0, 1.0)  # ka * Ia is already in "ambient" of the material
+    for k, l in enumerate(s["lights"]):
+        d["light%d_type" % k] = 1 if l["kind"] == "point" else 2
+        d["light%d_position" % k] = l["position"] if l["kind"] == "point" else l["direction"]
+        d["light%d_color" % k] = l["color"]
+        d["light%d_intensity" % k] = l["intensity"]
+    for k in range(len(s["lights"]), 4):
+        d["light%d_type" % k] = 0
+    return d
+
+
 def build(s, mode, workdir, osl_dir, segments=64):
     """Build the scene in an empty file; return the scene datablock."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -212,13 +240,20 @@ def build(s, mode, workdir, osl_dir, segments=64):
             f.write(s["osl"])
         mats = [shader_material("abrdf_eval", path)]
         sc.cycles.max_bounces = 0  # emission seen by the camera only
+    elif mode == "generic":
+        path = os.path.join(workdir, "abrdf_eval.osl")
+        shutil.copy2(os.path.join(osl_dir, "abrdf_eval.osl"), path)
+        for m in s["materials"]:
+            mats.append(shader_material(m["name"], path, eval_inputs(s, m)))
+        sc.cycles.max_bounces = 0
     else:
         path = os.path.join(workdir, "abrdf_material.osl")
         for m in s["materials"]:
             mats.append(shader_material(m["name"], path, material_inputs(m)))
         setup_lights(sc, s)
-        for key in ("diffuse", "glossy", "transmission", "volume", "transparent"):
+        for key in ("diffuse", "glossy", "transmission", "volume", "transparent_max"):
             setattr(sc.cycles, key + "_bounces", 0)
+        sc.cycles.light_sampling_threshold = 0.0  # no light is skipped as too dim
         sc.cycles.max_bounces = 0  # direct light only, as the built-in renderer
     for k, o in enumerate(s["objects"]):
         me = mesh_for(o, segments)
@@ -249,7 +284,7 @@ def main(s, argv=None):
         argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
     ap = argparse.ArgumentParser(description="Render the abrdf scene %s in Cycles" % s["source"])
     ap.add_argument("-o", "--out", default=s["osl_name"] + ".exr", help="linear EXR to write")
-    ap.add_argument("--mode", choices=("eval", "closure"), default=s["mode"])
+    ap.add_argument("--mode", choices=("eval", "closure", "generic"), default=s["mode"])
     ap.add_argument("--samples", type=int, default=s["samples"])
     ap.add_argument("--workdir", default=None, help="where the OSL files are compiled")
     ap.add_argument("--osl-dir", default=s["osl_dir"], help="abrdf's osl/ directory")
