@@ -142,6 +142,21 @@ void abrdf_frame_make(vector N, vector T, output vector T_out, output vector B_o
     B_out = cross(n, T_out);
 }
 
+// The scene format's tangent field rules (docs/SCENES.md) in the host's object space:
+// "u" around the object's y axis, "v" along it, "radial" away from it, "axis" the fixed
+// object-space direction `axis`; any other rule returns `fallback` (e.g. dPdu).
+vector abrdf_tangent_field(string rule, vector axis, point Pw, vector fallback)
+{
+    point p = transform("common", "object", Pw);
+    vector t = vector(0);
+    if (rule == "u") t = vector(-p[2], 0, p[0]);
+    else if (rule == "v") t = vector(0, 1, 0);
+    else if (rule == "radial") t = vector(p[0], 0, p[2]);
+    else if (rule == "axis") t = axis;
+    else return fallback;
+    return transform("object", "common", t);
+}
+
 // ---- diffuse (k_diffuse.h) ----------------------------------------------------------------
 // Lambert, Eq. 1 (Lambert 1760).
 color abrdf_lambert(vector wi, vector wo, color kd)

@@ -243,21 +243,30 @@ def build(s, mode, workdir, osl_dir, segments=64):
     elif mode == "generic":
         path = os.path.join(workdir, "abrdf_eval.osl")
         shutil.copy2(os.path.join(osl_dir, "abrdf_eval.osl"), path)
-        for m in s["materials"]:
-            mats.append(shader_material(m["name"], path, eval_inputs(s, m)))
         sc.cycles.max_bounces = 0
     else:
         path = os.path.join(workdir, "abrdf_material.osl")
-        for m in s["materials"]:
-            mats.append(shader_material(m["name"], path, material_inputs(m)))
         setup_lights(sc, s)
         for key in ("diffuse", "glossy", "transmission", "volume", "transparent_max"):
             setattr(sc.cycles, key + "_bounces", 0)
         sc.cycles.light_sampling_threshold = 0.0  # no light is skipped as too dim
         sc.cycles.max_bounces = 0  # direct light only, as the built-in renderer
+    # generic/closure: one Blender material per (scene material, tangent field), since the
+    # tangent rule belongs to the object and the shader reads it as a parameter.
+    variants = {}
     for k, o in enumerate(s["objects"]):
         me = mesh_for(o, segments)
-        me.materials.append(mats[0] if mode == "eval" else mats[o["material"]])
+        if mode == "eval":
+            mat = mats[0]
+        else:
+            key = (o["material"], o.get("tangent", "u"), tuple(o.get("tangent_axis", (1, 0, 0))))
+            if key not in variants:
+                m = s["materials"][o["material"]]
+                inputs = eval_inputs(s, m) if mode == "generic" else material_inputs(m)
+                inputs["tangent_rule"], inputs["tangent_axis"] = key[1], key[2]
+                variants[key] = shader_material("%s.%d" % (m["name"], len(variants)), path, inputs)
+            mat = variants[key]
+        me.materials.append(mat)
         add_object("%s%d" % (o["shape"], k), me, o)
     if mode == "eval":
         # Backdrop: an inward-facing sphere around everything, so every pixel runs the

@@ -284,6 +284,9 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
         vec3(f, o->rotate_deg);
         fputs(", \"translate\": ", f);
         vec3(f, o->translate);
+        fprintf(f, ", \"tangent\": \"%s\", \"tangent_axis\": ",
+                o->tangent == SCENE_TANGENT_AXIS ? "axis" : scene_tangent_name(o->tangent));
+        vec3(f, o->tangent_axis);
         fprintf(f, ", \"material\": %d},\n", o->material);
     }
     fputs("    ],\n    \"osl\": r\"\"\"", f);
