@@ -295,17 +295,22 @@ def main(s, argv=None):
     ap.add_argument("-o", "--out", default=s["osl_name"] + ".exr", help="linear EXR to write")
     ap.add_argument("--mode", choices=("eval", "closure", "generic"), default=s["mode"])
     ap.add_argument("--samples", type=int, default=s["samples"])
-    ap.add_argument("--workdir", default=None, help="where the OSL files are compiled")
+    ap.add_argument("--workdir", default=None,
+                    help="where the OSL files are copied and compiled; default: a temporary directory")
     ap.add_argument("--osl-dir", default=s["osl_dir"], help="abrdf's osl/ directory")
     ap.add_argument("--threads", type=int, default=0, help="0: Cycles' default")
     ap.add_argument("--build-only", action="store_true", help="build the scene, do not render")
     a = ap.parse_args(argv)
     s = dict(s, samples=a.samples)
-    workdir = a.workdir or tempfile.mkdtemp(prefix="abrdf_cycles_")
+    # A built-only scene keeps its compiled shaders (Cycles reads them at render time).
+    tmp = None if a.workdir or a.build_only else tempfile.TemporaryDirectory(prefix="abrdf_cycles_")
+    workdir = a.workdir or (tmp.name if tmp else tempfile.mkdtemp(prefix="abrdf_cycles_"))
     sc = build(s, a.mode, workdir, a.osl_dir)
     if a.threads > 0:
         sc.render.threads_mode = "FIXED"
         sc.render.threads = a.threads
     if not a.build_only:
         render(sc, a.out)
+    if tmp:
+        tmp.cleanup()
     return sc
