@@ -24,6 +24,7 @@ run: build
 	$(BUILD)/tools/abrdf models
 	$(BUILD)/tools/abrdf eval disney_specular --wi 0.3,0,1 --wo -0.2,0.1,1 --set r=0.3
 	$(BUILD)/tools/abrdf eval f_2e --wi 0.3,0,1 --wo -0.3,0,1 --set n=300
+	$(BUILD)/tools/abrdf render scenes/robot.scene --adaptive --goal photoreal -o $(BUILD)/robot.exr --explain
 
 test: build build-asan
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -11,8 +11,10 @@ ABRDF = os.environ["ABRDF"]
 SCENES = os.environ["SCENES"]
 
 
-def run(*args):
-    return subprocess.run([ABRDF, "render", *args], capture_output=True, text=True)
+def run(*args, preview=False):
+    """abrdf render ARGS; the PNG preview only when a test looks at it (it costs time)."""
+    extra = [] if preview else ["--no-preview"]
+    return subprocess.run([ABRDF, "render", *args, *extra], capture_output=True, text=True)
 
 
 def counter(out, name):
@@ -34,7 +36,8 @@ class Render(unittest.TestCase):
         return os.path.join(self.dir, name)
 
     def test_writes_exr_and_png_preview(self):
-        r = run(os.path.join(SCENES, "sphere.scene"), "-o", self.path("s.exr"), "--width", "32", "--height", "24")
+        r = run(os.path.join(SCENES, "sphere.scene"), "-o", self.path("s.exr"), "--width", "32", "--height", "24",
+                preview=True)
         self.assertEqual(r.returncode, 0, r.stderr)
         with open(self.path("s.exr"), "rb") as f:
             self.assertEqual(f.read(4), b"\x76\x2f\x31\x01")  # OpenEXR magic
@@ -46,7 +49,7 @@ class Render(unittest.TestCase):
         outs = []
         for t in ("1", "2"):
             r = run(robot, "-o", self.path("r%s.exr" % t), "--width", "48", "--height", "48",
-                    "--threads", t, "--stats", "--no-preview")
+                    "--threads", t, "--stats")
             self.assertEqual(r.returncode, 0, r.stderr)
             outs.append(r.stdout)
             self.assertFalse(os.path.exists(self.path("r%s.png" % t)))
@@ -103,7 +106,7 @@ class Render(unittest.TestCase):
     def test_adaptive_robot(self):
         for goal, specular in (("photoreal", "disney_specular"), ("performance", "lambert + f")):
             r = run(os.path.join(SCENES, "robot.scene"), "--adaptive", "--goal", goal, "-o", self.path("a.exr"),
-                    "--width", "32", "--height", "32", "--explain")
+                    "--width", "32", "--height", "32", "--explain", preview=True)
             self.assertEqual(r.returncode, 0, r.stderr)
             m = re.search(r"selection: material 'shell' \(line 11\), goal %s: (.*)" % goal, r.stdout)
             self.assertIsNotNone(m, r.stdout)

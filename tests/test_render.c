@@ -22,9 +22,10 @@ static result render_text_at(const char *text, int spp, int threads, int size, i
     scene s;
     char err[512];
     ck_assert_msg(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
-    render_options opt = {size, size, spp, 0, threads, 0, full};
+    render_options opt = {size, size, spp, 0, threads, 0};
     render_scene rs;
     ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
+    if (full) ck_assert_int_eq(render_plan_ignore(&rs), 0);
     result r = {rs.width, rs.height, malloc((size_t)rs.width * rs.height * 3 * sizeof(float)), {0}};
     ck_assert_ptr_nonnull(r.rgb);
     ck_assert_int_eq(render_image(&rs, &opt, r.rgb, &r.st), 0);
@@ -55,6 +56,32 @@ START_TEST(lambert_centre_pixel_directional)
     }
     /* The corner sees no object: black background. */
     ck_assert(pixel(&r, 0, 0)[0] == 0.0f);
+    free(r.rgb);
+}
+END_TEST
+
+/* A diffuse + specular pair is the paper's I = ka Ia + Il cos (f_d + f_s): the centre pixel
+ * equals abrdf_shade for the same directions. */
+START_TEST(pair_matches_abrdf_shade)
+{
+    const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
+                       "light directional direction=0.3,0.4,0.8660254037844386 color=1,0.8,0.6 intensity=2\n"
+                       "ambient 0.05\n"
+                       "material m diffuse=disney_diffuse specular=disney_specular kd=0.4,0.3,0.2 r=0.35 f0=0.9\n"
+                       "sphere material=m radius=1\n";
+    result r = render_text(text, 1, 2);
+    abrdf_params p;
+    abrdf_params_init(ABRDF_DISNEY_DIFFUSE, &p);
+    p.kd[0] = 0.4, p.kd[1] = 0.3, p.kd[2] = 0.2;
+    p.r = 0.35;
+    p.f0[0] = p.f0[1] = p.f0[2] = 0.9;
+    double wi[3] = {0.3, 0.4, 0.8660254037844386}, wo[3] = {0, 0, 1}, light[3] = {2, 1.6, 1.2};
+    double l = sqrt(wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2]);
+    for (int c = 0; c < 3; ++c) wi[c] /= l;
+    double ambient[3] = {0.4 * 0.05, 0.3 * 0.05, 0.2 * 0.05}, want[3];
+    ck_assert_int_eq(abrdf_shade(ABRDF_DISNEY_DIFFUSE, ABRDF_DISNEY_SPECULAR, &p, NULL, wi, wo, light, ambient, want), ABRDF_OK);
+    for (int c = 0; c < 3; ++c)
+        ck_assert_msg(tu_close(pixel(&r, 16, 16)[c], want[c], 1e-6, 0), "c%d %.9g vs %.9g", c, pixel(&r, 16, 16)[c], want[c]);
     free(r.rgb);
 }
 END_TEST
@@ -98,6 +125,43 @@ START_TEST(box_filter_matches_camera_model)
 }
 END_TEST
 
+/* The pixel footprint as other renderers can reproduce it: k x k strata centres of a W x H
+ * image are the pixel centres of a kW x kH image, so averaging k x k blocks of the larger
+ * one-sample image gives the supersampled image. */
+START_TEST(strata_centres_equal_block_average_of_larger_image)
+{
+    const char *text = "camera position=0.3,0.2,4 look_at=0,0,0 fov=30 resolution=7,5\n"
+                       "light directional direction=1,1,1\n"
+                       "material m diffuse=lambert specular=disney_specular kd=0.5 r=0.3\n"
+                       "sphere material=m radius=1\n";
+    scene s;
+    char err[256];
+    ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
+    render_options small = {7, 5, 9, 0, 2, 0}, big = {21, 15, 1, 0, 2, 0};
+    float a[7 * 5 * 3], b[21 * 15 * 3];
+    render_scene rs;
+    ck_assert(render_prepare(&s, &small, &rs, err, sizeof err) == 0);
+    ck_assert(render_image(&rs, &small, a, NULL) == 0);
+    render_release(&rs);
+    ck_assert(render_prepare(&s, &big, &rs, err, sizeof err) == 0);
+    ck_assert(render_image(&rs, &big, b, NULL) == 0);
+    render_release(&rs);
+    int nonzero = 0;
+    for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 7; ++i)
+            for (int c = 0; c < 3; ++c) {
+                double sum = 0;
+                for (int y = 0; y < 3; ++y)
+                    for (int x = 0; x < 3; ++x) sum += b[3 * ((3 * j + y) * 21 + 3 * i + x) + c];
+                float v = a[3 * (j * 7 + i) + c];
+                nonzero += v > 0;
+                ck_assert_msg(tu_close(v, sum / 9, 1e-6, 1e-12), "(%d,%d) %.9g vs %.9g", i, j, v, sum / 9);
+            }
+    ck_assert(nonzero > 10);
+    scene_free(&s);
+}
+END_TEST
+
 static char *read_file(const char *path)
 {
     FILE *f = fopen(path, "rb");
@@ -123,7 +187,7 @@ START_TEST(bit_identical_for_any_thread_count)
     render_stats st[3];
     int threads[3] = {1, 2, 2};
     for (int k = 0; k < 3; ++k) {
-        render_options opt = {64, 64, 4, k == 2, threads[k], 0, 0};
+        render_options opt = {64, 64, 4, k == 2, threads[k], 0};
         render_scene rs;
         ck_assert(render_prepare(&s, &opt, &rs, err, sizeof err) == 0);
         img[k] = malloc(64 * 64 * 3 * sizeof(float));
@@ -159,6 +223,8 @@ START_TEST(robot_casts_shadow_rays_and_shadows_darken)
     load_robot();
     result r = render_text_at(robot, 1, 2, 128, 0);
     ck_assert(r.st.shadow_rays > 0 && r.st.occluder_tests >= r.st.shadow_rays);
+    /* Primary rays test only the objects whose bounds project onto their pixel. */
+    ck_assert(r.st.primary_tests * 4 < r.st.primary_rays * 35);
     ck_assert_uint_eq(r.st.tangent_frames, 0);
     ck_assert_uint_eq(r.st.ambient_terms, r.st.hits);
     /* Some lit samples are blocked: fewer BRDF evaluations than lit samples would need. */
@@ -178,8 +244,10 @@ static void expect_plan_is_exact(const char *text, int size)
     for (size_t k = 0; k < (size_t)a.w * a.h * 3; ++k)
         worst = fmax(worst, fabs(a.rgb[k] - b.rgb[k]) / fmax(1e-3, fabs(b.rgb[k])));
     ck_assert_msg(worst < 1e-5, "planned vs full render: rel diff %g", worst);
-    ck_assert(b.st.occluder_tests > a.st.occluder_tests);
-    ck_assert(b.st.tangent_frames > a.st.tangent_frames);
+    ck_assert_uint_eq(a.st.hits, b.st.hits); /* primary visibility is exact */
+    ck_assert(b.st.primary_tests >= a.st.primary_tests);
+    ck_assert(b.st.occluder_tests >= a.st.occluder_tests);
+    ck_assert(b.st.tangent_frames >= a.st.tangent_frames);
     free(a.rgb);
     free(b.rgb);
 }
@@ -190,6 +258,19 @@ START_TEST(plan_changes_no_pixel)
     expect_plan_is_exact(robot, 96);
     expect_plan_is_exact(read_file(SCENES_DIR "/sphere.scene"), 64);
     expect_plan_is_exact(read_file(FUZZ_CORPUS "/shapes.scene"), 64);
+    /* Culling at the image edges and behind the eye: a wide view from inside a ring of
+     * objects, one of them around the eye, one straddling the image plane's side. */
+    expect_plan_is_exact("camera position=0,0,0 look_at=0,0,-1 fov=150 resolution=40,30\n"
+                         "light point position=0,3,0 intensity=20\n"
+                         "ambient 0.1\n"
+                         "material m diffuse=lambert specular=disney_specular_aniso r=0.3 anisotropic=0.5\n"
+                         "sphere material=m radius=1 translate=0,0,-3\n"
+                         "sphere material=m radius=1 translate=0,0,3\n"
+                         "box material=m size=1,1,1 translate=4,0,-0.2\n"
+                         "capsule material=m radius=0.5 height=4 rotate=0,0,90 translate=-3,-1,0.4\n"
+                         "cylinder material=m radius=0.3 height=1 translate=0,5,-0.5\n"
+                         "box material=m size=20,20,20 translate=0,0,0\n",
+                         40);
 }
 END_TEST
 
@@ -274,10 +355,22 @@ START_TEST(unresolvable_materials_are_refused)
     scene s;
     char err[512];
     ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
-    render_options opt = {8, 8, 1, 0, 1, 0, 0};
+    render_options opt = {8, 8, 1, 0, 1, 0};
     render_scene rs;
     ck_assert_int_eq(render_prepare(&s, &opt, &rs, err, sizeof err), -1);
     ck_assert_ptr_nonnull(strstr(err, "adaptive"));
+    /* spp must be a square: 3 samples cannot form a k x k grid of strata. */
+    s.materials[0].kind = SCENE_MAT_MODELS;
+    s.materials[0].lobe_count = 1;
+    s.materials[0].lobes[0] = ABRDF_LAMBERT;
+    abrdf_params_init(ABRDF_LAMBERT, &s.materials[0].params);
+    ck_assert_int_eq(render_prepare(&s, &opt, &rs, err, sizeof err), 0);
+    float rgb[8 * 8 * 3];
+    opt.spp = 3;
+    ck_assert_int_eq(render_image(&rs, &opt, rgb, NULL), -1);
+    opt.spp = 4;
+    ck_assert_int_eq(render_image(&rs, &opt, rgb, NULL), 0);
+    render_release(&rs);
     scene_free(&s);
 }
 END_TEST
@@ -287,9 +380,11 @@ static Suite *suite(void)
     Suite *s = suite_create("render");
     TCase *tv = tcase_create("values");
     tcase_add_test(tv, lambert_centre_pixel_directional);
+    tcase_add_test(tv, pair_matches_abrdf_shade);
     tcase_add_test(tv, point_light_falls_off_with_distance_squared);
     tcase_add_test(tv, box_filter_matches_camera_model);
     tcase_add_test(tv, bit_identical_for_any_thread_count);
+    tcase_add_test(tv, strata_centres_equal_block_average_of_larger_image);
     tcase_set_timeout(tv, 120);
     suite_add_tcase(s, tv);
     TCase *tp = tcase_create("plan");

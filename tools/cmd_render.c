@@ -32,7 +32,7 @@ static int usage(void)
            "  --threads N       worker threads; default: online CPUs\n"
            "  --explain         print the effect plan (what is simulated and why) and counters\n"
            "  --stats           print the work counters (and the render time on stderr)\n"
-           "  --full            ignore the effect plan: shadow rays to every object, tangent\n"
+           "  --full            ignore the effect plan: every ray tests every object, tangent\n"
            "                    frames and ambient everywhere (to measure what the plan saves)\n"
            "  --config/--display/--view   OpenColorIO preview transform (default: built-in sRGB)\n");
     return 0;
@@ -57,9 +57,9 @@ int cmd_render(int argc, char **argv)
     const char *cmd = "render", *path = NULL, *out = NULL, *model_name = NULL, *goal = NULL;
     const char *config = NULL, *display = NULL, *view = NULL;
     const char *sets[64], *mats[16];
-    int nsets = 0, nmats = 0, explain = 0, stats = 0, adaptive = 0, preview = 1;
+    int full = 0, nsets = 0, nmats = 0, explain = 0, stats = 0, adaptive = 0, preview = 1;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    render_options opt = {0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0, 0};
+    render_options opt = {0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0};
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -70,7 +70,7 @@ int cmd_render(int argc, char **argv)
         else if (!strcmp(a, "--jitter")) opt.jitter = 1;
         else if (!strcmp(a, "--adaptive")) adaptive = 1;
         else if (!strcmp(a, "--no-preview")) preview = 0;
-        else if (!strcmp(a, "--full")) opt.full = 1;
+        else if (!strcmp(a, "--full")) full = 1;
         else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--goal") || !strcmp(a, "--set") ||
                  !strcmp(a, "--config") || !strcmp(a, "--display") || !strcmp(a, "--view") ||
                  !strcmp(a, "--materials")) {
@@ -172,6 +172,10 @@ int cmd_render(int argc, char **argv)
         goto done;
     }
     prepared = 1;
+    if (full && render_plan_ignore(&rs)) {
+        fprintf(stderr, "abrdf render: out of memory\n");
+        goto done;
+    }
     if (explain) render_explain(&rs, &opt, stdout);
     rgb = malloc((size_t)rs.width * (size_t)rs.height * 3 * sizeof *rgb);
     if (!rgb) {
@@ -183,7 +187,7 @@ int cmd_render(int argc, char **argv)
     clock_t c0 = clock();
     clock_gettime(CLOCK_MONOTONIC, &t0);
     if (render_image(&rs, &opt, rgb, &st)) {
-        fprintf(stderr, "abrdf render: cannot start threads\n");
+        fprintf(stderr, "abrdf render: --spp %d is not a square\n", opt.spp);
         goto done;
     }
     clock_gettime(CLOCK_MONOTONIC, &t1);
@@ -194,7 +198,7 @@ int cmd_render(int argc, char **argv)
         fflush(stdout);
         /* CPU time (all threads) is robust on a shared machine; wall time shows the threads. */
         fprintf(stderr, "abrdf render: %dx%d, %d spp, %d threads%s: %.3f s wall, %.3f s CPU (ray tracing only)\n",
-                rs.width, rs.height, opt.spp, opt.threads, opt.full ? ", --full" : "",
+                rs.width, rs.height, opt.spp, opt.threads, full ? ", --full" : "",
                 (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec), cpu);
     }
     if (abrdf_image_write_linear(out, rs.width, rs.height, rgb, err, sizeof err)) {

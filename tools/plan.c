@@ -1,11 +1,11 @@
-/* plan.c - the effect plan: before rendering, decide which work the scene needs (shadow
- * rays per light and receiver, tangent frames, Fresnel, layers, integration, ambient) and
- * explain why. The renderer does only what is planned (render.c). */
+/* plan.c - the effect plan: before rendering, decide which work the scene needs (objects
+ * per pixel, shadow rays per light and receiver, tangent frames, Fresnel, layers,
+ * integration, ambient) and explain why. The renderer does only what is planned (render.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "render.h"
+#include "plan.h"
 
 static void sub3(const double a[3], const double b[3], double o[3])
 {
@@ -43,10 +43,8 @@ static int may_occlude(const render_scene *rs, const render_light *l, int i, int
     return d <= a->bound + b->bound;
 }
 
-int abrdf__render_plan_shadows(render_scene *rs);
-
 /* Build occ_start/occ; returns 0 or -1 on allocation failure. */
-int abrdf__render_plan_shadows(render_scene *rs)
+int plan_shadows(render_scene *rs)
 {
     int n = rs->object_count, nl = rs->light_count;
     rs->occ_start = calloc((size_t)nl * (size_t)n + 1, sizeof *rs->occ_start);
@@ -89,10 +87,83 @@ int abrdf__render_plan_shadows(render_scene *rs)
     return 0;
 }
 
-/* Material part of the plan. */
-void abrdf__render_plan_material(render_material *m, const double ia[3], const double ka[3]);
+/* Conservative range [lo, hi] of raster coordinate (along an image axis) that can see a
+ * ball: its centre in camera coordinates has lateral offset c and depth z; slope = c/z of
+ * the tangents from the eye, in the plane of that axis and the view direction (the ball
+ * projects onto that plane as a disc of the same radius). `scale` is the plane's half-size
+ * (a h or h), `size` the image size in pixels, `flip` for y (raster y grows downward).
+ * Returns 0 if no ray in front of the eye can reach the ball. */
+static int raster_range(double c, double z, double r, double scale, int size, int flip, int *lo, int *hi)
+{
+    const double HALF_PI = 1.5707963267948966;
+    double d = sqrt(c * c + z * z);
+    *lo = 0, *hi = size - 1;
+    if (d <= r) return 1; /* the eye is inside the ball's projection: every pixel */
+    double th = atan2(c, z), del = asin(r / d);
+    double a0 = th - del, a1 = th + del;
+    if (a0 >= HALF_PI || a1 <= -HALF_PI) return 0; /* behind the eye */
+    /* Plane coordinate p = tan(angle)/scale in [-1, 1] across the image; +-1e6 is "beyond". */
+    double p0 = a0 <= -HALF_PI ? -1e6 : fmax(-1e6, tan(a0) / scale);
+    double p1 = a1 >= HALF_PI ? 1e6 : fmin(1e6, tan(a1) / scale);
+    if (flip) {
+        double t = -p0;
+        p0 = -p1, p1 = t;
+    }
+    /* raster x = (p + 1) size / 2; one pixel of margin for rounding. */
+    double x0 = floor((p0 + 1.0) * 0.5 * size) - 1.0, x1 = floor((p1 + 1.0) * 0.5 * size) + 1.0;
+    if (x1 < 0 || x0 > size - 1) return 0;
+    *lo = x0 < 0 ? 0 : (int)x0;
+    *hi = x1 > size - 1 ? size - 1 : (int)x1;
+    return 1;
+}
 
-void abrdf__render_plan_material(render_material *m, const double ia[3], const double ka[3])
+/* Per-row lists of the objects primary rays can hit; cull = 0 lists every object
+ * everywhere (render_plan_ignore). Returns 0 or -1 on allocation failure. */
+int plan_visibility(render_scene *rs, int cull)
+{
+    int n = rs->object_count, H = rs->height, W = rs->width;
+    int *rows = malloc(2 * (size_t)n * sizeof *rows);
+    int *cols = malloc(2 * (size_t)n * sizeof *cols + 1);
+    int *start = calloc((size_t)H + 1, sizeof *start);
+    if (!rows || !cols || !start) {
+        free(rows), free(cols), free(start);
+        return -1;
+    }
+    double a = (double)W / H, h = sqrt(geom_dot(rs->up, rs->up));
+    double rhat[3], uhat[3];
+    for (int c = 0; c < 3; ++c) rhat[c] = rs->right[c] / (a * h), uhat[c] = rs->up[c] / h;
+    size_t total = 0;
+    for (int k = 0; k < n; ++k) {
+        const geom_object *g = &rs->objects[k];
+        double v[3];
+        sub3(g->center, rs->eye, v);
+        double z = geom_dot(v, rs->forward);
+        int seen = 1;
+        rows[2 * k] = 0, rows[2 * k + 1] = H - 1, cols[2 * k] = 0, cols[2 * k + 1] = W - 1;
+        if (cull)
+            seen = raster_range(geom_dot(v, uhat), z, g->bound, h, H, 1, &rows[2 * k], &rows[2 * k + 1]) &&
+                   raster_range(geom_dot(v, rhat), z, g->bound, a * h, W, 0, &cols[2 * k], &cols[2 * k + 1]);
+        if (!seen) rows[2 * k] = 1, rows[2 * k + 1] = 0; /* empty */
+        for (int j = rows[2 * k]; j <= rows[2 * k + 1]; ++j) ++start[j + 1], ++total;
+    }
+    for (int j = 0; j < H; ++j) start[j + 1] += start[j];
+    int *list = malloc((total ? total : 1) * sizeof *list), *fill = malloc(((size_t)H + 1) * sizeof *fill);
+    if (!list || !fill) {
+        free(rows), free(cols), free(start), free(list), free(fill);
+        return -1;
+    }
+    memcpy(fill, start, ((size_t)H + 1) * sizeof *fill);
+    for (int k = 0; k < n; ++k) /* object order within each row: ties resolve as without culling */
+        for (int j = rows[2 * k]; j <= rows[2 * k + 1]; ++j) list[fill[j]++] = k;
+    free(fill);
+    free(rows);
+    free(rs->vis_start), free(rs->vis), free(rs->vis_cols);
+    rs->vis_start = start, rs->vis = list, rs->vis_cols = cols;
+    return 0;
+}
+
+/* Material part of the plan. */
+void plan_material(render_material *m, const double ia[3], const double ka[3])
 {
     m->needs = 0;
     m->use_tangent = 0;
@@ -126,6 +197,23 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
     int n = rs->object_count;
     fprintf(f, "effect plan: %d objects, %d lights, %d materials, %dx%d, %d spp, %d threads\n",
             n, rs->light_count, rs->material_count, rs->width, rs->height, opt->spp, opt->threads);
+    if (rs->full) {
+        fprintf(f, "--full: the plan below is ignored; camera and shadow rays test every object, "
+                   "every material builds tangent frames and adds the ambient term\n");
+    }
+    fprintf(f, "primary rays: %s\n",
+            rs->full ? "every object tested for every pixel"
+                     : "a pixel tests only the objects whose bounding sphere projects onto it");
+    if (!rs->full) {
+        long long covered = 0;
+        for (int j = 0; j < rs->height; ++j)
+            for (int q = rs->vis_start[j]; q < rs->vis_start[j + 1]; ++q) {
+                int k = rs->vis[q];
+                covered += rs->vis_cols[2 * k + 1] - rs->vis_cols[2 * k] + 1;
+            }
+        fprintf(f, "  %.2f of %d objects per pixel on average\n",
+                (double)covered / ((double)rs->width * rs->height), n);
+    }
     fprintf(f, "shadows:\n");
     for (int l = 0; l < rs->light_count; ++l) {
         const render_light *lt = &rs->lights[l];

@@ -10,10 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render.h"
-
-int abrdf__render_plan_shadows(render_scene *rs);
-void abrdf__render_plan_material(render_material *m, const double ia[3], const double ka[3]);
+#include "plan.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
@@ -37,6 +34,9 @@ void render_release(render_scene *rs)
     free(rs->lights);
     free(rs->occ_start);
     free(rs->occ);
+    free(rs->vis_start);
+    free(rs->vis);
+    free(rs->vis_cols);
     memset(rs, 0, sizeof *rs);
 }
 
@@ -91,7 +91,7 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         m->lobe_count = sm->lobe_count;
         memcpy(m->lobes, sm->lobes, sizeof m->lobes);
         m->params = sm->params;
-        abrdf__render_plan_material(m, s->ambient, sm->ka);
+        plan_material(m, s->ambient, sm->ka);
     }
     for (int l = 0; l < s->light_count; ++l) {
         const scene_light *sl = &s->lights[l];
@@ -101,22 +101,27 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         memcpy(rl->direction, sl->direction, sizeof rl->direction);
         for (int k = 0; k < 3; ++k) rl->e[k] = sl->color[k] * sl->intensity;
     }
-    if (abrdf__render_plan_shadows(rs)) goto oom;
-    if (opt->full) { /* the naive renderer the plan is measured against */
-        for (int i = 0; i < rs->material_count; ++i) rs->materials[i].use_tangent = rs->materials[i].use_ambient = 1;
-        int n = rs->object_count;
-        for (int k = 0; k <= rs->light_count * n; ++k) rs->occ_start[k] = k;
-        int *all = realloc(rs->occ, ((size_t)rs->light_count * n + 1) * sizeof *all);
-        if (!all) goto oom;
-        rs->occ = all;
-        for (int k = 0; k < rs->light_count * n; ++k) all[k] = -1; /* test every object */
-        for (int l = 0; l < rs->light_count; ++l) rs->lights[l].shadow_receivers = n;
-    }
+    if (plan_shadows(rs) || plan_visibility(rs, 1)) goto oom;
     return 0;
 oom:
     render_release(rs);
     snprintf(err, err_size, "out of memory");
     return -1;
+}
+
+int render_plan_ignore(render_scene *rs)
+{
+    int n = rs->object_count, pairs = rs->light_count * n;
+    if (plan_visibility(rs, 0)) return -1;
+    int *all = malloc(((size_t)pairs + 1) * sizeof *all);
+    if (!all) return -1;
+    for (int k = 0; k < pairs; ++k) all[k] = -1; /* -1: test every object */
+    for (int k = 0; k <= pairs; ++k) rs->occ_start[k] = k;
+    free(rs->occ);
+    rs->occ = all;
+    for (int i = 0; i < rs->material_count; ++i) rs->materials[i].full = 1;
+    rs->full = 1;
+    return 0;
 }
 
 int render_set_model(scene *s, abrdf_model model, char *err, size_t err_size)
@@ -165,16 +170,21 @@ typedef struct worker {
     int *next_row, *rows_done;
 } worker;
 
-static int closest_hit(const render_scene *rs, const double o[3], const double d[3], double *t,
-                       double n[3])
+/* Closest hit of a camera ray through pixel (i, j): only the objects the plan lists for
+ * row j and whose column range holds i. */
+static int closest_hit(const render_scene *rs, int i, int j, const double o[3], const double d[3],
+                       double *t, double n[3], render_stats *st)
 {
     int best = -1;
     double tmax = INFINITY;
-    for (int i = 0; i < rs->object_count; ++i) {
+    for (int q = rs->vis_start[j]; q < rs->vis_start[j + 1]; ++q) {
+        int k = rs->vis[q];
+        if (i < rs->vis_cols[2 * k] || i > rs->vis_cols[2 * k + 1]) continue;
         double ti, ni[3];
-        if (geom_intersect(&rs->objects[i], o, d, 0.0, tmax, &ti, ni)) {
+        ++st->primary_tests;
+        if (geom_intersect(&rs->objects[k], o, d, 0.0, tmax, &ti, ni)) {
             tmax = ti;
-            best = i;
+            best = k;
             memcpy(n, ni, sizeof ni);
         }
     }
@@ -222,7 +232,8 @@ static void shade(const render_scene *rs, int obj, const double p[3], const doub
     const scene_object *so = &rs->src->objects[obj];
     const render_material *m = &rs->materials[so->material];
     out[0] = out[1] = out[2] = 0;
-    if (m->use_ambient) {
+    int tangent = m->use_tangent || m->full;
+    if (m->use_ambient || m->full) {
         for (int c = 0; c < 3; ++c) out[c] = m->ambient[c];
         ++st->ambient_terms;
     }
@@ -257,16 +268,16 @@ static void shade(const render_scene *rs, int obj, const double p[3], const doub
             ++st->shadow_rays_skipped;
         }
         double f[3] = {0, 0, 0}, fl[3], li[3], lo[3];
-        if (m->use_tangent && !have_frame) {
+        if (tangent && !have_frame) {
             double t[3];
             geom_tangent(so, &rs->objects[obj].xf, p, t);
             abrdf_frame_make(n, t, &frame);
             have_frame = 1;
             ++st->tangent_frames;
         }
-        if (!m->use_tangent) iso_local(n, wi, wo, li, lo);
+        if (!tangent) iso_local(n, wi, wo, li, lo);
         for (int k = 0; k < m->lobe_count; ++k) {
-            if (m->use_tangent) abrdf_eval(m->lobes[k], &m->params, &frame, wi, wo, fl);
+            if (tangent) abrdf_eval(m->lobes[k], &m->params, &frame, wi, wo, fl);
             else abrdf_eval_local(m->lobes[k], &m->params, li, lo, fl);
             unsigned needs = abrdf_model_get(m->lobes[k])->needs;
             ++st->brdf_evals;
@@ -310,7 +321,7 @@ static void render_row(const render_scene *rs, const render_options *opt, int j,
                 normalize(d);
                 ++st->primary_rays;
                 double t, n[3];
-                int obj = closest_hit(rs, rs->eye, d, &t, n);
+                int obj = closest_hit(rs, i, j, rs->eye, d, &t, n, st);
                 if (obj < 0) continue; /* background is black */
                 ++st->hits;
                 double p[3], wo[3] = {-d[0], -d[1], -d[2]}, L[3];
@@ -354,6 +365,7 @@ static void *work(void *arg)
 static void add_stats(render_stats *a, const render_stats *b)
 {
     a->primary_rays += b->primary_rays;
+    a->primary_tests += b->primary_tests;
     a->hits += b->hits;
     a->shadow_rays += b->shadow_rays;
     a->shadow_rays_skipped += b->shadow_rays_skipped;
@@ -369,18 +381,17 @@ static void add_stats(render_stats *a, const render_stats *b)
 int render_image(const render_scene *rs, const render_options *opt, float *rgb,
                  render_stats *stats)
 {
+    long k = lround(sqrt((double)opt->spp));
+    if (opt->spp < 1 || k * k != opt->spp) return -1; /* strata form a k x k grid */
     int nt = opt->threads < 1 ? 1 : opt->threads > 64 ? 64 : opt->threads;
     worker w[64];
     pthread_t th[64];
     pthread_mutex_t lock;
-    int next_row = 0, rows_done = 0, started = 0, st = 0;
+    int next_row = 0, rows_done = 0, started = 0;
     if (pthread_mutex_init(&lock, NULL)) return -1;
     for (int t = 0; t < nt; ++t) {
         w[t] = (worker){rs, opt, rgb, {0}, &lock, &next_row, &rows_done};
-        if (t > 0 && pthread_create(&th[t], NULL, work, &w[t])) {
-            st = -1;
-            break;
-        }
+        if (t > 0 && pthread_create(&th[t], NULL, work, &w[t])) break;
         started = t + 1;
     }
     work(&w[0]); /* the calling thread works too; rows left by failed starts are done here */
@@ -390,18 +401,18 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb,
         memset(stats, 0, sizeof *stats);
         for (int t = 0; t < started; ++t) add_stats(stats, &w[t].stats);
     }
-    return st == 0 || next_row >= rs->height ? 0 : -1;
+    return 0;
 }
 
 void render_stats_print(const render_stats *s, FILE *f)
 {
     fprintf(f, "counters:\n"
-               "  primary rays        %llu\n  hits                %llu\n"
+               "  primary rays        %llu\n  primary tests       %llu\n  hits                %llu\n"
                "  shadow rays         %llu\n  shadow rays skipped %llu (plan: unoccludable)\n"
                "  occluder tests      %llu\n  tangent frames      %llu\n"
                "  brdf evals          %llu\n  fresnel evals       %llu\n"
                "  layer evals         %llu\n  integration evals   %llu\n  ambient terms       %llu\n",
-            s->primary_rays, s->hits, s->shadow_rays, s->shadow_rays_skipped, s->occluder_tests,
+            s->primary_rays, s->primary_tests, s->hits, s->shadow_rays, s->shadow_rays_skipped, s->occluder_tests,
             s->tangent_frames, s->brdf_evals, s->fresnel_evals, s->layer_evals,
             s->integration_evals, s->ambient_terms);
 }

@@ -17,6 +17,7 @@
  *   render_image        render linear RGB into a caller's buffer (threads, deterministic)
  *   render_stats_print  print the work counters
  *   render_set_model    replace every material's models by one model (CLI --model)
+ *   render_plan_ignore  do every effect everywhere (to measure the plan against)
  *   render_release      free what render_prepare allocated
  */
 #ifndef ABRDF_RENDER_H
@@ -28,6 +29,7 @@
 /* Work counters: what the renderer actually did. */
 typedef struct render_stats {
     unsigned long long primary_rays;
+    unsigned long long primary_tests;       /* ray/object tests made by primary rays */
     unsigned long long hits;
     unsigned long long shadow_rays;         /* cast: the plan lists an occluder */
     unsigned long long shadow_rays_skipped; /* lit samples the plan proved unoccludable */
@@ -50,6 +52,7 @@ typedef struct render_material {
     int use_tangent;     /* some lobe needs a tangent frame (and is not isotropic here) */
     unsigned needs;      /* union of the lobes' ABRDF_NEEDS_* */
     int used;            /* some object uses it */
+    int full;            /* render_plan_ignore: frames and ambient regardless of the plan */
 } render_material;
 
 typedef struct render_light {
@@ -73,6 +76,11 @@ typedef struct render_scene {
     /* Occluder candidates of (light l, receiver i): occ[occ_start[l*N+i] .. occ_start[l*N+i+1]);
      * a single -1 means every object (more than RENDER_OCC_LIST_MAX candidates). */
     int *occ_start, *occ;
+    /* Primary visibility: the objects whose bounding sphere projects onto image row j are
+     * vis[vis_start[j] .. vis_start[j+1]), in object order; object k covers columns
+     * [vis_cols[2k], vis_cols[2k+1]]. */
+    int *vis_start, *vis, *vis_cols;
+    int full;                   /* render_plan_ignore was applied */
 } render_scene;
 
 typedef struct render_options {
@@ -81,14 +89,19 @@ typedef struct render_options {
     int jitter;          /* jitter inside the strata (deterministic hash) */
     int threads;         /* >= 1 */
     int progress;        /* draw a progress bar on stderr */
-    int full;            /* ignore the effect plan: every effect everywhere (for comparison) */
 } render_options;
 
 int render_prepare(const scene *s, const render_options *opt, render_scene *rs, char *err,
                    size_t err_size);
 void render_release(render_scene *rs);
+/* Ignore the effect plan: every light shadow-tests every object, every material builds
+ * tangent frames and adds the ambient term (`--full`, to measure what the plan saves).
+ * Returns 0 or -1 (out of memory; rs unchanged). */
+int render_plan_ignore(render_scene *rs);
 void render_explain(const render_scene *rs, const render_options *opt, FILE *f);
-/* rgb: width*height*3 floats, top row first. Returns 0, or -1 if threads cannot start. */
+/* rgb: width*height*3 floats, top row first. Returns 0, or -1 if spp is not a square
+ * k*k >= 1 or no mutex can be made (nothing rendered). Threads that cannot start leave their rows to the caller's
+ * thread, so the image is always complete. */
 int render_image(const render_scene *rs, const render_options *opt, float *rgb,
                  render_stats *stats);
 void render_stats_print(const render_stats *st, FILE *f);

@@ -131,6 +131,14 @@ typedef enum abrdf_model {
     ABRDF_MODEL_COUNT
 } abrdf_model;
 
+/* ---- hair models (marschner, huang) ----
+ * The fibre runs along the tangent T (local +x), on a "ribbon" with normal N, as BRDF
+ * Explorer evaluates hair over a tangent field. With S the fibre scattering function in
+ * pbrt-v4's convention (a lossless fibre has integral S dwi = 1 over the sphere), the
+ * models return f_r = S / |N.wi| for wi, wo above the ribbon, 0 otherwise, so that
+ * f_r * N.wi = S. Absorption comes from melanin/redness (Cycles' mapping). Hair f_r is not
+ * reciprocal; docs/SPECIAL_HAIR.md gives the measured asymmetry. */
+
 /* What a model needs from the caller or the renderer (bit flags of abrdf_model_info.needs). */
 #define ABRDF_NEEDS_TANGENT     0x01u  /* uses T and B (anisotropy, fibres) */
 #define ABRDF_NEEDS_FRESNEL     0x02u  /* evaluates a Fresnel term */
@@ -148,7 +156,7 @@ typedef enum abrdf_model {
 
 /* One interface of a layer stack with the medium below it (layered models). */
 typedef struct abrdf_layer {
-    double eta;        /* relative index of refraction of the interface, [1, 4] */
+    double eta;        /* relative index of refraction of the interface, [0.25, 4] */
     double kappa;      /* extinction coefficient (conductor if > 0), [0, 10] */
     double r;          /* perceptual roughness of the interface, [0, 1] */
     double sigma_a[3]; /* absorption of the medium below, 1/unit depth, [0, 1e4] */

@@ -16,7 +16,7 @@ static int finite3(const double v[3])
 }
 
 /* Normalise v into out; 0 (and out = 0) for zero, tiny or non-finite vectors. */
-static int normalise3(const double v[3], double out[3])
+int abrdf__normalise3(const double v[3], double out[3])
 {
     out[0] = out[1] = out[2] = 0.0;
     if (!finite3(v)) return 0;
@@ -42,7 +42,7 @@ int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame *frame)
     if (!frame) return ABRDF_E_NULL;
     *frame = identity;
     double nn[3];
-    if (!n || !normalise3(n, nn)) return ABRDF_E_GEOMETRY;
+    if (!n || !abrdf__normalise3(n, nn)) return ABRDF_E_GEOMETRY;
     /* Tangent: Gram-Schmidt of t against n; if t is missing or (nearly) parallel to n, the
      * axis least aligned with n, which is deterministic and never parallel. The 1e-6
      * threshold on |t_perp| keeps the normalisation well conditioned. */
@@ -50,7 +50,7 @@ int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame *frame)
     int have_t = 0;
     if (t && finite3(t)) {
         double tn[3];
-        if (normalise3(t, tn)) {
+        if (abrdf__normalise3(t, tn)) {
             double d = dot3(tn, nn);
             for (int c = 0; c < 3; ++c) tt[c] = tn[c] - d * nn[c];
             have_t = sqrt(dot3(tt, tt)) > 1e-6;
@@ -64,7 +64,7 @@ int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame *frame)
         double d = dot3(ax, nn);
         for (int c = 0; c < 3; ++c) tt[c] = ax[c] - d * nn[c];
     }
-    normalise3(tt, frame->t);
+    abrdf__normalise3(tt, frame->t);
     memcpy(frame->n, nn, sizeof nn);
     cross3(frame->n, frame->t, frame->b);
     return ABRDF_OK;
@@ -92,7 +92,7 @@ int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame 
     int st = abrdf_params_check(model, params, NULL, 0);
     if (st != ABRDF_OK) return st;
     double i[3], o[3], li[3], lo[3];
-    if (!normalise3(wi, i) || !normalise3(wo, o)) return ABRDF_OK; /* degenerate: f = 0 */
+    if (!abrdf__normalise3(wi, i) || !abrdf__normalise3(wo, o)) return ABRDF_OK; /* degenerate: f = 0 */
     if (frame) {
         if (!finite3(frame->n) || !finite3(frame->t) || !finite3(frame->b)) return ABRDF_OK;
         to_local(frame, i, li);
@@ -135,7 +135,7 @@ int abrdf_shade(abrdf_model diffuse, abrdf_model specular, const abrdf_params *p
         return st;
     double i[3], ni[3] = {0, 0, 1};
     double cos_i = 0.0;
-    if (normalise3(wi, i)) cos_i = fmax(0.0, dot3(i, frame ? frame->n : ni));
+    if (abrdf__normalise3(wi, i)) cos_i = fmax(0.0, dot3(i, frame ? frame->n : ni));
     for (int c = 0; c < 3; ++c) {
         double v = ambient[c] + light[c] * cos_i * (fd[c] + fs[c]); /* Sec. 1, pixel intensity */
         out[c] = (v >= 0.0 && isfinite(v)) ? v : 0.0;

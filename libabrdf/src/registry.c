@@ -23,7 +23,7 @@ typedef struct abrdf__param_slot {
     {{#field, help, ABRDF_PARAM_RGB, lo, hi, def}, offsetof(abrdf_params, field)}
 #define LAYER(k)                                                                            \
     {{"layer" #k "_eta", "layer " #k ": relative index of refraction of the interface",     \
-      ABRDF_PARAM_SCALAR, 1.0, 4.0, 1.5}, offsetof(abrdf_params, layers[k].eta)},           \
+      ABRDF_PARAM_SCALAR, 0.25, 4.0, 1.5}, offsetof(abrdf_params, layers[k].eta)},          \
     {{"layer" #k "_kappa", "layer " #k ": extinction coefficient (conductor if > 0)",       \
       ABRDF_PARAM_SCALAR, 0.0, 10.0, 0.0}, offsetof(abrdf_params, layers[k].kappa)},        \
     {{"layer" #k "_r", "layer " #k ": perceptual roughness of the interface",               \
@@ -89,6 +89,34 @@ static const abrdf_model_param mp_clearcoat[] = {KS, {P_CLEARCOAT_GLOSS, 1.0, 0.
 
 #define PARAMS(a) (int)(sizeof a / sizeof a[0]), a
 
+/* ---- cloth and layered models: parameters ---- */
+#define KD_AT(d) {P_KD, d, 0.0, 1.0}
+#define KS_AT(d) {P_KS, d, 0.0, 1.0}
+/* The five parameters of layer k with this model's defaults (ranges are the parameters'). */
+#define LAYER_MP(k, eta, kappa, r)                                                          \
+    {P_LAYER0 + 5 * (k), eta, 0.25, 4.0}, {P_LAYER0 + 5 * (k) + 1, kappa, 0.0, 10.0},      \
+    {P_LAYER0 + 5 * (k) + 2, r, 0.0, 1.0}, {P_LAYER0 + 5 * (k) + 3, 0.0, 0.0, 1e4},        \
+    {P_LAYER0 + 5 * (k) + 4, 0.0, 0.0, 100.0}
+/* Neubelt-Pettineo: kd, sheen weight ks, f0, r (alpha_g = r^2 is the velvet width), k_amp. */
+static const abrdf_model_param mp_neubelt[] = {KD_AT(0.5), KS_AT(1.0), F0, {P_R, 0.7, 0.0, 1.0},
+                                               {P_K_AMP, 4.0, 0.0, 100.0}};
+/* Kajiya-Kay: kd, ks, exponent n. */
+static const abrdf_model_param mp_kajiya[] = {KD_AT(0.25), KS_AT(0.25), {P_N, 40.0, 0.0, 1e6}};
+/* Weidlich-Wilkie: coated plastic, a clear rough coat (eta 1.5, r 0.2) over Lambert kd. */
+static const abrdf_model_param mp_ww[] = {KD_AT(0.5), {P_LAYER_COUNT, 1.0, 0.0, ABRDF_MAX_LAYERS},
+    LAYER_MP(0, 1.5, 0.0, 0.2), LAYER_MP(1, 1.5, 0.0, 0.1), LAYER_MP(2, 1.5, 0.0, 0.1),
+    LAYER_MP(3, 1.5, 0.0, 0.1)};
+/* Belcour: coated metal, a smooth clear coat (eta 1.5, r 0.1) over a rough conductor with
+ * aluminium's index (1.2 + 7.0i at 550 nm) relative to the coat: eta 0.8, kappa 4.7, r 0.4. */
+static const abrdf_model_param mp_belcour[] = {{P_LAYER_COUNT, 2.0, 1.0, ABRDF_MAX_LAYERS},
+    LAYER_MP(0, 1.5, 0.0, 0.1), LAYER_MP(1, 0.8, 4.7, 0.4), LAYER_MP(2, 1.5, 0.0, 0.1),
+    LAYER_MP(3, 1.5, 0.0, 0.1)};
+#define CIT_NEUBELT "D. Neubelt, M. Pettineo, Crafting a next-gen material pipeline for The Order: 1886, SIGGRAPH 2013 course; M. Ashikhmin, S. Premoze, Distribution-based BRDFs, 2007"
+#define CIT_KAJIYA "J. T. Kajiya, T. L. Kay, Rendering fur with three dimensional textures, SIGGRAPH 1989"
+#define CIT_WW "A. Weidlich, A. Wilkie, Arbitrarily layered micro-facet surfaces, GRAPHITE 2007"
+#define CIT_BELCOUR "L. Belcour, Efficient rendering of layered materials using an atomic decomposition with statistical operators, ACM TOG 37(4), 2018"
+/* ---- end cloth and layered models: parameters ---- */
+
 #define CIT_LAMBERT "J. H. Lambert, Photometria, 1760"
 #define CIT_BURLEY "B. Burley, Physically-Based Shading at Disney, SIGGRAPH 2012 course notes"
 #define CIT_ON "M. Oren, S. K. Nayar, Generalization of Lambert's reflectance model, SIGGRAPH 1994"
@@ -103,6 +131,29 @@ static const abrdf_model_param mp_clearcoat[] = {KS, {P_CLEARCOAT_GLOSS, 1.0, 0.
 #define CIT_GOTANDA "Y. Gotanda, Beyond a simple physically based Blinn-Phong model in real-time, SIGGRAPH 2012 course"
 #define CIT_CT "R. L. Cook, K. E. Torrance, A reflectance model for computer graphics, ACM TOG 1(1), 1982"
 #define CIT_WALTER "B. Walter et al., Microfacet models for refraction through rough surfaces, EGSR 2007; " CIT_BURLEY
+
+/* ---- hair models (hair.h) ---------------------------------------------------------- */
+/* Defaults: brown hair with Cycles' Principled Hair defaults (melanin 0.8, redness 1.0),
+ * eta 1.55 (keratin). Marschner: r is the longitudinal width beta_R in radians (the paper's
+ * 5-10 deg -> 0.13 rad), the axis ratio a in [0.75, 1] where its eccentricity trick keeps
+ * eta* >= 1 (it needs a^2 >= 1/2). */
+static const abrdf_model_param mp_marschner[] = {
+    {P_ETA, 1.55, 1.0, 4.0}, {P_MELANIN, 0.8, 0.0, 1.0}, {P_REDNESS, 1.0, 0.0, 1.0},
+    {P_CUTICLE_TILT, 3.0, -10.0, 10.0}, {P_ASPECT_RATIO, 0.9, 0.75, 1.0},
+    {P_R, 0.13, 0.01, 1.0}};
+#define CIT_MARSCHNER "S. R. Marschner, H. W. Jensen, M. Cammarano, S. Worley, P. Hanrahan, " \
+    "Light scattering from human hair fibers, ACM TOG 22(3), 2003"
+/* Huang: Cycles' Principled Hair (Huang) defaults: r = GGX alpha 0.3 (not squared, clamped
+ * to >= 0.001 as Cycles does), offset 2 deg, aspect ratio 0.85; r >= 0.05 bounds the cost
+ * (the h step is 0.7 r). */
+static const abrdf_model_param mp_huang[] = {
+    {P_ETA, 1.55, 1.0, 4.0}, {P_MELANIN, 0.8, 0.0, 1.0}, {P_REDNESS, 1.0, 0.0, 1.0},
+    {P_CUTICLE_TILT, 2.0, -10.0, 10.0}, {P_ASPECT_RATIO, 0.85, 0.01, 1.0},
+    {P_R, 0.3, 0.05, 1.0}};
+#define CIT_HUANG "W. Huang, M. B. Hullin, J. Hanika, A microfacet-based hair scattering model, " \
+    "Computer Graphics Forum 41(4), 2022"
+#define HAIR_NEEDS (ABRDF_NEEDS_TANGENT | ABRDF_NEEDS_INTEGRATION | ABRDF_NEEDS_FRESNEL)
+/* ---- end hair models --------------------------------------------------------------- */
 
 static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
     [ABRDF_LAMBERT] = {ABRDF_LAMBERT, "lambert", "Lambert", "Eq. 1", CIT_LAMBERT,
@@ -159,6 +210,24 @@ static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
     [ABRDF_DISNEY_CLEARCOAT] = {ABRDF_DISNEY_CLEARCOAT, "disney_clearcoat",
         "Disney clearcoat (GTR1)", "Sec. 3 (named)", CIT_BURLEY, ABRDF_NEEDS_FRESNEL,
         REC | EC | SPE, -1, PARAMS(mp_clearcoat)},
+    /* hair */
+    [ABRDF_MARSCHNER] = {ABRDF_MARSCHNER, "marschner", "Marschner hair (R, TT, TRT)",
+        "special surfaces (named)", CIT_MARSCHNER, HAIR_NEEDS, 0, -1, PARAMS(mp_marschner)},
+    [ABRDF_HUANG] = {ABRDF_HUANG, "huang", "Huang-Hullin-Hanika microfacet hair (far field)",
+        "Eqs. 12-14", CIT_HUANG, HAIR_NEEDS, 0, -1, PARAMS(mp_huang)},
+    /* ---- cloth and layered models ---- */
+    [ABRDF_NEUBELT_PETTINEO] = {ABRDF_NEUBELT_PETTINEO, "neubelt_pettineo",
+        "Neubelt-Pettineo cloth (Ashikhmin-Premoze velvet)", "Eq. 10", CIT_NEUBELT,
+        ABRDF_NEEDS_FRESNEL, REC | DIF | SPE, -1, PARAMS(mp_neubelt)},
+    [ABRDF_KAJIYA_KAY] = {ABRDF_KAJIYA_KAY, "kajiya_kay", "Kajiya-Kay fibre lobes", "Eq. 11",
+        CIT_KAJIYA, ABRDF_NEEDS_TANGENT, DIF | SPE, -1, PARAMS(mp_kajiya)},
+    [ABRDF_WEIDLICH_WILKIE] = {ABRDF_WEIDLICH_WILKIE, "weidlich_wilkie",
+        "Weidlich-Wilkie layered (GGX interfaces over Lambert)", "Eq. 15", CIT_WW,
+        ABRDF_NEEDS_FRESNEL | ABRDF_NEEDS_LAYERS, REC | DIF | SPE, -1, PARAMS(mp_ww)},
+    [ABRDF_BELCOUR] = {ABRDF_BELCOUR, "belcour", "Belcour layered (atomic decomposition)",
+        "Eq. 16", CIT_BELCOUR, ABRDF_NEEDS_FRESNEL | ABRDF_NEEDS_LAYERS, REC | EC | SPE, -1,
+        PARAMS(mp_belcour)},
+    /* ---- end cloth and layered models ---- */
 };
 
 /* ---- lookups ----------------------------------------------------------------------- */

@@ -317,9 +317,9 @@ static void fill_params(const abrdf_material *m, abrdf_model spec, double n, dou
     p->anisotropic = m->anisotropy;
     p->melanin = m->melanin;
     p->redness = m->redness;
-    if (m->layer_count > 0) {
+    if (m->layer_count > 0) { /* layers below the stack keep the model's defaults */
         p->layer_count = m->layer_count;
-        memcpy(p->layers, m->layers, sizeof p->layers);
+        memcpy(p->layers, m->layers, sizeof p->layers[0] * (size_t)m->layer_count);
     }
 }
 

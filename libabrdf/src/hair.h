@@ -1,0 +1,141 @@
+/* hair.h - the hair fibre models (Marschner 2003, Huang 2022) and their shared parts.
+ *
+ * FIBRE ON A SURFACE. The fibre runs along the local +x axis (the frame's tangent T); the
+ * surface normal N = +z is the normal of the "ribbon" the fibre is drawn on, as in BRDF
+ * Explorer's tangent-field evaluation and pbrt-v4's curve shading frame.
+ *   sin(theta) = w.x          longitudinal angle, measured from the normal plane of T
+ *   phi = atan2(w.z, w.y)     azimuth around T, phi = 0 along B = +y
+ * Every model first computes the fibre scattering function S(wi, wo) in pbrt-v4's
+ * convention: the radiance scattered by a unit length of fibre is the integral of
+ * S(wi, wo) L(wi) dw_i over the whole sphere, so a lossless fibre has
+ * integral S dw_i = 1 (white furnace). abrdf returns f_r = S / |N.wi| (the renderer
+ * multiplies by N.wi again), for wi and wo both above the ribbon, and 0 otherwise.
+ *
+ * Absorption is a cross-section coefficient sigma_a per unit fibre RADIUS (the radius is
+ * 1), from the melanin parameters (abrdf__hair_sigma_a). */
+#ifndef ABRDF_HAIR_H
+#define ABRDF_HAIR_H
+#include "abrdf_internal.h"
+
+/* ---- named thresholds ------------------------------------------------------------- */
+
+/* Floor of cos(theta_d) (Marschner) and cos(theta) (Huang): both vanish only when a
+ * direction runs along the fibre. 1e-6 keeps eta' = sqrt(eta^2 - sin^2)/cos <= 4e6 and
+ * 1/cos^2 <= 1e12, finite, while changing no direction farther than 0.06 deg from T. */
+#define ABRDF__HAIR_COS_MIN 1e-6
+
+/* |dPhi/dh| below this is a stationary point of the azimuthal map (a caustic, or eta' = 1
+ * where TT is a Dirac delta): a root there is clamped to it, which bounds one root's
+ * A/|2 dPhi/dh| by 5e8 * A. Such roots only occur where the glint smoothing multiplies
+ * them by ~0 (TRT) or on a set of measure zero (TT at eta = 1). */
+#define ABRDF__HAIR_DPHI_MIN 1e-9
+
+/* Azimuthal intervals narrower than this in Phi carry no root worth solving (Phi constant:
+ * TT at eta' = 1 is a delta in phi, zero almost everywhere). */
+#define ABRDF__HAIR_FLAT_PHI 1e-12
+
+#define ABRDF__HAIR_DEG (ABRDF__PI / 180.0)
+
+/* ---- shared helpers (hair_common.c) -------------------------------------------------- */
+
+/* Melanin -> absorption sigma_a (RGB, per unit radius), Cycles' mapping (MODELS.md B7.2):
+ *   m' = -ln(max(1 - melanin, 1e-4)), eumelanin = m'(1 - redness), pheomelanin = m' redness,
+ *   sigma_a = eumelanin (0.506, 0.841, 1.653) + pheomelanin (0.343, 0.733, 1.924). */
+void abrdf__hair_sigma_a(double melanin, double redness, double sigma[3]);
+
+/* Exact dielectric Fresnel reflectance for one polarisation, relative index n = n_t / n_i
+ * (any n > 0; total internal reflection gives 1), cosine of incidence c in [0, 1]. */
+double abrdf__fresnel_s(double n, double c);
+double abrdf__fresnel_p(double n, double c);
+/* Unpolarised: (F_s + F_p) / 2 with the same index. */
+double abrdf__fresnel_dielectric(double n, double c);
+
+/* Unit-area Gaussian of standard deviation sd at x. */
+double abrdf__gauss(double x, double sd);
+
+/* Wrap an angle into (-pi, pi]. */
+double abrdf__wrap_pi(double a);
+
+/* Longitudinal sine/cosine and azimuth of a local direction (fibre along +x). */
+void abrdf__fibre_angles(const double w[3], double *sin_t, double *cos_t, double *phi);
+
+/* ---- Marschner et al. 2003 (hair_marschner.c) -------------------------------------- */
+
+/* Per-lobe constants of the practical model, from the parameters. */
+typedef struct abrdf__marschner {
+    double eta;         /* index of refraction of the fibre */
+    double aspect;      /* cross-section axis ratio a (TRT eccentricity trick) */
+    double sigma_a[3];  /* absorption per unit radius */
+    double alpha[3];    /* longitudinal shifts alpha_R, alpha_TT, alpha_TRT (rad) */
+    double beta[3];     /* longitudinal widths beta_R, beta_TT, beta_TRT (rad) */
+} abrdf__marschner;
+
+void abrdf__marschner_setup(const abrdf_params *p, abrdf__marschner *m);
+
+/* Longitudinal function M_p(theta_h) of lobe p (0 = R, 1 = TT, 2 = TRT), normalised as a
+ * density in theta_r: integral M_p dtheta_r = 1 (hair_marschner.c explains why). */
+double abrdf__marschner_mp(const abrdf__marschner *m, int p, double theta_h);
+
+/* Attenuation A_p(h) (RGB) for Bravais indices eta1 (eta'), eta2 (eta'') and the
+ * refracted longitudinal cosine cos_theta_t. */
+void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1, double eta2,
+                         double cos_theta_t, double a[3]);
+
+/* Azimuthal function N_p(phi) (RGB) at longitudinal half-difference theta_d;
+ * cos_phi_sum = cos(phi_i + phi_o) orients the elliptical cross-section (TRT only).
+ * glint = 0 disables the TRT caustic smoothing (tests: the bare root sum). */
+void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double theta_d,
+                         double cos_phi_sum, int glint, double n[3]);
+
+/* The fibre scattering function S (pbrt convention, see the top of this file) for local
+ * directions wi, wo anywhere on the sphere; lobes is a bit mask of R (1), TT (2), TRT (4). */
+void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const double wo[3],
+                            unsigned lobes, double s[3]);
+
+/* f_r for the surface (the dispatch entry). */
+void abrdf__marschner_eval(const abrdf_params *p, const double wi[3], const double wo[3],
+                           double f[3]);
+
+/* ---- Huang, Hullin, Hanika 2022 (hair_huang.c) -------------------------------------- */
+
+/* Default quadrature: the entry microfacet normal on an N1 x N1 midpoint grid of the VNDF
+ * square, the internal-reflection normal (TRT) on N2 x N2 per entry node
+ * (docs/SPECIAL_HAIR.md gives the convergence that chose them). */
+#define ABRDF__HUANG_N1 6
+#define ABRDF__HUANG_N2 3
+
+typedef struct abrdf__huang {
+    double eta;         /* index of refraction */
+    double alpha;       /* GGX roughness (not squared), [0.001, 1] */
+    double tilt;        /* cuticle tilt of the mesonormals (rad), = -cuticle_tilt */
+    double b;           /* minor/major axis ratio, (0, 1] */
+    double sigma_a[3];  /* absorption per unit (major) radius */
+    int refine;         /* Simpson step divisor in h (1 = Cycles' steps) */
+    int n1, n2;         /* VNDF midpoint grid sizes per dimension (entry, internal) */
+    int compensate;     /* 1: divide each interaction by the glass albedo E (Cycles) */
+} abrdf__huang;
+
+/* Energy compensation tables (hair_tables.c, GENERATED by tools/gen_hair_tables.c): the
+ * single-scattering albedo E of a GGX dielectric interface, N^3 nodes indexed
+ * [(z N + y) N + x] with x = sqrt(alpha), y = mu (cosine of incidence), z = F0^(1/4) of the
+ * interface, every axis k/(N - 1); _e for eta > 1 (from outside), _inv_e for 1/eta. */
+#define ABRDF__HAIR_E_N 16
+extern const double abrdf__hair_glass_e[ABRDF__HAIR_E_N * ABRDF__HAIR_E_N * ABRDF__HAIR_E_N];
+extern const double abrdf__hair_glass_inv_e[ABRDF__HAIR_E_N * ABRDF__HAIR_E_N * ABRDF__HAIR_E_N];
+
+/* Floor of E in the compensation 1/E, a guard only: it lies below the tables' smallest
+ * entry (0.0224, printed in hair_tables.c; grazing light inside a fibre of high index),
+ * so it never changes a tabulated value, and it bounds 1/E at 50. */
+#define ABRDF__HAIR_E_MIN 0.02
+
+/* The albedo the tables hold, by an n x n midpoint rule over the GGX VNDF square. */
+double abrdf__ggx_glass_albedo(double alpha, double mu, double eta, int n);
+
+void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m);
+/* Fibre function S (hair.h convention); lobes: R (1), TT (2), TRT (4), TRRT+ (8). */
+void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double wo[3],
+                        unsigned lobes, double s[3]);
+void abrdf__huang_eval(const abrdf_params *p, const double wi[3], const double wo[3],
+                       double f[3]);
+
+#endif /* ABRDF_HAIR_H */

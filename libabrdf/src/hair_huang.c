@@ -1,0 +1,477 @@
+/* hair_huang.c - Huang, Hullin, Hanika microfacet-based hair, far field (paper Eqs. 12-14).
+ *
+ * W. Huang, M. B. Hullin, J. Hanika, "A microfacet-based hair scattering model", Computer
+ * Graphics Forum 41(4) (EGSR 2022). The fibre is an elliptical cylinder (minor/major axis
+ * ratio b) whose surface is a GGX microfacet surface (alpha = r, not squared) with scales
+ * tilted by the cuticle angle. Far field: the scattered light is averaged over the
+ * fibre's projected width h.
+ *   R   = F(wi.wh) / 4 * integral D(wm.wh) G2(wm.wi, wm.wo) arc(gamma) S_E dgamma (Eq. 12)
+ *   TT  = integral over gamma and the entry microfacet wh1 of T1 A_t T2 D2 G ... with the
+ *         generalised half vector wh2 ~ -wt + wo/eta at the exit                    (Eq. 13)
+ *   TRT = the same with an internal reflection at wh2 and the exit half vector
+ *         wh3 ~ wtr + wo/eta                                                        (Eq. 14)
+ *   plus TRRT+ as a geometric series times Chiang's longitudinal M(v = 4 alpha) / (2 pi),
+ *   S = (R + (TT + TRT)/eta^2 + TRRT+) / (2 cos(theta_view) radius).
+ * The structure, frame and h-interval logic follow Blender Cycles
+ * src/kernel/closure/bsdf_principled_hair_huang.h (MODELS.md B7.3), in double.
+ *
+ * What differs from Cycles (docs/SPECIAL_HAIR.md has the measurements):
+ *  - DETERMINISTIC integration. Cycles draws one GGX visible-normal (VNDF) sample per h node
+ *    for the entry microfacet and one for the internal reflection. Here the VNDF sampling
+ *    map is integrated by an n1 x n1 (entry) and n2 x n2 (internal reflection) midpoint
+ *    product rule on its unit square: the expectation Cycles estimates, computed by
+ *    quadrature.
+ *  - Composite Simpson over the surface parameter gamma instead of h (Cycles' steps,
+ *    <= 0.7 alpha for R and <= 0.8 alpha for the rest, divided by a refinement factor):
+ *    dgamma/dh is singular at the silhouette and Simpson in h over-weights it.
+ *  - TRRT+ is weighted by the projected width |dh/dgamma| cos(theta_view) of each element
+ *    instead of Cycles' constant 2/pi, which lets it grow as 1/cos(theta_view).
+ *  - The energy compensation S_E = 1/E(sqrt(alpha), mu, eta) reads tables this project
+ *    generates by quadrature (tools/gen_hair_tables.c -> hair_tables.c), not Cycles'
+ *    Monte Carlo tables.
+ *  - No near field: the whole visible projected width is integrated.
+ *  - The cross-section's major axis is the local +y (along the ribbon, B), the minor axis
+ *    +z (N); Cycles' local frame (X major axis, Y tangent, Z) is (w.y, w.x, w.z) here.
+ *  - cuticle_tilt is Blender's "offset" (degrees); the model's tilt is its negative. */
+#include <math.h>
+
+#include "hair.h"
+
+typedef struct v3 { double x, y, z; } v3;
+
+static v3 mk(double x, double y, double z) { v3 r = {x, y, z}; return r; }
+static v3 add(v3 a, v3 b) { return mk(a.x + b.x, a.y + b.y, a.z + b.z); }
+static v3 scl(v3 a, double s) { return mk(a.x * s, a.y * s, a.z * s); }
+static v3 neg(v3 a) { return mk(-a.x, -a.y, -a.z); }
+static double dot(v3 a, v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static double len(v3 a) { return sqrt(dot(a, a)); }
+static v3 cross(v3 a, v3 b)
+{
+    return mk(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+
+/* |v|^2 below this: a half vector of two opposite directions (eta = 1), undefined. */
+#define HALF_LEN2_MIN 1e-20
+
+/* ---- fibre coordinates (Cycles' local frame: y along the fibre) --------------------- */
+static double sin_theta(v3 w) { return w.y; }
+static double cos_theta(v3 w) { return sqrt(w.x * w.x + w.z * w.z); }
+static double dir_phi(v3 w) { return atan2(w.x, w.z); }
+
+/* Azimuth on the ellipse x = sin(gamma), z = b cos(gamma) <-> direction of its normal. */
+static double to_phi(double gamma, double b) { return atan2(b * sin(gamma), cos(gamma)); }
+static double to_gamma(double phi, double b) { return atan2(sin(phi), b * cos(phi)); }
+
+/* Offset h (in units of the projected radius) of the ray from wi through the surface point
+ * whose normal has azimuth phi: h = -cos(phi_i) sin(gamma) + b sin(phi_i) cos(gamma). */
+static double phi_to_h(double phi, double b, double sp_i, double cp_i)
+{
+    double g = to_gamma(phi, b);
+    return -cp_i * sin(g) + b * sp_i * cos(g);
+}
+
+/* Inverse of the above for h pre-divided by the projected radius. */
+static double h_to_gamma(double h_div_r, double b, v3 wi)
+{
+    return atan2(wi.z, -b * wi.x) - acos(fmin(fmax(-h_div_r, -1.0), 1.0));
+}
+
+static v3 to_point(double gamma, double b) { return mk(sin(gamma), 0.0, b * cos(gamma)); }
+
+/* Unit (meso)normal at ellipse parameter gamma, tilted by theta along the fibre. */
+static v3 sphg_dir(double theta, double gamma, double b)
+{
+    double st = sin(theta), ct = cos(theta), sg = sin(gamma), cg = cos(gamma);
+    double sp = sg, cp = cg;
+    if (b != 1.0 && fabs(cg) >= 1e-6) { /* the normal of x = sin g, z = b cos g */
+        double tp = b * sg / cg;
+        cp = (cg > 0.0 ? 1.0 : -1.0) / sqrt(tp * tp + 1.0);
+        sp = cp * tp;
+    }
+    return mk(sp * ct, st, cp * ct);
+}
+
+/* Relative arc length of the ellipse at gamma (e2 = 1 - b^2). */
+static double arc_length(double e2, double gamma)
+{
+    double s = sin(gamma);
+    return sqrt(fmax(0.0, 1.0 - e2 * s * s));
+}
+
+/* ---- GGX pieces (alpha2 = alpha^2), height-correlated Smith ----------------------- */
+static double ggx_d(double alpha2, double c)
+{
+    if (!(c > 0.0)) return 0.0;
+    double c2 = c * c, k = 1.0 + (alpha2 - 1.0) * c2;
+    return alpha2 / (ABRDF__PI * k * k);
+}
+
+static double ggx_lambda(double alpha2, double c)
+{
+    double c2 = c * c;
+    if (!(c2 > 0.0)) return 1e300; /* grazing: fully shadowed */
+    return 0.5 * (sqrt(1.0 + alpha2 * (1.0 - c2) / c2) - 1.0);
+}
+
+static double ggx_g(double alpha2, double ci, double co)
+{
+    return 1.0 / (1.0 + ggx_lambda(alpha2, ci) + ggx_lambda(alpha2, co));
+}
+
+/* G2 / G1(in): the masking of the outgoing side given the incoming side is visible. */
+static double ggx_go(double alpha2, double ci, double co)
+{
+    double li = ggx_lambda(alpha2, ci), lo = ggx_lambda(alpha2, co);
+    return (1.0 + li) / (1.0 + li + lo);
+}
+
+/* Heitz 2018, "Sampling the GGX distribution of visible normals": maps (u1, u2) in the unit
+ * square to a microfacet normal distributed as the VNDF of direction wi about normal wm.
+ * Used here as a change of variables for deterministic quadrature, not for sampling. */
+static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
+{
+    /* orthonormal basis s, t around wm (Duff et al. 2017) */
+    double sg = wm.z >= 0.0 ? 1.0 : -1.0;
+    double a = -1.0 / (sg + wm.z), bb = wm.x * wm.y * a;
+    v3 s = mk(1.0 + sg * wm.x * wm.x * a, sg * bb, -sg * wm.x);
+    v3 t = mk(bb, sg + wm.y * wm.y * a, -wm.y);
+    v3 l = mk(dot(wi, s), dot(wi, t), dot(wi, wm));
+    v3 vh = mk(alpha * l.x, alpha * l.y, l.z);
+    vh = scl(vh, 1.0 / len(vh));
+    double lensq = vh.x * vh.x + vh.y * vh.y;
+    v3 t1 = lensq > 0.0 ? scl(mk(-vh.y, vh.x, 0.0), 1.0 / sqrt(lensq)) : mk(1, 0, 0);
+    v3 t2 = cross(vh, t1);
+    double r = sqrt(u1), ph = 2.0 * ABRDF__PI * u2;
+    double p1 = r * cos(ph), p2 = r * sin(ph);
+    double sh = 0.5 * (1.0 + vh.z);
+    p2 = (1.0 - sh) * sqrt(fmax(0.0, 1.0 - p1 * p1)) + sh * p2;
+    double p3 = sqrt(fmax(0.0, 1.0 - p1 * p1 - p2 * p2));
+    v3 nh = add(add(scl(t1, p1), scl(t2, p2)), scl(vh, p3));
+    v3 ne = mk(alpha * nh.x, alpha * nh.y, fmax(0.0, nh.z));
+    ne = scl(ne, 1.0 / len(ne));
+    return add(add(scl(s, ne.x), scl(t, ne.y)), scl(wm, ne.z));
+}
+
+/* Fresnel for unpolarised light at cosine c (sign ignored) and relative index eta; the
+ * cosine of the refracted ray (negative: on the other side) through cos_t. */
+static double fresnel(double c, double eta, double *cos_t)
+{
+    c = fabs(c);
+    double q = eta * eta - (1.0 - c * c);
+    if (q <= 0.0) {
+        if (cos_t) *cos_t = 0.0;
+        return 1.0;
+    }
+    if (cos_t) *cos_t = -sqrt(q) / eta;
+    return abrdf__fresnel_dielectric(eta, c);
+}
+
+static v3 refract_dir(v3 wi, v3 n, double cos_t, double inv_eta)
+{
+    return add(scl(n, inv_eta * dot(n, wi) + cos_t), scl(wi, -inv_eta));
+}
+
+static v3 reflect_dir(v3 i, v3 n) { return add(i, scl(n, -2.0 * dot(i, n))); }
+
+static int visible1(v3 v, v3 m, v3 h) { return dot(v, h) > 0.0 && dot(v, m) > 0.0; }
+static int visible2(v3 a, v3 b, v3 m, v3 h) { return visible1(a, m, h) && visible1(b, m, h); }
+
+/* ---- Chiang et al. 2016 longitudinal function, for TRRT+ ------------------------------ */
+static double bessel_i0(double x)
+{
+    double x2 = 0.25 * x * x, term = 1.0, sum = 1.0;
+    for (int k = 1; k < 200 && term > 1e-17 * sum; ++k) {
+        term *= x2 / ((double)k * k);
+        sum += term;
+    }
+    return sum;
+}
+
+static double log_bessel_i0(double x)
+{
+    /* asymptotic expansion past 12, where the series would overflow its terms' exponent */
+    if (x > 12.0) return x + 0.5 * (1.0 / (8.0 * x) - log(2.0 * ABRDF__PI) - log(x));
+    return log(bessel_i0(x));
+}
+
+static double longitudinal_m(double si, double ci, double so, double co, double v)
+{
+    double a = ci * co / v, bsin = si * so / v;
+    if (v <= 0.1) /* sinh(1/v) overflows for small v: log form */
+        return exp(log_bessel_i0(a) - bsin - 1.0 / v + log(2.0) + log(0.5 / v));
+    return exp(-bsin) * bessel_i0(a) / (sinh(1.0 / v) * 2.0 * v);
+}
+
+/* Cycles' TRRT+ estimate: the geometric series of further internal bounces. */
+static double trrt(double t1, double r2, double a)
+{
+    double tavg = fmax(1.0 - r2, 1e-5);
+    return t1 * r2 * r2 * tavg * a * a * a / (1.0 - a * (1.0 - tavg));
+}
+
+/* ---- energy compensation (Cycles' ggx_glass_E tables, regenerated) ------------------ */
+
+/* Single-scattering albedo (reflection + transmission) of a rough GGX dielectric interface
+ * of relative index eta, lit at cosine mu: the VNDF expectation of
+ * F G2(i, o_r)/G1(i) + (1 - F) G2(i, o_t)/G1(i), by an n x n midpoint rule on the VNDF
+ * square (tools/gen_hair_tables.c tabulates it; hair_tables.c). */
+double abrdf__ggx_glass_albedo(double alpha, double mu, double eta, int n)
+{
+    v3 wi = mk(sqrt(fmax(0.0, 1.0 - mu * mu)), 0.0, mu), nz = mk(0, 0, 1);
+    double a2 = alpha * alpha, li = ggx_lambda(a2, mu), sum = 0.0;
+    for (int j = 0; j < n * n; ++j) {
+        v3 h = vndf_map(alpha, wi, nz, (j / n + 0.5) / n, (j % n + 0.5) / n);
+        double c = dot(wi, h);
+        if (!(c > 0.0)) continue;
+        double cos_t;
+        double f = fresnel(c, eta, &cos_t);
+        v3 o_r = reflect_dir(neg(wi), h);
+        if (o_r.z > 0.0) sum += f * (1.0 + li) / (1.0 + li + ggx_lambda(a2, o_r.z));
+        if (f < 1.0) {
+            v3 o_t = refract_dir(wi, h, cos_t, 1.0 / eta);
+            if (o_t.z < 0.0) sum += (1.0 - f) * (1.0 + li) / (1.0 + li + ggx_lambda(a2, o_t.z));
+        }
+    }
+    return sum / (n * n);
+}
+
+/* Trilinear lookup with Cycles' conventions (lookup_table_read_3D): the table's grid
+ * nodes sit at x, y, z = k/(N - 1), coordinates are clamped to [0, 1]. */
+static double table_read(const double *t, double x, double y, double z)
+{
+    const int n = ABRDF__HAIR_E_N;
+    double c[3] = {x, y, z};
+    int i0[3], i1[3];
+    double f[3];
+    for (int k = 0; k < 3; ++k) {
+        double u = fmin(fmax(c[k], 0.0), 1.0) * (n - 1);
+        i0[k] = (int)u < n - 1 ? (int)u : n - 1;
+        i1[k] = i0[k] + 1 < n ? i0[k] + 1 : n - 1;
+        f[k] = u - i0[k];
+    }
+    double v = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        int ix = k & 1 ? i1[0] : i0[0], iy = k & 2 ? i1[1] : i0[1], iz = k & 4 ? i1[2] : i0[2];
+        double w = (k & 1 ? f[0] : 1 - f[0]) * (k & 2 ? f[1] : 1 - f[1]) * (k & 4 ? f[2] : 1 - f[2]);
+        v += w * t[(iz * n + iy) * n + ix];
+    }
+    return v;
+}
+
+/* 1/E: the factor that lifts a single microfacet interaction to the energy of all its
+ * bounces (Cycles' bsdf_hair_huang_energy_scale); 1 when compensation is off. */
+static double energy_scale(const abrdf__huang *m, double mu, double eta)
+{
+    if (!m->compensate) return 1.0;
+    const double *t = eta < 1.0 ? abrdf__hair_glass_inv_e : abrdf__hair_glass_e;
+    double z = sqrt(fabs((eta - 1.0) / (eta + 1.0)));
+    double e = table_read(t, sqrt(m->alpha), mu, z);
+    return 1.0 / fmax(e, ABRDF__HAIR_E_MIN);
+}
+
+/* ---- the model ------------------------------------------------------------------------ */
+void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
+{
+    m->eta = p->eta;
+    m->alpha = fmin(fmax(p->r, 0.001), 1.0);
+    m->tilt = -p->cuticle_tilt * ABRDF__HAIR_DEG;
+    m->b = fmin(p->aspect_ratio, 1.0);
+    abrdf__hair_sigma_a(p->melanin, p->redness, m->sigma_a);
+    m->refine = 1;
+    m->n1 = ABRDF__HUANG_N1;
+    m->n2 = ABRDF__HUANG_N2;
+    m->compensate = 1;
+}
+
+/* Simpson intervals over a range of length hr with step at most res/refine (even count). */
+static int simpson_intervals(double hr, double res, int refine)
+{
+    return 2 * (int)ceil(hr / res * 0.5) * refine;
+}
+
+static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
+{
+    double b = m->b, a2 = m->alpha * m->alpha, e2 = 1.0 - b * b;
+    v3 wh = add(wi, wo);
+    double l = len(wh);
+    if (!(l > 0.0)) return 0.0;
+    wh = scl(wh, 1.0 / l);
+    int n = simpson_intervals(gr, 0.7 * m->alpha, m->refine);
+    double res = gr / n, sum = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        double gm = g0 + i * res;
+        v3 wm = sphg_dir(m->tilt, gm, b);
+        if (!visible2(wi, wo, mk(wm.x, 0.0, wm.z), wh)) continue;
+        double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
+        sum += w * ggx_d(a2, dot(wm, wh)) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) *
+               arc_length(e2, gm) * energy_scale(m, dot(wm, wi), m->eta);
+    }
+    sum *= 2.0 / 3.0 * res;
+    return 0.25 * fresnel(dot(wi, wh), m->eta, NULL) * sum; /* Eq. 12 */
+}
+
+/* TT + TRT + TRRT+ (RGB): Simpson over h, nested midpoint rules over the VNDF squares. */
+static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr,
+                           double sp_i, double cp_i, unsigned lobes, double out[3])
+{
+    const double b = m->b, eta = m->eta, inv_eta = 1.0 / eta, al = m->alpha;
+    const double a2 = al * al, e2 = 1.0 - b * b;
+    const int n1 = m->n1, n2 = m->n2;
+    const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
+    double s_tt[3] = {0, 0, 0}, s_trt[3] = {0, 0, 0}, s_trrt[3] = {0, 0, 0};
+    int n = simpson_intervals(gr, 0.8 * al, m->refine);
+    double res = gr / n;
+    for (int i = 0; i <= n; ++i) {
+        double gmi = g0 + i * res;
+        v3 wmi = sphg_dir(m->tilt, gmi, b), wmi_ = sphg_dir(0.0, gmi, b);
+        double cos_mi1 = dot(wi, wmi);
+        if (!(cos_mi1 > 0.0)) continue; /* the VNDF needs a visible mesonormal */
+        double weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
+        /* Projected width of this surface element seen from wi, |dh/dgamma| cos(theta_i):
+         * the light TRRT+ receives here (R, TT, TRT carry it through cos_mi1). */
+        double proj = fabs(cp_i * cos(gmi) + b * sp_i * sin(gmi)) * cos_theta(wi);
+        for (int j1 = 0; j1 < n1 * n1; ++j1) {
+            v3 wh1 = vndf_map(al, wi, wmi, (j1 / n1 + 0.5) / n1, (j1 % n1 + 0.5) / n1);
+            double cos_hi1 = dot(wi, wh1);
+            if (!(cos_hi1 > 0.0)) continue;
+            double cos_t1;
+            double t1 = 1.0 - fresnel(cos_hi1, eta, &cos_t1);
+            double scale1 = energy_scale(m, cos_mi1, eta);
+            v3 wt = refract_dir(wi, wh1, cos_t1, inv_eta);
+            double phi_t = dir_phi(wt);
+            double gmt = 2.0 * to_phi(phi_t, b) - gmi;
+            v3 wmt = sphg_dir(-m->tilt, gmt, b), wmt_ = sphg_dir(0.0, gmt, b);
+            double cos_mo1 = dot(neg(wt), wmi), cos_mi2 = dot(neg(wt), wmt);
+            if (!visible2(wi, neg(wt), wmi, wh1) || !visible2(wi, neg(wt), wmi_, wh1)) continue;
+            double g1o = ggx_go(a2, cos_mi1, cos_mo1);
+            double scale2 = energy_scale(m, cos_mi2, inv_eta);
+            double ct_t = fmax(cos_theta(wt), ABRDF__HAIR_COS_MIN);
+            double chord = len(add(to_point(gmi, b), neg(to_point(gmt + ABRDF__PI, b))));
+            double at[3];
+            for (int c = 0; c < 3; ++c)
+                at[c] = m->sigma_a[c] > 0.0 ? exp(-m->sigma_a[c] / ct_t * chord) : 1.0;
+            double wgt = weight * w1;
+
+            /* TT: exit through the microfacet with generalised half vector wh2 (Eq. 13) */
+            /* exit possible only if wo is within the critical cone (1e-5: Cycles' tolerance) */
+            if ((lobes & 2u) && dot(wo, wt) >= inv_eta - 1e-5) {
+                v3 wh2 = add(neg(wt), scl(wo, inv_eta));
+                double l2 = dot(wh2, wh2);
+                if (l2 > HALF_LEN2_MIN) {
+                    double rn = 1.0 / sqrt(l2);
+                    wh2 = scl(wh2, rn);
+                    double cos_mh2 = dot(wmt, wh2);
+                    if (cos_mh2 >= 0.0) {
+                        double cos_hi2 = dot(neg(wt), wh2), cos_ho2 = dot(neg(wo), wh2);
+                        double t2 = (1.0 - fresnel(cos_hi2, inv_eta, NULL)) * scale2;
+                        double v = wgt * t1 * scale1 * t2 * ggx_d(a2, cos_mh2) * g1o *
+                                   ggx_g(a2, cos_mi2, dot(neg(wo), wmt)) / cos_mo1 * cos_mi1 *
+                                   cos_hi2 * cos_ho2 * rn * rn * arc_length(e2, gmt);
+                        if (isfinite(v))
+                            for (int c = 0; c < 3; ++c) s_tt[c] += v * at[c]; /* Eq. 13 */
+                    }
+                }
+            }
+            if (!(lobes & 12u) || !(cos_mi2 > 0.0)) continue;
+
+            /* TRT: internal reflection at wh2 (n2 x n2 VNDF nodes), exit at wh3 (Eq. 14) */
+            for (int j2 = 0; j2 < n2 * n2; ++j2) {
+                v3 wh2 = vndf_map(al, neg(wt), wmt, (j2 / n2 + 0.5) / n2, (j2 % n2 + 0.5) / n2);
+                double cos_hi2 = dot(neg(wt), wh2);
+                if (!(cos_hi2 > 0.0)) continue;
+                double r2f = fresnel(cos_hi2, inv_eta, NULL), r2 = r2f * scale2;
+                double wgt2 = wgt * w2;
+                v3 wtr = neg(reflect_dir(wt, wh2));
+                double rr[3];
+                for (int c = 0; c < 3; ++c) rr[c] = wgt2 * proj * trrt(t1, r2f, at[c]);
+                if (dot(neg(wtr), wo) < inv_eta - 1e-5) { /* total internal reflection */
+                    for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
+                    continue;
+                }
+                if (!visible2(neg(wt), neg(wtr), wmt, wh2) || !visible2(neg(wt), neg(wtr), wmt_, wh2))
+                    continue;
+                double phi_tr = dir_phi(wtr);
+                double gmtr = gmi - 2.0 * (to_phi(phi_t, b) - to_phi(phi_tr, b)) + ABRDF__PI;
+                v3 wmtr = sphg_dir(-m->tilt, gmtr, b), wmtr_ = sphg_dir(0.0, gmtr, b);
+                v3 wh3 = add(wtr, scl(wo, inv_eta));
+                double l3 = dot(wh3, wh3);
+                if (!(l3 > HALF_LEN2_MIN)) continue;
+                double rn3 = 1.0 / sqrt(l3);
+                wh3 = scl(wh3, rn3);
+                double cos_mh3 = dot(wmtr, wh3);
+                if (cos_mh3 < 0.0 || !visible2(wtr, neg(wo), wmtr, wh3) ||
+                    !visible2(wtr, neg(wo), wmtr_, wh3)) {
+                    for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
+                    continue;
+                }
+                double cos_hi3 = dot(wh3, wtr), cos_ho3 = dot(wh3, neg(wo));
+                double cos_mi3 = dot(wmtr, wtr), cos_mo2 = dot(wmt, neg(wtr));
+                double t3 = (1.0 - fresnel(cos_hi3, inv_eta, NULL)) * energy_scale(m, cos_mi3, inv_eta);
+                double ct_tr = fmax(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
+                double chord2 = len(add(to_point(gmtr, b), neg(to_point(gmt, b))));
+                double v = wgt2 * t1 * scale1 * r2 * t3 * ggx_d(a2, cos_mh3) * g1o *
+                           ggx_go(a2, cos_mi2, cos_mo2) * ggx_g(a2, cos_mi3, dot(wmtr, neg(wo))) /
+                           (cos_mo1 * cos_mo2) * cos_mi1 * cos_mi2 * cos_hi3 * cos_ho3 * rn3 * rn3 *
+                           arc_length(e2, gmtr);
+                if (isfinite(v) && (lobes & 4u))
+                    for (int c = 0; c < 3; ++c) {
+                        double atr = m->sigma_a[c] > 0.0 ? exp(-m->sigma_a[c] / ct_tr * chord2) : 1.0;
+                        s_trt[c] += v * at[c] * atr; /* Eq. 14 */
+                    }
+                for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
+            }
+        }
+    }
+    double mlong = longitudinal_m(sin_theta(wi), cos_theta(wi), sin_theta(wo), cos_theta(wo), 4.0 * al);
+    double k = 2.0 / 3.0 * res;
+    for (int c = 0; c < 3; ++c) {
+        double trrt_term = (lobes & 8u) ? s_trrt[c] * mlong / (2.0 * ABRDF__PI) : 0.0;
+        out[c] = ((s_tt[c] + s_trt[c]) * inv_eta * inv_eta + trrt_term) * k;
+    }
+}
+
+void abrdf__huang_fibre(const abrdf__huang *m, const double wi_[3], const double wo_[3],
+                        unsigned lobes, double s[3])
+{
+    s[0] = s[1] = s[2] = 0.0;
+    /* Cycles' convention: its "wi" is the viewer (our wo), its "wo" the light (our wi). */
+    v3 wi = mk(wo_[1], wo_[0], wo_[2]), wo = mk(wi_[1], wi_[0], wi_[2]);
+    double ci = cos_theta(wi);
+    if (!(ci > ABRDF__HAIR_COS_MIN) || !(cos_theta(wo) > 0.0)) return;
+    double b = m->b, e2 = 1.0 - b * b;
+    double tan_tilt = tan(m->tilt);
+    if (tan_tilt * sin_theta(wo) / cos_theta(wo) < -1.0) return; /* exit mesonormal hidden */
+    double x = -tan_tilt * sin_theta(wi) / ci;
+    if (x > 1.0) return; /* entry mesonormal hidden */
+    double half_span = acos(fmax(x, 0.0));
+    double sp_i = wi.x / ci, cp_i = wi.z / ci;
+    double radius = sqrt(fmax(1e-12, 1.0 - e2 * sp_i * sp_i));
+    double phi_i = dir_phi(wi);
+    double hmin = phi_to_h(phi_i + half_span, b, sp_i, cp_i) / radius;
+    double hmax = phi_to_h(phi_i - half_span, b, sp_i, cp_i) / radius;
+    hmin = fmax(hmin, -1.0);
+    hmax = fmin(hmax, 1.0);
+    if (!(hmax > hmin)) return;
+    /* Integrate over the surface parameter gamma, not h: integral g dgamma/dh dh =
+     * integral g dgamma, and dgamma/dh (Cycles' Jacobian) has an integrable singularity at
+     * the silhouette that Simpson in h (Cycles clips h to +-0.999) over-weights. h is in
+     * units of the projected radius, so dh_abs = radius dh: the 1/radius below. */
+    double g0 = h_to_gamma(hmax, b, wi), g1 = h_to_gamma(hmin, b, wi); /* decreasing in h */
+    if (!(g1 > g0)) return;
+    double area = ci * 2.0 * radius; /* projected width 2 (far field) times cos(theta_i), radius from dh */
+    double r = (lobes & 1u) ? lobe_r(m, wi, wo, g0, g1 - g0) : 0.0;
+    double res[3] = {0, 0, 0};
+    if (lobes & 14u) lobes_residual(m, wi, wo, g0, g1 - g0, sp_i, cp_i, lobes, res);
+    for (int c = 0; c < 3; ++c) s[c] = (r + res[c]) / area;
+}
+
+void abrdf__huang_eval(const abrdf_params *p, const double wi[3], const double wo[3], double f[3])
+{
+    f[0] = f[1] = f[2] = 0.0;
+    if (!(wi[2] > 0.0 && wo[2] > 0.0)) return;
+    abrdf__huang m;
+    abrdf__huang_setup(p, &m);
+    double s[3];
+    abrdf__huang_fibre(&m, wi, wo, 15u, s);
+    for (int c = 0; c < 3; ++c) f[c] = s[c] / wi[2]; /* f_r = S / |N.wi| */
+}

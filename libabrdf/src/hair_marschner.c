@@ -1,0 +1,239 @@
+/* hair_marschner.c - Marschner et al. hair scattering: R, TT and TRT lobes.
+ *
+ * S. R. Marschner, H. W. Jensen, M. Cammarano, S. Worley, P. Hanrahan, "Light scattering
+ * from human hair fibers", ACM TOG 22(3) (SIGGRAPH 2003), 780-791. The paper's practical
+ * model (its Sec. 4), in the angles of hair.h (theta from the normal plane of the fibre,
+ * phi around it), theta_h = (theta_i + theta_o)/2, theta_d = (theta_o - theta_i)/2,
+ * phi = phi_o - phi_i:
+ *   S_M = sum_p M_p(theta_h) N_p(phi) / cos^2(theta_d),  p = R, TT, TRT
+ *   M_p  = Gaussian of width beta_p about alpha_p        (alpha_TT = -alpha_R/2,
+ *          alpha_TRT = -3 alpha_R/2, beta_TT = beta_R/2, beta_TRT = 2 beta_R)
+ *   N_p(phi) = sum over roots h of Phi(p, h) = phi of A_p(h) / |2 dPhi/dh|
+ *   Phi(p, h) = 2 p gamma_t - 2 gamma_i + p pi,  gamma_i = asin h, gamma_t = asin(h / eta')
+ *   A_0 = F(eta', eta'', gamma_i)
+ *   A_p = (1 - F(eta', eta'', gamma_i)) (1 - F(1/eta', 1/eta'', gamma_t))
+ *         F(1/eta', 1/eta'', gamma_t)^(p-1) T^p
+ * with the Bravais indices eta' = sqrt(eta^2 - sin^2 theta_d)/cos theta_d and
+ * eta'' = eta^2 cos theta_d / sqrt(eta^2 - sin^2 theta_d) (the paper's Appendix B), F the
+ * Fresnel reflectance with eta' for the perpendicular and eta'' for the parallel
+ * polarisation, averaged.
+ *
+ * Choices (MODELS.md B7.1; each is stated in docs/SPECIAL_HAIR.md):
+ *  - Phi is the EXACT map above, not the paper's cubic approximation; its roots are found by
+ *    bisection on the intervals where Phi is monotone (split at the TRT caustic h_c).
+ *  - Absorption T = exp(-2 sigma_a cos(gamma_t) / cos(theta_t)), sin(theta_t) =
+ *    sin(theta_d)/eta: the chord 2 cos(gamma_t) of the unit circle (pbrt-v4; the paper's
+ *    printed form is not used). theta_d makes T symmetric in wi and wo.
+ *  - M_p is normalised over theta_r: the paper's smooth cylinder scatters into
+ *    delta(theta_r + theta_i) = delta(theta_h)/2, so the practical Gaussian in theta_h has to
+ *    carry the same 1/2; with a unit-area Gaussian in theta_h a lossless fibre would reflect
+ *    twice the light it receives.
+ *  - The paper's rendering equation L = D * integral S_M L cos(theta_i) dw_i gives the fibre
+ *    function of hair.h: S = S_M cos(theta_i).
+ *  - TRT caustics use the paper's glint smoothing (Sec. 4.4, "caustic" terms h_c, w_c, k_G,
+ *    Delta eta', Delta h_M) with fixed constants below, and its eccentricity trick: TRT is
+ *    evaluated with eta* = ((eta*_1 + eta*_2) + cos(2 phi_h)(eta*_1 - eta*_2))/2,
+ *    eta*_1 = 2(eta - 1)a^2 - eta + 2, eta*_2 = 2(eta - 1)/a^2 - eta + 2, a the axis ratio and
+ *    phi_h measured from the major axis (local +y).
+ *  - Parameters: r is beta_R in radians, cuticle_tilt alpha (deg) gives alpha_R = -2 alpha
+ *    (the paper's Fig. 1: R is shifted by twice the scale tilt). */
+#include <math.h>
+
+#include "hair.h"
+
+/* Glint smoothing constants; the paper gives ranges (Table 1: k_G 0.5-5, w_c 10-25 deg,
+ * Delta eta' 0.2-0.4, Delta h_M 0.2-0.4). We take the lower intensity and mid widths. */
+#define GLINT_KG 0.5
+#define GLINT_WC (15.0 * ABRDF__HAIR_DEG)
+#define GLINT_DETA 0.3
+#define GLINT_DHM 0.3
+
+#define BISECT_STEPS 60 /* halves a [-1, 1] interval to below 1e-17: double precision */
+
+void abrdf__marschner_setup(const abrdf_params *p, abrdf__marschner *m)
+{
+    m->eta = p->eta;
+    m->aspect = p->aspect_ratio;
+    abrdf__hair_sigma_a(p->melanin, p->redness, m->sigma_a);
+    double a_r = -2.0 * p->cuticle_tilt * ABRDF__HAIR_DEG;
+    double b_r = p->r;
+    m->alpha[0] = a_r;
+    m->alpha[1] = -a_r / 2.0;
+    m->alpha[2] = -3.0 * a_r / 2.0;
+    m->beta[0] = b_r;
+    m->beta[1] = b_r / 2.0;
+    m->beta[2] = 2.0 * b_r;
+}
+
+double abrdf__marschner_mp(const abrdf__marschner *m, int p, double theta_h)
+{
+    return 0.5 * abrdf__gauss(theta_h - m->alpha[p], m->beta[p]);
+}
+
+/* Phi(p, h) and its first two derivatives in h, for |h| < 1 <= eta1. */
+static double phi_of(int p, double h, double eta1)
+{
+    return 2.0 * p * asin(h / eta1) - 2.0 * asin(h) + p * ABRDF__PI;
+}
+
+static double dphi_dh(int p, double h, double eta1)
+{
+    return 2.0 * p / sqrt(eta1 * eta1 - h * h) - 2.0 / sqrt(1.0 - h * h);
+}
+
+static double d2phi_dh2(int p, double h, double eta1)
+{
+    return 2.0 * p * h / pow(eta1 * eta1 - h * h, 1.5) - 2.0 * h / pow(1.0 - h * h, 1.5);
+}
+
+void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1, double eta2,
+                         double cos_theta_t, double a[3])
+{
+    double cos_gi = sqrt(fmax(0.0, 1.0 - h * h));
+    double fi = 0.5 * (abrdf__fresnel_s(eta1, cos_gi) + abrdf__fresnel_p(eta2, cos_gi));
+    if (p == 0) {
+        a[0] = a[1] = a[2] = fi; /* A_0 */
+        return;
+    }
+    double st = h / eta1;
+    double cos_gt = sqrt(fmax(0.0, 1.0 - st * st));
+    double fo = 0.5 * (abrdf__fresnel_s(1.0 / eta1, cos_gt) + abrdf__fresnel_p(1.0 / eta2, cos_gt));
+    double tr = (1.0 - fi) * (1.0 - fo) * pow(fo, p - 1);
+    for (int c = 0; c < 3; ++c) {
+        /* sigma_a = 0 must give T = 1 even where cos_theta_t -> 0 (no 0/0). */
+        double tau = m->sigma_a[c] > 0.0
+            ? 2.0 * m->sigma_a[c] * cos_gt / fmax(cos_theta_t, ABRDF__HAIR_COS_MIN) : 0.0;
+        a[c] = tr * exp(-tau * p); /* T^p */
+    }
+}
+
+/* Bravais indices for index eta at theta_d, and the refracted longitudinal cosine. */
+static void bravais(double eta, double sin_d, double cos_d, double *eta1, double *eta2,
+                    double *cos_t)
+{
+    double q = sqrt(fmax(eta * eta - sin_d * sin_d, 0.0));
+    *eta1 = fmax(q / cos_d, 1.0);
+    *eta2 = eta * eta * cos_d / fmax(q, ABRDF__HAIR_COS_MIN);
+    double st = sin_d / eta;
+    *cos_t = sqrt(fmax(0.0, 1.0 - st * st));
+}
+
+/* Marschner's eccentricity trick for TRT: the effective index for an elliptical section. */
+static double eta_star(double eta, double a, double cos_phi_sum)
+{
+    double e1 = 2.0 * (eta - 1.0) * a * a - eta + 2.0;
+    double e2 = 2.0 * (eta - 1.0) / (a * a) - eta + 2.0;
+    return fmax(1.0, 0.5 * ((e1 + e2) + cos_phi_sum * (e1 - e2)));
+}
+
+/* Bare root sum: sum over roots h of Phi(p, h) = phi (mod 2 pi) of A_p(h) / |2 Phi'(h)|. */
+static void root_sum(const abrdf__marschner *m, int p, double phi, double eta1, double eta2,
+                     double cos_t, double n[3])
+{
+    n[0] = n[1] = n[2] = 0.0;
+    double cuts[4] = {-1.0, 1.0, 0.0, 0.0};
+    int ncut = 2;
+    /* Phi'(h) = 0 where p^2 (1 - h^2) = eta'^2 - h^2: the caustic, inside (-1, 1) only for
+     * p >= 2 and eta' < p. Between cuts Phi is monotone. */
+    if (p >= 2 && eta1 < p) {
+        double hc = sqrt((p * p - eta1 * eta1) / (p * p - 1.0));
+        cuts[0] = -1.0; cuts[1] = -hc; cuts[2] = hc; cuts[3] = 1.0;
+        ncut = 4;
+    }
+    for (int k = 0; k + 1 < ncut; ++k) {
+        double a = cuts[k], b = cuts[k + 1];
+        double pa = phi_of(p, a, eta1), pb = phi_of(p, b, eta1);
+        if (fabs(pb - pa) < ABRDF__HAIR_FLAT_PHI) continue;
+        double lo = fmin(pa, pb), hi = fmax(pa, pb);
+        int inc = pb > pa;
+        /* Every branch phi + 2 pi j inside [lo, hi] has exactly one root here. */
+        double j0 = ceil((lo - phi) / (2.0 * ABRDF__PI)), j1 = floor((hi - phi) / (2.0 * ABRDF__PI));
+        for (double j = j0; j <= j1; j += 1.0) {
+            double target = phi + 2.0 * ABRDF__PI * j;
+            double x0 = a, x1 = b;
+            for (int it = 0; it < BISECT_STEPS; ++it) {
+                double xm = 0.5 * (x0 + x1);
+                double g = phi_of(p, xm, eta1) - target;
+                if ((g < 0.0) == inc) x0 = xm; else x1 = xm;
+            }
+            double h = 0.5 * (x0 + x1);
+            if (!(fabs(h) < 1.0)) continue; /* |dPhi/dh| is infinite at |h| = 1: N = 0 */
+            double d = fmax(fabs(dphi_dh(p, h, eta1)), ABRDF__HAIR_DPHI_MIN);
+            double ap[3];
+            abrdf__marschner_ap(m, p, h, eta1, eta2, cos_t, ap);
+            for (int c = 0; c < 3; ++c) n[c] += ap[c] / (2.0 * d);
+        }
+    }
+}
+
+void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double theta_d,
+                         double cos_phi_sum, int glint, double n[3])
+{
+    double sin_d = sin(theta_d), cos_d = fmax(cos(theta_d), ABRDF__HAIR_COS_MIN);
+    double eta = p == 2 ? eta_star(m->eta, m->aspect, cos_phi_sum) : m->eta;
+    double eta1, eta2, cos_t;
+    bravais(eta, sin_d, cos_d, &eta1, &eta2, &cos_t);
+    phi = abrdf__wrap_pi(phi);
+    root_sum(m, p, phi, eta1, eta2, cos_t, n);
+    if (p != 2 || !glint) return;
+
+    /* TRT glint smoothing (paper Sec. 4.4): the caustic at +-phi_c is cut out of the root sum
+     * with a Gaussian notch of width w_c and replaced by a Gaussian glint of energy
+     * k_G A(h_c) Delta h. Past eta' = 2 the caustics merge at phi = 0 and fade out over
+     * Delta eta' (t = 1 - smoothstep). */
+    double hc, dh, t;
+    if (eta1 < 2.0) {
+        hc = sqrt((4.0 - eta1 * eta1) / 3.0);
+        double d2 = fabs(d2phi_dh2(2, hc, eta1));
+        dh = d2 > 0.0 ? fmin(GLINT_DHM, 2.0 * sqrt(2.0 * GLINT_WC / d2)) : GLINT_DHM;
+        t = 1.0;
+    } else {
+        hc = 0.0;
+        dh = GLINT_DHM;
+        double x = fmin(1.0, (eta1 - 2.0) / GLINT_DETA);
+        t = 1.0 - x * x * (3.0 - 2.0 * x);
+    }
+    if (!(t > 0.0)) return;
+    double phic = abrdf__wrap_pi(phi_of(2, hc, eta1));
+    double g0 = abrdf__gauss(0.0, GLINT_WC);
+    double gm = abrdf__gauss(abrdf__wrap_pi(phi - phic), GLINT_WC);
+    double gp = abrdf__gauss(abrdf__wrap_pi(phi + phic), GLINT_WC);
+    double notch = (1.0 - t * gm / g0) * (1.0 - t * gp / g0);
+    double ac[3];
+    abrdf__marschner_ap(m, 2, hc, eta1, eta2, cos_t, ac);
+    for (int c = 0; c < 3; ++c)
+        n[c] = n[c] * notch + t * GLINT_KG * ac[c] * dh * (gm + gp);
+}
+
+void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const double wo[3],
+                            unsigned lobes, double s[3])
+{
+    s[0] = s[1] = s[2] = 0.0;
+    double si, ci, pi_, so, co, po;
+    abrdf__fibre_angles(wi, &si, &ci, &pi_);
+    abrdf__fibre_angles(wo, &so, &co, &po);
+    double ti = asin(si), to = asin(so);
+    double th = 0.5 * (ti + to), td = 0.5 * (to - ti);
+    double cd = fmax(cos(td), ABRDF__HAIR_COS_MIN);
+    double phi = po - pi_;
+    double cps = cos(pi_ + po); /* cos(2 phi_h) */
+    for (int p = 0; p < 3; ++p) {
+        if (!(lobes & (1u << p))) continue;
+        double n[3];
+        abrdf__marschner_np(m, p, phi, td, cps, 1, n);
+        double w = abrdf__marschner_mp(m, p, th) / (cd * cd) * ci; /* S = S_M cos(theta_i) */
+        for (int c = 0; c < 3; ++c) s[c] += w * n[c];
+    }
+}
+
+void abrdf__marschner_eval(const abrdf_params *p, const double wi[3], const double wo[3],
+                           double f[3])
+{
+    f[0] = f[1] = f[2] = 0.0;
+    if (!(wi[2] > 0.0 && wo[2] > 0.0)) return;
+    abrdf__marschner m;
+    abrdf__marschner_setup(p, &m);
+    double s[3];
+    abrdf__marschner_fibre(&m, wi, wo, 7u, s);
+    for (int c = 0; c < 3; ++c) f[c] = s[c] / wi[2]; /* f_r = S / |N.wi| */
+}

@@ -1,0 +1,19 @@
+/* layered.h - the layered models, evaluated in double through special.c. */
+#ifndef ABRDF_LAYERED_H
+#define ABRDF_LAYERED_H
+#include "abrdf_internal.h"
+
+/* Local-frame f_r of the Weidlich-Wilkie (Eq. 15) and Belcour (Eq. 16) layer stacks
+ * described by p->layer_count and p->layers[]; f = 0 for back-facing pairs. */
+void abrdf__eval_weidlich_wilkie(const abrdf_params *p, const double wi[3], const double wo[3],
+                                 double f[3]);
+void abrdf__eval_belcour(const abrdf_params *p, const double wi[3], const double wo[3],
+                         double f[3]);
+
+/* Belcour's precomputed tables, interpolated (belcour_tables.h gives their axes):
+ * FGD = directional albedo of one GGX reflection with exact Fresnel, TIR = fraction of the
+ * visible microfacets through which light can leave a rough interface from the dense side. */
+double abrdf__belcour_fgd(double cos_theta, double alpha_g, double eta, double kappa);
+double abrdf__belcour_tir(double cos_theta, double alpha_g, double eta);
+
+#endif

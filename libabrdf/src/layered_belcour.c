@@ -1,0 +1,233 @@
+/* layered_belcour.c - Belcour's layered model (Eq. 16): the adding-doubling statistics of
+ * a stack of rough interfaces and absorbing media, evaluated as a sum of GGX lobes.
+ *
+ * L. Belcour, "Efficient rendering of layered materials using an atomic decomposition with
+ * statistical operators", ACM TOG 37(4) (SIGGRAPH 2018), Secs. 4-6 and its supplemental
+ * reference code, as documented in MODELS.md B8.2:
+ *   f(L, V) = sum_k e_k D_GGX(H; alpha_k) G(L, V; alpha_k) / (4 cos_i cos_o)     (Eq. 16)
+ * e_k and alpha_k come from one pass top -> bottom over the stack at the cosine of the mean
+ * direction, carrying energies (R0i, T0i, Ri0, Ti0, RGB), variances (s_*), Jacobians J.
+ * Per interface k (relative index eta_k + i kappa_k, alpha_g = r_k^2):
+ *   s(a) = a^1.1 / (1 - a^1.1),  a(s) = (s / (1 + s))^(1/1.1)       (variance <-> roughness)
+ *   R12 = FGD(cos, a(s_T0i + s(alpha)), eta, kappa), T12 = 1 - R12 (0 for a conductor)
+ *   s_T12 = s(alpha |eta - 1| / (2 eta)), s_T21 = s(alpha |1/eta - 1| eta / 2), with the
+ *     reference code's cosine factors set to 1 (the paper has cos ratios; MODELS.md B8.2)
+ *   j12 = eta cos_t / cos, j21 = 1 / j12, cos_t by Snell's law of the mean direction
+ *   TIR at the interface above (decoupling approximation): tau = TIR(cos, a(.), 1/eta_{k-1}),
+ *     Ri0 += (1 - tau) Ti0, Ti0 *= tau
+ *   adding: D = 1 - Ri0 R12, e_k = T0i R12 Ti0 / D, R0i += e_k, T0i = T0i T12 / D,
+ *     Ri0 = R21 + T21 Ri0 T12 / D, Ti0 = T21 Ti0 / D, and the variances as in the code
+ *     (averaged energies), alpha_k = a(s_Ti0 + J0i (s_T0i + s_R12 + Rr (s_R12 + s_Ri0)))
+ * Per medium (depth d > 0 below a dielectric interface): T = exp(-sigma_a d / cos), R = 0,
+ *   no scattering (the ABI has no sigma_s), so the variances are unchanged.
+ * Choices (documented in docs/SPECIAL_CLOTH_LAYERED.md):
+ *   - cos = |H.L| as in the evaluation of the Photon-v2 port (sampling there uses N.V);
+ *     because H.L = H.V the model is then reciprocal.
+ *   - G is the separable Smith G of Eq. 9; the FGD table is computed with the same G, so a
+ *     single interface gives exactly FGD(H.L) D G / (4 cos_i cos_o).
+ *   - A conductor (kappa > 0) or a refraction that fails (TIR of the mean) ends the stack;
+ *     a dielectric bottom lets the transmitted light leave (no base below it).
+ *   - TIR uses the index ratio of the interface above even when a medium lies between (the
+ *     Photon-v2 port skips it then, an artefact of storing media as layers).
+ *   - eta and kappa are scalars in the ABI: Fresnel is grey; colour comes from sigma_a. */
+#include <math.h>
+
+#include "belcour_tables.h"
+#include "layered.h"
+#include "layered_optics.h"
+
+/* Roughness near 1 makes s(alpha) diverge; the reference code clamps alpha at 0.9999. */
+#define ABRDF__BELCOUR_ALPHA_MAX 0.9999
+
+/* Below this cosine of the mean direction the statistics are degenerate (the Jacobian
+ * eta cos_t / cos blows up): such a direction only occurs for L ~ -V, both grazing, or at
+ * the critical angle of a less dense layer, and carries no energy. */
+#define ABRDF__BELCOUR_COS_MIN 1e-6
+
+static double var_of_alpha(double a)
+{
+    a = a < 0.0 ? 0.0 : (a > ABRDF__BELCOUR_ALPHA_MAX ? ABRDF__BELCOUR_ALPHA_MAX : a);
+    double p = pow(a, 1.1);
+    return p / (1.0 - p);
+}
+
+static double alpha_of_var(double s)
+{
+    return s > 0.0 ? pow(s / (1.0 + s), 1.0 / 1.1) : 0.0;
+}
+
+/* Split a continuous index into a clamped cell and a weight. */
+static void cell(double x, int n, int *i, double *t)
+{
+    if (!(x > 0.0)) x = 0.0;
+    if (x > n - 1) x = n - 1;
+    int k = (int)x;
+    if (k > n - 2) k = n - 2;
+    *i = k;
+    *t = x - k;
+}
+
+double abrdf__belcour_fgd(double c, double a, double eta, double kappa)
+{
+    int i[4];
+    double t[4];
+    cell(abrdf__bt_x_cos(c, ABRDF__FGD_NCOS), ABRDF__FGD_NCOS, &i[0], &t[0]);
+    cell(abrdf__bt_x_alpha(a, ABRDF__FGD_NALPHA), ABRDF__FGD_NALPHA, &i[1], &t[1]);
+    cell(abrdf__bt_x_fgd_eta(eta), ABRDF__FGD_NETA, &i[2], &t[2]);
+    cell(abrdf__bt_x_fgd_kappa(kappa), ABRDF__FGD_NKAPPA, &i[3], &t[3]);
+    double v = 0.0;
+    for (int corner = 0; corner < 16; ++corner) {
+        double w = 1.0;
+        int b[4];
+        for (int d = 0; d < 4; ++d) {
+            int hi = (corner >> d) & 1;
+            b[d] = i[d] + hi;
+            w *= hi ? t[d] : 1.0 - t[d];
+        }
+        if (w == 0.0) continue;
+        v += w * abrdf__fgd_table[((b[0] * ABRDF__FGD_NALPHA + b[1]) * ABRDF__FGD_NETA + b[2]) *
+                                      ABRDF__FGD_NKAPPA + b[3]];
+    }
+    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+}
+
+double abrdf__belcour_tir(double c, double a, double eta)
+{
+    if (eta >= 1.0) return 1.0; /* from the less dense side nothing is totally reflected */
+    int i[3];
+    double t[3];
+    cell(abrdf__bt_x_cos(c, ABRDF__TIR_NCOS), ABRDF__TIR_NCOS, &i[0], &t[0]);
+    cell(abrdf__bt_x_alpha(a, ABRDF__TIR_NALPHA), ABRDF__TIR_NALPHA, &i[1], &t[1]);
+    cell(abrdf__bt_x_tir_eta(eta), ABRDF__TIR_NETA, &i[2], &t[2]);
+    double v = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        double w = 1.0;
+        int b[3];
+        for (int d = 0; d < 3; ++d) {
+            int hi = (corner >> d) & 1;
+            b[d] = i[d] + hi;
+            w *= hi ? t[d] : 1.0 - t[d];
+        }
+        if (w == 0.0) continue;
+        v += w * abrdf__tir_table[(b[0] * ABRDF__TIR_NALPHA + b[1]) * ABRDF__TIR_NETA + b[2]];
+    }
+    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+}
+
+static double avg3(const double v[3]) { return (v[0] + v[1] + v[2]) / 3.0; }
+
+/* The statistics carried from the top of the stack down to the current medium. */
+typedef struct stack_stats {
+    double R0i[3], T0i[3], Ri0[3], Ti0[3];
+    double sR0i, sT0i, sRi0, sTi0;
+    double J0i, Ji0;
+    double cos; /* cosine of the mean direction in the current medium */
+} stack_stats;
+
+/* Adds interface k to the stack; writes its lobe (energy e, roughness alpha). Returns 1 if
+ * light continues below it. */
+static int add_interface(stack_stats *st, const abrdf_params *p, int k, double e[3],
+                         double *alpha_k)
+{
+    const abrdf_layer *ly = &p->layers[k];
+    double eta = ly->eta, alpha = ly->r * ly->r;
+    int conductor = ly->kappa > 0.0;
+    double c = st->cos;
+    double sin_t2 = (1.0 - c * c) / (eta * eta);
+    int has_t = !conductor && sin_t2 < 1.0;
+    double cos_t = has_t ? sqrt(1.0 - sin_t2) : 0.0;
+    if (cos_t < ABRDF__BELCOUR_COS_MIN) has_t = 0;
+    double sR12 = var_of_alpha(alpha), sT12 = 0.0, sT21 = 0.0, j12 = 1.0, j21 = 1.0;
+    if (has_t) {
+        sT12 = var_of_alpha(alpha * 0.5 * fabs(eta - 1.0) / eta);
+        sT21 = var_of_alpha(alpha * 0.5 * fabs(1.0 / eta - 1.0) * eta);
+        j12 = eta * cos_t / c;
+        j21 = 1.0 / j12;
+    }
+    double a_top = alpha_of_var(st->sT0i + sR12); /* roughness seen through the stack above */
+    double R12 = abrdf__belcour_fgd(c, a_top, eta, ly->kappa);
+    double T12 = has_t ? 1.0 - R12 : 0.0, R21 = has_t ? R12 : 0.0, T21 = T12;
+    if (k > 0) { /* TIR at the interface above, seen from this medium */
+        double tau = abrdf__belcour_tir(c, a_top, 1.0 / p->layers[k - 1].eta);
+        for (int ch = 0; ch < 3; ++ch) {
+            st->Ri0[ch] = fmin(1.0, st->Ri0[ch] + (1.0 - tau) * st->Ti0[ch]);
+            st->Ti0[ch] *= tau;
+        }
+    }
+    double R0i[3], T0i[3], Ri0[3], Ti0[3], eterm[3], riterm[3], rr[3];
+    for (int ch = 0; ch < 3; ++ch) {
+        double den = 1.0 - st->Ri0[ch] * R12;
+        int ok = den > 0.0;
+        eterm[ch] = ok ? st->T0i[ch] * R12 * st->Ti0[ch] / den : 0.0;
+        riterm[ch] = ok ? T21 * st->Ri0[ch] * T12 / den : 0.0;
+        rr[ch] = ok ? st->Ri0[ch] * R12 / den : 0.0;
+        R0i[ch] = st->R0i[ch] + eterm[ch];
+        T0i[ch] = ok ? st->T0i[ch] * T12 / den : 0.0;
+        Ri0[ch] = R21 + riterm[ch];
+        Ti0[ch] = ok ? T21 * st->Ti0[ch] / den : 0.0;
+    }
+    double e_avg = avg3(eterm), ri_avg = avg3(riterm), rr_avg = avg3(rr);
+    double sR0i = avg3(st->R0i) * st->sR0i +
+                  e_avg * (st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)));
+    double sT0i = j12 * st->sT0i + sT12 + j12 * (sR12 + st->sRi0) * rr_avg;
+    double sRi0 = R21 * sR12 + ri_avg * (sT12 + j12 * (sT21 + st->sRi0 + rr_avg * (sR12 + st->sRi0)));
+    double sTi0 = st->Ji0 * sT21 + st->sTi0 + st->Ji0 * (sR12 + st->sRi0) * rr_avg;
+    double r0i_avg = avg3(R0i), ri0_avg = avg3(Ri0);
+    *alpha_k = e_avg > 0.0
+                   ? alpha_of_var(st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)))
+                   : 0.0;
+    for (int ch = 0; ch < 3; ++ch) e[ch] = e_avg > 0.0 ? eterm[ch] : 0.0;
+    for (int ch = 0; ch < 3; ++ch) {
+        st->R0i[ch] = R0i[ch];
+        st->T0i[ch] = T0i[ch];
+        st->Ri0[ch] = Ri0[ch];
+        st->Ti0[ch] = Ti0[ch];
+    }
+    st->sR0i = r0i_avg > 0.0 ? sR0i / r0i_avg : 0.0;
+    st->sT0i = sT0i;
+    st->sRi0 = ri0_avg > 0.0 ? sRi0 / ri0_avg : 0.0;
+    st->sTi0 = sTi0;
+    st->J0i *= j12;
+    st->Ji0 *= j21;
+    st->cos = cos_t;
+    return has_t;
+}
+
+/* The absorbing medium below interface k: transmittance exp(-sigma_a d / cos) each way. */
+static void add_medium(stack_stats *st, const abrdf_layer *ly)
+{
+    for (int ch = 0; ch < 3; ++ch) {
+        double sd = ly->sigma_a[ch] * ly->depth;
+        double T = sd > 0.0 ? exp(-sd / st->cos) : 1.0;
+        st->T0i[ch] *= T;
+        st->Ti0[ch] *= T;
+        st->Ri0[ch] *= T * T;
+    }
+}
+
+void abrdf__eval_belcour(const abrdf_params *p, const double wi[3], const double wo[3],
+                         double f[3])
+{
+    f[0] = f[1] = f[2] = 0.0;
+    double ci = wi[2], co = wo[2];
+    if (!(ci > 0.0 && co > 0.0)) return;
+    double h[3] = {wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]};
+    double len2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+    if (!(len2 > ABRDF__HALF_LEN2_MIN)) return;
+    double inv = 1.0 / sqrt(len2);
+    for (int c = 0; c < 3; ++c) h[c] *= inv;
+    double cd = wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2];
+    if (!(cd > ABRDF__BELCOUR_COS_MIN)) return;
+    double sh2 = h[0] * h[0] + h[1] * h[1];
+    stack_stats st = {{0, 0, 0}, {1, 1, 1}, {0, 0, 0}, {1, 1, 1}, 0, 0, 0, 0, 1, 1, fmin(cd, 1.0)};
+    int n = p->layer_count < ABRDF_MAX_LAYERS ? p->layer_count : ABRDF_MAX_LAYERS;
+    for (int k = 0; k < n; ++k) {
+        double e[3], ak;
+        int below = add_interface(&st, p, k, e, &ak);
+        double ag = fmax(ak, ABRDF__ALPHA_G_MIN);
+        double lobe = abrdf__lo_d_ggx(h[2], sh2, ag) * abrdf__lo_v1(ci, ag) * abrdf__lo_v1(co, ag);
+        for (int c = 0; c < 3; ++c) f[c] += e[c] * lobe; /* Eq. 16 */
+        if (!below) break;
+        if (p->layers[k].depth > 0.0) add_medium(&st, &p->layers[k]);
+    }
+}
