@@ -3,7 +3,7 @@
 #   scripts/setup.sh            build + test dependencies (Debian packages, then bpy in .venv)
 set -euo pipefail
 
-debs=(build-essential g++ cmake pkg-config check python3
+debs=(build-essential g++ cmake pkg-config check python3 povray
       libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
       python3-openimageio python3-numpy)  # the last two: independent image checks in tests
 

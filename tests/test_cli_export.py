@@ -65,7 +65,7 @@ class Export(unittest.TestCase):
 
     def test_usage_errors(self):
         sphere = os.path.join(SCENES, "sphere.scene")
-        for args, msg in [((sphere, "-o", self.out), "missing FORMAT"),
+        for args, msg in [((sphere, "-o", self.out), "choose one format"),
                           (("--cycles", "-o", self.out), "missing SCENE"),
                           (("--cycles", sphere), "missing -o"),
                           (("--cycles", sphere, "-o", self.out, "--mode", "x"), "--mode"),

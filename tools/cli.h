@@ -44,10 +44,10 @@ int cmd_models(int argc, char **argv);
 int cmd_eval(int argc, char **argv);
 int cmd_slice(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_export(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_tables(int argc, char **argv);
 int cmd_calibrate(int argc, char **argv);
 int cmd_advise(int argc, char **argv);
-int cmd_export(int argc, char **argv);
 
 #endif

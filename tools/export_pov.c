@@ -1,0 +1,143 @@
+/* export_pov.c - the scene as POV-Ray SDL through abrdf.inc (export_pov.h). */
+#include <ctype.h>
+#include <math.h>
+#include <string.h>
+
+#include "export_pov.h"
+
+/* POV-Ray's left-handed world: z negated. */
+static void vec(FILE *f, const double v[3], double scale)
+{
+    fprintf(f, "<%.17g, %.17g, %.17g>", scale * v[0], scale * v[1], -scale * v[2]);
+}
+
+static void upper(char *dst, const char *src, size_t size)
+{
+    size_t i = 0;
+    for (; src[i] && i + 1 < size; ++i) dst[i] = (char)toupper((unsigned char)src[i]);
+    dst[i] = '\0';
+}
+
+static void material(FILE *f, int index, const scene_material *sm, const render_material *m)
+{
+    char id[64];
+    upper(id, abrdf_model_get(m->lobes[0])->name, sizeof id);
+    fprintf(f, "// material '%s'\n#declare Abrdf_Mat_%d = Abrdf_Default(ABRDF_ID_%s);\n", sm->name, index, id);
+    if (m->lobe_count > 1) {
+        upper(id, abrdf_model_get(m->lobes[1])->name, sizeof id);
+        fprintf(f, "#declare Abrdf_Mat_%d[1] = ABRDF_ID_%s;\n", index, id);
+    }
+    /* every parameter a lobe reads, by its symbolic slot */
+    for (int l = 0; l < m->lobe_count; ++l) {
+        const abrdf_model_info *mi = abrdf_model_get(m->lobes[l]);
+        for (int k = 0; k < mi->param_count; ++k) {
+            const abrdf_param_info *pi = abrdf_param_get(mi->params[k].id);
+            double v[3];
+            int n = abrdf_param_read(&m->params, mi->params[k].id, v);
+            upper(id, pi->name, sizeof id);
+            for (int c = 0; c < n; ++c)
+                fprintf(f, "#declare Abrdf_Mat_%d[ABRDF_SLOT_%s + %d] = %.17g;\n", index, id, c, v[c]);
+        }
+    }
+    fprintf(f, "Abrdf__Check(Abrdf_Mat_%d, \"material '%s'\")\n", index, sm->name);
+}
+
+int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE *f, char *err,
+                     size_t err_size)
+{
+    const scene *s = rs->src;
+    if (opt->lit && rs->light_count != 1) {
+        snprintf(err, err_size, "POV-Ray's own shadows need exactly one light (the scene has %d); "
+                 "export without them", rs->light_count);
+        return -1;
+    }
+    for (int l = 0; opt->native && l < rs->light_count; ++l)
+        if (rs->lights[l].kind == SCENE_LIGHT_POINT) {
+            snprintf(err, err_size, "--native: POV-Ray's light fading is 2 / (1 + (d/D)^p), never the "
+                     "1/d^2 of a point light; export without --native");
+            return -1;
+        }
+    double extent = rs->eps / 1e-9; /* render.c: eps = 1e-9 * scene size */
+    fprintf(f, "// %s - exported by `abrdf export --pov` (docs/POVRAY.md).\n", opt->source);
+    fprintf(f, "// Render linear HDR without antialiasing, e.g. with k x k supersampling:\n"
+               "//   povray +I<this file> +O<out>.exr +FE +W%d +H%d -A +L<abrdf>/povray_macros\n"
+               "// and average k x k pixel blocks (k = 1 here): the samples are those of\n"
+               "// `abrdf render --spp k*k` (stratum centres).\n", rs->width, rs->height);
+    fprintf(f, "// Shading: %s\n",
+            opt->native ? "POV-Ray's own finishes (abrdf_native.inc), its lights and shadows."
+            : opt->lit ? "function pigments; POV-Ray's light_source and shadow test (one light)."
+                       : "function pigments, emissive: each pigment sums every light unoccluded (no shadows).");
+    fprintf(f, "#version 3.7;\nglobal_settings { assumed_gamma 1 ambient_light %d max_trace_level 1 }\n",
+            opt->native ? 1 : 0);
+    fprintf(f, "#include \"abrdf.inc\"\n#include \"abrdf_shading.inc\"  // shapes, transforms\n%s\n",
+            opt->native ? "#include \"abrdf_native.inc\"\n" : "");
+    fprintf(f, "#declare Abrdf_Eye = ");
+    vec(f, rs->eye, 1);
+    fprintf(f, ";\ncamera { perspective location Abrdf_Eye\n  direction ");
+    vec(f, rs->forward, 1);
+    fprintf(f, "\n  right ");
+    vec(f, rs->right, 2); /* render.h: right/up span half the image plane */
+    fprintf(f, "\n  up ");
+    vec(f, rs->up, 2);
+    fprintf(f, " }\n\n");
+
+    fprintf(f, "#declare Abrdf_Lights = array[%d][7] {\n", rs->light_count > 0 ? rs->light_count : 1);
+    for (int l = 0; l < rs->light_count; ++l) {
+        const render_light *lt = &rs->lights[l];
+        const double *p = lt->kind == SCENE_LIGHT_POINT ? lt->position : lt->direction;
+        fprintf(f, "  {%d, %.17g, %.17g, %.17g, %.17g, %.17g, %.17g}%s\n", lt->kind == SCENE_LIGHT_POINT ? 0 : 1,
+                p[0], p[1], -p[2], lt->e[0], lt->e[1], lt->e[2], l + 1 < rs->light_count ? "," : "");
+    }
+    if (rs->light_count == 0) fprintf(f, "  {1, 0, 1, 0, 0, 0, 0}  // no light: a black one\n");
+    fprintf(f, "}\n");
+    /* Lit: the pigment holds E, the light is white; native: the light carries E. */
+    for (int l = 0; (opt->lit || opt->native) && l < rs->light_count; ++l) {
+        const render_light *lt = &rs->lights[l];
+        double e[3] = {1, 1, 1};
+        if (opt->native) memcpy(e, lt->e, sizeof e);
+        fprintf(f, "light_source { ");
+        if (lt->kind == SCENE_LIGHT_POINT) {
+            vec(f, lt->position, 1);
+            fprintf(f, " color rgb <%.17g, %.17g, %.17g> }\n", e[0], e[1], e[2]);
+        } else {
+            /* far beyond the scene: POV-Ray's parallel light shadows up to its location */
+            vec(f, lt->direction, 1e6 * fmax(extent, 1.0));
+            fprintf(f, " color rgb <%.17g, %.17g, %.17g> parallel point_at <0, 0, 0> }\n", e[0], e[1], e[2]);
+        }
+    }
+    fprintf(f, "\n");
+    for (int i = 0; i < rs->material_count; ++i)
+        if (rs->materials[i].used) material(f, i, &s->materials[i], &rs->materials[i]);
+    fprintf(f, "\n");
+
+    static const char *shapes[] = {"sphere", "cylinder", "capsule", "box"};
+    for (int i = 0; i < rs->object_count; ++i) {
+        const scene_object *o = &s->objects[i];
+        const geom_object *g = &rs->objects[i];
+        const render_material *m = &rs->materials[o->material];
+        fprintf(f, "// %s, scene line %d\n#declare Abrdf_M = array[12] {", shapes[o->shape], o->line);
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c)
+                fprintf(f, "%.17g%s", r == 2 ? -g->xf.m[r][c] : g->xf.m[r][c], r == 2 && c == 3 ? "" : ", ");
+        fprintf(f, "}\n");
+        double dims[3] = {o->radius, o->height, 0};
+        if (o->shape == SCENE_BOX) memcpy(dims, o->size, sizeof dims);
+        fprintf(f, "object { Abrdf_Shape(\"%s\", <%.17g, %.17g, %.17g>)\n", shapes[o->shape], dims[0], dims[1], dims[2]);
+        if (opt->native) {
+            fprintf(f, "  Abrdf_Native_Texture(Abrdf_Mat_%d, <%.17g, %.17g, %.17g>)\n", o->material,
+                    m->use_ambient ? m->ambient[0] : 0.0, m->use_ambient ? m->ambient[1] : 0.0,
+                    m->use_ambient ? m->ambient[2] : 0.0);
+            fprintf(f, "  Abrdf_Xform_Matrix(Abrdf_M) }\n");
+            continue;
+        }
+        fprintf(f, "  Abrdf_Shaded_Texture(Abrdf_Mat_%d, \"%s\", <%.17g, %.17g, %.17g>, Abrdf_M,\n", o->material,
+                shapes[o->shape], dims[0], dims[1], dims[2]);
+        fprintf(f, "    array[4] {%d, %.17g, %.17g, %.17g}, Abrdf_Eye, Abrdf_Lights,\n", (int)o->tangent,
+                o->tangent_axis[0], o->tangent_axis[1], o->tangent_axis[2]);
+        fprintf(f, "    <%.17g, %.17g, %.17g>, %s)\n", m->use_ambient ? m->ambient[0] : 0.0,
+                m->use_ambient ? m->ambient[1] : 0.0, m->use_ambient ? m->ambient[2] : 0.0,
+                opt->lit ? "true" : "false");
+        fprintf(f, "  Abrdf_Xform_Matrix(Abrdf_M) }\n");
+    }
+    return ferror(f) ? (snprintf(err, err_size, "write error"), -1) : 0;
+}
