@@ -32,7 +32,12 @@
 #define ABRDF_INV_PI 0.31830988618379067154
 
 // ---- guards (the only place where sqrt/division/pow are made safe) ----------------------
-float abrdf_clampr(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
+// Two plain selects, as the C kernel: NaN -> lo.
+float abrdf_clampr(float x, float lo, float hi)
+{
+    float y = x > lo ? x : lo;
+    return y < hi ? y : hi;
+}
 float abrdf_pos(float x) { return x > 0.0 ? x : 0.0; } // NaN -> 0 as well
 float abrdf_safe_sqrt(float x) { return sqrt(abrdf_pos(x)); }
 float abrdf_safe_div(float a, float b) { return b != 0.0 ? a / b : 0.0; }
@@ -63,7 +68,7 @@ struct abrdf_geo {
     vector h;   // H; +z when wi ~ -wo
     float ch;   // N.H
     float sh2;  // |N x H|^2 = sin^2(theta_h)
-    float cd;   // wi.H in [0, 1]
+    float cd;   // wi.H = |wi + wo| / 2 in [0, 1]
     float rv;   // R.wo, R the mirror of wi
 };
 
@@ -76,13 +81,13 @@ abrdf_geo abrdf_geo_make(vector wi, vector wo)
     g.co = abrdf_clampr(wo[2], -1.0, 1.0);
     vector h = wi + wo;
     float len2 = dot(h, h);
-    if (len2 > ABRDF_HALF_LEN2_MIN)
-        g.h = h / sqrt(len2);
-    else
-        g.h = vector(0, 0, 1);
+    int ok = len2 > ABRDF_HALF_LEN2_MIN;
+    float len = sqrt(ok ? len2 : 1.0);
+    g.h = ok ? h / len : vector(0, 0, 1);
     g.ch = abrdf_clampr(g.h[2], -1.0, 1.0);
     g.sh2 = abrdf_clampr(g.h[0] * g.h[0] + g.h[1] * g.h[1], 0.0, 1.0);
-    g.cd = abrdf_clampr(dot(wi, g.h), 0.0, 1.0);
+    // |wi + wo| / 2: symmetric in wi, wo and free of cancellation when wi ~ -wo.
+    g.cd = ok ? abrdf_clampr(0.5 * len, 0.0, 1.0) : 0.0;
     g.rv = abrdf_clampr(-wi[0] * wo[0] - wi[1] * wo[1] + wi[2] * wo[2], -1.0, 1.0);
     return g;
 }
@@ -471,14 +476,52 @@ color abrdf_disney_clearcoat(vector wi, vector wo, color ks, float clearcoat_glo
     return ks * (0.25 * abrdf_f_schlick(0.04, g.cd) * dv);
 }
 
+// ---- cloth (k_cloth.h) ------------------------------------------------------------------
+// Below this sin^2(theta_h) the inverted-Gaussian term is at its limit 0 (keeps 0 * Inf out).
+#define ABRDF_VELVET_SIN2_MIN 1e-4
+
+// Ashikhmin-Premoze inverted-Gaussian velvet D, offset 1, amplitude k_amp.
+float abrdf_d_velvet(float ch, float sh2, float alpha, float k_amp)
+{
+    float g = 0.0;
+    if (sh2 > ABRDF_VELVET_SIN2_MIN && ch > 0.0)
+        g = exp(-(ch * ch) / (sh2 * alpha * alpha)) / (sh2 * sh2);
+    return (1.0 + k_amp * g) / (ABRDF_PI * (1.0 + k_amp * alpha * alpha)); // Eq. 10 (D)
+}
+
+// Neubelt-Pettineo 2013, Eq. 10: (1 - F) kd/pi + ks F D / (4 (cos_i + cos_o - cos_i cos_o)).
+color abrdf_neubelt_pettineo(vector wi, vector wo, color kd, color ks, color f0, float r,
+                             float k_amp)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float dv = abrdf_d_velvet(g.ch, g.sh2, abrdf_alpha_g(r), k_amp) *
+               abrdf_safe_div(1.0, 4.0 * (g.ci + g.co - g.ci * g.co));
+    color F = abrdf_f_schlick(f0, g.cd);
+    return (color(1) - F) * kd * ABRDF_INV_PI + ks * F * dv; // Eq. 10
+}
+
+// Kajiya-Kay 1989, Eq. 11 (sign-correct form): kd sin(T,L) + ks [sin sin - cos cos]^n,
+// T = local +x.
+color abrdf_kajiya_kay(vector wi, vector wo, color kd, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float tl = abrdf_clampr(g.i[0], -1.0, 1.0), tv = abrdf_clampr(g.o[0], -1.0, 1.0);
+    float sl = abrdf_clampr(sqrt(g.i[1] * g.i[1] + g.i[2] * g.i[2]), 0.0, 1.0);
+    float sv = abrdf_clampr(sqrt(g.o[1] * g.o[1] + g.o[2] * g.o[2]), 0.0, 1.0);
+    float spec = abrdf_pow_pos(sl * sv - tl * tv, n);
+    return kd * sl + ks * spec; // Eq. 11
+}
+
 // ---- dispatch by name ----------------------------------------------------------------------
 // Every parameter of the library's flat parameter block; each model reads its own. Returns
 // 0 for an unknown model or parameters outside the model's ranges (the C library returns
 // an error code there), and never a negative or non-finite value.
 color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f0, float n,
-                 float r, float anisotropic, float sigma, float clearcoat_gloss)
+                 float r, float anisotropic, float sigma, float clearcoat_gloss, float k_amp)
 {
-    if (!abrdf_params_valid(model, kd, ks, f0, n, r, anisotropic, sigma, clearcoat_gloss))
+    if (!abrdf_params_valid(model, kd, ks, f0, n, r, anisotropic, sigma, clearcoat_gloss, k_amp))
         return color(0);
     color f = color(0);
     if (model == "lambert") f = abrdf_lambert(wi, wo, kd);
@@ -507,6 +550,8 @@ color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f
     else if (model == "disney_specular_aniso")
         f = abrdf_disney_specular_aniso(wi, wo, ks, r, anisotropic, f0);
     else if (model == "disney_clearcoat") f = abrdf_disney_clearcoat(wi, wo, ks, clearcoat_gloss);
+    else if (model == "neubelt_pettineo") f = abrdf_neubelt_pettineo(wi, wo, kd, ks, f0, r, k_amp);
+    else if (model == "kajiya_kay") f = abrdf_kajiya_kay(wi, wo, kd, ks, n);
     // Last line of defence, as in the C library: never NaN, Inf or negative.
     for (int c = 0; c < 3; ++c)
         if (!(f[c] >= 0.0 && f[c] <= 3.4e38)) f[c] = 0.0;

@@ -202,7 +202,7 @@ def material_inputs(m):
     lobes = m["lobes"] + [""] * (2 - len(m["lobes"]))
     return {"model": lobes[0], "model2": lobes[1], "kd": m["kd"], "ks": m["ks"], "f0": m["f0"],
             "n": m["n"], "r": m["r"], "anisotropic": m["anisotropic"], "sigma": m["sigma"],
-            "clearcoat_gloss": m["clearcoat_gloss"]}
+            "clearcoat_gloss": m["clearcoat_gloss"], "k_amp": m["k_amp"]}
 
 
 def eval_inputs(s, m):

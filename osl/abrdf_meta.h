@@ -4,9 +4,9 @@
 #define ABRDF_META_H
 
 // Models with an OSL twin (closed-form models), space separated.
-#define ABRDF_MODEL_NAMES "lambert lambert_fresnel disney_diffuse oren_nayar phong blinn_phong f2 f4 f8 f16 fs fkv fkub f_phe f_be f_2e f_16e f_ge f_ctphe f_ct2e f_ct16e cook_torrance disney_specular disney_specular_aniso disney_clearcoat"
+#define ABRDF_MODEL_NAMES "lambert lambert_fresnel disney_diffuse oren_nayar phong blinn_phong f2 f4 f8 f16 fs fkv fkub f_phe f_be f_2e f_16e f_ge f_ctphe f_ct2e f_ct16e cook_torrance disney_specular disney_specular_aniso disney_clearcoat neubelt_pettineo kajiya_kay"
 // The same list for a popup widget.
-#define ABRDF_MODEL_OPTIONS "lambert|lambert_fresnel|disney_diffuse|oren_nayar|phong|blinn_phong|f2|f4|f8|f16|fs|fkv|fkub|f_phe|f_be|f_2e|f_16e|f_ge|f_ctphe|f_ct2e|f_ct16e|cook_torrance|disney_specular|disney_specular_aniso|disney_clearcoat"
+#define ABRDF_MODEL_OPTIONS "lambert|lambert_fresnel|disney_diffuse|oren_nayar|phong|blinn_phong|f2|f4|f8|f16|fs|fkv|fkub|f_phe|f_be|f_2e|f_16e|f_ge|f_ctphe|f_ct2e|f_ct16e|cook_torrance|disney_specular|disney_specular_aniso|disney_clearcoat|neubelt_pettineo|kajiya_kay"
 
 // Per parameter: widest range over the models, default of the parameter block.
 #define ABRDF_P_KD_MIN 0.0
@@ -33,6 +33,9 @@
 #define ABRDF_P_CLEARCOAT_GLOSS_MIN 0.0
 #define ABRDF_P_CLEARCOAT_GLOSS_MAX 1.0
 #define ABRDF_P_CLEARCOAT_GLOSS_HELP "Disney clearcoat gloss; alpha = mix(0.1, 0.001, gloss)"
+#define ABRDF_P_K_AMP_MIN 0.0
+#define ABRDF_P_K_AMP_MAX 100.0
+#define ABRDF_P_K_AMP_HELP "Neubelt-Pettineo inverted-Gaussian amplitude"
 
 // Per model: default of each parameter it reads (abrdf_params_init).
 #define ABRDF_LAMBERT_KD_DEFAULT 1.0
@@ -92,11 +95,19 @@
 #define ABRDF_DISNEY_SPECULAR_ANISO_F0_DEFAULT 0.04
 #define ABRDF_DISNEY_CLEARCOAT_KS_DEFAULT 1.0
 #define ABRDF_DISNEY_CLEARCOAT_CLEARCOAT_GLOSS_DEFAULT 1.0
+#define ABRDF_NEUBELT_PETTINEO_KD_DEFAULT 0.5
+#define ABRDF_NEUBELT_PETTINEO_KS_DEFAULT 1.0
+#define ABRDF_NEUBELT_PETTINEO_F0_DEFAULT 0.04
+#define ABRDF_NEUBELT_PETTINEO_R_DEFAULT 0.7
+#define ABRDF_NEUBELT_PETTINEO_K_AMP_DEFAULT 4.0
+#define ABRDF_KAJIYA_KAY_KD_DEFAULT 0.25
+#define ABRDF_KAJIYA_KAY_KS_DEFAULT 0.25
+#define ABRDF_KAJIYA_KAY_N_DEFAULT 40.0
 
 // abrdf_params_check: every parameter a model reads inside the model's range;
 // unknown models are invalid.
 int abrdf_params_valid(string model, color kd, color ks, color f0, float n, float r,
-                       float anisotropic, float sigma, float clearcoat_gloss)
+                       float anisotropic, float sigma, float clearcoat_gloss, float k_amp)
 {
     if (model == "lambert")
         return abrdf_in_range(kd, 0.0, 1.0);
@@ -180,6 +191,16 @@ int abrdf_params_valid(string model, color kd, color ks, color f0, float n, floa
     else if (model == "disney_clearcoat")
         return abrdf_in_range(ks, 0.0, 1.0) &&
                (clearcoat_gloss >= 0.0 && clearcoat_gloss <= 1.0);
+    else if (model == "neubelt_pettineo")
+        return abrdf_in_range(kd, 0.0, 1.0) &&
+               abrdf_in_range(ks, 0.0, 1.0) &&
+               abrdf_in_range(f0, 0.0, 1.0) &&
+               (r >= 0.0 && r <= 1.0) &&
+               (k_amp >= 0.0 && k_amp <= 100.0);
+    else if (model == "kajiya_kay")
+        return abrdf_in_range(kd, 0.0, 1.0) &&
+               abrdf_in_range(ks, 0.0, 1.0) &&
+               (n >= 0.0 && n <= 1000000.0);
     return 0;
 }
 

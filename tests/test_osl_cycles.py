@@ -115,9 +115,32 @@ class CrossCheck(unittest.TestCase):
 
     table = {}
 
+    # Models the C library evaluates by numerical integration or layer recursion (hair,
+    # layered) have no OSL twin yet: listed in the table with the reason, not rendered.
+    NO_TWIN_NEEDS = {"integration": "no OSL twin: numerical integration",
+                     "layers": "no OSL twin: layer stack"}
+
     @classmethod
     def setUpClass(cls):
-        cls.models = [m["name"] for m in json.loads(run("models", "--json"))["models"]]
+        info = json.loads(run("models", "--json"))["models"]
+        cls.all_models = [m["name"] for m in info]
+        cls.no_twin = {}
+        for m in info:
+            for need, reason in cls.NO_TWIN_NEEDS.items():
+                if need in m["needs"]:
+                    cls.no_twin[m["name"]] = reason
+        cls.models = [m for m in cls.all_models if m not in cls.no_twin]
+
+    def test_every_closed_form_model_has_a_twin(self):
+        with open(os.path.join(OSL_DIR, "abrdf_meta.h")) as f:
+            names = next(l for l in f if l.startswith("#define ABRDF_MODEL_NAMES"))
+        twins = names.split('"')[1].split()
+        self.assertEqual(twins, self.models)
+        with open(os.path.join(OSL_DIR, "abrdf.h")) as f:
+            header = f.read()
+        for m in self.models:
+            self.assertIn("color abrdf_%s(vector wi, vector wo" % m, header)
+            self.assertIn('model == "%s"' % m, header)
 
     def render_pair(self, scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1,
                     sets=()):
@@ -157,7 +180,10 @@ class CrossCheck(unittest.TestCase):
                 self.table[(model, scene)] = nmse
                 if nmse is not None and not nmse < NMSE_MAX:
                     failures.append("%s on %s: NMSE %.3g" % (model, scene, nmse))
-        print_table(self.models, self.table, time.time() - t0)
+        for m, reason in self.no_twin.items():
+            for scene, _, _, _ in SCENES:
+                self.table[(m, scene)] = reason
+        print_table(self.all_models, self.table, time.time() - t0)
         self.assertEqual(failures, [])
 
     def test_generic_shader_on_a_box(self):
@@ -202,10 +228,11 @@ def print_table(models, table, seconds, names=None):
         cells = []
         for s in names:
             v = table.get((m, s))
-            cells.append("error" if v is None else "%.1e" % v)
+            cells.append("error" if v is None else v if isinstance(v, str) else "%.1e" % v)
         sys.stdout.write("| %s | %s |\n" % (m, " | ".join(cells)))
     if seconds:
-        sys.stdout.write("(%d renders per renderer, %.0f s)\n" % (len(models) * len(names), seconds))
+        n = sum(isinstance(table.get((m, c)), float) for m in models for c in names)
+        sys.stdout.write("(%d renders per renderer, %.0f s)\n" % (n, seconds))
     sys.stdout.flush()
 
 

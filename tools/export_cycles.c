@@ -117,6 +117,7 @@ static void write_osl(FILE *f, const render_scene *rs)
     OSL_ARRAY(f, "float", "sigma", nm, fprintf(f, G, rs->materials[i_].params.sigma));
     OSL_ARRAY(f, "float", "clearcoat_gloss", nm,
               fprintf(f, G, rs->materials[i_].params.clearcoat_gloss));
+    OSL_ARRAY(f, "float", "k_amp", nm, fprintf(f, G, rs->materials[i_].params.k_amp));
     OSL_ARRAY(f, "color", "ambient", nm, osl_vec(f, "color", rs->materials[i_].ambient));
 
     static const double zero[3] = {0, 0, 0};
@@ -171,10 +172,10 @@ static void write_osl(FILE *f, const render_scene *rs)
           "            if (blocked) continue;\n"
           "            vector li = abrdf_to_local(wi, T, B, nrm);\n"
           "            color f = abrdf_eval(lobe0[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
-          "                                 anisotropic[m], sigma[m], clearcoat_gloss[m]);\n"
+          "                                 anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m]);\n"
           "            if (lobe_count[m] > 1)\n"
           "                f += abrdf_eval(lobe1[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
-          "                                anisotropic[m], sigma[m], clearcoat_gloss[m]);\n"
+          "                                anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m]);\n"
           "            L += light_e[l] * falloff * ci * f;\n"
           "        }\n"
           "    }\n"
@@ -266,9 +267,9 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
         fputs(", \"f0\": ", f);
         vec3(f, m->params.f0);
         fprintf(f, ",\n         \"n\": " G ", \"r\": " G ", \"anisotropic\": " G ", \"sigma\": " G
-                   ", \"clearcoat_gloss\": " G ", \"ambient\": ",
+                   ", \"clearcoat_gloss\": " G ", \"k_amp\": " G ", \"ambient\": ",
                 m->params.n, m->params.r, m->params.anisotropic, m->params.sigma,
-                m->params.clearcoat_gloss);
+                m->params.clearcoat_gloss, m->params.k_amp);
         vec3(f, m->ambient);
         fputs("},\n", f);
     }

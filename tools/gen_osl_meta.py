@@ -18,7 +18,7 @@ import subprocess
 import sys
 
 # The parameters the OSL functions take, in the order of abrdf_eval()'s signature.
-OSL_PARAMS = ["kd", "ks", "f0", "n", "r", "anisotropic", "sigma", "clearcoat_gloss"]
+OSL_PARAMS = ["kd", "ks", "f0", "n", "r", "anisotropic", "sigma", "clearcoat_gloss", "k_amp"]
 
 
 def num(x):
@@ -67,7 +67,8 @@ def meta_header(models, rules):
     out.append("// unknown models are invalid.")
     out.append("int abrdf_params_valid(string model, color kd, color ks, color f0, float n, "
                "float r,")
-    out.append("                       float anisotropic, float sigma, float clearcoat_gloss)")
+    out.append("                       float anisotropic, float sigma, float clearcoat_gloss, "
+               "float k_amp)")
     out.append("{")
     first = True
     for m in closed:
