@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what abrdf needs on a Debian machine, only what is missing. Idempotent.
-#   scripts/setup.sh            build + test dependencies (Debian packages)
+#   scripts/setup.sh            build + test dependencies (Debian packages, then bpy in .venv)
 set -euo pipefail
 
 debs=(build-essential g++ cmake pkg-config check python3 povray
@@ -22,3 +22,6 @@ if ((${#missing[@]})); then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+
+# The OSL port's tests render in Blender's Cycles: bpy from PyPI in .venv.
+"$(dirname "$0")/setup_bpy.sh"

@@ -6,7 +6,7 @@
 static const cli_command commands[] = {
     {"models", "list every model with its formula, parameters and needs", cmd_models},
     {"eval", "evaluate a model's f_r for one direction pair", cmd_eval},
-    {"export", "write a scene for another renderer (--pov: POV-Ray 3.7 SDL through abrdf.inc)", cmd_export},
+    {"export", "write a scene for another renderer (--pov: POV-Ray 3.7 SDL; --cycles: Blender/Cycles with OSL)", cmd_export},
     {"render", "render a scene (docs/SCENES.md) to EXR + PNG preview with the built-in ray tracer", cmd_render},
     {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
     {"compare", "NMSE (the paper's metric), PSNR, max error and Table-8 class of two images", cmd_compare},

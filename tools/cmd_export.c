@@ -1,57 +1,100 @@
-/* cmd_export.c - `abrdf export --pov SCENE -o OUT.pov`: the scene for POV-Ray 3.7. */
+/* cmd_export.c - `abrdf export --pov|--cycles SCENE -o OUT`: the scene for another renderer.
+ * Shared here: parsing, --model/--set (as abrdf render), render_prepare (so every exporter
+ * reads the built-in renderer's own camera vectors, materials and lights). The writers live
+ * in export_pov.c (POV-Ray SDL, docs/POVRAY.md) and export_cycles.c (Blender/Cycles bpy
+ * script with OSL, docs/OSL.md). */
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "export.h"
 #include "export_pov.h"
+
+#ifndef ABRDF_SOURCE_OSL_DIR
+#define ABRDF_SOURCE_OSL_DIR ""
+#endif
+#ifndef ABRDF_INSTALL_OSL_DIR
+#define ABRDF_INSTALL_OSL_DIR ""
+#endif
 
 static int usage(void)
 {
     printf("usage: abrdf export --pov SCENE -o OUT.pov [--model NAME [--set NAME=VALUE ...]]\n"
-           "                    [--width W] [--height H] [--no-shadows | --native]\n\n"
-           "Writes SCENE (docs/SCENES.md) as POV-Ray 3.7 SDL that shades every object with the\n"
-           "library's models (povray_macros/abrdf.inc, docs/POVRAY.md): same camera, lights,\n"
-           "primitives and materials. Render it with +L<abrdf>/povray_macros, linear HDR (+FE).\n\n"
+           "                    [--width W] [--height H] [--no-shadows | --native]\n"
+           "       abrdf export --cycles SCENE -o OUT.py [--model NAME [--set NAME=VALUE ...]]\n"
+           "                    [--width W] [--height H] [--spp N] [--mode eval|closure|generic]\n"
+           "                    [--osl-dir DIR]\n\n"
+           "--pov writes SCENE (docs/SCENES.md) as POV-Ray 3.7 SDL that shades every object with\n"
+           "the library's models (povray_macros/abrdf.inc, docs/POVRAY.md): same camera, lights,\n"
+           "primitives and materials. Render it with +L<abrdf>/povray_macros, linear HDR (+FE).\n"
+           "--cycles writes a Blender/Cycles (bpy) script for the same scene with the OSL port\n"
+           "(osl/, docs/OSL.md); run it with a Python that has bpy.\n\n"
            "  --model/--set      as abrdf render: every material becomes this model\n"
-           "  --width/--height   the resolution written in the header comment (aspect ratio\n"
-           "                     of the camera); default the scene's\n"
-           "  --no-shadows       emissive mode even with one light (no shadows); with several\n"
-           "                     lights this is the only mode\n"
-           "  --native           POV-Ray's own finishes instead of function pigments (fast path):\n"
+           "  --width/--height   override the scene's resolution\n"
+           "  --no-shadows       (pov) emissive mode even with one light (no shadows); with\n"
+           "                     several lights this is the only mode\n"
+           "  --native           (pov) POV-Ray's own finishes instead of function pigments:\n"
            "                     lambert, phong, blinn_phong only; directional lights only;\n"
-           "                     phong/blinn_phong then lack the factor N.wi (docs/POVRAY.md)\n");
+           "                     phong/blinn_phong then lack the factor N.wi (docs/POVRAY.md)\n"
+           "  --spp N            (cycles) samples per pixel; default 4\n"
+           "  --mode M           (cycles) the script's default mode: eval (exact, default),\n"
+           "                     closure (Cycles' closures and lights), generic (abrdf_eval.osl)\n"
+           "  --osl-dir DIR      (cycles) abrdf's osl/ directory the script uses; default\n"
+           "                     $ABRDF_OSL_DIR, else the source tree's, else the installed one\n");
     return 0;
+}
+
+/* The osl/ directory: $ABRDF_OSL_DIR, else the source tree's, else the installed one. */
+static const char *osl_dir_default(void)
+{
+    const char *env = getenv("ABRDF_OSL_DIR");
+    if (env && *env) return env;
+    char probe[4096];
+    snprintf(probe, sizeof probe, "%s/abrdf.h", ABRDF_SOURCE_OSL_DIR);
+    FILE *f = fopen(probe, "r");
+    if (f) {
+        fclose(f);
+        return ABRDF_SOURCE_OSL_DIR;
+    }
+    return ABRDF_INSTALL_OSL_DIR;
 }
 
 int cmd_export(int argc, char **argv)
 {
     const char *cmd = "export", *path = NULL, *out = NULL, *model_name = NULL;
+    const char *osl_dir = NULL, *mode = NULL;
     const char *sets[64];
-    int nsets = 0, pov = 0, no_shadows = 0, native = 0;
+    int nsets = 0, pov = 0, cycles = 0, no_shadows = 0, native = 0, spp = 0;
     render_options opt;
     memset(&opt, 0, sizeof opt);
     opt.spp = 1;
     opt.threads = 1;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
+        long v;
         if (cli_is_help(a)) return usage();
         if (!strcmp(a, "--pov")) pov = 1;
+        else if (!strcmp(a, "--cycles")) cycles = 1;
         else if (!strcmp(a, "--no-shadows")) no_shadows = 1;
         else if (!strcmp(a, "--native")) native = 1;
-        else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--set")) {
+        else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--set") ||
+                 !strcmp(a, "--osl-dir") || !strcmp(a, "--mode")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
             if (!strcmp(a, "-o")) out = val;
             else if (!strcmp(a, "--model")) model_name = val;
+            else if (!strcmp(a, "--osl-dir")) osl_dir = val;
+            else if (!strcmp(a, "--mode")) mode = val;
             else if (nsets == 64) return cli_fail(cmd, "too many --set options (64 at most)");
             else sets[nsets++] = val;
-        } else if (!strcmp(a, "--width") || !strcmp(a, "--height")) {
-            long v;
-            if (!cli_parse_int(val, 1, SCENE_MAX_RESOLUTION, &v))
-                return cli_fail(cmd, "%s needs a whole number in [1, %d]", a, SCENE_MAX_RESOLUTION);
+        } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp")) {
+            long hi = !strcmp(a, "--spp") ? 65536 : SCENE_MAX_RESOLUTION;
+            if (!cli_parse_int(val, 1, hi, &v))
+                return cli_fail(cmd, "%s needs a whole number in [1, %ld]", a, hi);
             ++i;
             if (!strcmp(a, "--width")) opt.width = (int)v;
-            else opt.height = (int)v;
+            else if (!strcmp(a, "--height")) opt.height = (int)v;
+            else spp = (int)v;
         } else if (a[0] == '-') {
             return cli_fail(cmd, "unknown option '%s' (abrdf export --help)", a);
         } else if (!path) {
@@ -60,11 +103,17 @@ int cmd_export(int argc, char **argv)
             return cli_fail(cmd, "more than one SCENE ('%s' and '%s')", path, a);
         }
     }
-    if (!pov) return cli_fail(cmd, "choose the format: --pov (the only exporter of this build)");
+    if (pov + cycles != 1) return cli_fail(cmd, "choose one format: --pov or --cycles");
     if (!path) return cli_fail(cmd, "missing SCENE (abrdf export --help)");
-    if (!out) return cli_fail(cmd, "missing -o OUT.pov");
+    if (!out) return cli_fail(cmd, "missing -o OUT");
     if (nsets && !model_name) return cli_fail(cmd, "--set needs --model");
+    if (pov && (spp || mode || osl_dir))
+        return cli_fail(cmd, "--spp, --mode and --osl-dir are options of --cycles");
+    if (cycles && (native || no_shadows))
+        return cli_fail(cmd, "--native and --no-shadows are options of --pov");
     if (native && no_shadows) return cli_fail(cmd, "--native uses POV-Ray's lights (with shadows); drop --no-shadows");
+    if (mode && strcmp(mode, "eval") && strcmp(mode, "closure") && strcmp(mode, "generic"))
+        return cli_fail(cmd, "--mode is eval, closure or generic, not '%s'", mode);
 
     scene s;
     char err[512];
@@ -97,14 +146,23 @@ int cmd_export(int argc, char **argv)
         goto done;
     }
     prepared = 1;
-    export_pov_options eo = {!native && !no_shadows && rs.light_count == 1, native, path};
     if (!(f = fopen(out, "w"))) {
         fprintf(stderr, "abrdf export: cannot write %s\n", out);
         goto done;
     }
-    if (export_pov_write(&rs, &eo, f, err, sizeof err)) {
-        fprintf(stderr, "abrdf export: %s: %s\n", out, err);
-        goto done;
+    if (pov) {
+        export_pov_options eo = {!native && !no_shadows && rs.light_count == 1, native, path};
+        if (export_pov_write(&rs, &eo, f, err, sizeof err)) {
+            fprintf(stderr, "abrdf export: %s: %s\n", out, err);
+            goto done;
+        }
+    } else {
+        export_options eo = {path, osl_dir ? osl_dir : osl_dir_default(), spp ? spp : 4,
+                             mode ? mode : "eval"};
+        if (export_cycles(f, &rs, &eo, err, sizeof err)) {
+            fprintf(stderr, "abrdf export: %s: %s\n", out, err);
+            goto done;
+        }
     }
     rc = 0;
 done:

@@ -1,0 +1,561 @@
+// abrdf.h - the OSL port of libabrdf's closed-form models, 1:1 with the C kernels
+// (libabrdf/src/k_*.h): the same names abrdf_<model>, the same parameters in the same
+// order, the same guards and thresholds. Formulas and sources: docs/MODELS.md of the C
+// library; each function names its equation.
+//
+// Direction convention (as libabrdf/include/abrdf.h): in the local frame z is the normal
+// N, x the tangent T, y the bitangent B = N x T; wi points toward the light, wo toward the
+// viewer, both away from the surface. Every abrdf_<model> returns f_r WITHOUT the cosine,
+// and 0 unless both directions are strictly above the surface.
+//
+// FUNCTIONS
+//   abrdf_<model>(wi, wo, ...)      one per model (list: abrdf_meta.h, ABRDF_MODEL_NAMES)
+//   abrdf_eval(model, wi, wo, ...)  dispatch by the model's stable name; invalid -> 0
+//   abrdf_params_valid(model, ...)  the C library's per-model range check (abrdf_meta.h)
+//   abrdf_to_local(v, T, B, N)      world -> local frame
+//   abrdf_frame_make(N, T, T_out, B_out)  the C library's abrdf_frame_make
+//   abrdf_d_ggx, abrdf_d_ggx_aniso, abrdf_d_beckmann, abrdf_d_gtr1, abrdf_v1_smith_ggx,
+//   abrdf_g1_smith_ggx, abrdf_f_schlick, abrdf_norm_*       the split terms
+#ifndef ABRDF_OSL_H
+#define ABRDF_OSL_H
+
+// ---- named thresholds (libabrdf/src/abrdf_internal.h, same values, same reasons) ----------
+// Smallest microfacet roughness alpha_g: the GGX peak 1/(pi alpha_g^2) stays finite in float.
+#define ABRDF_ALPHA_G_MIN 1e-6
+// |wi + wo|^2 below this: the half vector is undefined (wi ~ -wo, both grazing, f = 0).
+#define ABRDF_HALF_LEN2_MIN 1e-12
+// G = 1 models divide by cos_i cos_o; each cosine is clamped here (bounds 1/(ci co) by 2.5e7).
+#define ABRDF_COS_MIN_NO_G 1e-4
+// Disney clearcoat GTR1 at alpha = 1 is 0/0; within this distance of 1 use its limit 1/pi.
+#define ABRDF_GTR1_ALPHA_ONE 1e-7
+#define ABRDF_PI 3.14159265358979323846
+#define ABRDF_INV_PI 0.31830988618379067154
+
+// ---- guards (the only place where sqrt/division/pow are made safe) ----------------------
+// Two plain selects, as the C kernel: NaN -> lo.
+float abrdf_clampr(float x, float lo, float hi)
+{
+    float y = x > lo ? x : lo;
+    return y < hi ? y : hi;
+}
+float abrdf_pos(float x) { return x > 0.0 ? x : 0.0; } // NaN -> 0 as well
+float abrdf_safe_sqrt(float x) { return sqrt(abrdf_pos(x)); }
+float abrdf_safe_div(float a, float b) { return b != 0.0 ? a / b : 0.0; }
+// pow with the base clamped to >= 0 (pow of a negative base is NaN or a spurious lobe).
+float abrdf_pow_pos(float x, float e) { return pow(abrdf_pos(x), e); }
+// x^(2^k) by k squarings of max(0, x): the Table-1 forms.
+float abrdf_pow2k(float x, int k)
+{
+    float y = abrdf_pos(x);
+    for (int i = 0; i < k; ++i) y *= y;
+    return y;
+}
+// Every channel of an RGB parameter inside [lo, hi] (NaN fails).
+int abrdf_in_range(color v, float lo, float hi)
+{
+    return v[0] >= lo && v[0] <= hi && v[1] >= lo && v[1] <= hi && v[2] >= lo && v[2] <= hi;
+}
+
+#include "abrdf_meta.h"
+#include "abrdf_fkub.h"
+
+// ---- local-frame geometry (kernel.h geo_make) --------------------------------------------
+struct abrdf_geo {
+    vector i;   // wi
+    vector o;   // wo
+    float ci;   // N.wi clamped to [-1, 1]
+    float co;   // N.wo clamped to [-1, 1]
+    vector h;   // H; +z when wi ~ -wo
+    float ch;   // N.H
+    float sh2;  // |N x H|^2 = sin^2(theta_h)
+    float cd;   // wi.H = |wi + wo| / 2 in [0, 1]
+    float rv;   // R.wo, R the mirror of wi
+};
+
+abrdf_geo abrdf_geo_make(vector wi, vector wo)
+{
+    abrdf_geo g;
+    g.i = wi;
+    g.o = wo;
+    g.ci = abrdf_clampr(wi[2], -1.0, 1.0);
+    g.co = abrdf_clampr(wo[2], -1.0, 1.0);
+    vector h = wi + wo;
+    float len2 = dot(h, h);
+    int ok = len2 > ABRDF_HALF_LEN2_MIN;
+    float len = sqrt(ok ? len2 : 1.0);
+    g.h = ok ? h / len : vector(0, 0, 1);
+    g.ch = abrdf_clampr(g.h[2], -1.0, 1.0);
+    g.sh2 = abrdf_clampr(g.h[0] * g.h[0] + g.h[1] * g.h[1], 0.0, 1.0);
+    // |wi + wo| / 2: symmetric in wi, wo and free of cancellation when wi ~ -wo.
+    g.cd = ok ? abrdf_clampr(0.5 * len, 0.0, 1.0) : 0.0;
+    g.rv = abrdf_clampr(-wi[0] * wo[0] - wi[1] * wo[1] + wi[2] * wo[2], -1.0, 1.0);
+    return g;
+}
+
+// Both directions strictly above the surface: the only pairs with a non-zero BRDF.
+int abrdf_geo_front(abrdf_geo g) { return g.ci > 0.0 && g.co > 0.0; }
+
+// Schlick's Fresnel, Eq. 8, cos_d clamped to [0, 1].
+float abrdf_f_schlick(float f0, float cos_d)
+{
+    float m = 1.0 - abrdf_clampr(cos_d, 0.0, 1.0);
+    float m2 = m * m;
+    return f0 + (1.0 - f0) * (m2 * m2 * m); // Eq. 8
+}
+color abrdf_f_schlick(color f0, float cos_d)
+{
+    return color(abrdf_f_schlick(f0[0], cos_d), abrdf_f_schlick(f0[1], cos_d),
+                 abrdf_f_schlick(f0[2], cos_d));
+}
+
+// ---- frames -------------------------------------------------------------------------------
+vector abrdf_to_local(vector v, vector T, vector B, vector N)
+{
+    return vector(dot(v, T), dot(v, B), dot(v, N));
+}
+
+// Below this |T_perp| (T and N unit) the tangent is taken as parallel to N. The C library
+// uses 1e-6 in double; in float, T and N computed through transforms carry errors of
+// ~1e-7 each, so a T that is exactly parallel to N (the radial rule on a cylinder's side)
+// leaves |T_perp| ~ 1e-6 of noise, and normalising that noise would give a random frame.
+// 1e-4 keeps such T on the deterministic fallback, as the double-precision C code does.
+#define ABRDF_FRAME_T_PERP_MIN 1e-4
+
+// libabrdf's abrdf_frame_make: T by Gram-Schmidt against N; if T is (nearly) parallel to N,
+// the world axis least aligned with N. A second Gram-Schmidt pass keeps T orthogonal to N
+// to float precision.
+void abrdf_frame_make(vector N, vector T, output vector T_out, output vector B_out)
+{
+    vector n = normalize(N);
+    vector tt = vector(0);
+    int have_t = 0;
+    float tl = length(T);
+    if (tl > 0.0) {
+        vector tn = T / tl;
+        tt = tn - dot(tn, n) * n;
+        have_t = length(tt) > ABRDF_FRAME_T_PERP_MIN;
+    }
+    if (!have_t) {
+        vector ax = vector(0);
+        float a0 = fabs(n[0]), a1 = fabs(n[1]), a2 = fabs(n[2]);
+        int k = a0 <= a1 ? (a0 <= a2 ? 0 : 2) : (a1 <= a2 ? 1 : 2);
+        ax[k] = 1.0;
+        tt = ax - dot(ax, n) * n;
+    }
+    tt = normalize(tt);
+    T_out = normalize(tt - dot(tt, n) * n);
+    B_out = cross(n, T_out);
+}
+
+// The scene format's tangent field rules (docs/SCENES.md) in the host's object space:
+// "u" around the object's y axis, "v" along it, "radial" away from it, "axis" the fixed
+// object-space direction `axis`; any other rule returns `fallback` (e.g. dPdu).
+vector abrdf_tangent_field(string rule, vector axis, point Pw, vector fallback)
+{
+    point p = transform("common", "object", Pw);
+    vector t = vector(0);
+    if (rule == "u") t = vector(-p[2], 0, p[0]);
+    else if (rule == "v") t = vector(0, 1, 0);
+    else if (rule == "radial") t = vector(p[0], 0, p[2]);
+    else if (rule == "axis") t = axis;
+    else return fallback;
+    return transform("object", "common", t);
+}
+
+// ---- diffuse (k_diffuse.h) ----------------------------------------------------------------
+// Lambert, Eq. 1 (Lambert 1760).
+color abrdf_lambert(vector wi, vector wo, color kd)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return kd * ABRDF_INV_PI; // Eq. 1
+}
+
+// Lambert * (1 - F(H.L)), Eq. 2.
+color abrdf_lambert_fresnel(vector wi, vector wo, color kd, color f0)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return kd * ABRDF_INV_PI * (color(1) - abrdf_f_schlick(f0, g.cd)); // Eq. 2
+}
+
+// Disney diffuse, Eq. 3 (Burley 2012): F_D90 = 0.5 + 2 r (H.L)^2.
+color abrdf_disney_diffuse(vector wi, vector wo, color kd, float r)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float fd90 = 0.5 + 2.0 * r * g.cd * g.cd;
+    float mi = 1.0 - g.ci, mo = 1.0 - g.co;
+    float mi5 = mi * mi * mi * mi * mi, mo5 = mo * mo * mo * mo * mo;
+    float s = (1.0 + (fd90 - 1.0) * mi5) * (1.0 + (fd90 - 1.0) * mo5); // Eq. 3
+    return kd * ABRDF_INV_PI * abrdf_pos(s);
+}
+
+// Oren-Nayar 1994, qualitative model, without trigonometry:
+// max(0, cos phi) sin(alpha) tan(beta) = max(0, L.V - (N.L)(N.V)) / max(cos_i, cos_o).
+color abrdf_oren_nayar(vector wi, vector wo, color kd, float sigma)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float s2 = sigma * sigma;
+    float a = 1.0 - 0.5 * s2 / (s2 + 0.33);
+    float b = 0.45 * s2 / (s2 + 0.09);
+    float s = dot(g.i, g.o) - g.ci * g.co;
+    float t = g.ci > g.co ? g.ci : g.co;
+    return kd * ABRDF_INV_PI * (a + b * abrdf_safe_div(abrdf_pos(s), t));
+}
+
+// ---- empirical lobes (k_empirical.h): ks * lobe ------------------------------------------
+// ((n/m)(c - 1) + 1)^m with m = 2^k, Table 1.
+float abrdf_lobe_fm(float n, float c, int k)
+{
+    float m = float(1 << k);
+    return abrdf_pow2k((n / m) * (c - 1.0) + 1.0, k);
+}
+
+// Phong 1975: cos(gamma)^n, gamma = angle(R, V).
+color abrdf_phong(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * abrdf_pow_pos(g.rv, n);
+}
+
+// Blinn-Phong, Eq. 4 (Blinn 1977): cos(theta_h)^n.
+color abrdf_blinn_phong(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * abrdf_pow_pos(g.ch, n); // Eq. 4
+}
+
+// Table 1: ((n/m)(c - 1) + 1)^m, m = 2, 4, 8, 16 (power form after Lyon 1993).
+color abrdf_f2(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * abrdf_lobe_fm(n, g.ch, 1);
+}
+color abrdf_f4(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * abrdf_lobe_fm(n, g.ch, 2);
+}
+color abrdf_f8(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * abrdf_lobe_fm(n, g.ch, 3);
+}
+color abrdf_f16(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * abrdf_lobe_fm(n, g.ch, 4);
+}
+
+// Table 1, Schlick 1994: c / (n - n c + c).
+color abrdf_fs(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float c = abrdf_pos(g.ch);
+    return ks * abrdf_safe_div(c, n - n * c + c);
+}
+
+// Table 1: 0.786 n c^2 + (1 - 0.786 n) c, clamped at 0.
+color abrdf_fkv(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float c = abrdf_pos(g.ch);
+    float a = 0.786 * n;
+    return ks * abrdf_pos(a * c * c + (1.0 - a) * c);
+}
+
+// Table 1 (Romanyuk et al. 2023), the fitted cubic about c = 1, zero below x0, in [0, 1].
+color abrdf_fkub(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float a, b, d, x0;
+    abrdf_fkub_coeffs(n, a, b, d, x0);
+    float c = abrdf_pos(g.ch);
+    float t = 1.0 - c;
+    float v = 1.0 + t * (a + t * (b + t * d));
+    v = c >= x0 ? abrdf_clampr(v, 0.0, 1.0) : 0.0;
+    return ks * v;
+}
+
+// ---- energy-conserving lobes (k_energy.h), Table 5 ----------------------------------------
+float abrdf_norm_phe(float n) { return (n + 2.0) / (2.0 * ABRDF_PI); }
+float abrdf_norm_be(float n)
+{
+    return (n + 2.0) * (n + 4.0) / (8.0 * ABRDF_PI * (pow(2.0, -n / 2.0) + n));
+}
+float abrdf_norm_2e(float n) { return 0.111 / n + 0.238 * (0.481 + n); }
+float abrdf_norm_16e(float n) { return (1.063 * n + 1.0) / (2.0 * ABRDF_PI); }
+float abrdf_norm_ge(float n) { return (n + 2.0) / (4.0 * ABRDF_PI * (2.0 - pow(2.0, -n / 2.0))); }
+
+// Lafortune-Willems 1994: (n + 2)/(2 pi) cos^n(gamma).
+color abrdf_f_phe(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * (abrdf_norm_phe(n) * abrdf_pow_pos(g.rv, n));
+}
+
+// Giesen 2009: normalised Blinn-Phong on N.H.
+color abrdf_f_be(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * (abrdf_norm_be(n) * abrdf_pow_pos(g.ch, n));
+}
+
+// The paper's fitted f_2E on cos(gamma) (MODELS.md B4).
+color abrdf_f_2e(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * (abrdf_norm_2e(n) * abrdf_lobe_fm(n, g.rv, 1));
+}
+
+// The paper's fitted f_16E on cos(gamma) (MODELS.md B4).
+color abrdf_f_16e(vector wi, vector wo, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return ks * (abrdf_norm_16e(n) * abrdf_lobe_fm(n, g.rv, 4));
+}
+
+// Gotanda 2012: F cos^n(theta_h) (n + 2) / (4 pi (2 - 2^(-n/2)) max(cos_i, cos_o)).
+color abrdf_f_ge(vector wi, vector wo, color ks, float n, color f0)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float lobe = abrdf_norm_ge(n) * abrdf_pow_pos(g.ch, n) / (g.ci > g.co ? g.ci : g.co);
+    return ks * abrdf_f_schlick(f0, g.cd) * lobe;
+}
+
+// D F / (4 cos_i cos_o) with G = 1 and clamped cosines (Eq. 5 with G = 1).
+color abrdf_ct_no_g(abrdf_geo g, color ks, color f0, float d)
+{
+    float ci = g.ci > ABRDF_COS_MIN_NO_G ? g.ci : ABRDF_COS_MIN_NO_G;
+    float co = g.co > ABRDF_COS_MIN_NO_G ? g.co : ABRDF_COS_MIN_NO_G;
+    float v = d / (4.0 * ci * co); // Eq. 5 with G = 1
+    return ks * abrdf_f_schlick(f0, g.cd) * v;
+}
+
+// Cook-Torrance 1982 with D = the normalised lobes of Table 5 on N.H, G = 1.
+color abrdf_f_ctphe(vector wi, vector wo, color ks, float n, color f0)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return abrdf_ct_no_g(g, ks, f0, abrdf_norm_phe(n) * abrdf_pow_pos(g.ch, n));
+}
+color abrdf_f_ct2e(vector wi, vector wo, color ks, float n, color f0)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return abrdf_ct_no_g(g, ks, f0, abrdf_norm_2e(n) * abrdf_lobe_fm(n, g.ch, 1));
+}
+color abrdf_f_ct16e(vector wi, vector wo, color ks, float n, color f0)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    return abrdf_ct_no_g(g, ks, f0, abrdf_norm_16e(n) * abrdf_lobe_fm(n, g.ch, 4));
+}
+
+// ---- microfacet split terms and models (k_microfacet.h), Walter et al. 2007 form ---------
+// GGX D, Eq. 6, with sin^2 from |N x H|^2.
+float abrdf_d_ggx(float ch, float sh2, float ag)
+{
+    float a2 = ag * ag;
+    float t = sh2 + a2 * ch * ch;
+    return abrdf_safe_div(a2, ABRDF_PI * t * t); // Eq. 6
+}
+
+// Anisotropic GGX D, Eq. 7; H in the local frame.
+float abrdf_d_ggx_aniso(vector h, float ax, float ay)
+{
+    float u = h[0] / ax, v = h[1] / ay;
+    float t = u * u + v * v + h[2] * h[2];
+    return abrdf_safe_div(1.0, ABRDF_PI * ax * ay * t * t); // Eq. 7
+}
+
+// Normalised Beckmann D.
+float abrdf_d_beckmann(float ch, float sh2, float ag)
+{
+    if (!(ch > 0.0)) return 0.0;
+    float c2 = ch * ch;
+    return abrdf_safe_div(exp(-sh2 / (c2 * ag * ag)), ABRDF_PI * ag * ag * c2 * c2);
+}
+
+// Disney clearcoat GTR1 (Burley 2012, App. B); alpha not squared.
+float abrdf_d_gtr1(float ch, float sh2, float alpha)
+{
+    float a2 = alpha * alpha;
+    if (1.0 - a2 < ABRDF_GTR1_ALPHA_ONE) return ABRDF_INV_PI;
+    return (a2 - 1.0) / (ABRDF_PI * log(a2) * (sh2 + a2 * ch * ch));
+}
+
+// G1(u) / (2 cos_u) = 1 / (cos_u + sqrt(alpha^2 + (1 - alpha^2) cos_u^2)), Eq. 9.
+float abrdf_v1_smith_ggx(float cu, float ag)
+{
+    float a2 = ag * ag;
+    return 1.0 / (cu + sqrt(a2 + (1.0 - a2) * cu * cu));
+}
+float abrdf_g1_smith_ggx(float cu, float ag)
+{
+    return 2.0 * abrdf_pos(cu) * abrdf_v1_smith_ggx(abrdf_pos(cu), ag); // Eq. 9
+}
+float abrdf_v1_smith_ggx_aniso(vector u, float ax, float ay)
+{
+    float a = u[0] * ax, b = u[1] * ay;
+    return 1.0 / (u[2] + sqrt(a * a + b * b + u[2] * u[2]));
+}
+
+// Cook-Torrance V-cavity G.
+float abrdf_g_cook_torrance(abrdf_geo g)
+{
+    float k = abrdf_safe_div(2.0 * g.ch, g.cd);
+    float gi = k * g.ci, go = k * g.co;
+    float m = gi < go ? gi : go;
+    return m < 1.0 ? abrdf_pos(m) : 1.0;
+}
+
+// alpha_g = max(r^2, ABRDF_ALPHA_G_MIN).
+float abrdf_alpha_g(float r) { return max(r * r, ABRDF_ALPHA_G_MIN); }
+
+// Cook-Torrance 1982 (Eq. 5) with the normalised Beckmann D and the V-cavity G.
+color abrdf_cook_torrance(vector wi, vector wo, color ks, float r, color f0)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float dg = abrdf_d_beckmann(g.ch, g.sh2, abrdf_alpha_g(r)) * abrdf_g_cook_torrance(g);
+    float v = abrdf_safe_div(dg, 4.0 * g.ci * g.co); // Eq. 5
+    return ks * abrdf_f_schlick(f0, g.cd) * v;
+}
+
+// Disney specular (Eqs. 5, 6, 8, 9): GGX D, separable Smith G, Schlick F.
+color abrdf_disney_specular(vector wi, vector wo, color ks, float r, color f0)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float ag = abrdf_alpha_g(r);
+    float dv = abrdf_d_ggx(g.ch, g.sh2, ag) * abrdf_v1_smith_ggx(g.ci, ag) *
+               abrdf_v1_smith_ggx(g.co, ag); // Eq. 5 with Eqs. 6 and 9
+    return ks * abrdf_f_schlick(f0, g.cd) * dv;
+}
+
+// Disney anisotropic specular (Eqs. 5, 7, 8, 9): aspect = sqrt(1 - 0.9 anisotropic).
+color abrdf_disney_specular_aniso(vector wi, vector wo, color ks, float r, float anisotropic,
+                                  color f0)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float ag = r * r;
+    float aspect = sqrt(1.0 - 0.9 * anisotropic);
+    float ax = max(ag / aspect, ABRDF_ALPHA_G_MIN), ay = max(ag * aspect, ABRDF_ALPHA_G_MIN);
+    float dv = abrdf_d_ggx_aniso(g.h, ax, ay) * abrdf_v1_smith_ggx_aniso(g.i, ax, ay) *
+               abrdf_v1_smith_ggx_aniso(g.o, ax, ay); // Eqs. 5, 7, 9
+    return ks * abrdf_f_schlick(f0, g.cd) * dv;
+}
+
+// Disney clearcoat: 0.25 ks F(0.04) D_GTR1 G(0.25) / (4 cos_i cos_o),
+// alpha = mix(0.1, 0.001, clearcoat_gloss).
+color abrdf_disney_clearcoat(vector wi, vector wo, color ks, float clearcoat_gloss)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float alpha = 0.1 + (0.001 - 0.1) * clearcoat_gloss;
+    float dv = abrdf_d_gtr1(g.ch, g.sh2, alpha) * abrdf_v1_smith_ggx(g.ci, 0.25) *
+               abrdf_v1_smith_ggx(g.co, 0.25);
+    return ks * (0.25 * abrdf_f_schlick(0.04, g.cd) * dv);
+}
+
+// ---- cloth (k_cloth.h) ------------------------------------------------------------------
+// Below this sin^2(theta_h) the inverted-Gaussian term is at its limit 0 (keeps 0 * Inf out).
+#define ABRDF_VELVET_SIN2_MIN 1e-4
+
+// Ashikhmin-Premoze inverted-Gaussian velvet D, offset 1, amplitude k_amp.
+float abrdf_d_velvet(float ch, float sh2, float alpha, float k_amp)
+{
+    float g = 0.0;
+    if (sh2 > ABRDF_VELVET_SIN2_MIN && ch > 0.0)
+        g = exp(-(ch * ch) / (sh2 * alpha * alpha)) / (sh2 * sh2);
+    return (1.0 + k_amp * g) / (ABRDF_PI * (1.0 + k_amp * alpha * alpha)); // Eq. 10 (D)
+}
+
+// Neubelt-Pettineo 2013, Eq. 10: (1 - F) kd/pi + ks F D / (4 (cos_i + cos_o - cos_i cos_o)).
+color abrdf_neubelt_pettineo(vector wi, vector wo, color kd, color ks, color f0, float r,
+                             float k_amp)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float dv = abrdf_d_velvet(g.ch, g.sh2, abrdf_alpha_g(r), k_amp) *
+               abrdf_safe_div(1.0, 4.0 * (g.ci + g.co - g.ci * g.co));
+    color F = abrdf_f_schlick(f0, g.cd);
+    return (color(1) - F) * kd * ABRDF_INV_PI + ks * F * dv; // Eq. 10
+}
+
+// Kajiya-Kay 1989, Eq. 11 (sign-correct form): kd sin(T,L) + ks [sin sin - cos cos]^n,
+// T = local +x.
+color abrdf_kajiya_kay(vector wi, vector wo, color kd, color ks, float n)
+{
+    abrdf_geo g = abrdf_geo_make(wi, wo);
+    if (!abrdf_geo_front(g)) return color(0);
+    float tl = abrdf_clampr(g.i[0], -1.0, 1.0), tv = abrdf_clampr(g.o[0], -1.0, 1.0);
+    float sl = abrdf_clampr(sqrt(g.i[1] * g.i[1] + g.i[2] * g.i[2]), 0.0, 1.0);
+    float sv = abrdf_clampr(sqrt(g.o[1] * g.o[1] + g.o[2] * g.o[2]), 0.0, 1.0);
+    float spec = abrdf_pow_pos(sl * sv - tl * tv, n);
+    return kd * sl + ks * spec; // Eq. 11
+}
+
+// ---- dispatch by name ----------------------------------------------------------------------
+// Every parameter of the library's flat parameter block; each model reads its own. Returns
+// 0 for an unknown model or parameters outside the model's ranges (the C library returns
+// an error code there), and never a negative or non-finite value.
+color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f0, float n,
+                 float r, float anisotropic, float sigma, float clearcoat_gloss, float k_amp)
+{
+    if (!abrdf_params_valid(model, kd, ks, f0, n, r, anisotropic, sigma, clearcoat_gloss, k_amp))
+        return color(0);
+    color f = color(0);
+    if (model == "lambert") f = abrdf_lambert(wi, wo, kd);
+    else if (model == "lambert_fresnel") f = abrdf_lambert_fresnel(wi, wo, kd, f0);
+    else if (model == "disney_diffuse") f = abrdf_disney_diffuse(wi, wo, kd, r);
+    else if (model == "oren_nayar") f = abrdf_oren_nayar(wi, wo, kd, sigma);
+    else if (model == "phong") f = abrdf_phong(wi, wo, ks, n);
+    else if (model == "blinn_phong") f = abrdf_blinn_phong(wi, wo, ks, n);
+    else if (model == "f2") f = abrdf_f2(wi, wo, ks, n);
+    else if (model == "f4") f = abrdf_f4(wi, wo, ks, n);
+    else if (model == "f8") f = abrdf_f8(wi, wo, ks, n);
+    else if (model == "f16") f = abrdf_f16(wi, wo, ks, n);
+    else if (model == "fs") f = abrdf_fs(wi, wo, ks, n);
+    else if (model == "fkv") f = abrdf_fkv(wi, wo, ks, n);
+    else if (model == "fkub") f = abrdf_fkub(wi, wo, ks, n);
+    else if (model == "f_phe") f = abrdf_f_phe(wi, wo, ks, n);
+    else if (model == "f_be") f = abrdf_f_be(wi, wo, ks, n);
+    else if (model == "f_2e") f = abrdf_f_2e(wi, wo, ks, n);
+    else if (model == "f_16e") f = abrdf_f_16e(wi, wo, ks, n);
+    else if (model == "f_ge") f = abrdf_f_ge(wi, wo, ks, n, f0);
+    else if (model == "f_ctphe") f = abrdf_f_ctphe(wi, wo, ks, n, f0);
+    else if (model == "f_ct2e") f = abrdf_f_ct2e(wi, wo, ks, n, f0);
+    else if (model == "f_ct16e") f = abrdf_f_ct16e(wi, wo, ks, n, f0);
+    else if (model == "cook_torrance") f = abrdf_cook_torrance(wi, wo, ks, r, f0);
+    else if (model == "disney_specular") f = abrdf_disney_specular(wi, wo, ks, r, f0);
+    else if (model == "disney_specular_aniso")
+        f = abrdf_disney_specular_aniso(wi, wo, ks, r, anisotropic, f0);
+    else if (model == "disney_clearcoat") f = abrdf_disney_clearcoat(wi, wo, ks, clearcoat_gloss);
+    else if (model == "neubelt_pettineo") f = abrdf_neubelt_pettineo(wi, wo, kd, ks, f0, r, k_amp);
+    else if (model == "kajiya_kay") f = abrdf_kajiya_kay(wi, wo, kd, ks, n);
+    // Last line of defence, as in the C library: never NaN, Inf or negative.
+    for (int c = 0; c < 3; ++c)
+        if (!(f[c] >= 0.0 && f[c] <= 3.4e38)) f[c] = 0.0;
+    return f;
+}
+
+#endif // ABRDF_OSL_H

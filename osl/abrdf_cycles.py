@@ -1,0 +1,316 @@
+"""abrdf_cycles.py - builds and renders an abrdf scene in Blender's Cycles (bpy), for the
+scripts that `abrdf export --cycles` writes (they hold the scene as data and call main()).
+
+Two modes:
+  eval     evaluation mode: every surface runs the scene's generated OSL shader, which
+           re-traces the pixel-centre camera ray and the shadow rays against the exact
+           analytic primitives (abrdf_trace.h) and returns the built-in renderer's direct
+           lighting as emission (abrdf.h models). Meshes only catch camera rays; a backdrop
+           sphere makes every pixel run the shader. The image matches `abrdf render --spp 1`.
+  generic  abrdf_eval.osl, the host-independent evaluation shader, on the meshes with the
+           scene's lights as parameters (one lobe per material, at most four lights, no
+           shadows); exact where the mesh is (boxes), approximate on curved shapes.
+  closure  closure mode: meshes with abrdf_material.osl (the models mapped onto Cycles'
+           built-in closures), Cycles point/sun lights, path tracing with direct light only.
+
+Cycles settings of both: CPU, OSL shading system, Standard view transform, box pixel filter
+1 px wide, fixed sample count (no adaptive sampling, no denoising), linear 32-bit EXR.
+
+Runs in any Python that imports bpy (the PyPI `bpy` package) or inside Blender
+(blender -b -P scene.py -- ARGS).
+"""
+import argparse
+import glob
+import math
+import os
+import shutil
+import sys
+import tempfile
+
+import bpy  # first: bmesh and mathutils come with it
+import bmesh
+import mathutils
+
+HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_trace.h")
+SHAPES = {"sphere": 0, "cylinder": 1, "capsule": 2, "box": 3}
+
+
+def cycles_osl():
+    """Blender's OSL helpers (compile + node sockets); oslquery lives in bpy's own Python."""
+    base = os.path.dirname(bpy.__file__)
+    for pat in ("*/python/lib/python3*/site-packages", "../*/python/lib/python3*/site-packages"):
+        for d in glob.glob(os.path.join(base, pat)) + glob.glob(
+                os.path.join(bpy.utils.resource_path("LOCAL"), "python", "lib", "python3*",
+                             "site-packages")):
+            if os.path.isdir(os.path.join(d, "oslquery")) and d not in sys.path:
+                sys.path.append(d)
+    import cycles.osl  # noqa: E402  (the Cycles add-on shipped with bpy)
+    return cycles.osl
+
+
+def compile_script_node(node, path):
+    osl = cycles_osl()  # before the node is touched: its update callback needs oslquery
+    node.mode = "EXTERNAL"
+    node.filepath = path
+    msgs = []
+    ok = osl.update_script_node(node, lambda kind, msg: msgs.append((kind, msg)))
+    if not ok:
+        raise RuntimeError("OSL compilation of %s failed: %s" % (path, msgs))
+    return node
+
+
+def new_material(name):
+    mat = bpy.data.materials.new(name)
+    if mat.node_tree is None:
+        mat.use_nodes = True
+    mat.node_tree.nodes.clear()
+    return mat
+
+
+def shader_material(name, osl_path, inputs=None):
+    mat = new_material(name)
+    nt = mat.node_tree
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    node = compile_script_node(nt.nodes.new("ShaderNodeScript"), osl_path)
+    for key, value in (inputs or {}).items():
+        sock = node.inputs[key]
+        if sock.bl_idname == "NodeSocketColor":
+            value = tuple(value) + (1.0,)
+        sock.default_value = value
+    nt.links.new(node.outputs["result"], out.inputs["Surface"])
+    return mat
+
+
+def mesh_for(o, segments):
+    """Mesh of an analytic primitive in object space (the scene format's axes: y up)."""
+    bm = bmesh.new()
+    shape = o["shape"]
+    if shape == "box":
+        bmesh.ops.create_cube(bm, size=1.0)
+        bmesh.ops.scale(bm, vec=o["size"], verts=bm.verts)
+    elif shape == "sphere":
+        bmesh.ops.create_uvsphere(bm, u_segments=2 * segments, v_segments=segments,
+                                  radius=o["radius"])
+    elif shape == "capsule":
+        # A UV sphere with an odd ring count has no equator ring: moving each half by
+        # +-height/2 opens it into the tube.
+        bmesh.ops.create_uvsphere(bm, u_segments=2 * segments, v_segments=segments | 1,
+                                  radius=o["radius"])
+        for v in bm.verts:
+            v.co.z += math.copysign(0.5 * o["height"], v.co.z)
+    else:  # cylinder
+        bmesh.ops.create_cone(bm, cap_ends=True, segments=2 * segments, radius1=o["radius"],
+                              radius2=o["radius"], depth=o["height"])
+    if shape in ("sphere", "capsule", "cylinder"):  # their axis is z in bmesh; the format's is y
+        bmesh.ops.rotate(bm, verts=bm.verts, matrix=mathutils.Matrix.Rotation(-math.pi / 2, 3, "X"))
+    me = bpy.data.meshes.new(shape)
+    bm.to_mesh(me)
+    bm.free()
+    if shape != "box":
+        me.shade_smooth()
+    return me
+
+
+def add_object(name, me, o=None):
+    ob = bpy.data.objects.new(name, me)
+    if o:
+        ob.scale = o["scale"]
+        ob.rotation_mode = "XYZ"  # R = Rz Ry Rx, the scene format's order
+        ob.rotation_euler = [math.radians(a) for a in o["rotate"]]
+        ob.location = o["translate"]
+    bpy.context.scene.collection.objects.link(ob)
+    return ob
+
+
+def setup_render(sc, s, samples):
+    sc.render.engine = "CYCLES"
+    sc.cycles.device = "CPU"
+    sc.cycles.shading_system = True
+    sc.cycles.samples = samples
+    sc.cycles.use_adaptive_sampling = False
+    sc.cycles.use_denoising = False
+    sc.cycles.seed = 0
+    sc.cycles.pixel_filter_type = "BOX"
+    sc.cycles.filter_width = 1.0
+    sc.render.resolution_x = s["width"]
+    sc.render.resolution_y = s["height"]
+    sc.render.resolution_percentage = 100
+    sc.render.pixel_aspect_x = sc.render.pixel_aspect_y = 1.0
+    sc.render.film_transparent = False
+    sc.view_settings.view_transform = "Standard"
+    sc.view_settings.look = "None"
+    sc.view_settings.exposure = 0.0
+    sc.view_settings.gamma = 1.0
+    st = sc.render.image_settings
+    st.file_format = "OPEN_EXR"
+    st.color_mode = "RGB"
+    st.color_depth = "32"
+    world = bpy.data.worlds.new("black")
+    world.color = (0.0, 0.0, 0.0)
+    if world.node_tree is not None:  # a new world's Background node is 0.05 grey: no light
+        for node in world.node_tree.nodes:
+            if node.type == "BACKGROUND":
+                node.inputs["Strength"].default_value = 0.0
+    sc.world = world
+
+
+def setup_camera(sc, s):
+    c = s["camera"]
+    eye = mathutils.Vector(c["position"])
+    fwd = (mathutils.Vector(c["look_at"]) - eye).normalized()
+    right = fwd.cross(mathutils.Vector(c["up"])).normalized()
+    up = right.cross(fwd)
+    rot = mathutils.Matrix((right, up, -fwd)).transposed()  # columns: camera x, y, -view
+    cam = bpy.data.cameras.new("camera")
+    cam.type = "PERSP"
+    cam.sensor_fit = "VERTICAL"  # fov is the full vertical angle, as in the scene format
+    cam.angle_y = math.radians(c["fov_deg"])
+    cam.shift_x = cam.shift_y = 0.0
+    cam.clip_start = 1e-4 * s["extent"]
+    cam.clip_end = 1e3 * s["extent"]
+    ob = bpy.data.objects.new("camera", cam)
+    ob.matrix_world = mathutils.Matrix.Translation(eye) @ rot.to_4x4()
+    sc.collection.objects.link(ob)
+    sc.camera = ob
+
+
+def setup_lights(sc, s):
+    """Cycles lights for closure mode: E = color * intensity (/ d^2 for point lights)."""
+    for k, l in enumerate(s["lights"]):
+        if l["kind"] == "point":
+            ld = bpy.data.lights.new("light%d" % k, "POINT")
+            # Cycles' point light of power P has radiant intensity P / (4 pi) W/sr, so
+            # irradiance P / (4 pi d^2): P = 4 pi * intensity gives the scene's E.
+            ld.energy = 4.0 * math.pi * l["intensity"]
+            ld.shadow_soft_size = 0.0
+            if hasattr(ld, "use_soft_falloff"):
+                ld.use_soft_falloff = False
+            ob = bpy.data.objects.new(ld.name, ld)
+            ob.location = l["position"]
+        else:
+            ld = bpy.data.lights.new("light%d" % k, "SUN")
+            ld.energy = l["intensity"]  # sun strength is irradiance, W/m^2
+            ld.angle = 0.0
+            ob = bpy.data.objects.new(ld.name, ld)
+            # A sun shines along its -z axis; point -z away from the light direction.
+            ob.rotation_euler = mathutils.Vector(l["direction"]).to_track_quat("Z", "Y").to_euler()
+        ld.color = l["color"]
+        sc.collection.objects.link(ob)
+
+
+def material_inputs(m):
+    lobes = m["lobes"] + [""] * (2 - len(m["lobes"]))
+    return {"model": lobes[0], "model2": lobes[1], "kd": m["kd"], "ks": m["ks"], "f0": m["f0"],
+            "n": m["n"], "r": m["r"], "anisotropic": m["anisotropic"], "sigma": m["sigma"],
+            "clearcoat_gloss": m["clearcoat_gloss"], "k_amp": m["k_amp"]}
+
+
+def eval_inputs(s, m):
+    """abrdf_eval.osl's inputs: one lobe, the scene's first four lights, the ambient term."""
+    if len(m["lobes"]) != 1 or len(s["lights"]) > 4:
+        raise ValueError("generic mode: one lobe per material and at most 4 lights")
+    d = material_inputs(m)
+    del d["model2"]
+    d["ka"] = m["ambient"]
+    d["ambient"] = (1.0, 1.0, 1.0)  # ka * Ia is already in "ambient" of the material
+    for k, l in enumerate(s["lights"]):
+        d["light%d_type" % k] = 1 if l["kind"] == "point" else 2
+        d["light%d_position" % k] = l["position"] if l["kind"] == "point" else l["direction"]
+        d["light%d_color" % k] = l["color"]
+        d["light%d_intensity" % k] = l["intensity"]
+    for k in range(len(s["lights"]), 4):
+        d["light%d_type" % k] = 0
+    return d
+
+
+def build(s, mode, workdir, osl_dir, segments=64):
+    """Build the scene in an empty file; return the scene datablock."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    sc = bpy.context.scene
+    setup_render(sc, s, s["samples"])
+    setup_camera(sc, s)
+    os.makedirs(workdir, exist_ok=True)
+    # The host compiles next to the .osl file and resolves #include there: work on copies.
+    for h in HEADERS + (("abrdf_material.osl",) if mode == "closure" else ()):
+        shutil.copy2(os.path.join(osl_dir, h), os.path.join(workdir, h))
+    mats = []
+    if mode == "eval":
+        path = os.path.join(workdir, s["osl_name"] + ".osl")
+        with open(path, "w") as f:
+            f.write(s["osl"])
+        mats = [shader_material("abrdf_eval", path)]
+        sc.cycles.max_bounces = 0  # emission seen by the camera only
+    elif mode == "generic":
+        path = os.path.join(workdir, "abrdf_eval.osl")
+        shutil.copy2(os.path.join(osl_dir, "abrdf_eval.osl"), path)
+        sc.cycles.max_bounces = 0
+    else:
+        path = os.path.join(workdir, "abrdf_material.osl")
+        setup_lights(sc, s)
+        for key in ("diffuse", "glossy", "transmission", "volume", "transparent_max"):
+            setattr(sc.cycles, key + "_bounces", 0)
+        sc.cycles.light_sampling_threshold = 0.0  # no light is skipped as too dim
+        sc.cycles.max_bounces = 0  # direct light only, as the built-in renderer
+    # generic/closure: one Blender material per (scene material, tangent field), since the
+    # tangent rule belongs to the object and the shader reads it as a parameter.
+    variants = {}
+    for k, o in enumerate(s["objects"]):
+        me = mesh_for(o, segments)
+        if mode == "eval":
+            mat = mats[0]
+        else:
+            key = (o["material"], o.get("tangent", "u"), tuple(o.get("tangent_axis", (1, 0, 0))))
+            if key not in variants:
+                m = s["materials"][o["material"]]
+                inputs = eval_inputs(s, m) if mode == "generic" else material_inputs(m)
+                inputs["tangent_rule"], inputs["tangent_axis"] = key[1], key[2]
+                variants[key] = shader_material("%s.%d" % (m["name"], len(variants)), path, inputs)
+            mat = variants[key]
+        me.materials.append(mat)
+        add_object("%s%d" % (o["shape"], k), me, o)
+    if mode == "eval":
+        # Backdrop: an inward-facing sphere around everything, so every pixel runs the
+        # shader (a pixel whose centre hits an object may have samples that miss it).
+        bm = bmesh.new()
+        bmesh.ops.create_uvsphere(bm, u_segments=16, v_segments=8, radius=1e2 * s["extent"])
+        bmesh.ops.reverse_faces(bm, faces=bm.faces)
+        me = bpy.data.meshes.new("backdrop")
+        bm.to_mesh(me)
+        bm.free()
+        me.materials.append(mats[0])
+        ob = add_object("abrdf_backdrop", me)
+        ob.location = s["camera"]["position"]
+    return sc
+
+
+def render(sc, out):
+    sc.render.filepath = os.path.abspath(out)
+    bpy.ops.render.render(write_still=True)
+
+
+def main(s, argv=None):
+    if argv is None:
+        argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
+    ap = argparse.ArgumentParser(description="Render the abrdf scene %s in Cycles" % s["source"])
+    ap.add_argument("-o", "--out", default=s["osl_name"] + ".exr", help="linear EXR to write")
+    ap.add_argument("--mode", choices=("eval", "closure", "generic"), default=s["mode"])
+    ap.add_argument("--samples", type=int, default=s["samples"])
+    ap.add_argument("--workdir", default=None,
+                    help="where the OSL files are copied and compiled; default: a temporary directory")
+    ap.add_argument("--osl-dir", default=s["osl_dir"], help="abrdf's osl/ directory")
+    ap.add_argument("--threads", type=int, default=0, help="0: Cycles' default")
+    ap.add_argument("--build-only", action="store_true", help="build the scene, do not render")
+    a = ap.parse_args(argv)
+    s = dict(s, samples=a.samples)
+    # A built-only scene keeps its compiled shaders (Cycles reads them at render time).
+    tmp = None if a.workdir or a.build_only else tempfile.TemporaryDirectory(prefix="abrdf_cycles_")
+    workdir = a.workdir or (tmp.name if tmp else tempfile.mkdtemp(prefix="abrdf_cycles_"))
+    sc = build(s, a.mode, workdir, a.osl_dir)
+    if a.threads > 0:
+        sc.render.threads_mode = "FIXED"
+        sc.render.threads = a.threads
+    if not a.build_only:
+        render(sc, a.out)
+    if tmp:
+        tmp.cleanup()
+    return sc
