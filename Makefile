@@ -5,11 +5,16 @@ BUILD      ?= build
 BUILD_ASAN ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: all setup build build-asan run test test-asan clean
+.PHONY: all setup setup-ports build build-asan run test clean
 
 all: build
 
+# Debian packages to build, run and test the library and the tool.
 setup:
+	@scripts/setup.sh --no-bpy
+
+# Everything the port tests need as well: POV-Ray and bpy (Cycles + OSL) in .venv.
+setup-ports:
 	@scripts/setup.sh
 
 build: setup
@@ -26,7 +31,7 @@ run: build
 	$(BUILD)/tools/abrdf eval f_2e --wi 0.3,0,1 --wo -0.3,0,1 --set n=300
 	$(BUILD)/tools/abrdf render scenes/robot.scene --adaptive --goal photoreal -o $(BUILD)/robot.exr --explain
 
-test: build build-asan
+test: setup-ports build build-asan
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	cd $(BUILD_ASAN) && ctest --output-on-failure -j $(JOBS)
 

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Installs what abrdf needs on a Debian machine, only what is missing. Idempotent.
 #   scripts/setup.sh            build + test dependencies (Debian packages, then bpy in .venv)
+#   scripts/setup.sh --no-bpy   the Debian packages only (enough to build and render)
 set -euo pipefail
+with_bpy=1
+[ "${1:-}" = "--no-bpy" ] && with_bpy=0
 
 debs=(build-essential g++ cmake pkg-config check python3 povray
       libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
@@ -24,4 +27,6 @@ if ((${#missing[@]})); then
 fi
 
 # The OSL port's tests render in Blender's Cycles: bpy from PyPI in .venv.
-"$(dirname "$0")/setup_bpy.sh"
+if ((with_bpy)); then
+  "$(dirname "$0")/setup_bpy.sh"
+fi
