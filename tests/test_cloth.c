@@ -105,17 +105,17 @@ START_TEST(np_white_furnace)
             p.r = rs[i];
             p.kd[0] = 1.0;
             p.f0[0] = 0.0;
-            double a = clq_albedo(ABRDF_NEUBELT_PETTINEO, &p, th[j], fmax(0.05, rs[i] * rs[i]), 96, 0);
+            double a = quad_albedo(ABRDF_NEUBELT_PETTINEO, &p, th[j], fmax(0.05, rs[i] * rs[i]), 96, 0);
             ck_assert_msg(a <= 1.0 + 2e-3 && a > 0.97, "r=%g th=%g: rho = %.6f", rs[i], th[j], a);
             p.kd[0] = 0.0;
             p.f0[0] = 1.0;
-            a = clq_albedo(ABRDF_NEUBELT_PETTINEO, &p, th[j], fmax(0.05, rs[i] * rs[i]), 96, 0);
+            a = quad_albedo(ABRDF_NEUBELT_PETTINEO, &p, th[j], fmax(0.05, rs[i] * rs[i]), 96, 0);
             ck_assert_msg(a <= 1.0, "sheen only r=%g th=%g: rho = %.6f", rs[i], th[j], a);
         }
     /* the grazing limit sqrt(k_amp) / (2 sqrt(pi)) = 2.82 at k_amp = 100, alpha = 0.1 */
     p.k_amp = 100.0;
     p.r = sqrt(0.1);
-    double g = clq_albedo(ABRDF_NEUBELT_PETTINEO, &p, 89.9, 0.05, 128, 0);
+    double g = quad_albedo(ABRDF_NEUBELT_PETTINEO, &p, 89.9, 0.05, 128, 0);
     ck_assert_msg(g > 2.5 && g < 3.0, "k_amp 100 at 89.9 deg: rho = %.4f", g);
     ck_assert(!(abrdf_model_get(ABRDF_NEUBELT_PETTINEO)->props & ABRDF_PROP_ENERGY_CONSERVING));
 }
@@ -202,7 +202,7 @@ START_TEST(kk_diffuse_albedo_closed_form)
     p.ks[0] = 0.0;
     const double th[] = {0.0, 45.0, 80.0};
     for (int j = 0; j < 3; ++j) {
-        double a = clq_albedo(ABRDF_KAJIYA_KAY, &p, th[j], 1.0, 96, 0);
+        double a = quad_albedo(ABRDF_KAJIYA_KAY, &p, th[j], 1.0, 96, 0);
         double want = PI * sqrt(1.0 - pow(sin(th[j] * PI / 180.0), 2)); /* T = +x, wi in x-z */
         ck_assert_msg(tu_close(a, want, 1e-3, 0.0), "th=%g: %.6f vs %.6f", th[j], a, want);
     }

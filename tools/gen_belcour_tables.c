@@ -36,33 +36,10 @@
 
 #include "belcour_tables.h"
 #include "layered_optics.h"
+#include "quad.h"
 
 #define ORDER_DEFAULT 32
 #define ORDER_MAX 128
-
-/* Gauss-Legendre nodes and weights on [0, 1] by Newton's iteration on P_n (deterministic). */
-static void gauss_legendre(int n, double *x, double *w)
-{
-    for (int i = 0; i < (n + 1) / 2; ++i) {
-        double z = cos(ABRDF__LO_PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = 0.0;
-            for (int k = 1; k <= n; ++k) {
-                double p2 = p1;
-                p1 = p0;
-                p0 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p2) / k;
-            }
-            dp = n * (z * p0 - p1) / (z * z - 1.0);
-            double dz = p0 / dp;
-            z -= dz;
-            if (fabs(dz) < 1e-15) break;
-        }
-        double wt = 2.0 / ((1.0 - z * z) * dp * dp);
-        x[i] = 0.5 * (1.0 - z);
-        x[n - 1 - i] = 0.5 * (1.0 + z);
-        w[i] = w[n - 1 - i] = 0.5 * wt;
-    }
-}
 
 #define MAX_PIECES 8
 #define ROOT_SCAN 512 /* theta_h samples when looking for the breakpoints */
@@ -139,7 +116,7 @@ static void quad_make(quad *q, int order, double c, double a, double t0, double 
     q->order = order;
     q->c = c;
     q->a = a;
-    gauss_legendre(order, q->xu, q->wu);
+    quad_gauss_legendre01(order, q->xu, q->wu);
     double br[MAX_PIECES + 1];
     int nb = breakpoints(c, a, t0, t1, br + 1);
     br[0] = 0.0;

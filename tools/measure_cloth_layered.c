@@ -19,64 +19,9 @@
 
 #include "abrdf.h"
 #include "cli.h"
+#include "quad.h"
 
 static const double PI = 3.14159265358979323846;
-
-static double gl_x[1024], gl_w[1024];
-
-static void gauss_legendre01(int n)
-{
-    for (int i = 0; i < (n + 1) / 2; ++i) {
-        double z = cos(PI * (i + 0.75) / (n + 0.5)), dp = 1.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = 0.0;
-            for (int k = 1; k <= n; ++k) {
-                double p2 = p1;
-                p1 = p0;
-                p0 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p2) / k;
-            }
-            dp = n * (z * p0 - p1) / (z * z - 1.0);
-            double dz = p0 / dp;
-            z -= dz;
-            if (fabs(dz) < 1e-15) break;
-        }
-        gl_x[i] = 0.5 * (1.0 - z);
-        gl_x[n - 1 - i] = 0.5 * (1.0 + z);
-        gl_w[i] = gl_w[n - 1 - i] = 1.0 / ((1.0 - z * z) * dp * dp);
-    }
-}
-
-static double albedo(abrdf_model m, const abrdf_params *p, double theta_deg, double a, int n)
-{
-    gauss_legendre01(n);
-    double ti = theta_deg * PI / 180.0;
-    double wi[3] = {sin(ti), 0.0, cos(ti)};
-    int nphi = 2 * n;
-    double sum = 0.0;
-    for (int i = 0; i < n; ++i) {
-        double mv = 1.0 - gl_x[i], u = 1.0 - mv * mv;
-        double t2 = a * a * u / (mv * mv);
-        double ch = 1.0 / sqrt(1.0 + t2), sh = sqrt(t2) * ch;
-        /* dwh = sin dtheta dphi; d(u)/d(theta) from tan^2 = a^2 u/(1-u) */
-        double dudv = 2.0 * mv;
-        double tn = sh / ch;
-        double dthdu = a * a / (2.0 * tn * (1.0 + t2) * (1.0 - u) * (1.0 - u)) ;
-        if (!(tn > 0.0)) continue;
-        double jac = sh * dthdu * dudv * gl_w[i];
-        for (int j = 0; j < nphi; ++j) {
-            double phi = 2.0 * PI * (j + 0.5) / nphi;
-            double h[3] = {sh * cos(phi), sh * sin(phi), ch};
-            double cd = wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2];
-            if (!(cd > 0.0)) continue;
-            double wo[3] = {2 * cd * h[0] - wi[0], 2 * cd * h[1] - wi[1], 2 * cd * h[2] - wi[2]};
-            if (!(wo[2] > 0.0)) continue;
-            double f[3];
-            abrdf_eval_local(m, p, wi, wo, f);
-            sum += f[0] * wo[2] * 4.0 * cd * jac * (2.0 * PI / nphi);
-        }
-    }
-    return sum;
-}
 
 static double rnd(unsigned *s)
 {
@@ -124,7 +69,7 @@ int main(int argc, char **argv)
     const double th[3] = {0.0, 45.0, 80.0};
     for (int k = 0; k < 3; ++k)
         printf("albedo(%2.0f deg) = %.5f (order %d), %.5f (order %d)\n", th[k],
-               albedo(m, &p, th[k], a, 2 * order), 2 * order, albedo(m, &p, th[k], a, order), order);
+               quad_albedo(m, &p, th[k], a, 2 * order, 0), 2 * order, quad_albedo(m, &p, th[k], a, order, 0), order);
     unsigned s = 12345u;
     double worst = 0.0;
     for (int i = 0; i < 100000; ++i) {
