@@ -1,4 +1,4 @@
-/* cl_quad.c - random directions and stress counters of the cloth and layered suites. */
+/* cl_quad.c - random directions of the cloth and layered suites. */
 #include <math.h>
 #include "cl_quad.h"
 
@@ -17,14 +17,4 @@ void clq_rand_dir(unsigned *s, double zmin, double out[3])
     out[0] = r * cos(phi);
     out[1] = r * sin(phi);
     out[2] = z;
-}
-
-void clq_count(clq_counts *k, const double f[3])
-{
-    for (int c = 0; c < 3; ++c) {
-        k->evals++;
-        if (isnan(f[c])) k->nan++;
-        else if (isinf(f[c])) k->inf++;
-        else if (f[c] < 0.0) k->neg++;
-    }
 }

@@ -1,4 +1,4 @@
-/* cl_quad.h - random directions and stress counters of the cloth and layered suites;
+/* cl_quad.h - random directions of the cloth and layered suites;
  * the quadrature itself is tools/quad.h. */
 #ifndef ABRDF_CL_QUAD_H
 #define ABRDF_CL_QUAD_H
@@ -9,10 +9,4 @@
 double clq_rand(unsigned *state);
 void clq_rand_dir(unsigned *state, double zmin, double out[3]);
 
-/* Evaluation counters of the stability grids. */
-typedef struct clq_counts {
-    long evals, nan, inf, neg;
-} clq_counts;
-/* Add f[0..2] to the counters. */
-void clq_count(clq_counts *k, const double f[3]);
 #endif

@@ -246,7 +246,7 @@ START_TEST(cloth_stability_grid)
     const double rs[] = {0.0, 1e-3, 0.5, 1.0}, kamp[] = {0.0, 4.0, 100.0}, f0s[] = {0.0, 1.0};
     const double ns[] = {0.0, 1.0, 1e6};
     for (int mi = 0; mi < 2; ++mi) {
-        clq_counts k = {0, 0, 0, 0}, kb = {0, 0, 0, 0};
+        tu_counts k = {0, 0, 0, 0}, kb = {0, 0, 0, 0};
         abrdf_params p;
         abrdf_params_init(ms[mi], &p);
         unsigned s = 99u;
@@ -268,14 +268,14 @@ START_TEST(cloth_stability_grid)
                 abrdf_frame_make(n, t, &fr);
                 double f[3];
                 ck_assert_int_eq(abrdf_eval(ms[mi], &p, &fr, L, V, f), ABRDF_OK);
-                clq_count(&k, f);
+                tu_count(&k, f);
                 /* the same pair with T = L or T = V exactly in the local frame */
                 double Ll[3] = {1, 0, 0}, Vl[3];
                 for (int c = 0; c < 3; ++c) Vl[c] = V[c];
                 abrdf_eval_local(ms[mi], &p, Ll, Vl, f);
-                clq_count(&k, f);
+                tu_count(&k, f);
                 abrdf_eval_local(ms[mi], &p, Vl, Ll, f);
-                clq_count(&k, f);
+                tu_count(&k, f);
                 float bx[2] = {(float)L[0], 1.0f}, by[2] = {(float)L[1], 0.0f}, bz[2] = {(float)L[2], 1e-30f};
                 float cx[2] = {(float)V[0], (float)V[0]}, cy[2] = {(float)V[1], (float)V[1]}, cz[2] = {(float)V[2], (float)V[2]};
                 float o0[2], o1[2], o2[2];
@@ -283,7 +283,7 @@ START_TEST(cloth_stability_grid)
                 abrdf_eval_batch(ms[mi], &p, &bt);
                 for (int j = 0; j < 2; ++j) {
                     double fb[3] = {o0[j], o1[j], o2[j]};
-                    clq_count(&kb, fb);
+                    tu_count(&kb, fb);
                 }
             }
         }

@@ -172,7 +172,7 @@ START_TEST(stability_grid)
     const double dirs[][3] = {{1, 0, 1e-12}, {-1, 0, 1e-12}, {0, 0, 1}, {0.6, 0, 0.8},
                               {0, 1, 1e-12}, {0.3, 0.4, 0.866}, {0.99, -0.1, 0.1}, {0, 0, 0}};
     const int nd = (int)(sizeof dirs / sizeof dirs[0]);
-    long bad = 0, nan_ = 0, inf_ = 0, total = 0;
+    tu_counts cnt = {0, 0, 0, 0};
     abrdf_params p;
     abrdf_params_init(ABRDF_HUANG, &p);
     for (int a = 0; a < 3; ++a)
@@ -187,12 +187,7 @@ START_TEST(stability_grid)
                 if (c == 0 && (i + o) % 5) continue; /* alpha = 0.05 is slow: a fifth */
                 double f[3];
                 ck_assert_int_eq(abrdf_eval_local(ABRDF_HUANG, &p, dirs[i], dirs[o], f), ABRDF_OK);
-                for (int k = 0; k < 3; ++k) {
-                    nan_ += isnan(f[k]);
-                    inf_ += isinf(f[k]);
-                    bad += f[k] < 0.0;
-                    ++total;
-                }
+                tu_count(&cnt, f);
             }
     }
     const double zero[3] = {0, 0, 0}, n[3] = {0, 0, 1};
@@ -203,15 +198,11 @@ START_TEST(stability_grid)
         for (int o = 0; o < nd; ++o) {
             double f[3];
             ck_assert_int_eq(abrdf_eval(ABRDF_HUANG, &p, &fr, dirs[i], dirs[o], f), ABRDF_OK);
-            for (int k = 0; k < 3; ++k) {
-                nan_ += isnan(f[k]);
-                inf_ += isinf(f[k]);
-                bad += f[k] < 0.0;
-                ++total;
-            }
+            tu_count(&cnt, f);
         }
-    printf("huang stability grid: %ld values, NaN %ld, Inf %ld, negative %ld\n", total, nan_, inf_, bad);
-    ck_assert(nan_ == 0 && inf_ == 0 && bad == 0);
+    printf("huang stability grid: %ld values, NaN %ld, Inf %ld, negative %ld\n", cnt.evals, cnt.nan,
+           cnt.inf, cnt.neg);
+    ck_assert(cnt.nan == 0 && cnt.inf == 0 && cnt.neg == 0);
 }
 END_TEST
 

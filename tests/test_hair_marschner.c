@@ -213,7 +213,7 @@ START_TEST(stability_grid)
                               {0.6, 0, 0.8}, {-0.6, 0, 0.8}, {0, 1, 1e-12}, {0, -1, 1e-12},
                               {0.3, 0.4, 0.866}, {0.99, -0.1, 0.1}, {0, 0, -1}, {0, 0, 0}};
     const int nd = (int)(sizeof dirs / sizeof dirs[0]);
-    long bad_nan = 0, bad_inf = 0, bad_neg = 0, total = 0;
+    tu_counts cnt = {0, 0, 0, 0};
     abrdf_params p;
     abrdf_params_init(ABRDF_MARSCHNER, &p);
     for (int a = 0; a < 6; ++a)
@@ -227,12 +227,7 @@ START_TEST(stability_grid)
             for (int o = 0; o < nd; ++o) {
                 double f[3];
                 ck_assert_int_eq(abrdf_eval_local(ABRDF_MARSCHNER, &p, dirs[i], dirs[o], f), ABRDF_OK);
-                for (int k = 0; k < 3; ++k) {
-                    bad_nan += isnan(f[k]);
-                    bad_inf += isinf(f[k]);
-                    bad_neg += f[k] < 0.0;
-                    ++total;
-                }
+                tu_count(&cnt, f);
             }
     }
     /* a zero tangent and a tangent parallel to N: abrdf_frame_make picks one */
@@ -246,17 +241,12 @@ START_TEST(stability_grid)
             for (int o = 0; o < nd; ++o) {
                 double f[3];
                 ck_assert_int_eq(abrdf_eval(ABRDF_MARSCHNER, &p, &fr, dirs[i], dirs[o], f), ABRDF_OK);
-                for (int k = 0; k < 3; ++k) {
-                    bad_nan += isnan(f[k]);
-                    bad_inf += isinf(f[k]);
-                    bad_neg += f[k] < 0.0;
-                    ++total;
-                }
+                tu_count(&cnt, f);
             }
     }
-    printf("marschner stability grid: %ld values, NaN %ld, Inf %ld, negative %ld\n", total,
-           bad_nan, bad_inf, bad_neg);
-    ck_assert(bad_nan == 0 && bad_inf == 0 && bad_neg == 0);
+    printf("marschner stability grid: %ld values, NaN %ld, Inf %ld, negative %ld\n", cnt.evals,
+           cnt.nan, cnt.inf, cnt.neg);
+    ck_assert(cnt.nan == 0 && cnt.inf == 0 && cnt.neg == 0);
 }
 END_TEST
 

@@ -402,7 +402,7 @@ START_TEST(layered_stability_grid)
     const double etas[] = {0.25, 0.7, 1.0, 1.5, 4.0}, kappas[] = {0.0, 0.0, 1e-3, 10.0};
     const double rs[] = {0.0, 1e-3, 0.5, 1.0}, sig[] = {0.0, 1.0, 1e4}, dep[] = {0.0, 1e-3, 100.0};
     for (int mi = 0; mi < 2; ++mi) {
-        clq_counts k = {0, 0, 0, 0};
+        tu_counts k = {0, 0, 0, 0};
         unsigned s = 1234u;
         abrdf_params p;
         abrdf_params_init(ms[mi], &p);
@@ -421,7 +421,7 @@ START_TEST(layered_stability_grid)
                 if (i % 7 == 0) for (int c = 0; c < 3; ++c) V[c] = L[c];
                 if (i % 9 == 0) for (int c = 0; c < 3; ++c) V[c] = -L[c];
                 ck_assert_int_eq(abrdf_eval_local(ms[mi], &p, L, V, f), ABRDF_OK);
-                clq_count(&k, f);
+                tu_count(&k, f);
             }
         }
         printf("stability %s: %ld values (NaN %ld, Inf %ld, negative %ld)\n", abrdf_model_get(ms[mi])->name,

@@ -24,6 +24,16 @@ double tu_eval1(abrdf_model m, const abrdf_params *p, const double wi[3], const 
     return f[0];
 }
 
+void tu_count(tu_counts *k, const double f[3])
+{
+    for (int c = 0; c < 3; ++c) {
+        k->evals++;
+        if (isnan(f[c])) k->nan++;
+        else if (isinf(f[c])) k->inf++;
+        else if (f[c] < 0.0) k->neg++;
+    }
+}
+
 int tu_run(Suite *s)
 {
     SRunner *sr = srunner_create(s);

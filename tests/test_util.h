@@ -11,6 +11,12 @@ void tu_dir(double theta_deg, double phi_deg, double out[3]);
 int tu_close(double a, double b, double rel, double abs_tol);
 /* Evaluate model with params in the local frame; returns channel 0 and asserts OK. */
 double tu_eval1(abrdf_model m, const abrdf_params *p, const double wi[3], const double wo[3]);
+/* Evaluation counters of the stability grids. */
+typedef struct tu_counts {
+    long evals, nan, inf, neg;
+} tu_counts;
+/* Add f[0..2] to the counters (each value counts once: NaN, else Inf, else negative). */
+void tu_count(tu_counts *k, const double f[3]);
 /* Run one suite, print the summary, return the process exit status. */
 int tu_run(Suite *s);
 #endif
