@@ -4,16 +4,10 @@
 #include <stdio.h>
 
 #include "hair.h"
+#include "hair_test_util.h"
 #include "test_util.h"
 
 static const double PI = 3.14159265358979323846;
-
-static void fdir(double theta, double phi, double w[3])
-{
-    w[0] = sin(theta);
-    w[1] = cos(theta) * cos(phi);
-    w[2] = cos(theta) * sin(phi);
-}
 
 static void setup(abrdf__huang *m, double melanin, double aspect)
 {
@@ -24,22 +18,15 @@ static void setup(abrdf__huang *m, double melanin, double aspect)
     abrdf__huang_setup(&p, m);
 }
 
+static void fibre(const void *m, const double wi[3], const double wo[3], unsigned lobes, double s[3])
+{
+    abrdf__huang_fibre(m, wi, wo, lobes, s);
+}
+
 /* Fibre albedo integral S dw_i over the sphere (midpoint nt x 2nt), view at theta_o. */
 static double fibre_albedo(const abrdf__huang *m, double theta_o, unsigned lobes, int nt)
 {
-    double wo[3], sum = 0.0;
-    int np = 2 * nt;
-    fdir(theta_o, 0.3, wo);
-    for (int i = 0; i < nt; ++i) {
-        double th = -PI / 2 + (i + 0.5) * PI / nt;
-        for (int j = 0; j < np; ++j) {
-            double wi[3], s[3];
-            fdir(th, -PI + (j + 0.5) * 2 * PI / np, wi);
-            abrdf__huang_fibre(m, wi, wo, lobes, s);
-            sum += s[0] * cos(th);
-        }
-    }
-    return sum * (PI / nt) * (2 * PI / np);
+    return htu_fibre_albedo(fibre, m, theta_o, lobes, nt, 2 * nt);
 }
 
 /* Smooth, round, untilted fibre: R tends to Marschner's specular cone, whose albedo is the
@@ -73,8 +60,8 @@ START_TEST(quadrature_convergence)
     abrdf__huang m;
     setup(&m, 0.3, 0.85);
     double wi[3], wo[3];
-    fdir(0.3, 2.2, wi);
-    fdir(-0.1, 0.2, wo);
+    htu_fdir(0.3, 2.2, wi);
+    htu_fdir(-0.1, 0.2, wo);
     double a[3], b[3], c[3];
     abrdf__huang_fibre(&m, wi, wo, 15u, a);
     m.refine = 2;
@@ -257,8 +244,8 @@ START_TEST(absorption_darkens)
     abrdf_params p;
     abrdf_params_init(ABRDF_HUANG, &p);
     double wi[3], wo[3], f0[3], f1[3];
-    fdir(0.2, 2.5, wi);
-    fdir(-0.1, 0.4, wo);
+    htu_fdir(0.2, 2.5, wi);
+    htu_fdir(-0.1, 0.4, wo);
     wi[2] = fabs(wi[2]);
     wo[2] = fabs(wo[2]);
     p.melanin = 0.0;

@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "hair.h"
+#include "hair_test_util.h"
 #include "test_util.h"
 
 static const double PI = 3.14159265358979323846;
@@ -17,29 +18,15 @@ static void setup(abrdf__marschner *m, double melanin)
     abrdf__marschner_setup(&p, m);
 }
 
-/* Fibre direction from longitudinal angle theta and azimuth phi (radians). */
-static void fdir(double theta, double phi, double w[3])
+static void fibre(const void *m, const double wi[3], const double wo[3], unsigned lobes, double s[3])
 {
-    w[0] = sin(theta);
-    w[1] = cos(theta) * cos(phi);
-    w[2] = cos(theta) * sin(phi);
+    abrdf__marschner_fibre(m, wi, wo, lobes, s);
 }
 
 /* Fibre albedo: integral of S over the sphere of wi (midpoint rule, nt x np cells). */
 static double fibre_albedo(const abrdf__marschner *m, double theta_o, unsigned lobes, int nt, int np)
 {
-    double wo[3], sum = 0.0;
-    fdir(theta_o, 0.3, wo);
-    for (int i = 0; i < nt; ++i) {
-        double th = -PI / 2 + (i + 0.5) * PI / nt;
-        for (int j = 0; j < np; ++j) {
-            double wi[3], s[3];
-            fdir(th, -PI + (j + 0.5) * 2 * PI / np, wi);
-            abrdf__marschner_fibre(m, wi, wo, lobes, s);
-            sum += s[0] * cos(th);
-        }
-    }
-    return sum * (PI / nt) * (2 * PI / np);
+    return htu_fibre_albedo(fibre, m, theta_o, lobes, nt, np);
 }
 
 /* N_R at theta_d = 0 in closed form: the single root h = -sin(phi/2), |dPhi/dh| = 2/cos(phi/2),
@@ -131,8 +118,8 @@ START_TEST(r_lobe_by_hand)
     abrdf__marschner m;
     setup(&m, 0.8);
     double ti = 0.25, to = -0.1, pi_ = 0.4, po = 1.1, wi[3], wo[3], s[3];
-    fdir(ti, pi_, wi);
-    fdir(to, po, wo);
+    htu_fdir(ti, pi_, wi);
+    htu_fdir(to, po, wo);
     abrdf__marschner_fibre(&m, wi, wo, 1u, s);
     double th = 0.5 * (ti + to), td = 0.5 * (to - ti);
     double mr = 0.5 * exp(-0.5 * pow((th - m.alpha[0]) / m.beta[0], 2)) / (m.beta[0] * sqrt(2 * PI));
@@ -184,8 +171,8 @@ START_TEST(reciprocity)
     double worst = 0.0;
     for (int k = 0; k < 200; ++k) {
         double wi[3], wo[3], a[3], b[3];
-        fdir(-1.4 + 0.013 * k, 0.37 * k, wi);
-        fdir(1.3 - 0.011 * k, -0.23 * k + 1.0, wo);
+        htu_fdir(-1.4 + 0.013 * k, 0.37 * k, wi);
+        htu_fdir(1.3 - 0.011 * k, -0.23 * k + 1.0, wo);
         abrdf__marschner_fibre(&m, wi, wo, 7u, a);
         abrdf__marschner_fibre(&m, wo, wi, 7u, b);
         for (int c = 0; c < 3; ++c) {
