@@ -1,4 +1,4 @@
-/* cl_quad.h - random directions of the cloth and layered suites;
+/* cl_quad.h - random directions and the batch check of the cloth and layered suites;
  * the quadrature itself is tools/quad.h. */
 #ifndef ABRDF_CL_QUAD_H
 #define ABRDF_CL_QUAD_H
@@ -9,4 +9,10 @@
 double clq_rand(unsigned *state);
 void clq_rand_dir(unsigned *state, double zmin, double out[3]);
 
+/* Float batch path == double scalar path: n <= CLQ_BATCH_MAX random pairs (clq_rand_dir
+ * from seed, zmin 0.05), each of the nm models at its defaults; channel 0 must agree to
+ * tu_close(rel, abs_tol). */
+#define CLQ_BATCH_MAX 2000
+void clq_batch_matches_scalar(const abrdf_model *ms, int nm, int n, unsigned seed, double rel,
+                              double abs_tol);
 #endif

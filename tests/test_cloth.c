@@ -213,28 +213,7 @@ END_TEST
 START_TEST(cloth_batch_matches_scalar)
 {
     const abrdf_model ms[] = {ABRDF_NEUBELT_PETTINEO, ABRDF_KAJIYA_KAY};
-    enum { N = 2000 };
-    static float ix[N], iy[N], iz[N], ox[N], oy[N], oz[N], fr[N], fg[N], fb[N];
-    unsigned s = 3u;
-    for (int i = 0; i < N; ++i) {
-        double a[3], b[3];
-        clq_rand_dir(&s, 0.05, a);
-        clq_rand_dir(&s, 0.05, b);
-        ix[i] = (float)a[0]; iy[i] = (float)a[1]; iz[i] = (float)a[2];
-        ox[i] = (float)b[0]; oy[i] = (float)b[1]; oz[i] = (float)b[2];
-    }
-    abrdf_batch bt = {N, ix, iy, iz, ox, oy, oz, fr, fg, fb};
-    for (int k = 0; k < 2; ++k) {
-        abrdf_params p;
-        abrdf_params_init(ms[k], &p);
-        ck_assert_int_eq(abrdf_eval_batch(ms[k], &p, &bt), ABRDF_OK);
-        for (int i = 0; i < N; ++i) {
-            double a[3] = {ix[i], iy[i], iz[i]}, b[3] = {ox[i], oy[i], oz[i]}, f[3];
-            abrdf_eval_local(ms[k], &p, a, b, f);
-            ck_assert_msg(tu_close(fr[i], f[0], 2e-4, 1e-6), "%s: %.9g vs %.9g",
-                          abrdf_model_get(ms[k])->name, fr[i], f[0]);
-        }
-    }
+    clq_batch_matches_scalar(ms, 2, 2000, 3u, 2e-4, 1e-6);
 }
 END_TEST
 

@@ -436,27 +436,7 @@ END_TEST
 START_TEST(layered_batch_matches_scalar)
 {
     const abrdf_model ms[] = {ABRDF_WEIDLICH_WILKIE, ABRDF_BELCOUR};
-    enum { N = 500 };
-    static float ix[N], iy[N], iz[N], ox[N], oy[N], oz[N], fr[N], fg[N], fb[N];
-    unsigned s = 4u;
-    for (int i = 0; i < N; ++i) {
-        double a[3], b[3];
-        clq_rand_dir(&s, 0.05, a);
-        clq_rand_dir(&s, 0.05, b);
-        ix[i] = (float)a[0]; iy[i] = (float)a[1]; iz[i] = (float)a[2];
-        ox[i] = (float)b[0]; oy[i] = (float)b[1]; oz[i] = (float)b[2];
-    }
-    abrdf_batch bt = {N, ix, iy, iz, ox, oy, oz, fr, fg, fb};
-    for (int m = 0; m < 2; ++m) {
-        abrdf_params p;
-        abrdf_params_init(ms[m], &p);
-        ck_assert_int_eq(abrdf_eval_batch(ms[m], &p, &bt), ABRDF_OK);
-        for (int i = 0; i < N; ++i) {
-            double a[3] = {ix[i], iy[i], iz[i]}, b[3] = {ox[i], oy[i], oz[i]}, f[3];
-            abrdf_eval_local(ms[m], &p, a, b, f);
-            ck_assert(tu_close(fr[i], f[0], 1e-6, 1e-30));
-        }
-    }
+    clq_batch_matches_scalar(ms, 2, 500, 4u, 1e-6, 1e-30);
 }
 END_TEST
 
