@@ -9,6 +9,7 @@
 #include "cli.h"
 #include "export.h"
 #include "export_pov.h"
+#include "scene_select.h"
 
 #ifndef ABRDF_SOURCE_OSL_DIR
 #define ABRDF_SOURCE_OSL_DIR ""
@@ -125,21 +126,11 @@ int cmd_export(int argc, char **argv)
     render_scene rs;
     FILE *f = NULL;
     if (model_name) {
-        abrdf_model m;
-        if (cli_model(cmd, model_name, &m)) {
-            rc = CLI_EXIT_USAGE;
+        int st = scene_set_model(cmd, &s, model_name, sets, nsets);
+        if (st) {
+            rc = st;
             goto done;
         }
-        if (render_set_model(&s, m, err, sizeof err)) {
-            fprintf(stderr, "abrdf export: %s\n", err);
-            goto done;
-        }
-        for (int i = 0; i < nsets; ++i)
-            for (int j = 0; j < s.material_count; ++j)
-                if (cli_set_param(cmd, m, &s.materials[j].params, sets[i])) {
-                    rc = CLI_EXIT_USAGE;
-                    goto done;
-                }
     }
     if (render_prepare(&s, &opt, &rs, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);

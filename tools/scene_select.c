@@ -3,6 +3,8 @@
 #include <string.h>
 
 #include "scene_select.h"
+#include "cli.h"
+#include "render.h"
 
 int scene_needs_table(const scene *s)
 {
@@ -106,5 +108,21 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
             for (int k = 0; k < sel.step_count; ++k) fprintf(explain, "  %2d. %s\n", k + 1, sel.steps[k].text);
         }
     }
+    return 0;
+}
+
+int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets,
+                    int nsets)
+{
+    abrdf_model m;
+    char err[512];
+    if (cli_model(cmd, model_name, &m)) return CLI_EXIT_USAGE;
+    if (render_set_model(s, m, err, sizeof err)) {
+        fprintf(stderr, "abrdf %s: %s\n", cmd, err);
+        return 1;
+    }
+    for (int i = 0; i < nsets; ++i)
+        for (int j = 0; j < s->material_count; ++j)
+            if (cli_set_param(cmd, m, &s->materials[j].params, sets[i])) return CLI_EXIT_USAGE;
     return 0;
 }

@@ -1,5 +1,6 @@
 /* scene_select.h - resolve a scene's material-table and adaptive materials into explicit
- * models with the paper's flowchart (abrdf_select), before rendering or exporting. */
+ * models with the paper's flowchart (abrdf_select), or give every material the model of
+ * --model, before rendering or exporting. */
 #ifndef ABRDF_SCENE_SELECT_H
 #define ABRDF_SCENE_SELECT_H
 
@@ -18,5 +19,12 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
 
 /* Does any material need the material table (or does force_goal make them adaptive)? */
 int scene_needs_table(const scene *s);
+
+/* --model NAME [--set NAME=VALUE ...] of `abrdf render` and `abrdf export`: every material of
+ * s becomes model_name (render_set_model), then each assignment is applied to every
+ * material. Returns 0; CLI_EXIT_USAGE for an unknown model or a bad assignment; 1 if the
+ * scene cannot take the model. Messages go to stderr as "abrdf CMD: ...". */
+int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets,
+                    int nsets);
 
 #endif
