@@ -1,24 +1,6 @@
-/* cl_quad.c - random directions and the batch check of the cloth and layered suites. */
-#include <math.h>
+/* cl_quad.c - the batch check of the cloth and layered suites. */
 #include "cl_quad.h"
 #include "test_util.h"
-
-static const double PI = 3.14159265358979323846;
-
-double clq_rand(unsigned *s)
-{
-    *s = *s * 1664525u + 1013904223u;
-    return (*s >> 8) / 16777216.0;
-}
-
-void clq_rand_dir(unsigned *s, double zmin, double out[3])
-{
-    double z = zmin + (1.0 - zmin) * clq_rand(s), phi = 2.0 * PI * clq_rand(s);
-    double r = sqrt(fmax(0.0, 1.0 - z * z));
-    out[0] = r * cos(phi);
-    out[1] = r * sin(phi);
-    out[2] = z;
-}
 
 void clq_batch_matches_scalar(const abrdf_model *ms, int nm, int n, unsigned seed, double rel,
                               double abs_tol)
@@ -30,8 +12,8 @@ void clq_batch_matches_scalar(const abrdf_model *ms, int nm, int n, unsigned see
     unsigned s = seed;
     for (int i = 0; i < n; ++i) {
         double a[3], b[3];
-        clq_rand_dir(&s, 0.05, a);
-        clq_rand_dir(&s, 0.05, b);
+        quad_rand_dir(&s, 0.05, a);
+        quad_rand_dir(&s, 0.05, b);
         ix[i] = (float)a[0]; iy[i] = (float)a[1]; iz[i] = (float)a[2];
         ox[i] = (float)b[0]; oy[i] = (float)b[1]; oz[i] = (float)b[2];
     }

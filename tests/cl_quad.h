@@ -1,15 +1,11 @@
-/* cl_quad.h - random directions and the batch check of the cloth and layered suites;
- * the quadrature itself is tools/quad.h. */
+/* cl_quad.h - the batch check of the cloth and layered suites; their quadrature and
+ * random directions are tools/quad.h. */
 #ifndef ABRDF_CL_QUAD_H
 #define ABRDF_CL_QUAD_H
 #include "abrdf.h"
-#include "quad.h" /* quad_albedo, quad_gauss_legendre01 (tools/) */
+#include "quad.h" /* quad_albedo, quad_rand_dir, ... (tools/) */
 
-/* Deterministic pseudo-random numbers in [0, 1) and unit directions. */
-double clq_rand(unsigned *state);
-void clq_rand_dir(unsigned *state, double zmin, double out[3]);
-
-/* Float batch path == double scalar path: n <= CLQ_BATCH_MAX random pairs (clq_rand_dir
+/* Float batch path == double scalar path: n <= CLQ_BATCH_MAX random pairs (quad_rand_dir
  * from seed, zmin 0.05), each of the nm models at its defaults; channel 0 must agree to
  * tu_close(rel, abs_tol). */
 #define CLQ_BATCH_MAX 2000

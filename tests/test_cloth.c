@@ -80,8 +80,8 @@ START_TEST(np_reciprocal)
     unsigned s = 7u;
     for (int i = 0; i < 20000; ++i) {
         double a[3], b[3];
-        clq_rand_dir(&s, 0.001, a);
-        clq_rand_dir(&s, 0.001, b);
+        quad_rand_dir(&s, 0.001, a);
+        quad_rand_dir(&s, 0.001, b);
         double f1 = tu_eval1(ABRDF_NEUBELT_PETTINEO, &p, a, b), f2 = tu_eval1(ABRDF_NEUBELT_PETTINEO, &p, b, a);
         ck_assert_msg(tu_close(f1, f2, 1e-12, 0.0), "%.17g vs %.17g", f1, f2);
     }
@@ -177,8 +177,8 @@ START_TEST(kk_reciprocity)
     unsigned s = 11u;
     for (int i = 0; i < 20000; ++i) {
         double a[3], b[3];
-        clq_rand_dir(&s, 0.001, a);
-        clq_rand_dir(&s, 0.001, b);
+        quad_rand_dir(&s, 0.001, a);
+        quad_rand_dir(&s, 0.001, b);
         ck_assert(tu_close(tu_eval1(ABRDF_KAJIYA_KAY, &p, a, b), tu_eval1(ABRDF_KAJIYA_KAY, &p, b, a), 1e-12, 0.0));
     }
     p.kd[0] = 0.5;
@@ -236,9 +236,9 @@ START_TEST(cloth_stability_grid)
             p.n = ns[(pi / 24) % 3];
             for (int i = 0; i < 400; ++i) {
                 double L[3], V[3], n[3] = {0, 0, 1}, t[3];
-                clq_rand_dir(&s, i % 4 == 0 ? 0.0 : -0.2, L);
+                quad_rand_dir(&s, i % 4 == 0 ? 0.0 : -0.2, L);
                 if (i % 4 == 0) L[2] = 1e-9 * (i % 3);       /* grazing */
-                clq_rand_dir(&s, -0.2, V);
+                quad_rand_dir(&s, -0.2, V);
                 if (i % 7 == 0) for (int c = 0; c < 3; ++c) V[c] = L[c];   /* L = V */
                 if (i % 11 == 0) for (int c = 0; c < 3; ++c) V[c] = -L[c]; /* L = -V */
                 int tk = i % 4; /* tangent: parallel to L, parallel to V, zero, random */

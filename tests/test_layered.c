@@ -72,8 +72,8 @@ START_TEST(ww_index_matched_is_base)
         for (int k = 0; k < n; ++k) set_layer(&p, k, 1.0, 0.0, 0.1 + 0.2 * k, 0.0, 0.0);
         for (int i = 0; i < 2000; ++i) {
             double a[3], b[3];
-            clq_rand_dir(&s, 0.01, a);
-            clq_rand_dir(&s, 0.01, b);
+            quad_rand_dir(&s, 0.01, a);
+            quad_rand_dir(&s, 0.01, b);
             double f = tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, a, b);
             ck_assert_msg(tu_close(f, 0.7 / PI, 1e-14, 0.0), "%d layers: %.17g", n, f);
         }
@@ -91,8 +91,8 @@ START_TEST(ww_conductor_is_ggx)
     unsigned s = 6u;
     for (int i = 0; i < 2000; ++i) {
         double a[3], b[3];
-        clq_rand_dir(&s, 0.01, a);
-        clq_rand_dir(&s, 0.01, b);
+        quad_rand_dir(&s, 0.01, a);
+        quad_rand_dir(&s, 0.01, b);
         double want = ggx_lobe(a, b, 0.25, 0.8, 4.7);
         ck_assert(tu_close(tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, a, b), want, 1e-10, 0.0));
     }
@@ -141,8 +141,8 @@ START_TEST(ww_reciprocal)
     unsigned s = 8u;
     for (int i = 0; i < 20000; ++i) {
         double a[3], b[3];
-        clq_rand_dir(&s, 0.001, a);
-        clq_rand_dir(&s, 0.001, b);
+        quad_rand_dir(&s, 0.001, a);
+        quad_rand_dir(&s, 0.001, b);
         double f1 = tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, a, b), f2 = tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, b, a);
         ck_assert_msg(tu_close(f1, f2, 1e-12, 1e-300), "%.17g vs %.17g", f1, f2);
     }
@@ -253,8 +253,8 @@ START_TEST(belcour_one_interface_is_fgd_lobe)
         double a = cases[k][2] * cases[k][2];
         for (int i = 0; i < 500; ++i) {
             double L[3], V[3], h[3];
-            clq_rand_dir(&s, 0.05, L);
-            clq_rand_dir(&s, 0.05, V);
+            quad_rand_dir(&s, 0.05, L);
+            quad_rand_dir(&s, 0.05, V);
             half(L, V, h);
             double lobe = ggx_d(h[2], a) * smith_g1(L[2], a) * smith_g1(V[2], a) / (4 * L[2] * V[2]);
             double want = abrdf__belcour_fgd(dot(L, h), a, cases[k][0], cases[k][1]) * lobe;
@@ -271,8 +271,8 @@ START_TEST(belcour_fgd_table_accuracy)
     unsigned s = 77u;
     double worst = 0.0;
     for (int i = 0; i < 40; ++i) {
-        double c = 0.1 + 0.9 * clq_rand(&s), a = 0.15 + 0.85 * clq_rand(&s);
-        double eta = 0.25 * pow(16.0, clq_rand(&s)), kappa = i % 2 ? 10.0 * pow(clq_rand(&s), 2) : 0.0;
+        double c = 0.1 + 0.9 * quad_rand(&s), a = 0.15 + 0.85 * quad_rand(&s);
+        double eta = 0.25 * pow(16.0, quad_rand(&s)), kappa = i % 2 ? 10.0 * pow(quad_rand(&s), 2) : 0.0;
         double d = fabs(abrdf__belcour_fgd(c, a, eta, kappa) - fgd_direct(c, a, eta, kappa));
         ck_assert_msg(d < 0.01, "FGD(%g, %g, %g, %g) off by %g", c, a, eta, kappa, d);
         worst = fmax(worst, d);
@@ -310,8 +310,8 @@ START_TEST(belcour_index_matched_and_zero_depth)
     unsigned s = 21u;
     for (int i = 0; i < 2000; ++i) {
         double L[3], V[3];
-        clq_rand_dir(&s, 0.01, L);
-        clq_rand_dir(&s, 0.01, V);
+        quad_rand_dir(&s, 0.01, L);
+        quad_rand_dir(&s, 0.01, V);
         ck_assert(tu_close(tu_eval1(ABRDF_BELCOUR, &p, L, V), tu_eval1(ABRDF_BELCOUR, &q, L, V), 1e-9, 1e-300));
     }
 }
@@ -346,8 +346,8 @@ START_TEST(belcour_reciprocal)
     unsigned s = 31u;
     for (int i = 0; i < 20000; ++i) {
         double a[3], b[3];
-        clq_rand_dir(&s, 0.001, a);
-        clq_rand_dir(&s, 0.001, b);
+        quad_rand_dir(&s, 0.001, a);
+        quad_rand_dir(&s, 0.001, b);
         ck_assert(tu_close(tu_eval1(ABRDF_BELCOUR, &p, a, b), tu_eval1(ABRDF_BELCOUR, &p, b, a), 1e-12, 1e-300));
     }
     ck_assert(abrdf_model_get(ABRDF_BELCOUR)->props & ABRDF_PROP_RECIPROCAL);
@@ -415,8 +415,8 @@ START_TEST(layered_stability_grid)
             p.kd[0] = p.kd[1] = p.kd[2] = cfg % 3 ? 1.0 : 0.0;
             for (int i = 0; i < 60; ++i) {
                 double L[3], V[3], f[3];
-                clq_rand_dir(&s, -0.1, L);
-                clq_rand_dir(&s, -0.1, V);
+                quad_rand_dir(&s, -0.1, L);
+                quad_rand_dir(&s, -0.1, V);
                 if (i % 5 == 0) L[2] = 1e-12;
                 if (i % 7 == 0) for (int c = 0; c < 3; ++c) V[c] = L[c];
                 if (i % 9 == 0) for (int c = 0; c < 3; ++c) V[c] = -L[c];

@@ -21,22 +21,6 @@
 #include "cli.h"
 #include "quad.h"
 
-static const double PI = 3.14159265358979323846;
-
-static double rnd(unsigned *s)
-{
-    *s = *s * 1664525u + 1013904223u;
-    return (*s >> 8) / 16777216.0;
-}
-
-static void rnd_dir(unsigned *s, double w[3])
-{
-    double z = 0.02 + 0.98 * rnd(s), phi = 2.0 * PI * rnd(s), r = sqrt(1.0 - z * z);
-    w[0] = r * cos(phi);
-    w[1] = r * sin(phi);
-    w[2] = z;
-}
-
 int main(int argc, char **argv)
 {
     const char *cmd = "measure_cloth_layered";
@@ -74,8 +58,8 @@ int main(int argc, char **argv)
     double worst = 0.0;
     for (int i = 0; i < 100000; ++i) {
         double wi[3], wo[3], f1[3], f2[3];
-        rnd_dir(&s, wi);
-        rnd_dir(&s, wo);
+        quad_rand_dir(&s, 0.02, wi);
+        quad_rand_dir(&s, 0.02, wo);
         abrdf_eval_local(m, &p, wi, wo, f1);
         abrdf_eval_local(m, &p, wo, wi, f2);
         double d = fabs(f1[0] - f2[0]) / fmax(1e-300, fmax(f1[0], f2[0]));
@@ -85,8 +69,8 @@ int main(int argc, char **argv)
     enum { NDIR = 4096 };
     static double di[NDIR][3], dout[NDIR][3];
     for (int i = 0; i < NDIR; ++i) {
-        rnd_dir(&s, di[i]);
-        rnd_dir(&s, dout[i]);
+        quad_rand_dir(&s, 0.02, di[i]);
+        quad_rand_dir(&s, 0.02, dout[i]);
     }
     double acc = 0.0, f[3];
     for (int i = 0; i < NDIR; ++i) {

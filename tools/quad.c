@@ -1,4 +1,4 @@
-/* quad.c - hemisphere quadrature shared by tools and tests (quad.h). */
+/* quad.c - hemisphere quadrature and random directions shared by tools and tests (quad.h). */
 #include <math.h>
 #include "quad.h"
 
@@ -55,4 +55,19 @@ double quad_albedo(abrdf_model m, const abrdf_params *p, double theta_deg, doubl
         }
     }
     return sum;
+}
+
+double quad_rand(unsigned *s)
+{
+    *s = *s * 1664525u + 1013904223u;
+    return (*s >> 8) / 16777216.0;
+}
+
+void quad_rand_dir(unsigned *s, double zmin, double out[3])
+{
+    double z = zmin + (1.0 - zmin) * quad_rand(s), phi = 2.0 * PI * quad_rand(s);
+    double r = sqrt(fmax(0.0, 1.0 - z * z));
+    out[0] = r * cos(phi);
+    out[1] = r * sin(phi);
+    out[2] = z;
 }

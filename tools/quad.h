@@ -1,5 +1,5 @@
-/* quad.h - hemisphere quadrature shared by the table generator, the measurement tool and
- * the cloth and layered suites. */
+/* quad.h - hemisphere quadrature and random directions shared by the table generator, the
+ * measurement tool and the cloth and layered suites. */
 #ifndef ABRDF_TOOLS_QUAD_H
 #define ABRDF_TOOLS_QUAD_H
 #include "abrdf.h"
@@ -17,4 +17,8 @@ void quad_gauss_legendre01(int n, double *x, double *w);
  * in v (u = 1 - (1 - v)^2, tan^2 theta_h = a^2 u / (1 - u)), 2n uniform azimuths. Local
  * frame. */
 double quad_albedo(abrdf_model m, const abrdf_params *p, double theta_deg, double a, int n, int c);
+/* Deterministic pseudo-random numbers in [0, 1) (a 32-bit LCG, top 24 bits) and unit
+ * directions with z uniform in [zmin, 1) and a uniform azimuth. */
+double quad_rand(unsigned *state);
+void quad_rand_dir(unsigned *state, double zmin, double out[3]);
 #endif
