@@ -37,6 +37,7 @@
  *   abrdf_param_find         parameter id from its name
  *   abrdf_params_init        fill a parameter block with a model's defaults
  *   abrdf_param_set          set one parameter by id (validated)
+ *   abrdf_param_read         read one parameter by id
  *   abrdf_params_check       validate a parameter block for a model, with a message
  *   abrdf_frame_make         orthonormal shading frame from a normal and optional tangent
  *   abrdf_eval               double-precision scalar reference: f_r for world directions
