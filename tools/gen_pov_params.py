@@ -29,7 +29,11 @@ def num(x):
 
 def main():
     abrdf, fkub_c, models_inc, out = sys.argv[1:5]
-    kernels = set(re.findall(r"^#declare abrdf_(\w+) = function", open(models_inc).read(), re.M))
+    sigs = dict(re.findall(r"^#declare abrdf_(\w+) = function\(([^)]*)\)", open(models_inc).read(), re.M))
+    kernels = set(sigs)
+    # A kernel whose last parameter is `chan` gets the channel C (models with per-channel
+    # quantities derived from scalar parameters, e.g. marschner's sigma_a).
+    wants_chan = {k for k, a in sigs.items() if a.split(",")[-1].strip() == "chan"}
     reg = json.loads(subprocess.run([abrdf, "models", "--json"], check=True,
                                     capture_output=True, text=True).stdout)
     rules = json.loads(subprocess.run([abrdf, "advise", "--rules", "--json"], check=True,
@@ -217,6 +221,8 @@ def main():
             k = first[p["name"]]
             w("      #local P_%s = D[%s];" % (p["name"], ("%d + C" % k) if p["kind"] == "rgb" else str(k)))
             args.append("P_" + p["name"])
+        if m["name"] in wants_chan:
+            args.append("C")
         w("      #local F = function(ix, iy, iz, ox, oy, oz) { abrdf_%s(ix, iy, iz, ox, oy, oz, %s) }"
           % (m["name"], ", ".join(args)))
         w("    #break")
