@@ -238,8 +238,8 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
     for (int i = 0; i < rs->material_count; ++i)
         for (int k = 0; k < rs->materials[i].lobe_count; ++k)
             if (!export_cycles_has_twin(rs->materials[i].lobes[k])) {
-                snprintf(err, err_size, "material '%s': model %s has no OSL twin (integrated "
-                         "numerically in the C library)", s->materials[i].name,
+                snprintf(err, err_size, "material '%s': model %s has no OSL twin (hair and "
+                         "belcour are not ported)", s->materials[i].name,
                          abrdf_model_get(rs->materials[i].lobes[k])->name);
                 return -1;
             }
