@@ -514,14 +514,112 @@ color abrdf_kajiya_kay(vector wi, vector wo, color kd, color ks, float n)
     return kd * sl + ks * spec; // Eq. 11
 }
 
+// ---- layered (layered_ww.c, layered_optics.h) ------------------------------------------
+#define ABRDF_MAX_LAYERS 4
+
+// Exact Fresnel reflectance of an interface of relative index eta + i kappa at incidence
+// cosine c (Born & Wolf Sec. 14.2); kappa = 0 is the dielectric, incl. total internal
+// reflection (F = 1).
+float abrdf_fresnel_exact(float c_in, float eta, float kappa)
+{
+    if (eta == 1.0 && kappa == 0.0) return 0.0; // index-matched: no interface at all
+    float c = c_in < 0.0 ? 0.0 : (c_in > 1.0 ? 1.0 : c_in);
+    float c2 = c * c, s2 = 1.0 - c2;
+    float t0 = eta * eta - kappa * kappa - s2;
+    float a2pb2 = sqrt(t0 * t0 + 4.0 * eta * eta * kappa * kappa);
+    float a = sqrt(max(0.0, 0.5 * (a2pb2 + t0)));
+    float t1 = a2pb2 + c2, t2 = 2.0 * c * a;
+    if (!(t1 + t2 > 0.0)) return 1.0; // grazing incidence
+    float rs = (t1 - t2) / (t1 + t2);
+    float t3 = c2 * a2pb2 + s2 * s2, t4 = t2 * s2;
+    float rp = (t3 + t4 > 0.0) ? rs * (t3 - t4) / (t3 + t4) : rs;
+    float f = 0.5 * (rs + rp);
+    return f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
+}
+
+// GGX D of the layered models (layered_optics.h: 0 below the horizon of H).
+float abrdf_lo_d_ggx(float ch, float sh2, float ag)
+{
+    if (!(ch > 0.0)) return 0.0;
+    float a2 = ag * ag, t = sh2 + a2 * ch * ch;
+    return t > 0.0 ? a2 / (ABRDF_PI * t * t) : 0.0;
+}
+
+// Refract the upward unit direction w through the upward unit normal m into the medium
+// below (relative index eta) and return the refracted ray reversed (pointing up from
+// below); 0 on total internal reflection or if w is behind m.
+int abrdf_lo_refract(vector w, vector m, float eta, output vector out)
+{
+    float ci = dot(w, m);
+    if (!(ci > 0.0)) return 0;
+    float s2t = (1.0 - ci * ci) / (eta * eta);
+    if (!(s2t < 1.0)) return 0;
+    float ct = sqrt(1.0 - s2t);
+    float k = ci / eta - ct;
+    out = w / eta - k * m;
+    return 1;
+}
+
+// Weidlich-Wilkie layered, Eq. 15 (Weidlich & Wilkie 2007): per interface k, top to bottom,
+// f_k = F D G / (4 cos_i cos_o) + T f_{k+1}(L', V') a t, with L', V' refracted at H; a
+// conductor (kappa > 0) ends the stack, below the last interface a Lambert base kd/pi.
+// OSL cannot recurse: the linear recursion is unrolled into a loop carrying the product
+// w of the factors T a t of the interfaces above.
+color abrdf_weidlich_wilkie(vector wi, vector wo, color kd, int layer_count,
+                            float layer_eta[4], float layer_kappa[4], float layer_r[4],
+                            color layer_sigma_a[4], float layer_depth[4])
+{
+    color f = color(0), w = color(1);
+    vector L = wi, V = wo;
+    for (int k = 0; k <= ABRDF_MAX_LAYERS; ++k) {
+        float ci = L[2], co = V[2];
+        if (!(ci > 0.0 && co > 0.0)) break;
+        if (k >= layer_count || k >= ABRDF_MAX_LAYERS) {
+            f += w * kd * ABRDF_INV_PI; // Lambert base, Eq. 1
+            break;
+        }
+        vector h = L + V;
+        float len2 = dot(h, h);
+        if (!(len2 > ABRDF_HALF_LEN2_MIN)) break;
+        h *= 1.0 / sqrt(len2);
+        float cd = dot(L, h);
+        float ag = max(layer_r[k] * layer_r[k], ABRDF_ALPHA_G_MIN);
+        float F = abrdf_fresnel_exact(cd, layer_eta[k], layer_kappa[k]);
+        float vv = abrdf_v1_smith_ggx(ci, ag) * abrdf_v1_smith_ggx(co, ag);
+        float top = F * abrdf_lo_d_ggx(h[2], h[0] * h[0] + h[1] * h[1], ag) * vv;
+        f += w * top;
+        if (layer_kappa[k] > 0.0) break; // conductor: nothing below is seen
+        float T = 1.0 - F;
+        vector Li, Vi;
+        if (!(T > 0.0) || !abrdf_lo_refract(L, h, layer_eta[k], Li) ||
+            !abrdf_lo_refract(V, h, layer_eta[k], Vi))
+            break; // total internal reflection
+        if (!(Li[2] > 0.0 && Vi[2] > 0.0)) break; // refracted below the base's horizon
+        float G = 4.0 * ci * co * vv;
+        float t = (1.0 - G) + T * G;
+        color sd = layer_sigma_a[k] * layer_depth[k];
+        color a = color(1);
+        for (int c = 0; c < 3; ++c)
+            if (sd[c] > 0.0) a[c] = exp(-sd[c] * (1.0 / Li[2] + 1.0 / Vi[2]));
+        w *= T * a * t; // Eq. 15
+        L = Li;
+        V = Vi;
+    }
+    return f;
+}
+
 // ---- dispatch by name ----------------------------------------------------------------------
 // Every parameter of the library's flat parameter block; each model reads its own. Returns
 // 0 for an unknown model or parameters outside the model's ranges (the C library returns
 // an error code there), and never a negative or non-finite value.
 color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f0, float n,
-                 float r, float anisotropic, float sigma, float clearcoat_gloss, float k_amp)
+                 float r, float anisotropic, float sigma, float clearcoat_gloss, float k_amp,
+                 int layer_count, float layer_eta[4], float layer_kappa[4], float layer_r[4],
+                 color layer_sigma_a[4], float layer_depth[4])
 {
-    if (!abrdf_params_valid(model, kd, ks, f0, n, r, anisotropic, sigma, clearcoat_gloss, k_amp))
+    if (!abrdf_params_valid(model, kd, ks, f0, n, r, anisotropic, sigma, clearcoat_gloss, k_amp,
+                            layer_count, layer_eta, layer_kappa, layer_r, layer_sigma_a,
+                            layer_depth))
         return color(0);
     color f = color(0);
     if (model == "lambert") f = abrdf_lambert(wi, wo, kd);
@@ -552,6 +650,9 @@ color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f
     else if (model == "disney_clearcoat") f = abrdf_disney_clearcoat(wi, wo, ks, clearcoat_gloss);
     else if (model == "neubelt_pettineo") f = abrdf_neubelt_pettineo(wi, wo, kd, ks, f0, r, k_amp);
     else if (model == "kajiya_kay") f = abrdf_kajiya_kay(wi, wo, kd, ks, n);
+    else if (model == "weidlich_wilkie")
+        f = abrdf_weidlich_wilkie(wi, wo, kd, layer_count, layer_eta, layer_kappa, layer_r,
+                                  layer_sigma_a, layer_depth);
     // Last line of defence, as in the C library: never NaN, Inf or negative.
     for (int c = 0; c < 3; ++c)
         if (!(f[c] >= 0.0 && f[c] <= 3.4e38)) f[c] = 0.0;

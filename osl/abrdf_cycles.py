@@ -211,6 +211,10 @@ def eval_inputs(s, m):
         raise ValueError("generic mode: one lobe per material and at most 4 lights")
     d = material_inputs(m)
     del d["model2"]
+    d["layer_count"] = m["layer_count"]
+    for k, ly in enumerate(m["layers"]):
+        for field in ("eta", "kappa", "r", "sigma_a", "depth"):
+            d["layer%d_%s" % (k, field)] = ly[field]
     d["ka"] = m["ambient"]
     d["ambient"] = (1.0, 1.0, 1.0)  # ka * Ia is already in "ambient" of the material
     for k, l in enumerate(s["lights"]):

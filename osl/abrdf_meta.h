@@ -4,9 +4,9 @@
 #define ABRDF_META_H
 
 // Models with an OSL twin (closed-form models), space separated.
-#define ABRDF_MODEL_NAMES "lambert lambert_fresnel disney_diffuse oren_nayar phong blinn_phong f2 f4 f8 f16 fs fkv fkub f_phe f_be f_2e f_16e f_ge f_ctphe f_ct2e f_ct16e cook_torrance disney_specular disney_specular_aniso disney_clearcoat neubelt_pettineo kajiya_kay"
+#define ABRDF_MODEL_NAMES "lambert lambert_fresnel disney_diffuse oren_nayar phong blinn_phong f2 f4 f8 f16 fs fkv fkub f_phe f_be f_2e f_16e f_ge f_ctphe f_ct2e f_ct16e cook_torrance disney_specular disney_specular_aniso disney_clearcoat neubelt_pettineo kajiya_kay weidlich_wilkie"
 // The same list for a popup widget.
-#define ABRDF_MODEL_OPTIONS "lambert|lambert_fresnel|disney_diffuse|oren_nayar|phong|blinn_phong|f2|f4|f8|f16|fs|fkv|fkub|f_phe|f_be|f_2e|f_16e|f_ge|f_ctphe|f_ct2e|f_ct16e|cook_torrance|disney_specular|disney_specular_aniso|disney_clearcoat|neubelt_pettineo|kajiya_kay"
+#define ABRDF_MODEL_OPTIONS "lambert|lambert_fresnel|disney_diffuse|oren_nayar|phong|blinn_phong|f2|f4|f8|f16|fs|fkv|fkub|f_phe|f_be|f_2e|f_16e|f_ge|f_ctphe|f_ct2e|f_ct16e|cook_torrance|disney_specular|disney_specular_aniso|disney_clearcoat|neubelt_pettineo|kajiya_kay|weidlich_wilkie"
 
 // Per parameter: widest range over the models, default of the parameter block.
 #define ABRDF_P_KD_MIN 0.0
@@ -36,6 +36,69 @@
 #define ABRDF_P_K_AMP_MIN 0.0
 #define ABRDF_P_K_AMP_MAX 100.0
 #define ABRDF_P_K_AMP_HELP "Neubelt-Pettineo inverted-Gaussian amplitude"
+#define ABRDF_P_LAYER_COUNT_MIN 0
+#define ABRDF_P_LAYER_COUNT_MAX 4
+#define ABRDF_P_LAYER_COUNT_HELP "number of layers of the stack"
+#define ABRDF_P_LAYER0_DEPTH_MIN 0.0
+#define ABRDF_P_LAYER0_DEPTH_MAX 100.0
+#define ABRDF_P_LAYER0_DEPTH_HELP "layer 0: thickness of the medium below"
+#define ABRDF_P_LAYER0_ETA_MIN 0.25
+#define ABRDF_P_LAYER0_ETA_MAX 4.0
+#define ABRDF_P_LAYER0_ETA_HELP "layer 0: relative index of refraction of the interface"
+#define ABRDF_P_LAYER0_KAPPA_MIN 0.0
+#define ABRDF_P_LAYER0_KAPPA_MAX 10.0
+#define ABRDF_P_LAYER0_KAPPA_HELP "layer 0: extinction coefficient (conductor if > 0)"
+#define ABRDF_P_LAYER0_R_MIN 0.0
+#define ABRDF_P_LAYER0_R_MAX 1.0
+#define ABRDF_P_LAYER0_R_HELP "layer 0: perceptual roughness of the interface"
+#define ABRDF_P_LAYER0_SIGMA_A_MIN 0.0
+#define ABRDF_P_LAYER0_SIGMA_A_MAX 10000.0
+#define ABRDF_P_LAYER0_SIGMA_A_HELP "layer 0: absorption of the medium below, 1/depth unit"
+#define ABRDF_P_LAYER1_DEPTH_MIN 0.0
+#define ABRDF_P_LAYER1_DEPTH_MAX 100.0
+#define ABRDF_P_LAYER1_DEPTH_HELP "layer 1: thickness of the medium below"
+#define ABRDF_P_LAYER1_ETA_MIN 0.25
+#define ABRDF_P_LAYER1_ETA_MAX 4.0
+#define ABRDF_P_LAYER1_ETA_HELP "layer 1: relative index of refraction of the interface"
+#define ABRDF_P_LAYER1_KAPPA_MIN 0.0
+#define ABRDF_P_LAYER1_KAPPA_MAX 10.0
+#define ABRDF_P_LAYER1_KAPPA_HELP "layer 1: extinction coefficient (conductor if > 0)"
+#define ABRDF_P_LAYER1_R_MIN 0.0
+#define ABRDF_P_LAYER1_R_MAX 1.0
+#define ABRDF_P_LAYER1_R_HELP "layer 1: perceptual roughness of the interface"
+#define ABRDF_P_LAYER1_SIGMA_A_MIN 0.0
+#define ABRDF_P_LAYER1_SIGMA_A_MAX 10000.0
+#define ABRDF_P_LAYER1_SIGMA_A_HELP "layer 1: absorption of the medium below, 1/depth unit"
+#define ABRDF_P_LAYER2_DEPTH_MIN 0.0
+#define ABRDF_P_LAYER2_DEPTH_MAX 100.0
+#define ABRDF_P_LAYER2_DEPTH_HELP "layer 2: thickness of the medium below"
+#define ABRDF_P_LAYER2_ETA_MIN 0.25
+#define ABRDF_P_LAYER2_ETA_MAX 4.0
+#define ABRDF_P_LAYER2_ETA_HELP "layer 2: relative index of refraction of the interface"
+#define ABRDF_P_LAYER2_KAPPA_MIN 0.0
+#define ABRDF_P_LAYER2_KAPPA_MAX 10.0
+#define ABRDF_P_LAYER2_KAPPA_HELP "layer 2: extinction coefficient (conductor if > 0)"
+#define ABRDF_P_LAYER2_R_MIN 0.0
+#define ABRDF_P_LAYER2_R_MAX 1.0
+#define ABRDF_P_LAYER2_R_HELP "layer 2: perceptual roughness of the interface"
+#define ABRDF_P_LAYER2_SIGMA_A_MIN 0.0
+#define ABRDF_P_LAYER2_SIGMA_A_MAX 10000.0
+#define ABRDF_P_LAYER2_SIGMA_A_HELP "layer 2: absorption of the medium below, 1/depth unit"
+#define ABRDF_P_LAYER3_DEPTH_MIN 0.0
+#define ABRDF_P_LAYER3_DEPTH_MAX 100.0
+#define ABRDF_P_LAYER3_DEPTH_HELP "layer 3: thickness of the medium below"
+#define ABRDF_P_LAYER3_ETA_MIN 0.25
+#define ABRDF_P_LAYER3_ETA_MAX 4.0
+#define ABRDF_P_LAYER3_ETA_HELP "layer 3: relative index of refraction of the interface"
+#define ABRDF_P_LAYER3_KAPPA_MIN 0.0
+#define ABRDF_P_LAYER3_KAPPA_MAX 10.0
+#define ABRDF_P_LAYER3_KAPPA_HELP "layer 3: extinction coefficient (conductor if > 0)"
+#define ABRDF_P_LAYER3_R_MIN 0.0
+#define ABRDF_P_LAYER3_R_MAX 1.0
+#define ABRDF_P_LAYER3_R_HELP "layer 3: perceptual roughness of the interface"
+#define ABRDF_P_LAYER3_SIGMA_A_MIN 0.0
+#define ABRDF_P_LAYER3_SIGMA_A_MAX 10000.0
+#define ABRDF_P_LAYER3_SIGMA_A_HELP "layer 3: absorption of the medium below, 1/depth unit"
 
 // Per model: default of each parameter it reads (abrdf_params_init).
 #define ABRDF_LAMBERT_KD_DEFAULT 1.0
@@ -103,11 +166,35 @@
 #define ABRDF_KAJIYA_KAY_KD_DEFAULT 0.25
 #define ABRDF_KAJIYA_KAY_KS_DEFAULT 0.25
 #define ABRDF_KAJIYA_KAY_N_DEFAULT 40.0
+#define ABRDF_WEIDLICH_WILKIE_KD_DEFAULT 0.5
+#define ABRDF_WEIDLICH_WILKIE_LAYER_COUNT_DEFAULT 1
+#define ABRDF_WEIDLICH_WILKIE_LAYER0_ETA_DEFAULT 1.5
+#define ABRDF_WEIDLICH_WILKIE_LAYER0_KAPPA_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER0_R_DEFAULT 0.2
+#define ABRDF_WEIDLICH_WILKIE_LAYER0_SIGMA_A_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER0_DEPTH_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER1_ETA_DEFAULT 1.5
+#define ABRDF_WEIDLICH_WILKIE_LAYER1_KAPPA_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER1_R_DEFAULT 0.1
+#define ABRDF_WEIDLICH_WILKIE_LAYER1_SIGMA_A_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER1_DEPTH_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER2_ETA_DEFAULT 1.5
+#define ABRDF_WEIDLICH_WILKIE_LAYER2_KAPPA_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER2_R_DEFAULT 0.1
+#define ABRDF_WEIDLICH_WILKIE_LAYER2_SIGMA_A_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER2_DEPTH_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER3_ETA_DEFAULT 1.5
+#define ABRDF_WEIDLICH_WILKIE_LAYER3_KAPPA_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER3_R_DEFAULT 0.1
+#define ABRDF_WEIDLICH_WILKIE_LAYER3_SIGMA_A_DEFAULT 0.0
+#define ABRDF_WEIDLICH_WILKIE_LAYER3_DEPTH_DEFAULT 0.0
 
 // abrdf_params_check: every parameter a model reads inside the model's range;
 // unknown models are invalid.
 int abrdf_params_valid(string model, color kd, color ks, color f0, float n, float r,
-                       float anisotropic, float sigma, float clearcoat_gloss, float k_amp)
+                       float anisotropic, float sigma, float clearcoat_gloss, float k_amp,
+                       int layer_count, float layer_eta[4], float layer_kappa[4],
+                       float layer_r[4], color layer_sigma_a[4], float layer_depth[4])
 {
     if (model == "lambert")
         return abrdf_in_range(kd, 0.0, 1.0);
@@ -201,6 +288,29 @@ int abrdf_params_valid(string model, color kd, color ks, color f0, float n, floa
         return abrdf_in_range(kd, 0.0, 1.0) &&
                abrdf_in_range(ks, 0.0, 1.0) &&
                (n >= 0.0 && n <= 1000000.0);
+    else if (model == "weidlich_wilkie")
+        return abrdf_in_range(kd, 0.0, 1.0) &&
+               (layer_count >= 0 && layer_count <= 4) &&
+               (layer_eta[0] >= 0.25 && layer_eta[0] <= 4.0) &&
+               (layer_kappa[0] >= 0.0 && layer_kappa[0] <= 10.0) &&
+               (layer_r[0] >= 0.0 && layer_r[0] <= 1.0) &&
+               abrdf_in_range(layer_sigma_a[0], 0.0, 10000.0) &&
+               (layer_depth[0] >= 0.0 && layer_depth[0] <= 100.0) &&
+               (layer_eta[1] >= 0.25 && layer_eta[1] <= 4.0) &&
+               (layer_kappa[1] >= 0.0 && layer_kappa[1] <= 10.0) &&
+               (layer_r[1] >= 0.0 && layer_r[1] <= 1.0) &&
+               abrdf_in_range(layer_sigma_a[1], 0.0, 10000.0) &&
+               (layer_depth[1] >= 0.0 && layer_depth[1] <= 100.0) &&
+               (layer_eta[2] >= 0.25 && layer_eta[2] <= 4.0) &&
+               (layer_kappa[2] >= 0.0 && layer_kappa[2] <= 10.0) &&
+               (layer_r[2] >= 0.0 && layer_r[2] <= 1.0) &&
+               abrdf_in_range(layer_sigma_a[2], 0.0, 10000.0) &&
+               (layer_depth[2] >= 0.0 && layer_depth[2] <= 100.0) &&
+               (layer_eta[3] >= 0.25 && layer_eta[3] <= 4.0) &&
+               (layer_kappa[3] >= 0.0 && layer_kappa[3] <= 10.0) &&
+               (layer_r[3] >= 0.0 && layer_r[3] <= 1.0) &&
+               abrdf_in_range(layer_sigma_a[3], 0.0, 10000.0) &&
+               (layer_depth[3] >= 0.0 && layer_depth[3] <= 100.0);
     return 0;
 }
 

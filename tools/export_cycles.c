@@ -118,6 +118,18 @@ static void write_osl(FILE *f, const render_scene *rs)
     OSL_ARRAY(f, "float", "clearcoat_gloss", nm,
               fprintf(f, G, rs->materials[i_].params.clearcoat_gloss));
     OSL_ARRAY(f, "float", "k_amp", nm, fprintf(f, G, rs->materials[i_].params.k_amp));
+    /* The layer stack, flattened: entry 4 m + k is layer k of material m. */
+    OSL_ARRAY(f, "int", "layer_count", nm, fprintf(f, "%d", rs->materials[i_].params.layer_count));
+    OSL_ARRAY(f, "float", "layer_eta", 4 * nm,
+              fprintf(f, G, rs->materials[i_ / 4].params.layers[i_ % 4].eta));
+    OSL_ARRAY(f, "float", "layer_kappa", 4 * nm,
+              fprintf(f, G, rs->materials[i_ / 4].params.layers[i_ % 4].kappa));
+    OSL_ARRAY(f, "float", "layer_r", 4 * nm,
+              fprintf(f, G, rs->materials[i_ / 4].params.layers[i_ % 4].r));
+    OSL_ARRAY(f, "color", "layer_sigma_a", 4 * nm,
+              osl_vec(f, "color", rs->materials[i_ / 4].params.layers[i_ % 4].sigma_a));
+    OSL_ARRAY(f, "float", "layer_depth", 4 * nm,
+              fprintf(f, G, rs->materials[i_ / 4].params.layers[i_ % 4].depth));
     OSL_ARRAY(f, "color", "ambient", nm, osl_vec(f, "color", rs->materials[i_].ambient));
 
     static const double zero[3] = {0, 0, 0};
@@ -149,6 +161,15 @@ static void write_osl(FILE *f, const render_scene *rs)
           "        abrdf_frame_make(nrm, abrdf_tangent_rule(tangent_rule[obj], tangent_axis[obj],\n"
           "                                                 to_world[obj], to_obj[obj], p), T, B);\n"
           "        vector lo = abrdf_to_local(wo, T, B, nrm);\n"
+          "        float le[4], lk[4], lr[4], ld[4];\n"
+          "        color ls[4];\n"
+          "        for (int k = 0; k < 4; ++k) {\n"
+          "            le[k] = layer_eta[4 * m + k];\n"
+          "            lk[k] = layer_kappa[4 * m + k];\n"
+          "            lr[k] = layer_r[4 * m + k];\n"
+          "            ls[k] = layer_sigma_a[4 * m + k];\n"
+          "            ld[k] = layer_depth[4 * m + k];\n"
+          "        }\n"
           "        for (int l = 0; l < nlight; ++l) {\n"
           "            vector sd = light_point[l] ? light_pos[l] - o : light_dir[l];\n"
           "            float tmax = light_point[l] ? 1.0 : ABRDF_T_INF;\n"
@@ -172,10 +193,12 @@ static void write_osl(FILE *f, const render_scene *rs)
           "            if (blocked) continue;\n"
           "            vector li = abrdf_to_local(wi, T, B, nrm);\n"
           "            color f = abrdf_eval(lobe0[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
-          "                                 anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m]);\n"
+          "                                 anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m],\n"
+          "                                 layer_count[m], le, lk, lr, ls, ld);\n"
           "            if (lobe_count[m] > 1)\n"
           "                f += abrdf_eval(lobe1[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
-          "                                anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m]);\n"
+          "                                anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m],\n"
+          "                                layer_count[m], le, lk, lr, ls, ld);\n"
           "            L += light_e[l] * falloff * ci * f;\n"
           "        }\n"
           "    }\n"
@@ -200,16 +223,23 @@ static void py_str(FILE *f, const char *s)
 
 static const char *shape_name(scene_shape s) { return scene_shape_name(s); }
 
+/* Every model but those integrated numerically (hair) and the Belcour layer stack (its
+ * tabulated atomic statistics) has an OSL twin in osl/abrdf.h. */
+static int export_cycles_has_twin(abrdf_model m)
+{
+    if (m == ABRDF_WEIDLICH_WILKIE) return 1;
+    return !(abrdf_model_get(m)->needs & (ABRDF_NEEDS_LAYERS | ABRDF_NEEDS_INTEGRATION));
+}
+
 int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, char *err,
                   size_t err_size)
 {
     const scene *s = rs->src;
     for (int i = 0; i < rs->material_count; ++i)
         for (int k = 0; k < rs->materials[i].lobe_count; ++k)
-            if (abrdf_model_get(rs->materials[i].lobes[k])->needs &
-                (ABRDF_NEEDS_LAYERS | ABRDF_NEEDS_INTEGRATION)) {
-                snprintf(err, err_size, "material '%s': model %s has no OSL twin (integrated "
-                         "numerically in the C library)", s->materials[i].name,
+            if (!export_cycles_has_twin(rs->materials[i].lobes[k])) {
+                snprintf(err, err_size, "material '%s': model %s has no OSL twin (hair and "
+                         "belcour are not ported)", s->materials[i].name,
                          abrdf_model_get(rs->materials[i].lobes[k])->name);
                 return -1;
             }
@@ -271,7 +301,15 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
                 m->params.n, m->params.r, m->params.anisotropic, m->params.sigma,
                 m->params.clearcoat_gloss, m->params.k_amp);
         vec3(f, m->ambient);
-        fputs("},\n", f);
+        fprintf(f, ",\n         \"layer_count\": %d, \"layers\": [", m->params.layer_count);
+        for (int k = 0; k < ABRDF_MAX_LAYERS; ++k) {
+            const abrdf_layer *ly = &m->params.layers[k];
+            fprintf(f, "%s{\"eta\": " G ", \"kappa\": " G ", \"r\": " G ", \"sigma_a\": ",
+                    k ? ", " : "", ly->eta, ly->kappa, ly->r);
+            vec3(f, ly->sigma_a);
+            fprintf(f, ", \"depth\": " G "}", ly->depth);
+        }
+        fputs("]},\n", f);
     }
     fputs("    ],\n    \"objects\": [\n", f);
     for (int i = 0; i < s->object_count; ++i) {
