@@ -34,6 +34,9 @@ def main():
     # A kernel whose last parameter is `chan` gets the channel C (models with per-channel
     # quantities derived from scalar parameters, e.g. marschner's sigma_a).
     wants_chan = {k for k, a in sigs.items() if a.split(",")[-1].strip() == "chan"}
+    # A kernel that names an RGB parameter P as P_r, P_g, P_b gets all three channels of it
+    # (belcour: its variances average the energies of the channels).
+    kargs = {k: [x.strip() for x in a.split(",")] for k, a in sigs.items()}
     reg = json.loads(subprocess.run([abrdf, "models", "--json"], check=True,
                                     capture_output=True, text=True).stdout)
     rules = json.loads(subprocess.run([abrdf, "advise", "--rules", "--json"], check=True,
@@ -219,6 +222,11 @@ def main():
         args = []
         for p in m["params"]:
             k = first[p["name"]]
+            if p["kind"] == "rgb" and p["name"] + "_r" in kargs[m["name"]]:
+                for c, s in enumerate("rgb"):
+                    w("      #local P_%s_%s = D[%d];" % (p["name"], s, k + c))
+                    args.append("P_%s_%s" % (p["name"], s))
+                continue
             w("      #local P_%s = D[%s];" % (p["name"], ("%d + C" % k) if p["kind"] == "rgb" else str(k)))
             args.append("P_" + p["name"])
         if m["name"] in wants_chan:
