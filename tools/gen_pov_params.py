@@ -8,11 +8,13 @@ fails if the committed include differs.
 
     tools/gen_pov_params.py ABRDF_BINARY FKUB_TABLE_C MODELS_INC OUT_INC
 
-A model is "ported" when MODELS_INC (povray_macros/abrdf_models.inc) defines its function
-abrdf_<model>; the others get constructors and defaults, and Abrdf_Lobe_Fn stops with an
-#error naming them.
+A model is "ported" when MODELS_INC (povray_macros/abrdf_models.inc), or the model's own
+include abrdf_<model>.inc next to it, defines its function abrdf_<model>; the others get
+constructors and defaults, and Abrdf_Lobe_Fn stops with an #error naming them. An own
+include (a model with large tables) is included by Abrdf_Lobe_Fn on first use.
 """
 import json
+import os
 import re
 import subprocess
 import sys
@@ -29,7 +31,21 @@ def num(x):
 
 def main():
     abrdf, fkub_c, models_inc, out = sys.argv[1:5]
-    sigs = dict(re.findall(r"^#declare abrdf_(\w+) = function\(([^)]*)\)", open(models_inc).read(), re.M))
+    decl = r"^#declare abrdf_(\w+) = function\(([^)]*)\)"
+    sigs = dict(re.findall(decl, open(models_inc).read(), re.M))
+    reg = json.loads(subprocess.run([abrdf, "models", "--json"], check=True,
+                                    capture_output=True, text=True).stdout)
+    rules = json.loads(subprocess.run([abrdf, "advise", "--rules", "--json"], check=True,
+                                      capture_output=True, text=True).stdout)
+    models = reg["models"]
+    own = set()  # models whose kernel is in their own include, loaded on first use
+    for m in models:
+        path = os.path.join(os.path.dirname(models_inc), "abrdf_%s.inc" % m["name"])
+        if m["name"] not in sigs and os.path.exists(path):
+            found = dict(re.findall(decl, open(path).read(), re.M))
+            if m["name"] in found:
+                sigs[m["name"]] = found[m["name"]]
+                own.add(m["name"])
     kernels = set(sigs)
     # A kernel whose last parameter is `chan` gets the channel C (models with per-channel
     # quantities derived from scalar parameters, e.g. marschner's sigma_a).
@@ -37,11 +53,6 @@ def main():
     # A kernel that names an RGB parameter P as P_r, P_g, P_b gets all three channels of it
     # (belcour: its variances average the energies of the channels).
     kargs = {k: [x.strip() for x in a.split(",")] for k, a in sigs.items()}
-    reg = json.loads(subprocess.run([abrdf, "models", "--json"], check=True,
-                                    capture_output=True, text=True).stdout)
-    rules = json.loads(subprocess.run([abrdf, "advise", "--rules", "--json"], check=True,
-                                      capture_output=True, text=True).stdout)
-    models = reg["models"]
     fkub_src = open(fkub_c).read()
     rows = re.findall(r"^\s*\{([-0-9.e, ]+)\},?\s*$", fkub_src, re.M)
     base = re.search(r"\*x0 = pow\(([-0-9.e]+), 1\.0 / n\);", fkub_src)
@@ -231,6 +242,8 @@ def main():
             args.append("P_" + p["name"])
         if m["name"] in wants_chan:
             args.append("C")
+        if m["name"] in own:
+            w("      #ifndef(abrdf_%s) #include \"abrdf_%s.inc\" #end" % (m["name"], m["name"]))
         w("      #local F = function(ix, iy, iz, ox, oy, oz) { abrdf_%s(ix, iy, iz, ox, oy, oz, %s) }"
           % (m["name"], ", ".join(args)))
         w("    #break")
