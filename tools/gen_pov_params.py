@@ -106,7 +106,7 @@ def main():
         len(models), ", ".join('"%s"' % m["name"] for m in models)))
     for i, m in enumerate(models):
         w("#declare ABRDF_ID_%s = %d;" % (m["name"].upper(), i))
-    w("// true where abrdf_models.inc has the model's function")
+    w("// true where abrdf_models.inc (or the model's own abrdf_<model>.inc) has its function")
     w("#declare ABRDF_PORTED = array[%d] {%s}" % (
         len(models), ", ".join("true" if m["name"] in kernels else "false" for m in models)))
     for s in slots:
