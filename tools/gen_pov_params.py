@@ -8,11 +8,13 @@ fails if the committed include differs.
 
     tools/gen_pov_params.py ABRDF_BINARY FKUB_TABLE_C MODELS_INC OUT_INC
 
-A model is "ported" when MODELS_INC (povray_macros/abrdf_models.inc) defines its function
-abrdf_<model>; the others get constructors and defaults, and Abrdf_Lobe_Fn stops with an
-#error naming them.
+A model is "ported" when MODELS_INC (povray_macros/abrdf_models.inc), or the model's own
+include abrdf_<model>.inc next to it, defines its function abrdf_<model>; the others get
+constructors and defaults, and Abrdf_Lobe_Fn stops with an #error naming them. An own
+include (a model with large tables) is included by Abrdf_Lobe_Fn on first use.
 """
 import json
+import os
 import re
 import subprocess
 import sys
@@ -29,16 +31,28 @@ def num(x):
 
 def main():
     abrdf, fkub_c, models_inc, out = sys.argv[1:5]
-    sigs = dict(re.findall(r"^#declare abrdf_(\w+) = function\(([^)]*)\)", open(models_inc).read(), re.M))
-    kernels = set(sigs)
-    # A kernel whose last parameter is `chan` gets the channel C (models with per-channel
-    # quantities derived from scalar parameters, e.g. marschner's sigma_a).
-    wants_chan = {k for k, a in sigs.items() if a.split(",")[-1].strip() == "chan"}
+    decl = r"^#declare abrdf_(\w+) = function\(([^)]*)\)"
+    sigs = dict(re.findall(decl, open(models_inc).read(), re.M))
     reg = json.loads(subprocess.run([abrdf, "models", "--json"], check=True,
                                     capture_output=True, text=True).stdout)
     rules = json.loads(subprocess.run([abrdf, "advise", "--rules", "--json"], check=True,
                                       capture_output=True, text=True).stdout)
     models = reg["models"]
+    own = set()  # models whose kernel is in their own include, loaded on first use
+    for m in models:
+        path = os.path.join(os.path.dirname(models_inc), "abrdf_%s.inc" % m["name"])
+        if m["name"] not in sigs and os.path.exists(path):
+            found = dict(re.findall(decl, open(path).read(), re.M))
+            if m["name"] in found:
+                sigs[m["name"]] = found[m["name"]]
+                own.add(m["name"])
+    kernels = set(sigs)
+    # A kernel whose last parameter is `chan` gets the channel C (models with per-channel
+    # quantities derived from scalar parameters, e.g. marschner's sigma_a).
+    wants_chan = {k for k, a in sigs.items() if a.split(",")[-1].strip() == "chan"}
+    # A kernel that names an RGB parameter P as P_r, P_g, P_b gets all three channels of it
+    # (belcour: its variances average the energies of the channels).
+    kargs = {k: [x.strip() for x in a.split(",")] for k, a in sigs.items()}
     fkub_src = open(fkub_c).read()
     rows = re.findall(r"^\s*\{([-0-9.e, ]+)\},?\s*$", fkub_src, re.M)
     base = re.search(r"\*x0 = pow\(([-0-9.e]+), 1\.0 / n\);", fkub_src)
@@ -92,7 +106,7 @@ def main():
         len(models), ", ".join('"%s"' % m["name"] for m in models)))
     for i, m in enumerate(models):
         w("#declare ABRDF_ID_%s = %d;" % (m["name"].upper(), i))
-    w("// true where abrdf_models.inc has the model's function")
+    w("// true where abrdf_models.inc (or the model's own abrdf_<model>.inc) has its function")
     w("#declare ABRDF_PORTED = array[%d] {%s}" % (
         len(models), ", ".join("true" if m["name"] in kernels else "false" for m in models)))
     for s in slots:
@@ -219,10 +233,17 @@ def main():
         args = []
         for p in m["params"]:
             k = first[p["name"]]
+            if p["kind"] == "rgb" and p["name"] + "_r" in kargs[m["name"]]:
+                for c, s in enumerate("rgb"):
+                    w("      #local P_%s_%s = D[%d];" % (p["name"], s, k + c))
+                    args.append("P_%s_%s" % (p["name"], s))
+                continue
             w("      #local P_%s = D[%s];" % (p["name"], ("%d + C" % k) if p["kind"] == "rgb" else str(k)))
             args.append("P_" + p["name"])
         if m["name"] in wants_chan:
             args.append("C")
+        if m["name"] in own:
+            w("      #ifndef(abrdf_%s) #include \"abrdf_%s.inc\" #end" % (m["name"], m["name"]))
         w("      #local F = function(ix, iy, iz, ox, oy, oz) { abrdf_%s(ix, iy, iz, ox, oy, oz, %s) }"
           % (m["name"], ", ".join(args)))
         w("    #break")

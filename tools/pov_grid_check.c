@@ -177,7 +177,7 @@ int main(int argc, char **argv)
         int wanted = argc == 5;
         for (int i = 5; i < argc; ++i) wanted |= strcmp(argv[i], m->name) == 0;
         if (wanted && !pov_ported(argv[2], m->name)) {
-            printf("| %s | - | no POV-Ray twin | (not in povray_macros/abrdf_models.inc) |\n", m->name);
+            printf("| %s | - | no POV-Ray twin | (no abrdf_%s in povray_macros) |\n", m->name, m->name);
         } else if (wanted) {
             chosen[nchosen++] = m;
             for (int s = 0; s < 3; ++s) {
