@@ -31,7 +31,7 @@ import bpy  # first: bmesh and mathutils come with it
 import bmesh
 import mathutils
 
-HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_trace.h")
+HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_belcour_tables.h", "abrdf_trace.h")
 SHAPES = {"sphere": 0, "cylinder": 1, "capsule": 2, "box": 3}
 
 
