@@ -884,4 +884,29 @@ color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f
     return f;
 }
 
+// ---- shader parameters ----------------------------------------------------------------
+// One interface of the layer stack as the library's layerK_* shader parameters, with the
+// library's help and ranges (abrdf_eval.osl and abrdf_material.osl declare four).
+#define ABRDF_LAYER(k)                                                                      \
+    float layer##k##_eta = ABRDF_WEIDLICH_WILKIE_LAYER##k##_ETA_DEFAULT [[                 \
+        string help = ABRDF_P_LAYER##k##_ETA_HELP, string label = "layer" #k "_eta",        \
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_ETA_MIN,                 \
+        float max = ABRDF_P_LAYER##k##_ETA_MAX ]],                                         \
+    float layer##k##_kappa = ABRDF_WEIDLICH_WILKIE_LAYER##k##_KAPPA_DEFAULT [[             \
+        string help = ABRDF_P_LAYER##k##_KAPPA_HELP, string label = "layer" #k "_kappa",    \
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_KAPPA_MIN,               \
+        float max = ABRDF_P_LAYER##k##_KAPPA_MAX ]],                                       \
+    float layer##k##_r = ABRDF_WEIDLICH_WILKIE_LAYER##k##_R_DEFAULT [[                     \
+        string help = ABRDF_P_LAYER##k##_R_HELP, string label = "layer" #k "_r",            \
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_R_MIN,                   \
+        float max = ABRDF_P_LAYER##k##_R_MAX ]],                                           \
+    color layer##k##_sigma_a = color(ABRDF_WEIDLICH_WILKIE_LAYER##k##_SIGMA_A_DEFAULT) [[  \
+        string help = ABRDF_P_LAYER##k##_SIGMA_A_HELP, string label = "layer" #k "_sigma_a",\
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_SIGMA_A_MIN,             \
+        float max = ABRDF_P_LAYER##k##_SIGMA_A_MAX ]],                                     \
+    float layer##k##_depth = ABRDF_WEIDLICH_WILKIE_LAYER##k##_DEPTH_DEFAULT [[             \
+        string help = ABRDF_P_LAYER##k##_DEPTH_HELP, string label = "layer" #k "_depth",    \
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_DEPTH_MIN,               \
+        float max = ABRDF_P_LAYER##k##_DEPTH_MAX ]]
+
 #endif // ABRDF_OSL_H

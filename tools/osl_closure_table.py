@@ -4,6 +4,7 @@ Cycles' own lights and path tracing) against `abrdf render` of the same scene, N
 model and per material class of the selection. Prints Markdown tables (docs/OSL.md).
 
 usage: .venv/bin/python tools/osl_closure_table.py ABRDF SOURCE_DIR WORK_DIR [SAMPLES]
+ABRDF_OSL_MODELS=m1,m2 measures only those models and the classes that use them.
 
 Both renderers integrate the pixel (box filter): the C renderer on SAMPLES (a square)
 stratified points, Cycles on SAMPLES random points; the scene has one directional light,
@@ -39,6 +40,32 @@ CLASSES = [
     ("photoreal rough anisotropic (Disney diffuse + aniso GGX)", "diffuse=disney_diffuse specular=disney_specular_aniso kd=0.18,0.30,0.60 ks=1 f0=0.04 r=0.35 anisotropic=0.8"),
     ("photoreal smooth (Lambert*(1-F) + f_2E)", "diffuse=lambert_fresnel specular=f_2e kd=0.18,0.30,0.60 ks=1 f0=0.04 n=1000"),
 ]
+# The layered classes of the selection (abrdf advise --rules, special surfaces): the
+# material-table entries of each class, with the parameters the selection gives them.
+LAYERED_ENTRIES = [("layered_plastic", "car_paint"), ("layered_plastic", "varnished_wood"),
+                   ("layered_plate", "transparent_plate"), ("layered_plate", "frosted_plate"),
+                   ("layered_metal", "coated_steel"), ("layered_metal", "coated_chrome")]
+
+
+def fmt(v):
+    return ",".join("%.17g" % x for x in v) if isinstance(v, list) else "%.17g" % v
+
+
+def layered_classes(model_params):
+    """(name, material line) of each layered entry, from `abrdf advise ENTRY --json`."""
+    out = []
+    for cls, entry in LAYERED_ENTRIES:
+        a = json.loads(run("advise", entry, "--json")[1])
+        model, p = a["specular"], a["params"]
+        vals = {"layer_count": len(p["layers"])}
+        for k, ly in enumerate(p["layers"]):
+            for field in ("eta", "kappa", "r", "sigma_a", "depth"):
+                vals["layer%d_%s" % (k, field)] = ly[field]
+        vals.update((k, v) for k, v in p.items() if k != "layers")
+        line = "model=%s " % model + " ".join(
+            "%s=%s" % (k, fmt(vals[k])) for k in model_params[model] if k in vals)
+        out.append(("%s: %s (%s)" % (cls, entry, model), model, line))
+    return out
 
 
 def run(*args):
@@ -74,17 +101,24 @@ def row(name, nmse):
 
 def main():
     os.makedirs(WORK, exist_ok=True)
-    # Models integrated numerically or over layers have no OSL twin (docs/OSL.md).
-    models = [m["name"] for m in json.loads(run("models", "--json")[1])["models"]
-              if not {"integration", "layers"} & set(m["needs"])]
+    info = json.loads(run("models", "--json")[1])["models"]
+    only = os.environ.get("ABRDF_OSL_MODELS")
+    only = only.split(",") if only else None
+    # Models integrated numerically have no OSL twin (docs/OSL.md).
+    models = [m["name"] for m in info if "integration" not in m["needs"]]
+    params = {m["name"]: [p["name"] for p in m["params"]] for m in info}
     lines = ["Closure mode vs `abrdf render`, one model on the sphere (%d samples):" % SAMPLES,
              "| model | NMSE | Table-8 class |", "|---|---|---|"]
     for m in models:
-        lines.append(row(m, measure("model_" + m, model=m)))
+        if not only or m in only:
+            lines.append(row(m, measure("model_" + m, model=m)))
     lines += ["", "Closure mode vs `abrdf render`, per material class (%d samples):" % SAMPLES,
               "| material class | NMSE | Table-8 class |", "|---|---|---|"]
-    for k, (name, mat) in enumerate(CLASSES):
-        lines.append(row(name, measure("class_%d" % k, BASE.format(material=mat))))
+    classes = [(name, mat.split()[1].split("=")[1], mat) for name, mat in CLASSES]
+    classes += layered_classes(params)
+    for k, (name, model, mat) in enumerate(classes):
+        if not only or model in only or any(("=%s " % m) in mat for m in only):
+            lines.append(row(name, measure("class_%d" % k, BASE.format(material=mat))))
     sys.stdout.write("\n".join(lines) + "\n")
 
 
