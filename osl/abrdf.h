@@ -58,6 +58,7 @@ int abrdf_in_range(color v, float lo, float hi)
 
 #include "abrdf_meta.h"
 #include "abrdf_fkub.h"
+#include "abrdf_belcour_tables.h"
 
 // ---- local-frame geometry (kernel.h geo_make) --------------------------------------------
 struct abrdf_geo {
@@ -608,6 +609,227 @@ color abrdf_weidlich_wilkie(vector wi, vector wo, color kd, int layer_count,
     return f;
 }
 
+// ---- Belcour layered (layered_belcour.c, belcour_tables.h) ---------------------------------
+// Belcour 2018, Eq. 16: f = sum_k e_k D_GGX(H; alpha_k) G(L, V; alpha_k) / (4 cos_i cos_o),
+// e_k and alpha_k from one pass top -> bottom over the stack at the cosine of the mean
+// direction (adding-doubling of energies, variances and Jacobians). The same choices as
+// the C code (docs/SPECIAL_CLOTH_LAYERED.md): cos = |H.L|, separable Smith G, a conductor
+// or a failed refraction of the mean ends the stack, TIR with the index of the interface
+// above. The FGD and TIR tables are the library's (abrdf_belcour_tables.h, generated).
+
+// Roughness near 1 makes s(alpha) diverge; the reference code clamps alpha at 0.9999.
+#define ABRDF_BELCOUR_ALPHA_MAX 0.9999
+// Below this cosine of the mean direction the statistics are degenerate (the Jacobian
+// eta cos_t / cos blows up); such directions carry no energy.
+#define ABRDF_BELCOUR_COS_MIN 1e-6
+
+float abrdf_belcour_var_of_alpha(float a_in)
+{
+    float a = a_in < 0.0 ? 0.0 : (a_in > ABRDF_BELCOUR_ALPHA_MAX ? ABRDF_BELCOUR_ALPHA_MAX : a_in);
+    float p = pow(a, 1.1);
+    return p / (1.0 - p);
+}
+
+float abrdf_belcour_alpha_of_var(float s)
+{
+    return s > 0.0 ? pow(s / (1.0 + s), 1.0 / 1.1) : 0.0;
+}
+
+// Split a continuous index into a clamped cell (returned) and a weight t.
+int abrdf_belcour_cell(float x_in, int n, output float t)
+{
+    float x = x_in;
+    if (!(x > 0.0)) x = 0.0;
+    if (x > n - 1) x = n - 1;
+    int k = (int)x;
+    if (k > n - 2) k = n - 2;
+    t = x - k;
+    return k;
+}
+
+// Continuous index of a value on each axis (belcour_tables.h, abrdf__bt_x_*).
+float abrdf_bt_x_cos(float c, int n) { return c * n - 0.5; }
+float abrdf_bt_x_alpha(float a, int n) { return a * (n - 1); }
+float abrdf_bt_x_fgd_eta(float eta)
+{
+    return log(eta / ABRDF_FGD_ETA_MIN) / log(ABRDF_FGD_ETA_MAX / ABRDF_FGD_ETA_MIN) *
+           (ABRDF_FGD_NETA - 1);
+}
+float abrdf_bt_x_fgd_kappa(float k)
+{
+    return sqrt(k > 0.0 ? k / ABRDF_FGD_KAPPA_MAX : 0.0) * (ABRDF_FGD_NKAPPA - 1);
+}
+float abrdf_bt_x_tir_eta(float eta)
+{
+    return (eta - ABRDF_TIR_ETA_MIN) / (1.0 - ABRDF_TIR_ETA_MIN) * (ABRDF_TIR_NETA - 1);
+}
+
+// Directional albedo of one rough interface, quadrilinear in the FGD table, in [0, 1].
+float abrdf_belcour_fgd(float c, float a, float eta, float kappa)
+{
+    int i[4];
+    float t[4];
+    float tw;
+    i[0] = abrdf_belcour_cell(abrdf_bt_x_cos(c, ABRDF_FGD_NCOS), ABRDF_FGD_NCOS, tw);
+    t[0] = tw;
+    i[1] = abrdf_belcour_cell(abrdf_bt_x_alpha(a, ABRDF_FGD_NALPHA), ABRDF_FGD_NALPHA, tw);
+    t[1] = tw;
+    i[2] = abrdf_belcour_cell(abrdf_bt_x_fgd_eta(eta), ABRDF_FGD_NETA, tw);
+    t[2] = tw;
+    i[3] = abrdf_belcour_cell(abrdf_bt_x_fgd_kappa(kappa), ABRDF_FGD_NKAPPA, tw);
+    t[3] = tw;
+    float v = abrdf_bt_fgd_sum(i, t);
+    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+}
+
+// Fraction of light leaving the dense side (eta = n_outside / n_inside), trilinear in TIR.
+float abrdf_belcour_tir(float c, float a, float eta)
+{
+    if (eta >= 1.0) return 1.0; // from the less dense side nothing is totally reflected
+    int i[3];
+    float t[3];
+    float tw;
+    i[0] = abrdf_belcour_cell(abrdf_bt_x_cos(c, ABRDF_TIR_NCOS), ABRDF_TIR_NCOS, tw);
+    t[0] = tw;
+    i[1] = abrdf_belcour_cell(abrdf_bt_x_alpha(a, ABRDF_TIR_NALPHA), ABRDF_TIR_NALPHA, tw);
+    t[1] = tw;
+    i[2] = abrdf_belcour_cell(abrdf_bt_x_tir_eta(eta), ABRDF_TIR_NETA, tw);
+    t[2] = tw;
+    float v = abrdf_bt_tir_sum(i, t);
+    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+}
+
+float abrdf_avg3(color v) { return (v[0] + v[1] + v[2]) / 3.0; }
+
+// The statistics carried from the top of the stack down to the current medium.
+struct abrdf_belcour_stack {
+    color R0i; color T0i; color Ri0; color Ti0;
+    float sR0i; float sT0i; float sRi0; float sTi0;
+    float J0i; float Ji0;
+    float cosm; // cosine of the mean direction in the current medium
+};
+
+// Adds interface k to the stack; writes its lobe (energy e, roughness alpha_k). Returns 1
+// if light continues below it.
+int abrdf_belcour_add_interface(output abrdf_belcour_stack st, int k, float layer_eta[4],
+                                float layer_kappa[4], float layer_r[4], output color e,
+                                output float alpha_k)
+{
+    float eta = layer_eta[k], alpha = layer_r[k] * layer_r[k];
+    int conductor = layer_kappa[k] > 0.0;
+    float c = st.cosm;
+    float sin_t2 = (1.0 - c * c) / (eta * eta);
+    int has_t = !conductor && sin_t2 < 1.0;
+    float cos_t = has_t ? sqrt(1.0 - sin_t2) : 0.0;
+    if (cos_t < ABRDF_BELCOUR_COS_MIN) has_t = 0;
+    float sR12 = abrdf_belcour_var_of_alpha(alpha), sT12 = 0.0, sT21 = 0.0, j12 = 1.0, j21 = 1.0;
+    if (has_t) {
+        sT12 = abrdf_belcour_var_of_alpha(alpha * 0.5 * abs(eta - 1.0) / eta);
+        sT21 = abrdf_belcour_var_of_alpha(alpha * 0.5 * abs(1.0 / eta - 1.0) * eta);
+        j12 = eta * cos_t / c;
+        j21 = 1.0 / j12;
+    }
+    float a_top = abrdf_belcour_alpha_of_var(st.sT0i + sR12); // roughness through the stack above
+    float R12 = abrdf_belcour_fgd(c, a_top, eta, layer_kappa[k]);
+    float T12 = has_t ? 1.0 - R12 : 0.0, R21 = has_t ? R12 : 0.0, T21 = T12;
+    if (k > 0) { // TIR at the interface above, seen from this medium
+        float tau = abrdf_belcour_tir(c, a_top, 1.0 / layer_eta[k - 1]);
+        color ri = st.Ri0 + (1.0 - tau) * st.Ti0;
+        for (int ch = 0; ch < 3; ++ch) ri[ch] = min(1.0, ri[ch]);
+        st.Ri0 = ri;
+        st.Ti0 *= tau;
+    }
+    color R0i, T0i, Ri0, Ti0, eterm, riterm, rr;
+    for (int ch = 0; ch < 3; ++ch) {
+        float den = 1.0 - st.Ri0[ch] * R12;
+        int ok = den > 0.0;
+        eterm[ch] = ok ? st.T0i[ch] * R12 * st.Ti0[ch] / den : 0.0;
+        riterm[ch] = ok ? T21 * st.Ri0[ch] * T12 / den : 0.0;
+        rr[ch] = ok ? st.Ri0[ch] * R12 / den : 0.0;
+        R0i[ch] = st.R0i[ch] + eterm[ch];
+        T0i[ch] = ok ? st.T0i[ch] * T12 / den : 0.0;
+        Ri0[ch] = R21 + riterm[ch];
+        Ti0[ch] = ok ? T21 * st.Ti0[ch] / den : 0.0;
+    }
+    float e_avg = abrdf_avg3(eterm), ri_avg = abrdf_avg3(riterm), rr_avg = abrdf_avg3(rr);
+    float sR0i = abrdf_avg3(st.R0i) * st.sR0i +
+                 e_avg * (st.sTi0 + st.J0i * (st.sT0i + sR12 + rr_avg * (sR12 + st.sRi0)));
+    float sT0i = j12 * st.sT0i + sT12 + j12 * (sR12 + st.sRi0) * rr_avg;
+    float sRi0 = R21 * sR12 + ri_avg * (sT12 + j12 * (sT21 + st.sRi0 + rr_avg * (sR12 + st.sRi0)));
+    float sTi0 = st.Ji0 * sT21 + st.sTi0 + st.Ji0 * (sR12 + st.sRi0) * rr_avg;
+    float r0i_avg = abrdf_avg3(R0i), ri0_avg = abrdf_avg3(Ri0);
+    alpha_k = e_avg > 0.0
+                  ? abrdf_belcour_alpha_of_var(st.sTi0 + st.J0i * (st.sT0i + sR12 +
+                                                                   rr_avg * (sR12 + st.sRi0)))
+                  : 0.0;
+    e = e_avg > 0.0 ? eterm : color(0);
+    st.R0i = R0i;
+    st.T0i = T0i;
+    st.Ri0 = Ri0;
+    st.Ti0 = Ti0;
+    st.sR0i = r0i_avg > 0.0 ? sR0i / r0i_avg : 0.0;
+    st.sT0i = sT0i;
+    st.sRi0 = ri0_avg > 0.0 ? sRi0 / ri0_avg : 0.0;
+    st.sTi0 = sTi0;
+    st.J0i *= j12;
+    st.Ji0 *= j21;
+    st.cosm = cos_t;
+    return has_t;
+}
+
+// The absorbing medium below an interface: transmittance exp(-sigma_a d / cos) each way.
+void abrdf_belcour_add_medium(output abrdf_belcour_stack st, color sigma_a, float depth)
+{
+    for (int ch = 0; ch < 3; ++ch) {
+        float sd = sigma_a[ch] * depth;
+        float T = sd > 0.0 ? exp(-sd / st.cosm) : 1.0;
+        st.T0i[ch] *= T;
+        st.Ti0[ch] *= T;
+        st.Ri0[ch] *= T * T;
+    }
+}
+
+color abrdf_belcour(vector wi, vector wo, int layer_count, float layer_eta[4],
+                    float layer_kappa[4], float layer_r[4], color layer_sigma_a[4],
+                    float layer_depth[4])
+{
+    color f = color(0);
+    float ci = wi[2], co = wo[2];
+    if (!(ci > 0.0 && co > 0.0)) return f;
+    vector h = wi + wo;
+    float len2 = dot(h, h);
+    if (!(len2 > ABRDF_HALF_LEN2_MIN)) return f;
+    h *= 1.0 / sqrt(len2);
+    float cd = dot(wi, h);
+    if (!(cd > ABRDF_BELCOUR_COS_MIN)) return f;
+    float sh2 = h[0] * h[0] + h[1] * h[1];
+    abrdf_belcour_stack st;
+    st.R0i = color(0);
+    st.T0i = color(1);
+    st.Ri0 = color(0);
+    st.Ti0 = color(1);
+    st.sR0i = 0.0;
+    st.sT0i = 0.0;
+    st.sRi0 = 0.0;
+    st.sTi0 = 0.0;
+    st.J0i = 1.0;
+    st.Ji0 = 1.0;
+    st.cosm = min(cd, 1.0);
+    int n = layer_count < ABRDF_MAX_LAYERS ? layer_count : ABRDF_MAX_LAYERS;
+    for (int k = 0; k < n; ++k) {
+        color e;
+        float ak;
+        int below = abrdf_belcour_add_interface(st, k, layer_eta, layer_kappa, layer_r, e, ak);
+        float ag = max(ak, ABRDF_ALPHA_G_MIN);
+        float lobe = abrdf_lo_d_ggx(h[2], sh2, ag) * abrdf_v1_smith_ggx(ci, ag) *
+                     abrdf_v1_smith_ggx(co, ag);
+        f += e * lobe; // Eq. 16
+        if (!below) break;
+        if (layer_depth[k] > 0.0) abrdf_belcour_add_medium(st, layer_sigma_a[k], layer_depth[k]);
+    }
+    return f;
+}
+
 // ---- dispatch by name ----------------------------------------------------------------------
 // Every parameter of the library's flat parameter block; each model reads its own. Returns
 // 0 for an unknown model or parameters outside the model's ranges (the C library returns
@@ -653,10 +875,38 @@ color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f
     else if (model == "weidlich_wilkie")
         f = abrdf_weidlich_wilkie(wi, wo, kd, layer_count, layer_eta, layer_kappa, layer_r,
                                   layer_sigma_a, layer_depth);
+    else if (model == "belcour")
+        f = abrdf_belcour(wi, wo, layer_count, layer_eta, layer_kappa, layer_r, layer_sigma_a,
+                          layer_depth);
     // Last line of defence, as in the C library: never NaN, Inf or negative.
     for (int c = 0; c < 3; ++c)
         if (!(f[c] >= 0.0 && f[c] <= 3.4e38)) f[c] = 0.0;
     return f;
 }
+
+// ---- shader parameters ----------------------------------------------------------------
+// One interface of the layer stack as the library's layerK_* shader parameters, with the
+// library's help and ranges (abrdf_eval.osl and abrdf_material.osl declare four).
+#define ABRDF_LAYER(k)                                                                      \
+    float layer##k##_eta = ABRDF_WEIDLICH_WILKIE_LAYER##k##_ETA_DEFAULT [[                 \
+        string help = ABRDF_P_LAYER##k##_ETA_HELP, string label = "layer" #k "_eta",        \
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_ETA_MIN,                 \
+        float max = ABRDF_P_LAYER##k##_ETA_MAX ]],                                         \
+    float layer##k##_kappa = ABRDF_WEIDLICH_WILKIE_LAYER##k##_KAPPA_DEFAULT [[             \
+        string help = ABRDF_P_LAYER##k##_KAPPA_HELP, string label = "layer" #k "_kappa",    \
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_KAPPA_MIN,               \
+        float max = ABRDF_P_LAYER##k##_KAPPA_MAX ]],                                       \
+    float layer##k##_r = ABRDF_WEIDLICH_WILKIE_LAYER##k##_R_DEFAULT [[                     \
+        string help = ABRDF_P_LAYER##k##_R_HELP, string label = "layer" #k "_r",            \
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_R_MIN,                   \
+        float max = ABRDF_P_LAYER##k##_R_MAX ]],                                           \
+    color layer##k##_sigma_a = color(ABRDF_WEIDLICH_WILKIE_LAYER##k##_SIGMA_A_DEFAULT) [[  \
+        string help = ABRDF_P_LAYER##k##_SIGMA_A_HELP, string label = "layer" #k "_sigma_a",\
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_SIGMA_A_MIN,             \
+        float max = ABRDF_P_LAYER##k##_SIGMA_A_MAX ]],                                     \
+    float layer##k##_depth = ABRDF_WEIDLICH_WILKIE_LAYER##k##_DEPTH_DEFAULT [[             \
+        string help = ABRDF_P_LAYER##k##_DEPTH_HELP, string label = "layer" #k "_depth",    \
+        string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_DEPTH_MIN,               \
+        float max = ABRDF_P_LAYER##k##_DEPTH_MAX ]]
 
 #endif // ABRDF_OSL_H

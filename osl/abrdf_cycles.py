@@ -31,7 +31,7 @@ import bpy  # first: bmesh and mathutils come with it
 import bmesh
 import mathutils
 
-HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_trace.h")
+HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_belcour_tables.h", "abrdf_trace.h")
 SHAPES = {"sphere": 0, "cylinder": 1, "capsule": 2, "box": 3}
 
 
@@ -200,9 +200,14 @@ def setup_lights(sc, s):
 
 def material_inputs(m):
     lobes = m["lobes"] + [""] * (2 - len(m["lobes"]))
-    return {"model": lobes[0], "model2": lobes[1], "kd": m["kd"], "ks": m["ks"], "f0": m["f0"],
-            "n": m["n"], "r": m["r"], "anisotropic": m["anisotropic"], "sigma": m["sigma"],
-            "clearcoat_gloss": m["clearcoat_gloss"], "k_amp": m["k_amp"]}
+    d = {"model": lobes[0], "model2": lobes[1], "kd": m["kd"], "ks": m["ks"], "f0": m["f0"],
+         "n": m["n"], "r": m["r"], "anisotropic": m["anisotropic"], "sigma": m["sigma"],
+         "clearcoat_gloss": m["clearcoat_gloss"], "k_amp": m["k_amp"],
+         "layer_count": m["layer_count"]}
+    for k, ly in enumerate(m["layers"]):
+        for field in ("eta", "kappa", "r", "sigma_a", "depth"):
+            d["layer%d_%s" % (k, field)] = ly[field]
+    return d
 
 
 def eval_inputs(s, m):
@@ -211,10 +216,6 @@ def eval_inputs(s, m):
         raise ValueError("generic mode: one lobe per material and at most 4 lights")
     d = material_inputs(m)
     del d["model2"]
-    d["layer_count"] = m["layer_count"]
-    for k, ly in enumerate(m["layers"]):
-        for field in ("eta", "kappa", "r", "sigma_a", "depth"):
-            d["layer%d_%s" % (k, field)] = ly[field]
     d["ka"] = m["ambient"]
     d["ambient"] = (1.0, 1.0, 1.0)  # ka * Ia is already in "ambient" of the material
     for k, l in enumerate(s["lights"]):

@@ -4,9 +4,9 @@
 #define ABRDF_META_H
 
 // Models with an OSL twin (closed-form models), space separated.
-#define ABRDF_MODEL_NAMES "lambert lambert_fresnel disney_diffuse oren_nayar phong blinn_phong f2 f4 f8 f16 fs fkv fkub f_phe f_be f_2e f_16e f_ge f_ctphe f_ct2e f_ct16e cook_torrance disney_specular disney_specular_aniso disney_clearcoat neubelt_pettineo kajiya_kay weidlich_wilkie"
+#define ABRDF_MODEL_NAMES "lambert lambert_fresnel disney_diffuse oren_nayar phong blinn_phong f2 f4 f8 f16 fs fkv fkub f_phe f_be f_2e f_16e f_ge f_ctphe f_ct2e f_ct16e cook_torrance disney_specular disney_specular_aniso disney_clearcoat neubelt_pettineo kajiya_kay weidlich_wilkie belcour"
 // The same list for a popup widget.
-#define ABRDF_MODEL_OPTIONS "lambert|lambert_fresnel|disney_diffuse|oren_nayar|phong|blinn_phong|f2|f4|f8|f16|fs|fkv|fkub|f_phe|f_be|f_2e|f_16e|f_ge|f_ctphe|f_ct2e|f_ct16e|cook_torrance|disney_specular|disney_specular_aniso|disney_clearcoat|neubelt_pettineo|kajiya_kay|weidlich_wilkie"
+#define ABRDF_MODEL_OPTIONS "lambert|lambert_fresnel|disney_diffuse|oren_nayar|phong|blinn_phong|f2|f4|f8|f16|fs|fkv|fkub|f_phe|f_be|f_2e|f_16e|f_ge|f_ctphe|f_ct2e|f_ct16e|cook_torrance|disney_specular|disney_specular_aniso|disney_clearcoat|neubelt_pettineo|kajiya_kay|weidlich_wilkie|belcour"
 
 // Per parameter: widest range over the models, default of the parameter block.
 #define ABRDF_P_KD_MIN 0.0
@@ -188,6 +188,27 @@
 #define ABRDF_WEIDLICH_WILKIE_LAYER3_R_DEFAULT 0.1
 #define ABRDF_WEIDLICH_WILKIE_LAYER3_SIGMA_A_DEFAULT 0.0
 #define ABRDF_WEIDLICH_WILKIE_LAYER3_DEPTH_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER_COUNT_DEFAULT 2
+#define ABRDF_BELCOUR_LAYER0_ETA_DEFAULT 1.5
+#define ABRDF_BELCOUR_LAYER0_KAPPA_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER0_R_DEFAULT 0.1
+#define ABRDF_BELCOUR_LAYER0_SIGMA_A_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER0_DEPTH_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER1_ETA_DEFAULT 0.8
+#define ABRDF_BELCOUR_LAYER1_KAPPA_DEFAULT 4.7
+#define ABRDF_BELCOUR_LAYER1_R_DEFAULT 0.4
+#define ABRDF_BELCOUR_LAYER1_SIGMA_A_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER1_DEPTH_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER2_ETA_DEFAULT 1.5
+#define ABRDF_BELCOUR_LAYER2_KAPPA_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER2_R_DEFAULT 0.1
+#define ABRDF_BELCOUR_LAYER2_SIGMA_A_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER2_DEPTH_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER3_ETA_DEFAULT 1.5
+#define ABRDF_BELCOUR_LAYER3_KAPPA_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER3_R_DEFAULT 0.1
+#define ABRDF_BELCOUR_LAYER3_SIGMA_A_DEFAULT 0.0
+#define ABRDF_BELCOUR_LAYER3_DEPTH_DEFAULT 0.0
 
 // abrdf_params_check: every parameter a model reads inside the model's range;
 // unknown models are invalid.
@@ -291,6 +312,28 @@ int abrdf_params_valid(string model, color kd, color ks, color f0, float n, floa
     else if (model == "weidlich_wilkie")
         return abrdf_in_range(kd, 0.0, 1.0) &&
                (layer_count >= 0 && layer_count <= 4) &&
+               (layer_eta[0] >= 0.25 && layer_eta[0] <= 4.0) &&
+               (layer_kappa[0] >= 0.0 && layer_kappa[0] <= 10.0) &&
+               (layer_r[0] >= 0.0 && layer_r[0] <= 1.0) &&
+               abrdf_in_range(layer_sigma_a[0], 0.0, 10000.0) &&
+               (layer_depth[0] >= 0.0 && layer_depth[0] <= 100.0) &&
+               (layer_eta[1] >= 0.25 && layer_eta[1] <= 4.0) &&
+               (layer_kappa[1] >= 0.0 && layer_kappa[1] <= 10.0) &&
+               (layer_r[1] >= 0.0 && layer_r[1] <= 1.0) &&
+               abrdf_in_range(layer_sigma_a[1], 0.0, 10000.0) &&
+               (layer_depth[1] >= 0.0 && layer_depth[1] <= 100.0) &&
+               (layer_eta[2] >= 0.25 && layer_eta[2] <= 4.0) &&
+               (layer_kappa[2] >= 0.0 && layer_kappa[2] <= 10.0) &&
+               (layer_r[2] >= 0.0 && layer_r[2] <= 1.0) &&
+               abrdf_in_range(layer_sigma_a[2], 0.0, 10000.0) &&
+               (layer_depth[2] >= 0.0 && layer_depth[2] <= 100.0) &&
+               (layer_eta[3] >= 0.25 && layer_eta[3] <= 4.0) &&
+               (layer_kappa[3] >= 0.0 && layer_kappa[3] <= 10.0) &&
+               (layer_r[3] >= 0.0 && layer_r[3] <= 1.0) &&
+               abrdf_in_range(layer_sigma_a[3], 0.0, 10000.0) &&
+               (layer_depth[3] >= 0.0 && layer_depth[3] <= 100.0);
+    else if (model == "belcour")
+        return (layer_count >= 1 && layer_count <= 4) &&
                (layer_eta[0] >= 0.25 && layer_eta[0] <= 4.0) &&
                (layer_kappa[0] >= 0.0 && layer_kappa[0] <= 10.0) &&
                (layer_r[0] >= 0.0 && layer_r[0] <= 1.0) &&

@@ -223,11 +223,11 @@ static void py_str(FILE *f, const char *s)
 
 static const char *shape_name(scene_shape s) { return scene_shape_name(s); }
 
-/* Every model but those integrated numerically (hair) and the Belcour layer stack (its
- * tabulated atomic statistics) has an OSL twin in osl/abrdf.h. */
+/* Every model but those integrated numerically (hair) has an OSL twin in osl/abrdf.h; the
+ * layered models have theirs too. */
 static int export_cycles_has_twin(abrdf_model m)
 {
-    if (m == ABRDF_WEIDLICH_WILKIE) return 1;
+    if (m == ABRDF_WEIDLICH_WILKIE || m == ABRDF_BELCOUR) return 1;
     return !(abrdf_model_get(m)->needs & (ABRDF_NEEDS_LAYERS | ABRDF_NEEDS_INTEGRATION));
 }
 
@@ -238,8 +238,8 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
     for (int i = 0; i < rs->material_count; ++i)
         for (int k = 0; k < rs->materials[i].lobe_count; ++k)
             if (!export_cycles_has_twin(rs->materials[i].lobes[k])) {
-                snprintf(err, err_size, "material '%s': model %s has no OSL twin (hair and "
-                         "belcour are not ported)", s->materials[i].name,
+                snprintf(err, err_size, "material '%s': model %s has no OSL twin (hair is not "
+                         "ported)", s->materials[i].name,
                          abrdf_model_get(rs->materials[i].lobes[k])->name);
                 return -1;
             }
