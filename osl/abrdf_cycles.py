@@ -31,7 +31,8 @@ import bpy  # first: bmesh and mathutils come with it
 import bmesh
 import mathutils
 
-HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_trace.h")
+HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_hair.h", "abrdf_hair_tables.h",
+           "abrdf_trace.h")
 SHAPES = {"sphere": 0, "cylinder": 1, "capsule": 2, "box": 3}
 
 
@@ -212,6 +213,8 @@ def eval_inputs(s, m):
     d = material_inputs(m)
     del d["model2"]
     d["layer_count"] = m["layer_count"]
+    for key in ("eta", "melanin", "redness", "cuticle_tilt", "aspect_ratio"):
+        d[key] = m[key]
     for k, ly in enumerate(m["layers"]):
         for field in ("eta", "kappa", "r", "sigma_a", "depth"):
             d["layer%d_%s" % (k, field)] = ly[field]

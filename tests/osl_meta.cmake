@@ -1,5 +1,5 @@
 # osl_meta.cmake - the committed OSL data headers are what tools/gen_osl_meta.py generates
-# from the C library now (models, ranges, defaults, selection rules, fkub table).
+# from the C library now (models, ranges, defaults, selection rules, fkub table, hair tables).
 #   cmake -DPYTHON=<python3> -DABRDF=<abrdf> -DSRC=<source dir> -DOUT=<scratch dir> -P osl_meta.cmake
 file(REMOVE_RECURSE "${OUT}")
 execute_process(COMMAND "${PYTHON}" "${SRC}/tools/gen_osl_meta.py" "${ABRDF}" "${SRC}" "${OUT}"
@@ -7,11 +7,11 @@ execute_process(COMMAND "${PYTHON}" "${SRC}/tools/gen_osl_meta.py" "${ABRDF}" "$
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "osl_meta: gen_osl_meta.py failed (${rc})")
 endif()
-foreach(h abrdf_meta.h abrdf_fkub.h)
+foreach(h abrdf_meta.h abrdf_fkub.h abrdf_hair_tables.h)
   execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files "${OUT}/${h}" "${SRC}/osl/${h}"
                   RESULT_VARIABLE diff)
   if(NOT diff EQUAL 0)
     message(FATAL_ERROR "osl_meta: osl/${h} is out of date; run tools/gen_osl_meta.py build/tools/abrdf .")
   endif()
 endforeach()
-message(STATUS "osl_meta: osl/abrdf_meta.h and osl/abrdf_fkub.h are up to date")
+message(STATUS "osl_meta: osl/abrdf_meta.h, abrdf_fkub.h and abrdf_hair_tables.h are up to date")
