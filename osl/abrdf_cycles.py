@@ -203,7 +203,9 @@ def material_inputs(m):
     lobes = m["lobes"] + [""] * (2 - len(m["lobes"]))
     return {"model": lobes[0], "model2": lobes[1], "kd": m["kd"], "ks": m["ks"], "f0": m["f0"],
             "n": m["n"], "r": m["r"], "anisotropic": m["anisotropic"], "sigma": m["sigma"],
-            "clearcoat_gloss": m["clearcoat_gloss"], "k_amp": m["k_amp"]}
+            "clearcoat_gloss": m["clearcoat_gloss"], "k_amp": m["k_amp"], "eta": m["eta"],
+            "melanin": m["melanin"], "redness": m["redness"], "cuticle_tilt": m["cuticle_tilt"],
+            "aspect_ratio": m["aspect_ratio"]}
 
 
 def eval_inputs(s, m):
@@ -213,8 +215,6 @@ def eval_inputs(s, m):
     d = material_inputs(m)
     del d["model2"]
     d["layer_count"] = m["layer_count"]
-    for key in ("eta", "melanin", "redness", "cuticle_tilt", "aspect_ratio"):
-        d[key] = m[key]
     for k, ly in enumerate(m["layers"]):
         for field in ("eta", "kappa", "r", "sigma_a", "depth"):
             d["layer%d_%s" % (k, field)] = ly[field]
