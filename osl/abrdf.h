@@ -829,6 +829,8 @@ color abrdf_belcour(vector wi, vector wo, int layer_count, float layer_eta[4],
     }
     return f;
 }
+// ---- hair fibres (integrated in the loops of abrdf_hair.h) -------------------------------
+#include "abrdf_hair.h"
 
 // ---- dispatch by name ----------------------------------------------------------------------
 // Every parameter of the library's flat parameter block; each model reads its own. Returns
@@ -837,11 +839,12 @@ color abrdf_belcour(vector wi, vector wo, int layer_count, float layer_eta[4],
 color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f0, float n,
                  float r, float anisotropic, float sigma, float clearcoat_gloss, float k_amp,
                  int layer_count, float layer_eta[4], float layer_kappa[4], float layer_r[4],
-                 color layer_sigma_a[4], float layer_depth[4])
+                 color layer_sigma_a[4], float layer_depth[4], float eta, float melanin,
+                 float redness, float cuticle_tilt, float aspect_ratio)
 {
     if (!abrdf_params_valid(model, kd, ks, f0, n, r, anisotropic, sigma, clearcoat_gloss, k_amp,
                             layer_count, layer_eta, layer_kappa, layer_r, layer_sigma_a,
-                            layer_depth))
+                            layer_depth, eta, melanin, redness, cuticle_tilt, aspect_ratio))
         return color(0);
     color f = color(0);
     if (model == "lambert") f = abrdf_lambert(wi, wo, kd);
@@ -872,6 +875,10 @@ color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f
     else if (model == "disney_clearcoat") f = abrdf_disney_clearcoat(wi, wo, ks, clearcoat_gloss);
     else if (model == "neubelt_pettineo") f = abrdf_neubelt_pettineo(wi, wo, kd, ks, f0, r, k_amp);
     else if (model == "kajiya_kay") f = abrdf_kajiya_kay(wi, wo, kd, ks, n);
+    else if (model == "marschner")
+        f = abrdf_marschner(wi, wo, eta, melanin, redness, cuticle_tilt, aspect_ratio, r);
+    else if (model == "huang")
+        f = abrdf_huang(wi, wo, eta, melanin, redness, cuticle_tilt, aspect_ratio, r);
     else if (model == "weidlich_wilkie")
         f = abrdf_weidlich_wilkie(wi, wo, kd, layer_count, layer_eta, layer_kappa, layer_r,
                                   layer_sigma_a, layer_depth);

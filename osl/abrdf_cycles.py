@@ -31,7 +31,8 @@ import bpy  # first: bmesh and mathutils come with it
 import bmesh
 import mathutils
 
-HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_belcour_tables.h", "abrdf_trace.h")
+HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_belcour_tables.h", "abrdf_hair.h",
+           "abrdf_hair_tables.h", "abrdf_trace.h")
 SHAPES = {"sphere": 0, "cylinder": 1, "capsule": 2, "box": 3}
 
 
@@ -202,8 +203,9 @@ def material_inputs(m):
     lobes = m["lobes"] + [""] * (2 - len(m["lobes"]))
     d = {"model": lobes[0], "model2": lobes[1], "kd": m["kd"], "ks": m["ks"], "f0": m["f0"],
          "n": m["n"], "r": m["r"], "anisotropic": m["anisotropic"], "sigma": m["sigma"],
-         "clearcoat_gloss": m["clearcoat_gloss"], "k_amp": m["k_amp"],
-         "layer_count": m["layer_count"]}
+         "clearcoat_gloss": m["clearcoat_gloss"], "k_amp": m["k_amp"], "eta": m["eta"],
+         "melanin": m["melanin"], "redness": m["redness"], "cuticle_tilt": m["cuticle_tilt"],
+         "aspect_ratio": m["aspect_ratio"], "layer_count": m["layer_count"]}
     for k, ly in enumerate(m["layers"]):
         for field in ("eta", "kappa", "r", "sigma_a", "depth"):
             d["layer%d_%s" % (k, field)] = ly[field]

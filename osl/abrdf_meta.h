@@ -4,9 +4,9 @@
 #define ABRDF_META_H
 
 // Models with an OSL twin (closed-form models), space separated.
-#define ABRDF_MODEL_NAMES "lambert lambert_fresnel disney_diffuse oren_nayar phong blinn_phong f2 f4 f8 f16 fs fkv fkub f_phe f_be f_2e f_16e f_ge f_ctphe f_ct2e f_ct16e cook_torrance disney_specular disney_specular_aniso disney_clearcoat neubelt_pettineo kajiya_kay weidlich_wilkie belcour"
+#define ABRDF_MODEL_NAMES "lambert lambert_fresnel disney_diffuse oren_nayar phong blinn_phong f2 f4 f8 f16 fs fkv fkub f_phe f_be f_2e f_16e f_ge f_ctphe f_ct2e f_ct16e cook_torrance disney_specular disney_specular_aniso disney_clearcoat neubelt_pettineo kajiya_kay marschner huang weidlich_wilkie belcour"
 // The same list for a popup widget.
-#define ABRDF_MODEL_OPTIONS "lambert|lambert_fresnel|disney_diffuse|oren_nayar|phong|blinn_phong|f2|f4|f8|f16|fs|fkv|fkub|f_phe|f_be|f_2e|f_16e|f_ge|f_ctphe|f_ct2e|f_ct16e|cook_torrance|disney_specular|disney_specular_aniso|disney_clearcoat|neubelt_pettineo|kajiya_kay|weidlich_wilkie|belcour"
+#define ABRDF_MODEL_OPTIONS "lambert|lambert_fresnel|disney_diffuse|oren_nayar|phong|blinn_phong|f2|f4|f8|f16|fs|fkv|fkub|f_phe|f_be|f_2e|f_16e|f_ge|f_ctphe|f_ct2e|f_ct16e|cook_torrance|disney_specular|disney_specular_aniso|disney_clearcoat|neubelt_pettineo|kajiya_kay|marschner|huang|weidlich_wilkie|belcour"
 
 // Per parameter: widest range over the models, default of the parameter block.
 #define ABRDF_P_KD_MIN 0.0
@@ -39,6 +39,21 @@
 #define ABRDF_P_LAYER_COUNT_MIN 0
 #define ABRDF_P_LAYER_COUNT_MAX 4
 #define ABRDF_P_LAYER_COUNT_HELP "number of layers of the stack"
+#define ABRDF_P_ETA_MIN 1.0
+#define ABRDF_P_ETA_MAX 4.0
+#define ABRDF_P_ETA_HELP "index of refraction of the hair fibre"
+#define ABRDF_P_MELANIN_MIN 0.0
+#define ABRDF_P_MELANIN_MAX 1.0
+#define ABRDF_P_MELANIN_HELP "hair melanin concentration"
+#define ABRDF_P_REDNESS_MIN 0.0
+#define ABRDF_P_REDNESS_MAX 1.0
+#define ABRDF_P_REDNESS_HELP "hair pheomelanin fraction of the melanin"
+#define ABRDF_P_CUTICLE_TILT_MIN -10.0
+#define ABRDF_P_CUTICLE_TILT_MAX 10.0
+#define ABRDF_P_CUTICLE_TILT_HELP "hair cuticle tilt, degrees"
+#define ABRDF_P_ASPECT_RATIO_MIN 0.01
+#define ABRDF_P_ASPECT_RATIO_MAX 1.0
+#define ABRDF_P_ASPECT_RATIO_HELP "hair cross-section minor/major axis ratio"
 #define ABRDF_P_LAYER0_DEPTH_MIN 0.0
 #define ABRDF_P_LAYER0_DEPTH_MAX 100.0
 #define ABRDF_P_LAYER0_DEPTH_HELP "layer 0: thickness of the medium below"
@@ -166,6 +181,18 @@
 #define ABRDF_KAJIYA_KAY_KD_DEFAULT 0.25
 #define ABRDF_KAJIYA_KAY_KS_DEFAULT 0.25
 #define ABRDF_KAJIYA_KAY_N_DEFAULT 40.0
+#define ABRDF_MARSCHNER_ETA_DEFAULT 1.55
+#define ABRDF_MARSCHNER_MELANIN_DEFAULT 0.8
+#define ABRDF_MARSCHNER_REDNESS_DEFAULT 1.0
+#define ABRDF_MARSCHNER_CUTICLE_TILT_DEFAULT 3.0
+#define ABRDF_MARSCHNER_ASPECT_RATIO_DEFAULT 0.9
+#define ABRDF_MARSCHNER_R_DEFAULT 0.13
+#define ABRDF_HUANG_ETA_DEFAULT 1.55
+#define ABRDF_HUANG_MELANIN_DEFAULT 0.8
+#define ABRDF_HUANG_REDNESS_DEFAULT 1.0
+#define ABRDF_HUANG_CUTICLE_TILT_DEFAULT 2.0
+#define ABRDF_HUANG_ASPECT_RATIO_DEFAULT 0.85
+#define ABRDF_HUANG_R_DEFAULT 0.3
 #define ABRDF_WEIDLICH_WILKIE_KD_DEFAULT 0.5
 #define ABRDF_WEIDLICH_WILKIE_LAYER_COUNT_DEFAULT 1
 #define ABRDF_WEIDLICH_WILKIE_LAYER0_ETA_DEFAULT 1.5
@@ -215,7 +242,9 @@
 int abrdf_params_valid(string model, color kd, color ks, color f0, float n, float r,
                        float anisotropic, float sigma, float clearcoat_gloss, float k_amp,
                        int layer_count, float layer_eta[4], float layer_kappa[4],
-                       float layer_r[4], color layer_sigma_a[4], float layer_depth[4])
+                       float layer_r[4], color layer_sigma_a[4], float layer_depth[4],
+                       float eta, float melanin, float redness, float cuticle_tilt,
+                       float aspect_ratio)
 {
     if (model == "lambert")
         return abrdf_in_range(kd, 0.0, 1.0);
@@ -309,6 +338,20 @@ int abrdf_params_valid(string model, color kd, color ks, color f0, float n, floa
         return abrdf_in_range(kd, 0.0, 1.0) &&
                abrdf_in_range(ks, 0.0, 1.0) &&
                (n >= 0.0 && n <= 1000000.0);
+    else if (model == "marschner")
+        return (eta >= 1.0 && eta <= 4.0) &&
+               (melanin >= 0.0 && melanin <= 1.0) &&
+               (redness >= 0.0 && redness <= 1.0) &&
+               (cuticle_tilt >= -10.0 && cuticle_tilt <= 10.0) &&
+               (aspect_ratio >= 0.75 && aspect_ratio <= 1.0) &&
+               (r >= 0.01 && r <= 1.0);
+    else if (model == "huang")
+        return (eta >= 1.0 && eta <= 4.0) &&
+               (melanin >= 0.0 && melanin <= 1.0) &&
+               (redness >= 0.0 && redness <= 1.0) &&
+               (cuticle_tilt >= -10.0 && cuticle_tilt <= 10.0) &&
+               (aspect_ratio >= 0.01 && aspect_ratio <= 1.0) &&
+               (r >= 0.05 && r <= 1.0);
     else if (model == "weidlich_wilkie")
         return abrdf_in_range(kd, 0.0, 1.0) &&
                (layer_count >= 0 && layer_count <= 4) &&

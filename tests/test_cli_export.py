@@ -56,6 +56,15 @@ class Export(unittest.TestCase):
             self.assertEqual(m["n"], 37)
         self.assertNotIn('"disney_specular"', s["osl"])
 
+    def test_hair_models_are_exported(self):
+        # The hair models have OSL twins (osl/abrdf_hair.h): their parameters reach the shader.
+        s = self.scene("--model", "huang", "--set", "melanin=0.3", name="sphere.scene")
+        m = s["materials"][0]
+        self.assertEqual(m["lobes"], ["huang"])
+        self.assertEqual((m["melanin"], m["eta"]), (0.3, 1.55))
+        self.assertIn("float melanin[1] = {\n        0.29999999999999999};", s["osl"])
+        self.assertIn("redness[m], cuticle_tilt[m], aspect_ratio[m]);", s["osl"])
+
     def test_ambient_is_ka_times_ia(self):
         s = self.scene()  # robot: ambient 0.02, ka defaults to kd
         self.assertAlmostEqual(s["materials"][0]["ambient"][0], 0.02 * 0.50)

@@ -118,6 +118,12 @@ static void write_osl(FILE *f, const render_scene *rs)
     OSL_ARRAY(f, "float", "clearcoat_gloss", nm,
               fprintf(f, G, rs->materials[i_].params.clearcoat_gloss));
     OSL_ARRAY(f, "float", "k_amp", nm, fprintf(f, G, rs->materials[i_].params.k_amp));
+    /* The hair fibre's parameters (marschner, huang). */
+    OSL_ARRAY(f, "float", "eta", nm, fprintf(f, G, rs->materials[i_].params.eta));
+    OSL_ARRAY(f, "float", "melanin", nm, fprintf(f, G, rs->materials[i_].params.melanin));
+    OSL_ARRAY(f, "float", "redness", nm, fprintf(f, G, rs->materials[i_].params.redness));
+    OSL_ARRAY(f, "float", "cuticle_tilt", nm, fprintf(f, G, rs->materials[i_].params.cuticle_tilt));
+    OSL_ARRAY(f, "float", "aspect_ratio", nm, fprintf(f, G, rs->materials[i_].params.aspect_ratio));
     /* The layer stack, flattened: entry 4 m + k is layer k of material m. */
     OSL_ARRAY(f, "int", "layer_count", nm, fprintf(f, "%d", rs->materials[i_].params.layer_count));
     OSL_ARRAY(f, "float", "layer_eta", 4 * nm,
@@ -194,11 +200,13 @@ static void write_osl(FILE *f, const render_scene *rs)
           "            vector li = abrdf_to_local(wi, T, B, nrm);\n"
           "            color f = abrdf_eval(lobe0[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
           "                                 anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m],\n"
-          "                                 layer_count[m], le, lk, lr, ls, ld);\n"
+          "                                 layer_count[m], le, lk, lr, ls, ld, eta[m], melanin[m],\n"
+          "                                 redness[m], cuticle_tilt[m], aspect_ratio[m]);\n"
           "            if (lobe_count[m] > 1)\n"
           "                f += abrdf_eval(lobe1[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
           "                                anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m],\n"
-          "                                layer_count[m], le, lk, lr, ls, ld);\n"
+          "                                layer_count[m], le, lk, lr, ls, ld, eta[m], melanin[m],\n"
+          "                                redness[m], cuticle_tilt[m], aspect_ratio[m]);\n"
           "            L += light_e[l] * falloff * ci * f;\n"
           "        }\n"
           "    }\n"
@@ -223,26 +231,10 @@ static void py_str(FILE *f, const char *s)
 
 static const char *shape_name(scene_shape s) { return scene_shape_name(s); }
 
-/* Every model but those integrated numerically (hair) has an OSL twin in osl/abrdf.h; the
- * layered models have theirs too. */
-static int export_cycles_has_twin(abrdf_model m)
-{
-    if (m == ABRDF_WEIDLICH_WILKIE || m == ABRDF_BELCOUR) return 1;
-    return !(abrdf_model_get(m)->needs & (ABRDF_NEEDS_LAYERS | ABRDF_NEEDS_INTEGRATION));
-}
-
 int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, char *err,
                   size_t err_size)
 {
     const scene *s = rs->src;
-    for (int i = 0; i < rs->material_count; ++i)
-        for (int k = 0; k < rs->materials[i].lobe_count; ++k)
-            if (!export_cycles_has_twin(rs->materials[i].lobes[k])) {
-                snprintf(err, err_size, "material '%s': model %s has no OSL twin (hair is not "
-                         "ported)", s->materials[i].name,
-                         abrdf_model_get(rs->materials[i].lobes[k])->name);
-                return -1;
-            }
     double extent = sqrt(geom_dot(rs->eye, rs->eye));
     for (int i = 0; i < rs->object_count; ++i)
         extent = fmax(extent, sqrt(geom_dot(rs->objects[i].center, rs->objects[i].center)) +
@@ -301,6 +293,10 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
                 m->params.n, m->params.r, m->params.anisotropic, m->params.sigma,
                 m->params.clearcoat_gloss, m->params.k_amp);
         vec3(f, m->ambient);
+        fprintf(f, ",\n         \"eta\": " G ", \"melanin\": " G ", \"redness\": " G
+                   ", \"cuticle_tilt\": " G ", \"aspect_ratio\": " G,
+                m->params.eta, m->params.melanin, m->params.redness, m->params.cuticle_tilt,
+                m->params.aspect_ratio);
         fprintf(f, ",\n         \"layer_count\": %d, \"layers\": [", m->params.layer_count);
         for (int k = 0; k < ABRDF_MAX_LAYERS; ++k) {
             const abrdf_layer *ly = &m->params.layers[k];

@@ -149,8 +149,9 @@ def main():
     info = json.loads(run("models", "--json")[1])["models"]
     only = os.environ.get("ABRDF_OSL_MODELS")
     only = only.split(",") if only else None
-    # Models integrated numerically have no OSL twin (docs/OSL.md).
-    models = [m["name"] for m in info if "integration" not in m["needs"]]
+    # Every model has a closure mapping: the layered ones onto stacked GGX lobes, the hair
+    # models onto Cycles' fibre closures (docs/OSL.md).
+    models = [m["name"] for m in info]
     params = {m["name"]: [p["name"] for p in m["params"]] for m in info}
     lines = ["Closure mode vs `abrdf render`, one model on the sphere (%d samples):" % SAMPLES,
              HEAD % "model"]
