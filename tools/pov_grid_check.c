@@ -7,7 +7,11 @@
  * same directions. Prints a Markdown table model x set -> NMSE, max relative error; exits 1
  * if any NMSE or max relative error reaches 1e-4 (or povray fails).
  *
- *   pov_grid_check POVRAY INCLUDE_DIR SCENE WORK_DIR [MODEL ...]
+ *   pov_grid_check POVRAY INCLUDE_DIR SCENE WORK_DIR [--grid MODEL=N,NM ...] [MODEL ...]
+ *
+ * --grid checks MODEL on an N x N x N grid plus NM sweep cells instead of 12 x 12 x 12 + 576:
+ * for a model whose POV-Ray twin is too slow for the full grid (huang integrates ~5000 nodes
+ * per value). N^3 + NM must be a multiple of the 48 cells of a pixel row.
  *
  * POV-Ray 3.7 writes EXR as half floats (11 significant bits, relative spacing 2^-10); the
  * scene splits each value into exponent, high and low mantissa pixels (model_grid.pov) so
@@ -24,9 +28,10 @@
 #include "image_io.h"
 #include "pov_ported.h"
 
-/* The grid, then NM cells of the sweep wi = wo (model_grid.pov). */
-enum { NA = 12, NB = 12, NC = 12, NM = 576, COLS = 48, GRID = NA * NB * NC, CELLS = GRID + NM,
-       ROWS = CELLS / COLS };
+/* The grid, then NM cells of the sweep wi = wo (model_grid.pov); NA = NB = NC = n. */
+enum { COLS = 48, N_FULL = 12, NM_FULL = 576 };
+typedef struct grid { int n, nm; } grid;
+static grid grid_of[ABRDF_MODEL_COUNT];
 #define PI 3.14159265358979323846
 #define BAR 1e-4
 
@@ -106,11 +111,13 @@ static pid_t render_start(const char *povray, const char *inc, const char *scene
                           const abrdf_model_info *m, int pov_id, int s)
 {
     char out[4096], cmd[16384];
+    grid g = grid_of[m->id];
     out_path(out, sizeof out, work, m, s);
     snprintf(cmd, sizeof cmd,
              "'%s' -D -V -GA +WT1 +I'%s' +L'%s' +O'%s' +FE +W%d +H%d -A "
-             "Declare=ABRDF_GRID_MODEL=%d Declare=ABRDF_GRID_SET=%d >'%s.log' 2>&1",
-             povray, scene, inc, out, 3 * COLS, ROWS, pov_id, s, out);
+             "Declare=ABRDF_GRID_MODEL=%d Declare=ABRDF_GRID_SET=%d Declare=ABRDF_GRID_N=%d "
+             "Declare=ABRDF_GRID_NM=%d >'%s.log' 2>&1",
+             povray, scene, inc, out, 3 * COLS, (g.n * g.n * g.n + g.nm) / COLS, pov_id, s, g.n, g.nm, out);
     remove(out);
     fflush(NULL);
     pid_t pid = fork();
@@ -122,6 +129,8 @@ static int check(const char *work, const abrdf_model_info *m, int s, double *nms
 {
     char out[4096], err[512];
     out_path(out, sizeof out, work, m, s);
+    const int NA = grid_of[m->id].n, NB = NA, NC = NA, NM = grid_of[m->id].nm;
+    const int GRID = NA * NB * NC, CELLS = GRID + NM, ROWS = CELLS / COLS;
     abrdf_image img;
     if (abrdf_image_read(out, &img, err, sizeof err)) {
         fprintf(stderr, "pov_grid_check: %s (povray log: %s.log)\n", err, out);
@@ -165,8 +174,26 @@ static int check(const char *work, const abrdf_model_info *m, int s, double *nms
 int main(int argc, char **argv)
 {
     if (argc < 5) {
-        fprintf(stderr, "usage: pov_grid_check POVRAY INCLUDE_DIR SCENE WORK_DIR [MODEL ...]\n");
+        fprintf(stderr, "usage: pov_grid_check POVRAY INCLUDE_DIR SCENE WORK_DIR [--grid MODEL=N,NM ...] [MODEL ...]\n");
         return 2;
+    }
+    for (int id = 0; id < ABRDF_MODEL_COUNT; ++id) grid_of[id] = (grid){N_FULL, NM_FULL};
+    int first = 5;
+    for (; first + 1 < argc && !strcmp(argv[first], "--grid"); first += 2) {
+        char name[64];
+        int n = 0, nm = 0;
+        const abrdf_model_info *gm = NULL;
+        if (sscanf(argv[first + 1], "%63[^=]=%d,%d", name, &n, &nm) == 3)
+            for (int id = 0; id < ABRDF_MODEL_COUNT && !gm; ++id) {
+                const abrdf_model_info *mi = abrdf_model_get((abrdf_model)id);
+                if (mi && !strcmp(mi->name, name)) gm = mi;
+            }
+        if (!gm || n < 1 || n > N_FULL || nm < 0 || (n * n * n + nm) % COLS) {
+            fprintf(stderr, "pov_grid_check: bad --grid %s (MODEL=N,NM; N^3 + NM a multiple of %d)\n",
+                    argv[first + 1], COLS);
+            return 2;
+        }
+        grid_of[gm->id] = (grid){n, nm};
     }
     int fails = 0, pov_id = 0, running = 0;
     const abrdf_model_info *chosen[ABRDF_MODEL_COUNT];
@@ -174,8 +201,8 @@ int main(int argc, char **argv)
     for (int id = 0; id < ABRDF_MODEL_COUNT; ++id) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)id);
         if (!m) continue; /* POV-Ray ids number the registered models in registry order */
-        int wanted = argc == 5;
-        for (int i = 5; i < argc; ++i) wanted |= strcmp(argv[i], m->name) == 0;
+        int wanted = argc == first;
+        for (int i = first; i < argc; ++i) wanted |= strcmp(argv[i], m->name) == 0;
         if (wanted && !pov_ported(argv[2], m->name)) {
             printf("| %s | - | no POV-Ray twin | (no abrdf_%s in povray_macros) |\n", m->name, m->name);
         } else if (wanted) {
@@ -207,8 +234,12 @@ int main(int argc, char **argv)
                 fails += !ok;
                 worst_nmse = fmax(worst_nmse, nmse);
                 worst_rel = fmax(worst_rel, rel);
-                printf("| %s | %s | %.2e | %.2e |%s\n", m->name, s ? (s == 1 ? "set 1" : "set 2") : "defaults",
-                       nmse, rel, ok ? "" : " FAIL");
+                grid g = grid_of[m->id];
+                char cells[64] = "";
+                if (g.n != N_FULL || g.nm != NM_FULL)
+                    snprintf(cells, sizeof cells, " (%d x %d x %d + %d cells)", g.n, g.n, g.n, g.nm);
+                printf("| %s | %s%s | %.2e | %.2e |%s\n", m->name, s ? (s == 1 ? "set 1" : "set 2") : "defaults",
+                       cells, nmse, rel, ok ? "" : " FAIL");
             }
         }
     }

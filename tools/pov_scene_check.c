@@ -4,7 +4,8 @@
  * antialiasing, EXR), averages k x k blocks (the renderer's stratum centres) and compares.
  * Prints the model x scene -> NMSE table (Markdown); exits 1 if any NMSE reaches 1e-4.
  *
- *   pov_scene_check ABRDF POVRAY INCLUDE_DIR WORK_DIR SIZE SCENE... [-- MODEL...]
+ *   pov_scene_check ABRDF POVRAY INCLUDE_DIR WORK_DIR SIZE [--report] [--size MODEL=N ...]
+ *                   SCENE... [-- MODEL...]
  *
  * A SCENE written "emissive:PATH" is exported with --no-shadows (every light summed inside
  * the pigment, no POV-Ray light), "native:PATH" with --native (POV-Ray's own finishes);
@@ -12,7 +13,9 @@
  * without failing (for the native mapping, whose phong/blinn_phong lack N.wi by design).
  * POV-Ray's own trace CPU time of each render is printed too. A model without a POV-Ray
  * function (pov_ported.h) is listed as such and not rendered.
- * SIZE is the width = height in pixels; k = 2 (abrdf render --spp 4). */
+ * SIZE is the width = height in pixels; k = 2 (abrdf render --spp 4). --size renders MODEL at
+ * N x N instead (not larger than SIZE): for a model whose POV-Ray twin is too slow for the
+ * full image (huang integrates ~5000 nodes per value and channel). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,6 +32,18 @@
 #define JOBS 6       /* concurrent jobs: POV-Ray idles through much of a small render */
 #define BAR 1e-4
 #define MAX_SCENES 8
+#define MAX_SIZES 8
+
+/* --size overrides */
+static const char *size_model[MAX_SIZES];
+static int size_value[MAX_SIZES], nsizes;
+
+static int model_size(const char *model, int size)
+{
+    for (int i = 0; i < nsizes; ++i)
+        if (!strcmp(size_model[i], model) && size_value[i] < size) return size_value[i];
+    return size;
+}
 
 static const char *scene_path(const char *arg)
 {
@@ -165,7 +180,21 @@ int main(int argc, char **argv)
     }
     const char *scenes[MAX_SCENES];
     int nscenes = 0, i = 6, report = 0;
-    if (i < argc && !strcmp(argv[i], "--report")) report = 1, ++i;
+    for (; i < argc && strcmp(argv[i], "--") && !strncmp(argv[i], "--", 2); ++i) {
+        static char names[MAX_SIZES][64];
+        if (!strcmp(argv[i], "--report")) {
+            report = 1;
+        } else if (!strcmp(argv[i], "--size") && i + 1 < argc && nsizes < MAX_SIZES &&
+                   sscanf(argv[i + 1], "%63[^=]=%d", names[nsizes], &size_value[nsizes]) == 2 &&
+                   size_value[nsizes] >= 1) {
+            size_model[nsizes] = names[nsizes];
+            ++nsizes;
+            ++i;
+        } else {
+            fprintf(stderr, "pov_scene_check: bad option %s (--report, --size MODEL=N)\n", argv[i]);
+            return 2;
+        }
+    }
     for (; i < argc && strcmp(argv[i], "--"); ++i)
         if (nscenes < MAX_SCENES) scenes[nscenes++] = argv[i];
     const char *models[ABRDF_MODEL_COUNT + 1];
@@ -187,7 +216,7 @@ int main(int argc, char **argv)
                 wait(NULL);
                 --running;
             }
-            if (job_start(argv, scenes[s], models[m], size) > 0) ++running;
+            if (job_start(argv, scenes[s], models[m], model_size(models[m], size)) > 0) ++running;
         }
     while (running > 0 && wait(NULL) > 0) --running;
 
@@ -201,7 +230,11 @@ int main(int argc, char **argv)
     for (int s = 0; s < nscenes; ++s) printf("---|---|---|");
     printf("\n");
     for (int m = 0; m < nmodels; ++m) {
-        printf("| %s |", strcmp(models[m], "scene") ? models[m] : "(scene's materials)");
+        int msize = model_size(models[m], size);
+        if (msize != size)
+            printf("| %s (%d x %d pixels) |", models[m], msize, msize);
+        else
+            printf("| %s |", strcmp(models[m], "scene") ? models[m] : "(scene's materials)");
         if (strcmp(models[m], "scene") && !pov_ported(argv[3], models[m])) {
             for (int s = 0; s < nscenes; ++s) printf(" no POV-Ray twin | | |");
             printf("\n");
@@ -209,7 +242,7 @@ int main(int argc, char **argv)
         }
         for (int s = 0; s < nscenes; ++s) {
             abrdf_metrics mt;
-            if (compare(argv[4], scenes[s], models[m], size, &mt)) {
+            if (compare(argv[4], scenes[s], models[m], msize, &mt)) {
                 printf(" error | | |");
                 ++fails;
                 continue;

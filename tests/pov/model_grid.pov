@@ -1,7 +1,7 @@
 // model_grid.pov - one model of abrdf.inc evaluated on a grid of directions, one pixel per
 // (direction, colour channel), for tools/pov_grid_check.c. Declare on the command line:
 //   Declare=ABRDF_GRID_MODEL=<id>  Declare=ABRDF_GRID_SET=<0|1|2>
-// Grid: theta_i = (a + 1/2) pi / (2 NA), theta_o = (b + 1/2) pi / (2 NB), phi = c 2 pi / NC;
+// Grid (NA = NB = NC = 12, NM = 576 unless declared, below): theta_i = (a + 1/2) pi / (2 NA), theta_o = (b + 1/2) pi / (2 NB), phi = c 2 pi / NC;
 // wi = (sin ti, 0, cos ti), wo = (sin to cos phi, sin to sin phi, cos to). Cell k = (a NB + b) NC + c
 // is pixel row floor(k / COLS), columns 3 (k mod COLS) + channel. Then NM cells of the
 // sweep wi = wo (N.H = cos t), which resolves narrow lobes in N.H: k = NA NB NC + j, wi = wo =
@@ -13,7 +13,12 @@
 global_settings { assumed_gamma 1 }
 #include "abrdf.inc"
 
-#declare NA = 12; #declare NB = 12; #declare NC = 12; #declare NM = 576; #declare COLS = 48;
+// A slow model may be checked on a coarser grid: Declare=ABRDF_GRID_N=<NA = NB = NC>
+// Declare=ABRDF_GRID_NM=<NM> (pov_grid_check --grid); NA NB NC + NM must divide by COLS.
+#ifndef(ABRDF_GRID_N) #declare ABRDF_GRID_N = 12; #end
+#ifndef(ABRDF_GRID_NM) #declare ABRDF_GRID_NM = 576; #end
+#declare NA = ABRDF_GRID_N; #declare NB = ABRDF_GRID_N; #declare NC = ABRDF_GRID_N; #declare NM = ABRDF_GRID_NM;
+#declare COLS = 48;
 #declare ROWS = (NA * NB * NC + NM) / COLS;
 
 #declare D = Abrdf_Default(ABRDF_GRID_MODEL);
