@@ -19,6 +19,8 @@ import subprocess
 import sys
 import unittest
 
+from pov_parse import parse_run
+
 ABRDF, POVRAY, INC, WORK = sys.argv[1:5]
 del sys.argv[1:5]
 
@@ -75,12 +77,7 @@ def run_pov(cases):
             a = "%r, %r, %r, %r, %r, %r" % (*wi, *wo)
             lines.append('#debug concat("F %d %d ", S(Fr(%s)), " ", S(Fg(%s)), " ", S(Fb(%s)), "\\n")'
                          % (i, j, a, a, a))
-    path = os.path.join(WORK, "belcour_check.pov")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    p = subprocess.run([POVRAY, "-D", "+I" + path, "+L" + INC, "-F", "+W1", "+H1"],
-                       capture_output=True, text=True)
-    out = p.stdout + p.stderr
+    out = parse_run(POVRAY, INC, WORK, "belcour_check.pov", lines)
     got = {}
     for line in out.splitlines():
         if line.startswith("F "):

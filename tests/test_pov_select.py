@@ -11,6 +11,8 @@ import subprocess
 import sys
 import unittest
 
+from pov_parse import parse_run
+
 ABRDF, POVRAY, INC, WORK = sys.argv[1:5]
 del sys.argv[1:5]
 
@@ -51,12 +53,7 @@ def run_pov():
     for i, (m, n) in enumerate(ERRORS):
         lines.append('#declare E = Abrdf_Approx_Error("%s", %s);' % (m, repr(float(n))))
         lines.append('#debug concat("ERR %d ", str(E[0], 0, 15), " ", str(E[1], 0, 15), "\\n")' % i)
-    path = os.path.join(WORK, "select_check.pov")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    p = subprocess.run([POVRAY, "-D", "+I" + path, "+L" + INC, "-F", "+W1", "+H1"],
-                       capture_output=True, text=True)
-    out = p.stdout + p.stderr
+    out = parse_run(POVRAY, INC, WORK, "select_check.pov", lines)
     got = {}
     for line in out.splitlines():
         # POV-Ray wraps long console lines; the markers start a line
