@@ -3,7 +3,7 @@
 // `abrdf advise` (docs/SELECTION.md). Every threshold, model choice and candidate cost comes
 // from abrdf_meta.h (ABRDF_SELECT_*, generated from `abrdf advise --rules --json` and
 // `abrdf models --json`); the error analysis of the Table-1 approximations is
-// libabrdf/src/approx_error.c run on this port's own model functions, in float.
+// libabrdf/src/approx_error.c in float, on the Table-1 lobes written in t = 1 - c.
 // Included by abrdf.h after the models.
 //
 //   int abrdf_select(goal, surface, n, r, anisotropic, max_rel_pct, max_abs,
@@ -24,62 +24,96 @@
 #define ABRDF_ERR_PEAK_WINDOW 64.0
 #define ABRDF_ERR_GOLDEN_STEPS 80
 
-// A Table-1 approximation at mirror geometry w (ks = 1).
-float abrdf_table1(string model, vector w, float n)
+// The analysis runs in t = 1 - c (c = N.H at mirror geometry wi = wo): near the peak, where
+// every lobe of a large exponent lives (width ~ 1/n), a float resolves c only to 6e-8, but t
+// to its full relative precision. So the lobes are written here in t, algebraically equal to
+// the port's model functions (abrdf.h) at mirror geometry, and cos^n as exp(n log(1 - t))
+// with the series of log(1 - t) for small t: the float analysis then follows the C one
+// (double) to ~1e-6 at every n (tests/test_osl_select.py measures it).
+
+// log(1 - t), t in [0, 1): the series below 1e-2 (remainder < t^8 / 8 < 1e-16).
+float abrdf_log1m(float t)
 {
-    color f = color(0);
-    if (model == "f2") f = abrdf_f2(w, w, color(1), n);
-    else if (model == "f4") f = abrdf_f4(w, w, color(1), n);
-    else if (model == "f8") f = abrdf_f8(w, w, color(1), n);
-    else if (model == "f16") f = abrdf_f16(w, w, color(1), n);
-    else if (model == "fs") f = abrdf_fs(w, w, color(1), n);
-    else if (model == "fkv") f = abrdf_fkv(w, w, color(1), n);
-    else if (model == "fkub") f = abrdf_fkub(w, w, color(1), n);
-    return f[0];
+    if (t >= 1e-2) return log(1.0 - t);
+    return -t * (1.0 + t * (0.5 + t * (1.0 / 3.0 + t * (0.25 + t * (0.2 + t * (1.0 / 6.0 +
+                 t / 7.0))))));
+}
+// 1 - exp(-x), x >= 0: the series below 1e-3.
+float abrdf_one_minus_exp(float x)
+{
+    if (x >= 1e-3) return 1.0 - exp(-x);
+    return x * (1.0 - x * (0.5 - x * (1.0 / 6.0 - x / 24.0)));
 }
 
-// Error at N.H = c, mirror geometry wi = wo = (sqrt((1 - c)(1 + c)), 0, c).
-float abrdf_err_at(string model, float n, int relative, float c0)
+// A Table-1 approximation (ks = 1) at t = 1 - c; 0 unless c > 0 (abrdf_geo_front).
+float abrdf_table1_t(string model, float n, float t)
 {
-    float c = clamp(c0, 0.0, 1.0);
-    vector w = vector(sqrt((1.0 - c) * (1.0 + c)), 0.0, c);
-    float f = abrdf_table1(model, w, n);
-    color gc = abrdf_blinn_phong(w, w, color(1), n);
-    float g = gc[0];
+    if (!(t < 1.0)) return 0.0;
+    float c = 1.0 - t;
+    if (model == "f2") return abrdf_pow2k(1.0 - (n / 2.0) * t, 1);
+    if (model == "f4") return abrdf_pow2k(1.0 - (n / 4.0) * t, 2);
+    if (model == "f8") return abrdf_pow2k(1.0 - (n / 8.0) * t, 3);
+    if (model == "f16") return abrdf_pow2k(1.0 - (n / 16.0) * t, 4);
+    if (model == "fs") return abrdf_safe_div(c, n * t + c);         // c / (n - n c + c)
+    if (model == "fkv") return abrdf_pos(c * (1.0 - 0.786 * n * t)); // 0.786 n c^2 + (1 - 0.786 n) c
+    if (model == "fkub") {
+        float a, b, d, x0;
+        abrdf_fkub_coeffs(n, a, b, d, x0);
+        // c >= x0 = 0.1^(1/n)  <=>  t <= 1 - 0.1^(1/n)
+        float v = 1.0 + t * (a + t * (b + t * d));
+        return t <= abrdf_one_minus_exp(log(10.0) / n) ? abrdf_clampr(v, 0.0, 1.0) : 0.0;
+    }
+    return 0.0;
+}
+// Blinn-Phong (ks = 1) at t: c^n.
+float abrdf_blinn_phong_t(float n, float t)
+{
+    if (!(t < 1.0)) return 0.0;
+    if (t <= 0.0) return 1.0;
+    return exp(n * abrdf_log1m(t));
+}
+
+// Error at t = 1 - c.
+float abrdf_err_at(string model, float n, int relative, float t0)
+{
+    float t = clamp(t0, 0.0, 1.0);
+    float f = abrdf_table1_t(model, n, t);
+    float g = abrdf_blinn_phong_t(n, t);
     float d = fabs(f - g);
     if (!relative) return d;
     return g > 0.0 ? d / g : 0.0;
 }
 
-// Golden-section maximisation of the error on [a, b].
-float abrdf_err_refine(string model, float n, int relative, float a0, float b0)
+// Golden-section maximisation of the error on the c-interval [a, b], given as ta = 1 - a
+// >= tb = 1 - b; the same steps as in c (x1 = b - r (b - a) is tb + r (ta - tb)).
+float abrdf_err_refine(string model, float n, int relative, float ta0, float tb0)
 {
     float r = 0.6180339887498949;
-    float a = a0, b = b0;
-    float x1 = b - r * (b - a), x2 = a + r * (b - a);
+    float ta = ta0, tb = tb0;
+    float x1 = tb + r * (ta - tb), x2 = ta - r * (ta - tb);
     float f1 = abrdf_err_at(model, n, relative, x1), f2 = abrdf_err_at(model, n, relative, x2);
     float best = max(f1, f2);
-    for (int i = 0; i < ABRDF_ERR_GOLDEN_STEPS && b - a > 0.0; ++i) {
+    for (int i = 0; i < ABRDF_ERR_GOLDEN_STEPS && ta - tb > 0.0; ++i) {
         if (f1 >= f2) {
-            b = x2; x2 = x1; f2 = f1;
-            x1 = b - r * (b - a); f1 = abrdf_err_at(model, n, relative, x1);
+            tb = x2; x2 = x1; f2 = f1;
+            x1 = tb + r * (ta - tb); f1 = abrdf_err_at(model, n, relative, x1);
         } else {
-            a = x1; x1 = x2; f1 = f2;
-            x2 = a + r * (b - a); f2 = abrdf_err_at(model, n, relative, x2);
+            ta = x1; x1 = x2; f1 = f2;
+            x2 = ta - r * (ta - tb); f2 = abrdf_err_at(model, n, relative, x2);
         }
         best = max(best, max(f1, f2));
     }
     return best;
 }
 
-// Maximum over [lo, hi]: uniform samples, then the largest sampled local maxima refined
-// between their neighbours.
-float abrdf_err_maximise(string model, float n, int relative, float lo, float hi)
+// Maximum over the c-interval [lo, hi], given as tlo = 1 - lo >= thi = 1 - hi: uniform
+// samples, then the largest sampled local maxima refined between their neighbours.
+float abrdf_err_maximise(string model, float n, int relative, float tlo, float thi)
 {
     float v[ABRDF_ERR_SAMPLES_1];
-    float h = (hi - lo) / ABRDF_ERR_SAMPLES;
+    float h = (tlo - thi) / ABRDF_ERR_SAMPLES;
     for (int i = 0; i <= ABRDF_ERR_SAMPLES; ++i)
-        v[i] = abrdf_err_at(model, n, relative, i == ABRDF_ERR_SAMPLES ? hi : lo + h * i);
+        v[i] = abrdf_err_at(model, n, relative, i == ABRDF_ERR_SAMPLES ? thi : tlo - h * i);
     int top[ABRDF_ERR_REFINE_TOP]; // indices of the largest sampled local maxima
     int ntop = 0;
     for (int i = 0; i <= ABRDF_ERR_SAMPLES; ++i) {
@@ -98,8 +132,8 @@ float abrdf_err_maximise(string model, float n, int relative, float lo, float hi
     for (int i = 0; i <= ABRDF_ERR_SAMPLES; ++i) best = max(best, v[i]);
     for (int k = 0; k < ntop; ++k) {
         int i = top[k];
-        float a = i > 0 ? lo + h * (i - 1) : lo;
-        float b = i < ABRDF_ERR_SAMPLES ? lo + h * (i + 1) : hi;
+        float a = i > 0 ? tlo - h * (i - 1) : tlo;
+        float b = i < ABRDF_ERR_SAMPLES ? tlo - h * (i + 1) : thi;
         best = max(best, abrdf_err_refine(model, n, relative, a, b));
     }
     return best;
@@ -116,12 +150,14 @@ int abrdf_approx_error(string model, float n, output float rel_pct, output float
           model == "fkv" || model == "fkub"))
         return 0;
     if (!(n >= ABRDF_P_N_MIN && n <= ABRDF_P_N_MAX)) return 0;
-    float half = n > 0.0 ? pow(0.5, 1.0 / n) : 0.0;        // cos^n = 1/2
-    float inflection = n > 1.0 ? sqrt(1.0 - 1.0 / n) : 0.0; // sin^2 theta_h = 1/n
-    float rel = abrdf_err_maximise(model, n, 1, max(half, inflection), 1.0);
-    abs_err = abrdf_err_maximise(model, n, 0, 0.0, 1.0);
+    // The highlight zone c >= max(0.5^(1/n), sqrt(1 - 1/n)) (abrdf__highlight_zone_cos), in t:
+    // 1 - 0.5^(1/n) and 1 - sqrt(1 - 1/n) = (1/n) / (1 + sqrt(1 - 1/n)).
+    float t_half = n > 0.0 ? abrdf_one_minus_exp(log(2.0) / n) : 1.0; // cos^n = 1/2
+    float t_infl = n > 1.0 ? (1.0 / n) / (1.0 + sqrt(1.0 - 1.0 / n)) : 1.0; // sin^2 = 1/n
+    float rel = abrdf_err_maximise(model, n, 1, min(t_half, t_infl), 0.0);
+    abs_err = abrdf_err_maximise(model, n, 0, 1.0, 0.0);
     if (n > ABRDF_ERR_PEAK_WINDOW)
-        abs_err = max(abs_err, abrdf_err_maximise(model, n, 0, 1.0 - ABRDF_ERR_PEAK_WINDOW / n, 1.0));
+        abs_err = max(abs_err, abrdf_err_maximise(model, n, 0, ABRDF_ERR_PEAK_WINDOW / n, 0.0));
     rel_pct = 100.0 * rel;
     return 1;
 }
