@@ -125,6 +125,15 @@ def render_row(name, source, width, workdir):
     path = os.path.join(workdir, name + ".osl")
     with open(path, "w") as f:
         f.write(source)
+    sc = row_scene(width)
+    mat = abrdf_cycles.shader_material(name, path)
+    add_quad(0, width, mat)
+    return render_and_read(sc, name, width, workdir)
+
+
+def row_scene(width):
+    """An empty Cycles scene: CPU + OSL, direct light only, one sample, an orthographic
+    camera looking down -z at x in [0, width] (one pixel per unit), 4 rows."""
     bpy.ops.wm.read_factory_settings(use_empty=True)
     sc = bpy.context.scene
     # Blender renders at least 4 rows; every row runs the same cases.
@@ -134,11 +143,6 @@ def render_row(name, source, width, workdir):
     for key in ("diffuse", "glossy", "transmission", "volume", "transparent_max"):
         setattr(sc.cycles, key + "_bounces", 0)
     sc.cycles.max_bounces = 0
-    mat = abrdf_cycles.shader_material(name, path)
-    me = bpy.data.meshes.new("row")
-    me.from_pydata([(0, -4, 0), (width, -4, 0), (width, 4, 0), (0, 4, 0)], [], [(0, 1, 2, 3)])
-    me.materials.append(mat)
-    abrdf_cycles.add_object("row", me)
     cam = bpy.data.cameras.new("camera")
     cam.type = "ORTHO"
     cam.sensor_fit = "HORIZONTAL"
@@ -147,20 +151,27 @@ def render_row(name, source, width, workdir):
     ob.location = (width / 2.0, 0.0, 10.0)  # looking down -z at the plane
     sc.collection.objects.link(ob)
     sc.camera = ob
+    return sc
+
+
+def add_quad(x0, x1, mat):
+    me = bpy.data.meshes.new("quad")
+    me.from_pydata([(x0, -4, 0), (x1, -4, 0), (x1, 4, 0), (x0, 4, 0)], [], [(0, 1, 2, 3)])
+    me.materials.append(mat)
+    abrdf_cycles.add_object("quad%g" % x0, me)
+
+
+def render_and_read(sc, name, width, workdir, same_rows=True):
     out = os.path.join(workdir, name + ".exr")
-    with abrdf_cycles_fds():
-        abrdf_cycles.render(sc, out)
+    abrdf_cycles.render(sc, out)
     img = bpy.data.images.load(out)
     px = list(img.pixels)  # RGBA, float, bottom row first
     rows = [[tuple(px[4 * (y * width + i):4 * (y * width + i) + 3]) for i in range(width)]
             for y in range(4)]
+    if not same_rows:
+        return rows
     assert all(row == rows[0] for row in rows), "the rows of the probe differ"
     return rows[0]
-
-
-def abrdf_cycles_fds():
-    import contextlib
-    return contextlib.nullcontext()
 
 
 def advise(goal, surf, n, r, an, rel, ab):
@@ -217,6 +228,56 @@ class OslSelect(unittest.TestCase):
                 self.assertLess(abs(rel - step["value"]), ERR_TOL * max(1.0, step["value"]))
                 self.assertLess(abs(ab - step["value2"]), ERR_TOL * max(1e-2, step["value2"]))
 
+    # abrdf_material.osl in adaptive mode renders the closures of the models `abrdf advise`
+    # chooses: quad 2i adaptive, quad 2i + 1 the same material with Model / Second model / n
+    # set to the C choice. A sun of zero angle (a delta light, so only light sampling, no
+    # noise) at 20 degrees from the view: both pixels evaluate the same closures at the same
+    # directions and must be equal, and not black.
+    MATERIAL_CASES = [  # goal, surface, r, anisotropic, n_from_r (else n = 300)
+        ("photoreal", "general", 0.2, 0.0, 1), ("photoreal", "general", 0.2, 0.5, 1),
+        ("photoreal", "general", 0.02, 0.0, 1), ("photoreal", "general", 0.02, 0.0, 0),
+        ("photoreal", "cloth_rough", 0.5, 0.0, 1), ("photoreal", "cloth_shiny", 0.5, 0.0, 1),
+        ("photoreal", "layered_plastic", 0.2, 0.0, 1), ("photoreal", "layered_metal", 0.2, 0.0, 1),
+        ("performance", "general", 0.3, 0.0, 0), ("performance", "hair", 0.3, 0.0, 1)]
+
+    def test_material_adaptive_uses_the_selection(self):
+        work = os.path.join(WORK, "material")
+        os.makedirs(work, exist_ok=True)
+        for h in abrdf_cycles.HEADERS + ("abrdf_material.osl",):
+            shutil.copy2(os.path.join(OSL_DIR, h), work)
+        path = os.path.join(work, "abrdf_material.osl")
+        width = 2 * len(self.MATERIAL_CASES)
+        sc = row_scene(width)
+        sun = bpy.data.lights.new("sun", "SUN")
+        sun.angle = 0.0
+        sun.energy = 3.0
+        ob = bpy.data.objects.new("sun", sun)
+        ob.rotation_euler = (0.0, 0.349066, 0.0)  # 20 degrees about y: light from +x
+        sc.collection.objects.link(ob)
+        wants = []
+        for i, (goal, surf, r, an, from_r) in enumerate(self.MATERIAL_CASES):
+            ref = advise(goal, surf, None if from_r else 300.0, r, an, 2.0, 0.05)
+            wants.append((ref["diffuse"] or "", ref["specular"]))
+            common = {"r": r, "anisotropic": an, "n": 300.0}
+            adaptive = dict(common, adaptive=1, goal=goal, surface=surf, n_from_r=from_r,
+                            model="lambert", model2="")
+            explicit = dict(common, adaptive=0, n=float(ref["params"]["n"]),
+                            model=ref["specular"] if not ref["diffuse"] else ref["diffuse"],
+                            model2=ref["specular"] if ref["diffuse"] else "")
+            add_quad(2 * i, 2 * i + 1, abrdf_cycles.shader_material("a%d" % i, path, adaptive))
+            add_quad(2 * i + 1, 2 * i + 2, abrdf_cycles.shader_material("e%d" % i, path, explicit))
+        # (rows may differ: the two triangles of a quad have different dPdu, the tangent of
+        # the anisotropic lobes; the pair of a case shares its row)
+        rows = render_and_read(sc, "material", width, work, same_rows=False)
+        for i, case in enumerate(self.MATERIAL_CASES):
+            for row in rows:
+                a, e = row[2 * i], row[2 * i + 1]
+                with self.subTest(case=case, models=wants[i]):
+                    self.assertGreater(max(a), 0.0)
+                    for x, y in zip(a, e):
+                        self.assertLessEqual(abs(x - y), 1e-6 * max(1.0, abs(y)))
+            sys.stdout.write("%s -> %s: adaptive %.6g, explicit %.6g\n"
+                             % (case, wants[i], rows[0][2 * i][0], rows[0][2 * i + 1][0]))
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)
