@@ -916,4 +916,7 @@ color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f
         string page = "Layer " #k, float min = ABRDF_P_LAYER##k##_DEPTH_MIN,               \
         float max = ABRDF_P_LAYER##k##_DEPTH_MAX ]]
 
+// ---- the selection flowchart (Fig. 2), abrdf_select() ------------------------------------
+#include "abrdf_select.h"
+
 #endif // ABRDF_OSL_H

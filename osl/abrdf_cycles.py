@@ -32,7 +32,7 @@ import bmesh
 import mathutils
 
 HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_belcour_tables.h", "abrdf_hair.h",
-           "abrdf_hair_tables.h", "abrdf_trace.h")
+           "abrdf_hair_tables.h", "abrdf_select.h", "abrdf_trace.h")
 SHAPES = {"sphere": 0, "cylinder": 1, "capsule": 2, "box": 3}
 
 

@@ -415,12 +415,16 @@ int abrdf_params_valid(string model, color kd, color ks, color f0, float n, floa
 #define ABRDF_SELECT_SMOOTH_DIFFUSE "lambert_fresnel"
 #define ABRDF_SELECT_SMOOTH_SPECULAR "f_2e"
 #define ABRDF_SELECT_CANDIDATES "f2 f4 f8 f16 fs fkv fkub"
+#define ABRDF_SELECT_CANDIDATE_COUNT 7
+#define ABRDF_SELECT_CANDIDATE_LIST {"f2", "f4", "f8", "f16", "fs", "fkv", "fkub"}
+#define ABRDF_SELECT_CANDIDATE_COSTS {8.0, 11.0, 14.0, 17.0, 15.0, 14.0, 17.0}
 #define ABRDF_SELECT_SPECIAL_CLOTH_ROUGH "neubelt_pettineo"
 #define ABRDF_SELECT_SPECIAL_CLOTH_SHINY "kajiya_kay"
 #define ABRDF_SELECT_SPECIAL_HAIR "huang"
 #define ABRDF_SELECT_SPECIAL_LAYERED_METAL "belcour"
 #define ABRDF_SELECT_SPECIAL_LAYERED_PLASTIC "weidlich_wilkie"
 #define ABRDF_SELECT_SPECIAL_LAYERED_PLATE "belcour"
+#define ABRDF_SELECT_SURFACE_OPTIONS "general|cloth_rough|cloth_shiny|hair|layered_plastic|layered_plate|layered_metal"
 #define ABRDF_SELECT_NMSE_CLASS_MAX_0 0.0001
 #define ABRDF_SELECT_NMSE_CLASS_MAX_1 0.00025
 #define ABRDF_SELECT_NMSE_CLASS_MAX_2 0.001

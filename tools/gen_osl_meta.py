@@ -127,8 +127,19 @@ def meta_header(models, rules):
                 "rough_specular_aniso", "smooth_diffuse", "smooth_specular"):
         out.append(f"#define ABRDF_SELECT_{key.upper()} {osl_string(rules[key])}")
     out.append("#define ABRDF_SELECT_CANDIDATES " + osl_string(" ".join(rules["candidates"])))
+    # The candidates in the rules' order with their cost (the paper's Table 4, cycles, from
+    # `abrdf models --json`; -1 = unknown), as array initialisers for abrdf_select().
+    cycles = {m["name"]: m.get("paper_cycles") for m in models}
+    cands = rules["candidates"]
+    out.append(f"#define ABRDF_SELECT_CANDIDATE_COUNT {len(cands)}")
+    out.append("#define ABRDF_SELECT_CANDIDATE_LIST {" + ", ".join(osl_string(c) for c in cands) + "}")
+    out.append("#define ABRDF_SELECT_CANDIDATE_COSTS {" + ", ".join(
+        num(cycles[c]) if cycles.get(c) is not None else "-1.0" for c in cands) + "}")
     for surf, v in sorted(rules["special"].items()):
         out.append(f"#define ABRDF_SELECT_SPECIAL_{surf.upper()} {osl_string(v['model'])}")
+    # Surface classes in the library's order (abrdf_surface), for a popup widget.
+    out.append("#define ABRDF_SELECT_SURFACE_OPTIONS " +
+               osl_string("|".join(["general"] + list(rules["special"]))))
     for i, v in enumerate(rules["nmse_class_max"]):
         out.append(f"#define ABRDF_SELECT_NMSE_CLASS_MAX_{i} {num(v)}")
     out.append("")
