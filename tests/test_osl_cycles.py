@@ -128,24 +128,11 @@ class CrossCheck(unittest.TestCase):
 
     table = {}
 
-    # Every model has an OSL twin: the layered ones (Weidlich-Wilkie's recursion unrolled,
-    # Belcour's statistics with the library's tables) and the hair models (their
-    # quadrature, osl/abrdf_hair.h). A new model of these kinds without a twin is listed in
-    # the table with the reason, not rendered, and fails test_every_model_has_a_twin.
-    NO_TWIN_NEEDS = {"integration": "no OSL twin: numerical integration",
-                     "layers": "no OSL twin: layer stack"}
-    HAS_TWIN = {"weidlich_wilkie", "belcour", "marschner", "huang"}
-
     @classmethod
     def setUpClass(cls):
         info = json.loads(run("models", "--json"))["models"]
-        cls.all_models = [m["name"] for m in info]
-        cls.no_twin = {}
-        for m in info:
-            for need, reason in cls.NO_TWIN_NEEDS.items():
-                if need in m["needs"] and m["name"] not in cls.HAS_TWIN:
-                    cls.no_twin[m["name"]] = reason
-        cls.models = [m for m in cls.all_models if m not in cls.no_twin]
+        # Every model has an OSL twin (the layered ones and the hair quadratures too).
+        cls.models = [m["name"] for m in info]
         cls.layered = [m["name"] for m in info if "layers" in m["needs"]]
         # ABRDF_OSL_MODELS="m1,m2" (or space separated): render only these (development);
         # default: every model.
@@ -153,8 +140,7 @@ class CrossCheck(unittest.TestCase):
         cls.rendered = [m for m in cls.models if m in only] if only else cls.models
 
     def test_every_model_has_a_twin(self):
-        # Every model of the library has one; a new model without it fails here.
-        self.assertEqual(self.no_twin, {})
+        # A new model without a twin fails here.
         with open(os.path.join(OSL_DIR, "abrdf_meta.h")) as f:
             names = next(l for l in f if l.startswith("#define ABRDF_MODEL_NAMES"))
         twins = names.split('"')[1].split()
@@ -229,11 +215,7 @@ class CrossCheck(unittest.TestCase):
             self.table[(row, scene)] = nmse
             if not nmse < NMSE_MAX:
                 failures.append("%s on %s: NMSE %.3g" % (row, scene, nmse))
-        for m, reason in self.no_twin.items():
-            for scene, _, _, _ in SCENES:
-                self.table[(m, scene)] = reason
-        print_table([m for m in self.all_models if m in self.rendered or m in self.no_twin] +
-                    rows[len(self.rendered):], self.table, time.time() - t0)
+        print_table(rows, self.table, time.time() - t0)
         self.assertEqual(failures, [])
 
     def test_generic_shader_on_a_box(self):
