@@ -26,10 +26,10 @@ build-asan: setup
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 
 run: build
-	$(BUILD)/tools/abrdf models
-	$(BUILD)/tools/abrdf eval disney_specular --wi 0.3,0,1 --wo -0.2,0.1,1 --set r=0.3
-	$(BUILD)/tools/abrdf eval f_2e --wi 0.3,0,1 --wo -0.3,0,1 --set n=300
-	$(BUILD)/tools/abrdf render scenes/robot.scene --adaptive --goal photoreal -o $(BUILD)/robot.exr --explain
+	$(BUILD)/bin/abrdf models
+	$(BUILD)/bin/abrdf eval disney_specular --wi 0.3,0,1 --wo -0.2,0.1,1 --set r=0.3
+	$(BUILD)/bin/abrdf eval f_2e --wi 0.3,0,1 --wo -0.3,0,1 --set n=300
+	$(BUILD)/bin/abrdf render scenes/robot.scene --adaptive --goal photoreal -o $(BUILD)/robot.exr --explain
 
 test: setup-ports build build-asan
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -29,7 +29,7 @@
 // to its full relative precision. So the lobes are written here in t, algebraically equal to
 // the port's model functions (abrdf.h) at mirror geometry, and cos^n as exp(n log(1 - t))
 // with the series of log(1 - t) for small t: the float analysis then follows the C one
-// (double) to ~1e-6 at every n (tests/test_osl_select.py measures it).
+// (double) to ~1e-6 at every n (tests/ports/test_osl_select.py measures it).
 
 // log(1 - t), t in [0, 1): the series below 1e-2 (remainder < t^8 / 8 < 1e-16).
 float abrdf_log1m(float t)

@@ -1,4 +1,4 @@
-// abrdf_trace.h - the scene format's analytic primitives in OSL (tools/geom.c of the
+// abrdf_trace.h - the scene format's analytic primitives in OSL (tools/render/geom.c of the
 // built-in renderer, same conventions): exact ray intersections and normals of sphere,
 // cylinder, capsule and box in object space, affine transforms, tangent field rules.
 // Scene shaders written by `abrdf export --cycles` use it to re-trace the pixel-centre
@@ -207,7 +207,7 @@ vector abrdf_tangent_rule(int rule, vector axis, matrix m, matrix inv, point p_w
 }
 
 // Pixel-centre camera ray of the pixel that the host's camera ray through P falls in:
-// the built-in renderer's camera (tools/render.h) with forward unit, right and up scaled to
+// the built-in renderer's camera (tools/render/render.h) with forward unit, right and up scaled to
 // the image plane's half sizes. Every sample of a pixel gets the same ray, so the host's
 // pixel filter and sample count cannot change the result. Returns 0 outside the image.
 int abrdf_pixel_ray(point eye, vector fwd, vector right, vector up, int width, int height,

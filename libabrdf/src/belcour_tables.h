@@ -1,5 +1,5 @@
 /* belcour_tables.h - axes of the precomputed tables of Belcour's layered model, shared by
- * the generator (tools/gen_belcour_tables.c) and the library (layered_belcour.c), so that
+ * the generator (tools/gen/gen_belcour_tables.c) and the library (layered_belcour.c), so that
  * the two cannot disagree. The data live in belcour_tables.c (generated).
  *
  * FGD[cos][alpha][eta][kappa]  directional albedo of one GGX reflection with exact Fresnel

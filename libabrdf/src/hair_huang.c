@@ -27,7 +27,7 @@
  *  - TRRT+ is weighted by the projected width |dh/dgamma| cos(theta_view) of each element
  *    instead of Cycles' constant 2/pi, which lets it grow as 1/cos(theta_view).
  *  - The energy compensation S_E = 1/E(sqrt(alpha), mu, eta) reads tables this project
- *    generates by quadrature (tools/gen_hair_tables.c -> hair_tables.c), not Cycles'
+ *    generates by quadrature (tools/gen/gen_hair_tables.c -> hair_tables.c), not Cycles'
  *    Monte Carlo tables.
  *  - Continuous in the directions: R's range is cut where the mesonormal stops facing wo and
  *    where D's argument changes sign (Cycles tests each node), nothing the range guarantees
@@ -224,7 +224,7 @@ static double trrt(double t1, double r2, double a)
 /* Single-scattering albedo (reflection + transmission) of a rough GGX dielectric interface
  * of relative index eta, lit at cosine mu: the VNDF expectation of
  * F G2(i, o_r)/G1(i) + (1 - F) G2(i, o_t)/G1(i), by an n x n midpoint rule on the VNDF
- * square (tools/gen_hair_tables.c tabulates it; hair_tables.c). */
+ * square (tools/gen/gen_hair_tables.c tabulates it; hair_tables.c). */
 double abrdf__ggx_glass_albedo(double alpha, double mu, double eta, int n)
 {
     v3 wi = mk(sqrt(fmax(0.0, 1.0 - mu * mu)), 0.0, mu), nz = mk(0, 0, 1);

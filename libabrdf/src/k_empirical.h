@@ -15,7 +15,7 @@
  * fkv (Table 1): the paper's quadratic 0.786 n c^2 + (1 - 0.786 n) c, clamped at 0 because
  *   it is negative on (0, 1 - 1/(0.786 n)) (MODELS.md B3).
  * fkub (Table 1): a cubic A c^3 + B c^2 + C c (Romanyuk et al., IAPGOS 13(3), 2023) whose
- *   coefficients the paper does not give; the project fits them (tools/fit_fkub.c, table
+ *   coefficients the paper does not give; the project fits them (tools/gen/fit_fkub.c, table
  *   in fkub_table.c), evaluates the same cubic written about c = 1 (stable in float for
  *   large n), zeroes it below the fitted zone start x0 and clamps it to [0, 1].
  * All lobes take c = N.H (they approximate Blinn-Phong), Phong takes c = R.V. */

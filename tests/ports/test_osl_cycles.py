@@ -1,0 +1,296 @@
+#!/usr/bin/env python3
+"""The OSL port checked in a real OSL host, Blender's Cycles (PyPI `bpy`):
+
+1. every osl/*.osl compiles with Blender's OSL compiler, with no warning;
+2. every shader parameter carries help and label metadata, numeric ones min and max;
+3. every model of `abrdf models` renders the test scenes in evaluation mode
+   (`abrdf export --cycles --model M`) with NMSE < 1e-4 against `abrdf render --model M`
+   (`abrdf compare`); the model x scene -> NMSE table is printed;
+4. the host-independent shader abrdf_eval.osl (lights as parameters) does the same on a
+   lit box;
+5. closure mode (abrdf_material.osl on Cycles' closures and lights) renders the sphere
+   (within 1e-4 for its Lambert + GGX material, within 1e-2 for the layered models).
+
+usage: test_osl_cycles.py ABRDF SOURCE_DIR WORK_DIR [unittest args]  (the Python with bpy)
+Fails, never skips, when bpy is missing: scripts/setup_bpy.sh installs it.
+ABRDF_OSL_MODELS=m1,m2 renders only those models (while developing; CTest renders all).
+"""
+import contextlib
+import json
+import os
+import runpy
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+try:
+    import bpy  # noqa: F401
+except ImportError:
+    sys.exit("test_osl_cycles: the bpy module is missing; run scripts/setup_bpy.sh "
+             "(it installs Blender's bpy from PyPI into .venv)")
+
+ABRDF, SRC, WORK = sys.argv[1:4] if len(sys.argv) >= 4 else (None, None, None)
+OSL_DIR = SRC and os.path.join(SRC, "osl")
+NMSE_MAX = 1e-4  # the paper's Table 8: "no visible difference"
+
+# Parameter sets beyond the defaults, rendered on the sphere (the first scene): the hair
+# defaults are dark (melanin 0.8), so their lit fibres (TT, TRT) and the other ends of the
+# ranges are checked as well. Table rows "model k=v ...".
+VARIANTS = [("marschner", ("melanin=0",)),
+            ("marschner", ("melanin=0", "eta=2.2", "aspect_ratio=0.75", "cuticle_tilt=-7",
+                           "r=0.05")),
+            ("huang", ("melanin=0",)),
+            ("huang", ("melanin=0.3", "redness=0.2", "aspect_ratio=0.4", "cuticle_tilt=-6",
+                       "r=0.15", "eta=1.8"))]
+
+# Scenes at a small resolution: the check is per pixel, so size buys nothing but time.
+SCENES = [("sphere", "scenes/sphere.scene", 64, 64),
+          ("robot", "scenes/robot.scene", 96, 96),
+          ("point_lights", "tests/data/scenes/point_lights.scene", 64, 48)]
+
+sys.path.insert(0, OSL_DIR or ".")
+import abrdf_cycles  # noqa: E402
+
+
+@contextlib.contextmanager
+def captured_fds():
+    """Collect what C++ code writes to fds 1 and 2 (the OSL compiler's messages)."""
+    with tempfile.TemporaryFile(mode="w+b") as tmp:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        saved = [os.dup(1), os.dup(2)]
+        os.dup2(tmp.fileno(), 1)
+        os.dup2(tmp.fileno(), 2)
+        out = {}
+        try:
+            yield out
+        finally:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os.dup2(saved[0], 1)
+            os.dup2(saved[1], 2)
+            for fd in saved:
+                os.close(fd)
+            tmp.seek(0)
+            out["text"] = tmp.read().decode(errors="replace")
+
+
+def run(*args, check=True):
+    return subprocess.run([ABRDF, *args], check=check, capture_output=True, text=True).stdout
+
+
+def compile_osl(path, oso):
+    import _cycles
+    with captured_fds() as out:
+        ok = _cycles.osl_compile(path, oso)
+    return ok, out["text"]
+
+
+class OslCompile(unittest.TestCase):
+    def test_every_shader_compiles_without_warnings(self):
+        work = os.path.join(WORK, "compile")
+        os.makedirs(work, exist_ok=True)
+        shaders = sorted(f for f in os.listdir(OSL_DIR) if f.endswith(".osl"))
+        self.assertIn("abrdf_eval.osl", shaders)
+        for f in os.listdir(OSL_DIR):
+            if f.endswith((".h", ".osl")):
+                shutil.copy2(os.path.join(OSL_DIR, f), work)
+        for name in shaders:
+            ok, text = compile_osl(os.path.join(work, name), os.path.join(work, name + ".oso"))
+            self.assertTrue(ok, "%s does not compile:\n%s" % (name, text))
+            self.assertNotIn("warning", text.lower(), "%s: compiler warnings:\n%s" % (name, text))
+
+    def test_every_parameter_has_metadata(self):
+        abrdf_cycles.cycles_osl()
+        import oslquery
+        work = os.path.join(WORK, "compile")
+        self.test_every_shader_compiles_without_warnings()
+        for name in sorted(f for f in os.listdir(OSL_DIR) if f.endswith(".osl")):
+            q = oslquery.OSLQuery(os.path.join(work, name + ".oso"))
+            for p in q.parameters:
+                meta = {m.name for m in p.metadata}
+                with self.subTest(shader=name, param=p.name):
+                    self.assertTrue({"help", "label"} <= meta, meta)
+                    numeric = (not p.isclosure and not p.isoutput and
+                               p.type.basetype != p.type.basetype.STRING and
+                               p.type.vecsemantics in (p.type.vecsemantics.NOXFORM,
+                                                       p.type.vecsemantics.COLOR))
+                    if numeric:
+                        self.assertTrue({"min", "max"} <= meta, meta)
+
+
+class CrossCheck(unittest.TestCase):
+    """Evaluation mode against the built-in renderer, every model on every scene."""
+
+    table = {}
+
+    @classmethod
+    def setUpClass(cls):
+        info = json.loads(run("models", "--json"))["models"]
+        # Every model has an OSL twin (the layered ones and the hair quadratures too).
+        cls.models = [m["name"] for m in info]
+        cls.layered = [m["name"] for m in info if "layers" in m["needs"]]
+        # ABRDF_OSL_MODELS="m1,m2" (or space separated): render only these (development);
+        # default: every model.
+        only = [m for m in re.split(r"[,\s]+", os.environ.get("ABRDF_OSL_MODELS", "")) if m]
+        cls.rendered = [m for m in cls.models if m in only] if only else cls.models
+
+    def test_every_model_has_a_twin(self):
+        # A new model without a twin fails here.
+        with open(os.path.join(OSL_DIR, "abrdf_meta.h")) as f:
+            names = next(l for l in f if l.startswith("#define ABRDF_MODEL_NAMES"))
+        twins = names.split('"')[1].split()
+        self.assertEqual(twins, self.models)
+        header = ""
+        for name in ("abrdf.h", "abrdf_hair.h"):  # abrdf.h includes the hair twins
+            with open(os.path.join(OSL_DIR, name)) as f:
+                header += f.read()
+        for m in self.models:
+            self.assertIn("color abrdf_%s(vector wi, vector wo" % m, header)
+            self.assertIn('model == "%s"' % m, header)
+
+    def render_pair(self, scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1,
+                    sets=(), variant=""):
+        tag = "%s_%s_%s%s_%d" % (mode, scene, model or "scene", variant, samples)
+        d = os.path.join(WORK, tag)
+        os.makedirs(d, exist_ok=True)
+        extra = ["--model", model] if model else []
+        for a in sets:
+            extra += ["--set", a]
+        size = ["--width", str(w), "--height", str(h)]
+        ref, test, script = (os.path.join(d, n) for n in ("c.exr", "cycles.exr", "scene.py"))
+        run("render", os.path.join(SRC, path), "-o", ref, "--spp", str(c_spp), "--no-preview",
+            "--threads", "2", *size, *extra)
+        run("export", "--cycles", os.path.join(SRC, path), "-o", script, "--spp", str(samples),
+            "--osl-dir", OSL_DIR, *size, *extra)
+        s = runpy.run_path(script, run_name="abrdf_scene")["SCENE"]
+        with captured_fds():
+            # Tessellation matters only in closure mode (eval re-traces the exact shapes).
+            sc = abrdf_cycles.build(s, mode, os.path.join(d, "osl"), OSL_DIR,
+                                    segments=64 if mode == "closure" else 16)
+            sc.render.threads_mode = "FIXED"
+            sc.render.threads = 2
+            abrdf_cycles.render(sc, test)
+        # compare exits 1 when the images differ; the NMSE is judged here.
+        return json.loads(run("compare", ref, test, "--json", check=False))["nmse"]
+
+    # The layered models' defaults (two interfaces, no media) leave most of the stack code
+    # unused; this stack has four interfaces, coloured absorbing media, a less dense layer
+    # (total internal reflection on the way up) and a dielectric bottom.
+    STACK = ("layer_count=4", "layer0_eta=1.4", "layer0_r=0.3", "layer0_sigma_a=0.5,2,4",
+             "layer0_depth=0.3", "layer1_eta=0.7", "layer1_r=0.15", "layer2_eta=1.9",
+             "layer2_r=0.5", "layer2_sigma_a=3,1,0.2", "layer2_depth=0.2", "layer3_eta=1.3",
+             "layer3_r=0.6")
+
+    def test_models_on_scenes(self):
+        failures = []
+        t0 = time.time()
+        rows = []
+        runs = [(m, m, ()) for m in self.rendered]
+        runs += [(m + ", 4-layer stack", m, self.STACK) for m in self.rendered if m in self.layered]
+        for row, model, sets in runs:
+            rows.append(row)
+            for scene, path, w, h in SCENES:
+                try:
+                    nmse = self.render_pair(scene, path, w, h, model, sets=sets,
+                                            variant="_stack" if sets else "")
+                except subprocess.CalledProcessError as e:
+                    nmse = None
+                    failures.append("%s on %s: %s" % (row, scene, e.stderr.strip()))
+                self.table[(row, scene)] = nmse
+                if nmse is not None and not nmse < NMSE_MAX:
+                    failures.append("%s on %s: NMSE %.3g" % (row, scene, nmse))
+        for model, sets in VARIANTS:
+            if model not in self.rendered:
+                continue
+            scene, path, w, h = SCENES[0]
+            row = " ".join((model,) + sets)
+            rows.append(row)
+            nmse = self.render_pair(scene, path, w, h, model, sets=sets,
+                                    variant="".join("_" + a for a in sets))
+            self.table[(row, scene)] = nmse
+            if not nmse < NMSE_MAX:
+                failures.append("%s on %s: NMSE %.3g" % (row, scene, nmse))
+        print_table(rows, self.table, time.time() - t0)
+        self.assertEqual(failures, [])
+
+    def test_generic_shader_on_a_box(self):
+        # abrdf_eval.osl, lights as parameters, on the mesh itself (no re-trace): exact
+        # normals on a box; both renderers integrate the pixel over 64 samples, so the
+        # NMSE includes the difference of stratified and random sampling.
+        # The clearcoat's default gloss makes a near-mirror image of the point light, a few
+        # percent of one pixel wide: 64 random against 64 stratified samples of it differ
+        # by sampling alone (NMSE 4e-2 measured), so that lobe is checked at a gloss whose
+        # highlight spans pixels. The exact check of every default is test_models_on_scenes.
+        sets = {"disney_clearcoat": ("clearcoat_gloss=0.3",)}
+        # huang is not rendered here: 64 samples per pixel of its quadrature take the C
+        # renderer 293 s on this box (2 threads). Its twin is checked exactly by
+        # test_models_on_scenes, and the generic shader's hair parameters (eta, melanin,
+        # redness, cuticle_tilt, aspect_ratio, r) by marschner, which reads all of them.
+        skip = {"huang"}
+        failures = []
+        for model in [m for m in self.rendered if m not in skip]:
+            nmse = self.render_pair("box_point", "tests/data/scenes/box_point.scene", 48, 48, model,
+                                    samples=64, mode="generic", c_spp=64,
+                                    sets=sets.get(model, ()))
+            self.table[(model, "box_point (abrdf_eval.osl)")] = nmse
+            if not nmse < NMSE_MAX:
+                failures.append("%s: NMSE %.3g" % (model, nmse))
+        print_table([m for m in self.rendered if m not in skip], self.table, 0,
+                    ["box_point (abrdf_eval.osl)"])
+        self.assertEqual(failures, [])
+
+    def test_closure_mode_renders(self):
+        # abrdf_material.osl with Cycles' own light and path tracing, on the sphere's
+        # Lambert + GGX material, whose lobes map onto exact closures: 64x64 at 64 samples,
+        # as docs/OSL.md (measured 2e-5 there; at 32x32 and 16 samples the silhouette
+        # pixels, where 16 random and 16 stratified samples see different coverage, alone
+        # give 4.5e-4).
+        nmse = self.render_pair("sphere", SCENES[0][1], 64, 64, None, samples=64,
+                                mode="closure", c_spp=64)
+        self.assertLess(nmse, NMSE_MAX)
+
+    def test_closure_mode_layered(self):
+        # The layered models on closures (abrdf_material.osl): approximations, measured in
+        # docs/OSL.md (1.6e-4 Weidlich-Wilkie, 2.5e-3 Belcour at the defaults). Bound: they
+        # return a closure that follows the model (no closure at all gives NMSE 1).
+        bound = 1e-2
+        for model in self.layered:
+            if model in self.rendered:
+                with self.subTest(model=model):
+                    nmse = self.render_pair("sphere", SCENES[0][1], 64, 64, model, samples=64,
+                                            mode="closure", c_spp=64)
+                    sys.stdout.write("\nclosure mode, %s on the sphere: NMSE %.1e\n" % (model, nmse))
+                    self.assertLess(nmse, bound)
+
+    def test_samples_do_not_change_the_image(self):
+        # Every sample of a pixel re-traces the pixel-centre ray: 4 samples = 1 sample.
+        nmse = self.render_pair("sphere", SCENES[0][1], 32, 32, None, samples=4)
+        self.assertLess(nmse, 1e-10)
+
+
+def print_table(models, table, seconds, names=None):
+    names = names or [s[0] for s in SCENES]
+    sys.stdout.write("\nOSL evaluation mode in Cycles vs abrdf render, NMSE (pass < %g):\n" % NMSE_MAX)
+    sys.stdout.write("| model | " + " | ".join(names) + " |\n|---|" + "---|" * len(names) + "\n")
+    for m in models:
+        cells = []
+        for s in names:
+            v = table.get((m, s))
+            cells.append("" if (m, s) not in table else "error" if v is None else v if isinstance(v, str) else "%.1e" % v)
+        sys.stdout.write("| %s | %s |\n" % (m, " | ".join(cells)))
+    if seconds:
+        n = sum(isinstance(table.get((m, c)), float) for m in models for c in names)
+        sys.stdout.write("(%d renders per renderer, %.0f s)\n" % (n, seconds))
+    sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    if not (ABRDF and SRC and WORK):
+        sys.exit(__doc__)
+    os.makedirs(WORK, exist_ok=True)
+    unittest.main(argv=[sys.argv[0]] + sys.argv[4:], verbosity=2)

@@ -1,0 +1,177 @@
+"""The house rules of the source tree, checked (README.md, "Layout"):
+
+  1. no two compiled files depend on each other in a circle: the object files of the library
+     and the tools, linked by the symbols one defines and another uses (nm), have no cycle;
+  2. no header includes itself through others (C headers and the OSL port);
+  3. every OSL header uses only functions and macros that it defines or includes, directly or
+     through what it includes (so none depends on its includer);
+  4. one name per file across the tree (CMakeLists.txt excepted);
+  5. tests link targets: no CMakeLists.txt under tests/ names a source file outside tests/.
+
+usage: check_structure.py SOURCE_DIR OBJECT_FILE...
+"""
+import os
+import re
+import subprocess
+import sys
+
+SRC = sys.argv[1]
+OBJECTS = sys.argv[2:]
+problems = []
+
+
+def cycles(graph):
+    """Strongly connected components with more than one node (Tarjan)."""
+    index, low, stack, on, out = {}, {}, [], set(), []
+    counter = [0]
+
+    def visit(v):
+        index[v] = low[v] = counter[0]
+        counter[0] += 1
+        stack.append(v)
+        on.add(v)
+        for w in graph.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                out.append(sorted(comp))
+
+    sys.setrecursionlimit(10000)
+    for v in list(graph):
+        if v not in index:
+            visit(v)
+    return out
+
+
+def source_name(obj):
+    """tools/cli/CMakeFiles/abrdf_cli.dir/cmd_eval.c.o -> cmd_eval.c"""
+    base = os.path.basename(obj)
+    return base[:-2] if base.endswith(".o") else base
+
+
+# ---- 1. object files --------------------------------------------------------------------
+defined, used = {}, {}
+for obj in OBJECTS:
+    name = source_name(obj)
+    out = subprocess.run(["nm", obj], capture_output=True, text=True, check=True).stdout
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) == 2 and parts[0] == "U":
+            used.setdefault(name, set()).add(parts[1])
+        elif len(parts) == 3 and parts[1] in "TDBR":
+            defined.setdefault(parts[2], set()).add(name)
+graph = {}
+for name, syms in used.items():
+    for s in syms:
+        for d in defined.get(s, ()):
+            if d != name:
+                graph.setdefault(name, set()).add(d)
+for comp in cycles(graph):
+    problems.append("object files depend on each other in a circle: " + " <-> ".join(comp))
+if len(used) < 10:
+    problems.append("only %d object files given: the check would prove nothing" % len(used))
+
+
+# ---- 2. and 3. headers ----------------------------------------------------------------------
+def tracked():
+    out = subprocess.run(["git", "-C", SRC, "ls-files"], capture_output=True, text=True)
+    if out.returncode == 0 and out.stdout.strip():
+        return out.stdout.split()
+    files = []
+    for root, dirs, names in os.walk(SRC):
+        dirs[:] = [d for d in dirs if not d.startswith(".") and not d.startswith("build")]
+        files += [os.path.relpath(os.path.join(root, n), SRC) for n in names]
+    return files
+
+
+files = tracked()
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+include_graph = {}
+for f in files:
+    if f.endswith((".h", ".c", ".cpp", ".osl")) and not f.startswith("tests/"):
+        with open(os.path.join(SRC, f), encoding="utf-8", errors="replace") as fh:
+            text = fh.read()
+        d = os.path.dirname(f)
+        for inc in INCLUDE.findall(text):
+            target = os.path.normpath(os.path.join(d, inc))
+            if target in files:
+                include_graph.setdefault(f, set()).add(target)
+for comp in cycles(include_graph):
+    problems.append("headers include each other in a circle: " + " <-> ".join(comp))
+
+osl = [f for f in files if f.startswith("osl/") and f.endswith((".h", ".osl"))]
+BUILTIN_CALL = re.compile(r"\b(abrdf_\w+|ABRDF_\w+)\b")
+FUNC_DEF = re.compile(r"^(?:\w+\s+)+(abrdf_\w+)\s*\(", re.M)
+STRUCT_DEF = re.compile(r"^struct\s+(abrdf_\w+)", re.M)
+MACRO_DEF = re.compile(r"^\s*#\s*define\s+(ABRDF_\w+)", re.M)
+texts, defs = {}, {}
+for f in osl:
+    with open(os.path.join(SRC, f), encoding="utf-8", errors="replace") as fh:
+        text = fh.read()
+    # comments and strings do not use anything
+    text = re.sub(r"//[^\n]*", "", text)
+    text = re.sub(r'"(?:\\.|[^"\\])*"', '""', text)
+    texts[f] = text
+    defs[f] = set(FUNC_DEF.findall(text)) | set(STRUCT_DEF.findall(text)) | set(MACRO_DEF.findall(text))
+owner = {}
+for f, names in defs.items():
+    for n in names:
+        owner.setdefault(n, f)
+
+
+def reachable(f, seen=None):
+    seen = seen if seen is not None else set()
+    if f in seen:
+        return seen
+    seen.add(f)
+    for g in include_graph.get(f, ()):
+        reachable(g, seen)
+    return seen
+
+
+for f in osl:
+    visible = set()
+    for g in reachable(f):
+        visible |= defs.get(g, set())
+    missing = sorted({n for n in BUILTIN_CALL.findall(texts[f])
+                      if n in owner and n not in visible})
+    if missing:
+        problems.append("%s uses %s without including %s" %
+                        (f, ", ".join(missing[:4]), ", ".join(sorted({owner[n] for n in missing}))))
+
+# ---- 4. one name per file -------------------------------------------------------------
+seen = {}
+for f in files:
+    base = os.path.basename(f)
+    if base in ("CMakeLists.txt",):
+        continue
+    if base in seen:
+        problems.append("two files named %s: %s and %s" % (base, seen[base], f))
+    seen[base] = f
+
+# ---- 5. tests link targets ------------------------------------------------------------
+TARGET_CALL = re.compile(r"\b(?:add_executable|add_library|abrdf_check_test|target_sources)\s*\(([^)]*)\)")
+SOURCE_REF = re.compile(r"\$\{PROJECT_SOURCE_DIR\}/(?!tests/)[\w/.-]+\.(?:c|cpp)\b")
+for f in files:
+    if f.startswith("tests/") and os.path.basename(f) == "CMakeLists.txt":
+        with open(os.path.join(SRC, f), encoding="utf-8") as fh:
+            for call in TARGET_CALL.finditer(fh.read()):
+                for m in SOURCE_REF.finditer(call.group(1)):
+                    problems.append("%s compiles another target's source %s" % (f, m.group(0)))
+
+for p in problems:
+    print("check_structure: " + p)
+print("check_structure: %d object files, %d headers, %d OSL files, %d tracked files: %s" %
+      (len(used), len(include_graph), len(osl), len(files), "FAIL" if problems else "ok"))
+sys.exit(1 if problems else 0)

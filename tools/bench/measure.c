@@ -1,0 +1,213 @@
+/* measure.c - timing of the float batch path (measure.h). Warm cache: the direction and
+ * output arrays are small (4096 pairs = 144 KiB) and every timed call is preceded by an
+ * untimed one. The clock is the thread's CPU-time clock, so time spent descheduled on a
+ * busy machine is not counted; the median of the repetitions resists what remains. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cost_file.h"
+#include "measure.h"
+
+/* Pairs per batch for models that integrate inside eval (hair, layered): enough for a
+ * stable mean, small enough to keep a calibration within seconds. */
+#define INTEGRATING_PAIRS 256
+
+struct measure_set {
+    size_t pairs;
+    float *buf;  /* 9 arrays of `pairs` floats: wi xyz, wo xyz, f rgb */
+    double *dir; /* the same directions in double, interleaved wi[3] wo[3] per pair */
+};
+
+void measure_defaults(measure_opts *o, int quick)
+{
+    o->reps = quick ? 3 : 7;
+    o->pairs = 4096;
+    o->rep_seconds = quick ? 0.005 : 0.02;
+    o->integrating_pairs = INTEGRATING_PAIRS;
+}
+
+static double now_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* xorshift64*: deterministic, good enough for directions */
+static double rnd(uint64_t *s)
+{
+    *s ^= *s >> 12;
+    *s ^= *s << 25;
+    *s ^= *s >> 27;
+    return (double)((*s * 0x2545F4914F6CDD1DULL) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/* Uniform on the upper hemisphere, kept off the horizon so every pair is front-facing. */
+static void hemisphere(uint64_t *s, float *x, float *y, float *z)
+{
+    double cz = 0.01 + 0.99 * rnd(s), phi = 6.283185307179586 * rnd(s);
+    double r = sqrt(1.0 - cz * cz);
+    *x = (float)(r * cos(phi));
+    *y = (float)(r * sin(phi));
+    *z = (float)cz;
+}
+
+measure_set *measure_set_new(size_t pairs)
+{
+    measure_set *s = malloc(sizeof *s);
+    if (!s) return NULL;
+    s->pairs = pairs;
+    s->buf = malloc(9 * pairs * sizeof(float));
+    s->dir = malloc(6 * pairs * sizeof(double));
+    if (!s->buf || !s->dir) {
+        measure_set_free(s);
+        return NULL;
+    }
+    uint64_t seed = 0x9E3779B97F4A7C15ULL;
+    float *b = s->buf;
+    for (size_t i = 0; i < pairs; ++i) {
+        hemisphere(&seed, &b[i], &b[pairs + i], &b[2 * pairs + i]);
+        hemisphere(&seed, &b[3 * pairs + i], &b[4 * pairs + i], &b[5 * pairs + i]);
+    }
+    memset(b + 6 * pairs, 0, 3 * pairs * sizeof(float));
+    for (size_t i = 0; i < pairs; ++i)
+        for (int c = 0; c < 6; ++c) s->dir[6 * i + (size_t)c] = b[(size_t)c * pairs + i];
+    return s;
+}
+
+void measure_set_free(measure_set *s)
+{
+    if (!s) return;
+    free(s->buf);
+    free(s->dir);
+    free(s);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Sink for the unit loop's results, so the compiler cannot drop the work. */
+static volatile float measure_sink;
+
+typedef int (*batch_fn)(void *ctx, const abrdf_batch *b);
+
+typedef struct model_ctx {
+    abrdf_model model;
+    abrdf_params params;
+    const double *dir; /* double path: interleaved directions (measure_set.dir) */
+} model_ctx;
+
+static int run_model(void *ctx, const abrdf_batch *b)
+{
+    const model_ctx *c = ctx;
+    return abrdf_eval_batch(c->model, &c->params, b);
+}
+
+/* The double scalar reference path, one abrdf_eval_local call per pair. */
+static int run_model_double(void *ctx, const abrdf_batch *b)
+{
+    const model_ctx *c = ctx;
+    double f[3], acc = 0.0;
+    for (size_t i = 0; i < b->count; ++i) {
+        if (abrdf_eval_local(c->model, &c->params, c->dir + 6 * i, c->dir + 6 * i + 3, f) != ABRDF_OK)
+            return -1;
+        acc += f[0];
+    }
+    measure_sink = (float)acc;
+    return 0;
+}
+
+static int run_unit(void *ctx, const abrdf_batch *b)
+{
+    float n = *(const float *)ctx;
+    for (size_t i = 0; i < b->count; ++i) {
+        float hx = b->wi_x[i] + b->wo_x[i], hy = b->wi_y[i] + b->wo_y[i], hz = b->wi_z[i] + b->wo_z[i];
+        float c = hz / sqrtf(hx * hx + hy * hy + hz * hz);
+        b->f_r[i] = c > 0.0f ? powf(c, n) : 0.0f;
+    }
+    measure_sink = b->f_r[b->count / 2];
+    return 0;
+}
+
+/* Median over reps of ns/eval of fn on the first `pairs` pairs of s. */
+static double time_batches(measure_set *s, size_t pairs, batch_fn fn, void *ctx,
+                           const measure_opts *o)
+{
+    size_t P = s->pairs;
+    float *b = s->buf;
+    abrdf_batch batch = {pairs, b, b + P, b + 2 * P, b + 3 * P, b + 4 * P, b + 5 * P,
+                         b + 6 * P, b + 7 * P, b + 8 * P};
+    if (fn(ctx, &batch) != 0) return -1.0; /* warm-up, and the parameters are valid */
+    double t0 = now_seconds();
+    fn(ctx, &batch);
+    double one = now_seconds() - t0;
+    long calls = one > 0.0 ? (long)ceil(o->rep_seconds / one) : 1000;
+    if (calls < 1) calls = 1;
+    double *ns = malloc(sizeof(double) * (size_t)o->reps);
+    if (!ns) return -1.0;
+    for (int r = 0; r < o->reps; ++r) {
+        double t = now_seconds();
+        for (long k = 0; k < calls; ++k) fn(ctx, &batch);
+        ns[r] = 1e9 * (now_seconds() - t) / ((double)calls * (double)pairs);
+    }
+    qsort(ns, (size_t)o->reps, sizeof(double), cmp_double);
+    double med = (o->reps % 2) ? ns[o->reps / 2] : 0.5 * (ns[o->reps / 2 - 1] + ns[o->reps / 2]);
+    free(ns);
+    return med;
+}
+
+double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o)
+{
+    abrdf_params p;
+    if (abrdf_params_init(model, &p) != ABRDF_OK) return -1.0;
+    return measure_model_params_ns(s, model, &p, 0, o);
+}
+
+double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
+                               int double_path, const measure_opts *o)
+{
+    const abrdf_model_info *m = abrdf_model_get(model);
+    if (!m) return -1.0;
+    model_ctx ctx;
+    ctx.model = model;
+    ctx.params = *p;
+    ctx.dir = s->dir;
+    size_t pairs = s->pairs;
+    if ((m->needs & ABRDF_NEEDS_INTEGRATION) && pairs > o->integrating_pairs) pairs = o->integrating_pairs;
+    return time_batches(s, pairs, double_path ? run_model_double : run_model, &ctx, o);
+}
+
+double measure_unit_ns(measure_set *s, const measure_opts *o)
+{
+    float n = 100.0f;
+    return time_batches(s, s->pairs, run_unit, &n, o);
+}
+
+int measure_models(const measure_opts *o, const abrdf_model *models, int count,
+                   abrdf_costs *out, double *unit_ns, void (*progress)(const char *name))
+{
+    for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) out->cost[i] = -1.0;
+    out->unit = COSTS_UNIT;
+    measure_set *s = measure_set_new(o->pairs);
+    if (!s) return -1;
+    if (progress) progress(COSTS_UNIT_NAME);
+    measure_unit_ns(s, o); /* untimed warm-up: clock frequency, page faults, caches */
+    *unit_ns = measure_unit_ns(s, o);
+    int n = models ? count : ABRDF_MODEL_COUNT;
+    for (int i = 0; i < n; ++i) {
+        abrdf_model id = models ? models[i] : (abrdf_model)i;
+        const abrdf_model_info *m = abrdf_model_get(id);
+        if (!m) continue;
+        if (progress) progress(m->name);
+        out->cost[id] = measure_model_ns(s, id, o);
+    }
+    measure_set_free(s);
+    return 0;
+}

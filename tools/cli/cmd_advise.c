@@ -1,0 +1,472 @@
+/* cmd_advise.c - `abrdf advise`: the paper's flowchart (abrdf_select) for a named material of
+ * the table (data/materials.csv, plus --materials files) or explicit values; prints the
+ * chosen models, their parameters, the predicted error and cost, and why (the trace). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "cost_file.h"
+#include "data_path.h"
+#include "materials.h"
+
+#define CMD "advise"
+#define MAX_FILES 8
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+        "usage: abrdf advise [MATERIAL] [options]\n"
+        "       abrdf advise --list [--json] [--materials FILE]...\n"
+        "       abrdf advise --rules [--json]\n\n"
+        "Chooses the diffuse and specular models for a material by the paper's flowchart\n"
+        "(Zavalniuk & Romanyuk 2024, Fig. 2) and explains every decision (docs/SELECTION.md).\n\n"
+        "  MATERIAL               a name from the material table (abrdf advise --list)\n"
+        "  --goal G               performance | photoreal (default photoreal)\n"
+        "  --max-rel-error PCT    performance: max relative error in %% (default %g; 'none')\n"
+        "  --max-abs-error X      performance: max absolute error (default %g; 'none')\n"
+        "  --n N                  Blinn-Phong exponent, [0, 1e6]\n"
+        "  --r R                  perceptual roughness (the paper's alpha), [0, 1]\n"
+        "  --kd V|R,G,B --ks V|R,G,B --f0 V|R,G,B   colours, [0, 1]\n"
+        "  --eta E                index of refraction, [1, 4] (sets f0 = ((E-1)/(E+1))^2)\n"
+        "  --anisotropy A         [0, 1]\n"
+        "  --melanin M --redness R   hair pigment, [0, 1]\n"
+        "  --type T               general, cloth_rough, cloth_shiny, hair, layered_plastic,\n"
+        "                         layered_plate, layered_metal\n"
+        "  --materials FILE       extra material file (same format; overrides by name)\n"
+        "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table 4)\n"
+        "  --list                 list the materials\n"
+        "  --rules                the flowchart's thresholds and model choices (abrdf_select_rules)\n"
+        "  --json                 machine-readable output\n",
+        abrdf_select_rules_get()->default_max_rel_pct, abrdf_select_rules_get()->default_max_abs);
+}
+
+/* ---- small printers ------------------------------------------------------------------- */
+
+static void json_num(double v)
+{
+    if (isfinite(v)) printf("%.10g", v);
+    else printf("null");
+}
+
+/* -1 marks "not applicable" in abrdf_selection; JSON says null. */
+static void json_opt(double v)
+{
+    if (v < 0.0) printf("null");
+    else json_num(v);
+}
+
+static void json_rgb(const double v[3])
+{
+    printf("[%.10g, %.10g, %.10g]", v[0], v[1], v[2]);
+}
+
+static void json_name(const char *s)
+{
+    if (s) cli_json_string(stdout, s);
+    else printf("null");
+}
+
+static const char *model_name(abrdf_model m)
+{
+    return m == ABRDF_MODEL_COUNT ? NULL : abrdf_select_model_name(m);
+}
+
+static const char *const step_names[ABRDF_STEP_KIND_COUNT] = {
+    "input", "goal", "diffuse", "candidate", "cheapest", "fallback", "surface", "roughness",
+    "anisotropy", "exponent", "special", "available"};
+
+/* ---- the material table --------------------------------------------------------------- */
+
+static int load_tables(mat_table *t, const char **files, int nfiles)
+{
+    char path[1024], err[MAT_ERR_MAX];
+    if (data_path_find("materials.csv", path, sizeof path) != 0)
+        return cli_fail(CMD, "the material table %s is missing (set ABRDF_DATA_DIR)", path);
+    if (mat_table_load(t, path, err, sizeof err)) return cli_fail(CMD, "%s", err);
+    for (int i = 0; i < nfiles; ++i)
+        if (mat_table_load(t, files[i], err, sizeof err)) return cli_fail(CMD, "%s", err);
+    return 0;
+}
+
+static void list_materials(const mat_table *t, int json)
+{
+    if (json) {
+        printf("{\"materials\": [");
+        for (int i = 0; i < t->count; ++i) {
+            const mat_entry *e = &t->items[i];
+            printf("%s\n  {\"name\": ", i ? "," : "");
+            cli_json_string(stdout, e->name);
+            printf(", \"type\": \"%s\", \"n\": ", abrdf_surface_name(e->m.type));
+            json_opt(e->m.n);
+            printf(", \"r\": ");
+            json_opt(e->m.r);
+            printf(", \"kd\": ");
+            json_rgb(e->m.kd);
+            printf(", \"ks\": ");
+            json_rgb(e->m.ks);
+            printf(", \"f0\": ");
+            json_rgb(e->m.f0);
+            printf(", \"eta\": ");
+            json_opt(e->m.eta > 0.0 ? e->m.eta : -1.0);
+            printf(", \"anisotropy\": %.10g, \"layers\": %d, \"source\": ", e->m.anisotropy,
+                   e->m.layer_count);
+            cli_json_string(stdout, e->source);
+            printf("}");
+        }
+        printf("\n]}\n");
+        return;
+    }
+    printf("%-20s %-16s %6s %8s  %s\n", "material", "type", "r", "n", "source");
+    for (int i = 0; i < t->count; ++i) {
+        const mat_entry *e = &t->items[i];
+        char r[16] = "-", n[16] = "-";
+        if (e->m.r >= 0.0) snprintf(r, sizeof r, "%g", e->m.r);
+        if (e->m.n >= 0.0) snprintf(n, sizeof n, "%g", e->m.n);
+        printf("%-20s %-16s %6s %8s  %.70s%s\n", e->name, abrdf_surface_name(e->m.type), r, n,
+               e->source, strlen(e->source) > 70 ? "..." : "");
+    }
+    printf("%d materials\n", t->count);
+}
+
+/* The rules table, for people and for the ports' generators and tests. */
+static void print_rules(int json)
+{
+    const abrdf_select_rules *R = abrdf_select_rules_get();
+    if (!json) {
+        printf("smooth if r <= %g; anisotropic lobe if anisotropy > %g\n", R->smooth_r_max, R->aniso_min);
+        printf("default tolerances: rel %g%%, abs %g; n derived from r capped at %g, f_2e's n "
+               "clamped to [%g, %g]\n", R->default_max_rel_pct, R->default_max_abs, R->n_max,
+               R->n_min, R->n_max);
+        printf("performance: %s + cheapest of", abrdf_select_model_name(R->perf_diffuse));
+        for (int i = 0; i < R->candidate_count; ++i) printf(" %s", abrdf_select_model_name(R->candidates[i]));
+        printf("; none passes: %s\n", abrdf_select_model_name(R->perf_fallback));
+        printf("photoreal general: rough %s + %s (anisotropic %s); smooth %s + %s\n",
+               abrdf_select_model_name(R->rough_diffuse), abrdf_select_model_name(R->rough_specular),
+               abrdf_select_model_name(R->rough_specular_aniso), abrdf_select_model_name(R->smooth_diffuse),
+               abrdf_select_model_name(R->smooth_specular));
+        for (int i = 1; i < ABRDF_SURFACE_COUNT; ++i)
+            printf("photoreal %s: %s\n", abrdf_surface_name((abrdf_surface)i),
+                   abrdf_select_model_name(R->special[i]));
+        return;
+    }
+    printf("{\"smooth_r_max\": %.17g, \"aniso_min\": %.17g, \"default_max_rel_pct\": %.17g, "
+           "\"default_max_abs\": %.17g, \"n_min\": %.17g, \"n_max\": %.17g,\n",
+           R->smooth_r_max, R->aniso_min, R->default_max_rel_pct, R->default_max_abs, R->n_min, R->n_max);
+    printf(" \"perf_diffuse\": \"%s\", \"perf_fallback\": \"%s\", \"candidates\": [",
+           abrdf_select_model_name(R->perf_diffuse), abrdf_select_model_name(R->perf_fallback));
+    for (int i = 0; i < R->candidate_count; ++i)
+        printf("%s\"%s\"", i ? ", " : "", abrdf_select_model_name(R->candidates[i]));
+    printf("],\n \"rough_diffuse\": \"%s\", \"rough_specular\": \"%s\", \"rough_specular_aniso\": \"%s\", "
+           "\"smooth_diffuse\": \"%s\", \"smooth_specular\": \"%s\",\n \"special\": {",
+           abrdf_select_model_name(R->rough_diffuse), abrdf_select_model_name(R->rough_specular),
+           abrdf_select_model_name(R->rough_specular_aniso), abrdf_select_model_name(R->smooth_diffuse),
+           abrdf_select_model_name(R->smooth_specular));
+    for (int i = 1; i < ABRDF_SURFACE_COUNT; ++i) {
+        printf("%s\"%s\": {\"model\": \"%s\", \"reason\": ", i > 1 ? ", " : "",
+               abrdf_surface_name((abrdf_surface)i), abrdf_select_model_name(R->special[i]));
+        cli_json_string(stdout, R->special_reason[i]);
+        printf("}");
+    }
+    printf("},\n \"nmse_class_max\": [%.17g, %.17g, %.17g], \"table6_f2e\": [",
+           R->nmse_class_max[0], R->nmse_class_max[1], R->nmse_class_max[2]);
+    for (int i = 0; i < R->nmse_rows; ++i)
+        printf("%s[%.17g, %.17g]", i ? ", " : "", R->nmse_alpha_g[i], R->nmse_f2e[i]);
+    printf("]}\n");
+}
+
+/* ---- option values -------------------------------------------------------------------- */
+
+static int range_value(const char *opt, const char *s, double lo, double hi, double *out)
+{
+    if (!s) return cli_fail(CMD, "%s needs a value", opt);
+    if (!cli_parse_double(s, out))
+        return cli_fail(CMD, "%s: '%s' is not a finite number", opt, s);
+    if (!(*out >= lo && *out <= hi))
+        return cli_fail(CMD, "%s: %s is outside [%g, %g]", opt, s, lo, hi);
+    return 0;
+}
+
+static int color_value(const char *opt, const char *s, double v[3])
+{
+    if (!s) return cli_fail(CMD, "%s needs V or R,G,B", opt);
+    if (strchr(s, ',')) {
+        if (!cli_parse_vec3(s, v)) return cli_fail(CMD, "%s: '%s' is not R,G,B (finite numbers)", opt, s);
+    } else if (cli_parse_double(s, &v[0])) {
+        v[1] = v[2] = v[0];
+    } else {
+        return cli_fail(CMD, "%s: '%s' is not a finite number or R,G,B", opt, s);
+    }
+    for (int c = 0; c < 3; ++c)
+        if (!(v[c] >= 0.0 && v[c] <= 1.0)) return cli_fail(CMD, "%s: %s is outside [0, 1]", opt, s);
+    return 0;
+}
+
+static int limit_value(const char *opt, const char *s, double *out)
+{
+    if (s && !strcmp(s, "none")) {
+        *out = INFINITY;
+        return 0;
+    }
+    return range_value(opt, s, 0.0, 1e300, out);
+}
+
+/* ---- output --------------------------------------------------------------------------- */
+
+static void print_human(const abrdf_selection *s, const mat_entry *e)
+{
+    const abrdf_params *p = &s->params;
+    if (e) printf("material  %s (%s; %s:%d)\n", e->name, abrdf_surface_name(s->type), e->file, e->line);
+    else printf("material  explicit values (%s)\n", abrdf_surface_name(s->type));
+    printf("goal      %s\n", abrdf_goal_name(s->goal));
+    printf("diffuse   %s\n", s->diffuse == ABRDF_MODEL_COUNT ? "none (part of the specular model)"
+                                                             : abrdf_select_model_name(s->diffuse));
+    printf("specular  %s%s\n", abrdf_select_model_name(s->specular),
+           s->available ? "" : "  (not built into this libabrdf yet)");
+    printf("params    kd %g,%g,%g  ks %g,%g,%g  f0 %.4g,%.4g,%.4g  n %g  r %g", p->kd[0], p->kd[1],
+           p->kd[2], p->ks[0], p->ks[1], p->ks[2], p->f0[0], p->f0[1], p->f0[2], p->n, p->r);
+    if (p->anisotropic > 0.0) printf("  anisotropic %g", p->anisotropic);
+    if (s->type == ABRDF_SURFACE_HAIR)
+        printf("  eta %g  melanin %g  redness %g", p->eta, p->melanin, p->redness);
+    printf("\n");
+    if (s->type >= ABRDF_SURFACE_LAYERED_PLASTIC)
+        for (int i = 0; i < p->layer_count; ++i)
+            printf("layer %d   eta %.4g  kappa %.4g  r %g  depth %g  sigma_a %g,%g,%g\n", i,
+                   p->layers[i].eta, p->layers[i].kappa, p->layers[i].r, p->layers[i].depth,
+                   p->layers[i].sigma_a[0], p->layers[i].sigma_a[1], p->layers[i].sigma_a[2]);
+    if (s->err_rel_pct >= 0.0)
+        printf("error     max relative %.3g%%, max absolute %.3g (against Blinn-Phong)\n",
+               fabs(s->err_rel_pct) < 1e-9 ? 0.0 : s->err_rel_pct,
+               fabs(s->err_abs) < 1e-9 ? 0.0 : s->err_abs);
+    else if (s->err_nmse >= 0.0)
+        printf("error     NMSE %g against the GGX lobe (paper, Table 6)\n", s->err_nmse);
+    else
+        printf("error     no prediction (the model is the reference for its surface class)\n");
+    char unit[32] = "";
+    sscanf(s->cost_unit ? s->cost_unit : "units", "%31s", unit);
+    printf("cost      %s ", abrdf_select_model_name(s->specular));
+    if (s->cost_specular >= 0.0) printf("%g %s", s->cost_specular, unit);
+    else printf("not in the cost table");
+    if (s->diffuse != ABRDF_MODEL_COUNT) {
+        printf("; %s ", abrdf_select_model_name(s->diffuse));
+        if (s->cost_diffuse >= 0.0) printf("%g %s", s->cost_diffuse, unit);
+        else printf("not in the cost table");
+    }
+    if (s->cost_total >= 0.0) printf("; total %g %s", s->cost_total, unit);
+    printf("  [%s]\n", s->cost_unit ? s->cost_unit : "");
+    printf("why:\n");
+    for (int i = 0; i < s->step_count; ++i) printf("  %2d. %s\n", i + 1, s->steps[i].text);
+    if (e) printf("source: %s\n", e->source);
+}
+
+static void print_json(const abrdf_selection *s, const mat_entry *e, const abrdf_tolerance *tol)
+{
+    const abrdf_params *p = &s->params;
+    printf("{\"material\": ");
+    json_name(e ? e->name : NULL);
+    printf(", \"source\": ");
+    json_name(e ? e->source : NULL);
+    printf(", \"goal\": \"%s\", \"type\": \"%s\", \"diffuse\": ", abrdf_goal_name(s->goal),
+           abrdf_surface_name(s->type));
+    json_name(model_name(s->diffuse));
+    printf(", \"specular\": ");
+    json_name(model_name(s->specular));
+    printf(", \"available\": %s,\n \"tolerance\": {\"max_rel_pct\": ", s->available ? "true" : "false");
+    json_num(tol->max_rel_pct);
+    printf(", \"max_abs\": ");
+    json_num(tol->max_abs);
+    printf("},\n \"params\": {\"kd\": ");
+    json_rgb(p->kd);
+    printf(", \"ks\": ");
+    json_rgb(p->ks);
+    printf(", \"f0\": ");
+    json_rgb(p->f0);
+    printf(", \"n\": %.10g, \"r\": %.10g, \"anisotropic\": %.10g, \"eta\": %.10g, \"melanin\": %.10g, "
+           "\"redness\": %.10g, \"layers\": [", p->n, p->r, p->anisotropic, p->eta, p->melanin, p->redness);
+    for (int i = 0; i < p->layer_count; ++i) {
+        printf("%s{\"eta\": %.10g, \"kappa\": %.10g, \"r\": %.10g, \"depth\": %.10g, \"sigma_a\": ",
+               i ? ", " : "", p->layers[i].eta, p->layers[i].kappa, p->layers[i].r, p->layers[i].depth);
+        json_rgb(p->layers[i].sigma_a);
+        printf("}");
+    }
+    printf("]},\n \"error\": {\"rel_pct\": ");
+    json_opt(s->err_rel_pct);
+    printf(", \"abs\": ");
+    json_opt(s->err_abs);
+    printf(", \"nmse\": ");
+    json_opt(s->err_nmse);
+    printf("},\n \"cost\": {\"diffuse\": ");
+    json_opt(s->cost_diffuse);
+    printf(", \"specular\": ");
+    json_opt(s->cost_specular);
+    printf(", \"total\": ");
+    json_opt(s->cost_total);
+    printf(", \"unit\": ");
+    json_name(s->cost_unit);
+    printf("},\n \"trace\": [");
+    for (int i = 0; i < s->step_count; ++i) {
+        const abrdf_select_step *t = &s->steps[i];
+        printf("%s\n  {\"step\": \"%s\", \"model\": ", i ? "," : "", step_names[t->kind]);
+        json_name(model_name(t->model));
+        printf(", \"value\": ");
+        json_opt(t->value);
+        printf(", \"threshold\": ");
+        if (isinf(t->threshold)) printf("null");
+        else json_opt(t->threshold);
+        printf(", \"value2\": ");
+        json_opt(t->value2);
+        printf(", \"threshold2\": ");
+        if (isinf(t->threshold2)) printf("null");
+        else json_opt(t->threshold2);
+        printf(", \"cost\": ");
+        json_opt(t->cost);
+        printf(", \"passed\": %s, \"text\": ", t->passed ? "true" : "false");
+        cli_json_string(stdout, t->text);
+        printf("}");
+    }
+    printf("\n]}\n");
+}
+
+/* ---- the command ---------------------------------------------------------------------- */
+
+int cmd_advise(int argc, char **argv)
+{
+    const char *name = NULL, *files[MAX_FILES], *costs_file = NULL;
+    int nfiles = 0, list = 0, json = 0, rules = 0;
+    abrdf_goal goal = ABRDF_GOAL_PHOTOREAL;
+    abrdf_tolerance tol = {abrdf_select_rules_get()->default_max_rel_pct,
+                           abrdf_select_rules_get()->default_max_abs};
+    /* Overrides, applied after the table lookup. */
+    double n = 0, r = 0, kd[3], ks[3], f0[3], eta = 0, aniso = 0, mel = 0, red = 0;
+    int has_n = 0, has_r = 0, has_kd = 0, has_ks = 0, has_f0 = 0, has_eta = 0, has_aniso = 0,
+        has_mel = 0, has_red = 0, has_type = 0;
+    abrdf_surface type = ABRDF_SURFACE_GENERAL;
+
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int st = 0, takes = 1;
+        if (cli_is_help(a)) {
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(a, "--list")) {
+            list = 1, takes = 0;
+        } else if (!strcmp(a, "--rules")) {
+            rules = 1, takes = 0;
+        } else if (!strcmp(a, "--json")) {
+            json = 1, takes = 0;
+        } else if (!strcmp(a, "--goal")) {
+            if (!v || abrdf_goal_find(v, &goal) != ABRDF_OK)
+                return cli_fail(CMD, "--goal needs performance or photoreal, got '%s'", v ? v : "");
+        } else if (!strcmp(a, "--max-rel-error")) {
+            st = limit_value(a, v, &tol.max_rel_pct);
+        } else if (!strcmp(a, "--max-abs-error")) {
+            st = limit_value(a, v, &tol.max_abs);
+        } else if (!strcmp(a, "--n")) {
+            st = range_value(a, v, 0.0, 1e6, &n), has_n = 1;
+        } else if (!strcmp(a, "--r")) {
+            st = range_value(a, v, 0.0, 1.0, &r), has_r = 1;
+        } else if (!strcmp(a, "--kd")) {
+            st = color_value(a, v, kd), has_kd = 1;
+        } else if (!strcmp(a, "--ks")) {
+            st = color_value(a, v, ks), has_ks = 1;
+        } else if (!strcmp(a, "--f0")) {
+            st = color_value(a, v, f0), has_f0 = 1;
+        } else if (!strcmp(a, "--eta")) {
+            st = range_value(a, v, 1.0, 4.0, &eta), has_eta = 1;
+        } else if (!strcmp(a, "--anisotropy")) {
+            st = range_value(a, v, 0.0, 1.0, &aniso), has_aniso = 1;
+        } else if (!strcmp(a, "--melanin")) {
+            st = range_value(a, v, 0.0, 1.0, &mel), has_mel = 1;
+        } else if (!strcmp(a, "--redness")) {
+            st = range_value(a, v, 0.0, 1.0, &red), has_red = 1;
+        } else if (!strcmp(a, "--type")) {
+            if (!v || abrdf_surface_find(v, &type) != ABRDF_OK)
+                return cli_fail(CMD, "--type needs one of general, cloth_rough, cloth_shiny, hair, "
+                                "layered_plastic, layered_plate, layered_metal; got '%s'", v ? v : "");
+            has_type = 1;
+        } else if (!strcmp(a, "--materials")) {
+            if (!v) return cli_fail(CMD, "--materials needs a file");
+            if (nfiles == MAX_FILES) return cli_fail(CMD, "at most %d --materials files", MAX_FILES);
+            files[nfiles++] = v;
+        } else if (!strcmp(a, "--costs")) {
+            if (!v) return cli_fail(CMD, "--costs needs a file (abrdf calibrate writes one)");
+            costs_file = v;
+        } else if (a[0] == '-' && a[1] == '-') {
+            return cli_fail(CMD, "unknown option '%s' (abrdf advise --help)", a);
+        } else {
+            if (name) return cli_fail(CMD, "one material at a time ('%s' and '%s')", name, a);
+            name = a, takes = 0;
+        }
+        if (st) return st;
+        i += takes;
+    }
+
+    if (rules) {
+        print_rules(json);
+        return 0;
+    }
+    mat_table table = {NULL, 0, 0};
+    int rc = load_tables(&table, files, nfiles);
+    if (rc) {
+        mat_table_free(&table);
+        return rc;
+    }
+    if (list) {
+        list_materials(&table, json);
+        mat_table_free(&table);
+        return 0;
+    }
+
+    abrdf_material m;
+    const mat_entry *e = NULL;
+    if (name) {
+        e = mat_table_find(&table, name);
+        if (!e) {
+            const char *near[5];
+            int k = mat_table_nearest(&table, name, near, 5);
+            char hint[256] = "";
+            for (int i = 0; i < k; ++i) strcat(strcat(hint, i ? ", " : ""), near[i]);
+            rc = k ? cli_fail(CMD, "unknown material '%s'; did you mean: %s? (abrdf advise --list)", name, hint)
+                   : cli_fail(CMD, "unknown material '%s'; abrdf advise --list shows the %d known ones",
+                              name, table.count);
+            mat_table_free(&table);
+            return rc;
+        }
+        m = e->m;
+    } else {
+        abrdf_material_init(&m);
+        if (!has_n && !has_r) {
+            mat_table_free(&table);
+            return cli_fail(CMD, "give a MATERIAL name or at least --n or --r (abrdf advise --help)");
+        }
+    }
+    if (has_n) m.n = n;
+    if (has_r) m.r = r;
+    if (has_kd) memcpy(m.kd, kd, sizeof kd);
+    if (has_ks) memcpy(m.ks, ks, sizeof ks);
+    if (has_f0) memcpy(m.f0, f0, sizeof f0), m.eta = -1.0;
+    if (has_eta) m.eta = eta;
+    if (has_aniso) m.anisotropy = aniso;
+    if (has_mel) m.melanin = mel;
+    if (has_red) m.redness = red;
+    if (has_type) m.type = type;
+
+    abrdf_costs costs;
+    if (costs_file) {
+        char err[512];
+        if (costs_load(costs_file, &costs, NULL, err, sizeof err)) {
+            mat_table_free(&table);
+            return cli_fail(CMD, "%s", err);
+        }
+    }
+    abrdf_selection sel;
+    if (abrdf_select(&m, goal, &tol, costs_file ? &costs : NULL, &sel) != ABRDF_OK) {
+        rc = cli_fail(CMD, "%s", sel.message);
+    } else if (json) {
+        print_json(&sel, e, &tol);
+    } else {
+        print_human(&sel, e);
+    }
+    mat_table_free(&table);
+    return rc;
+}

@@ -1,0 +1,36 @@
+/* cli_args.h - what every `abrdf` subcommand and tool shares: argument parsing with one-line
+ * errors (exit status 2), model and parameter lookup with suggestions, JSON string output. */
+#ifndef ABRDF_CLI_ARGS_H
+#define ABRDF_CLI_ARGS_H
+
+#include <stdio.h>
+#include "abrdf.h"
+
+#define CLI_EXIT_USAGE 2
+
+/* Print "abrdf CMD: message" to stderr and return CLI_EXIT_USAGE. */
+int cli_fail(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* Strict number parsing: the whole string, finite. */
+int cli_parse_double(const char *s, double *out);
+int cli_parse_int(const char *s, long lo, long hi, long *out);
+/* "X,Y,Z" -> v; finite components. */
+int cli_parse_vec3(const char *s, double v[3]);
+/* Model by name; on failure prints the valid names (or the nearest ones) and returns 2. */
+int cli_model(const char *cmd, const char *name, abrdf_model *out);
+/* Apply "NAME=VALUE" or "NAME=R,G,B" to params for model; errors name the valid params. */
+int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const char *assign);
+/* Levenshtein distance, for "did you mean" suggestions. */
+int cli_edit_distance(const char *a, const char *b);
+/* True if `typed` is close enough to `name` to suggest it (prefix or small edit distance). */
+int cli_is_near(const char *typed, const char *name);
+/* Write s as a JSON string literal. */
+void cli_json_string(FILE *f, const char *s);
+/* True if argv[i] is "-h" or "--help". */
+int cli_is_help(const char *arg);
+
+#endif

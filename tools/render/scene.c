@@ -1,0 +1,570 @@
+/* scene.c - parser of the scene format (docs/SCENES.md): one directive per line, then
+ * KEY=VALUE words. Every problem is reported as "FILE:LINE: problem"; malformed input of any
+ * kind (binary, huge numbers, long lines) gives an error, never a crash (tests/fuzz/fuzz_scene.c). */
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene.h"
+
+#define LINE_MAX_CHARS 4096
+#define MAX_WORDS 64
+#define SCENE_MAX_FILE (16u << 20) /* 16 MiB: far above any real scene */
+
+typedef struct parser {
+    const char *name;
+    int line;
+    char *err;
+    size_t err_size;
+    scene *s;
+    int have_camera;
+} parser;
+
+static int fail(parser *p, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+static int fail(parser *p, const char *fmt, ...)
+{
+    if (p->err && p->err_size) {
+        char msg[512];
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(msg, sizeof msg, fmt, ap);
+        va_end(ap);
+        snprintf(p->err, p->err_size, "%s:%d: %s", p->name, p->line, msg);
+    }
+    return -1;
+}
+
+/* ---- values ------------------------------------------------------------------------ */
+
+static int parse_num(const char *s, double *out)
+{
+    if (!*s) return 0;
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (*end || errno == ERANGE || !isfinite(v) || fabs(v) > SCENE_MAX_COORD) return 0;
+    *out = v;
+    return 1;
+}
+
+/* "A" or "A,B,C" (count 1 or 3), or exactly n numbers if want > 0. Returns the count. */
+static int parse_list(const char *s, double *v, int max)
+{
+    char buf[LINE_MAX_CHARS + 1];
+    size_t len = strlen(s);
+    if (len > LINE_MAX_CHARS) return 0;
+    memcpy(buf, s, len + 1);
+    int n = 0;
+    char *q = buf;
+    for (;;) {
+        char *comma = strchr(q, ',');
+        if (comma) *comma = '\0';
+        if (n == max || !parse_num(q, &v[n])) return 0;
+        ++n;
+        if (!comma) break;
+        q = comma + 1;
+    }
+    return n;
+}
+
+static int get_vec3(parser *p, const char *key, const char *val, double v[3])
+{
+    if (parse_list(val, v, 3) != 3)
+        return fail(p, "%s needs X,Y,Z (three finite numbers, |x| <= %g), got '%s'", key,
+                    SCENE_MAX_COORD, val);
+    return 0;
+}
+
+/* A colour: one number (grey) or R,G,B; every component >= 0. */
+static int get_rgb(parser *p, const char *key, const char *val, double v[3])
+{
+    int n = parse_list(val, v, 3);
+    if (n == 1) v[1] = v[2] = v[0];
+    if (n != 1 && n != 3) return fail(p, "%s needs one number or R,G,B, got '%s'", key, val);
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0) return fail(p, "%s must not be negative, got '%s'", key, val);
+    return 0;
+}
+
+static int get_num(parser *p, const char *key, const char *val, double lo, double hi,
+                   int open_lo, double *out)
+{
+    double v;
+    if (!parse_num(val, &v)) return fail(p, "%s needs a finite number, got '%s'", key, val);
+    if (v < lo || v > hi || (open_lo && v == lo))
+        return fail(p, "%s = %s is outside %s%g, %g]", key, val, open_lo ? "(" : "[", lo, hi);
+    *out = v;
+    return 0;
+}
+
+static int nonzero3(const double v[3]) { return v[0] != 0 || v[1] != 0 || v[2] != 0; }
+
+/* ---- words ------------------------------------------------------------------------- */
+
+typedef struct word {
+    char *key;  /* NUL-terminated */
+    char *val;  /* after '=', or NULL for a bare word */
+    int used;
+} word;
+
+/* Split a line (modified in place) into words; '#' starts a comment. */
+static int split(parser *p, char *line, word *w, int *count)
+{
+    char *hash = strchr(line, '#');
+    if (hash) *hash = '\0';
+    int n = 0;
+    char *q = line;
+    for (;;) {
+        while (*q == ' ' || *q == '\t') ++q;
+        if (!*q) break;
+        if (n == MAX_WORDS) return fail(p, "more than %d words on one line", MAX_WORDS);
+        w[n].key = q;
+        w[n].val = NULL;
+        w[n].used = 0;
+        while (*q && *q != ' ' && *q != '\t') ++q;
+        if (*q) *q++ = '\0';
+        char *eq = strchr(w[n].key, '=');
+        if (eq) {
+            *eq = '\0';
+            w[n].val = eq + 1;
+            if (!*w[n].key) return fail(p, "'=%s' has no key before '='", w[n].val);
+        }
+        for (const unsigned char *c = (const unsigned char *)w[n].key; *c; ++c)
+            if (*c < 0x20 || *c > 0x7e) return fail(p, "unexpected byte 0x%02x (not printable ASCII)", *c);
+        ++n;
+    }
+    /* A key given twice is a mistake worth naming. */
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+            if (w[i].val && w[j].val && !strcmp(w[i].key, w[j].key))
+                return fail(p, "'%s' is given twice", w[i].key);
+    *count = n;
+    return 0;
+}
+
+/* Value of key among words[from..], marking it used; NULL if absent. */
+static const char *take(word *w, int n, int from, const char *key)
+{
+    for (int i = from; i < n; ++i)
+        if (w[i].val && !strcmp(w[i].key, key)) {
+            w[i].used = 1;
+            return w[i].val;
+        }
+    return NULL;
+}
+
+/* Every word must have been consumed; name the first stray one and the valid keys. */
+static int leftovers(parser *p, word *w, int n, int from, const char *valid)
+{
+    for (int i = from; i < n; ++i)
+        if (!w[i].used) {
+            if (!w[i].val) return fail(p, "unexpected word '%s' (expected KEY=VALUE; keys: %s)", w[i].key, valid);
+            return fail(p, "unknown key '%s'; keys: %s", w[i].key, valid);
+        }
+    return 0;
+}
+
+/* ---- directives -------------------------------------------------------------------- */
+
+static int do_camera(parser *p, word *w, int n)
+{
+    if (p->have_camera) return fail(p, "second camera (a scene has exactly one)");
+    scene_camera *c = &p->s->camera;
+    const char *v;
+    if (!(v = take(w, n, 1, "position"))) return fail(p, "camera needs position=X,Y,Z");
+    if (get_vec3(p, "position", v, c->position)) return -1;
+    if (!(v = take(w, n, 1, "look_at"))) return fail(p, "camera needs look_at=X,Y,Z");
+    if (get_vec3(p, "look_at", v, c->look_at)) return -1;
+    c->up[0] = 0, c->up[1] = 1, c->up[2] = 0;
+    if ((v = take(w, n, 1, "up")) && get_vec3(p, "up", v, c->up)) return -1;
+    c->fov_deg = 40.0;
+    if ((v = take(w, n, 1, "fov")) && get_num(p, "fov", v, 0.0, 179.0, 1, &c->fov_deg)) return -1;
+    c->width = c->height = 512;
+    if ((v = take(w, n, 1, "resolution"))) {
+        double r[2];
+        if (parse_list(v, r, 2) != 2 || r[0] != floor(r[0]) || r[1] != floor(r[1]) || r[0] < 1 ||
+            r[1] < 1 || r[0] > SCENE_MAX_RESOLUTION || r[1] > SCENE_MAX_RESOLUTION)
+            return fail(p, "resolution needs W,H (whole numbers in [1, %d]), got '%s'", SCENE_MAX_RESOLUTION, v);
+        c->width = (int)r[0];
+        c->height = (int)r[1];
+    }
+    if (leftovers(p, w, n, 1, "position, look_at, up, fov, resolution")) return -1;
+    double d[3] = {c->look_at[0] - c->position[0], c->look_at[1] - c->position[1], c->look_at[2] - c->position[2]};
+    if (!nonzero3(d)) return fail(p, "camera look_at equals position");
+    double x[3] = {d[1] * c->up[2] - d[2] * c->up[1], d[2] * c->up[0] - d[0] * c->up[2], d[0] * c->up[1] - d[1] * c->up[0]};
+    double dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    double ul = sqrt(c->up[0] * c->up[0] + c->up[1] * c->up[1] + c->up[2] * c->up[2]);
+    /* 1e-9 of |d||up|: the view direction and up must span a plane to define "right". */
+    if (!(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) > 1e-9 * dl * ul))
+        return fail(p, "camera up is zero or parallel to the viewing direction");
+    p->have_camera = 1;
+    return 0;
+}
+
+static int do_ambient(parser *p, word *w, int n)
+{
+    if (n != 2 || w[1].val) return fail(p, "ambient needs one colour: 'ambient R,G,B' or 'ambient V'");
+    return get_rgb(p, "ambient", w[1].key, p->s->ambient);
+}
+
+static int do_light(parser *p, word *w, int n)
+{
+    if (p->s->light_count == SCENE_MAX_LIGHTS) return fail(p, "more than %d lights", SCENE_MAX_LIGHTS);
+    scene_light l;
+    memset(&l, 0, sizeof l);
+    l.line = p->line;
+    if (n < 2 || w[1].val) return fail(p, "light needs a kind: 'light point ...' or 'light directional ...'");
+    const char *v;
+    if (!strcmp(w[1].key, "point")) {
+        l.kind = SCENE_LIGHT_POINT;
+        if (!(v = take(w, n, 2, "position"))) return fail(p, "point light needs position=X,Y,Z");
+        if (get_vec3(p, "position", v, l.position)) return -1;
+    } else if (!strcmp(w[1].key, "directional")) {
+        l.kind = SCENE_LIGHT_DIRECTIONAL;
+        if (!(v = take(w, n, 2, "direction"))) return fail(p, "directional light needs direction=X,Y,Z (toward the light)");
+        if (get_vec3(p, "direction", v, l.direction)) return -1;
+        if (!nonzero3(l.direction)) return fail(p, "direction must not be zero");
+        double len = sqrt(l.direction[0] * l.direction[0] + l.direction[1] * l.direction[1] + l.direction[2] * l.direction[2]);
+        for (int c = 0; c < 3; ++c) l.direction[c] /= len;
+    } else {
+        return fail(p, "unknown light kind '%s'; kinds: point, directional", w[1].key);
+    }
+    l.color[0] = l.color[1] = l.color[2] = 1.0;
+    if ((v = take(w, n, 2, "color")) && get_rgb(p, "color", v, l.color)) return -1;
+    l.intensity = 1.0;
+    if ((v = take(w, n, 2, "intensity")) && get_num(p, "intensity", v, 0.0, SCENE_MAX_COORD, 0, &l.intensity))
+        return -1;
+    if (leftovers(p, w, n, 2, l.kind == SCENE_LIGHT_POINT ? "position, color, intensity" : "direction, color, intensity"))
+        return -1;
+    scene_light *grown = realloc(p->s->lights, (size_t)(p->s->light_count + 1) * sizeof *grown);
+    if (!grown) return fail(p, "out of memory");
+    p->s->lights = grown;
+    grown[p->s->light_count++] = l;
+    return 0;
+}
+
+static int find_material(const scene *s, const char *name)
+{
+    for (int i = 0; i < s->material_count; ++i)
+        if (!strcmp(s->materials[i].name, name)) return i;
+    return -1;
+}
+
+static int set_model(parser *p, const char *key, const char *val, abrdf_model *out)
+{
+    if (abrdf_model_find(val, out) == ABRDF_OK) return 0;
+    return fail(p, "%s: unknown model '%s' (abrdf models lists them)", key, val);
+}
+
+static int model_uses(abrdf_model m, int param)
+{
+    const abrdf_model_info *mi = abrdf_model_get(m);
+    for (int i = 0; mi && i < mi->param_count; ++i)
+        if (mi->params[i].id == param) return 1;
+    return 0;
+}
+
+static int copy_name(parser *p, const char *what, const char *src, char dst[SCENE_NAME_MAX])
+{
+    size_t len = strlen(src);
+    if (len == 0 || len >= SCENE_NAME_MAX) return fail(p, "%s must have 1 to %d characters", what, SCENE_NAME_MAX - 1);
+    memcpy(dst, src, len + 1);
+    return 0;
+}
+
+static int do_material(parser *p, word *w, int n)
+{
+    scene *s = p->s;
+    if (s->material_count == SCENE_MAX_MATERIALS) return fail(p, "more than %d materials", SCENE_MAX_MATERIALS);
+    if (n < 2 || w[1].val) return fail(p, "material needs a name: 'material NAME model=...'");
+    scene_material m;
+    memset(&m, 0, sizeof m);
+    m.line = p->line;
+    if (copy_name(p, "material name", w[1].key, m.name)) return -1;
+    if (find_material(s, m.name) >= 0) return fail(p, "material '%s' is defined twice", m.name);
+    int from = 2;
+    const char *model = take(w, n, from, "model"), *dif = take(w, n, from, "diffuse"),
+               *spe = take(w, n, from, "specular"), *table = take(w, n, from, "table");
+    int adaptive = n > 2 && !w[2].val && !strcmp(w[2].key, "adaptive");
+    if (adaptive) w[2].used = 1, from = 3;
+    if (adaptive) {
+        m.kind = SCENE_MAT_ADAPTIVE;
+        const char *goal = take(w, n, from, "goal");
+        if (!goal) return fail(p, "adaptive material needs goal=photoreal or goal=performance");
+        if (strcmp(goal, "photoreal") && strcmp(goal, "performance"))
+            return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
+        strcpy(m.goal, goal);
+        if (model || dif || spe) return fail(p, "an adaptive material chooses its own models; drop model=/diffuse=/specular=");
+    } else if (table) {
+        m.kind = SCENE_MAT_TABLE;
+        if (model || dif || spe) return fail(p, "table= names a complete material; drop model=/diffuse=/specular=");
+    } else {
+        m.kind = SCENE_MAT_MODELS;
+        if (model && (dif || spe)) return fail(p, "give either model= or diffuse=/specular=, not both");
+        if (model) {
+            if (set_model(p, "model", model, &m.lobes[0])) return -1;
+            m.lobe_count = 1;
+        } else if (dif || spe) {
+            if (dif && set_model(p, "diffuse", dif, &m.lobes[m.lobe_count++])) return -1;
+            if (spe && set_model(p, "specular", spe, &m.lobes[m.lobe_count++])) return -1;
+        } else {
+            return fail(p, "material '%s' needs model=, diffuse=/specular=, table= or adaptive goal=", m.name);
+        }
+    }
+    if (table && copy_name(p, "table entry", table, m.table)) return -1;
+    /* Defaults: the first lobe's, then the second lobe's for what only it uses. */
+    if (m.kind == SCENE_MAT_MODELS) {
+        abrdf_params_init(m.lobes[0], &m.params);
+        if (m.lobe_count == 2) {
+            abrdf_params second;
+            abrdf_params_init(m.lobes[1], &second);
+            const abrdf_model_info *mi = abrdf_model_get(m.lobes[1]);
+            for (int i = 0; i < mi->param_count; ++i) {
+                int id = mi->params[i].id;
+                double v[3];
+                if (model_uses(m.lobes[0], id)) continue;
+                int cnt = abrdf_param_read(&second, id, v);
+                if (cnt > 0) abrdf_param_set(&m.params, id, v, cnt);
+            }
+        }
+    } else {
+        abrdf_params_init(ABRDF_LAMBERT, &m.params);
+    }
+    int ka_set = 0, kd_used = 0;
+    for (int i = from; i < n; ++i) {
+        if (w[i].used) continue;
+        if (!w[i].val) return fail(p, "unexpected word '%s' (expected KEY=VALUE)", w[i].key);
+        w[i].used = 1;
+        if (!strcmp(w[i].key, "ka")) {
+            if (get_rgb(p, "ka", w[i].val, m.ka)) return -1;
+            ka_set = 1;
+            continue;
+        }
+        int id;
+        if (abrdf_param_find(w[i].key, &id) != ABRDF_OK)
+            return fail(p, "unknown key '%s'; keys: model, diffuse, specular, table, goal, ka and the "
+                           "models' parameters (abrdf models)", w[i].key);
+        int used = m.kind != SCENE_MAT_MODELS;
+        for (int l = 0; l < m.lobe_count; ++l) used |= model_uses(m.lobes[l], id);
+        if (!used) return fail(p, "parameter '%s' is not used by the material's model(s)", w[i].key);
+        const abrdf_param_info *pi = abrdf_param_get(id);
+        double v[3];
+        int cnt = parse_list(w[i].val, v, 3);
+        if (cnt != 1 && !(cnt == 3 && pi->kind == ABRDF_PARAM_RGB))
+            return fail(p, "%s needs %s, got '%s'", w[i].key,
+                        pi->kind == ABRDF_PARAM_RGB ? "one number or R,G,B" : "one number", w[i].val);
+        if (abrdf_param_set(&m.params, id, v, cnt) != ABRDF_OK)
+            return fail(p, "%s = %s is outside [%g, %g]%s", w[i].key, w[i].val, pi->min, pi->max,
+                        pi->kind == ABRDF_PARAM_INT ? " or not a whole number" : "");
+        if (id < 64) m.params_set |= 1ull << id;
+    }
+    for (int l = 0; l < m.lobe_count; ++l) {
+        char msg[256];
+        if (abrdf_params_check(m.lobes[l], &m.params, msg, sizeof msg) != ABRDF_OK)
+            return fail(p, "material '%s': %s", m.name, msg);
+        int kd_id;
+        kd_used |= abrdf_param_find("kd", &kd_id) == ABRDF_OK && model_uses(m.lobes[l], kd_id);
+    }
+    /* Default ambient reflectance: the diffuse albedo where the material has one. */
+    m.ka_given = ka_set;
+    if (!ka_set && (kd_used || m.kind != SCENE_MAT_MODELS)) memcpy(m.ka, m.params.kd, sizeof m.ka);
+    scene_material *grown = realloc(s->materials, (size_t)(s->material_count + 1) * sizeof *grown);
+    if (!grown) return fail(p, "out of memory");
+    s->materials = grown;
+    grown[s->material_count++] = m;
+    return 0;
+}
+
+static const char *const shape_names[SCENE_SHAPE_COUNT] = {"sphere", "cylinder", "capsule", "box"};
+static const char *const tangent_names[] = {"u", "v", "radial", "axis"};
+
+const char *scene_shape_name(scene_shape shape)
+{
+    return (unsigned)shape < SCENE_SHAPE_COUNT ? shape_names[shape] : "?";
+}
+
+const char *scene_tangent_name(scene_tangent t)
+{
+    return (unsigned)t <= SCENE_TANGENT_AXIS ? tangent_names[t] : "?";
+}
+
+static int do_object(parser *p, scene_shape shape, word *w, int n)
+{
+    scene *s = p->s;
+    if (s->object_count == SCENE_MAX_OBJECTS) return fail(p, "more than %d objects", SCENE_MAX_OBJECTS);
+    scene_object o;
+    memset(&o, 0, sizeof o);
+    o.shape = shape;
+    o.line = p->line;
+    o.scale[0] = o.scale[1] = o.scale[2] = 1.0;
+    const char *v;
+    if (!(v = take(w, n, 1, "material"))) return fail(p, "%s needs material=NAME", shape_names[shape]);
+    if ((o.material = find_material(s, v)) < 0) return fail(p, "material '%s' is not defined above", v);
+    const char *valid = "material, radius, translate, rotate, scale, tangent";
+    if (shape == SCENE_SPHERE || shape == SCENE_CYLINDER || shape == SCENE_CAPSULE) {
+        if (!(v = take(w, n, 1, "radius"))) return fail(p, "%s needs radius=R", shape_names[shape]);
+        if (get_num(p, "radius", v, 0.0, SCENE_MAX_COORD, 1, &o.radius)) return -1;
+    }
+    if (shape == SCENE_CYLINDER || shape == SCENE_CAPSULE) {
+        valid = "material, radius, height, translate, rotate, scale, tangent";
+        if (!(v = take(w, n, 1, "height"))) return fail(p, "%s needs height=H", shape_names[shape]);
+        if (get_num(p, "height", v, 0.0, SCENE_MAX_COORD, shape == SCENE_CYLINDER, &o.height)) return -1;
+    }
+    if (shape == SCENE_BOX) {
+        valid = "material, size, translate, rotate, scale, tangent";
+        if (!(v = take(w, n, 1, "size"))) return fail(p, "box needs size=X,Y,Z");
+        if (get_vec3(p, "size", v, o.size)) return -1;
+        if (!(o.size[0] > 0 && o.size[1] > 0 && o.size[2] > 0)) return fail(p, "box size must be positive, got '%s'", v);
+    }
+    if ((v = take(w, n, 1, "translate")) && get_vec3(p, "translate", v, o.translate)) return -1;
+    if ((v = take(w, n, 1, "rotate")) && get_vec3(p, "rotate", v, o.rotate_deg)) return -1;
+    if ((v = take(w, n, 1, "scale"))) {
+        int cnt = parse_list(v, o.scale, 3);
+        if (cnt == 1) o.scale[1] = o.scale[2] = o.scale[0];
+        /* 1e-6: a thinner object makes the inverse transform ill-conditioned. */
+        if ((cnt != 1 && cnt != 3) || !(o.scale[0] >= 1e-6 && o.scale[1] >= 1e-6 && o.scale[2] >= 1e-6))
+            return fail(p, "scale needs S or X,Y,Z, each in [1e-6, %g], got '%s'", SCENE_MAX_COORD, v);
+    }
+    o.tangent = SCENE_TANGENT_U;
+    if ((v = take(w, n, 1, "tangent"))) {
+        int k;
+        for (k = 0; k < SCENE_TANGENT_AXIS; ++k)
+            if (!strcmp(v, tangent_names[k])) break;
+        if (k < SCENE_TANGENT_AXIS) {
+            o.tangent = (scene_tangent)k;
+        } else if (parse_list(v, o.tangent_axis, 3) == 3 && nonzero3(o.tangent_axis)) {
+            o.tangent = SCENE_TANGENT_AXIS;
+        } else {
+            return fail(p, "tangent must be u, v, radial or a non-zero direction X,Y,Z, got '%s'", v);
+        }
+    }
+    if (leftovers(p, w, n, 1, valid)) return -1;
+    scene_object *grown = realloc(s->objects, (size_t)(s->object_count + 1) * sizeof *grown);
+    if (!grown) return fail(p, "out of memory");
+    s->objects = grown;
+    grown[s->object_count++] = o;
+    return 0;
+}
+
+static int do_line(parser *p, char *line)
+{
+    word w[MAX_WORDS];
+    int n;
+    if (split(p, line, w, &n)) return -1;
+    if (n == 0) return 0;
+    if (w[0].val) return fail(p, "a line starts with a directive, got '%s=...'", w[0].key);
+    const char *d = w[0].key;
+    if (!strcmp(d, "camera")) return do_camera(p, w, n);
+    if (!strcmp(d, "ambient")) return do_ambient(p, w, n);
+    if (!strcmp(d, "light")) return do_light(p, w, n);
+    if (!strcmp(d, "material")) return do_material(p, w, n);
+    for (int k = 0; k < SCENE_SHAPE_COUNT; ++k)
+        if (!strcmp(d, shape_names[k])) return do_object(p, (scene_shape)k, w, n);
+    return fail(p, "unknown directive '%s'; directives: camera, ambient, light, material, "
+                   "sphere, cylinder, capsule, box", d);
+}
+
+void scene_free(scene *s)
+{
+    if (!s) return;
+    free(s->lights);
+    free(s->materials);
+    free(s->objects);
+    memset(s, 0, sizeof *s);
+}
+
+int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,
+                     size_t err_size)
+{
+    if (err && err_size) err[0] = '\0';
+    if (!out) return -1;
+    memset(out, 0, sizeof *out);
+    parser p = {name ? name : "<scene>", 0, err, err_size, out, 0};
+    if (!text) return fail(&p, "no text");
+    char line[LINE_MAX_CHARS + 1];
+    size_t i = 0;
+    while (i < len) {
+        ++p.line;
+        size_t k = 0;
+        for (; i < len && text[i] != '\n'; ++i) {
+            if (text[i] == '\0') {
+                fail(&p, "NUL byte in the file (not a text scene)");
+                goto bad;
+            }
+            if (k == LINE_MAX_CHARS) {
+                fail(&p, "line longer than %d characters", LINE_MAX_CHARS);
+                goto bad;
+            }
+            line[k++] = text[i] == '\r' ? ' ' : text[i];
+        }
+        line[k] = '\0';
+        ++i; /* the '\n' */
+        if (do_line(&p, line)) goto bad;
+    }
+    ++p.line;
+    if (!p.have_camera) {
+        p.line = 0;
+        fail(&p, "no camera (a scene needs 'camera position=... look_at=...')");
+        goto bad;
+    }
+    if (out->object_count == 0) {
+        p.line = 0;
+        fail(&p, "no objects (sphere, cylinder, capsule or box)");
+        goto bad;
+    }
+    return 0;
+bad:
+    scene_free(out);
+    return -1;
+}
+
+int scene_parse_file(const char *path, scene *out, char *err, size_t err_size)
+{
+    if (out) memset(out, 0, sizeof *out);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        if (err && err_size) snprintf(err, err_size, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    char *buf = NULL;
+    size_t len = 0, cap = 0;
+    for (;;) {
+        if (len == cap) {
+            if (cap >= SCENE_MAX_FILE) {
+                if (err && err_size) snprintf(err, err_size, "%s: larger than %u bytes", path, SCENE_MAX_FILE);
+                free(buf);
+                fclose(f);
+                return -1;
+            }
+            cap = cap ? 2 * cap : 65536;
+            char *g = realloc(buf, cap);
+            if (!g) {
+                free(buf);
+                fclose(f);
+                if (err && err_size) snprintf(err, err_size, "%s: out of memory", path);
+                return -1;
+            }
+            buf = g;
+        }
+        size_t got = fread(buf + len, 1, cap - len, f);
+        len += got;
+        if (got == 0) break;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        free(buf);
+        if (err && err_size) snprintf(err, err_size, "%s: read error", path);
+        return -1;
+    }
+    int st = scene_parse_text(path, buf, len, out, err, err_size);
+    free(buf);
+    return st;
+}

@@ -1,0 +1,128 @@
+/* scene_select.c - material-table and adaptive scene materials -> explicit models through
+ * abrdf_select (the paper's Fig. 2). The selection's trace is what --explain prints. */
+#include <string.h>
+
+#include "scene_select.h"
+#include "cli_args.h"
+#include "render.h"
+
+int scene_needs_table(const scene *s)
+{
+    for (int i = 0; i < s->material_count; ++i)
+        if (s->materials[i].table[0]) return 1;
+    return 0;
+}
+
+/* Is parameter `name` given in the file, or read by one of the material's lobes (then its
+ * value, default or not, describes the material)? */
+static int described(const scene_material *m, const char *name)
+{
+    int id;
+    if (abrdf_param_find(name, &id) != ABRDF_OK) return 0;
+    if (id < 64 && (m->params_set >> id) & 1u) return 1;
+    for (int l = 0; l < m->lobe_count; ++l) {
+        const abrdf_model_info *mi = abrdf_model_get(m->lobes[l]);
+        for (int k = 0; k < mi->param_count; ++k)
+            if (mi->params[k].id == id) return 1;
+    }
+    return 0;
+}
+
+static void take_rgb(const scene_material *m, const char *name, const double *src, double dst[3])
+{
+    if (described(m, name)) memcpy(dst, src, 3 * sizeof *dst);
+}
+
+int scene_select_materials(scene *s, const char *scene_name, const mat_table *table,
+                           int force_goal, FILE *explain, char *err, size_t err_size)
+{
+    for (int i = 0; i < s->material_count; ++i) {
+        scene_material *sm = &s->materials[i];
+        if (sm->kind == SCENE_MAT_MODELS && force_goal < 0) continue;
+        abrdf_goal goal = ABRDF_GOAL_PHOTOREAL; /* a bare table= entry renders photoreal */
+        if (force_goal >= 0) goal = (abrdf_goal)force_goal;
+        else if (sm->kind == SCENE_MAT_ADAPTIVE && abrdf_goal_find(sm->goal, &goal) != ABRDF_OK) {
+            snprintf(err, err_size, "%s:%d: unknown goal '%s'", scene_name, sm->line, sm->goal);
+            return -1;
+        }
+        abrdf_material am;
+        abrdf_material_init(&am);
+        const mat_entry *e = NULL;
+        if (sm->table[0]) {
+            e = table ? mat_table_find(table, sm->table) : NULL;
+            if (!e) {
+                const char *near[4];
+                int k = table ? mat_table_nearest(table, sm->table, near, 4) : 0;
+                char hint[256] = "";
+                for (int j = 0; j < k; ++j) strcat(strcat(hint, j ? ", " : ""), near[j]);
+                snprintf(err, err_size, "%s:%d: material '%s': no entry '%s' in the material table%s%s%s",
+                         scene_name, sm->line, sm->name, sm->table, k ? "; did you mean: " : "", hint,
+                         k ? "?" : " (abrdf advise --list)");
+                return -1;
+            }
+            am = e->m;
+        }
+        /* The file's values (or, for an explicit material, its lobes' values) describe it. */
+        const abrdf_params *p = &sm->params;
+        if (described(sm, "r")) am.r = p->r;
+        if (described(sm, "n")) am.n = p->n;
+        if (!e && !described(sm, "r") && !described(sm, "n")) {
+            snprintf(err, err_size, "%s:%d: adaptive material '%s' needs table=ENTRY, r= or n=",
+                     scene_name, sm->line, sm->name);
+            return -1;
+        }
+        take_rgb(sm, "kd", p->kd, am.kd);
+        take_rgb(sm, "ks", p->ks, am.ks);
+        if (described(sm, "f0")) memcpy(am.f0, p->f0, sizeof am.f0), am.eta = -1.0;
+        if (described(sm, "anisotropic")) am.anisotropy = p->anisotropic;
+        abrdf_selection sel;
+        if (abrdf_select(&am, goal, NULL, NULL, &sel) != ABRDF_OK) {
+            snprintf(err, err_size, "%s:%d: material '%s': %s", scene_name, sm->line, sm->name, sel.message);
+            return -1;
+        }
+        if (!sel.available) {
+            snprintf(err, err_size, "%s:%d: material '%s': the selection chose %s, which this library "
+                     "does not implement yet", scene_name, sm->line, sm->name,
+                     abrdf_select_model_name(sel.specular));
+            return -1;
+        }
+        sm->kind = SCENE_MAT_MODELS;
+        sm->lobe_count = 0;
+        if (sel.diffuse != ABRDF_MODEL_COUNT) sm->lobes[sm->lobe_count++] = sel.diffuse;
+        sm->lobes[sm->lobe_count++] = sel.specular;
+        sm->params = sel.params;
+        if (!sm->ka_given) {
+            int kd_id, uses = 0;
+            abrdf_param_find("kd", &kd_id);
+            for (int l = 0; l < sm->lobe_count; ++l) {
+                const abrdf_model_info *mi = abrdf_model_get(sm->lobes[l]);
+                for (int k = 0; k < mi->param_count; ++k) uses |= mi->params[k].id == kd_id;
+            }
+            for (int c = 0; c < 3; ++c) sm->ka[c] = uses ? sm->params.kd[c] : 0.0;
+        }
+        if (explain) {
+            fprintf(explain, "selection: material '%s' (line %d), goal %s%s%s: %s%s%s\n", sm->name,
+                    sm->line, abrdf_goal_name(goal), e ? ", table entry " : "", e ? e->name : "",
+                    sel.diffuse != ABRDF_MODEL_COUNT ? abrdf_select_model_name(sel.diffuse) : "",
+                    sel.diffuse != ABRDF_MODEL_COUNT ? " + " : "", abrdf_select_model_name(sel.specular));
+            for (int k = 0; k < sel.step_count; ++k) fprintf(explain, "  %2d. %s\n", k + 1, sel.steps[k].text);
+        }
+    }
+    return 0;
+}
+
+int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets,
+                    int nsets)
+{
+    abrdf_model m;
+    char err[512];
+    if (cli_model(cmd, model_name, &m)) return CLI_EXIT_USAGE;
+    if (render_set_model(s, m, err, sizeof err)) {
+        fprintf(stderr, "abrdf %s: %s\n", cmd, err);
+        return 1;
+    }
+    for (int i = 0; i < nsets; ++i)
+        for (int j = 0; j < s->material_count; ++j)
+            if (cli_set_param(cmd, m, &s->materials[j].params, sets[i])) return CLI_EXIT_USAGE;
+    return 0;
+}
