@@ -5,7 +5,7 @@ Two modes:
   eval     evaluation mode: every surface runs the scene's generated OSL shader, which
            re-traces the pixel-centre camera ray and the shadow rays against the exact
            analytic primitives (abrdf_trace.h) and returns the built-in renderer's direct
-           lighting as emission (abrdf.h models). Meshes only catch camera rays; a backdrop
+           lighting as emission (abrdf_osl.h models). Meshes only catch camera rays; a backdrop
            sphere makes every pixel run the shader. The image matches `abrdf render --spp 1`.
   generic  abrdf_eval.osl, the host-independent evaluation shader, on the meshes with the
            scene's lights as parameters (one lobe per material, at most four lights, no
@@ -31,8 +31,8 @@ import bpy  # first: bmesh and mathutils come with it
 import bmesh
 import mathutils
 
-HEADERS = ("abrdf.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_belcour_tables.h", "abrdf_hair.h",
-           "abrdf_hair_tables.h", "abrdf_select.h", "abrdf_trace.h")
+HEADERS = ("abrdf_osl.h", "abrdf_osl_guards.h", "abrdf_osl_kernels.h", "abrdf_meta.h", "abrdf_fkub.h", "abrdf_belcour_tables.h", "abrdf_hair.h",
+           "abrdf_hair_tables.h", "abrdf_osl_select.h", "abrdf_trace.h")
 SHAPES = {"sphere": 0, "cylinder": 1, "capsule": 2, "box": 3}
 
 

@@ -1,7 +1,7 @@
 // abrdf_hair.h - the OSL twins of the hair fibre models, 1:1 with libabrdf/src/hair.h,
 // hair_common.c, hair_marschner.c and hair_huang.c: the same names, the same parameters in
 // the registry's order, the same guards, thresholds, node counts and loop structure, in
-// float. Included by abrdf.h. The conventions, formulas and every deliberate choice are in
+// float. Included by abrdf_osl.h. The conventions, formulas and every deliberate choice are in
 // docs/SPECIAL_HAIR.md; only what the float transliteration changes is explained here.
 //
 // FIBRE ON A SURFACE: the fibre runs along the local +x axis (the frame's tangent T), the
@@ -13,6 +13,7 @@
 #ifndef ABRDF_HAIR_OSL_H
 #define ABRDF_HAIR_OSL_H
 
+#include "abrdf_osl_guards.h"
 #include "abrdf_hair_tables.h"
 
 // ---- named thresholds (libabrdf/src/hair.h, same values, same reasons) -------------------

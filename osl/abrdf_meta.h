@@ -3,6 +3,8 @@
 #ifndef ABRDF_META_H
 #define ABRDF_META_H
 
+#include "abrdf_osl_guards.h" // abrdf_in_range
+
 // Models with an OSL twin (every model of the library), space separated.
 #define ABRDF_MODEL_NAMES "lambert lambert_fresnel disney_diffuse oren_nayar phong blinn_phong f2 f4 f8 f16 fs fkv fkub f_phe f_be f_2e f_16e f_ge f_ctphe f_ct2e f_ct16e cook_torrance disney_specular disney_specular_aniso disney_clearcoat neubelt_pettineo kajiya_kay marschner huang weidlich_wilkie belcour"
 // The same list for a popup widget.

@@ -10,7 +10,7 @@
 #ifndef ABRDF_TRACE_H
 #define ABRDF_TRACE_H
 
-#include "abrdf.h"
+#include "abrdf_osl.h"
 
 #define ABRDF_SHAPE_SPHERE 0
 #define ABRDF_SHAPE_CYLINDER 1

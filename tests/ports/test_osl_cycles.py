@@ -146,7 +146,7 @@ class CrossCheck(unittest.TestCase):
         twins = names.split('"')[1].split()
         self.assertEqual(twins, self.models)
         header = ""
-        for name in ("abrdf.h", "abrdf_hair.h"):  # abrdf.h includes the hair twins
+        for name in ("abrdf_osl.h", "abrdf_osl_kernels.h", "abrdf_hair.h"):  # what abrdf_osl.h includes
             with open(os.path.join(OSL_DIR, name)) as f:
                 header += f.read()
         for m in self.models:

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The OSL selection flowchart (osl/abrdf_select.h, abrdf_select()) in a real OSL host,
+"""The OSL selection flowchart (osl/abrdf_osl_select.h, abrdf_select()) in a real OSL host,
 Blender's Cycles, against the C library's `abrdf advise --json`: for every case of the
 table below (every surface class x both goals, r around the smooth threshold, anisotropic
 0 and 0.5, given exponents, performance tolerances, out-of-range inputs) the same diffuse
@@ -65,7 +65,7 @@ def cases():
 
 
 CASES = cases()
-# (model, n): the float analysis (in t = 1 - c, osl/abrdf_select.h) against the C one in
+# (model, n): the float analysis (in t = 1 - c, osl/abrdf_osl_select.h) against the C one in
 # double, within 2e-3 relative (measured: at most 8e-4, f16 at n = 20000).
 ERR_TOL = 2e-3
 ERRORS = [("f2", 2.0), ("f4", 100.0), ("f8", 300.0), ("fs", 20.0), ("fkub", 100.0),
@@ -78,7 +78,7 @@ def osl_num(v):
 
 def probe_source(cases):
     arr = lambda name, kind, vals: "    %s %s[%d] = {%s};\n" % (kind, name, len(vals), ", ".join(vals))
-    s = ['#include "abrdf.h"\n',
+    s = ['#include "abrdf_osl.h"\n',
          "shader abrdf_select_probe(\n"
          '    output closure color result = 0 [[ string help = "case i: (diffuse index + 1, '
          'specular index + 1, n)", string label = "Result" ]])\n{\n',
@@ -105,7 +105,7 @@ def probe_source(cases):
 
 
 def error_probe_source():
-    s = ['#include "abrdf.h"\n',
+    s = ['#include "abrdf_osl.h"\n',
          "shader abrdf_error_probe(\n"
          '    output closure color result = 0 [[ string help = "case i: (rel %, abs, 0)", '
          'string label = "Result" ]])\n{\n',

@@ -16,7 +16,7 @@ import subprocess
 import sys
 
 SRC = sys.argv[1]
-OBJECTS = sys.argv[2:]
+OBJECTS = [o for a in sys.argv[2:] for o in a.split(";") if o]  # CTest passes lists joined
 problems = []
 
 
@@ -85,7 +85,7 @@ if len(used) < 10:
 
 # ---- 2. and 3. headers ----------------------------------------------------------------------
 def tracked():
-    out = subprocess.run(["git", "-C", SRC, "ls-files"], capture_output=True, text=True)
+    out = subprocess.run(["git", "-C", SRC, "ls-files", "--cached", "--others", "--exclude-standard"], capture_output=True, text=True)
     if out.returncode == 0 and out.stdout.strip():
         return out.stdout.split()
     files = []

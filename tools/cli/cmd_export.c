@@ -51,7 +51,7 @@ static const char *osl_dir_default(void)
     const char *env = getenv("ABRDF_OSL_DIR");
     if (env && *env) return env;
     char probe[4096];
-    snprintf(probe, sizeof probe, "%s/abrdf.h", ABRDF_SOURCE_OSL_DIR);
+    snprintf(probe, sizeof probe, "%s/abrdf_osl.h", ABRDF_SOURCE_OSL_DIR);
     FILE *f = fopen(probe, "r");
     if (f) {
         fclose(f);

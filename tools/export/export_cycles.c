@@ -5,7 +5,7 @@
  * The generated shader is the built-in renderer's shading in OSL: the pixel-centre camera
  * ray (render.h camera model), closest hit and shadow rays against the exact primitives
  * (osl/abrdf_trace.h), L = ka*Ia + sum E max(0, N.wi) f_r with the library's models
- * (osl/abrdf.h). All numbers come from render_prepare, so both renderers read the same
+ * (osl/abrdf_osl.h). All numbers come from render_prepare, so both renderers read the same
  * camera vectors, ambient terms and light irradiances. */
 #include <math.h>
 #include <string.h>

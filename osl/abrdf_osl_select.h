@@ -1,10 +1,10 @@
-// abrdf_select.h - the model-selection flowchart of Zavalniuk & Romanyuk 2024 (Fig. 2) in
+// abrdf_osl_select.h - the model-selection flowchart of Zavalniuk & Romanyuk 2024 (Fig. 2) in
 // OSL: the same decisions as libabrdf's abrdf_select (libabrdf/src/select.c) and
 // `abrdf advise` (docs/SELECTION.md). Every threshold, model choice and candidate cost comes
 // from abrdf_meta.h (ABRDF_SELECT_*, generated from `abrdf advise --rules --json` and
 // `abrdf models --json`); the error analysis of the Table-1 approximations is
 // libabrdf/src/approx_error.c in float, on the Table-1 lobes written in t = 1 - c.
-// Included by abrdf.h after the models.
+// Included by abrdf_osl.h after the models.
 //
 //   int abrdf_select(goal, surface, n, r, anisotropic, max_rel_pct, max_abs,
 //                    output diffuse, output specular, output n_out)
@@ -14,8 +14,10 @@
 //     tolerances (>= 0; 1e30 or more: no limit). Returns 1 and the model names ("" for no
 //     diffuse lobe) and the exponent the chosen model reads, or 0 and empty names when the
 //     C library returns ABRDF_E_RANGE for the same input.
-#ifndef ABRDF_SELECT_H
-#define ABRDF_SELECT_H
+#ifndef ABRDF_OSL_SELECT_H
+#define ABRDF_OSL_SELECT_H
+
+#include "abrdf_osl_kernels.h" // the guards, abrdf_meta.h (rules, defaults), the fkub lobe
 
 // approx_error.c's sampling constants, same values and reasons.
 #define ABRDF_ERR_SAMPLES 2048
@@ -27,7 +29,7 @@
 // The analysis runs in t = 1 - c (c = N.H at mirror geometry wi = wo): near the peak, where
 // every lobe of a large exponent lives (width ~ 1/n), a float resolves c only to 6e-8, but t
 // to its full relative precision. So the lobes are written here in t, algebraically equal to
-// the port's model functions (abrdf.h) at mirror geometry, and cos^n as exp(n log(1 - t))
+// the port's model functions (abrdf_osl_kernels.h) at mirror geometry, and cos^n as exp(n log(1 - t))
 // with the series of log(1 - t) for small t: the float analysis then follows the C one
 // (double) to ~1e-6 at every n (tests/ports/test_osl_select.py measures it).
 
@@ -277,4 +279,4 @@ int abrdf_select(string goal, string surface, float n, float r, float anisotropi
     return 1;
 }
 
-#endif // ABRDF_SELECT_H
+#endif // ABRDF_OSL_SELECT_H
