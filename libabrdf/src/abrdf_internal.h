@@ -39,10 +39,6 @@ void abrdf__eval_local_d(abrdf_model model, const abrdf_params *p, const double 
                          const double wo[3], double f[3]);
 void abrdf__eval_batch_f(abrdf_model model, const abrdf_params *p, const abrdf_batch *b);
 
-/* Normalise v into out; returns 0 (and out = 0) for zero, tiny or non-finite vectors.
- * Scales by the largest component first, so squaring cannot overflow or underflow. */
-int abrdf__normalise3(const double v[3], double out[3]);
-
 /* Special-surface models that integrate numerically are implemented in double only; the
  * batch path calls them per element. Returns 1 if `model` is such a model. */
 int abrdf__is_double_only(abrdf_model model);

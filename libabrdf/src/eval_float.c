@@ -5,6 +5,7 @@
 #define ABRDF_SFX f
 #include "k_all.h"
 #include "special.h"
+#include "vec.h"
 
 #define ABRDF__FLT_MAX 3.402823466e38f
 
