@@ -25,12 +25,6 @@
  *   energy-conserving; not reciprocal (the diffuse term depends on L only; the specular
  *   bracket is symmetric in L and V). */
 
-/* Below this sin^2(theta_h) the inverted-Gaussian term exp(-cot^2/alpha^2)/sin^4 is taken
- * at its limit 0 (0/0 at theta_h = 0). For every alpha <= 1 its value at the threshold is
- * below exp(-0.9999e4) * 1e8, i.e. exactly 0 in double, so the cut changes nothing; it only
- * keeps 0 * Inf out of float. (Filament's 2^-7 clamp is an fp16 guard, not copied.) */
-#define ABRDF__VELVET_SIN2_MIN 1e-4
-
 /* Ashikhmin-Premoze inverted-Gaussian velvet D with offset 1 and amplitude k_amp; the
  * normalisation norm = 1/(pi (1 + k_amp alpha^2)) comes from kp. */
 static inline R FN(d_velvet)(R ch, R sh2, R alpha, R k_amp, R norm)
