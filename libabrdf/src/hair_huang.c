@@ -83,7 +83,8 @@ static v3 sphg_dir(double theta, double gamma, double b)
 {
     double st = sin(theta), ct = cos(theta), sg = sin(gamma), cg = cos(gamma);
     double sp = sg, cp = cg;
-    if (b != 1.0 && fabs(cg) >= ABRDF__HAIR_ELLIPSE_COS_MIN) { /* the normal of x = sin g, z = b cos g */
+    /* the normal of x = sin g, z = b cos g */
+    if (b != 1.0 && fabs(cg) >= ABRDF__HAIR_ELLIPSE_COS_MIN) {
         double tp = b * sg / cg;
         cp = (cg > 0.0 ? 1.0 : -1.0) / sqrt(tp * tp + 1.0);
         sp = cp * tp;
@@ -196,7 +197,8 @@ static double bessel_i0(double x)
 
 static double log_bessel_i0(double x)
 {
-    if (x > ABRDF__HAIR_I0_ASYMPTOTIC) return x + 0.5 * (1.0 / (8.0 * x) - log(2.0 * ABRDF__PI) - log(x));
+    if (x > ABRDF__HAIR_I0_ASYMPTOTIC) /* asymptotic expansion */
+        return x + 0.5 * (1.0 / (8.0 * x) - log(2.0 * ABRDF__PI) - log(x));
     return log(bessel_i0(x));
 }
 
@@ -450,7 +452,8 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 v3 wtr = neg(reflect_dir(wt, wh2));
                 double rr[3];
                 for (int c = 0; c < 3; ++c) rr[c] = wgt2 * proj * trrt(t1, r2f, at[c]);
-                if (dot(neg(wtr), wo) < inv_eta - ABRDF__HAIR_CRITICAL_TOL) { /* total internal reflection */
+                /* total internal reflection */
+                if (dot(neg(wtr), wo) < inv_eta - ABRDF__HAIR_CRITICAL_TOL) {
                     for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
                     continue;
                 }
