@@ -2,10 +2,10 @@
  * per precision and the helpers of the registry and selection. Includes guards.h, where
  * every named threshold is.
  *
- * The models are written once, in the k_*.h kernel files, against the type ABRDF_REAL and
- * <tgmath.h>'s type-generic math. eval_double.c instantiates them in double (the scalar
- * reference), eval_float.c in float (the batch path). Both paths therefore evaluate the
- * same formula, and tests hold their results to each other. */
+ * The closed-form models are written once, in the k_*.h kernel files (kernel.h explains
+ * how). eval_double.c instantiates them in double (the scalar reference), eval_float.c in
+ * float (the batch path). Both paths therefore evaluate the same formula, and tests hold
+ * their results to each other. */
 #ifndef ABRDF_INTERNAL_H
 #define ABRDF_INTERNAL_H
 
@@ -17,7 +17,7 @@
 
 /* ---- evaluation entry points per precision ------------------------------------------ */
 /* Local-frame evaluation; inputs already validated. wi, wo need not be normalised here:
- * the scalar path normalises before calling. */
+ * the scalar path normalises before calling. f is finite and >= 0. */
 void abrdf__eval_local_d(abrdf_model model, const abrdf_params *p, const double wi[3],
                          const double wo[3], double f[3]);
 void abrdf__eval_batch_f(abrdf_model model, const abrdf_params *p, const abrdf_batch *b);
