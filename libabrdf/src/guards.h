@@ -33,7 +33,9 @@
  * only keeps 0 * Inf out of float. (Filament's 2^-7 clamp is an fp16 guard, not copied.) */
 #define ABRDF__VELVET_SIN2_MIN 1e-4
 
-/* ---- hair (hair_*.c) -------------------------------------------------------------------- */
+/* ---- hair (hair_*.c) ------------------------------------------------------------------- */
+/* Where the OSL twin (osl/abrdf_hair.h) names a threshold, it is this name with one
+ * underscore. */
 
 /* Floor of cos(theta_d) (Marschner) and cos(theta) (Huang): both vanish only when a
  * direction runs along the fibre. 1e-6 keeps eta' = sqrt(eta^2 - sin^2)/cos <= 4e6 and
@@ -63,41 +65,41 @@
  * eta = 1 with the two directions aligned, where the lobe is a delta and the half vector
  * 0/0. Lower than ABRDF__HALF_LEN2_MIN because a short generalised half vector (eta near
  * 1) is a valid configuration, not a pair at grazing. */
-#define ABRDF__HAIR_HALF_LEN2_MIN 1e-20
+#define ABRDF__HUANG_HALF_LEN2_MIN 1e-20
 
 /* Below this |cos(gamma)| the normal of the elliptical section x = sin g, z = b cos g is
  * taken as the circle's: the slope b tan(gamma) overflows there, and both normals lie
  * within 1e-6/b rad of +-x. */
-#define ABRDF__HAIR_ELLIPSE_COS_MIN 1e-6
+#define ABRDF__HUANG_ELLIPSE_COS_MIN 1e-6
 
 /* Smith's Lambda at a grazing cosine (infinite): a finite stand-in so that G = 1/(1 +
  * Lambda_i + Lambda_o) is 0 without Inf/Inf. */
-#define ABRDF__HAIR_LAMBDA_GRAZING 1e300
+#define ABRDF__HUANG_LAMBDA_GRAZING 1e300
 
 /* Tolerance of the critical-angle test for leaving the fibre (wo.wt >= 1/eta - tol):
  * Cycles' value, which keeps the exit at the critical angle itself. */
-#define ABRDF__HAIR_CRITICAL_TOL 1e-5
+#define ABRDF__HUANG_CRITICAL_TOL 1e-5
 
 /* Floor of the average transmission in Huang's TRRT+ geometric series
  * 1/(1 - a (1 - T)): keeps it finite for a lossless fibre (a = 1) with T -> 0. */
-#define ABRDF__HAIR_TAVG_MIN 1e-5
+#define ABRDF__HUANG_TAVG_MIN 1e-5
 
 /* Floor of the squared projected radius 1 - e^2 sin^2(phi_i) of the elliptical section;
  * it is >= b^2 >= 1e-4 for the registry's aspect ratios, so this only keeps 1/0 out. */
-#define ABRDF__HAIR_RADIUS2_MIN 1e-12
+#define ABRDF__HUANG_RADIUS2_MIN 1e-12
 
 /* Bessel I0 by its power series: stop when a term falls below this fraction of the sum
- * (under double's 1.1e-16), after at most ABRDF__HAIR_I0_TERMS terms. */
-#define ABRDF__HAIR_I0_REL_TOL 1e-17
-#define ABRDF__HAIR_I0_TERMS 200
+ * (under double's 1.1e-16), after at most ABRDF__HUANG_I0_TERMS terms. */
+#define ABRDF__HUANG_I0_REL_TOL 1e-17
+#define ABRDF__HUANG_I0_TERMS 200
 
 /* Past this argument log I0(x) uses its asymptotic expansion: the series' terms would
  * overflow their exponent long before it converges. */
-#define ABRDF__HAIR_I0_ASYMPTOTIC 12.0
+#define ABRDF__HUANG_I0_ASYMPTOTIC 12.0
 
 /* Chiang's longitudinal variance v at or below which M is evaluated in log form:
  * sinh(1/v) overflows for small v. */
-#define ABRDF__HAIR_M_LOG_V 0.1
+#define ABRDF__HUANG_M_LOG_V 0.1
 
 /* Smallest Huang GGX roughness alpha (Cycles' clamp): the quadrature step is 0.7 alpha. */
 #define ABRDF__HUANG_ALPHA_MIN 0.001

@@ -84,7 +84,7 @@ static v3 sphg_dir(double theta, double gamma, double b)
     double st = sin(theta), ct = cos(theta), sg = sin(gamma), cg = cos(gamma);
     double sp = sg, cp = cg;
     /* the normal of x = sin g, z = b cos g */
-    if (b != 1.0 && fabs(cg) >= ABRDF__HAIR_ELLIPSE_COS_MIN) {
+    if (b != 1.0 && fabs(cg) >= ABRDF__HUANG_ELLIPSE_COS_MIN) {
         double tp = b * sg / cg;
         cp = (cg > 0.0 ? 1.0 : -1.0) / sqrt(tp * tp + 1.0);
         sp = cp * tp;
@@ -115,7 +115,7 @@ static double ggx_d(double alpha2, double c)
 static double ggx_lambda(double alpha2, double c)
 {
     double c2 = c * c;
-    if (!(c2 > 0.0)) return ABRDF__HAIR_LAMBDA_GRAZING; /* grazing: fully shadowed */
+    if (!(c2 > 0.0)) return ABRDF__HUANG_LAMBDA_GRAZING; /* grazing: fully shadowed */
     return 0.5 * (sqrt(1.0 + alpha2 * (1.0 - c2) / c2) - 1.0);
 }
 
@@ -188,7 +188,7 @@ static int visible2(v3 a, v3 b, v3 m, v3 h) { return visible1(a, m, h) && visibl
 static double bessel_i0(double x)
 {
     double x2 = 0.25 * x * x, term = 1.0, sum = 1.0;
-    for (int k = 1; k < ABRDF__HAIR_I0_TERMS && term > ABRDF__HAIR_I0_REL_TOL * sum; ++k) {
+    for (int k = 1; k < ABRDF__HUANG_I0_TERMS && term > ABRDF__HUANG_I0_REL_TOL * sum; ++k) {
         term *= x2 / ((double)k * k);
         sum += term;
     }
@@ -197,7 +197,7 @@ static double bessel_i0(double x)
 
 static double log_bessel_i0(double x)
 {
-    if (x > ABRDF__HAIR_I0_ASYMPTOTIC) /* asymptotic expansion */
+    if (x > ABRDF__HUANG_I0_ASYMPTOTIC) /* asymptotic expansion */
         return x + 0.5 * (1.0 / (8.0 * x) - log(2.0 * ABRDF__PI) - log(x));
     return log(bessel_i0(x));
 }
@@ -205,7 +205,7 @@ static double log_bessel_i0(double x)
 static double longitudinal_m(double si, double ci, double so, double co, double v)
 {
     double a = ci * co / v, bsin = si * so / v;
-    if (v <= ABRDF__HAIR_M_LOG_V)
+    if (v <= ABRDF__HUANG_M_LOG_V)
         return exp(log_bessel_i0(a) - bsin - 1.0 / v + log(2.0) + log(0.5 / v));
     return exp(-bsin) * bessel_i0(a) / (sinh(1.0 / v) * 2.0 * v);
 }
@@ -213,7 +213,7 @@ static double longitudinal_m(double si, double ci, double so, double co, double 
 /* Cycles' TRRT+ estimate: the geometric series of further internal bounces. */
 static double trrt(double t1, double r2, double a)
 {
-    double tavg = fmax(1.0 - r2, ABRDF__HAIR_TAVG_MIN);
+    double tavg = fmax(1.0 - r2, ABRDF__HUANG_TAVG_MIN);
     return t1 * r2 * r2 * tavg * a * a * a / (1.0 - a * (1.0 - tavg));
 }
 
@@ -422,10 +422,10 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
 
             /* TT: exit through the microfacet with generalised half vector wh2 (Eq. 13) */
             /* exit possible only if wo is within the critical cone */
-            if ((lobes & 2u) && dot(wo, wt) >= inv_eta - ABRDF__HAIR_CRITICAL_TOL) {
+            if ((lobes & 2u) && dot(wo, wt) >= inv_eta - ABRDF__HUANG_CRITICAL_TOL) {
                 v3 wh2 = add(neg(wt), scl(wo, inv_eta));
                 double l2 = dot(wh2, wh2);
-                if (l2 > ABRDF__HAIR_HALF_LEN2_MIN) {
+                if (l2 > ABRDF__HUANG_HALF_LEN2_MIN) {
                     double rn = 1.0 / sqrt(l2);
                     wh2 = scl(wh2, rn);
                     double cos_mh2 = dot(wmt, wh2);
@@ -453,7 +453,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 double rr[3];
                 for (int c = 0; c < 3; ++c) rr[c] = wgt2 * proj * trrt(t1, r2f, at[c]);
                 /* total internal reflection */
-                if (dot(neg(wtr), wo) < inv_eta - ABRDF__HAIR_CRITICAL_TOL) {
+                if (dot(neg(wtr), wo) < inv_eta - ABRDF__HUANG_CRITICAL_TOL) {
                     for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
                     continue;
                 }
@@ -464,7 +464,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 v3 wmtr = sphg_dir(-m->tilt, gmtr, b), wmtr_ = sphg_dir(0.0, gmtr, b);
                 v3 wh3 = add(wtr, scl(wo, inv_eta));
                 double l3 = dot(wh3, wh3);
-                if (!(l3 > ABRDF__HAIR_HALF_LEN2_MIN)) continue;
+                if (!(l3 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
                 double rn3 = 1.0 / sqrt(l3);
                 wh3 = scl(wh3, rn3);
                 double cos_mh3 = dot(wmtr, wh3);
@@ -514,7 +514,7 @@ void abrdf__huang_fibre(const abrdf__huang *m, const double wi_[3], const double
     if (x > 1.0) return; /* entry mesonormal hidden */
     double half_span = acos(fmax(x, 0.0));
     double sp_i = wi.x / ci, cp_i = wi.z / ci;
-    double radius = sqrt(fmax(ABRDF__HAIR_RADIUS2_MIN, 1.0 - e2 * sp_i * sp_i));
+    double radius = sqrt(fmax(ABRDF__HUANG_RADIUS2_MIN, 1.0 - e2 * sp_i * sp_i));
     double phi_i = dir_phi(wi);
     double hmin = phi_to_h(phi_i + half_span, b, sp_i, cp_i) / radius;
     double hmax = phi_to_h(phi_i - half_span, b, sp_i, cp_i) / radius;
