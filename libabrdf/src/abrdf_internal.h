@@ -1,47 +1,26 @@
-/* abrdf_internal.h - internals shared by the library sources: named thresholds, the model
- * registry's private view, and the precision-independent kernel interface.
+/* abrdf_internal.h - internals shared by the library sources: the evaluation entry points
+ * per precision and the helpers of the registry and selection. Includes guards.h, where
+ * every named threshold is.
  *
- * The models are written once, in the k_*.h kernel files, against the type ABRDF_REAL and
- * <tgmath.h>'s type-generic math. eval_double.c instantiates them in double (the scalar
- * reference), eval_float.c in float (the batch path). Both paths therefore evaluate the
- * same formula, and tests hold their results to each other. */
+ * The closed-form models are written once, in the k_*.h kernel files (kernel.h explains
+ * how). eval_double.c instantiates them in double (the scalar reference), eval_float.c in
+ * float (the batch path). Both paths therefore evaluate the same formula, and tests hold
+ * their results to each other. */
 #ifndef ABRDF_INTERNAL_H
 #define ABRDF_INTERNAL_H
 
 #include "abrdf.h"
-
-/* ---- named thresholds (every epsilon says why it has its value) ---------------------- */
-
-/* Smallest microfacet roughness alpha_g. The paper's Table 6 goes down to alpha_g = 1e-5;
- * at 1e-6 the GGX peak 1/(pi alpha_g^2) = 3.2e11 is still far inside float's range and
- * alpha_g^4 = 1e-24 stays a normal float, so D never overflows or divides by zero. */
-#define ABRDF__ALPHA_G_MIN 1e-6
-
-/* |wi + wo|^2 below this means wi ~ -wo: the half vector is undefined. Both directions then
- * lie at grazing (they cannot both be above the surface), where every model returns 0. */
-#define ABRDF__HALF_LEN2_MIN 1e-12
-
-/* Models with G = 1 (Table 5's Cook-Torrance forms) divide by cos_i cos_o with nothing to
- * cancel it. Clamping each cosine at 1e-4 bounds that factor by 2.5e7 (MODELS.md B4), so
- * grazing rims stay finite in float as well as double. */
-#define ABRDF__COS_MIN_NO_G 1e-4
-
-/* Disney clearcoat GTR1 at alpha = 1 is 0/0; within this distance of 1 use its limit 1/pi. */
-#define ABRDF__GTR1_ALPHA_ONE 1e-7
+#include "guards.h"
 
 #define ABRDF__PI 3.14159265358979323846
 #define ABRDF__INV_PI 0.31830988618379067154
 
 /* ---- evaluation entry points per precision ------------------------------------------ */
 /* Local-frame evaluation; inputs already validated. wi, wo need not be normalised here:
- * the scalar path normalises before calling. */
+ * the scalar path normalises before calling. f is finite and >= 0. */
 void abrdf__eval_local_d(abrdf_model model, const abrdf_params *p, const double wi[3],
                          const double wo[3], double f[3]);
 void abrdf__eval_batch_f(abrdf_model model, const abrdf_params *p, const abrdf_batch *b);
-
-/* Normalise v into out; returns 0 (and out = 0) for zero, tiny or non-finite vectors.
- * Scales by the largest component first, so squaring cannot overflow or underflow. */
-int abrdf__normalise3(const double v[3], double out[3]);
 
 /* Special-surface models that integrate numerically are implemented in double only; the
  * batch path calls them per element. Returns 1 if `model` is such a model. */

@@ -4,37 +4,7 @@
 #include <string.h>
 
 #include "abrdf_internal.h"
-
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static int finite3(const double v[3])
-{
-    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
-}
-
-/* Normalise v into out; 0 (and out = 0) for zero, tiny or non-finite vectors. */
-int abrdf__normalise3(const double v[3], double out[3])
-{
-    out[0] = out[1] = out[2] = 0.0;
-    if (!finite3(v)) return 0;
-    /* Scale first so that squaring cannot overflow or underflow. */
-    double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
-    if (!(m > 0.0)) return 0;
-    double s[3] = {v[0] / m, v[1] / m, v[2] / m};
-    double len = sqrt(dot3(s, s));
-    for (int c = 0; c < 3; ++c) out[c] = s[c] / len;
-    return 1;
-}
-
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
+#include "vec.h"
 
 int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame *frame)
 {
@@ -48,12 +18,12 @@ int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame *frame)
      * threshold on |t_perp| keeps the normalisation well conditioned. */
     double tt[3] = {0, 0, 0};
     int have_t = 0;
-    if (t && finite3(t)) {
+    if (t && abrdf__finite3(t)) {
         double tn[3];
         if (abrdf__normalise3(t, tn)) {
-            double d = dot3(tn, nn);
+            double d = abrdf__dot3(tn, nn);
             for (int c = 0; c < 3; ++c) tt[c] = tn[c] - d * nn[c];
-            have_t = sqrt(dot3(tt, tt)) > 1e-6;
+            have_t = sqrt(abrdf__dot3(tt, tt)) > 1e-6;
         }
     }
     if (!have_t) {
@@ -61,20 +31,20 @@ int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame *frame)
         int k = fabs(nn[0]) <= fabs(nn[1]) ? (fabs(nn[0]) <= fabs(nn[2]) ? 0 : 2)
                                            : (fabs(nn[1]) <= fabs(nn[2]) ? 1 : 2);
         ax[k] = 1.0;
-        double d = dot3(ax, nn);
+        double d = abrdf__dot3(ax, nn);
         for (int c = 0; c < 3; ++c) tt[c] = ax[c] - d * nn[c];
     }
     abrdf__normalise3(tt, frame->t);
     memcpy(frame->n, nn, sizeof nn);
-    cross3(frame->n, frame->t, frame->b);
+    abrdf__cross3(frame->n, frame->t, frame->b);
     return ABRDF_OK;
 }
 
 static void to_local(const abrdf_frame *fr, const double v[3], double out[3])
 {
-    out[0] = dot3(v, fr->t);
-    out[1] = dot3(v, fr->b);
-    out[2] = dot3(v, fr->n);
+    out[0] = abrdf__dot3(v, fr->t);
+    out[1] = abrdf__dot3(v, fr->b);
+    out[2] = abrdf__dot3(v, fr->n);
 }
 
 int abrdf_eval_local(abrdf_model model, const abrdf_params *params, const double wi[3],
@@ -94,7 +64,7 @@ int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame 
     double i[3], o[3], li[3], lo[3];
     if (!abrdf__normalise3(wi, i) || !abrdf__normalise3(wo, o)) return ABRDF_OK; /* degenerate: f = 0 */
     if (frame) {
-        if (!finite3(frame->n) || !finite3(frame->t) || !finite3(frame->b)) return ABRDF_OK;
+        if (!abrdf__finite3(frame->n) || !abrdf__finite3(frame->t) || !abrdf__finite3(frame->b)) return ABRDF_OK;
         to_local(frame, i, li);
         to_local(frame, o, lo);
     } else {
@@ -135,7 +105,7 @@ int abrdf_shade(abrdf_model diffuse, abrdf_model specular, const abrdf_params *p
         return st;
     double i[3], ni[3] = {0, 0, 1};
     double cos_i = 0.0;
-    if (abrdf__normalise3(wi, i)) cos_i = fmax(0.0, dot3(i, frame ? frame->n : ni));
+    if (abrdf__normalise3(wi, i)) cos_i = fmax(0.0, abrdf__dot3(i, frame ? frame->n : ni));
     for (int c = 0; c < 3; ++c) {
         double v = ambient[c] + light[c] * cos_i * (fd[c] + fs[c]); /* Sec. 1, pixel intensity */
         out[c] = (v >= 0.0 && isfinite(v)) ? v : 0.0;

@@ -17,23 +17,6 @@
 #define ABRDF_HAIR_H
 #include "abrdf_internal.h"
 
-/* ---- named thresholds ------------------------------------------------------------- */
-
-/* Floor of cos(theta_d) (Marschner) and cos(theta) (Huang): both vanish only when a
- * direction runs along the fibre. 1e-6 keeps eta' = sqrt(eta^2 - sin^2)/cos <= 4e6 and
- * 1/cos^2 <= 1e12, finite, while changing no direction farther than 0.06 deg from T. */
-#define ABRDF__HAIR_COS_MIN 1e-6
-
-/* |dPhi/dh| below this is a stationary point of the azimuthal map (a caustic, or eta' = 1
- * where TT is a Dirac delta): a root there is clamped to it, which bounds one root's
- * A/|2 dPhi/dh| by 5e8 * A. Such roots only occur where the glint smoothing multiplies
- * them by ~0 (TRT) or on a set of measure zero (TT at eta = 1). */
-#define ABRDF__HAIR_DPHI_MIN 1e-9
-
-/* Azimuthal intervals narrower than this in Phi carry no root worth solving (Phi constant:
- * TT at eta' = 1 is a delta in phi, zero almost everywhere). */
-#define ABRDF__HAIR_FLAT_PHI 1e-12
-
 #define ABRDF__HAIR_DEG (ABRDF__PI / 180.0)
 
 /* ---- shared helpers (hair_common.c) -------------------------------------------------- */
@@ -122,11 +105,6 @@ typedef struct abrdf__huang {
 #define ABRDF__HAIR_E_N 16
 extern const double abrdf__hair_glass_e[ABRDF__HAIR_E_N * ABRDF__HAIR_E_N * ABRDF__HAIR_E_N];
 extern const double abrdf__hair_glass_inv_e[ABRDF__HAIR_E_N * ABRDF__HAIR_E_N * ABRDF__HAIR_E_N];
-
-/* Floor of E in the compensation 1/E, a guard only: it lies below the tables' smallest
- * entry (0.0224, printed in hair_tables.c; grazing light inside a fibre of high index),
- * so it never changes a tabulated value, and it bounds 1/E at 50. */
-#define ABRDF__HAIR_E_MIN 0.02
 
 /* The albedo the tables hold, by an n x n midpoint rule over the GGX VNDF square. */
 double abrdf__ggx_glass_albedo(double alpha, double mu, double eta, int n);

@@ -13,8 +13,7 @@ void abrdf__hair_sigma_a(double melanin, double redness, double sigma[3])
 {
     static const double eu[3] = {0.506, 0.841, 1.653};    /* eumelanin, per unit radius */
     static const double pheo[3] = {0.343, 0.733, 1.924};  /* pheomelanin */
-    /* 1e-4 is Cycles' floor: melanin = 1 maps to a finite concentration of 9.2. */
-    double m = -log(fmax(1.0 - melanin, 1e-4));
+    double m = -log(fmax(1.0 - melanin, ABRDF__HAIR_MELANIN_REST_MIN));
     double ce = m * (1.0 - redness), cp = m * redness;
     for (int c = 0; c < 3; ++c) sigma[c] = ce * eu[c] + cp * pheo[c];
 }
@@ -28,7 +27,7 @@ static double cos_refracted(double n, double c)
 
 double abrdf__fresnel_s(double n, double c)
 {
-    c = fmin(fmax(c, 0.0), 1.0);
+    c = abrdf__clamp(c, 0.0, 1.0);
     double ct = cos_refracted(n, c);
     if (ct < 0.0) return 1.0;
     double den = c + n * ct;
@@ -39,7 +38,7 @@ double abrdf__fresnel_s(double n, double c)
 
 double abrdf__fresnel_p(double n, double c)
 {
-    c = fmin(fmax(c, 0.0), 1.0);
+    c = abrdf__clamp(c, 0.0, 1.0);
     double ct = cos_refracted(n, c);
     if (ct < 0.0) return 1.0;
     double den = n * c + ct;
@@ -68,7 +67,7 @@ double abrdf__wrap_pi(double a)
 
 void abrdf__fibre_angles(const double w[3], double *sin_t, double *cos_t, double *phi)
 {
-    *sin_t = fmin(fmax(w[0], -1.0), 1.0);
+    *sin_t = abrdf__clamp(w[0], -1.0, 1.0);
     *cos_t = sqrt(w[1] * w[1] + w[2] * w[2]);
     *phi = atan2(w[2], w[1]); /* atan2(0, 0) = 0: a direction along T has any azimuth */
 }

@@ -53,9 +53,6 @@ static v3 cross(v3 a, v3 b)
     return mk(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
 
-/* |v|^2 below this: a half vector of two opposite directions (eta = 1), undefined. */
-#define HALF_LEN2_MIN 1e-20
-
 /* ---- fibre coordinates (Cycles' local frame: y along the fibre) --------------------- */
 static double sin_theta(v3 w) { return w.y; }
 static double cos_theta(v3 w) { return sqrt(w.x * w.x + w.z * w.z); }
@@ -76,7 +73,7 @@ static double phi_to_h(double phi, double b, double sp_i, double cp_i)
 /* Inverse of the above for h pre-divided by the projected radius. */
 static double h_to_gamma(double h_div_r, double b, v3 wi)
 {
-    return atan2(wi.z, -b * wi.x) - acos(fmin(fmax(-h_div_r, -1.0), 1.0));
+    return atan2(wi.z, -b * wi.x) - acos(abrdf__clamp(-h_div_r, -1.0, 1.0));
 }
 
 static v3 to_point(double gamma, double b) { return mk(sin(gamma), 0.0, b * cos(gamma)); }
@@ -86,7 +83,8 @@ static v3 sphg_dir(double theta, double gamma, double b)
 {
     double st = sin(theta), ct = cos(theta), sg = sin(gamma), cg = cos(gamma);
     double sp = sg, cp = cg;
-    if (b != 1.0 && fabs(cg) >= 1e-6) { /* the normal of x = sin g, z = b cos g */
+    /* the normal of x = sin g, z = b cos g */
+    if (b != 1.0 && fabs(cg) >= ABRDF__HUANG_ELLIPSE_COS_MIN) {
         double tp = b * sg / cg;
         cp = (cg > 0.0 ? 1.0 : -1.0) / sqrt(tp * tp + 1.0);
         sp = cp * tp;
@@ -98,7 +96,7 @@ static v3 sphg_dir(double theta, double gamma, double b)
 static double arc_length(double e2, double gamma)
 {
     double s = sin(gamma);
-    return sqrt(fmax(0.0, 1.0 - e2 * s * s));
+    return abrdf__safe_sqrt(1.0 - e2 * s * s);
 }
 
 /* ---- GGX pieces (alpha2 = alpha^2), height-correlated Smith ----------------------- */
@@ -117,7 +115,7 @@ static double ggx_d(double alpha2, double c)
 static double ggx_lambda(double alpha2, double c)
 {
     double c2 = c * c;
-    if (!(c2 > 0.0)) return 1e300; /* grazing: fully shadowed */
+    if (!(c2 > 0.0)) return ABRDF__HUANG_LAMBDA_GRAZING; /* grazing: fully shadowed */
     return 0.5 * (sqrt(1.0 + alpha2 * (1.0 - c2) / c2) - 1.0);
 }
 
@@ -154,8 +152,8 @@ static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
     double r = sqrt(u1), ph = 2.0 * ABRDF__PI * u2;
     double p1 = r * cos(ph), p2 = r * sin(ph);
     double sh = 0.5 * (1.0 + vh.z);
-    p2 = (1.0 - sh) * sqrt(fmax(0.0, 1.0 - p1 * p1)) + sh * p2;
-    double p3 = sqrt(fmax(0.0, 1.0 - p1 * p1 - p2 * p2));
+    p2 = (1.0 - sh) * abrdf__safe_sqrt(1.0 - p1 * p1) + sh * p2;
+    double p3 = abrdf__safe_sqrt(1.0 - p1 * p1 - p2 * p2);
     v3 nh = add(add(scl(t1, p1), scl(t2, p2)), scl(vh, p3));
     v3 ne = mk(alpha * nh.x, alpha * nh.y, fmax(0.0, nh.z));
     ne = scl(ne, 1.0 / len(ne));
@@ -190,7 +188,7 @@ static int visible2(v3 a, v3 b, v3 m, v3 h) { return visible1(a, m, h) && visibl
 static double bessel_i0(double x)
 {
     double x2 = 0.25 * x * x, term = 1.0, sum = 1.0;
-    for (int k = 1; k < 200 && term > 1e-17 * sum; ++k) {
+    for (int k = 1; k < ABRDF__HUANG_I0_TERMS && term > ABRDF__HUANG_I0_REL_TOL * sum; ++k) {
         term *= x2 / ((double)k * k);
         sum += term;
     }
@@ -199,15 +197,15 @@ static double bessel_i0(double x)
 
 static double log_bessel_i0(double x)
 {
-    /* asymptotic expansion past 12, where the series would overflow its terms' exponent */
-    if (x > 12.0) return x + 0.5 * (1.0 / (8.0 * x) - log(2.0 * ABRDF__PI) - log(x));
+    if (x > ABRDF__HUANG_I0_ASYMPTOTIC) /* asymptotic expansion */
+        return x + 0.5 * (1.0 / (8.0 * x) - log(2.0 * ABRDF__PI) - log(x));
     return log(bessel_i0(x));
 }
 
 static double longitudinal_m(double si, double ci, double so, double co, double v)
 {
     double a = ci * co / v, bsin = si * so / v;
-    if (v <= 0.1) /* sinh(1/v) overflows for small v: log form */
+    if (v <= ABRDF__HUANG_M_LOG_V)
         return exp(log_bessel_i0(a) - bsin - 1.0 / v + log(2.0) + log(0.5 / v));
     return exp(-bsin) * bessel_i0(a) / (sinh(1.0 / v) * 2.0 * v);
 }
@@ -215,7 +213,7 @@ static double longitudinal_m(double si, double ci, double so, double co, double 
 /* Cycles' TRRT+ estimate: the geometric series of further internal bounces. */
 static double trrt(double t1, double r2, double a)
 {
-    double tavg = fmax(1.0 - r2, 1e-5);
+    double tavg = fmax(1.0 - r2, ABRDF__HUANG_TAVG_MIN);
     return t1 * r2 * r2 * tavg * a * a * a / (1.0 - a * (1.0 - tavg));
 }
 
@@ -227,7 +225,7 @@ static double trrt(double t1, double r2, double a)
  * square (tools/gen/gen_hair_tables.c tabulates it; hair_tables.c). */
 double abrdf__ggx_glass_albedo(double alpha, double mu, double eta, int n)
 {
-    v3 wi = mk(sqrt(fmax(0.0, 1.0 - mu * mu)), 0.0, mu), nz = mk(0, 0, 1);
+    v3 wi = mk(abrdf__safe_sqrt(1.0 - mu * mu), 0.0, mu), nz = mk(0, 0, 1);
     double a2 = alpha * alpha, li = ggx_lambda(a2, mu), sum = 0.0;
     for (int j = 0; j < n * n; ++j) {
         v3 h = vndf_map(alpha, wi, nz, (j / n + 0.5) / n, (j % n + 0.5) / n);
@@ -254,7 +252,7 @@ static double table_read(const double *t, double x, double y, double z)
     int i0[3], i1[3];
     double f[3];
     for (int k = 0; k < 3; ++k) {
-        double u = fmin(fmax(c[k], 0.0), 1.0) * (n - 1);
+        double u = abrdf__clamp(c[k], 0.0, 1.0) * (n - 1);
         i0[k] = (int)u < n - 1 ? (int)u : n - 1;
         i1[k] = i0[k] + 1 < n ? i0[k] + 1 : n - 1;
         f[k] = u - i0[k];
@@ -283,7 +281,7 @@ static double energy_scale(const abrdf__huang *m, double mu, double eta)
 void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
 {
     m->eta = p->eta;
-    m->alpha = fmin(fmax(p->r, 0.001), 1.0);
+    m->alpha = abrdf__clamp(p->r, ABRDF__HUANG_ALPHA_MIN, 1.0);
     m->tilt = -p->cuticle_tilt * ABRDF__HAIR_DEG;
     m->b = fmin(p->aspect_ratio, 1.0);
     abrdf__hair_sigma_a(p->melanin, p->redness, m->sigma_a);
@@ -423,11 +421,11 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
             double wgt = weight * w1;
 
             /* TT: exit through the microfacet with generalised half vector wh2 (Eq. 13) */
-            /* exit possible only if wo is within the critical cone (1e-5: Cycles' tolerance) */
-            if ((lobes & 2u) && dot(wo, wt) >= inv_eta - 1e-5) {
+            /* exit possible only if wo is within the critical cone */
+            if ((lobes & 2u) && dot(wo, wt) >= inv_eta - ABRDF__HUANG_CRITICAL_TOL) {
                 v3 wh2 = add(neg(wt), scl(wo, inv_eta));
                 double l2 = dot(wh2, wh2);
-                if (l2 > HALF_LEN2_MIN) {
+                if (l2 > ABRDF__HUANG_HALF_LEN2_MIN) {
                     double rn = 1.0 / sqrt(l2);
                     wh2 = scl(wh2, rn);
                     double cos_mh2 = dot(wmt, wh2);
@@ -454,7 +452,8 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 v3 wtr = neg(reflect_dir(wt, wh2));
                 double rr[3];
                 for (int c = 0; c < 3; ++c) rr[c] = wgt2 * proj * trrt(t1, r2f, at[c]);
-                if (dot(neg(wtr), wo) < inv_eta - 1e-5) { /* total internal reflection */
+                /* total internal reflection */
+                if (dot(neg(wtr), wo) < inv_eta - ABRDF__HUANG_CRITICAL_TOL) {
                     for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
                     continue;
                 }
@@ -465,7 +464,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 v3 wmtr = sphg_dir(-m->tilt, gmtr, b), wmtr_ = sphg_dir(0.0, gmtr, b);
                 v3 wh3 = add(wtr, scl(wo, inv_eta));
                 double l3 = dot(wh3, wh3);
-                if (!(l3 > HALF_LEN2_MIN)) continue;
+                if (!(l3 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
                 double rn3 = 1.0 / sqrt(l3);
                 wh3 = scl(wh3, rn3);
                 double cos_mh3 = dot(wmtr, wh3);
@@ -515,7 +514,7 @@ void abrdf__huang_fibre(const abrdf__huang *m, const double wi_[3], const double
     if (x > 1.0) return; /* entry mesonormal hidden */
     double half_span = acos(fmax(x, 0.0));
     double sp_i = wi.x / ci, cp_i = wi.z / ci;
-    double radius = sqrt(fmax(1e-12, 1.0 - e2 * sp_i * sp_i));
+    double radius = sqrt(fmax(ABRDF__HUANG_RADIUS2_MIN, 1.0 - e2 * sp_i * sp_i));
     double phi_i = dir_phi(wi);
     double hmin = phi_to_h(phi_i + half_span, b, sp_i, cp_i) / radius;
     double hmax = phi_to_h(phi_i - half_span, b, sp_i, cp_i) / radius;

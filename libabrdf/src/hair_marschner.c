@@ -43,12 +43,14 @@
 
 /* Glint smoothing constants; the paper gives ranges (Table 1: k_G 0.5-5, w_c 10-25 deg,
  * Delta eta' 0.2-0.4, Delta h_M 0.2-0.4). We take the lower intensity and mid widths. */
-#define GLINT_KG 0.5
-#define GLINT_WC (15.0 * ABRDF__HAIR_DEG)
-#define GLINT_DETA 0.3
-#define GLINT_DHM 0.3
+#define ABRDF__MARSCHNER_GLINT_KG 0.5
+#define ABRDF__MARSCHNER_GLINT_WC (15.0 * ABRDF__HAIR_DEG)
+#define ABRDF__MARSCHNER_GLINT_DETA 0.3
+#define ABRDF__MARSCHNER_GLINT_DHM 0.3
 
-#define BISECT_STEPS 60 /* halves a [-1, 1] interval to below 1e-17: double precision */
+/* Bisection steps for a root of Phi: 60 halve a [-1, 1] interval to below 1e-17, double
+ * precision. */
+#define ABRDF__MARSCHNER_BISECT_STEPS 60
 
 void abrdf__marschner_setup(const abrdf_params *p, abrdf__marschner *m)
 {
@@ -89,14 +91,14 @@ static double d2phi_dh2(int p, double h, double eta1)
 void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1, double eta2,
                          double cos_theta_t, double a[3])
 {
-    double cos_gi = sqrt(fmax(0.0, 1.0 - h * h));
+    double cos_gi = abrdf__safe_sqrt(1.0 - h * h);
     double fi = 0.5 * (abrdf__fresnel_s(eta1, cos_gi) + abrdf__fresnel_p(eta2, cos_gi));
     if (p == 0) {
         a[0] = a[1] = a[2] = fi; /* A_0 */
         return;
     }
     double st = h / eta1;
-    double cos_gt = sqrt(fmax(0.0, 1.0 - st * st));
+    double cos_gt = abrdf__safe_sqrt(1.0 - st * st);
     double fo = 0.5 * (abrdf__fresnel_s(1.0 / eta1, cos_gt) + abrdf__fresnel_p(1.0 / eta2, cos_gt));
     double tr = (1.0 - fi) * (1.0 - fo) * pow(fo, p - 1);
     for (int c = 0; c < 3; ++c) {
@@ -111,11 +113,11 @@ void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1
 static void bravais(double eta, double sin_d, double cos_d, double *eta1, double *eta2,
                     double *cos_t)
 {
-    double q = sqrt(fmax(eta * eta - sin_d * sin_d, 0.0));
+    double q = abrdf__safe_sqrt(eta * eta - sin_d * sin_d);
     *eta1 = fmax(q / cos_d, 1.0);
     *eta2 = eta * eta * cos_d / fmax(q, ABRDF__HAIR_COS_MIN);
     double st = sin_d / eta;
-    *cos_t = sqrt(fmax(0.0, 1.0 - st * st));
+    *cos_t = abrdf__safe_sqrt(1.0 - st * st);
 }
 
 /* Marschner's eccentricity trick for TRT: the effective index for an elliptical section. */
@@ -151,7 +153,7 @@ static void root_sum(const abrdf__marschner *m, int p, double phi, double eta1, 
         for (double j = j0; j <= j1; j += 1.0) {
             double target = phi + 2.0 * ABRDF__PI * j;
             double x0 = a, x1 = b;
-            for (int it = 0; it < BISECT_STEPS; ++it) {
+            for (int it = 0; it < ABRDF__MARSCHNER_BISECT_STEPS; ++it) {
                 double xm = 0.5 * (x0 + x1);
                 double g = phi_of(p, xm, eta1) - target;
                 if ((g < 0.0) == inc) x0 = xm; else x1 = xm;
@@ -185,24 +187,25 @@ void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double th
     if (eta1 < 2.0) {
         hc = sqrt((4.0 - eta1 * eta1) / 3.0);
         double d2 = fabs(d2phi_dh2(2, hc, eta1));
-        dh = d2 > 0.0 ? fmin(GLINT_DHM, 2.0 * sqrt(2.0 * GLINT_WC / d2)) : GLINT_DHM;
+        dh = d2 > 0.0 ? fmin(ABRDF__MARSCHNER_GLINT_DHM, 2.0 * sqrt(2.0 * ABRDF__MARSCHNER_GLINT_WC / d2))
+                      : ABRDF__MARSCHNER_GLINT_DHM;
         t = 1.0;
     } else {
         hc = 0.0;
-        dh = GLINT_DHM;
-        double x = fmin(1.0, (eta1 - 2.0) / GLINT_DETA);
+        dh = ABRDF__MARSCHNER_GLINT_DHM;
+        double x = fmin(1.0, (eta1 - 2.0) / ABRDF__MARSCHNER_GLINT_DETA);
         t = 1.0 - x * x * (3.0 - 2.0 * x);
     }
     if (!(t > 0.0)) return;
     double phic = abrdf__wrap_pi(phi_of(2, hc, eta1));
-    double g0 = abrdf__gauss(0.0, GLINT_WC);
-    double gm = abrdf__gauss(abrdf__wrap_pi(phi - phic), GLINT_WC);
-    double gp = abrdf__gauss(abrdf__wrap_pi(phi + phic), GLINT_WC);
+    double g0 = abrdf__gauss(0.0, ABRDF__MARSCHNER_GLINT_WC);
+    double gm = abrdf__gauss(abrdf__wrap_pi(phi - phic), ABRDF__MARSCHNER_GLINT_WC);
+    double gp = abrdf__gauss(abrdf__wrap_pi(phi + phic), ABRDF__MARSCHNER_GLINT_WC);
     double notch = (1.0 - t * gm / g0) * (1.0 - t * gp / g0);
     double ac[3];
     abrdf__marschner_ap(m, 2, hc, eta1, eta2, cos_t, ac);
     for (int c = 0; c < 3; ++c)
-        n[c] = n[c] * notch + t * GLINT_KG * ac[c] * dh * (gm + gp);
+        n[c] = n[c] * notch + t * ABRDF__MARSCHNER_GLINT_KG * ac[c] * dh * (gm + gp);
 }
 
 void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const double wo[3],

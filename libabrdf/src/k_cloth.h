@@ -1,4 +1,4 @@
-/* k_cloth.h - cloth models (both precisions via kernel.h).
+/* k_cloth.h - the cloth models, setup beside kernel (both precisions via kernel.h).
  *
  * Neubelt-Pettineo (Eq. 10): D. Neubelt, M. Pettineo, "Crafting a Next-Gen Material
  *   Pipeline for The Order: 1886", SIGGRAPH 2013 course notes, built on the inverted-
@@ -12,6 +12,7 @@
  *   the library's single convention (as Filament, which passes perceptual roughness
  *   squared); F is Schlick's (Eq. 8) at L.H with f0; ks (default 1) scales the sheen lobe.
  *   Reciprocal (F at L.H = V.H, symmetric denominator); not energy-conserving in general.
+ *   D and V are d_velvet and v_neubelt in k_terms.h.
  *
  * Kajiya-Kay (Eq. 11): J. T. Kajiya, T. L. Kay, "Rendering fur with three dimensional
  *   textures", SIGGRAPH 1989, in the sign-correct form for L pointing toward the light
@@ -23,58 +24,52 @@
  *   (abrdf.h), they are returned as f_r unchanged, so shading multiplies them by N.L.
  *   A caller wanting the fur convention (no N.L) divides by N.L. Not normalised, so not
  *   energy-conserving; not reciprocal (the diffuse term depends on L only; the specular
- *   bracket is symmetric in L and V). */
+ *   bracket is symmetric in L and V). Nothing to precompute: its setup is kp_base. */
+#include "kernel.h"
+#include "k_terms.h"
 
-/* Below this sin^2(theta_h) the inverted-Gaussian term exp(-cot^2/alpha^2)/sin^4 is taken
- * at its limit 0 (0/0 at theta_h = 0). For every alpha <= 1 its value at the threshold is
- * below exp(-0.9999e4) * 1e8, i.e. exactly 0 in double, so the cut changes nothing; it only
- * keeps 0 * Inf out of float. (Filament's 2^-7 clamp is an fp16 guard, not copied.) */
-#define ABRDF__VELVET_SIN2_MIN 1e-4
+#if ABRDF__KERNEL_FLOAT ? !defined(ABRDF_K_CLOTH_H_F) : !defined(ABRDF_K_CLOTH_H_D)
+#if ABRDF__KERNEL_FLOAT
+#define ABRDF_K_CLOTH_H_F
+#else
+#define ABRDF_K_CLOTH_H_D
+#endif
 
-/* Ashikhmin-Premoze inverted-Gaussian velvet D with offset 1 and amplitude k_amp; the
- * normalisation norm = 1/(pi (1 + k_amp alpha^2)) comes from kp. */
-static inline R FN(d_velvet)(R ch, R sh2, R alpha, R k_amp, R norm)
+/* alpha_g = r^2 and the velvet normalisation 1/(pi (1 + k_amp alpha_g^2)) (Ashikhmin-
+ * Premoze), the latter from alpha_g as the kernel holds it. */
+static inline void ABRDF__FN(k_neubelt_pettineo_setup)(ABRDF__KP *k, const abrdf_params *p)
 {
-    R g = K(0);
-    if (sh2 > K(ABRDF__VELVET_SIN2_MIN) && ch > K(0))
-        g = exp(-(ch * ch) / (sh2 * alpha * alpha)) / (sh2 * sh2);
-    return norm * (K(1) + k_amp * g); /* Eq. 10 (D) */
+    ABRDF__FN(kp_base)(k, p);
+    k->ag = ABRDF__FN(kp_alpha)(p->r * p->r);
+    k->k_amp = (ABRDF__REAL)p->k_amp;
+    double a = (double)k->ag;
+    k->norm = (ABRDF__REAL)(1.0 / (ABRDF__PI * (1.0 + p->k_amp * a * a)));
 }
 
-/* Neubelt-Pettineo's "smooth" visibility 1/(4 (cos_i + cos_o - cos_i cos_o)). */
-static inline R FN(v_neubelt)(R ci, R co)
+static inline void ABRDF__FN(k_neubelt_pettineo)(const ABRDF__KP *p, const ABRDF__GEO *g,
+                                                 ABRDF__REAL f[3])
 {
-    return FN(safe_div)(K(1), K(4) * (ci + co - ci * co));
-}
-
-static inline void FN(k_neubelt_pettineo)(const kp *p, const geo *g, R f[3])
-{
-    R dv = FN(d_velvet)(g->ch, g->sh2, p->ag, p->k_amp, p->norm) * FN(v_neubelt)(g->ci, g->co);
+    ABRDF__REAL dv = ABRDF__FN(d_velvet)(g->ch, g->sh2, p->ag, p->k_amp, p->norm) *
+                     ABRDF__FN(v_neubelt)(g->ci, g->co);
     for (int c = 0; c < 3; ++c) {
-        R F = FN(f_schlick)(p->f0[c], g->cd);
-        f[c] = (K(1) - F) * p->kd[c] * K(ABRDF__INV_PI) + p->ks[c] * F * dv; /* Eq. 10 */
+        ABRDF__REAL F = ABRDF__FN(f_schlick)(p->f0[c], g->cd);
+        f[c] = (ABRDF__K(1) - F) * p->kd[c] * ABRDF__K(ABRDF__INV_PI) +
+               p->ks[c] * F * dv; /* Eq. 10 */
     }
 }
 
-static inline void FN(k_kajiya_kay)(const kp *p, const geo *g, R f[3])
+static inline void ABRDF__FN(k_kajiya_kay)(const ABRDF__KP *p, const ABRDF__GEO *g,
+                                           ABRDF__REAL f[3])
 {
-    R tl = FN(clampr)(g->ix, K(-1), K(1)), tv = FN(clampr)(g->ox, K(-1), K(1));
+    ABRDF__REAL tl = ABRDF__FN(clampr)(g->ix, ABRDF__K(-1), ABRDF__K(1));
+    ABRDF__REAL tv = ABRDF__FN(clampr)(g->ox, ABRDF__K(-1), ABRDF__K(1));
     /* sin(T, w) = |T x w| = sqrt(w_y^2 + w_z^2) for T = +x: unlike sqrt(1 - (T.w)^2) it does
      * not cancel when w is close to the fibre (float lost 1% of sin there). */
-    R sl = FN(clampr)(sqrt(g->iy * g->iy + g->iz * g->iz), K(0), K(1));
-    R sv = FN(clampr)(sqrt(g->oy * g->oy + g->oz * g->oz), K(0), K(1));
-    R spec = FN(pow_pos)(sl * sv - tl * tv, p->n); /* cosine to the mirror cone */
+    const ABRDF__REAL zero = ABRDF__K(0), one = ABRDF__K(1);
+    ABRDF__REAL sl = ABRDF__FN(clampr)(sqrt(g->iy * g->iy + g->iz * g->iz), zero, one);
+    ABRDF__REAL sv = ABRDF__FN(clampr)(sqrt(g->oy * g->oy + g->oz * g->oz), zero, one);
+    ABRDF__REAL spec = ABRDF__FN(pow_pos)(sl * sv - tl * tv, p->n); /* cosine to the mirror cone */
     for (int c = 0; c < 3; ++c) f[c] = p->kd[c] * sl + p->ks[c] * spec; /* Eq. 11 */
 }
 
-#define ABRDF__CLOTH_MODELS(X)                   \
-    X(ABRDF_NEUBELT_PETTINEO, k_neubelt_pettineo) \
-    X(ABRDF_KAJIYA_KAY, k_kajiya_kay)
-
-static inline void FN(kp_make_cloth)(kp *k, abrdf_model model, const abrdf_params *p)
-{
-    if (model == ABRDF_NEUBELT_PETTINEO) {
-        double a = (double)k->ag;
-        k->norm = (R)(1.0 / (ABRDF__PI * (1.0 + p->k_amp * a * a))); /* Ashikhmin-Premoze */
-    }
-}
+#endif /* per-precision guard */

@@ -36,14 +36,6 @@
 #include "layered.h"
 #include "layered_optics.h"
 
-/* Roughness near 1 makes s(alpha) diverge; the reference code clamps alpha at 0.9999. */
-#define ABRDF__BELCOUR_ALPHA_MAX 0.9999
-
-/* Below this cosine of the mean direction the statistics are degenerate (the Jacobian
- * eta cos_t / cos blows up): such a direction only occurs for L ~ -V, both grazing, or at
- * the critical angle of a less dense layer, and carries no energy. */
-#define ABRDF__BELCOUR_COS_MIN 1e-6
-
 static double var_of_alpha(double a)
 {
     a = a < 0.0 ? 0.0 : (a > ABRDF__BELCOUR_ALPHA_MAX ? ABRDF__BELCOUR_ALPHA_MAX : a);

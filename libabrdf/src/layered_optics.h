@@ -10,6 +10,8 @@
 #define ABRDF_LAYERED_OPTICS_H
 #include <math.h>
 
+#include "guards.h"
+
 #define ABRDF__LO_PI 3.14159265358979323846
 
 /* Reflectance of an interface of relative index eta + i kappa at incidence cosine c. */
@@ -20,7 +22,7 @@ static inline double abrdf__fresnel_exact(double c, double eta, double kappa)
     double c2 = c * c, s2 = 1.0 - c2;
     double t0 = eta * eta - kappa * kappa - s2;
     double a2pb2 = sqrt(t0 * t0 + 4.0 * eta * eta * kappa * kappa);
-    double a = sqrt(fmax(0.0, 0.5 * (a2pb2 + t0)));
+    double a = abrdf__safe_sqrt(0.5 * (a2pb2 + t0));
     double t1 = a2pb2 + c2, t2 = 2.0 * c * a;
     if (!(t1 + t2 > 0.0)) return 1.0; /* grazing incidence */
     double rs = (t1 - t2) / (t1 + t2);

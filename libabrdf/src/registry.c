@@ -89,7 +89,6 @@ static const abrdf_model_param mp_clearcoat[] = {KS, {P_CLEARCOAT_GLOSS, 1.0, 0.
 
 #define PARAMS(a) (int)(sizeof a / sizeof a[0]), a
 
-/* ---- cloth and layered models: parameters ---- */
 #define KD_AT(d) {P_KD, d, 0.0, 1.0}
 #define KS_AT(d) {P_KS, d, 0.0, 1.0}
 /* The five parameters of layer k with this model's defaults (ranges are the parameters'). */
@@ -115,7 +114,6 @@ static const abrdf_model_param mp_belcour[] = {{P_LAYER_COUNT, 2.0, 1.0, ABRDF_M
 #define CIT_KAJIYA "J. T. Kajiya, T. L. Kay, Rendering fur with three dimensional textures, SIGGRAPH 1989"
 #define CIT_WW "A. Weidlich, A. Wilkie, Arbitrarily layered micro-facet surfaces, GRAPHITE 2007"
 #define CIT_BELCOUR "L. Belcour, Efficient rendering of layered materials using an atomic decomposition with statistical operators, ACM TOG 37(4), 2018"
-/* ---- end cloth and layered models: parameters ---- */
 
 #define CIT_LAMBERT "J. H. Lambert, Photometria, 1760"
 #define CIT_BURLEY "B. Burley, Physically-Based Shading at Disney, SIGGRAPH 2012 course notes"
@@ -132,8 +130,7 @@ static const abrdf_model_param mp_belcour[] = {{P_LAYER_COUNT, 2.0, 1.0, ABRDF_M
 #define CIT_CT "R. L. Cook, K. E. Torrance, A reflectance model for computer graphics, ACM TOG 1(1), 1982"
 #define CIT_WALTER "B. Walter et al., Microfacet models for refraction through rough surfaces, EGSR 2007; " CIT_BURLEY
 
-/* ---- hair models (hair.h) ---------------------------------------------------------- */
-/* Defaults: brown hair with Cycles' Principled Hair defaults (melanin 0.8, redness 1.0),
+/* Hair (hair.h). Defaults: brown hair with Cycles' Principled Hair defaults (melanin 0.8, redness 1.0),
  * eta 1.55 (keratin). Marschner: r is the longitudinal width beta_R in radians (the paper's
  * 5-10 deg -> 0.13 rad), the axis ratio a in [0.75, 1] where its eccentricity trick keeps
  * eta* >= 1 (it needs a^2 >= 1/2). */
@@ -153,7 +150,6 @@ static const abrdf_model_param mp_huang[] = {
 #define CIT_HUANG "W. Huang, M. B. Hullin, J. Hanika, A microfacet-based hair scattering model, " \
     "Computer Graphics Forum 41(4), 2022"
 #define HAIR_NEEDS (ABRDF_NEEDS_TANGENT | ABRDF_NEEDS_INTEGRATION | ABRDF_NEEDS_FRESNEL)
-/* ---- end hair models --------------------------------------------------------------- */
 
 static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
     [ABRDF_LAMBERT] = {ABRDF_LAMBERT, "lambert", "Lambert", "Eq. 1", CIT_LAMBERT,
@@ -215,19 +211,19 @@ static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
         "special surfaces (named)", CIT_MARSCHNER, HAIR_NEEDS, 0, -1, PARAMS(mp_marschner)},
     [ABRDF_HUANG] = {ABRDF_HUANG, "huang", "Huang-Hullin-Hanika microfacet hair (far field)",
         "Eqs. 12-14", CIT_HUANG, HAIR_NEEDS, 0, -1, PARAMS(mp_huang)},
-    /* ---- cloth and layered models ---- */
+    /* cloth */
     [ABRDF_NEUBELT_PETTINEO] = {ABRDF_NEUBELT_PETTINEO, "neubelt_pettineo",
         "Neubelt-Pettineo cloth (Ashikhmin-Premoze velvet)", "Eq. 10", CIT_NEUBELT,
         ABRDF_NEEDS_FRESNEL, REC | DIF | SPE, -1, PARAMS(mp_neubelt)},
     [ABRDF_KAJIYA_KAY] = {ABRDF_KAJIYA_KAY, "kajiya_kay", "Kajiya-Kay fibre lobes", "Eq. 11",
         CIT_KAJIYA, ABRDF_NEEDS_TANGENT, DIF | SPE, -1, PARAMS(mp_kajiya)},
+    /* layered */
     [ABRDF_WEIDLICH_WILKIE] = {ABRDF_WEIDLICH_WILKIE, "weidlich_wilkie",
         "Weidlich-Wilkie layered (GGX interfaces over Lambert)", "Eq. 15", CIT_WW,
         ABRDF_NEEDS_FRESNEL | ABRDF_NEEDS_LAYERS, REC | DIF | SPE, -1, PARAMS(mp_ww)},
     [ABRDF_BELCOUR] = {ABRDF_BELCOUR, "belcour", "Belcour layered (atomic decomposition)",
         "Eq. 16", CIT_BELCOUR, ABRDF_NEEDS_FRESNEL | ABRDF_NEEDS_LAYERS, REC | EC | SPE, -1,
         PARAMS(mp_belcour)},
-    /* ---- end cloth and layered models ---- */
 };
 
 /* ---- lookups ----------------------------------------------------------------------- */

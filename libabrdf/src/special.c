@@ -20,14 +20,12 @@ int abrdf__is_double_only(abrdf_model model)
 void abrdf__eval_special(abrdf_model model, const abrdf_params *p, const double wi[3],
                          const double wo[3], double f[3])
 {
-    double v[3] = {0.0, 0.0, 0.0};
+    f[0] = f[1] = f[2] = 0.0;
     switch (model) {
-    case ABRDF_MARSCHNER: abrdf__marschner_eval(p, wi, wo, v); break;
-    case ABRDF_HUANG: abrdf__huang_eval(p, wi, wo, v); break;
-    case ABRDF_WEIDLICH_WILKIE: abrdf__eval_weidlich_wilkie(p, wi, wo, v); break;
-    case ABRDF_BELCOUR: abrdf__eval_belcour(p, wi, wo, v); break;
+    case ABRDF_MARSCHNER: abrdf__marschner_eval(p, wi, wo, f); break;
+    case ABRDF_HUANG: abrdf__huang_eval(p, wi, wo, f); break;
+    case ABRDF_WEIDLICH_WILKIE: abrdf__eval_weidlich_wilkie(p, wi, wo, f); break;
+    case ABRDF_BELCOUR: abrdf__eval_belcour(p, wi, wo, f); break;
     default: break;
     }
-    /* Last line of defence, as in the closed-form path: never NaN, Inf or negative. */
-    for (int c = 0; c < 3; ++c) f[c] = (v[c] >= 0.0 && v[c] <= 1.7976931348623157e308) ? v[c] : 0.0;
 }
