@@ -2,10 +2,8 @@
  * Table-5 normalisations) in the double instantiation, against hand formulas and against
  * their defining property: every distribution D integrates to 1 over the projected
  * hemisphere of half vectors, int D(h) cos(theta_h) dw_h = 1 (MODELS.md B5.2). Part of the
- * test_closed_form suite. This file includes the kernel headers, so it must not use the
- * identifiers R, K, FN, kp, geo except as kernel.h defines them (they are its macros). */
-#define ABRDF_REAL double
-#define ABRDF_SFX d
+ * test_closed_form suite. The kernel headers are included in double (kernel.h: the naming
+ * rule gives the _d names below). */
 #include "kernel.h"
 #include "k_empirical.h"
 #include "k_energy.h"
@@ -140,7 +138,7 @@ START_TEST(smith_and_cook_torrance_g)
     ck_assert(g1_smith_ggx_d(0.0, 0.3) == 0.0 && g1_smith_ggx_d(-0.2, 0.3) == 0.0);
     ck_assert(tu_close(v1_smith_ggx_d(0.0, 0.3), 1.0 / 0.3, 1e-15, 0.0)); /* bounded at grazing */
     /* Cook-Torrance V-cavity G = min(1, 2 NH NV / VH, 2 NH NL / VH) */
-    geo g;
+    abrdf__geo_d g;
     double wi[3] = {0.6, 0.0, 0.8}, wo[3] = {-0.28, 0.0, 0.96};
     geo_make_d(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
     double vh = wo[0] * g.hx + wo[1] * g.hy + wo[2] * g.hz;
@@ -173,7 +171,7 @@ END_TEST
 
 START_TEST(geometry)
 {
-    geo g;
+    abrdf__geo_d g;
     double wi[3] = {0.6, 0.0, 0.8}, wo[3] = {0.0, 0.6, 0.8};
     geo_make_d(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
     double s = sqrt(0.36 + 0.36 + 2.56);
