@@ -87,9 +87,9 @@ extern "C" {
 #endif
 
 #define ABRDF_VERSION_MAJOR 0
-#define ABRDF_VERSION_MINOR 1
+#define ABRDF_VERSION_MINOR 2
 #define ABRDF_VERSION_PATCH 0
-#define ABRDF_VERSION_STRING "0.1.0"
+#define ABRDF_VERSION_STRING "0.2.0"
 
 #if defined(_WIN32) && defined(ABRDF_SHARED_BUILD)
 #define ABRDF_API __declspec(dllexport)
