@@ -35,4 +35,11 @@ void abrdf__fkub_coeffs(double n, double abd[3], double *x0);
  * zone is N.H in [abrdf__highlight_zone_cos(n), 1] (approx_error.c explains the choice). */
 double abrdf__highlight_zone_cos(double n);
 
+/* The caller's parameter block in this library's layout (abrdf.h, STABLE LAYOUTS): p itself
+ * if its struct_size covers every field, else a copy in *scratch whose fields beyond the
+ * caller's struct_size hold `model`'s defaults. NULL if struct_size is below the 0.2.0
+ * layout (registry.c). */
+const abrdf_params *abrdf__params_view(abrdf_model model, const abrdf_params *p,
+                                       abrdf_params *scratch);
+
 #endif /* ABRDF_INTERNAL_H */

@@ -47,12 +47,6 @@ static void to_local(const abrdf_frame *fr, const double v[3], double out[3])
     out[2] = abrdf__dot3(v, fr->n);
 }
 
-int abrdf_eval_local(abrdf_model model, const abrdf_params *params, const double wi[3],
-                     const double wo[3], double f[3])
-{
-    return abrdf_eval(model, params, NULL, wi, wo, f);
-}
-
 int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
                const double wi[3], const double wo[3], double f[3])
 {
@@ -61,6 +55,8 @@ int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame 
     if (!params || !wi || !wo) return ABRDF_E_NULL;
     int st = abrdf_params_check(model, params, NULL, 0);
     if (st != ABRDF_OK) return st;
+    abrdf_params full;
+    params = abrdf__params_view(model, params, &full);
     double i[3], o[3], li[3], lo[3];
     if (!abrdf__normalise3(wi, i) || !abrdf__normalise3(wo, o)) return ABRDF_OK; /* degenerate: f = 0 */
     if (frame) {
@@ -86,7 +82,8 @@ int abrdf_eval_batch(abrdf_model model, const abrdf_params *params, const abrdf_
         for (size_t i = 0; i < b->count; ++i) b->f_r[i] = b->f_g[i] = b->f_b[i] = 0.0f;
         return st;
     }
-    abrdf__eval_batch_f(model, params, b);
+    abrdf_params full;
+    abrdf__eval_batch_f(model, abrdf__params_view(model, params, &full), b);
     return ABRDF_OK;
 }
 
@@ -99,9 +96,9 @@ int abrdf_shade(abrdf_model diffuse, abrdf_model specular, const abrdf_params *p
     if (!params || !wi || !wo || !light || !ambient) return ABRDF_E_NULL;
     double fd[3] = {0, 0, 0}, fs[3] = {0, 0, 0};
     int st;
-    if (diffuse != ABRDF_MODEL_COUNT && (st = abrdf_eval(diffuse, params, frame, wi, wo, fd)))
+    if (diffuse != ABRDF_MODEL_NONE && (st = abrdf_eval(diffuse, params, frame, wi, wo, fd)))
         return st;
-    if (specular != ABRDF_MODEL_COUNT && (st = abrdf_eval(specular, params, frame, wi, wo, fs)))
+    if (specular != ABRDF_MODEL_NONE && (st = abrdf_eval(specular, params, frame, wi, wo, fs)))
         return st;
     double i[3], ni[3] = {0, 0, 1};
     double cos_i = 0.0;

@@ -3,7 +3,7 @@
  * Table 3 (maximum absolute error) for any exponent n.
  *
  * Zavalniuk & Romanyuk 2024, Tables 1-3. Both the approximation and cos^n are evaluated by
- * the library itself (abrdf_eval_local, double path) at mirror geometry wi = wo, where
+ * the library itself (abrdf_eval, double path, local frame) at mirror geometry wi = wo, where
  * N.H = c exactly, so the numbers describe what the library computes.
  *
  * HIGHLIGHT ZONE (the paper only says "the zone of the highlight's epicentre"; the choice
@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "abrdf_internal.h"
+#include "abrdf_select.h"
 
 /* Samples per dense pass: at n = 1e6 the near-peak window [1 - 64/n, 1] is then resolved
  * to 0.03/n, far finer than any feature, and refinement does the rest. */
@@ -55,8 +56,8 @@ static double err_at(const err_ctx *e, double c)
     if (c > 1.0) c = 1.0;
     double w[3] = {sqrt((1.0 - c) * (1.0 + c)), 0.0, c}; /* no cancellation near c = 1 */
     double f[3], g[3];
-    abrdf_eval_local(e->approx, &e->pa, w, w, f);
-    abrdf_eval_local(ABRDF_BLINN_PHONG, &e->pb, w, w, g);
+    abrdf_eval(e->approx, &e->pa, NULL, w, w, f);
+    abrdf_eval(ABRDF_BLINN_PHONG, &e->pb, NULL, w, w, g);
     double d = fabs(f[0] - g[0]);
     if (!e->relative) return d;
     return g[0] > 0.0 ? d / g[0] : 0.0;

@@ -241,6 +241,7 @@ const char *abrdf_strerror(int status)
     case ABRDF_E_GEOMETRY: return "degenerate vector (zero length, NaN or Inf)";
     case ABRDF_E_UNUSED: return "parameter not used by this model";
     case ABRDF_E_TABLE: return "data table missing or malformed";
+    case ABRDF_E_SIZE: return "struct_size is 0 or too small (initialise the struct with its _init function)";
     default: return "unknown status";
     }
 }
@@ -288,6 +289,27 @@ static int param_components(const abrdf_param_info *pi)
     return pi->kind == ABRDF_PARAM_RGB ? 3 : 1;
 }
 
+/* ---- struct_size of a parameter block (abrdf.h, STABLE LAYOUTS) ---- */
+
+/* The first published layout (0.2.0) ends with layers[]; later parameters are appended. */
+#define PARAMS_SIZE_0_2 (offsetof(abrdf_params, layers) + sizeof(((abrdf_params *)0)->layers))
+
+static int params_size_ok(const abrdf_params *p) { return p->struct_size >= PARAMS_SIZE_0_2; }
+
+/* 1 if parameter `param` lies inside the caller's block. */
+static int param_in_block(const abrdf_params *p, int param);
+
+const abrdf_params *abrdf__params_view(abrdf_model model, const abrdf_params *p,
+                                       abrdf_params *scratch)
+{
+    if (!params_size_ok(p)) return NULL;
+    if (p->struct_size >= sizeof *p) return p;
+    abrdf_params_init_sized(model, scratch, sizeof *scratch); /* defaults of the tail */
+    memcpy(scratch, p, p->struct_size);
+    scratch->struct_size = sizeof *scratch;
+    return scratch;
+}
+
 /* Write value v into every component of parameter `param` (no range check). */
 static void param_store(abrdf_params *p, int param, const double *v, int count)
 {
@@ -306,6 +328,7 @@ int abrdf_param_read(const abrdf_params *p, int param, double values[3])
     if (!p || !values) return ABRDF_E_NULL;
     const abrdf_param_info *pi = abrdf_param_get(param);
     if (!pi) return ABRDF_E_PARAM;
+    if (!params_size_ok(p) || !param_in_block(p, param)) return ABRDF_E_SIZE;
     const char *base = (const char *)p + params_table[param].offset;
     if (pi->kind == ABRDF_PARAM_INT) {
         values[0] = *(const int *)(const void *)base;
@@ -317,15 +340,33 @@ int abrdf_param_read(const abrdf_params *p, int param, double values[3])
     return n;
 }
 
-int abrdf_params_init(abrdf_model model, abrdf_params *p)
+static int param_in_block(const abrdf_params *p, int param)
+{
+    const abrdf__param_slot *s = &params_table[param];
+    size_t size = s->info.kind == ABRDF_PARAM_INT ? sizeof(int)
+                : (size_t)param_components(&s->info) * sizeof(double);
+    return s->offset + size <= p->struct_size;
+}
+
+int abrdf_params_init_sized(abrdf_model model, abrdf_params *p, size_t struct_size)
 {
     if (!p) return ABRDF_E_NULL;
-    memset(p, 0, sizeof *p);
-    for (int i = 0; i < PARAM_COUNT; ++i) param_store(p, i, &params_table[i].info.def, 1);
+    if (struct_size < PARAMS_SIZE_0_2) return ABRDF_E_SIZE;
+    abrdf_params d; /* this library's layout, copied into the caller's struct_size bytes */
+    memset(&d, 0, sizeof d);
+    d.struct_size = sizeof d;
+    int st = ABRDF_OK;
+    for (int i = 0; i < PARAM_COUNT; ++i) param_store(&d, i, &params_table[i].info.def, 1);
     const abrdf_model_info *m = abrdf_model_get(model);
-    if (!m) return ABRDF_E_MODEL;
-    for (int i = 0; i < m->param_count; ++i) param_store(p, m->params[i].id, &m->params[i].def, 1);
-    return ABRDF_OK;
+    if (m) {
+        for (int i = 0; i < m->param_count; ++i) param_store(&d, m->params[i].id, &m->params[i].def, 1);
+    } else if (model != ABRDF_MODEL_NONE) {
+        st = ABRDF_E_MODEL;
+    }
+    memset(p, 0, struct_size);
+    memcpy(p, &d, struct_size < sizeof d ? struct_size : sizeof d);
+    p->struct_size = struct_size;
+    return st;
 }
 
 int abrdf_param_set(abrdf_params *p, int param, const double *values, int count)
@@ -333,6 +374,7 @@ int abrdf_param_set(abrdf_params *p, int param, const double *values, int count)
     if (!p || !values) return ABRDF_E_NULL;
     const abrdf_param_info *pi = abrdf_param_get(param);
     if (!pi) return ABRDF_E_PARAM;
+    if (!params_size_ok(p) || !param_in_block(p, param)) return ABRDF_E_SIZE;
     if (count != 1 && !(count == 3 && pi->kind == ABRDF_PARAM_RGB)) return ABRDF_E_RANGE;
     for (int c = 0; c < count; ++c) {
         if (!(values[c] >= pi->min && values[c] <= pi->max)) return ABRDF_E_RANGE;
@@ -346,6 +388,16 @@ int abrdf_params_check(abrdf_model model, const abrdf_params *p, char *msg, size
 {
     if (msg && msg_size) msg[0] = '\0';
     if (!p) return ABRDF_E_NULL;
+    abrdf_params full;
+    const abrdf_params *v = abrdf__params_view(model, p, &full);
+    if (!v) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "abrdf_params: struct_size %zu is below the %zu bytes of "
+                     "the 0.2.0 layout: initialise the block with abrdf_params_init",
+                     p->struct_size, (size_t)PARAMS_SIZE_0_2);
+        return ABRDF_E_SIZE;
+    }
+    p = v;
     const abrdf_model_info *m = abrdf_model_get(model);
     if (!m) {
         if (msg && msg_size) snprintf(msg, msg_size, "unknown model id %d", (int)model);

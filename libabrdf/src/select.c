@@ -6,15 +6,60 @@
  * Every threshold and model choice lives in `rules` below (abrdf_select_rules_get() hands it
  * to the CLI, the docs and the OSL/POV-Ray ports); the code only walks the flowchart.
  * Errors of the Table-1 approximations come from abrdf_approx_error_eval() (computed, not
- * tabulated); costs from the caller's abrdf_costs or the paper's Table 4. */
+ * tabulated); costs from the caller's abrdf_costs or the paper's Table 4.
+ *
+ * The caller's structs are read and written through their struct_size (abrdf.h, STABLE
+ * LAYOUTS): the flowchart works on full-size copies, and only the caller's prefix of each
+ * result is copied out. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "abrdf_internal.h"
+#include "abrdf_select.h"
 
 /* ---- the flowchart's data: one table ------------------------------------------------- */
+
+static const abrdf_model candidates[] = {ABRDF_F2, ABRDF_F4, ABRDF_F8, ABRDF_F16, ABRDF_FS,
+                                         ABRDF_FKV, ABRDF_FKUB};
+
+static const abrdf_model special[ABRDF_SURFACE_COUNT] = {
+    [ABRDF_SURFACE_GENERAL] = ABRDF_MODEL_NONE,
+    [ABRDF_SURFACE_CLOTH_ROUGH] = ABRDF_NEUBELT_PETTINEO,
+    [ABRDF_SURFACE_CLOTH_SHINY] = ABRDF_KAJIYA_KAY,
+    [ABRDF_SURFACE_HAIR] = ABRDF_HUANG,
+    [ABRDF_SURFACE_LAYERED_PLASTIC] = ABRDF_WEIDLICH_WILKIE,
+    [ABRDF_SURFACE_LAYERED_PLATE] = ABRDF_BELCOUR,
+    [ABRDF_SURFACE_LAYERED_METAL] = ABRDF_BELCOUR,
+};
+
+static const char *const special_reason[ABRDF_SURFACE_COUNT] = {
+    [ABRDF_SURFACE_GENERAL] = "classified by roughness",
+    [ABRDF_SURFACE_CLOTH_ROUGH] = "rough cloth (wool, cotton): inverted-Gaussian velvet "
+        "distribution with Fresnel (Eq. 10)",
+    [ABRDF_SURFACE_CLOTH_SHINY] = "shiny cloth (silk, satin, velvet): highlight around the "
+        "fibre tangent (Eq. 11)",
+    [ABRDF_SURFACE_HAIR] = "microfacet-based R, TT and TRT lobes of an elliptical "
+        "absorbing fibre (Eqs. 12-14)",
+    [ABRDF_SURFACE_LAYERED_PLASTIC] = "plastic under a clear coat: refracted base lobe with "
+        "Fresnel transmission and absorption (Eq. 15)",
+    [ABRDF_SURFACE_LAYERED_PLATE] = "transparent plate: adding of layer energies and "
+        "roughnesses, multiple scattering included (Eq. 16)",
+    [ABRDF_SURFACE_LAYERED_METAL] = "metal under a coat (Eq. 16); Weidlich-Wilkie (Eq. 15) "
+        "is poor for a smooth metal under a rough coat: one refraction, no inter-reflection "
+        "between coat and metal",
+};
+
+/* Table 6 of the paper, f_2E column: minimum NMSE against the Disney GGX lobe. */
+static const double table6_alpha_g[] = {1.0, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1,
+                                        0.05, 0.01, 0.005, 0.001, 0.0005, 0.0001, 0.00005,
+                                        0.00001};
+static const double table6_f2e[] = {0.0517, 0.0596, 0.0577, 0.0555, 0.0558, 0.0548, 0.0472,
+                                    0.0465, 0.0445, 0.0322, 0.0190, 0.0031, 0.0015, 0.0003,
+                                    0.0001, 0.00003, 0.00001, 0.000002};
+#define TABLE6_ROWS ((int)(sizeof table6_f2e / sizeof table6_f2e[0]))
+typedef char abrdf__table6_columns_match[sizeof table6_alpha_g == sizeof table6_f2e ? 1 : -1];
 
 static const abrdf_select_rules rules = {
     /* Paper, conclusion and Fig. 2: "alpha <= 0.03 (alpha_g <= 0.001)" is smooth. The
@@ -33,49 +78,30 @@ static const abrdf_select_rules rules = {
     .n_max = 1e6,
     .perf_diffuse = ABRDF_LAMBERT,
     .perf_fallback = ABRDF_BLINN_PHONG,
-    .candidate_count = 7,
-    .candidates = {ABRDF_F2, ABRDF_F4, ABRDF_F8, ABRDF_F16, ABRDF_FS, ABRDF_FKV, ABRDF_FKUB},
+    .candidate_count = (int)(sizeof candidates / sizeof candidates[0]),
+    .candidates = candidates,
     .rough_diffuse = ABRDF_DISNEY_DIFFUSE,
     .rough_specular = ABRDF_DISNEY_SPECULAR,
     .rough_specular_aniso = ABRDF_DISNEY_SPECULAR_ANISO,
     .smooth_diffuse = ABRDF_LAMBERT_FRESNEL,
     .smooth_specular = ABRDF_F_2E,
-    .special = {
-        [ABRDF_SURFACE_GENERAL] = ABRDF_MODEL_COUNT,
-        [ABRDF_SURFACE_CLOTH_ROUGH] = ABRDF_NEUBELT_PETTINEO,
-        [ABRDF_SURFACE_CLOTH_SHINY] = ABRDF_KAJIYA_KAY,
-        [ABRDF_SURFACE_HAIR] = ABRDF_HUANG,
-        [ABRDF_SURFACE_LAYERED_PLASTIC] = ABRDF_WEIDLICH_WILKIE,
-        [ABRDF_SURFACE_LAYERED_PLATE] = ABRDF_BELCOUR,
-        [ABRDF_SURFACE_LAYERED_METAL] = ABRDF_BELCOUR,
-    },
-    .special_reason = {
-        [ABRDF_SURFACE_GENERAL] = "classified by roughness",
-        [ABRDF_SURFACE_CLOTH_ROUGH] = "rough cloth (wool, cotton): inverted-Gaussian velvet "
-            "distribution with Fresnel (Eq. 10)",
-        [ABRDF_SURFACE_CLOTH_SHINY] = "shiny cloth (silk, satin, velvet): highlight around the "
-            "fibre tangent (Eq. 11)",
-        [ABRDF_SURFACE_HAIR] = "microfacet-based R, TT and TRT lobes of an elliptical "
-            "absorbing fibre (Eqs. 12-14)",
-        [ABRDF_SURFACE_LAYERED_PLASTIC] = "plastic under a clear coat: refracted base lobe with "
-            "Fresnel transmission and absorption (Eq. 15)",
-        [ABRDF_SURFACE_LAYERED_PLATE] = "transparent plate: adding of layer energies and "
-            "roughnesses, multiple scattering included (Eq. 16)",
-        [ABRDF_SURFACE_LAYERED_METAL] = "metal under a coat (Eq. 16); Weidlich-Wilkie (Eq. 15) "
-            "is poor for a smooth metal under a rough coat: one refraction, no inter-reflection "
-            "between coat and metal",
-    },
+    .surface_count = ABRDF_SURFACE_COUNT,
+    .special = special,
+    .special_reason = special_reason,
     /* Table 8 of the paper; boundaries half-open [a, b) (MODELS.md B9). */
     .nmse_class_max = {1e-4, 2.5e-4, 1e-3},
-    /* Table 6 of the paper, f_2E column: minimum NMSE against the Disney GGX lobe. */
-    .nmse_rows = ABRDF_SELECT_NMSE_ROWS,
-    .nmse_alpha_g = {1.0, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1, 0.05, 0.01, 0.005,
-                     0.001, 0.0005, 0.0001, 0.00005, 0.00001},
-    .nmse_f2e = {0.0517, 0.0596, 0.0577, 0.0555, 0.0558, 0.0548, 0.0472, 0.0465, 0.0445,
-                 0.0322, 0.0190, 0.0031, 0.0015, 0.0003, 0.0001, 0.00003, 0.00001, 0.000002},
 };
 
 const abrdf_select_rules *abrdf_select_rules_get(void) { return &rules; }
+
+int abrdf_select_table6(int row, double *alpha_g, double *nmse_f2e)
+{
+    if (!alpha_g || !nmse_f2e) return ABRDF_E_NULL;
+    if (row < 0 || row >= TABLE6_ROWS) return ABRDF_E_RANGE;
+    *alpha_g = table6_alpha_g[row];
+    *nmse_f2e = table6_f2e[row];
+    return ABRDF_OK;
+}
 
 /* ---- names ---------------------------------------------------------------------------- */
 
@@ -83,15 +109,9 @@ static const char *const surface_names[ABRDF_SURFACE_COUNT] = {
     "general", "cloth_rough", "cloth_shiny", "hair", "layered_plastic", "layered_plate",
     "layered_metal"};
 static const char *const goal_names[ABRDF_GOAL_COUNT] = {"performance", "photoreal"};
-
-/* The stable names of abrdf.h's enum comments, so the trace can name models that are
- * reserved but not built in; tests hold this list equal to the registry's names. */
-static const char *const model_names[ABRDF_MODEL_COUNT] = {
-    "lambert", "lambert_fresnel", "disney_diffuse", "oren_nayar", "phong", "blinn_phong",
-    "f2", "f4", "f8", "f16", "fs", "fkv", "fkub", "f_phe", "f_be", "f_2e", "f_16e", "f_ge",
-    "f_ctphe", "f_ct2e", "f_ct16e", "cook_torrance", "disney_specular",
-    "disney_specular_aniso", "disney_clearcoat", "neubelt_pettineo", "kajiya_kay",
-    "marschner", "huang", "weidlich_wilkie", "belcour"};
+static const char *const step_names[ABRDF_STEP_KIND_COUNT] = {
+    "input", "goal", "diffuse", "candidate", "cheapest", "fallback", "surface", "roughness",
+    "anisotropy", "exponent", "special"};
 
 const char *abrdf_surface_name(abrdf_surface s)
 {
@@ -125,17 +145,42 @@ int abrdf_goal_find(const char *name, abrdf_goal *out)
     return ABRDF_E_RANGE;
 }
 
-const char *abrdf_select_model_name(abrdf_model model)
+const char *abrdf_step_name(abrdf_step_kind kind)
 {
-    const abrdf_model_info *m = abrdf_model_get(model);
-    if (m) return m->name;
-    return ((int)model >= 0 && model < ABRDF_MODEL_COUNT) ? model_names[model] : NULL;
+    return ((int)kind >= 0 && kind < ABRDF_STEP_KIND_COUNT) ? step_names[kind] : NULL;
 }
 
-void abrdf_material_init(abrdf_material *m)
+/* A model's stable name, for the trace (every model the rules name is registered). */
+static const char *model_name(abrdf_model model)
 {
-    if (!m) return;
+    const abrdf_model_info *m = abrdf_model_get(model);
+    return m ? m->name : "none";
+}
+
+/* ---- the caller's structs and their struct_size (abrdf.h, STABLE LAYOUTS) --------------- */
+
+/* End of the last field of a struct's first published layout (0.2.0); later fields are
+ * appended after it. */
+#define END_OF(type, field) (offsetof(type, field) + sizeof(((type *)0)->field))
+#define MATERIAL_SIZE_0_2 END_OF(abrdf_material, layers)
+#define TOLERANCE_SIZE_0_2 END_OF(abrdf_tolerance, max_abs)
+#define SELECTION_SIZE_0_2 END_OF(abrdf_selection, message)
+
+static size_t min_size(size_t a, size_t b) { return a < b ? a : b; }
+
+/* Copy this library's full struct `full` into the caller's struct of struct_size bytes,
+ * which keeps its struct_size. */
+static void copy_out(void *dst, const void *full, size_t full_size)
+{
+    size_t caller = *(const size_t *)dst;
+    memcpy((char *)dst + sizeof(size_t), (const char *)full + sizeof(size_t),
+           min_size(caller, full_size) - sizeof(size_t));
+}
+
+static void material_defaults(abrdf_material *m)
+{
     memset(m, 0, sizeof *m);
+    m->struct_size = sizeof *m;
     m->type = ABRDF_SURFACE_GENERAL;
     m->n = -1.0;
     m->r = -1.0;
@@ -146,6 +191,68 @@ void abrdf_material_init(abrdf_material *m)
     }
     m->eta = -1.0;
     m->melanin = 0.3;
+}
+
+static void tolerance_defaults(abrdf_tolerance *t)
+{
+    memset(t, 0, sizeof *t);
+    t->struct_size = sizeof *t;
+    t->max_rel_pct = rules.default_max_rel_pct;
+    t->max_abs = rules.default_max_abs;
+}
+
+static void selection_empty(abrdf_selection *s)
+{
+    memset(s, 0, sizeof *s);
+    s->struct_size = sizeof *s;
+    s->diffuse = s->specular = ABRDF_MODEL_NONE;
+    s->err_rel_pct = s->err_abs = s->err_nmse = -1.0;
+    s->cost_diffuse = s->cost_specular = s->cost_total = -1.0;
+}
+
+/* An _init function: this library's defaults in the caller's struct_size bytes (fields of a
+ * newer caller beyond this library's layout are zeroed). */
+static int init_sized(void *p, size_t struct_size, size_t min, const void *defaults,
+                      size_t full_size)
+{
+    if (!p) return ABRDF_E_NULL;
+    if (struct_size < min) return ABRDF_E_SIZE;
+    memset(p, 0, struct_size);
+    *(size_t *)p = struct_size;
+    copy_out(p, defaults, full_size);
+    return ABRDF_OK;
+}
+
+int abrdf_material_init_sized(abrdf_material *m, size_t struct_size)
+{
+    abrdf_material d;
+    material_defaults(&d);
+    return init_sized(m, struct_size, MATERIAL_SIZE_0_2, &d, sizeof d);
+}
+
+int abrdf_tolerance_init_sized(abrdf_tolerance *t, size_t struct_size)
+{
+    abrdf_tolerance d;
+    tolerance_defaults(&d);
+    return init_sized(t, struct_size, TOLERANCE_SIZE_0_2, &d, sizeof d);
+}
+
+int abrdf_selection_init_sized(abrdf_selection *s, size_t struct_size)
+{
+    abrdf_selection d;
+    selection_empty(&d);
+    return init_sized(s, struct_size, SELECTION_SIZE_0_2, &d, sizeof d);
+}
+
+/* The caller's input in this library's layout: its struct_size bytes over the defaults.
+ * 0 if struct_size is below the 0.2.0 layout. */
+static int read_in(void *full, size_t full_size, const void *src, size_t min)
+{
+    size_t caller = *(const size_t *)src;
+    if (caller < min) return 0;
+    memcpy((char *)full + sizeof(size_t), (const char *)src + sizeof(size_t),
+           min_size(caller, full_size) - sizeof(size_t));
+    return 1;
 }
 
 /* ---- helpers -------------------------------------------------------------------------- */
@@ -161,24 +268,36 @@ static int fail(abrdf_selection *out, int status, const char *fmt, ...)
     return status;
 }
 
-static abrdf_select_step *add_step(abrdf_selection *out, abrdf_step_kind kind, abrdf_model model,
-                                   double value, double threshold, int passed, const char *fmt, ...)
+/* The flowchart's working state: the result in this library's layout, and the caller's
+ * trace callback. */
+typedef struct walk {
+    abrdf_selection sel;
+    abrdf_select_trace_fn trace;
+    void *user;
+} walk;
+
+/* A trace step's numbers; value2, threshold2 and cost start as -1 (none). */
+static abrdf_select_step step(abrdf_step_kind kind, abrdf_model model, double value,
+                              double threshold, int passed)
 {
-    if (out->step_count >= ABRDF_SELECT_MAX_STEPS) return NULL; /* cannot happen: <= 14 steps */
-    abrdf_select_step *s = &out->steps[out->step_count++];
-    s->kind = kind;
-    s->model = model;
-    s->value = value;
-    s->threshold = threshold;
-    s->value2 = -1.0;
-    s->threshold2 = -1.0;
-    s->cost = -1.0;
-    s->passed = passed;
+    abrdf_select_step s = {kind, model, value, threshold, -1.0, -1.0, -1.0, passed, NULL};
+    return s;
+}
+
+/* A trace line: the longest the flowchart writes is under 200 characters. */
+#define TEXT_MAX 256
+
+/* Count one decision and hand it, with its text, to the caller's trace. */
+static void add_step(walk *w, abrdf_select_step s, const char *fmt, ...)
+{
+    char text[TEXT_MAX];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(s->text, sizeof s->text, fmt, ap);
+    vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    return s;
+    s.text = text;
+    ++w->sel.step_count;
+    if (w->trace) w->trace(w->user, &s);
 }
 
 /* A limit for the trace: "2%", "0.05", or "no limit". */
@@ -237,8 +356,8 @@ static int nmse_row(double alpha_g)
 {
     double a = fmax(alpha_g, 1e-12), best = INFINITY;
     int row = 0;
-    for (int i = 0; i < rules.nmse_rows; ++i) {
-        double d = fabs(log(a / rules.nmse_alpha_g[i]));
+    for (int i = 0; i < TABLE6_ROWS; ++i) {
+        double d = fabs(log(a / table6_alpha_g[i]));
         if (d < best) {
             best = d;
             row = i;
@@ -325,34 +444,35 @@ static void fill_params(const abrdf_material *m, abrdf_model spec, double n, dou
 
 /* ---- the two branches of Fig. 2 ------------------------------------------------------- */
 
-static void performance(abrdf_selection *out, abrdf_surface type, const abrdf_tolerance *tol,
+static void performance(walk *w, abrdf_surface type, const abrdf_tolerance *tol,
                         const abrdf_costs *costs, const char *unit)
 {
+    abrdf_selection *out = &w->sel;
     char rl[32], al[32], cs[48];
     limit_text(tol->max_rel_pct, "%", rl, sizeof rl);
     limit_text(tol->max_abs, "", al, sizeof al);
-    add_step(out, ABRDF_STEP_GOAL, ABRDF_MODEL_COUNT, -1.0, -1.0, 1,
+    add_step(w, step(ABRDF_STEP_GOAL, ABRDF_MODEL_NONE, -1.0, -1.0, 1),
              "goal performance: Lambert diffuse + the cheapest Table-1 approximation of "
              "Blinn-Phong within rel %s and abs %s", rl, al);
     if (type != ABRDF_SURFACE_GENERAL)
-        add_step(out, ABRDF_STEP_SURFACE, ABRDF_MODEL_COUNT, -1.0, -1.0, 1,
+        add_step(w, step(ABRDF_STEP_SURFACE, ABRDF_MODEL_NONE, -1.0, -1.0, 1),
                  "surface %s: not used by the performance branch (Fig. 2 branches on the goal "
                  "first)", surface_names[type]);
-    add_step(out, ABRDF_STEP_DIFFUSE, rules.perf_diffuse, -1.0, -1.0, 1,
-             "diffuse: %s (Eq. 1)", abrdf_select_model_name(rules.perf_diffuse));
+    add_step(w, step(ABRDF_STEP_DIFFUSE, rules.perf_diffuse, -1.0, -1.0, 1),
+             "diffuse: %s (Eq. 1)", model_name(rules.perf_diffuse));
 
     int best = -1;
     abrdf_approx_error best_err = {0, 0, 0};
     double best_cost = INFINITY;
     for (int i = 0; i < rules.candidate_count; ++i) {
         abrdf_model c = rules.candidates[i];
-        const char *name = abrdf_select_model_name(c);
+        const char *name = model_name(c);
         abrdf_approx_error e;
         int st = abrdf_approx_error_eval(c, out->n, &e);
-        double cost = costs->cost[c];
+        double cost = abrdf_costs_get(costs, c);
         cost_text(cost, unit, cs, sizeof cs);
         if (st != ABRDF_OK) {
-            add_step(out, ABRDF_STEP_CANDIDATE, c, -1.0, tol->max_rel_pct, 0,
+            add_step(w, step(ABRDF_STEP_CANDIDATE, c, -1.0, tol->max_rel_pct, 0),
                      "%s: error analysis unavailable at n %g (%s): rejected", name, out->n,
                      abrdf_strerror(st));
             continue;
@@ -361,14 +481,12 @@ static void performance(abrdf_selection *out, abrdf_surface type, const abrdf_to
         int ranked = cost >= 0.0, ok = rel_ok && abs_ok && ranked;
         char crit[112];
         criteria_text(&e, tol, crit, sizeof crit);
-        abrdf_select_step *s = add_step(out, ABRDF_STEP_CANDIDATE, c, e.max_rel_pct,
-            tol->max_rel_pct, ok, "%s: %s, %s: %s", name, crit, cs,
+        abrdf_select_step s = step(ABRDF_STEP_CANDIDATE, c, e.max_rel_pct, tol->max_rel_pct, ok);
+        s.value2 = e.max_abs;
+        s.threshold2 = tol->max_abs;
+        s.cost = cost;
+        add_step(w, s, "%s: %s, %s: %s", name, crit, cs,
             !(rel_ok && abs_ok) ? "rejected" : ranked ? "passes" : "passes, but cannot be ranked");
-        if (s) {
-            s->value2 = e.max_abs;
-            s->threshold2 = tol->max_abs;
-            s->cost = cost;
-        }
         /* Cheapest first; equal cost: smaller relative, then absolute error. */
         if (ok && (cost < best_cost ||
                    (cost == best_cost && (e.max_rel_pct < best_err.max_rel_pct ||
@@ -388,108 +506,100 @@ static void performance(abrdf_selection *out, abrdf_surface type, const abrdf_to
         cost_text(best_cost, unit, cs, sizeof cs);
         char crit[112];
         criteria_text(&best_err, tol, crit, sizeof crit);
-        abrdf_select_step *s = add_step(out, ABRDF_STEP_CHEAPEST, c, best_err.max_rel_pct,
-            tol->max_rel_pct, 1, "%s: %s, %s: cheapest that passes", abrdf_select_model_name(c),
-            crit, cs);
-        if (s) {
-            s->value2 = best_err.max_abs;
-            s->threshold2 = tol->max_abs;
-            s->cost = best_cost;
-        }
+        abrdf_select_step s = step(ABRDF_STEP_CHEAPEST, c, best_err.max_rel_pct, tol->max_rel_pct, 1);
+        s.value2 = best_err.max_abs;
+        s.threshold2 = tol->max_abs;
+        s.cost = best_cost;
+        add_step(w, s, "%s: %s, %s: cheapest that passes", model_name(c), crit, cs);
     } else {
         out->specular = rules.perf_fallback;
         out->err_rel_pct = 0.0; /* Blinn-Phong is the reference of Tables 2 and 3 */
         out->err_abs = 0.0;
-        add_step(out, ABRDF_STEP_FALLBACK, rules.perf_fallback, out->n, -1.0, 1,
+        add_step(w, step(ABRDF_STEP_FALLBACK, rules.perf_fallback, out->n, -1.0, 1),
                  "no Table-1 approximation passes at n %g: %s (Eq. 4), the reference itself",
-                 out->n, abrdf_select_model_name(rules.perf_fallback));
+                 out->n, model_name(rules.perf_fallback));
     }
 }
 
-static void photoreal(abrdf_selection *out, const abrdf_material *m, int n_given, double n_raw)
+static void photoreal(walk *w, const abrdf_material *m, int n_given, double n_raw)
 {
-    add_step(out, ABRDF_STEP_GOAL, ABRDF_MODEL_COUNT, -1.0, -1.0, 1,
+    abrdf_selection *out = &w->sel;
+    add_step(w, step(ABRDF_STEP_GOAL, ABRDF_MODEL_NONE, -1.0, -1.0, 1),
              "goal photoreal: the model that represents the surface's microstructure");
     abrdf_model special = rules.special[m->type];
-    if (special != ABRDF_MODEL_COUNT) {
-        add_step(out, ABRDF_STEP_SURFACE, special, -1.0, -1.0, 1, "surface %s: %s",
+    if (special != ABRDF_MODEL_NONE) {
+        add_step(w, step(ABRDF_STEP_SURFACE, special, -1.0, -1.0, 1), "surface %s: %s",
                  surface_names[m->type], rules.special_reason[m->type]);
         char layers[96] = "";
         if (m->layer_count > 0)
             snprintf(layers, sizeof layers, "; top layer r %g, bottom layer r %g",
                      m->layers[0].r, m->layers[m->layer_count - 1].r);
-        add_step(out, ABRDF_STEP_SPECIAL, special, out->r, -1.0, 1,
+        add_step(w, step(ABRDF_STEP_SPECIAL, special, out->r, -1.0, 1),
                  "%s: the whole reflectance (its own diffuse term); r %g%s",
-                 abrdf_select_model_name(special), out->r, layers);
-        out->diffuse = ABRDF_MODEL_COUNT;
+                 model_name(special), out->r, layers);
+        out->diffuse = ABRDF_MODEL_NONE;
         out->specular = special;
         return;
     }
-    add_step(out, ABRDF_STEP_SURFACE, ABRDF_MODEL_COUNT, -1.0, -1.0, 1, "surface general: %s",
+    add_step(w, step(ABRDF_STEP_SURFACE, ABRDF_MODEL_NONE, -1.0, -1.0, 1), "surface general: %s",
              rules.special_reason[ABRDF_SURFACE_GENERAL]);
     double r = out->r;
     int smooth = r <= rules.smooth_r_max;
-    add_step(out, ABRDF_STEP_ROUGHNESS, ABRDF_MODEL_COUNT, r, rules.smooth_r_max, smooth,
+    add_step(w, step(ABRDF_STEP_ROUGHNESS, ABRDF_MODEL_NONE, r, rules.smooth_r_max, smooth),
              "alpha %g %s %g: %s", r, smooth ? "<=" : ">", rules.smooth_r_max,
              smooth ? "smooth" : "rough");
     int aniso = m->anisotropy > rules.aniso_min;
     if (!smooth) {
         out->diffuse = rules.rough_diffuse;
         out->specular = aniso ? rules.rough_specular_aniso : rules.rough_specular;
-        add_step(out, ABRDF_STEP_ANISOTROPY, out->specular, m->anisotropy, rules.aniso_min, aniso,
+        add_step(w, step(ABRDF_STEP_ANISOTROPY, out->specular, m->anisotropy, rules.aniso_min, aniso),
                  "anisotropy %g %s %g: %s (%s)", m->anisotropy, aniso ? ">" : "<=",
-                 rules.aniso_min, abrdf_select_model_name(out->specular),
+                 rules.aniso_min, model_name(out->specular),
                  aniso ? "anisotropic GGX, Eqs. 5, 7, 8, 9" : "GGX, Eqs. 5, 6, 8, 9");
-        add_step(out, ABRDF_STEP_DIFFUSE, out->diffuse, -1.0, -1.0, 1, "diffuse: %s (Eq. 3)",
-                 abrdf_select_model_name(out->diffuse));
+        add_step(w, step(ABRDF_STEP_DIFFUSE, out->diffuse, -1.0, -1.0, 1), "diffuse: %s (Eq. 3)",
+                 model_name(out->diffuse));
         /* The microfacet lobe is the reference of the paper's image experiment: no error. */
         return;
     }
     out->diffuse = rules.smooth_diffuse;
     out->specular = rules.smooth_specular;
     if (aniso)
-        add_step(out, ABRDF_STEP_ANISOTROPY, ABRDF_MODEL_COUNT, m->anisotropy, rules.aniso_min, 0,
+        add_step(w, step(ABRDF_STEP_ANISOTROPY, ABRDF_MODEL_NONE, m->anisotropy, rules.aniso_min, 0),
                  "anisotropy %g ignored: the smooth branch has no anisotropic lobe", m->anisotropy);
-    add_step(out, ABRDF_STEP_DIFFUSE, out->diffuse, -1.0, -1.0, 1, "diffuse: %s (Eq. 2)",
-             abrdf_select_model_name(out->diffuse));
+    add_step(w, step(ABRDF_STEP_DIFFUSE, out->diffuse, -1.0, -1.0, 1), "diffuse: %s (Eq. 2)",
+             model_name(out->diffuse));
     /* f_2e reads the exponent n: the material's own, or converted from r. */
     double n = n_raw, nc = clampd(n, rules.n_min, rules.n_max);
     if (n_given)
-        add_step(out, ABRDF_STEP_EXPONENT, out->specular, nc, -1.0, 1, "%s: n %g (given)%s",
-                 abrdf_select_model_name(out->specular), nc, nc != n ? ", clamped to f_2e's range" : "");
+        add_step(w, step(ABRDF_STEP_EXPONENT, out->specular, nc, -1.0, 1), "%s: n %g (given)%s",
+                 model_name(out->specular), nc, nc != n ? ", clamped to f_2e's range" : "");
     else
-        add_step(out, ABRDF_STEP_EXPONENT, out->specular, nc, -1.0, 1,
+        add_step(w, step(ABRDF_STEP_EXPONENT, out->specular, nc, -1.0, 1),
                  "%s: n %g from r %g by abrdf_alpha_g_to_n(r^2) = 2/alpha_g^2 - 2%s",
-                 abrdf_select_model_name(out->specular), nc, r,
+                 model_name(out->specular), nc, r,
                  n > rules.n_max ? " (clamped to 1e6)" : n < rules.n_min ? " (clamped to 1)" : "");
     out->n = nc;
     int row = nmse_row(r * r);
-    out->err_nmse = rules.nmse_f2e[row];
-    add_step(out, ABRDF_STEP_EXPONENT, out->specular, out->err_nmse, rules.nmse_class_max[0],
-             out->err_nmse < rules.nmse_class_max[0],
+    out->err_nmse = table6_f2e[row];
+    add_step(w, step(ABRDF_STEP_EXPONENT, out->specular, out->err_nmse, rules.nmse_class_max[0],
+                     out->err_nmse < rules.nmse_class_max[0]),
              "%s vs the GGX lobe: NMSE %g at alpha_g %g (paper, Table 6): %s",
-             abrdf_select_model_name(out->specular), out->err_nmse, rules.nmse_alpha_g[row],
+             model_name(out->specular), out->err_nmse, table6_alpha_g[row],
              nmse_class(out->err_nmse));
 }
 
 /* ---- entry point ---------------------------------------------------------------------- */
 
-int abrdf_select(const abrdf_material *m, abrdf_goal goal, const abrdf_tolerance *tol,
-                 const abrdf_costs *costs, abrdf_selection *out)
+/* The flowchart on full-size copies of the caller's structs; w->sel receives the result. */
+static int select_full(walk *w, const abrdf_material *m, abrdf_goal goal,
+                       const abrdf_tolerance *tol, const abrdf_costs *costs, abrdf_params *params)
 {
-    if (!out) return ABRDF_E_NULL;
-    memset(out, 0, sizeof *out);
-    out->diffuse = out->specular = ABRDF_MODEL_COUNT;
-    out->err_rel_pct = out->err_abs = out->err_nmse = -1.0;
-    out->cost_diffuse = out->cost_specular = out->cost_total = -1.0;
-    if (!m) return fail(out, ABRDF_E_NULL, "no material");
+    abrdf_selection *out = &w->sel;
     if (goal != ABRDF_GOAL_PERFORMANCE && goal != ABRDF_GOAL_PHOTOREAL)
         return fail(out, ABRDF_E_RANGE, "unknown goal %d", (int)goal);
     int st = check_material(m, out);
     if (st != ABRDF_OK) return st;
-    abrdf_tolerance t = {rules.default_max_rel_pct, rules.default_max_abs};
-    if (tol) t = *tol;
-    if ((st = check_tolerance(&t, out)) != ABRDF_OK) return st;
+    if ((st = check_tolerance(tol, out)) != ABRDF_OK) return st;
     abrdf_costs paper;
     if (!costs) {
         if ((st = abrdf_costs_paper(&paper)) != ABRDF_OK)
@@ -514,38 +624,67 @@ int abrdf_select(const abrdf_material *m, abrdf_goal goal, const abrdf_tolerance
                   n_raw > rules.n_max ? ", clamped" : "");
     if (r_given) snprintf(rt, sizeof rt, "r %g (given)", out->r);
     else snprintf(rt, sizeof rt, "r %.4g (from n: alpha_g = sqrt(2/(n + 2)))", out->r);
-    add_step(out, ABRDF_STEP_INPUT, ABRDF_MODEL_COUNT, out->n, -1.0, 1, "%s%s: %s, %s",
+    add_step(w, step(ABRDF_STEP_INPUT, ABRDF_MODEL_NONE, out->n, -1.0, 1), "%s%s: %s, %s",
              m->name ? "material " : "", m->name ? m->name : "explicit material", nt, rt);
 
     if (goal == ABRDF_GOAL_PERFORMANCE) {
-        performance(out, m->type, &t, costs, unit);
+        performance(w, m->type, tol, costs, unit);
     } else {
-        photoreal(out, m, n_given, n_raw);
+        photoreal(w, m, n_given, n_raw);
     }
 
-    fill_params(m, out->specular, out->n, out->r, &out->params);
+    fill_params(m, out->specular, out->n, out->r, params);
 
     /* Costs of what was chosen; the special models carry their own diffuse term. */
-    out->cost_specular = costs->cost[out->specular];
-    out->cost_diffuse = out->diffuse == ABRDF_MODEL_COUNT ? 0.0 : costs->cost[out->diffuse];
+    out->cost_specular = abrdf_costs_get(costs, out->specular);
+    out->cost_diffuse = out->diffuse == ABRDF_MODEL_NONE ? 0.0 : abrdf_costs_get(costs, out->diffuse);
     if (out->cost_specular >= 0.0 && out->cost_diffuse >= 0.0)
         out->cost_total = out->cost_specular + out->cost_diffuse;
 
-    /* Models reserved in the ABI but not built into this library cannot be evaluated yet;
-     * the choice stands, and the trace says so. */
-    out->available = 1;
+    /* Every model the rules name is registered; the material must fit its ranges. */
     abrdf_model chosen[2] = {out->diffuse, out->specular};
     for (int i = 0; i < 2; ++i) {
-        if (chosen[i] == ABRDF_MODEL_COUNT) continue;
-        char msg[ABRDF_SELECT_TEXT];
-        if (!abrdf_model_get(chosen[i])) {
-            out->available = 0;
-            add_step(out, ABRDF_STEP_AVAILABLE, chosen[i], -1.0, -1.0, 0,
-                     "%s is not built into libabrdf %s: abrdf_eval returns ABRDF_E_MODEL for it",
-                     abrdf_select_model_name(chosen[i]), abrdf_version());
-        } else if (abrdf_params_check(chosen[i], &out->params, msg, sizeof msg) != ABRDF_OK) {
+        char msg[ABRDF_SELECT_MESSAGE_MAX];
+        if (chosen[i] != ABRDF_MODEL_NONE &&
+            abrdf_params_check(chosen[i], params, msg, sizeof msg) != ABRDF_OK)
             return fail(out, ABRDF_E_RANGE, "%s", msg);
-        }
     }
     return ABRDF_OK;
+}
+
+int abrdf_select(const abrdf_material *m, abrdf_goal goal, const abrdf_tolerance *tol,
+                 const abrdf_costs *costs, abrdf_selection *out, abrdf_params *params,
+                 abrdf_select_trace_fn trace, void *trace_user)
+{
+    if (!out) return ABRDF_E_NULL;
+    if (out->struct_size < SELECTION_SIZE_0_2) return ABRDF_E_SIZE; /* nowhere to say why */
+    walk w;
+    selection_empty(&w.sel);
+    w.trace = trace;
+    w.user = trace_user;
+    abrdf_material mm;
+    abrdf_tolerance tt;
+    abrdf_params pp;
+    material_defaults(&mm);
+    tolerance_defaults(&tt);
+    int st;
+    if (!m) {
+        st = fail(&w.sel, ABRDF_E_NULL, "no material");
+    } else if (!read_in(&mm, sizeof mm, m, MATERIAL_SIZE_0_2)) {
+        st = fail(&w.sel, ABRDF_E_SIZE, "abrdf_material: struct_size %zu is below the %zu bytes "
+                  "of the 0.2.0 layout: initialise it with abrdf_material_init", m->struct_size,
+                  (size_t)MATERIAL_SIZE_0_2);
+    } else if (tol && !read_in(&tt, sizeof tt, tol, TOLERANCE_SIZE_0_2)) {
+        st = fail(&w.sel, ABRDF_E_SIZE, "abrdf_tolerance: struct_size %zu is below the %zu bytes "
+                  "of the 0.2.0 layout: initialise it with abrdf_tolerance_init", tol->struct_size,
+                  (size_t)TOLERANCE_SIZE_0_2);
+    } else if (params && !abrdf__params_view(ABRDF_MODEL_NONE, params, &pp)) {
+        st = fail(&w.sel, ABRDF_E_SIZE, "abrdf_params: struct_size %zu is below the 0.2.0 "
+                  "layout: initialise it with abrdf_params_init", params->struct_size);
+    } else {
+        st = select_full(&w, &mm, goal, &tt, costs, &pp);
+        if (st == ABRDF_OK && params) copy_out(params, &pp, sizeof pp);
+    }
+    copy_out(out, &w.sel, sizeof w.sel);
+    return st;
 }

@@ -1,6 +1,7 @@
 # install_consumer.cmake - installs the current build into a fresh temporary prefix and
 # builds + runs examples/quickstart.c against that installed tree three ways:
 #   1. pkg-config:   cc quickstart.c $(pkg-config --cflags --libs abrdf)
+#                    (and a program that includes the selection header, abrdf_select.h)
 #   2. find_package: abrdf::abrdf         (shared; its NEEDED entries must name libabrdf)
 #   3. find_package: abrdf::abrdf_static  (static; must not need libabrdf.so at run time)
 #   cmake -DBUILD_DIR=.. -DEXAMPLES=.. -DWORK=.. -DCC=.. -DPKG_CONFIG=.. -DOBJDUMP=..
@@ -33,8 +34,10 @@ set(prefix "${WORK}/prefix")
 step("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}")
 file(GLOB_RECURSE pc_files "${prefix}/*/abrdf.pc")
 file(GLOB_RECURSE config_files "${prefix}/*/abrdfConfig.cmake")
-if(NOT pc_files OR NOT config_files OR NOT EXISTS "${prefix}/include/abrdf.h")
-  message(FATAL_ERROR "install_consumer: the install lacks abrdf.pc, abrdfConfig.cmake or abrdf.h")
+if(NOT pc_files OR NOT config_files OR NOT EXISTS "${prefix}/include/abrdf.h"
+   OR NOT EXISTS "${prefix}/include/abrdf_select.h")
+  message(FATAL_ERROR "install_consumer: the install lacks abrdf.pc, abrdfConfig.cmake, "
+                      "abrdf.h or abrdf_select.h")
 endif()
 list(GET pc_files 0 pc)
 get_filename_component(pc_dir "${pc}" DIRECTORY)
@@ -50,6 +53,28 @@ step("cc via pkg-config" "${CC}" "${EXAMPLES}/quickstart.c" ${pc_flags} ${extra}
 set(ENV{LD_LIBRARY_PATH} "${libdir}")
 step("quickstart (pkg-config)" "${WORK}/quickstart_pc")
 expect_output("pkg-config build")
+# The selection header is installed beside abrdf.h and includes it.
+file(WRITE "${WORK}/select.c" [=[
+#include <stdio.h>
+#include <abrdf_select.h>
+int main(void)
+{
+    abrdf_material m;
+    abrdf_selection s;
+    abrdf_material_init(&m);
+    abrdf_selection_init(&s);
+    m.r = 0.2;
+    if (abrdf_select(&m, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &s, NULL, NULL, NULL) != ABRDF_OK) return 1;
+    printf("%s + %s\n", abrdf_model_get(s.diffuse)->name, abrdf_model_get(s.specular)->name);
+    return 0;
+}
+]=])
+step("cc select.c via pkg-config" "${CC}" "${WORK}/select.c" ${pc_flags} ${extra} -o "${WORK}/select_pc")
+step("select (pkg-config)" "${WORK}/select_pc")
+if(NOT step_out MATCHES "disney_diffuse \\+ disney_specular")
+  message(FATAL_ERROR "install_consumer: select.c printed '${step_out}'")
+endif()
+message(STATUS "install_consumer: abrdf_select.h: ${step_out}")
 unset(ENV{LD_LIBRARY_PATH})
 
 # 2 + 3. find_package from a separate CMake project (no package registry, only the prefix).

@@ -24,7 +24,7 @@ void clq_batch_matches_scalar(const abrdf_model *ms, int nm, int n, unsigned see
         ck_assert_int_eq(abrdf_eval_batch(ms[k], &p, &bt), ABRDF_OK);
         for (int i = 0; i < n; ++i) {
             double a[3] = {ix[i], iy[i], iz[i]}, b[3] = {ox[i], oy[i], oz[i]}, f[3];
-            abrdf_eval_local(ms[k], &p, a, b, f);
+            abrdf_eval(ms[k], &p, NULL, a, b, f);
             ck_assert_msg(tu_close(fr[i], f[0], rel, abs_tol), "%s: %.9g vs %.9g",
                           abrdf_model_get(ms[k])->name, fr[i], f[0]);
         }

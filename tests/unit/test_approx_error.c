@@ -3,6 +3,7 @@
  * the default cost model, and argument checking. */
 #include <math.h>
 #include "abrdf_internal.h"
+#include "abrdf_select.h"
 #include "test_util.h"
 
 static abrdf_approx_error err(abrdf_model m, double n)
@@ -133,6 +134,7 @@ START_TEST(rejects_bad_arguments)
     ck_assert_int_eq(abrdf_approx_error_eval(ABRDF_F2, 10.0, NULL), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_approx_error_eval(ABRDF_BLINN_PHONG, 10.0, &e), ABRDF_E_MODEL);
     ck_assert_int_eq(abrdf_approx_error_eval(ABRDF_MODEL_COUNT, 10.0, &e), ABRDF_E_MODEL);
+    ck_assert_int_eq(abrdf_approx_error_eval(ABRDF_MODEL_NONE, 10.0, &e), ABRDF_E_MODEL);
     ck_assert_int_eq(abrdf_approx_error_eval(ABRDF_F2, -1.0, &e), ABRDF_E_RANGE);
     ck_assert_int_eq(abrdf_approx_error_eval(ABRDF_F2, NAN, &e), ABRDF_E_RANGE);
     ck_assert_int_eq(abrdf_approx_error_eval(ABRDF_F2, INFINITY, &e), ABRDF_E_RANGE);
@@ -147,10 +149,37 @@ START_TEST(costs_paper_is_table4)
     ck_assert_int_eq(abrdf_costs_paper(NULL), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_costs_paper(&c), ABRDF_OK);
     ck_assert(c.unit != NULL);
-    ck_assert(c.cost[ABRDF_F2] == 8 && c.cost[ABRDF_F4] == 11 && c.cost[ABRDF_F8] == 14);
-    ck_assert(c.cost[ABRDF_F16] == 17 && c.cost[ABRDF_FKUB] == 17 && c.cost[ABRDF_FKV] == 14);
-    ck_assert(c.cost[ABRDF_FS] == 15);
-    ck_assert(c.cost[ABRDF_BLINN_PHONG] < 0 && c.cost[ABRDF_DISNEY_SPECULAR] < 0);
+    ck_assert(abrdf_costs_get(&c, ABRDF_F2) == 8 && abrdf_costs_get(&c, ABRDF_F4) == 11);
+    ck_assert(abrdf_costs_get(&c, ABRDF_F8) == 14 && abrdf_costs_get(&c, ABRDF_F16) == 17);
+    ck_assert(abrdf_costs_get(&c, ABRDF_FKUB) == 17 && abrdf_costs_get(&c, ABRDF_FKV) == 14);
+    ck_assert(abrdf_costs_get(&c, ABRDF_FS) == 15);
+    ck_assert(abrdf_costs_get(&c, ABRDF_BLINN_PHONG) < 0);
+    ck_assert(abrdf_costs_get(&c, ABRDF_DISNEY_SPECULAR) < 0);
+}
+END_TEST
+
+/* The cost table's accessors: every id inside its frozen capacity, nothing outside. */
+START_TEST(costs_accessors_stay_inside_the_table)
+{
+    abrdf_costs c;
+    ck_assert_int_eq(abrdf_costs_init(NULL, "x"), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_costs_init(&c, "ns/eval"), ABRDF_OK);
+    ck_assert_str_eq(c.unit, "ns/eval");
+    for (int i = 0; i < ABRDF_COSTS_CAPACITY; ++i) ck_assert(abrdf_costs_get(&c, (abrdf_model)i) == -1.0);
+    ck_assert_int_eq(abrdf_costs_set(&c, ABRDF_F8, 2.5), ABRDF_OK);
+    ck_assert(abrdf_costs_get(&c, ABRDF_F8) == 2.5);
+    ck_assert_int_eq(abrdf_costs_set(&c, ABRDF_F8, -3.0), ABRDF_OK); /* unknown again */
+    ck_assert(abrdf_costs_get(&c, ABRDF_F8) == -1.0);
+    ck_assert_int_eq(abrdf_costs_set(&c, ABRDF_F8, NAN), ABRDF_E_RANGE);
+    ck_assert_int_eq(abrdf_costs_set(&c, ABRDF_F8, INFINITY), ABRDF_E_RANGE);
+    ck_assert_int_eq(abrdf_costs_set(&c, ABRDF_MODEL_NONE, 1.0), ABRDF_E_MODEL);
+    ck_assert_int_eq(abrdf_costs_set(&c, (abrdf_model)ABRDF_COSTS_CAPACITY, 1.0), ABRDF_E_MODEL);
+    ck_assert_int_eq(abrdf_costs_set(NULL, ABRDF_F8, 1.0), ABRDF_E_NULL);
+    ck_assert(abrdf_costs_get(&c, ABRDF_MODEL_NONE) == -1.0);
+    ck_assert(abrdf_costs_get(&c, (abrdf_model)ABRDF_COSTS_CAPACITY) == -1.0);
+    ck_assert(abrdf_costs_get(NULL, ABRDF_F8) == -1.0);
+    /* Every model of this build has a slot. */
+    ck_assert_int_le(abrdf_model_count(), ABRDF_COSTS_CAPACITY);
 }
 END_TEST
 
@@ -168,6 +197,7 @@ static Suite *suite(void)
     tcase_add_test(tc, every_model_every_n_is_finite);
     tcase_add_test(tc, rejects_bad_arguments);
     tcase_add_test(tc, costs_paper_is_table4);
+    tcase_add_test(tc, costs_accessors_stay_inside_the_table);
     suite_add_tcase(s, tc);
     return s;
 }

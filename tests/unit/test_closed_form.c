@@ -403,7 +403,7 @@ START_TEST(rgb_channels)
         abrdf_params p = params(m->id), q;
         double w[3] = {0.2, 0.5, 1.0}, f[3], f1[3];
         for (int c = 0; c < 3; ++c) p.kd[c] = p.ks[c] = w[c];
-        ck_assert_int_eq(abrdf_eval_local(m->id, &p, g.wi, g.wo, f), ABRDF_OK);
+        ck_assert_int_eq(abrdf_eval(m->id, &p, NULL, g.wi, g.wo, f), ABRDF_OK);
         for (int c = 0; c < 3; ++c) { /* channel c equals channel c of a grey evaluation with
                                         * weight w[c] (models may colour channels themselves) */
             q = p;
@@ -411,7 +411,7 @@ START_TEST(rgb_channels)
                 q.kd[d] = q.ks[d] = w[c];
                 q.f0[d] = p.f0[c];
             }
-            ck_assert_int_eq(abrdf_eval_local(m->id, &q, g.wi, g.wo, f1), ABRDF_OK);
+            ck_assert_int_eq(abrdf_eval(m->id, &q, NULL, g.wi, g.wo, f1), ABRDF_OK);
             ck_assert_msg(tu_close(f[c], f1[c], 1e-14, 0.0), "%s channel %d: %.17g vs %.17g",
                           m->name, c, f[c], f1[c]);
         }
@@ -446,9 +446,9 @@ START_TEST(shade_pixel_intensity)
     }
     /* omitted terms, light from behind: ambient only */
     double back[3] = {-wi[0], -wi[1], -wi[2]};
-    ck_assert_int_eq(abrdf_shade(ABRDF_MODEL_COUNT, ABRDF_BLINN_PHONG, &p, &fr, back, wo, light, amb, out), ABRDF_OK);
+    ck_assert_int_eq(abrdf_shade(ABRDF_MODEL_NONE, ABRDF_BLINN_PHONG, &p, &fr, back, wo, light, amb, out), ABRDF_OK);
     for (int c = 0; c < 3; ++c) ck_assert(out[c] == amb[c]);
-    ck_assert_int_eq(abrdf_shade(ABRDF_LAMBERT, ABRDF_MODEL_COUNT, &p, &fr, wi, wo, light, amb, out), ABRDF_OK);
+    ck_assert_int_eq(abrdf_shade(ABRDF_LAMBERT, ABRDF_MODEL_NONE, &p, &fr, wi, wo, light, amb, out), ABRDF_OK);
     for (int c = 0; c < 3; ++c)
         ck_assert(tu_close(out[c], amb[c] + light[c] * dot(N, L) * kd[c] / PI, 1e-12, 0.0));
     /* an invalid parameter is an error and the output is 0 */
@@ -456,6 +456,9 @@ START_TEST(shade_pixel_intensity)
     ck_assert_int_eq(abrdf_shade(ABRDF_LAMBERT, ABRDF_BLINN_PHONG, &p, &fr, wi, wo, light, amb, out), ABRDF_E_RANGE);
     for (int c = 0; c < 3; ++c) ck_assert(out[c] == 0.0);
     ck_assert_int_eq(abrdf_shade(ABRDF_LAMBERT, ABRDF_BLINN_PHONG, NULL, &fr, wi, wo, light, amb, out), ABRDF_E_NULL);
+    /* "none" is ABRDF_MODEL_NONE: a *_COUNT is not a model, whatever the header's count */
+    p.n = 20.0;
+    ck_assert_int_eq(abrdf_shade(ABRDF_MODEL_COUNT, ABRDF_BLINN_PHONG, &p, &fr, wi, wo, light, amb, out), ABRDF_E_MODEL);
 }
 END_TEST
 

@@ -251,9 +251,9 @@ START_TEST(cloth_stability_grid)
                 /* the same pair with T = L or T = V exactly in the local frame */
                 double Ll[3] = {1, 0, 0}, Vl[3];
                 for (int c = 0; c < 3; ++c) Vl[c] = V[c];
-                abrdf_eval_local(ms[mi], &p, Ll, Vl, f);
+                abrdf_eval(ms[mi], &p, NULL, Ll, Vl, f);
                 tu_count(&k, f);
-                abrdf_eval_local(ms[mi], &p, Vl, Ll, f);
+                abrdf_eval(ms[mi], &p, NULL, Vl, Ll, f);
                 tu_count(&k, f);
                 float bx[2] = {(float)L[0], 1.0f}, by[2] = {(float)L[1], 0.0f}, bz[2] = {(float)L[2], 1e-30f};
                 float cx[2] = {(float)V[0], (float)V[0]}, cy[2] = {(float)V[1], (float)V[1]}, cz[2] = {(float)V[2], (float)V[2]};

@@ -280,7 +280,7 @@ double tg_albedo(abrdf_model model, const abrdf_params *p, const double wi[3], i
                 double c2 = cos(0.5 * psi), s2 = sin(0.5 * psi);
                 double jac = C / (c2 * c2 + C * C * s2 * s2); /* dphi/dpsi */
                 double wo[3] = {s * cos(phi), s * sin(phi), mu}, f[3];
-                if (abrdf_eval_local(model, p, wi, wo, f) != ABRDF_OK) return -1.0;
+                if (abrdf_eval(model, p, NULL, wi, wo, f) != ABRDF_OK) return -1.0;
                 for (int c = 0; c < 3; ++c) sum[c] += f[c] * mu * wmu * jac * dpsi;
                 ++n;
             }

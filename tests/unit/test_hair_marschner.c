@@ -136,7 +136,7 @@ START_TEST(r_lobe_by_hand)
     ck_assert_int_eq(abrdf__is_double_only(ABRDF_MARSCHNER), 1);
     abrdf_params p;
     abrdf_params_init(ABRDF_MARSCHNER, &p);
-    abrdf_eval_local(ABRDF_MARSCHNER, &p, wi, wo, f);
+    abrdf_eval(ABRDF_MARSCHNER, &p, NULL, wi, wo, f);
     double all[3];
     abrdf__marschner_fibre(&m, wi, wo, 7u, all);
     ck_assert(tu_close(f[0], all[0] / wi[2], 1e-12, 0));
@@ -213,7 +213,7 @@ START_TEST(stability_grid)
         for (int i = 0; i < nd; ++i)
             for (int o = 0; o < nd; ++o) {
                 double f[3];
-                ck_assert_int_eq(abrdf_eval_local(ABRDF_MARSCHNER, &p, dirs[i], dirs[o], f), ABRDF_OK);
+                ck_assert_int_eq(abrdf_eval(ABRDF_MARSCHNER, &p, NULL, dirs[i], dirs[o], f), ABRDF_OK);
                 tu_count(&cnt, f);
             }
     }
@@ -244,10 +244,10 @@ START_TEST(ranges_rejected)
     abrdf_params_init(ABRDF_MARSCHNER, &p);
     double wi[3] = {0.1, 0.2, 0.9}, wo[3] = {-0.2, 0.1, 0.9}, f[3];
     p.aspect_ratio = 0.5; /* eta* would drop below 1 */
-    ck_assert_int_eq(abrdf_eval_local(ABRDF_MARSCHNER, &p, wi, wo, f), ABRDF_E_RANGE);
+    ck_assert_int_eq(abrdf_eval(ABRDF_MARSCHNER, &p, NULL, wi, wo, f), ABRDF_E_RANGE);
     abrdf_params_init(ABRDF_MARSCHNER, &p);
     p.r = 0.0;
-    ck_assert_int_eq(abrdf_eval_local(ABRDF_MARSCHNER, &p, wi, wo, f), ABRDF_E_RANGE);
+    ck_assert_int_eq(abrdf_eval(ABRDF_MARSCHNER, &p, NULL, wi, wo, f), ABRDF_E_RANGE);
 }
 END_TEST
 
@@ -267,7 +267,7 @@ START_TEST(batch_matches_scalar)
     ck_assert_int_eq(abrdf_eval_batch(ABRDF_MARSCHNER, &p, &b), ABRDF_OK);
     for (int i = 0; i < 4; ++i) {
         double wi[3] = {ix[i], iy[i], iz[i]}, wo[3] = {ox[i], oy[i], oz[i]}, f[3];
-        abrdf_eval_local(ABRDF_MARSCHNER, &p, wi, wo, f);
+        abrdf_eval(ABRDF_MARSCHNER, &p, NULL, wi, wo, f);
         ck_assert(tu_close(fr[i], f[0], 1e-6, 0) && tu_close(fb[i], f[2], 1e-6, 0));
     }
 }

@@ -124,8 +124,8 @@ START_TEST(finite_nonnegative_reciprocal)
         for (int s = 0; s < ns; ++s)
             for (int k = 0; k < grid.count; k += grid_stride(m)) {
                 double a[3], b[3];
-                int st1 = abrdf_eval_local(m->id, &sets[s].p, grid.wi[k], grid.wo[k], a);
-                int st2 = abrdf_eval_local(m->id, &sets[s].p, grid.wo[k], grid.wi[k], b);
+                int st1 = abrdf_eval(m->id, &sets[s].p, NULL, grid.wi[k], grid.wo[k], a);
+                int st2 = abrdf_eval(m->id, &sets[s].p, NULL, grid.wo[k], grid.wi[k], b);
                 evals += 2;
                 if (st1 || st2 || !is_finite_nonneg(a) || !is_finite_nonneg(b)) {
                     if (bad++ < MAX_REPORT)
@@ -315,7 +315,7 @@ static double sensitivity(abrdf_model model, const abrdf_params *p, const double
             a[c] = wi[c] + 0x1p-22 * d1[c];
             b[c] = wo[c] + 0x1p-22 * d2[c];
         }
-        abrdf_eval_local(model, p, a, b, f);
+        abrdf_eval(model, p, NULL, a, b, f);
         for (int c = 0; c < 3; ++c) s = fmax(s, fabs(f[c] - f0[c]));
     }
     return s;
@@ -351,7 +351,7 @@ START_TEST(float_batch_matches_double)
             for (int k = 0; k < np; ++k) {
                 /* the double reference sees the same (float-rounded) directions */
                 double wi[3] = {ix[k], iy[k], iz[k]}, wo[3] = {ox[k], oy[k], oz[k]};
-                abrdf_eval_local(m->id, &sets[s].p, wi, wo, ref[k]);
+                abrdf_eval(m->id, &sets[s].p, NULL, wi, wo, ref[k]);
                 for (int c = 0; c < 3; ++c) peak = fmax(peak, ref[k][c]);
             }
             evals += 2L * np;
@@ -408,7 +408,7 @@ START_TEST(frame_invariance)
             double peak = 0.0; /* the set's largest value on the grid */
             for (int k = 0; k < grid.count; k += stride) {
                 double f[3];
-                abrdf_eval_local(m->id, &sets[s].p, grid.wi[k], grid.wo[k], f);
+                abrdf_eval(m->id, &sets[s].p, NULL, grid.wi[k], grid.wo[k], f);
                 peak = fmax(peak, fmax(f[0], fmax(f[1], f[2])));
             }
             for (int k = 0; k < grid.count; k += stride) {
@@ -423,7 +423,7 @@ START_TEST(frame_invariance)
                     wo[c] = grid.wo[k][0] * fr.t[c] + grid.wo[k][1] * fr.b[c] + grid.wo[k][2] * fr.n[c];
                 }
                 abrdf_eval(m->id, &sets[s].p, &fr, wi, wo, a);
-                abrdf_eval_local(m->id, &sets[s].p, grid.wi[k], grid.wo[k], b);
+                abrdf_eval(m->id, &sets[s].p, NULL, grid.wi[k], grid.wo[k], b);
                 /* The rotation rounds the directions by ~1e-16. Sharp lobes amplify that by
                  * up to n or 1/alpha_g^2 (1e-8 relative); a lobe c^n with n < 1 has an
                  * infinite slope at c = 0, where the 1e-16 becomes (1e-16)^n: 1e-8 of the

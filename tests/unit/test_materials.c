@@ -9,6 +9,13 @@
 
 #define DATA(f) ABRDF_TEST_DATA_DIR "/" f
 
+/* A trace callback keeping the text of the first step (the material's n and r). */
+static void first_step(void *user, const abrdf_select_step *st)
+{
+    char *first = user;
+    if (!first[0]) snprintf(first, 256, "%s", st->text);
+}
+
 static mat_table load_builtin(void)
 {
     mat_table t = {NULL, 0, 0};
@@ -75,9 +82,11 @@ START_TEST(every_row_is_valid_and_plausible)
         /* Every row goes through the flowchart for both goals. */
         for (int g = 0; g < ABRDF_GOAL_COUNT; ++g) {
             abrdf_selection s;
-            ck_assert_msg(abrdf_select(m, (abrdf_goal)g, NULL, NULL, &s) == ABRDF_OK, "%s: %s",
-                          e->name, s.message);
-            ck_assert(s.step_count > 2 && strstr(s.steps[0].text, e->name));
+            abrdf_selection_init(&s);
+            char first[256] = "";
+            ck_assert_msg(abrdf_select(m, (abrdf_goal)g, NULL, NULL, &s, NULL, first_step, first) ==
+                          ABRDF_OK, "%s: %s", e->name, s.message);
+            ck_assert(s.step_count > 2 && strstr(first, e->name));
         }
     }
     mat_table_free(&t);

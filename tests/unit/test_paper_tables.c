@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "abrdf_select.h"
 #include "test_util.h"
 
 #ifndef ABRDF_TEST_DATA_DIR

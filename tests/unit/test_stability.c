@@ -129,7 +129,7 @@ static long run_set(const abrdf_model_info *m, const tg_set *set, long *nd, long
     long bad = 0;
     for (int k = 0; k < ps.count; ++k) {
         double f[3] = {NAN, NAN, NAN};
-        int st = abrdf_eval_local(m->id, &set->p, ps.wi[k], ps.wo[k], f);
+        int st = abrdf_eval(m->id, &set->p, NULL, ps.wi[k], ps.wo[k], f);
         ++*nd;
         if (st != ABRDF_OK || !good3(f)) {
             if (bad++ < MAX_REPORT)
@@ -231,7 +231,7 @@ static int rejected(const abrdf_model_info *m, const abrdf_params *p, const char
     abrdf_batch b = {1, x, y, z, ox, oy, oz, fr, fg, fb};
     char msg[256];
     int s1 = abrdf_params_check(m->id, p, msg, sizeof msg);
-    int s2 = abrdf_eval_local(m->id, p, wi, wo, f);
+    int s2 = abrdf_eval(m->id, p, NULL, wi, wo, f);
     int s3 = abrdf_eval_batch(m->id, p, &b);
     int ok = s1 == ABRDF_E_RANGE && s2 == ABRDF_E_RANGE && s3 == ABRDF_E_RANGE && f[0] == 0.0 &&
              f[1] == 0.0 && f[2] == 0.0 && fr[0] == 0.0f && fg[0] == 0.0f && fb[0] == 0.0f &&

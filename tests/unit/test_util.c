@@ -19,7 +19,7 @@ int tu_close(double a, double b, double rel, double abs_tol)
 double tu_eval1(abrdf_model m, const abrdf_params *p, const double wi[3], const double wo[3])
 {
     double f[3];
-    int st = abrdf_eval_local(m, p, wi, wo, f);
+    int st = abrdf_eval(m, p, NULL, wi, wo, f);
     ck_assert_int_eq(st, ABRDF_OK);
     return f[0];
 }

@@ -14,8 +14,8 @@
 /* Returns 0, or -1 with a message in err. */
 int bench_robot_parse(scene *s, char *err, size_t err_size);
 
-/* Every material of s becomes `diffuse` (ABRDF_MODEL_COUNT: none) + `specular`
- * (ABRDF_MODEL_COUNT: none) with parameters p, no ambient term; rendered at size x size,
+/* Every material of s becomes `diffuse` (ABRDF_MODEL_NONE: none) + `specular`
+ * (ABRDF_MODEL_NONE: none) with parameters p, no ambient term; rendered at size x size,
  * 1 sample per pixel (pixel centres), into rgb (size*size*3 floats). *seconds (may be NULL)
  * receives the wall time of render_image. Returns 0, or -1 with a message in err. */
 int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrdf_model specular,

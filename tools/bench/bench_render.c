@@ -47,7 +47,7 @@ int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrd
     char msg[256];
     abrdf_model lobes[2] = {diffuse, specular};
     for (int l = 0; l < 2; ++l)
-        if (lobes[l] != ABRDF_MODEL_COUNT && abrdf_params_check(lobes[l], p, msg, sizeof msg) != ABRDF_OK) {
+        if (lobes[l] != ABRDF_MODEL_NONE && abrdf_params_check(lobes[l], p, msg, sizeof msg) != ABRDF_OK) {
             snprintf(err, err_size, "%s: %s", abrdf_model_get(lobes[l])->name, msg);
             return -1;
         }
@@ -59,7 +59,7 @@ int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrd
         for (int c = 0; c < 3; ++c) m->ka[c] = 0;
         m->lobe_count = 0;
         for (int l = 0; l < 2; ++l)
-            if (lobes[l] != ABRDF_MODEL_COUNT) m->lobes[m->lobe_count++] = lobes[l];
+            if (lobes[l] != ABRDF_MODEL_NONE) m->lobes[m->lobe_count++] = lobes[l];
     }
     render_options ro = {.width = size, .height = size, .spp = 1, .threads = threads};
     return render_timed(s, &ro, rgb, seconds, err, err_size);

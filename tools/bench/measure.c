@@ -110,13 +110,13 @@ static int run_model(void *ctx, const abrdf_batch *b)
     return abrdf_eval_batch(c->model, &c->params, b);
 }
 
-/* The double scalar reference path, one abrdf_eval_local call per pair. */
+/* The double scalar reference path, one abrdf_eval call (local frame) per pair. */
 static int run_model_double(void *ctx, const abrdf_batch *b)
 {
     const model_ctx *c = ctx;
     double f[3], acc = 0.0;
     for (size_t i = 0; i < b->count; ++i) {
-        if (abrdf_eval_local(c->model, &c->params, c->dir + 6 * i, c->dir + 6 * i + 3, f) != ABRDF_OK)
+        if (abrdf_eval(c->model, &c->params, NULL, c->dir + 6 * i, c->dir + 6 * i + 3, f) != ABRDF_OK)
             return -1;
         acc += f[0];
     }
@@ -193,8 +193,7 @@ double measure_unit_ns(measure_set *s, const measure_opts *o)
 int measure_models(const measure_opts *o, const abrdf_model *models, int count,
                    abrdf_costs *out, double *unit_ns, void (*progress)(const char *name))
 {
-    for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) out->cost[i] = -1.0;
-    out->unit = COSTS_UNIT;
+    abrdf_costs_init(out, COSTS_UNIT);
     measure_set *s = measure_set_new(o->pairs);
     if (!s) return -1;
     if (progress) progress(COSTS_UNIT_NAME);
@@ -206,7 +205,7 @@ int measure_models(const measure_opts *o, const abrdf_model *models, int count,
         const abrdf_model_info *m = abrdf_model_get(id);
         if (!m) continue;
         if (progress) progress(m->name);
-        out->cost[id] = measure_model_ns(s, id, o);
+        abrdf_costs_set(out, id, measure_model_ns(s, id, o));
     }
     measure_set_free(s);
     return 0;

@@ -3,7 +3,7 @@
 #ifndef ABRDF_MEASURE_H
 #define ABRDF_MEASURE_H
 #include <stddef.h>
-#include "abrdf.h"
+#include "abrdf_select.h"
 
 typedef struct measure_opts {
     int reps;           /* timed repetitions; the median is reported */
@@ -25,7 +25,7 @@ void measure_set_free(measure_set *s);
  * integrate numerically use at most o->integrating_pairs of the pairs. Returns < 0 on error. */
 double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o);
 /* The same for parameters p, on the float batch path (double_path 0) or the double scalar
- * reference path abrdf_eval_local (double_path 1, one call per pair). */
+ * reference path abrdf_eval in the local frame (double_path 1, one call per pair). */
 double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
                                int double_path, const measure_opts *o);
 /* Median ns/eval of the unit: a bare loop H = normalise(wi + wo), powf(H.z, n), n = 100. */

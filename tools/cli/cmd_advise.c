@@ -9,6 +9,7 @@
 #include "cost_file.h"
 #include "data_path.h"
 #include "materials.h"
+#include "select_trace.h"
 
 #define CMD "advise"
 #define MAX_FILES 8
@@ -67,14 +68,19 @@ static void json_name(const char *s)
     else printf("null");
 }
 
+/* The model's stable name; NULL for ABRDF_MODEL_NONE. */
 static const char *model_name(abrdf_model m)
 {
-    return m == ABRDF_MODEL_COUNT ? NULL : abrdf_select_model_name(m);
+    const abrdf_model_info *info = abrdf_model_get(m);
+    return info ? info->name : NULL;
 }
 
-static const char *const step_names[ABRDF_STEP_KIND_COUNT] = {
-    "input", "goal", "diffuse", "candidate", "cheapest", "fallback", "surface", "roughness",
-    "anisotropy", "exponent", "special", "available"};
+/* The same for the rules, which name only registered models. */
+static const char *rule_name(abrdf_model m)
+{
+    const char *name = model_name(m);
+    return name ? name : "none";
+}
 
 /* ---- the material table --------------------------------------------------------------- */
 
@@ -138,40 +144,41 @@ static void print_rules(int json)
         printf("default tolerances: rel %g%%, abs %g; n derived from r capped at %g, f_2e's n "
                "clamped to [%g, %g]\n", R->default_max_rel_pct, R->default_max_abs, R->n_max,
                R->n_min, R->n_max);
-        printf("performance: %s + cheapest of", abrdf_select_model_name(R->perf_diffuse));
-        for (int i = 0; i < R->candidate_count; ++i) printf(" %s", abrdf_select_model_name(R->candidates[i]));
-        printf("; none passes: %s\n", abrdf_select_model_name(R->perf_fallback));
+        printf("performance: %s + cheapest of", rule_name(R->perf_diffuse));
+        for (int i = 0; i < R->candidate_count; ++i) printf(" %s", rule_name(R->candidates[i]));
+        printf("; none passes: %s\n", rule_name(R->perf_fallback));
         printf("photoreal general: rough %s + %s (anisotropic %s); smooth %s + %s\n",
-               abrdf_select_model_name(R->rough_diffuse), abrdf_select_model_name(R->rough_specular),
-               abrdf_select_model_name(R->rough_specular_aniso), abrdf_select_model_name(R->smooth_diffuse),
-               abrdf_select_model_name(R->smooth_specular));
-        for (int i = 1; i < ABRDF_SURFACE_COUNT; ++i)
+               rule_name(R->rough_diffuse), rule_name(R->rough_specular),
+               rule_name(R->rough_specular_aniso), rule_name(R->smooth_diffuse),
+               rule_name(R->smooth_specular));
+        for (int i = 1; i < R->surface_count; ++i)
             printf("photoreal %s: %s\n", abrdf_surface_name((abrdf_surface)i),
-                   abrdf_select_model_name(R->special[i]));
+                   rule_name(R->special[i]));
         return;
     }
     printf("{\"smooth_r_max\": %.17g, \"aniso_min\": %.17g, \"default_max_rel_pct\": %.17g, "
            "\"default_max_abs\": %.17g, \"n_min\": %.17g, \"n_max\": %.17g,\n",
            R->smooth_r_max, R->aniso_min, R->default_max_rel_pct, R->default_max_abs, R->n_min, R->n_max);
     printf(" \"perf_diffuse\": \"%s\", \"perf_fallback\": \"%s\", \"candidates\": [",
-           abrdf_select_model_name(R->perf_diffuse), abrdf_select_model_name(R->perf_fallback));
+           rule_name(R->perf_diffuse), rule_name(R->perf_fallback));
     for (int i = 0; i < R->candidate_count; ++i)
-        printf("%s\"%s\"", i ? ", " : "", abrdf_select_model_name(R->candidates[i]));
+        printf("%s\"%s\"", i ? ", " : "", rule_name(R->candidates[i]));
     printf("],\n \"rough_diffuse\": \"%s\", \"rough_specular\": \"%s\", \"rough_specular_aniso\": \"%s\", "
            "\"smooth_diffuse\": \"%s\", \"smooth_specular\": \"%s\",\n \"special\": {",
-           abrdf_select_model_name(R->rough_diffuse), abrdf_select_model_name(R->rough_specular),
-           abrdf_select_model_name(R->rough_specular_aniso), abrdf_select_model_name(R->smooth_diffuse),
-           abrdf_select_model_name(R->smooth_specular));
-    for (int i = 1; i < ABRDF_SURFACE_COUNT; ++i) {
+           rule_name(R->rough_diffuse), rule_name(R->rough_specular),
+           rule_name(R->rough_specular_aniso), rule_name(R->smooth_diffuse),
+           rule_name(R->smooth_specular));
+    for (int i = 1; i < R->surface_count; ++i) {
         printf("%s\"%s\": {\"model\": \"%s\", \"reason\": ", i > 1 ? ", " : "",
-               abrdf_surface_name((abrdf_surface)i), abrdf_select_model_name(R->special[i]));
+               abrdf_surface_name((abrdf_surface)i), rule_name(R->special[i]));
         cli_json_string(stdout, R->special_reason[i]);
         printf("}");
     }
     printf("},\n \"nmse_class_max\": [%.17g, %.17g, %.17g], \"table6_f2e\": [",
            R->nmse_class_max[0], R->nmse_class_max[1], R->nmse_class_max[2]);
-    for (int i = 0; i < R->nmse_rows; ++i)
-        printf("%s[%.17g, %.17g]", i ? ", " : "", R->nmse_alpha_g[i], R->nmse_f2e[i]);
+    double alpha_g, nmse;
+    for (int i = 0; abrdf_select_table6(i, &alpha_g, &nmse) == ABRDF_OK; ++i)
+        printf("%s[%.17g, %.17g]", i ? ", " : "", alpha_g, nmse);
     printf("]}\n");
 }
 
@@ -213,16 +220,15 @@ static int limit_value(const char *opt, const char *s, double *out)
 
 /* ---- output --------------------------------------------------------------------------- */
 
-static void print_human(const abrdf_selection *s, const mat_entry *e)
+static void print_human(const abrdf_selection *s, const abrdf_params *p,
+                        const select_trace *trace, const mat_entry *e)
 {
-    const abrdf_params *p = &s->params;
     if (e) printf("material  %s (%s; %s:%d)\n", e->name, abrdf_surface_name(s->type), e->file, e->line);
     else printf("material  explicit values (%s)\n", abrdf_surface_name(s->type));
     printf("goal      %s\n", abrdf_goal_name(s->goal));
-    printf("diffuse   %s\n", s->diffuse == ABRDF_MODEL_COUNT ? "none (part of the specular model)"
-                                                             : abrdf_select_model_name(s->diffuse));
-    printf("specular  %s%s\n", abrdf_select_model_name(s->specular),
-           s->available ? "" : "  (not built into this libabrdf yet)");
+    printf("diffuse   %s\n", s->diffuse == ABRDF_MODEL_NONE ? "none (part of the specular model)"
+                                                            : model_name(s->diffuse));
+    printf("specular  %s\n", model_name(s->specular));
     printf("params    kd %g,%g,%g  ks %g,%g,%g  f0 %.4g,%.4g,%.4g  n %g  r %g", p->kd[0], p->kd[1],
            p->kd[2], p->ks[0], p->ks[1], p->ks[2], p->f0[0], p->f0[1], p->f0[2], p->n, p->r);
     if (p->anisotropic > 0.0) printf("  anisotropic %g", p->anisotropic);
@@ -244,24 +250,24 @@ static void print_human(const abrdf_selection *s, const mat_entry *e)
         printf("error     no prediction (the model is the reference for its surface class)\n");
     char unit[32] = "";
     sscanf(s->cost_unit ? s->cost_unit : "units", "%31s", unit);
-    printf("cost      %s ", abrdf_select_model_name(s->specular));
+    printf("cost      %s ", model_name(s->specular));
     if (s->cost_specular >= 0.0) printf("%g %s", s->cost_specular, unit);
     else printf("not in the cost table");
-    if (s->diffuse != ABRDF_MODEL_COUNT) {
-        printf("; %s ", abrdf_select_model_name(s->diffuse));
+    if (s->diffuse != ABRDF_MODEL_NONE) {
+        printf("; %s ", model_name(s->diffuse));
         if (s->cost_diffuse >= 0.0) printf("%g %s", s->cost_diffuse, unit);
         else printf("not in the cost table");
     }
     if (s->cost_total >= 0.0) printf("; total %g %s", s->cost_total, unit);
     printf("  [%s]\n", s->cost_unit ? s->cost_unit : "");
     printf("why:\n");
-    for (int i = 0; i < s->step_count; ++i) printf("  %2d. %s\n", i + 1, s->steps[i].text);
+    for (int i = 0; i < trace->count; ++i) printf("  %2d. %s\n", i + 1, trace->steps[i].text);
     if (e) printf("source: %s\n", e->source);
 }
 
-static void print_json(const abrdf_selection *s, const mat_entry *e, const abrdf_tolerance *tol)
+static void print_json(const abrdf_selection *s, const abrdf_params *p,
+                       const select_trace *trace, const mat_entry *e, const abrdf_tolerance *tol)
 {
-    const abrdf_params *p = &s->params;
     printf("{\"material\": ");
     json_name(e ? e->name : NULL);
     printf(", \"source\": ");
@@ -271,7 +277,7 @@ static void print_json(const abrdf_selection *s, const mat_entry *e, const abrdf
     json_name(model_name(s->diffuse));
     printf(", \"specular\": ");
     json_name(model_name(s->specular));
-    printf(", \"available\": %s,\n \"tolerance\": {\"max_rel_pct\": ", s->available ? "true" : "false");
+    printf(",\n \"tolerance\": {\"max_rel_pct\": ");
     json_num(tol->max_rel_pct);
     printf(", \"max_abs\": ");
     json_num(tol->max_abs);
@@ -304,9 +310,9 @@ static void print_json(const abrdf_selection *s, const mat_entry *e, const abrdf
     printf(", \"unit\": ");
     json_name(s->cost_unit);
     printf("},\n \"trace\": [");
-    for (int i = 0; i < s->step_count; ++i) {
-        const abrdf_select_step *t = &s->steps[i];
-        printf("%s\n  {\"step\": \"%s\", \"model\": ", i ? "," : "", step_names[t->kind]);
+    for (int i = 0; i < trace->count; ++i) {
+        const abrdf_select_step *t = &trace->steps[i];
+        printf("%s\n  {\"step\": \"%s\", \"model\": ", i ? "," : "", abrdf_step_name(t->kind));
         json_name(model_name(t->model));
         printf(", \"value\": ");
         json_opt(t->value);
@@ -334,8 +340,8 @@ int cmd_advise(int argc, char **argv)
     const char *name = NULL, *files[MAX_FILES], *costs_file = NULL;
     int nfiles = 0, list = 0, json = 0, rules = 0;
     abrdf_goal goal = ABRDF_GOAL_PHOTOREAL;
-    abrdf_tolerance tol = {abrdf_select_rules_get()->default_max_rel_pct,
-                           abrdf_select_rules_get()->default_max_abs};
+    abrdf_tolerance tol;
+    abrdf_tolerance_init(&tol);
     /* Overrides, applied after the table lookup. */
     double n = 0, r = 0, kd[3], ks[3], f0[3], eta = 0, aniso = 0, mel = 0, red = 0;
     int has_n = 0, has_r = 0, has_kd = 0, has_ks = 0, has_f0 = 0, has_eta = 0, has_aniso = 0,
@@ -460,13 +466,21 @@ int cmd_advise(int argc, char **argv)
         }
     }
     abrdf_selection sel;
-    if (abrdf_select(&m, goal, &tol, costs_file ? &costs : NULL, &sel) != ABRDF_OK) {
+    abrdf_params params;
+    select_trace trace = SELECT_TRACE_INIT;
+    abrdf_selection_init(&sel);
+    abrdf_params_init(ABRDF_MODEL_NONE, &params);
+    if (abrdf_select(&m, goal, &tol, costs_file ? &costs : NULL, &sel, &params,
+                     select_trace_keep, &trace) != ABRDF_OK) {
         rc = cli_fail(CMD, "%s", sel.message);
+    } else if (trace.lost) {
+        rc = cli_fail(CMD, "out of memory");
     } else if (json) {
-        print_json(&sel, e, &tol);
+        print_json(&sel, &params, &trace, e, &tol);
     } else {
-        print_human(&sel, e);
+        print_human(&sel, &params, &trace, e);
     }
+    select_trace_free(&trace);
     mat_table_free(&table);
     return rc;
 }

@@ -46,7 +46,7 @@ static int usage(void)
     printf("usage: abrdf bench [--json] [--plot OUT.svg] [--quick] [--render] [--size N]\n"
            "                   [--threads N] [--reps N]\n\n"
            "For every model: ns/eval of the float batch path (abrdf_eval_batch) and of the\n"
-           "double scalar path (abrdf_eval_local), as ratios to a powf Blinn-Phong loop on the\n"
+           "double scalar path (abrdf_eval, local frame), as ratios to a powf Blinn-Phong loop on the\n"
            "same structure-of-arrays data timed in the same run (warm cache, median of the\n"
            "repetitions, swept over n or r where the model reads them), and the accuracy\n"
            "against the model it replaces: NMSE on a robot render (Table-1 approximations vs\n"
@@ -132,7 +132,7 @@ static void accuracy_params(abrdf_model id, ref_kind ref, abrdf_params *p)
 static int render_one(scene *s, int size, int threads, abrdf_model id, ref_kind ref,
                       const abrdf_params *p, float *rgb, char *err, size_t n)
 {
-    if (ref == REF_DISNEY_DIFFUSE) return bench_robot_lobes(s, size, threads, id, ABRDF_MODEL_COUNT, p, rgb, NULL, err, n);
+    if (ref == REF_DISNEY_DIFFUSE) return bench_robot_lobes(s, size, threads, id, ABRDF_MODEL_NONE, p, rgb, NULL, err, n);
     return bench_robot_lobes(s, size, threads, ABRDF_LAMBERT, id, p, rgb, NULL, err, n);
 }
 
@@ -144,7 +144,7 @@ static int accuracy(row *rows, int count, int size, int threads, int quick, char
     float *ref[4] = {NULL}, *img = malloc(px * sizeof *img);
     int rc = -1;
     if (!img) goto out;
-    static const abrdf_model ref_model[4] = {ABRDF_MODEL_COUNT, ABRDF_BLINN_PHONG, ABRDF_DISNEY_SPECULAR,
+    static const abrdf_model ref_model[4] = {ABRDF_MODEL_NONE, ABRDF_BLINN_PHONG, ABRDF_DISNEY_SPECULAR,
                                              ABRDF_DISNEY_DIFFUSE};
     for (int k = 1; k < 4; ++k) {
         abrdf_params p;

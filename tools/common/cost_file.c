@@ -12,8 +12,7 @@
 
 int costs_load(const char *path, abrdf_costs *out, double *unit_ns, char *err, size_t err_size)
 {
-    for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) out->cost[i] = -1.0;
-    out->unit = COSTS_UNIT;
+    abrdf_costs_init(out, COSTS_UNIT);
     if (unit_ns) *unit_ns = -1.0;
     FILE *f = fopen(path, "r");
     if (!f) {
@@ -45,12 +44,12 @@ int costs_load(const char *path, abrdf_costs *out, double *unit_ns, char *err, s
             }
             if (unit_ns) *unit_ns = v;
         } else if (abrdf_model_find(name, &m) == ABRDF_OK) {
-            if (out->cost[m] >= 0.0) {
+            if (abrdf_costs_get(out, m) >= 0.0) {
                 snprintf(err, err_size, "%s:%d: model %s appears twice", path, lineno, name);
                 rc = -1;
                 break;
             }
-            out->cost[m] = v;
+            abrdf_costs_set(out, m, v);
             ++entries;
         } else {
             snprintf(err, err_size, "%s:%d: unknown model '%s' (see abrdf models)", path, lineno, name);
@@ -102,8 +101,9 @@ void costs_write(FILE *f, const abrdf_costs *c, double unit_ns, const char *comm
             COSTS_UNIT_NAME, unit_ns);
     for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)i);
-        if (!m || c->cost[i] < 0.0) continue;
-        fprintf(f, "%-24s %10.4f  # %.2f x unit\n", m->name, c->cost[i],
-                unit_ns > 0.0 ? c->cost[i] / unit_ns : 0.0);
+        double cost = abrdf_costs_get(c, (abrdf_model)i);
+        if (!m || cost < 0.0) continue;
+        fprintf(f, "%-24s %10.4f  # %.2f x unit\n", m->name, cost,
+                unit_ns > 0.0 ? cost / unit_ns : 0.0);
     }
 }

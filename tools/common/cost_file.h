@@ -12,7 +12,7 @@
 #define ABRDF_COST_FILE_H
 #include <stddef.h>
 #include <stdio.h>
-#include "abrdf.h"
+#include "abrdf_select.h"
 
 #define COSTS_UNIT_NAME "powf_blinn_phong"
 #define COSTS_UNIT "ns/eval (measured, abrdf calibrate)"

@@ -4,7 +4,7 @@
 #define ABRDF_MATERIALS_H
 
 #include <stddef.h>
-#include "abrdf.h"
+#include "abrdf_select.h"
 
 #define MAT_NAME_MAX 48
 #define MAT_SOURCE_MAX 400

@@ -50,7 +50,7 @@ double quad_albedo(abrdf_model m, const abrdf_params *p, double theta_deg, doubl
             double wo[3] = {2 * cd * h[0] - wi[0], 2 * cd * h[1] - wi[1], 2 * cd * h[2] - wi[2]};
             if (!(wo[2] > 0.0)) continue;
             double f[3];
-            abrdf_eval_local(m, p, wi, wo, f);
+            abrdf_eval(m, p, NULL, wi, wo, f);
             sum += f[c] * wo[2] * 4.0 * cd * sh * dth * (2.0 * PI / nphi); /* dwo = 4 (wi.h) dwh */
         }
     }

@@ -46,7 +46,7 @@ int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *p
         abrdf_model which[ABRDF_MODEL_COUNT];
         int count = 0;
         for (int i = 0; i < ABRDF_MODEL_COUNT; ++i)
-            if (lib.cost[i] >= 0.0 || i == ABRDF_BLINN_PHONG) which[count++] = (abrdf_model)i;
+            if (abrdf_costs_get(&lib, (abrdf_model)i) >= 0.0 || i == ABRDF_BLINN_PHONG) which[count++] = (abrdf_model)i;
         fprintf(stderr, "abrdf tables 4: measuring ");
         if (measure_models(&mo, which, count, &meas, &unit_ns, progress) != 0) {
             fprintf(stderr, "\nabrdf tables: out of memory\n");
@@ -73,10 +73,10 @@ int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *p
     g.fmt[C_CYCLES_OPS] = "%.0f";
     g.fmt[C_NS] = "%.3f";
 
-    double f2_cycles = lib.cost[ABRDF_F2], f2_ns = meas.cost[ABRDF_F2];
+    double f2_cycles = abrdf_costs_get(&lib, ABRDF_F2), f2_ns = abrdf_costs_get(&meas, ABRDF_F2);
     int mismatch = 0;
     for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) {
-        if (!(lib.cost[i] >= 0.0) && i != ABRDF_BLINN_PHONG) continue;
+        if (!(abrdf_costs_get(&lib, (abrdf_model)i) >= 0.0) && i != ABRDF_BLINN_PHONG) continue;
         const char *name = abrdf_model_get((abrdf_model)i)->name;
         int r = tab_row(&g, name);
         double v;
@@ -86,14 +86,14 @@ int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *p
         if (paper_data_number(paper, 4, name, "cycles", &v) == 0) g.v[r][C_CYCLES_PAPER] = v;
         if (!isnan(g.v[r][C_ADDS]) && !isnan(g.v[r][C_MULS]) && !isnan(g.v[r][C_DIVS]))
             g.v[r][C_CYCLES_OPS] = CYCLES(g.v[r][C_ADDS], g.v[r][C_MULS], g.v[r][C_DIVS]);
-        if (lib.cost[i] >= 0.0) { /* the library's default cost model */
-            if (f2_cycles > 0.0) g.v[r][C_CYCLES_F2] = lib.cost[i] / f2_cycles;
-            mismatch |= lib.cost[i] != g.v[r][C_CYCLES_PAPER] || lib.cost[i] != g.v[r][C_CYCLES_OPS];
+        if (abrdf_costs_get(&lib, (abrdf_model)i) >= 0.0) { /* the library's default cost model */
+            if (f2_cycles > 0.0) g.v[r][C_CYCLES_F2] = abrdf_costs_get(&lib, (abrdf_model)i) / f2_cycles;
+            mismatch |= abrdf_costs_get(&lib, (abrdf_model)i) != g.v[r][C_CYCLES_PAPER] || abrdf_costs_get(&lib, (abrdf_model)i) != g.v[r][C_CYCLES_OPS];
         }
-        if (meas.cost[i] > 0.0) {
-            g.v[r][C_NS] = meas.cost[i];
-            if (f2_ns > 0.0) g.v[r][C_NS_F2] = meas.cost[i] / f2_ns;
-            if (unit_ns > 0.0) g.v[r][C_UNIT] = meas.cost[i] / unit_ns;
+        if (abrdf_costs_get(&meas, (abrdf_model)i) > 0.0) {
+            g.v[r][C_NS] = abrdf_costs_get(&meas, (abrdf_model)i);
+            if (f2_ns > 0.0) g.v[r][C_NS_F2] = abrdf_costs_get(&meas, (abrdf_model)i) / f2_ns;
+            if (unit_ns > 0.0) g.v[r][C_UNIT] = abrdf_costs_get(&meas, (abrdf_model)i) / unit_ns;
         }
     }
     if (unit_ns > 0.0) {

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "abrdf_select.h"
 #include "tables.h"
 
 static const double paper_n[] = {2, 5, 10, 20, 50, 100, 200, 500, 700, 1000};

@@ -278,7 +278,7 @@ static void shade(const render_scene *rs, int obj, const double p[3], const doub
         if (!tangent) iso_local(n, wi, wo, li, lo);
         for (int k = 0; k < m->lobe_count; ++k) {
             if (tangent) abrdf_eval(m->lobes[k], &m->params, &frame, wi, wo, fl);
-            else abrdf_eval_local(m->lobes[k], &m->params, li, lo, fl);
+            else abrdf_eval(m->lobes[k], &m->params, NULL, li, lo, fl);
             unsigned needs = abrdf_model_get(m->lobes[k])->needs;
             ++st->brdf_evals;
             st->fresnel_evals += (needs & ABRDF_NEEDS_FRESNEL) != 0;

@@ -5,6 +5,7 @@
 #include "scene_select.h"
 #include "cli_args.h"
 #include "render.h"
+#include "select_trace.h"
 
 int scene_needs_table(const scene *s)
 {
@@ -76,21 +77,21 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         if (described(sm, "f0")) memcpy(am.f0, p->f0, sizeof am.f0), am.eta = -1.0;
         if (described(sm, "anisotropic")) am.anisotropy = p->anisotropic;
         abrdf_selection sel;
-        if (abrdf_select(&am, goal, NULL, NULL, &sel) != ABRDF_OK) {
+        abrdf_params chosen;
+        select_trace trace = SELECT_TRACE_INIT;
+        abrdf_selection_init(&sel);
+        abrdf_params_init(ABRDF_MODEL_NONE, &chosen);
+        if (abrdf_select(&am, goal, NULL, NULL, &sel, &chosen, explain ? select_trace_keep : NULL,
+                         &trace) != ABRDF_OK) {
             snprintf(err, err_size, "%s:%d: material '%s': %s", scene_name, sm->line, sm->name, sel.message);
-            return -1;
-        }
-        if (!sel.available) {
-            snprintf(err, err_size, "%s:%d: material '%s': the selection chose %s, which this library "
-                     "does not implement yet", scene_name, sm->line, sm->name,
-                     abrdf_select_model_name(sel.specular));
+            select_trace_free(&trace);
             return -1;
         }
         sm->kind = SCENE_MAT_MODELS;
         sm->lobe_count = 0;
-        if (sel.diffuse != ABRDF_MODEL_COUNT) sm->lobes[sm->lobe_count++] = sel.diffuse;
+        if (sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = sel.diffuse;
         sm->lobes[sm->lobe_count++] = sel.specular;
-        sm->params = sel.params;
+        sm->params = chosen;
         if (!sm->ka_given) {
             int kd_id, uses = 0;
             abrdf_param_find("kd", &kd_id);
@@ -103,10 +104,11 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         if (explain) {
             fprintf(explain, "selection: material '%s' (line %d), goal %s%s%s: %s%s%s\n", sm->name,
                     sm->line, abrdf_goal_name(goal), e ? ", table entry " : "", e ? e->name : "",
-                    sel.diffuse != ABRDF_MODEL_COUNT ? abrdf_select_model_name(sel.diffuse) : "",
-                    sel.diffuse != ABRDF_MODEL_COUNT ? " + " : "", abrdf_select_model_name(sel.specular));
-            for (int k = 0; k < sel.step_count; ++k) fprintf(explain, "  %2d. %s\n", k + 1, sel.steps[k].text);
+                    sel.diffuse != ABRDF_MODEL_NONE ? abrdf_model_get(sel.diffuse)->name : "",
+                    sel.diffuse != ABRDF_MODEL_NONE ? " + " : "", abrdf_model_get(sel.specular)->name);
+            for (int k = 0; k < trace.count; ++k) fprintf(explain, "  %2d. %s\n", k + 1, trace.steps[k].text);
         }
+        select_trace_free(&trace);
     }
     return 0;
 }

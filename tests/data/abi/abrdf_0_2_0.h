@@ -1,0 +1,338 @@
+/* Frozen copy of libabrdf/include/abrdf.h as released in abrdf 0.2.0, compiled
+ * by the ABI tests as an old caller's header (tests/unit/test_abi.c,
+ * test_abi_old_caller.c). Never edit it; a later release adds its own snapshot. */
+/* abrdf.h - surface reflectance models (BRDFs): the public ABI for evaluation.
+ *
+ * Reference implementations of every reflectance model of Zavalniuk & Romanyuk, "Adaptive
+ * selection of the surface reflectance model for rendering tasks", Sci. Papers of DonNTU,
+ * series Informatics, Cybernetics and Computer Engineering, 2(39), 2024, pp. 18-30,
+ * DOI 10.31474/1996-1588-2024-2-39-18-30. Formula numbers ("Eq. N") are the paper's;
+ * docs/MODELS.md maps them to the code.
+ *
+ * This header holds what a renderer needs: models, parameters, frames, evaluation and the
+ * roughness converters. The paper's selection flowchart (choosing the models for a
+ * material), its error analysis and cost model are in abrdf_select.h, which includes this
+ * header; this header does not include it.
+ *
+ * DIRECTION CONVENTION (stated once, used everywhere)
+ *   wi  unit vector from the surface point toward the LIGHT      (the paper's L)
+ *   wo  unit vector from the surface point toward the VIEWER     (the paper's V)
+ *   Both point away from the surface. N is the shading normal, T the tangent (the paper's X),
+ *   B = N x T the bitangent (the paper's Y), H = (wi + wo)/|wi + wo|, R = 2(wi.N)N - wi.
+ *   A model returns the BRDF f_r(wi, wo) in 1/sr WITHOUT the cosine factor: the radiance
+ *   reflected from a point light of irradiance E is f_r * E * max(0, N.wi).
+ *   The raw empirical lobes (phong, blinn_phong and the Table-1 approximations) are
+ *   unnormalised lobes used as BRDFs, cos^n * ks; the legacy "intensity lobe" convention
+ *   differs from this by a factor N.wi (MODELS.md B1).
+ *   Local frame: N = +z, T = +x, B = +y. Batch evaluation takes local-frame directions.
+ *
+ * ROUGHNESS: one convention everywhere. `r` is perceptual roughness (the paper's alpha), the
+ *   microfacet roughness is alpha_g = r^2. Converters: abrdf_r_to_alpha_g() and friends.
+ *
+ * ERRORS: functions return ABRDF_OK (0) or a negative abrdf_status. Invalid parameters are
+ *   rejected; degenerate geometry (zero/NaN vectors, back-facing directions) gives f_r = 0.
+ *   No evaluation ever returns NaN, Inf or a negative value. No function allocates memory,
+ *   and the library has no global mutable state: every function is thread-safe.
+ *
+ * STABLE LAYOUTS: what a program compiled against this header can rely on when it runs
+ *   with a later libabrdf of the same SOVERSION (CHANGELOG.md lists every change).
+ *   - Enum values never change. New models (surfaces, ...) are added just before the
+ *     *_COUNT terminator, so a *_COUNT is the count of the header you compiled against:
+ *     size your own arrays with it, ask abrdf_model_count() at run time, and never pass a
+ *     *_COUNT to the library. "No model" is ABRDF_MODEL_NONE (-1).
+ *   - A struct you allocate that can grow starts with `size_t struct_size` (here
+ *     abrdf_params; in abrdf_select.h the material, tolerance and selection). Its _init
+ *     function is a static inline that passes your sizeof to the library's _init_sized
+ *     function, which fills the defaults and sets struct_size. New fields are only ever
+ *     appended. The library reads and writes only the first struct_size bytes; a field
+ *     beyond them takes its default. struct_size 0 (a block never initialised) or below
+ *     the first published layout (0.2.0) is rejected with ABRDF_E_SIZE; copying an
+ *     initialised struct copies struct_size with it.
+ *   - A struct the library owns and hands out by pointer (abrdf_model_info,
+ *     abrdf_param_info; abrdf_select_rules and abrdf_select_step) only grows at its end:
+ *     read the fields your header declares.
+ *   - Every other struct (abrdf_layer, abrdf_model_param, abrdf_frame, abrdf_batch; in
+ *     abrdf_select.h abrdf_approx_error and abrdf_costs) is frozen: new data would come as
+ *     a new struct or function. So is ABRDF_MAX_LAYERS.
+ *   No public struct is sized by a count that grows. tests/unit/test_abi.c holds the
+ *   layouts to these rules, and test_abi_old_caller.c runs a caller compiled against the
+ *   0.2.0 headers (tests/data) with this library and with one grown by a model and a field.
+ *
+ * PUBLIC FUNCTIONS
+ *   abrdf_version            runtime version string ("MAJOR.MINOR.PATCH")
+ *   abrdf_strerror           message for a status code
+ *   abrdf_model_count        number of model ids in the library (its ABRDF_MODEL_COUNT)
+ *   abrdf_model_get          metadata of a model (name, formula, citation, params, needs, cost)
+ *   abrdf_model_find         model id from its stable lower-case name
+ *   abrdf_param_count        number of parameters known to the library
+ *   abrdf_param_get          metadata of a parameter (name, unit, range, default)
+ *   abrdf_param_find         parameter id from its name
+ *   abrdf_params_init        fill a parameter block with a model's defaults (static inline)
+ *   abrdf_params_init_sized  the same for a block of struct_size bytes (what the inline calls)
+ *   abrdf_param_set          set one parameter by id (validated)
+ *   abrdf_param_read         read one parameter by id
+ *   abrdf_params_check       validate a parameter block for a model, with a message
+ *   abrdf_frame_make         orthonormal shading frame from a normal and optional tangent
+ *   abrdf_eval               double-precision scalar reference: f_r for world directions,
+ *                            or local-frame directions with frame = NULL
+ *   abrdf_eval_batch         float structure-of-arrays batch evaluation, local frame
+ *   abrdf_shade              the paper's pixel intensity I = ka Ia + Il cos (f_d + f_s)
+ *   abrdf_r_to_alpha_g, abrdf_alpha_g_to_r, abrdf_alpha_g_to_n, abrdf_n_to_alpha_g,
+ *   abrdf_n_to_pov_roughness, abrdf_pov_roughness_to_n   roughness converters
+ */
+#ifndef ABRDF_H
+#define ABRDF_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define ABRDF_VERSION_MAJOR 0
+#define ABRDF_VERSION_MINOR 2
+#define ABRDF_VERSION_PATCH 0
+#define ABRDF_VERSION_STRING "0.2.0"
+
+#if defined(_WIN32) && defined(ABRDF_SHARED_BUILD)
+#define ABRDF_API __declspec(dllexport)
+#elif defined(__GNUC__)
+#define ABRDF_API __attribute__((visibility("default")))
+#else
+#define ABRDF_API
+#endif
+
+/* ---- status codes ------------------------------------------------------------------- */
+typedef enum abrdf_status {
+    ABRDF_OK = 0,
+    ABRDF_E_NULL = -1,      /* a required pointer argument is NULL */
+    ABRDF_E_MODEL = -2,     /* unknown model id or name */
+    ABRDF_E_PARAM = -3,     /* unknown parameter id or name */
+    ABRDF_E_RANGE = -4,     /* parameter value outside its range, or NaN */
+    ABRDF_E_GEOMETRY = -5,  /* degenerate vector (zero length, NaN, Inf) */
+    ABRDF_E_UNUSED = -6,    /* parameter exists but the model does not use it */
+    ABRDF_E_TABLE = -7,     /* a data table is missing or malformed */
+    ABRDF_E_SIZE = -8       /* a struct's struct_size is 0 or below its 0.2.0 layout (or too
+                               small for the parameter asked for): set it with its _init */
+} abrdf_status;
+
+ABRDF_API const char *abrdf_version(void);
+ABRDF_API const char *abrdf_strerror(int status);
+
+/* ---- models: stable ids and stable lower-case names (shared by C, CLI, OSL, POV-Ray) -- */
+typedef enum abrdf_model {
+    ABRDF_MODEL_NONE = -1,        /* no model: an empty slot (abrdf_shade, a selection) */
+    /* diffuse */
+    ABRDF_LAMBERT = 0,            /* "lambert"               Eq. 1 */
+    ABRDF_LAMBERT_FRESNEL,        /* "lambert_fresnel"       Eq. 2 */
+    ABRDF_DISNEY_DIFFUSE,         /* "disney_diffuse"        Eq. 3 */
+    ABRDF_OREN_NAYAR,             /* "oren_nayar"            (named in the paper) */
+    /* empirical specular lobes */
+    ABRDF_PHONG,                  /* "phong"                 cos(gamma)^n */
+    ABRDF_BLINN_PHONG,            /* "blinn_phong"           Eq. 4 */
+    ABRDF_F2,                     /* "f2"                    Table 1 */
+    ABRDF_F4,                     /* "f4"                    Table 1 */
+    ABRDF_F8,                     /* "f8"                    Table 1 */
+    ABRDF_F16,                    /* "f16"                   Table 1 */
+    ABRDF_FS,                     /* "fs"     Schlick        Table 1 */
+    ABRDF_FKV,                    /* "fkv"    quadratic      Table 1 */
+    ABRDF_FKUB,                   /* "fkub"   cubic          Table 1 */
+    /* energy-conserving lobes of Table 5 */
+    ABRDF_F_PHE,                  /* "f_phe"                 Table 5 */
+    ABRDF_F_BE,                   /* "f_be"                  Table 5 */
+    ABRDF_F_2E,                   /* "f_2e"                  Table 5 */
+    ABRDF_F_16E,                  /* "f_16e"                 Table 5 */
+    ABRDF_F_GE,                   /* "f_ge"   Gotanda        Table 5 */
+    ABRDF_F_CTPHE,                /* "f_ctphe"               Table 5 */
+    ABRDF_F_CT2E,                 /* "f_ct2e"                Table 5 */
+    ABRDF_F_CT16E,                /* "f_ct16e"               Table 5 */
+    /* microfacet */
+    ABRDF_COOK_TORRANCE,          /* "cook_torrance"         Eq. 5 with Beckmann D */
+    ABRDF_DISNEY_SPECULAR,        /* "disney_specular"       Eqs. 5, 6, 8, 9 */
+    ABRDF_DISNEY_SPECULAR_ANISO,  /* "disney_specular_aniso" Eqs. 5, 7, 8, 9 */
+    ABRDF_DISNEY_CLEARCOAT,       /* "disney_clearcoat"      GTR1 clearcoat lobe */
+    /* special surfaces */
+    ABRDF_NEUBELT_PETTINEO,       /* "neubelt_pettineo"      Eq. 10 */
+    ABRDF_KAJIYA_KAY,             /* "kajiya_kay"            Eq. 11 */
+    ABRDF_MARSCHNER,              /* "marschner"             R/TT/TRT hair */
+    ABRDF_HUANG,                  /* "huang"                 Eqs. 12-14 */
+    ABRDF_WEIDLICH_WILKIE,        /* "weidlich_wilkie"       Eq. 15 */
+    ABRDF_BELCOUR,                /* "belcour"               Eq. 16 */
+    ABRDF_MODEL_COUNT             /* ids in this header; grows with every model (never "none") */
+} abrdf_model;
+
+/* ---- hair models (marschner, huang) ----
+ * The fibre runs along the tangent T (local +x), on a "ribbon" with normal N, as BRDF
+ * Explorer evaluates hair over a tangent field. With S the fibre scattering function in
+ * pbrt-v4's convention (a lossless fibre has integral S dwi = 1 over the sphere), the
+ * models return f_r = S / |N.wi| for wi, wo above the ribbon, 0 otherwise, so that
+ * f_r * N.wi = S. Absorption comes from melanin/redness (Cycles' mapping). Hair f_r is not
+ * reciprocal; docs/SPECIAL_HAIR.md gives the measured asymmetry. */
+
+/* What a model needs from the caller or the renderer (bit flags of abrdf_model_info.needs). */
+#define ABRDF_NEEDS_TANGENT     0x01u  /* uses T and B (anisotropy, fibres) */
+#define ABRDF_NEEDS_FRESNEL     0x02u  /* evaluates a Fresnel term */
+#define ABRDF_NEEDS_LAYERS      0x04u  /* uses the layer stack */
+#define ABRDF_NEEDS_INTEGRATION 0x08u  /* numerical integration inside eval (slow) */
+
+/* Physical properties (bit flags of abrdf_model_info.props). */
+#define ABRDF_PROP_RECIPROCAL   0x01u  /* f_r(wi, wo) == f_r(wo, wi) */
+#define ABRDF_PROP_ENERGY_CONSERVING 0x02u /* directional albedo <= 1 for unit weights */
+#define ABRDF_PROP_DIFFUSE      0x04u  /* a diffuse lobe (uses kd) */
+#define ABRDF_PROP_SPECULAR     0x08u  /* a specular lobe (uses ks) */
+
+/* ---- parameters --------------------------------------------------------------------- */
+#define ABRDF_MAX_LAYERS 4 /* frozen: part of the 0.2.0 layouts of abrdf_params, abrdf_material */
+
+/* One interface of a layer stack with the medium below it (layered models). */
+typedef struct abrdf_layer {
+    double eta;        /* relative index of refraction of the interface, [0.25, 4] */
+    double kappa;      /* extinction coefficient (conductor if > 0), [0, 10] */
+    double r;          /* perceptual roughness of the interface, [0, 1] */
+    double sigma_a[3]; /* absorption of the medium below, 1/unit depth, [0, 1e4] */
+    double depth;      /* thickness of the medium below, [0, 100] */
+} abrdf_layer;
+
+/* One flat parameter block for every model; each model reads only the fields it lists in
+ * its metadata. Colours are linear RGB. abrdf_params_init() fills the defaults and sets
+ * struct_size; a parameter added by a later release is appended, and a block of an older
+ * caller evaluates with that parameter at the model's default (STABLE LAYOUTS above). */
+typedef struct abrdf_params {
+    size_t struct_size;     /* bytes of this struct as the caller compiled it; set by _init */
+    double kd[3];           /* diffuse reflectance (albedo) per channel, [0, 1] */
+    double ks[3];           /* specular lobe weight per channel, [0, 1] */
+    double f0[3];           /* Fresnel reflectance at normal incidence, [0, 1] */
+    double n;               /* Phong / Blinn-Phong exponent (shininess), [0, 1e6] */
+    double r;               /* perceptual roughness (the paper's alpha), [0, 1] */
+    double anisotropic;     /* Disney anisotropy, [0, 1]; 0 = isotropic */
+    double sigma;           /* Oren-Nayar slope deviation in radians, [0, pi/2] */
+    double clearcoat_gloss; /* Disney clearcoat gloss, [0, 1] */
+    double k_amp;           /* Neubelt-Pettineo inverted-Gaussian amplitude, [0, 100] */
+    double eta;             /* index of refraction (hair fibre), [1, 4] */
+    double melanin;         /* hair melanin concentration, [0, 1] */
+    double redness;         /* hair pheomelanin fraction, [0, 1] */
+    double cuticle_tilt;    /* hair cuticle tilt in degrees, [-10, 10] */
+    double aspect_ratio;    /* hair cross-section minor/major axis ratio, (0, 1] */
+    int    layer_count;     /* number of used entries of layers, [0, ABRDF_MAX_LAYERS] */
+    abrdf_layer layers[ABRDF_MAX_LAYERS]; /* top (index 0) to bottom */
+} abrdf_params;
+
+typedef enum abrdf_param_kind {
+    ABRDF_PARAM_SCALAR = 0,  /* one double */
+    ABRDF_PARAM_RGB = 1,     /* three doubles */
+    ABRDF_PARAM_INT = 2      /* an int stored as a whole number */
+} abrdf_param_kind;
+
+typedef struct abrdf_param_info {
+    const char *name;       /* stable lower-case name, e.g. "r", "kd", "layer0_eta" */
+    const char *help;       /* one-line description with the unit */
+    abrdf_param_kind kind;  /* scalar, RGB triple or integer */
+    double min, max;        /* inclusive range of every component */
+    double def;             /* library-wide default of every component */
+} abrdf_param_info;
+
+/* One parameter as a model uses it: the parameter id, this model's default and range (the
+ * range may be narrower than the parameter's own, e.g. f_2e needs n >= 1). */
+typedef struct abrdf_model_param {
+    int id;                 /* index for abrdf_param_get() */
+    double def;             /* this model's default (every component) */
+    double min, max;        /* this model's inclusive range (every component) */
+} abrdf_model_param;
+
+typedef struct abrdf_model_info {
+    abrdf_model id;          /* this model's id, [0, abrdf_model_count()) */
+    const char *name;        /* stable lower-case name, e.g. "blinn_phong" */
+    const char *title;       /* human-readable name */
+    const char *equation;    /* the paper's formula reference, e.g. "Eq. 4", "Table 1" */
+    const char *citation;    /* original publication */
+    unsigned needs;          /* ABRDF_NEEDS_* */
+    unsigned props;          /* ABRDF_PROP_* */
+    int paper_cycles;        /* cost in cycles from the paper's Table 4, or -1 if not given */
+    int param_count;         /* entries of params, [0, abrdf_param_count()] */
+    const abrdf_model_param *params; /* the parameters this model reads */
+} abrdf_model_info;
+
+ABRDF_API int abrdf_model_count(void);
+ABRDF_API const abrdf_model_info *abrdf_model_get(abrdf_model model); /* NULL if unknown */
+ABRDF_API int abrdf_model_find(const char *name, abrdf_model *out);
+ABRDF_API int abrdf_param_count(void);
+ABRDF_API const abrdf_param_info *abrdf_param_get(int param);          /* NULL if unknown */
+ABRDF_API int abrdf_param_find(const char *name, int *out);
+
+/* Defaults of `model` (library-wide defaults for fields the model does not use, and for
+ * every field with ABRDF_MODEL_NONE) in a block of struct_size bytes; sets
+ * params->struct_size. ABRDF_E_MODEL for an unknown model (the block still holds the
+ * library-wide defaults); ABRDF_E_SIZE, writing nothing, if struct_size is below the
+ * 0.2.0 layout. Call it through abrdf_params_init, which passes sizeof(abrdf_params). */
+ABRDF_API int abrdf_params_init_sized(abrdf_model model, abrdf_params *params,
+                                      size_t struct_size);
+static inline int abrdf_params_init(abrdf_model model, abrdf_params *params)
+{
+    return abrdf_params_init_sized(model, params, sizeof(abrdf_params));
+}
+/* Set parameter `param` to `values` (1 or 3 values as its kind says); range-checked.
+ * ABRDF_E_SIZE if the parameter lies beyond the block's struct_size. */
+ABRDF_API int abrdf_param_set(abrdf_params *params, int param, const double *values, int count);
+/* Read parameter `param` into values[0..2]; returns the number of components or < 0. */
+ABRDF_API int abrdf_param_read(const abrdf_params *params, int param, double values[3]);
+/* Validate every parameter `model` uses (and struct_size: ABRDF_E_SIZE). On failure writes
+ * a one-line message into msg (if msg != NULL and msg_size > 0) naming the parameter, its
+ * value and its range. */
+ABRDF_API int abrdf_params_check(abrdf_model model, const abrdf_params *params,
+                                 char *msg, size_t msg_size);
+
+/* ---- geometry ----------------------------------------------------------------------- */
+typedef struct abrdf_frame {
+    double n[3];  /* unit normal N */
+    double t[3];  /* unit tangent T, orthogonal to N */
+    double b[3];  /* unit bitangent B = N x T */
+} abrdf_frame;
+
+/* Orthonormal frame from normal n and optional tangent t (NULL or parallel to n: an
+ * arbitrary but deterministic tangent is chosen). Returns ABRDF_E_GEOMETRY for a zero or
+ * non-finite normal; the frame is then the identity frame. */
+ABRDF_API int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame *frame);
+
+/* ---- evaluation --------------------------------------------------------------------- */
+/* Double-precision scalar reference. wi, wo in world space (normalised here; zero or
+ * non-finite vectors give f = 0). frame NULL means the local frame (N = +z): wi, wo are
+ * then local-frame directions. f receives f_r per RGB channel. Returns ABRDF_OK or an
+ * error from abrdf_params_check (f = 0). */
+ABRDF_API int abrdf_eval(abrdf_model model, const abrdf_params *params,
+                         const abrdf_frame *frame, const double wi[3], const double wo[3],
+                         double f[3]);
+
+/* Float structure-of-arrays batch: `count` direction pairs in the local frame, unit
+ * length (not renormalised). Output arrays may not alias inputs. */
+typedef struct abrdf_batch {
+    size_t count;                     /* number of direction pairs */
+    const float *wi_x, *wi_y, *wi_z;  /* toward the light, local frame, unit length */
+    const float *wo_x, *wo_y, *wo_z;  /* toward the viewer, local frame, unit length */
+    float *f_r, *f_g, *f_b;           /* out: f_r per channel, 1/sr, >= 0 */
+} abrdf_batch;
+
+ABRDF_API int abrdf_eval_batch(abrdf_model model, const abrdf_params *params,
+                               const abrdf_batch *batch);
+
+/* The paper's pixel intensity (Sec. 1), physically based convention (MODELS.md B1):
+ *   I = ka*Ia + Il * max(0, N.wi) * (f_diffuse + f_specular)
+ * where the diffuse model carries kd and the specular model carries ks. Either model may
+ * be ABRDF_MODEL_NONE to omit that term. ambient = ka*Ia, light = Il (RGB). */
+ABRDF_API int abrdf_shade(abrdf_model diffuse, abrdf_model specular,
+                          const abrdf_params *params, const abrdf_frame *frame,
+                          const double wi[3], const double wo[3],
+                          const double light[3], const double ambient[3], double out[3]);
+
+/* ---- roughness converters (documented with their error in docs/CONVERTERS.md) -------- */
+ABRDF_API double abrdf_r_to_alpha_g(double r);         /* alpha_g = r^2 */
+ABRDF_API double abrdf_alpha_g_to_r(double alpha_g);   /* r = sqrt(alpha_g) */
+ABRDF_API double abrdf_alpha_g_to_n(double alpha_g);   /* Blinn-Phong n = 2/alpha_g^2 - 2 */
+ABRDF_API double abrdf_n_to_alpha_g(double n);         /* alpha_g = sqrt(2/(n + 2)) */
+ABRDF_API double abrdf_n_to_pov_roughness(double n);   /* POV-Ray roughness = 1/n; n = 0 -> 0 */
+ABRDF_API double abrdf_pov_roughness_to_n(double rough); /* n = 1/rough; rough = 0 -> 0 */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* ABRDF_H */
