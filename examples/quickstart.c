@@ -10,8 +10,8 @@ int main(void)
     p.r = 0.3;                                    /* perceptual roughness; alpha_g = r^2 */
     const double n[3] = {0, 0, 1}, wi[3] = {0.3, 0, 1}, wo[3] = {-0.2, 0.1, 1};
     abrdf_frame frame;
-    abrdf_frame_make(n, NULL, &frame);            /* N, T, B from the normal */
-    double f[3];                                  /* f_r per RGB channel, 1/sr, no cosine */
+    abrdf_frame_make(n, NULL, &frame); /* N, T, B from the normal */
+    double f[3];                       /* f_r per RGB channel, 1/sr, no cosine */
     int st = abrdf_eval(ABRDF_DISNEY_SPECULAR, &p, &frame, wi, wo, f);
     if (st != ABRDF_OK) {
         fprintf(stderr, "abrdf: %s\n", abrdf_strerror(st));

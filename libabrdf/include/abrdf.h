@@ -102,14 +102,14 @@ extern "C" {
 /* ---- status codes ------------------------------------------------------------------- */
 typedef enum abrdf_status {
     ABRDF_OK = 0,
-    ABRDF_E_NULL = -1,      /* a required pointer argument is NULL */
-    ABRDF_E_MODEL = -2,     /* unknown model id or name */
-    ABRDF_E_PARAM = -3,     /* unknown parameter id or name */
-    ABRDF_E_RANGE = -4,     /* parameter value outside its range, or NaN */
-    ABRDF_E_GEOMETRY = -5,  /* degenerate vector (zero length, NaN, Inf) */
-    ABRDF_E_UNUSED = -6,    /* parameter exists but the model does not use it */
-    ABRDF_E_TABLE = -7,     /* a data table is missing or malformed */
-    ABRDF_E_SIZE = -8       /* a struct's struct_size is 0 or below its 0.2.0 layout (or too
+    ABRDF_E_NULL = -1,     /* a required pointer argument is NULL */
+    ABRDF_E_MODEL = -2,    /* unknown model id or name */
+    ABRDF_E_PARAM = -3,    /* unknown parameter id or name */
+    ABRDF_E_RANGE = -4,    /* parameter value outside its range, or NaN */
+    ABRDF_E_GEOMETRY = -5, /* degenerate vector (zero length, NaN, Inf) */
+    ABRDF_E_UNUSED = -6,   /* parameter exists but the model does not use it */
+    ABRDF_E_TABLE = -7,    /* a data table is missing or malformed */
+    ABRDF_E_SIZE = -8      /* a struct's struct_size is 0 or below its 0.2.0 layout (or too
                                small for the parameter asked for): set it with its _init */
 } abrdf_status;
 
@@ -118,44 +118,44 @@ ABRDF_API const char *abrdf_strerror(int status);
 
 /* ---- models: stable ids and stable lower-case names (shared by C, CLI, OSL, POV-Ray) -- */
 typedef enum abrdf_model {
-    ABRDF_MODEL_NONE = -1,        /* no model: an empty slot (abrdf_shade, a selection) */
+    ABRDF_MODEL_NONE = -1, /* no model: an empty slot (abrdf_shade, a selection) */
     /* diffuse */
-    ABRDF_LAMBERT = 0,            /* "lambert"               Eq. 1 */
-    ABRDF_LAMBERT_FRESNEL,        /* "lambert_fresnel"       Eq. 2 */
-    ABRDF_DISNEY_DIFFUSE,         /* "disney_diffuse"        Eq. 3 */
-    ABRDF_OREN_NAYAR,             /* "oren_nayar"            (named in the paper) */
+    ABRDF_LAMBERT = 0,     /* "lambert"               Eq. 1 */
+    ABRDF_LAMBERT_FRESNEL, /* "lambert_fresnel"       Eq. 2 */
+    ABRDF_DISNEY_DIFFUSE,  /* "disney_diffuse"        Eq. 3 */
+    ABRDF_OREN_NAYAR,      /* "oren_nayar"            (named in the paper) */
     /* empirical specular lobes */
-    ABRDF_PHONG,                  /* "phong"                 cos(gamma)^n */
-    ABRDF_BLINN_PHONG,            /* "blinn_phong"           Eq. 4 */
-    ABRDF_F2,                     /* "f2"                    Table 1 */
-    ABRDF_F4,                     /* "f4"                    Table 1 */
-    ABRDF_F8,                     /* "f8"                    Table 1 */
-    ABRDF_F16,                    /* "f16"                   Table 1 */
-    ABRDF_FS,                     /* "fs"     Schlick        Table 1 */
-    ABRDF_FKV,                    /* "fkv"    quadratic      Table 1 */
-    ABRDF_FKUB,                   /* "fkub"   cubic          Table 1 */
+    ABRDF_PHONG,       /* "phong"                 cos(gamma)^n */
+    ABRDF_BLINN_PHONG, /* "blinn_phong"           Eq. 4 */
+    ABRDF_F2,          /* "f2"                    Table 1 */
+    ABRDF_F4,          /* "f4"                    Table 1 */
+    ABRDF_F8,          /* "f8"                    Table 1 */
+    ABRDF_F16,         /* "f16"                   Table 1 */
+    ABRDF_FS,          /* "fs"     Schlick        Table 1 */
+    ABRDF_FKV,         /* "fkv"    quadratic      Table 1 */
+    ABRDF_FKUB,        /* "fkub"   cubic          Table 1 */
     /* energy-conserving lobes of Table 5 */
-    ABRDF_F_PHE,                  /* "f_phe"                 Table 5 */
-    ABRDF_F_BE,                   /* "f_be"                  Table 5 */
-    ABRDF_F_2E,                   /* "f_2e"                  Table 5 */
-    ABRDF_F_16E,                  /* "f_16e"                 Table 5 */
-    ABRDF_F_GE,                   /* "f_ge"   Gotanda        Table 5 */
-    ABRDF_F_CTPHE,                /* "f_ctphe"               Table 5 */
-    ABRDF_F_CT2E,                 /* "f_ct2e"                Table 5 */
-    ABRDF_F_CT16E,                /* "f_ct16e"               Table 5 */
+    ABRDF_F_PHE,   /* "f_phe"                 Table 5 */
+    ABRDF_F_BE,    /* "f_be"                  Table 5 */
+    ABRDF_F_2E,    /* "f_2e"                  Table 5 */
+    ABRDF_F_16E,   /* "f_16e"                 Table 5 */
+    ABRDF_F_GE,    /* "f_ge"   Gotanda        Table 5 */
+    ABRDF_F_CTPHE, /* "f_ctphe"               Table 5 */
+    ABRDF_F_CT2E,  /* "f_ct2e"                Table 5 */
+    ABRDF_F_CT16E, /* "f_ct16e"               Table 5 */
     /* microfacet */
-    ABRDF_COOK_TORRANCE,          /* "cook_torrance"         Eq. 5 with Beckmann D */
-    ABRDF_DISNEY_SPECULAR,        /* "disney_specular"       Eqs. 5, 6, 8, 9 */
-    ABRDF_DISNEY_SPECULAR_ANISO,  /* "disney_specular_aniso" Eqs. 5, 7, 8, 9 */
-    ABRDF_DISNEY_CLEARCOAT,       /* "disney_clearcoat"      GTR1 clearcoat lobe */
+    ABRDF_COOK_TORRANCE,         /* "cook_torrance"         Eq. 5 with Beckmann D */
+    ABRDF_DISNEY_SPECULAR,       /* "disney_specular"       Eqs. 5, 6, 8, 9 */
+    ABRDF_DISNEY_SPECULAR_ANISO, /* "disney_specular_aniso" Eqs. 5, 7, 8, 9 */
+    ABRDF_DISNEY_CLEARCOAT,      /* "disney_clearcoat"      GTR1 clearcoat lobe */
     /* special surfaces */
-    ABRDF_NEUBELT_PETTINEO,       /* "neubelt_pettineo"      Eq. 10 */
-    ABRDF_KAJIYA_KAY,             /* "kajiya_kay"            Eq. 11 */
-    ABRDF_MARSCHNER,              /* "marschner"             R/TT/TRT hair */
-    ABRDF_HUANG,                  /* "huang"                 Eqs. 12-14 */
-    ABRDF_WEIDLICH_WILKIE,        /* "weidlich_wilkie"       Eq. 15 */
-    ABRDF_BELCOUR,                /* "belcour"               Eq. 16 */
-    ABRDF_MODEL_COUNT             /* ids in this header; grows with every model (never "none") */
+    ABRDF_NEUBELT_PETTINEO, /* "neubelt_pettineo"      Eq. 10 */
+    ABRDF_KAJIYA_KAY,       /* "kajiya_kay"            Eq. 11 */
+    ABRDF_MARSCHNER,        /* "marschner"             R/TT/TRT hair */
+    ABRDF_HUANG,            /* "huang"                 Eqs. 12-14 */
+    ABRDF_WEIDLICH_WILKIE,  /* "weidlich_wilkie"       Eq. 15 */
+    ABRDF_BELCOUR,          /* "belcour"               Eq. 16 */
+    ABRDF_MODEL_COUNT       /* ids in this header; grows with every model (never "none") */
 } abrdf_model;
 
 /* ---- hair models (marschner, huang) ----
@@ -167,16 +167,16 @@ typedef enum abrdf_model {
  * reciprocal; docs/SPECIAL_HAIR.md gives the measured asymmetry. */
 
 /* What a model needs from the caller or the renderer (bit flags of abrdf_model_info.needs). */
-#define ABRDF_NEEDS_TANGENT     0x01u  /* uses T and B (anisotropy, fibres) */
-#define ABRDF_NEEDS_FRESNEL     0x02u  /* evaluates a Fresnel term */
-#define ABRDF_NEEDS_LAYERS      0x04u  /* uses the layer stack */
-#define ABRDF_NEEDS_INTEGRATION 0x08u  /* numerical integration inside eval (slow) */
+#define ABRDF_NEEDS_TANGENT 0x01u     /* uses T and B (anisotropy, fibres) */
+#define ABRDF_NEEDS_FRESNEL 0x02u     /* evaluates a Fresnel term */
+#define ABRDF_NEEDS_LAYERS 0x04u      /* uses the layer stack */
+#define ABRDF_NEEDS_INTEGRATION 0x08u /* numerical integration inside eval (slow) */
 
 /* Physical properties (bit flags of abrdf_model_info.props). */
-#define ABRDF_PROP_RECIPROCAL   0x01u  /* f_r(wi, wo) == f_r(wo, wi) */
+#define ABRDF_PROP_RECIPROCAL 0x01u        /* f_r(wi, wo) == f_r(wo, wi) */
 #define ABRDF_PROP_ENERGY_CONSERVING 0x02u /* directional albedo <= 1 for unit weights */
-#define ABRDF_PROP_DIFFUSE      0x04u  /* a diffuse lobe (uses kd) */
-#define ABRDF_PROP_SPECULAR     0x08u  /* a specular lobe (uses ks) */
+#define ABRDF_PROP_DIFFUSE 0x04u           /* a diffuse lobe (uses kd) */
+#define ABRDF_PROP_SPECULAR 0x08u          /* a specular lobe (uses ks) */
 
 /* ---- parameters --------------------------------------------------------------------- */
 #define ABRDF_MAX_LAYERS 4 /* frozen: part of the 0.2.0 layouts of abrdf_params, abrdf_material */
@@ -210,42 +210,42 @@ typedef struct abrdf_params {
     double redness;         /* hair pheomelanin fraction, [0, 1] */
     double cuticle_tilt;    /* hair cuticle tilt in degrees, [-10, 10] */
     double aspect_ratio;    /* hair cross-section minor/major axis ratio, (0, 1] */
-    int    layer_count;     /* number of used entries of layers, [0, ABRDF_MAX_LAYERS] */
+    int layer_count;        /* number of used entries of layers, [0, ABRDF_MAX_LAYERS] */
     abrdf_layer layers[ABRDF_MAX_LAYERS]; /* top (index 0) to bottom */
 } abrdf_params;
 
 typedef enum abrdf_param_kind {
-    ABRDF_PARAM_SCALAR = 0,  /* one double */
-    ABRDF_PARAM_RGB = 1,     /* three doubles */
-    ABRDF_PARAM_INT = 2      /* an int stored as a whole number */
+    ABRDF_PARAM_SCALAR = 0, /* one double */
+    ABRDF_PARAM_RGB = 1,    /* three doubles */
+    ABRDF_PARAM_INT = 2     /* an int stored as a whole number */
 } abrdf_param_kind;
 
 typedef struct abrdf_param_info {
-    const char *name;       /* stable lower-case name, e.g. "r", "kd", "layer0_eta" */
-    const char *help;       /* one-line description with the unit */
-    abrdf_param_kind kind;  /* scalar, RGB triple or integer */
-    double min, max;        /* inclusive range of every component */
-    double def;             /* library-wide default of every component */
+    const char *name;      /* stable lower-case name, e.g. "r", "kd", "layer0_eta" */
+    const char *help;      /* one-line description with the unit */
+    abrdf_param_kind kind; /* scalar, RGB triple or integer */
+    double min, max;       /* inclusive range of every component */
+    double def;            /* library-wide default of every component */
 } abrdf_param_info;
 
 /* One parameter as a model uses it: the parameter id, this model's default and range (the
  * range may be narrower than the parameter's own, e.g. f_2e needs n >= 1). */
 typedef struct abrdf_model_param {
-    int id;                 /* index for abrdf_param_get() */
-    double def;             /* this model's default (every component) */
-    double min, max;        /* this model's inclusive range (every component) */
+    int id;          /* index for abrdf_param_get() */
+    double def;      /* this model's default (every component) */
+    double min, max; /* this model's inclusive range (every component) */
 } abrdf_model_param;
 
 typedef struct abrdf_model_info {
-    abrdf_model id;          /* this model's id, [0, abrdf_model_count()) */
-    const char *name;        /* stable lower-case name, e.g. "blinn_phong" */
-    const char *title;       /* human-readable name */
-    const char *equation;    /* the paper's formula reference, e.g. "Eq. 4", "Table 1" */
-    const char *citation;    /* original publication */
-    unsigned needs;          /* ABRDF_NEEDS_* */
-    unsigned props;          /* ABRDF_PROP_* */
-    int paper_cycles;        /* cost in cycles from the paper's Table 4, or -1 if not given */
-    int param_count;         /* entries of params, [0, abrdf_param_count()] */
+    abrdf_model id;       /* this model's id, [0, abrdf_model_count()) */
+    const char *name;     /* stable lower-case name, e.g. "blinn_phong" */
+    const char *title;    /* human-readable name */
+    const char *equation; /* the paper's formula reference, e.g. "Eq. 4", "Table 1" */
+    const char *citation; /* original publication */
+    unsigned needs;       /* ABRDF_NEEDS_* */
+    unsigned props;       /* ABRDF_PROP_* */
+    int paper_cycles;     /* cost in cycles from the paper's Table 4, or -1 if not given */
+    int param_count;      /* entries of params, [0, abrdf_param_count()] */
     const abrdf_model_param *params; /* the parameters this model reads */
 } abrdf_model_info;
 
@@ -253,7 +253,7 @@ ABRDF_API int abrdf_model_count(void);
 ABRDF_API const abrdf_model_info *abrdf_model_get(abrdf_model model); /* NULL if unknown */
 ABRDF_API int abrdf_model_find(const char *name, abrdf_model *out);
 ABRDF_API int abrdf_param_count(void);
-ABRDF_API const abrdf_param_info *abrdf_param_get(int param);          /* NULL if unknown */
+ABRDF_API const abrdf_param_info *abrdf_param_get(int param); /* NULL if unknown */
 ABRDF_API int abrdf_param_find(const char *name, int *out);
 
 /* Defaults of `model` (library-wide defaults for fields the model does not use, and for
@@ -261,8 +261,7 @@ ABRDF_API int abrdf_param_find(const char *name, int *out);
  * params->struct_size. ABRDF_E_MODEL for an unknown model (the block still holds the
  * library-wide defaults); ABRDF_E_SIZE, writing nothing, if struct_size is below the
  * 0.2.0 layout. Call it through abrdf_params_init, which passes sizeof(abrdf_params). */
-ABRDF_API int abrdf_params_init_sized(abrdf_model model, abrdf_params *params,
-                                      size_t struct_size);
+ABRDF_API int abrdf_params_init_sized(abrdf_model model, abrdf_params *params, size_t struct_size);
 static inline int abrdf_params_init(abrdf_model model, abrdf_params *params)
 {
     return abrdf_params_init_sized(model, params, sizeof(abrdf_params));
@@ -275,14 +274,14 @@ ABRDF_API int abrdf_param_read(const abrdf_params *params, int param, double val
 /* Validate every parameter `model` uses (and struct_size: ABRDF_E_SIZE). On failure writes
  * a one-line message into msg (if msg != NULL and msg_size > 0) naming the parameter, its
  * value and its range. */
-ABRDF_API int abrdf_params_check(abrdf_model model, const abrdf_params *params,
-                                 char *msg, size_t msg_size);
+ABRDF_API int abrdf_params_check(abrdf_model model, const abrdf_params *params, char *msg,
+                                 size_t msg_size);
 
 /* ---- geometry ----------------------------------------------------------------------- */
 typedef struct abrdf_frame {
-    double n[3];  /* unit normal N */
-    double t[3];  /* unit tangent T, orthogonal to N */
-    double b[3];  /* unit bitangent B = N x T */
+    double n[3]; /* unit normal N */
+    double t[3]; /* unit tangent T, orthogonal to N */
+    double b[3]; /* unit bitangent B = N x T */
 } abrdf_frame;
 
 /* Orthonormal frame from normal n and optional tangent t (NULL or parallel to n: an
@@ -295,17 +294,16 @@ ABRDF_API int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame
  * non-finite vectors give f = 0). frame NULL means the local frame (N = +z): wi, wo are
  * then local-frame directions. f receives f_r per RGB channel. Returns ABRDF_OK or an
  * error from abrdf_params_check (f = 0). */
-ABRDF_API int abrdf_eval(abrdf_model model, const abrdf_params *params,
-                         const abrdf_frame *frame, const double wi[3], const double wo[3],
-                         double f[3]);
+ABRDF_API int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
+                         const double wi[3], const double wo[3], double f[3]);
 
 /* Float structure-of-arrays batch: `count` direction pairs in the local frame, unit
  * length (not renormalised). Output arrays may not alias inputs. */
 typedef struct abrdf_batch {
-    size_t count;                     /* number of direction pairs */
-    const float *wi_x, *wi_y, *wi_z;  /* toward the light, local frame, unit length */
-    const float *wo_x, *wo_y, *wo_z;  /* toward the viewer, local frame, unit length */
-    float *f_r, *f_g, *f_b;           /* out: f_r per channel, 1/sr, >= 0 */
+    size_t count;                    /* number of direction pairs */
+    const float *wi_x, *wi_y, *wi_z; /* toward the light, local frame, unit length */
+    const float *wo_x, *wo_y, *wo_z; /* toward the viewer, local frame, unit length */
+    float *f_r, *f_g, *f_b;          /* out: f_r per channel, 1/sr, >= 0 */
 } abrdf_batch;
 
 ABRDF_API int abrdf_eval_batch(abrdf_model model, const abrdf_params *params,
@@ -315,17 +313,16 @@ ABRDF_API int abrdf_eval_batch(abrdf_model model, const abrdf_params *params,
  *   I = ka*Ia + Il * max(0, N.wi) * (f_diffuse + f_specular)
  * where the diffuse model carries kd and the specular model carries ks. Either model may
  * be ABRDF_MODEL_NONE to omit that term. ambient = ka*Ia, light = Il (RGB). */
-ABRDF_API int abrdf_shade(abrdf_model diffuse, abrdf_model specular,
-                          const abrdf_params *params, const abrdf_frame *frame,
-                          const double wi[3], const double wo[3],
+ABRDF_API int abrdf_shade(abrdf_model diffuse, abrdf_model specular, const abrdf_params *params,
+                          const abrdf_frame *frame, const double wi[3], const double wo[3],
                           const double light[3], const double ambient[3], double out[3]);
 
 /* ---- roughness converters (documented with their error in docs/CONVERTERS.md) -------- */
-ABRDF_API double abrdf_r_to_alpha_g(double r);         /* alpha_g = r^2 */
-ABRDF_API double abrdf_alpha_g_to_r(double alpha_g);   /* r = sqrt(alpha_g) */
-ABRDF_API double abrdf_alpha_g_to_n(double alpha_g);   /* Blinn-Phong n = 2/alpha_g^2 - 2 */
-ABRDF_API double abrdf_n_to_alpha_g(double n);         /* alpha_g = sqrt(2/(n + 2)) */
-ABRDF_API double abrdf_n_to_pov_roughness(double n);   /* POV-Ray roughness = 1/n; n = 0 -> 0 */
+ABRDF_API double abrdf_r_to_alpha_g(double r);           /* alpha_g = r^2 */
+ABRDF_API double abrdf_alpha_g_to_r(double alpha_g);     /* r = sqrt(alpha_g) */
+ABRDF_API double abrdf_alpha_g_to_n(double alpha_g);     /* Blinn-Phong n = 2/alpha_g^2 - 2 */
+ABRDF_API double abrdf_n_to_alpha_g(double n);           /* alpha_g = sqrt(2/(n + 2)) */
+ABRDF_API double abrdf_n_to_pov_roughness(double n);     /* POV-Ray roughness = 1/n; n = 0 -> 0 */
 ABRDF_API double abrdf_pov_roughness_to_n(double rough); /* n = 1/rough; rough = 0 -> 0 */
 
 #ifdef __cplusplus

@@ -49,9 +49,9 @@ extern "C" {
  * [0, 1] of approximation `approx` (ABRDF_F2 ... ABRDF_FKUB) against Blinn-Phong cos^n,
  * computed from first principles (docs/TABLES.md defines the highlight zone). */
 typedef struct abrdf_approx_error {
-    double max_rel_pct;  /* max |f - c^n| / c^n * 100 over the highlight zone, >= 0 */
-    double max_abs;      /* max |f - c^n| over c in [0, 1], >= 0 */
-    double zone_cos;     /* the highlight zone is c in [zone_cos, 1], [0, 1] */
+    double max_rel_pct; /* max |f - c^n| / c^n * 100 over the highlight zone, >= 0 */
+    double max_abs;     /* max |f - c^n| over c in [0, 1], >= 0 */
+    double zone_cos;    /* the highlight zone is c in [zone_cos, 1], [0, 1] */
 } abrdf_approx_error;
 
 ABRDF_API int abrdf_approx_error_eval(abrdf_model approx, double n, abrdf_approx_error *out);
@@ -61,7 +61,7 @@ ABRDF_API int abrdf_approx_error_eval(abrdf_model approx, double n, abrdf_approx
 #define ABRDF_COSTS_CAPACITY 128
 
 typedef struct abrdf_costs {
-    const char *unit;      /* e.g. "cycles (paper Table 4, AMD Zen 4)" or "ns/eval"; not copied */
+    const char *unit; /* e.g. "cycles (paper Table 4, AMD Zen 4)" or "ns/eval"; not copied */
     double cost[ABRDF_COSTS_CAPACITY]; /* per model id, in unit; < 0 = unknown; use
                                           abrdf_costs_get/abrdf_costs_set */
 } abrdf_costs;
@@ -80,25 +80,25 @@ ABRDF_API int abrdf_costs_paper(abrdf_costs *out);
 
 /* Surface classes of the flowchart; stable lower-case names as in the comments. */
 typedef enum abrdf_surface {
-    ABRDF_SURFACE_GENERAL = 0,      /* "general"          metals, dielectrics, plastics, ... */
-    ABRDF_SURFACE_CLOTH_ROUGH,      /* "cloth_rough"      wool, cotton, denim */
-    ABRDF_SURFACE_CLOTH_SHINY,      /* "cloth_shiny"      silk, satin, velvet */
-    ABRDF_SURFACE_HAIR,             /* "hair" */
-    ABRDF_SURFACE_LAYERED_PLASTIC,  /* "layered_plastic"  clear coat over a diffuse base */
-    ABRDF_SURFACE_LAYERED_PLATE,    /* "layered_plate"    transparent plate over a base */
-    ABRDF_SURFACE_LAYERED_METAL,    /* "layered_metal"    coat over a metal */
-    ABRDF_SURFACE_COUNT             /* classes in this header; grows */
+    ABRDF_SURFACE_GENERAL = 0,     /* "general"          metals, dielectrics, plastics, ... */
+    ABRDF_SURFACE_CLOTH_ROUGH,     /* "cloth_rough"      wool, cotton, denim */
+    ABRDF_SURFACE_CLOTH_SHINY,     /* "cloth_shiny"      silk, satin, velvet */
+    ABRDF_SURFACE_HAIR,            /* "hair" */
+    ABRDF_SURFACE_LAYERED_PLASTIC, /* "layered_plastic"  clear coat over a diffuse base */
+    ABRDF_SURFACE_LAYERED_PLATE,   /* "layered_plate"    transparent plate over a base */
+    ABRDF_SURFACE_LAYERED_METAL,   /* "layered_metal"    coat over a metal */
+    ABRDF_SURFACE_COUNT            /* classes in this header; grows */
 } abrdf_surface;
 
 typedef enum abrdf_goal {
-    ABRDF_GOAL_PERFORMANCE = 0,     /* "performance": hard time/hardware limits */
-    ABRDF_GOAL_PHOTOREAL = 1,       /* "photoreal": resources allow microstructure */
-    ABRDF_GOAL_COUNT                /* goals in this header; grows */
+    ABRDF_GOAL_PERFORMANCE = 0, /* "performance": hard time/hardware limits */
+    ABRDF_GOAL_PHOTOREAL = 1,   /* "photoreal": resources allow microstructure */
+    ABRDF_GOAL_COUNT            /* goals in this header; grows */
 } abrdf_goal;
 
-ABRDF_API const char *abrdf_surface_name(abrdf_surface s);  /* NULL if unknown */
+ABRDF_API const char *abrdf_surface_name(abrdf_surface s); /* NULL if unknown */
 ABRDF_API int abrdf_surface_find(const char *name, abrdf_surface *out);
-ABRDF_API const char *abrdf_goal_name(abrdf_goal g);        /* NULL if unknown */
+ABRDF_API const char *abrdf_goal_name(abrdf_goal g); /* NULL if unknown */
 ABRDF_API int abrdf_goal_find(const char *name, abrdf_goal *out);
 
 /* ---- inputs: the material and the tolerances ------------------------------------------ */
@@ -106,20 +106,20 @@ ABRDF_API int abrdf_goal_find(const char *name, abrdf_goal *out);
 /* A material as the flowchart reads it (a row of data/materials.csv, or explicit values).
  * Either n or r may be unset (< 0); abrdf_select derives it from the other. */
 typedef struct abrdf_material {
-    size_t struct_size;      /* bytes of this struct as the caller compiled it; set by _init */
-    const char *name;        /* for the trace; may be NULL */
-    abrdf_surface type;      /* surface class, [0, ABRDF_SURFACE_COUNT) */
-    double n;                /* Blinn-Phong exponent, [0, 1e6]; < 0 = derive from r */
-    double r;                /* perceptual roughness (the paper's alpha), [0, 1]; < 0 = derive from n */
-    double kd[3];            /* diffuse albedo, linear RGB, [0, 1] */
-    double ks[3];            /* specular weight, linear RGB, [0, 1] */
-    double f0[3];            /* Fresnel reflectance at normal incidence, [0, 1]; used if eta <= 0 */
-    double eta;              /* index of refraction of a dielectric or hair fibre, [1, 4];
+    size_t struct_size; /* bytes of this struct as the caller compiled it; set by _init */
+    const char *name;   /* for the trace; may be NULL */
+    abrdf_surface type; /* surface class, [0, ABRDF_SURFACE_COUNT) */
+    double n;           /* Blinn-Phong exponent, [0, 1e6]; < 0 = derive from r */
+    double r;           /* perceptual roughness (the paper's alpha), [0, 1]; < 0 = derive from n */
+    double kd[3];       /* diffuse albedo, linear RGB, [0, 1] */
+    double ks[3];       /* specular weight, linear RGB, [0, 1] */
+    double f0[3];       /* Fresnel reflectance at normal incidence, [0, 1]; used if eta <= 0 */
+    double eta;         /* index of refraction of a dielectric or hair fibre, [1, 4];
                                 > 0 replaces f0 by ((eta - 1)/(eta + 1))^2; <= 0 = unset */
-    double anisotropy;       /* Disney anisotropy, [0, 1] */
-    double melanin;          /* hair melanin concentration, [0, 1] */
-    double redness;          /* hair pheomelanin fraction, [0, 1] */
-    int layer_count;         /* layered types: interfaces top (0) to bottom, [0, ABRDF_MAX_LAYERS] */
+    double anisotropy;  /* Disney anisotropy, [0, 1] */
+    double melanin;     /* hair melanin concentration, [0, 1] */
+    double redness;     /* hair pheomelanin fraction, [0, 1] */
+    int layer_count;    /* layered types: interfaces top (0) to bottom, [0, ABRDF_MAX_LAYERS] */
     abrdf_layer layers[ABRDF_MAX_LAYERS]; /* eta/kappa relative to the medium above */
 } abrdf_material;
 
@@ -134,9 +134,9 @@ static inline int abrdf_material_init(abrdf_material *m)
 
 /* Tolerances of the performance branch. INFINITY = no limit; negative or NaN is invalid. */
 typedef struct abrdf_tolerance {
-    size_t struct_size;      /* bytes of this struct as the caller compiled it; set by _init */
-    double max_rel_pct;      /* max relative error in the highlight zone, percent, >= 0 */
-    double max_abs;          /* max absolute error over [0, 1], >= 0 */
+    size_t struct_size; /* bytes of this struct as the caller compiled it; set by _init */
+    double max_rel_pct; /* max relative error in the highlight zone, percent, >= 0 */
+    double max_abs;     /* max absolute error over [0, 1], >= 0 */
 } abrdf_tolerance;
 
 /* The rules' default tolerances (abrdf_select_rules); sets struct_size. */
@@ -150,26 +150,26 @@ static inline int abrdf_tolerance_init(abrdf_tolerance *t)
 /* Every threshold, constant and model choice of the flowchart. The CLI prints it
  * (abrdf advise --rules --json); the OSL and POV-Ray ports are generated from that. */
 typedef struct abrdf_select_rules {
-    double smooth_r_max;          /* r <= this is smooth (the paper: alpha <= 0.03), [0, 1] */
-    double aniso_min;             /* anisotropy > this selects the anisotropic lobe, [0, 1] */
-    double default_max_rel_pct;   /* tolerances when the caller gives none (abrdf's choice), % */
-    double default_max_abs;       /* the same for the absolute error */
-    double n_min, n_max;          /* range of an exponent derived from r (f_2e needs n >= 1) */
-    abrdf_model perf_diffuse;     /* performance: Lambert (Eq. 1) */
-    abrdf_model perf_fallback;    /* performance, nothing passes: Blinn-Phong (Eq. 4) */
-    int candidate_count;          /* entries of candidates */
+    double smooth_r_max;           /* r <= this is smooth (the paper: alpha <= 0.03), [0, 1] */
+    double aniso_min;              /* anisotropy > this selects the anisotropic lobe, [0, 1] */
+    double default_max_rel_pct;    /* tolerances when the caller gives none (abrdf's choice), % */
+    double default_max_abs;        /* the same for the absolute error */
+    double n_min, n_max;           /* range of an exponent derived from r (f_2e needs n >= 1) */
+    abrdf_model perf_diffuse;      /* performance: Lambert (Eq. 1) */
+    abrdf_model perf_fallback;     /* performance, nothing passes: Blinn-Phong (Eq. 4) */
+    int candidate_count;           /* entries of candidates */
     const abrdf_model *candidates; /* Table-1 approximations tried by the performance branch */
-    abrdf_model rough_diffuse;    /* photoreal, rough: Disney diffuse (Eq. 3) */
-    abrdf_model rough_specular;   /* photoreal, rough: Disney specular (Eqs. 5, 6, 8, 9) */
-    abrdf_model rough_specular_aniso; /* photoreal, rough, anisotropic (Eq. 7) */
-    abrdf_model smooth_diffuse;   /* photoreal, smooth: Lambert * (1 - F) (Eq. 2) */
-    abrdf_model smooth_specular;  /* photoreal, smooth: f_2E (Table 5) */
-    int surface_count;            /* entries of special and special_reason (the library's
+    abrdf_model rough_diffuse;     /* photoreal, rough: Disney diffuse (Eq. 3) */
+    abrdf_model rough_specular;    /* photoreal, rough: Disney specular (Eqs. 5, 6, 8, 9) */
+    abrdf_model rough_specular_aniso;  /* photoreal, rough, anisotropic (Eq. 7) */
+    abrdf_model smooth_diffuse;        /* photoreal, smooth: Lambert * (1 - F) (Eq. 2) */
+    abrdf_model smooth_specular;       /* photoreal, smooth: f_2E (Table 5) */
+    int surface_count;                 /* entries of special and special_reason (the library's
                                      ABRDF_SURFACE_COUNT) */
-    const abrdf_model *special;   /* photoreal model per surface class; ABRDF_MODEL_NONE for
+    const abrdf_model *special;        /* photoreal model per surface class; ABRDF_MODEL_NONE for
                                      "general" */
     const char *const *special_reason; /* per surface class: why, for the trace */
-    double nmse_class_max[3];     /* the paper's Table 8: NMSE below [0] no visible difference,
+    double nmse_class_max[3];          /* the paper's Table 8: NMSE below [0] no visible difference,
                                      [1] slight, [2] noticeable, else significant; [a, b) */
 } abrdf_select_rules;
 
@@ -184,33 +184,33 @@ ABRDF_API int abrdf_select_table6(int row, double *alpha_g, double *nmse_f2e);
 
 /* What a trace step decided (abrdf_select_step.kind). */
 typedef enum abrdf_step_kind {
-    ABRDF_STEP_INPUT = 0,   /* "input"       the material's n and r, given or derived */
-    ABRDF_STEP_GOAL,        /* "goal"        the goal and what it asks for */
-    ABRDF_STEP_DIFFUSE,     /* "diffuse"     the diffuse model */
-    ABRDF_STEP_CANDIDATE,   /* "candidate"   one Table-1 approximation against the tolerances */
-    ABRDF_STEP_CHEAPEST,    /* "cheapest"    the cheapest candidate that passes */
-    ABRDF_STEP_FALLBACK,    /* "fallback"    no candidate passes: Blinn-Phong */
-    ABRDF_STEP_SURFACE,     /* "surface"     the surface class */
-    ABRDF_STEP_ROUGHNESS,   /* "roughness"   r against the smooth threshold */
-    ABRDF_STEP_ANISOTROPY,  /* "anisotropy"  anisotropy against its threshold */
-    ABRDF_STEP_EXPONENT,    /* "exponent"    the exponent n given to f_2e */
-    ABRDF_STEP_SPECIAL,     /* "special"     the special-surface model */
-    ABRDF_STEP_KIND_COUNT   /* kinds in this header; grows */
+    ABRDF_STEP_INPUT = 0,  /* "input"       the material's n and r, given or derived */
+    ABRDF_STEP_GOAL,       /* "goal"        the goal and what it asks for */
+    ABRDF_STEP_DIFFUSE,    /* "diffuse"     the diffuse model */
+    ABRDF_STEP_CANDIDATE,  /* "candidate"   one Table-1 approximation against the tolerances */
+    ABRDF_STEP_CHEAPEST,   /* "cheapest"    the cheapest candidate that passes */
+    ABRDF_STEP_FALLBACK,   /* "fallback"    no candidate passes: Blinn-Phong */
+    ABRDF_STEP_SURFACE,    /* "surface"     the surface class */
+    ABRDF_STEP_ROUGHNESS,  /* "roughness"   r against the smooth threshold */
+    ABRDF_STEP_ANISOTROPY, /* "anisotropy"  anisotropy against its threshold */
+    ABRDF_STEP_EXPONENT,   /* "exponent"    the exponent n given to f_2e */
+    ABRDF_STEP_SPECIAL,    /* "special"     the special-surface model */
+    ABRDF_STEP_KIND_COUNT  /* kinds in this header; grows */
 } abrdf_step_kind;
 
 ABRDF_API const char *abrdf_step_name(abrdf_step_kind kind); /* NULL if unknown */
 
 /* One decision, handed to the trace callback (the library's memory, valid during the call). */
 typedef struct abrdf_select_step {
-    abrdf_step_kind kind;    /* what was decided */
-    abrdf_model model;       /* the model the step is about; ABRDF_MODEL_NONE if none */
-    double value;            /* the number that decided it (r, relative error %, ...); -1 if none */
-    double threshold;        /* what value was compared with; INFINITY = no limit; -1 if none */
-    double value2;           /* second criterion (absolute error); -1 if none */
-    double threshold2;       /* its limit; INFINITY = no limit; -1 if none */
-    double cost;             /* cost of `model` in the cost unit; < 0 = unknown */
-    int passed;              /* 1 if the comparison held (or the step chose something) */
-    const char *text;        /* one human-readable line with the deciding numbers; copy it
+    abrdf_step_kind kind; /* what was decided */
+    abrdf_model model;    /* the model the step is about; ABRDF_MODEL_NONE if none */
+    double value;         /* the number that decided it (r, relative error %, ...); -1 if none */
+    double threshold;     /* what value was compared with; INFINITY = no limit; -1 if none */
+    double value2;        /* second criterion (absolute error); -1 if none */
+    double threshold2;    /* its limit; INFINITY = no limit; -1 if none */
+    double cost;          /* cost of `model` in the cost unit; < 0 = unknown */
+    int passed;           /* 1 if the comparison held (or the step chose something) */
+    const char *text;     /* one human-readable line with the deciding numbers; copy it
                                 to keep it */
 } abrdf_select_step;
 
@@ -222,21 +222,21 @@ typedef void (*abrdf_select_trace_fn)(void *user, const abrdf_select_step *step)
 #define ABRDF_SELECT_MESSAGE_MAX 256 /* bytes of abrdf_selection.message; frozen */
 
 typedef struct abrdf_selection {
-    size_t struct_size;      /* bytes of this struct as the caller compiled it; set by _init */
-    abrdf_goal goal;         /* the goal asked for */
-    abrdf_surface type;      /* the material's surface class */
-    abrdf_model diffuse;     /* ABRDF_MODEL_NONE: none (a special model has its own) */
-    abrdf_model specular;    /* the specular lobe, or the whole special-surface model */
-    double n;                /* Blinn-Phong exponent used (given or derived), [0, 1e6] */
-    double r;                /* perceptual roughness used (given or derived), [0, 1] */
-    double err_rel_pct;      /* predicted max relative error vs Blinn-Phong, %; < 0 = n/a */
-    double err_abs;          /* predicted max absolute error vs Blinn-Phong; < 0 = n/a */
-    double err_nmse;         /* smooth branch: the paper's Table 6 NMSE of f_2E; < 0 = n/a */
-    double cost_diffuse;     /* cost of the diffuse model in cost_unit; 0 if none; < 0 = unknown */
-    double cost_specular;    /* cost of the specular model in cost_unit; < 0 = unknown */
-    double cost_total;       /* their sum; < 0 = unknown */
-    const char *cost_unit;   /* the cost table's unit string (not a copy) */
-    int step_count;          /* decisions made (each reported to the trace callback) */
+    size_t struct_size;    /* bytes of this struct as the caller compiled it; set by _init */
+    abrdf_goal goal;       /* the goal asked for */
+    abrdf_surface type;    /* the material's surface class */
+    abrdf_model diffuse;   /* ABRDF_MODEL_NONE: none (a special model has its own) */
+    abrdf_model specular;  /* the specular lobe, or the whole special-surface model */
+    double n;              /* Blinn-Phong exponent used (given or derived), [0, 1e6] */
+    double r;              /* perceptual roughness used (given or derived), [0, 1] */
+    double err_rel_pct;    /* predicted max relative error vs Blinn-Phong, %; < 0 = n/a */
+    double err_abs;        /* predicted max absolute error vs Blinn-Phong; < 0 = n/a */
+    double err_nmse;       /* smooth branch: the paper's Table 6 NMSE of f_2E; < 0 = n/a */
+    double cost_diffuse;   /* cost of the diffuse model in cost_unit; 0 if none; < 0 = unknown */
+    double cost_specular;  /* cost of the specular model in cost_unit; < 0 = unknown */
+    double cost_total;     /* their sum; < 0 = unknown */
+    const char *cost_unit; /* the cost table's unit string (not a copy) */
+    int step_count;        /* decisions made (each reported to the trace callback) */
     char message[ABRDF_SELECT_MESSAGE_MAX]; /* why abrdf_select failed; empty on success */
 } abrdf_selection;
 

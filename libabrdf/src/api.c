@@ -58,9 +58,11 @@ int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame 
     abrdf_params full;
     params = abrdf__params_view(model, params, &full);
     double i[3], o[3], li[3], lo[3];
-    if (!abrdf__normalise3(wi, i) || !abrdf__normalise3(wo, o)) return ABRDF_OK; /* degenerate: f = 0 */
+    if (!abrdf__normalise3(wi, i) || !abrdf__normalise3(wo, o))
+        return ABRDF_OK; /* degenerate: f = 0 */
     if (frame) {
-        if (!abrdf__finite3(frame->n) || !abrdf__finite3(frame->t) || !abrdf__finite3(frame->b)) return ABRDF_OK;
+        if (!abrdf__finite3(frame->n) || !abrdf__finite3(frame->t) || !abrdf__finite3(frame->b))
+            return ABRDF_OK;
         to_local(frame, i, li);
         to_local(frame, o, lo);
     } else {
@@ -114,7 +116,11 @@ int abrdf_shade(abrdf_model diffuse, abrdf_model specular, const abrdf_params *p
 
 static double clamp01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; }
 
-double abrdf_r_to_alpha_g(double r) { r = clamp01(r); return r * r; }
+double abrdf_r_to_alpha_g(double r)
+{
+    r = clamp01(r);
+    return r * r;
+}
 double abrdf_alpha_g_to_r(double alpha_g) { return sqrt(clamp01(alpha_g)); }
 
 /* Walter et al. 2007, Sec. 5.2: Blinn-Phong with exponent n matches Beckmann of roughness

@@ -45,8 +45,8 @@ typedef struct err_ctx {
 
 static int is_table1(abrdf_model m)
 {
-    return m == ABRDF_F2 || m == ABRDF_F4 || m == ABRDF_F8 || m == ABRDF_F16 ||
-           m == ABRDF_FS || m == ABRDF_FKV || m == ABRDF_FKUB;
+    return m == ABRDF_F2 || m == ABRDF_F4 || m == ABRDF_F8 || m == ABRDF_F16 || m == ABRDF_FS ||
+           m == ABRDF_FKV || m == ABRDF_FKUB;
 }
 
 /* Error at N.H = c (mirror geometry: wi = wo, so H = wi). */
@@ -72,11 +72,17 @@ static double refine(const err_ctx *e, double a, double b)
     double best = fmax(f1, f2);
     for (int i = 0; i < GOLDEN_STEPS && b - a > 0.0; ++i) {
         if (f1 >= f2) {
-            b = x2; x2 = x1; f2 = f1;
-            x1 = b - r * (b - a); f1 = err_at(e, x1);
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - r * (b - a);
+            f1 = err_at(e, x1);
         } else {
-            a = x1; x1 = x2; f1 = f2;
-            x2 = a + r * (b - a); f2 = err_at(e, x2);
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + r * (b - a);
+            f2 = err_at(e, x2);
         }
         best = fmax(best, fmax(f1, f2));
     }
@@ -116,7 +122,7 @@ static double maximise(const err_ctx *e, double lo, double hi)
 
 double abrdf__highlight_zone_cos(double n)
 {
-    double half = n > 0.0 ? pow(0.5, 1.0 / n) : 0.0;        /* cos^n = 1/2 */
+    double half = n > 0.0 ? pow(0.5, 1.0 / n) : 0.0;         /* cos^n = 1/2 */
     double inflection = n > 1.0 ? sqrt(1.0 - 1.0 / n) : 0.0; /* sin^2 theta_h = 1/n */
     return fmax(half, inflection);
 }

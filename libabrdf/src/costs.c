@@ -8,7 +8,8 @@
 #include "abrdf_select.h"
 
 /* The table's capacity is frozen; the registry must fit in it (compile-time check). */
-typedef char abrdf__costs_capacity_holds_every_model[ABRDF_MODEL_COUNT <= ABRDF_COSTS_CAPACITY ? 1 : -1];
+typedef char
+    abrdf__costs_capacity_holds_every_model[ABRDF_MODEL_COUNT <= ABRDF_COSTS_CAPACITY ? 1 : -1];
 
 static int in_table(abrdf_model model) { return (int)model >= 0 && model < ABRDF_COSTS_CAPACITY; }
 

@@ -2,10 +2,10 @@
 #include "k_dispatch.h"
 #include "special.h"
 
-#define ABRDF__EVAL_CASE(ID, SETUP, KERNEL)                                                \
-    case ID:                                                                               \
-        ABRDF__FN(SETUP)(&k, p);                                                           \
-        ABRDF__FN(KERNEL)(&k, &g, v);                                                      \
+#define ABRDF__EVAL_CASE(ID, SETUP, KERNEL)                                                        \
+    case ID:                                                                                       \
+        ABRDF__FN(SETUP)(&k, p);                                                                   \
+        ABRDF__FN(KERNEL)(&k, &g, v);                                                              \
         break;
 
 void abrdf__eval_local_d(abrdf_model model, const abrdf_params *p, const double wi[3],
@@ -20,7 +20,7 @@ void abrdf__eval_local_d(abrdf_model model, const abrdf_params *p, const double 
         if (ABRDF__FN(geo_front)(&g)) {
             ABRDF__KP k;
             switch (model) {
-            ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
+                ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
             default: break;
             }
         }

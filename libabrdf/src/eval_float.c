@@ -28,31 +28,30 @@ static inline float abrdf__keep(float front, float x)
 }
 
 /* ABRDF__BATCH_LOOP(id, setup, k_f8) defines batch_k_f8_f, the loop of kernel k_f8_f. */
-#define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL)                                               \
-    ABRDF__NOINLINE static void ABRDF__FN(batch_##KERNEL)(                                 \
-        const ABRDF__KP *restrict k, size_t n, const float *restrict ix,                   \
-        const float *restrict iy, const float *restrict iz, const float *restrict ox,      \
-        const float *restrict oy, const float *restrict oz, float *restrict fr,            \
-        float *restrict fg, float *restrict fb)                                            \
-    {                                                                                      \
-        for (size_t i = 0; i < n; ++i) {                                                   \
-            ABRDF__GEO g;                                                                  \
-            float v[3];                                                                    \
-            ABRDF__FN(geo_make)(&g, ix[i], iy[i], iz[i], ox[i], oy[i], oz[i]);             \
-            ABRDF__FN(KERNEL)(k, &g, v);                                                   \
-            float front = abrdf__front(g.ci, g.co);                                        \
-            fr[i] = abrdf__keep(front, v[0]);                                              \
-            fg[i] = abrdf__keep(front, v[1]);                                              \
-            fb[i] = abrdf__keep(front, v[2]);                                              \
-        }                                                                                  \
+#define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL)                                                       \
+    ABRDF__NOINLINE static void ABRDF__FN(batch_##KERNEL)(                                         \
+        const ABRDF__KP *restrict k, size_t n, const float *restrict ix, const float *restrict iy, \
+        const float *restrict iz, const float *restrict ox, const float *restrict oy,              \
+        const float *restrict oz, float *restrict fr, float *restrict fg, float *restrict fb)      \
+    {                                                                                              \
+        for (size_t i = 0; i < n; ++i) {                                                           \
+            ABRDF__GEO g;                                                                          \
+            float v[3];                                                                            \
+            ABRDF__FN(geo_make)(&g, ix[i], iy[i], iz[i], ox[i], oy[i], oz[i]);                     \
+            ABRDF__FN(KERNEL)(k, &g, v);                                                           \
+            float front = abrdf__front(g.ci, g.co);                                                \
+            fr[i] = abrdf__keep(front, v[0]);                                                      \
+            fg[i] = abrdf__keep(front, v[1]);                                                      \
+            fb[i] = abrdf__keep(front, v[2]);                                                      \
+        }                                                                                          \
     }
 ABRDF__KERNEL_MODELS(ABRDF__BATCH_LOOP)
 
-#define ABRDF__BATCH_CASE(ID, SETUP, KERNEL)                                               \
-    case ID:                                                                               \
-        ABRDF__FN(SETUP)(&k, p);                                                           \
-        ABRDF__FN(batch_##KERNEL)(&k, n, b->wi_x, b->wi_y, b->wi_z, b->wo_x, b->wo_y,      \
-                                  b->wo_z, b->f_r, b->f_g, b->f_b);                        \
+#define ABRDF__BATCH_CASE(ID, SETUP, KERNEL)                                                       \
+    case ID:                                                                                       \
+        ABRDF__FN(SETUP)(&k, p);                                                                   \
+        ABRDF__FN(batch_##KERNEL)                                                                  \
+        (&k, n, b->wi_x, b->wi_y, b->wi_z, b->wo_x, b->wo_y, b->wo_z, b->f_r, b->f_g, b->f_b);     \
         break;
 
 /* Double-only models per element, through the scalar path itself: the float inputs are
@@ -84,7 +83,7 @@ void abrdf__eval_batch_f(abrdf_model model, const abrdf_params *p, const abrdf_b
     const size_t n = b->count;
     ABRDF__KP k;
     switch (model) {
-    ABRDF__KERNEL_MODELS(ABRDF__BATCH_CASE)
+        ABRDF__KERNEL_MODELS(ABRDF__BATCH_CASE)
     default:
         for (size_t i = 0; i < n; ++i) b->f_r[i] = b->f_g[i] = b->f_b[i] = 0.0f;
         break;

@@ -11,8 +11,8 @@
 
 void abrdf__hair_sigma_a(double melanin, double redness, double sigma[3])
 {
-    static const double eu[3] = {0.506, 0.841, 1.653};    /* eumelanin, per unit radius */
-    static const double pheo[3] = {0.343, 0.733, 1.924};  /* pheomelanin */
+    static const double eu[3] = {0.506, 0.841, 1.653};   /* eumelanin, per unit radius */
+    static const double pheo[3] = {0.343, 0.733, 1.924}; /* pheomelanin */
     double m = -log(fmax(1.0 - melanin, ABRDF__HAIR_MELANIN_REST_MIN));
     double ce = m * (1.0 - redness), cp = m * redness;
     for (int c = 0; c < 3; ++c) sigma[c] = ce * eu[c] + cp * pheo[c];
@@ -59,9 +59,11 @@ double abrdf__gauss(double x, double sd)
 
 double abrdf__wrap_pi(double a)
 {
-    a = fmod(a, 2.0 * ABRDF__PI);           /* (-2pi, 2pi) */
-    if (a > ABRDF__PI) a -= 2.0 * ABRDF__PI;
-    else if (a <= -ABRDF__PI) a += 2.0 * ABRDF__PI;
+    a = fmod(a, 2.0 * ABRDF__PI); /* (-2pi, 2pi) */
+    if (a > ABRDF__PI)
+        a -= 2.0 * ABRDF__PI;
+    else if (a <= -ABRDF__PI)
+        a += 2.0 * ABRDF__PI;
     return a;
 }
 

@@ -40,9 +40,15 @@
 
 #include "hair.h"
 
-typedef struct v3 { double x, y, z; } v3;
+typedef struct v3 {
+    double x, y, z;
+} v3;
 
-static v3 mk(double x, double y, double z) { v3 r = {x, y, z}; return r; }
+static v3 mk(double x, double y, double z)
+{
+    v3 r = {x, y, z};
+    return r;
+}
 static v3 add(v3 a, v3 b) { return mk(a.x + b.x, a.y + b.y, a.z + b.z); }
 static v3 scl(v3 a, double s) { return mk(a.x * s, a.y * s, a.z * s); }
 static v3 neg(v3 a) { return mk(-a.x, -a.y, -a.z); }
@@ -107,10 +113,7 @@ static double ggx_d_sq(double alpha2, double c2)
     return alpha2 / (ABRDF__PI * k * k);
 }
 
-static double ggx_d(double alpha2, double c)
-{
-    return c > 0.0 ? ggx_d_sq(alpha2, c * c) : 0.0;
-}
+static double ggx_d(double alpha2, double c) { return c > 0.0 ? ggx_d_sq(alpha2, c * c) : 0.0; }
 
 static double ggx_lambda(double alpha2, double c)
 {
@@ -260,7 +263,8 @@ static double table_read(const double *t, double x, double y, double z)
     double v = 0.0;
     for (int k = 0; k < 8; ++k) {
         int ix = k & 1 ? i1[0] : i0[0], iy = k & 2 ? i1[1] : i0[1], iz = k & 4 ? i1[2] : i0[2];
-        double w = (k & 1 ? f[0] : 1 - f[0]) * (k & 2 ? f[1] : 1 - f[1]) * (k & 4 ? f[2] : 1 - f[2]);
+        double w =
+            (k & 1 ? f[0] : 1 - f[0]) * (k & 2 ? f[1] : 1 - f[1]) * (k & 4 ? f[2] : 1 - f[2]);
         v += w * t[(iz * n + iy) * n + ix];
     }
     return v;
@@ -312,8 +316,8 @@ static double simpson_r(const abrdf__huang *m, v3 wi, v3 wo, v3 wh, double lo, d
         v3 wm = sphg_dir(m->tilt, gm, b);
         double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         double c = dot(wm, wh);
-        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) *
-               arc_length(e2, gm) * energy_scale(m, dot(wm, wi), m->eta);
+        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc_length(e2, gm) *
+               energy_scale(m, dot(wm, wi), m->eta);
     }
     return sum * 2.0 / 3.0 * res;
 }
@@ -372,8 +376,8 @@ static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
 }
 
 /* TT + TRT + TRRT+ (RGB): Simpson over h, nested midpoint rules over the VNDF squares. */
-static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr,
-                           double sp_i, double cp_i, unsigned lobes, double out[3])
+static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr, double sp_i,
+                           double cp_i, unsigned lobes, double out[3])
 {
     const double b = m->b, eta = m->eta, inv_eta = 1.0 / eta, al = m->alpha;
     const double a2 = al * al, e2 = 1.0 - b * b;
@@ -457,7 +461,8 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                     for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
                     continue;
                 }
-                if (!visible2(neg(wt), neg(wtr), wmt, wh2) || !visible2(neg(wt), neg(wtr), wmt_, wh2))
+                if (!visible2(neg(wt), neg(wtr), wmt, wh2) ||
+                    !visible2(neg(wt), neg(wtr), wmt_, wh2))
                     continue;
                 double phi_tr = dir_phi(wtr);
                 double gmtr = gmi - 2.0 * (to_phi(phi_t, b) - to_phi(phi_tr, b)) + ABRDF__PI;
@@ -475,7 +480,8 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 }
                 double cos_hi3 = dot(wh3, wtr), cos_ho3 = dot(wh3, neg(wo));
                 double cos_mi3 = dot(wmtr, wtr), cos_mo2 = dot(wmt, neg(wtr));
-                double t3 = (1.0 - fresnel(cos_hi3, inv_eta, NULL)) * energy_scale(m, cos_mi3, inv_eta);
+                double t3 =
+                    (1.0 - fresnel(cos_hi3, inv_eta, NULL)) * energy_scale(m, cos_mi3, inv_eta);
                 double ct_tr = fmax(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
                 double chord2 = len(add(to_point(gmtr, b), neg(to_point(gmt, b))));
                 double v = wgt2 * t1 * scale1 * r2 * t3 * ggx_d(a2, cos_mh3) * g1o *
@@ -484,14 +490,16 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                            arc_length(e2, gmtr);
                 if (isfinite(v) && (lobes & 4u))
                     for (int c = 0; c < 3; ++c) {
-                        double atr = m->sigma_a[c] > 0.0 ? exp(-m->sigma_a[c] / ct_tr * chord2) : 1.0;
+                        double atr =
+                            m->sigma_a[c] > 0.0 ? exp(-m->sigma_a[c] / ct_tr * chord2) : 1.0;
                         s_trt[c] += v * at[c] * atr; /* Eq. 14 */
                     }
                 for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
             }
         }
     }
-    double mlong = longitudinal_m(sin_theta(wi), cos_theta(wi), sin_theta(wo), cos_theta(wo), 4.0 * al);
+    double mlong =
+        longitudinal_m(sin_theta(wi), cos_theta(wi), sin_theta(wo), cos_theta(wo), 4.0 * al);
     double k = 2.0 / 3.0 * res;
     for (int c = 0; c < 3; ++c) {
         double trrt_term = (lobes & 8u) ? s_trrt[c] * mlong / (2.0 * ABRDF__PI) : 0.0;
@@ -527,7 +535,8 @@ void abrdf__huang_fibre(const abrdf__huang *m, const double wi_[3], const double
      * units of the projected radius, so dh_abs = radius dh: the 1/radius below. */
     double g0 = h_to_gamma(hmax, b, wi), g1 = h_to_gamma(hmin, b, wi); /* decreasing in h */
     if (!(g1 > g0)) return;
-    double area = ci * 2.0 * radius; /* projected width 2 (far field) times cos(theta_i), radius from dh */
+    double area =
+        ci * 2.0 * radius; /* projected width 2 (far field) times cos(theta_i), radius from dh */
     double r = (lobes & 1u) ? lobe_r(m, wi, wo, g0, g1 - g0) : 0.0;
     double res[3] = {0, 0, 0};
     if (lobes & 14u) lobes_residual(m, wi, wo, g0, g1 - g0, sp_i, cp_i, lobes, res);

@@ -104,7 +104,8 @@ void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1
     for (int c = 0; c < 3; ++c) {
         /* sigma_a = 0 must give T = 1 even where cos_theta_t -> 0 (no 0/0). */
         double tau = m->sigma_a[c] > 0.0
-            ? 2.0 * m->sigma_a[c] * cos_gt / fmax(cos_theta_t, ABRDF__HAIR_COS_MIN) : 0.0;
+                         ? 2.0 * m->sigma_a[c] * cos_gt / fmax(cos_theta_t, ABRDF__HAIR_COS_MIN)
+                         : 0.0;
         a[c] = tr * exp(-tau * p); /* T^p */
     }
 }
@@ -139,7 +140,10 @@ static void root_sum(const abrdf__marschner *m, int p, double phi, double eta1, 
      * p >= 2 and eta' < p. Between cuts Phi is monotone. */
     if (p >= 2 && eta1 < p) {
         double hc = sqrt((p * p - eta1 * eta1) / (p * p - 1.0));
-        cuts[0] = -1.0; cuts[1] = -hc; cuts[2] = hc; cuts[3] = 1.0;
+        cuts[0] = -1.0;
+        cuts[1] = -hc;
+        cuts[2] = hc;
+        cuts[3] = 1.0;
         ncut = 4;
     }
     for (int k = 0; k + 1 < ncut; ++k) {
@@ -149,14 +153,18 @@ static void root_sum(const abrdf__marschner *m, int p, double phi, double eta1, 
         double lo = fmin(pa, pb), hi = fmax(pa, pb);
         int inc = pb > pa;
         /* Every branch phi + 2 pi j inside [lo, hi] has exactly one root here. */
-        double j0 = ceil((lo - phi) / (2.0 * ABRDF__PI)), j1 = floor((hi - phi) / (2.0 * ABRDF__PI));
+        double j0 = ceil((lo - phi) / (2.0 * ABRDF__PI)),
+               j1 = floor((hi - phi) / (2.0 * ABRDF__PI));
         for (double j = j0; j <= j1; j += 1.0) {
             double target = phi + 2.0 * ABRDF__PI * j;
             double x0 = a, x1 = b;
             for (int it = 0; it < ABRDF__MARSCHNER_BISECT_STEPS; ++it) {
                 double xm = 0.5 * (x0 + x1);
                 double g = phi_of(p, xm, eta1) - target;
-                if ((g < 0.0) == inc) x0 = xm; else x1 = xm;
+                if ((g < 0.0) == inc)
+                    x0 = xm;
+                else
+                    x1 = xm;
             }
             double h = 0.5 * (x0 + x1);
             if (!(fabs(h) < 1.0)) continue; /* |dPhi/dh| is infinite at |h| = 1: N = 0 */
@@ -187,7 +195,8 @@ void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double th
     if (eta1 < 2.0) {
         hc = sqrt((4.0 - eta1 * eta1) / 3.0);
         double d2 = fabs(d2phi_dh2(2, hc, eta1));
-        dh = d2 > 0.0 ? fmin(ABRDF__MARSCHNER_GLINT_DHM, 2.0 * sqrt(2.0 * ABRDF__MARSCHNER_GLINT_WC / d2))
+        dh = d2 > 0.0 ? fmin(ABRDF__MARSCHNER_GLINT_DHM,
+                             2.0 * sqrt(2.0 * ABRDF__MARSCHNER_GLINT_WC / d2))
                       : ABRDF__MARSCHNER_GLINT_DHM;
         t = 1.0;
     } else {

@@ -53,8 +53,8 @@ static inline void ABRDF__FN(k_neubelt_pettineo)(const ABRDF__KP *p, const ABRDF
                      ABRDF__FN(v_neubelt)(g->ci, g->co);
     for (int c = 0; c < 3; ++c) {
         ABRDF__REAL F = ABRDF__FN(f_schlick)(p->f0[c], g->cd);
-        f[c] = (ABRDF__K(1) - F) * p->kd[c] * ABRDF__K(ABRDF__INV_PI) +
-               p->ks[c] * F * dv; /* Eq. 10 */
+        f[c] =
+            (ABRDF__K(1) - F) * p->kd[c] * ABRDF__K(ABRDF__INV_PI) + p->ks[c] * F * dv; /* Eq. 10 */
     }
 }
 

@@ -14,37 +14,37 @@
  * defined in the family header named above them, except kp_base (kernel.h), the setup of
  * the models with nothing to precompute. The names are stems: ABRDF__FN adds the precision
  * suffix (kernel.h, naming rule). */
-#define ABRDF__KERNEL_MODELS(X)                                                                 \
-    /* k_diffuse.h */                                                                           \
-    X(ABRDF_LAMBERT, kp_base, k_lambert)                                                        \
-    X(ABRDF_LAMBERT_FRESNEL, kp_base, k_lambert_fresnel)                                        \
-    X(ABRDF_DISNEY_DIFFUSE, kp_base, k_disney_diffuse)                                          \
-    X(ABRDF_OREN_NAYAR, k_oren_nayar_setup, k_oren_nayar)                                       \
-    /* k_empirical.h */                                                                         \
-    X(ABRDF_PHONG, kp_base, k_phong)                                                            \
-    X(ABRDF_BLINN_PHONG, kp_base, k_blinn_phong)                                                \
-    X(ABRDF_F2, kp_base, k_f2)                                                                  \
-    X(ABRDF_F4, kp_base, k_f4)                                                                  \
-    X(ABRDF_F8, kp_base, k_f8)                                                                  \
-    X(ABRDF_F16, kp_base, k_f16)                                                                \
-    X(ABRDF_FS, kp_base, k_fs)                                                                  \
-    X(ABRDF_FKV, kp_base, k_fkv)                                                                \
-    X(ABRDF_FKUB, k_fkub_setup, k_fkub)                                                         \
-    /* k_energy.h */                                                                            \
-    X(ABRDF_F_PHE, k_f_phe_setup, k_f_phe)                                                      \
-    X(ABRDF_F_BE, k_f_be_setup, k_f_be)                                                         \
-    X(ABRDF_F_2E, k_f_2e_setup, k_f_2e)                                                         \
-    X(ABRDF_F_16E, k_f_16e_setup, k_f_16e)                                                      \
-    X(ABRDF_F_GE, k_f_ge_setup, k_f_ge)                                                         \
-    X(ABRDF_F_CTPHE, k_f_phe_setup, k_f_ctphe)                                                  \
-    X(ABRDF_F_CT2E, k_f_2e_setup, k_f_ct2e)                                                     \
-    X(ABRDF_F_CT16E, k_f_16e_setup, k_f_ct16e)                                                  \
-    /* k_microfacet.h */                                                                        \
-    X(ABRDF_COOK_TORRANCE, k_microfacet_setup, k_cook_torrance)                                 \
-    X(ABRDF_DISNEY_SPECULAR, k_microfacet_setup, k_disney_specular)                             \
-    X(ABRDF_DISNEY_SPECULAR_ANISO, k_disney_specular_aniso_setup, k_disney_specular_aniso)      \
-    X(ABRDF_DISNEY_CLEARCOAT, k_disney_clearcoat_setup, k_disney_clearcoat)                     \
-    /* k_cloth.h */                                                                             \
-    X(ABRDF_NEUBELT_PETTINEO, k_neubelt_pettineo_setup, k_neubelt_pettineo)                     \
+#define ABRDF__KERNEL_MODELS(X)                                                                    \
+    /* k_diffuse.h */                                                                              \
+    X(ABRDF_LAMBERT, kp_base, k_lambert)                                                           \
+    X(ABRDF_LAMBERT_FRESNEL, kp_base, k_lambert_fresnel)                                           \
+    X(ABRDF_DISNEY_DIFFUSE, kp_base, k_disney_diffuse)                                             \
+    X(ABRDF_OREN_NAYAR, k_oren_nayar_setup, k_oren_nayar)                                          \
+    /* k_empirical.h */                                                                            \
+    X(ABRDF_PHONG, kp_base, k_phong)                                                               \
+    X(ABRDF_BLINN_PHONG, kp_base, k_blinn_phong)                                                   \
+    X(ABRDF_F2, kp_base, k_f2)                                                                     \
+    X(ABRDF_F4, kp_base, k_f4)                                                                     \
+    X(ABRDF_F8, kp_base, k_f8)                                                                     \
+    X(ABRDF_F16, kp_base, k_f16)                                                                   \
+    X(ABRDF_FS, kp_base, k_fs)                                                                     \
+    X(ABRDF_FKV, kp_base, k_fkv)                                                                   \
+    X(ABRDF_FKUB, k_fkub_setup, k_fkub)                                                            \
+    /* k_energy.h */                                                                               \
+    X(ABRDF_F_PHE, k_f_phe_setup, k_f_phe)                                                         \
+    X(ABRDF_F_BE, k_f_be_setup, k_f_be)                                                            \
+    X(ABRDF_F_2E, k_f_2e_setup, k_f_2e)                                                            \
+    X(ABRDF_F_16E, k_f_16e_setup, k_f_16e)                                                         \
+    X(ABRDF_F_GE, k_f_ge_setup, k_f_ge)                                                            \
+    X(ABRDF_F_CTPHE, k_f_phe_setup, k_f_ctphe)                                                     \
+    X(ABRDF_F_CT2E, k_f_2e_setup, k_f_ct2e)                                                        \
+    X(ABRDF_F_CT16E, k_f_16e_setup, k_f_ct16e)                                                     \
+    /* k_microfacet.h */                                                                           \
+    X(ABRDF_COOK_TORRANCE, k_microfacet_setup, k_cook_torrance)                                    \
+    X(ABRDF_DISNEY_SPECULAR, k_microfacet_setup, k_disney_specular)                                \
+    X(ABRDF_DISNEY_SPECULAR_ANISO, k_disney_specular_aniso_setup, k_disney_specular_aniso)         \
+    X(ABRDF_DISNEY_CLEARCOAT, k_disney_clearcoat_setup, k_disney_clearcoat)                        \
+    /* k_cloth.h */                                                                                \
+    X(ABRDF_NEUBELT_PETTINEO, k_neubelt_pettineo_setup, k_neubelt_pettineo)                        \
     X(ABRDF_KAJIYA_KAY, kp_base, k_kajiya_kay)
 #endif /* ABRDF_K_DISPATCH_H */

@@ -40,7 +40,7 @@ static inline ABRDF__REAL ABRDF__FN(f_schlick)(ABRDF__REAL f0, ABRDF__REAL cos_d
 static inline ABRDF__REAL ABRDF__FN(d_ggx)(ABRDF__REAL ch, ABRDF__REAL sh2, ABRDF__REAL ag)
 {
     ABRDF__REAL a2 = ag * ag;
-    ABRDF__REAL t = sh2 + a2 * ch * ch; /* = 1 + (a2 - 1) ch^2 */
+    ABRDF__REAL t = sh2 + a2 * ch * ch;                          /* = 1 + (a2 - 1) ch^2 */
     return ABRDF__FN(safe_div)(a2, ABRDF__K(ABRDF__PI) * t * t); /* Eq. 6 */
 }
 

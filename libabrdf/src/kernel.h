@@ -117,16 +117,16 @@ static inline ABRDF__REAL ABRDF__FN(finite_or_zero)(ABRDF__REAL x)
 /* One struct for every model; a model's setup fills the fields its kernel reads. */
 typedef struct ABRDF__FN(abrdf__kp) {
     ABRDF__REAL kd[3], ks[3], f0[3]; /* kp_base */
-    ABRDF__REAL n;          /* exponent (kp_base) */
-    ABRDF__REAL r;          /* perceptual roughness (kp_base) */
-    ABRDF__REAL ag;         /* alpha_g = max(r^2, ABRDF__ALPHA_G_MIN) */
-    ABRDF__REAL ax, ay;     /* anisotropic alpha_g along T and B */
-    ABRDF__REAL on_a, on_b; /* Oren-Nayar A and B */
-    ABRDF__REAL cc_alpha;   /* clearcoat GTR1 alpha */
-    ABRDF__REAL k_amp;      /* velvet amplitude */
-    ABRDF__REAL norm;       /* the model's normalisation constant (Table 5, velvet) */
-    ABRDF__REAL fkub[3];    /* a, b, d of the cubic approximation about c = 1 for this n */
-    ABRDF__REAL fkub_x0;    /* below this cosine the cubic is zero */
+    ABRDF__REAL n;                   /* exponent (kp_base) */
+    ABRDF__REAL r;                   /* perceptual roughness (kp_base) */
+    ABRDF__REAL ag;                  /* alpha_g = max(r^2, ABRDF__ALPHA_G_MIN) */
+    ABRDF__REAL ax, ay;              /* anisotropic alpha_g along T and B */
+    ABRDF__REAL on_a, on_b;          /* Oren-Nayar A and B */
+    ABRDF__REAL cc_alpha;            /* clearcoat GTR1 alpha */
+    ABRDF__REAL k_amp;               /* velvet amplitude */
+    ABRDF__REAL norm;                /* the model's normalisation constant (Table 5, velvet) */
+    ABRDF__REAL fkub[3];             /* a, b, d of the cubic approximation about c = 1 for this n */
+    ABRDF__REAL fkub_x0;             /* below this cosine the cubic is zero */
 } ABRDF__KP;
 
 /* The colours and scalars most kernels read, converted: the first step of every setup and
@@ -150,22 +150,26 @@ static inline ABRDF__REAL ABRDF__FN(kp_alpha)(double a)
 
 /* ---- local-frame geometry ----------------------------------------------------------- */
 typedef struct ABRDF__FN(abrdf__geo) {
-    ABRDF__REAL ix, iy, iz;   /* wi */
-    ABRDF__REAL ox, oy, oz;   /* wo */
-    ABRDF__REAL ci, co;       /* cos_i = N.wi, cos_o = N.wo, clamped to [-1, 1] (clampg) */
-    ABRDF__REAL hx, hy, hz;   /* H; +z when wi ~ -wo (then the pair is rejected as back-facing) */
-    ABRDF__REAL ch;           /* N.H */
-    ABRDF__REAL sh2;          /* |N x H|^2 = sin^2(theta_h), without the cancellation of 1 - ch^2 */
-    ABRDF__REAL cd;           /* wi.H = wo.H = |wi + wo|/2 in [0, 1] */
-    ABRDF__REAL rv;           /* R.wo, R the mirror of wi: cos(gamma) of Phong */
+    ABRDF__REAL ix, iy, iz; /* wi */
+    ABRDF__REAL ox, oy, oz; /* wo */
+    ABRDF__REAL ci, co;     /* cos_i = N.wi, cos_o = N.wo, clamped to [-1, 1] (clampg) */
+    ABRDF__REAL hx, hy, hz; /* H; +z when wi ~ -wo (then the pair is rejected as back-facing) */
+    ABRDF__REAL ch;         /* N.H */
+    ABRDF__REAL sh2;        /* |N x H|^2 = sin^2(theta_h), without the cancellation of 1 - ch^2 */
+    ABRDF__REAL cd;         /* wi.H = wo.H = |wi + wo|/2 in [0, 1] */
+    ABRDF__REAL rv;         /* R.wo, R the mirror of wi: cos(gamma) of Phong */
 } ABRDF__GEO;
 
 static inline void ABRDF__FN(geo_make)(ABRDF__GEO *g, ABRDF__REAL ix, ABRDF__REAL iy,
                                        ABRDF__REAL iz, ABRDF__REAL ox, ABRDF__REAL oy,
                                        ABRDF__REAL oz)
 {
-    g->ix = ix; g->iy = iy; g->iz = iz;
-    g->ox = ox; g->oy = oy; g->oz = oz;
+    g->ix = ix;
+    g->iy = iy;
+    g->iz = iz;
+    g->ox = ox;
+    g->oy = oy;
+    g->oz = oz;
     g->ci = ABRDF__FN(clampg)(iz, ABRDF__K(-1), ABRDF__K(1));
     g->co = ABRDF__FN(clampg)(oz, ABRDF__K(-1), ABRDF__K(1));
     ABRDF__REAL hx = ix + ox, hy = iy + oy, hz = iz + oz;

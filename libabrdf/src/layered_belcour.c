@@ -43,10 +43,7 @@ static double var_of_alpha(double a)
     return p / (1.0 - p);
 }
 
-static double alpha_of_var(double s)
-{
-    return s > 0.0 ? pow(s / (1.0 + s), 1.0 / 1.1) : 0.0;
-}
+static double alpha_of_var(double s) { return s > 0.0 ? pow(s / (1.0 + s), 1.0 / 1.1) : 0.0; }
 
 /* Split a continuous index into a clamped cell and a weight. */
 static void cell(double x, int n, int *i, double *t)
@@ -78,7 +75,8 @@ double abrdf__belcour_fgd(double c, double a, double eta, double kappa)
         }
         if (w == 0.0) continue;
         v += w * abrdf__fgd_table[((b[0] * ABRDF__FGD_NALPHA + b[1]) * ABRDF__FGD_NETA + b[2]) *
-                                      ABRDF__FGD_NKAPPA + b[3]];
+                                      ABRDF__FGD_NKAPPA +
+                                  b[3]];
     }
     return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
 }
@@ -162,12 +160,14 @@ static int add_interface(stack_stats *st, const abrdf_params *p, int k, double e
     double sR0i = avg3(st->R0i) * st->sR0i +
                   e_avg * (st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)));
     double sT0i = j12 * st->sT0i + sT12 + j12 * (sR12 + st->sRi0) * rr_avg;
-    double sRi0 = R21 * sR12 + ri_avg * (sT12 + j12 * (sT21 + st->sRi0 + rr_avg * (sR12 + st->sRi0)));
+    double sRi0 =
+        R21 * sR12 + ri_avg * (sT12 + j12 * (sT21 + st->sRi0 + rr_avg * (sR12 + st->sRi0)));
     double sTi0 = st->Ji0 * sT21 + st->sTi0 + st->Ji0 * (sR12 + st->sRi0) * rr_avg;
     double r0i_avg = avg3(R0i), ri0_avg = avg3(Ri0);
-    *alpha_k = e_avg > 0.0
-                   ? alpha_of_var(st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)))
-                   : 0.0;
+    *alpha_k =
+        e_avg > 0.0
+            ? alpha_of_var(st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)))
+            : 0.0;
     for (int ch = 0; ch < 3; ++ch) e[ch] = e_avg > 0.0 ? eterm[ch] : 0.0;
     for (int ch = 0; ch < 3; ++ch) {
         st->R0i[ch] = R0i[ch];
@@ -197,8 +197,7 @@ static void add_medium(stack_stats *st, const abrdf_layer *ly)
     }
 }
 
-void abrdf__eval_belcour(const abrdf_params *p, const double wi[3], const double wo[3],
-                         double f[3])
+void abrdf__eval_belcour(const abrdf_params *p, const double wi[3], const double wo[3], double f[3])
 {
     f[0] = f[1] = f[2] = 0.0;
     double ci = wi[2], co = wo[2];

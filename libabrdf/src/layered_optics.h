@@ -57,8 +57,7 @@ static inline double abrdf__lo_g1(double c, double ag)
  * below (relative index eta = n_below / n_above) and return the refracted ray reversed,
  * i.e. pointing upward from below, in out. Returns 0 on total internal reflection or if w
  * is behind m. */
-static inline int abrdf__lo_refract(const double w[3], const double m[3], double eta,
-                                    double out[3])
+static inline int abrdf__lo_refract(const double w[3], const double m[3], double eta, double out[3])
 {
     double ci = w[0] * m[0] + w[1] * m[1] + w[2] * m[2];
     if (!(ci > 0.0)) return 0;

@@ -55,8 +55,9 @@ static void ww_stack(const abrdf_params *p, int k, const double L[3], const doub
     if (ly->kappa > 0.0) return; /* conductor: nothing below is seen */
     double T = 1.0 - F;
     double Li[3], Vi[3];
-    if (!(T > 0.0) || !abrdf__lo_refract(L, h, ly->eta, Li) || !abrdf__lo_refract(V, h, ly->eta, Vi))
-        return; /* total internal reflection */
+    if (!(T > 0.0) || !abrdf__lo_refract(L, h, ly->eta, Li) ||
+        !abrdf__lo_refract(V, h, ly->eta, Vi))
+        return;                                /* total internal reflection */
     if (!(Li[2] > 0.0 && Vi[2] > 0.0)) return; /* refracted below the base's horizon */
     double G = 4.0 * ci * co * vv;
     double t = (1.0 - G) + T * G;

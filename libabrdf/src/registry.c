@@ -17,6 +17,8 @@ typedef struct abrdf__param_slot {
     size_t offset;
 } abrdf__param_slot;
 
+/* The registry is a table laid out by hand, one entry per line. */
+/* clang-format off */
 #define SCALAR(field, help, lo, hi, def) \
     {{#field, help, ABRDF_PARAM_SCALAR, lo, hi, def}, offsetof(abrdf_params, field)}
 #define RGB(field, help, lo, hi, def) \
@@ -225,6 +227,7 @@ static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
         "Eq. 16", CIT_BELCOUR, ABRDF_NEEDS_FRESNEL | ABRDF_NEEDS_LAYERS, REC | EC | SPE, -1,
         PARAMS(mp_belcour)},
 };
+/* clang-format on */
 
 /* ---- lookups ----------------------------------------------------------------------- */
 
@@ -241,7 +244,8 @@ const char *abrdf_strerror(int status)
     case ABRDF_E_GEOMETRY: return "degenerate vector (zero length, NaN or Inf)";
     case ABRDF_E_UNUSED: return "parameter not used by this model";
     case ABRDF_E_TABLE: return "data table missing or malformed";
-    case ABRDF_E_SIZE: return "struct_size is 0 or too small (initialise the struct with its _init function)";
+    case ABRDF_E_SIZE:
+        return "struct_size is 0 or too small (initialise the struct with its _init function)";
     default: return "unknown status";
     }
 }
@@ -343,8 +347,9 @@ int abrdf_param_read(const abrdf_params *p, int param, double values[3])
 static int param_in_block(const abrdf_params *p, int param)
 {
     const abrdf__param_slot *s = &params_table[param];
-    size_t size = s->info.kind == ABRDF_PARAM_INT ? sizeof(int)
-                : (size_t)param_components(&s->info) * sizeof(double);
+    size_t size = s->info.kind == ABRDF_PARAM_INT
+                      ? sizeof(int)
+                      : (size_t)param_components(&s->info) * sizeof(double);
     return s->offset + size <= p->struct_size;
 }
 
@@ -359,7 +364,8 @@ int abrdf_params_init_sized(abrdf_model model, abrdf_params *p, size_t struct_si
     for (int i = 0; i < PARAM_COUNT; ++i) param_store(&d, i, &params_table[i].info.def, 1);
     const abrdf_model_info *m = abrdf_model_get(model);
     if (m) {
-        for (int i = 0; i < m->param_count; ++i) param_store(&d, m->params[i].id, &m->params[i].def, 1);
+        for (int i = 0; i < m->param_count; ++i)
+            param_store(&d, m->params[i].id, &m->params[i].def, 1);
     } else if (model != ABRDF_MODEL_NONE) {
         st = ABRDF_E_MODEL;
     }
@@ -392,7 +398,8 @@ int abrdf_params_check(abrdf_model model, const abrdf_params *p, char *msg, size
     const abrdf_params *v = abrdf__params_view(model, p, &full);
     if (!v) {
         if (msg && msg_size)
-            snprintf(msg, msg_size, "abrdf_params: struct_size %zu is below the %zu bytes of "
+            snprintf(msg, msg_size,
+                     "abrdf_params: struct_size %zu is below the %zu bytes of "
                      "the 0.2.0 layout: initialise the block with abrdf_params_init",
                      p->struct_size, (size_t)PARAMS_SIZE_0_2);
         return ABRDF_E_SIZE;
@@ -411,8 +418,8 @@ int abrdf_params_check(abrdf_model model, const abrdf_params *p, char *msg, size
         for (int c = 0; c < n; ++c)
             if (!(v[c] >= lo && v[c] <= hi)) {
                 if (msg && msg_size)
-                    snprintf(msg, msg_size, "%s: %s = %g is outside [%g, %g]", m->name,
-                             pi->name, v[c], lo, hi);
+                    snprintf(msg, msg_size, "%s: %s = %g is outside [%g, %g]", m->name, pi->name,
+                             v[c], lo, hi);
                 return ABRDF_E_RANGE;
             }
     }

@@ -21,8 +21,8 @@
 
 /* ---- the flowchart's data: one table ------------------------------------------------- */
 
-static const abrdf_model candidates[] = {ABRDF_F2, ABRDF_F4, ABRDF_F8, ABRDF_F16, ABRDF_FS,
-                                         ABRDF_FKV, ABRDF_FKUB};
+static const abrdf_model candidates[] = {ABRDF_F2, ABRDF_F4,  ABRDF_F8,  ABRDF_F16,
+                                         ABRDF_FS, ABRDF_FKV, ABRDF_FKUB};
 
 static const abrdf_model special[ABRDF_SURFACE_COUNT] = {
     [ABRDF_SURFACE_GENERAL] = ABRDF_MODEL_NONE,
@@ -37,27 +37,28 @@ static const abrdf_model special[ABRDF_SURFACE_COUNT] = {
 static const char *const special_reason[ABRDF_SURFACE_COUNT] = {
     [ABRDF_SURFACE_GENERAL] = "classified by roughness",
     [ABRDF_SURFACE_CLOTH_ROUGH] = "rough cloth (wool, cotton): inverted-Gaussian velvet "
-        "distribution with Fresnel (Eq. 10)",
+                                  "distribution with Fresnel (Eq. 10)",
     [ABRDF_SURFACE_CLOTH_SHINY] = "shiny cloth (silk, satin, velvet): highlight around the "
-        "fibre tangent (Eq. 11)",
+                                  "fibre tangent (Eq. 11)",
     [ABRDF_SURFACE_HAIR] = "microfacet-based R, TT and TRT lobes of an elliptical "
-        "absorbing fibre (Eqs. 12-14)",
+                           "absorbing fibre (Eqs. 12-14)",
     [ABRDF_SURFACE_LAYERED_PLASTIC] = "plastic under a clear coat: refracted base lobe with "
-        "Fresnel transmission and absorption (Eq. 15)",
+                                      "Fresnel transmission and absorption (Eq. 15)",
     [ABRDF_SURFACE_LAYERED_PLATE] = "transparent plate: adding of layer energies and "
-        "roughnesses, multiple scattering included (Eq. 16)",
-    [ABRDF_SURFACE_LAYERED_METAL] = "metal under a coat (Eq. 16); Weidlich-Wilkie (Eq. 15) "
+                                    "roughnesses, multiple scattering included (Eq. 16)",
+    [ABRDF_SURFACE_LAYERED_METAL] =
+        "metal under a coat (Eq. 16); Weidlich-Wilkie (Eq. 15) "
         "is poor for a smooth metal under a rough coat: one refraction, no inter-reflection "
         "between coat and metal",
 };
 
 /* Table 6 of the paper, f_2E column: minimum NMSE against the Disney GGX lobe. */
-static const double table6_alpha_g[] = {1.0, 0.9, 0.8, 0.7, 0.6, 0.5, 0.4, 0.3, 0.2, 0.1,
-                                        0.05, 0.01, 0.005, 0.001, 0.0005, 0.0001, 0.00005,
-                                        0.00001};
-static const double table6_f2e[] = {0.0517, 0.0596, 0.0577, 0.0555, 0.0558, 0.0548, 0.0472,
-                                    0.0465, 0.0445, 0.0322, 0.0190, 0.0031, 0.0015, 0.0003,
-                                    0.0001, 0.00003, 0.00001, 0.000002};
+static const double table6_alpha_g[] = {1.0,   0.9,   0.8,    0.7,    0.6,     0.5,
+                                        0.4,   0.3,   0.2,    0.1,    0.05,    0.01,
+                                        0.005, 0.001, 0.0005, 0.0001, 0.00005, 0.00001};
+static const double table6_f2e[] = {0.0517, 0.0596, 0.0577, 0.0555,  0.0558,  0.0548,
+                                    0.0472, 0.0465, 0.0445, 0.0322,  0.0190,  0.0031,
+                                    0.0015, 0.0003, 0.0001, 0.00003, 0.00001, 0.000002};
 #define TABLE6_ROWS ((int)(sizeof table6_f2e / sizeof table6_f2e[0]))
 typedef char abrdf__table6_columns_match[sizeof table6_alpha_g == sizeof table6_f2e ? 1 : -1];
 
@@ -106,12 +107,12 @@ int abrdf_select_table6(int row, double *alpha_g, double *nmse_f2e)
 /* ---- names ---------------------------------------------------------------------------- */
 
 static const char *const surface_names[ABRDF_SURFACE_COUNT] = {
-    "general", "cloth_rough", "cloth_shiny", "hair", "layered_plastic", "layered_plate",
-    "layered_metal"};
+    "general",         "cloth_rough",   "cloth_shiny",  "hair",
+    "layered_plastic", "layered_plate", "layered_metal"};
 static const char *const goal_names[ABRDF_GOAL_COUNT] = {"performance", "photoreal"};
 static const char *const step_names[ABRDF_STEP_KIND_COUNT] = {
-    "input", "goal", "diffuse", "candidate", "cheapest", "fallback", "surface", "roughness",
-    "anisotropy", "exponent", "special"};
+    "input",   "goal",      "diffuse",    "candidate", "cheapest", "fallback",
+    "surface", "roughness", "anisotropy", "exponent",  "special"};
 
 const char *abrdf_surface_name(abrdf_surface s)
 {
@@ -303,8 +304,10 @@ static void add_step(walk *w, abrdf_select_step s, const char *fmt, ...)
 /* A limit for the trace: "2%", "0.05", or "no limit". */
 static const char *limit_text(double v, const char *suffix, char *buf, size_t size)
 {
-    if (isinf(v)) snprintf(buf, size, "no limit");
-    else snprintf(buf, size, "%g%s", v, suffix);
+    if (isinf(v))
+        snprintf(buf, size, "no limit");
+    else
+        snprintf(buf, size, "%g%s", v, suffix);
     return buf;
 }
 
@@ -330,17 +333,25 @@ static void criteria_text(const abrdf_approx_error *e, const abrdf_tolerance *t,
 {
     char rel[48], ab[48];
     double r = tidy(e->max_rel_pct), a = tidy(e->max_abs);
-    if (isinf(t->max_rel_pct)) snprintf(rel, sizeof rel, "rel %.3g%%", r);
-    else snprintf(rel, sizeof rel, "rel %.3g%% %s %g%%", r, e->max_rel_pct <= t->max_rel_pct ? "<=" : ">", t->max_rel_pct);
-    if (isinf(t->max_abs)) snprintf(ab, sizeof ab, "abs %.3g", a);
-    else snprintf(ab, sizeof ab, "abs %.3g %s %g", a, e->max_abs <= t->max_abs ? "<=" : ">", t->max_abs);
+    if (isinf(t->max_rel_pct))
+        snprintf(rel, sizeof rel, "rel %.3g%%", r);
+    else
+        snprintf(rel, sizeof rel, "rel %.3g%% %s %g%%", r,
+                 e->max_rel_pct <= t->max_rel_pct ? "<=" : ">", t->max_rel_pct);
+    if (isinf(t->max_abs))
+        snprintf(ab, sizeof ab, "abs %.3g", a);
+    else
+        snprintf(ab, sizeof ab, "abs %.3g %s %g", a, e->max_abs <= t->max_abs ? "<=" : ">",
+                 t->max_abs);
     snprintf(buf, size, "%s, %s", rel, ab);
 }
 
 static void cost_text(double cost, const char *unit, char *buf, size_t size)
 {
-    if (cost >= 0.0) snprintf(buf, size, "%g %s", cost, unit);
-    else snprintf(buf, size, "cost unknown");
+    if (cost >= 0.0)
+        snprintf(buf, size, "%g %s", cost, unit);
+    else
+        snprintf(buf, size, "cost unknown");
 }
 
 static const char *nmse_class(double nmse)
@@ -375,33 +386,39 @@ static int check_material(const abrdf_material *m, abrdf_selection *out)
     if (!in_range((double)m->type, 0, ABRDF_SURFACE_COUNT - 1))
         return fail(out, ABRDF_E_RANGE, "unknown surface type %d", (int)m->type);
     if (!(m->n < 0.0) && !in_range(m->n, 0.0, 1e6))
-        return fail(out, ABRDF_E_RANGE, "n = %g is outside [0, 1e6] (negative = derive from r)", m->n);
+        return fail(out, ABRDF_E_RANGE, "n = %g is outside [0, 1e6] (negative = derive from r)",
+                    m->n);
     if (!(m->r < 0.0) && !in_range(m->r, 0.0, 1.0))
-        return fail(out, ABRDF_E_RANGE, "r = %g is outside [0, 1] (negative = derive from n)", m->r);
-    if (m->n < 0.0 && m->r < 0.0)
-        return fail(out, ABRDF_E_RANGE, "neither n nor r is given");
+        return fail(out, ABRDF_E_RANGE, "r = %g is outside [0, 1] (negative = derive from n)",
+                    m->r);
+    if (m->n < 0.0 && m->r < 0.0) return fail(out, ABRDF_E_RANGE, "neither n nor r is given");
     static const char *const rgb_names[3] = {"kd", "ks", "f0"};
     const double *rgb[3] = {m->kd, m->ks, m->f0};
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 3; ++c)
             if (!in_range(rgb[k][c], 0.0, 1.0))
-                return fail(out, ABRDF_E_RANGE, "%s[%d] = %g is outside [0, 1]", rgb_names[k], c, rgb[k][c]);
+                return fail(out, ABRDF_E_RANGE, "%s[%d] = %g is outside [0, 1]", rgb_names[k], c,
+                            rgb[k][c]);
     if (!(m->eta <= 0.0) && !in_range(m->eta, 1.0, 4.0))
         return fail(out, ABRDF_E_RANGE, "eta = %g is outside [1, 4] (<= 0 = use f0)", m->eta);
     if (!in_range(m->anisotropy, 0.0, 1.0))
         return fail(out, ABRDF_E_RANGE, "anisotropy = %g is outside [0, 1]", m->anisotropy);
     if (!in_range(m->melanin, 0.0, 1.0) || !in_range(m->redness, 0.0, 1.0))
-        return fail(out, ABRDF_E_RANGE, "melanin = %g or redness = %g is outside [0, 1]", m->melanin, m->redness);
+        return fail(out, ABRDF_E_RANGE, "melanin = %g or redness = %g is outside [0, 1]",
+                    m->melanin, m->redness);
     if (!in_range(m->layer_count, 0, ABRDF_MAX_LAYERS))
-        return fail(out, ABRDF_E_RANGE, "layer_count = %d is outside [0, %d]", m->layer_count, ABRDF_MAX_LAYERS);
+        return fail(out, ABRDF_E_RANGE, "layer_count = %d is outside [0, %d]", m->layer_count,
+                    ABRDF_MAX_LAYERS);
     for (int i = 0; i < m->layer_count; ++i) {
         const abrdf_layer *l = &m->layers[i];
         int ok = in_range(l->eta, 1.0, 4.0) && in_range(l->kappa, 0.0, 10.0) &&
                  in_range(l->r, 0.0, 1.0) && in_range(l->depth, 0.0, 100.0);
         for (int c = 0; c < 3; ++c) ok = ok && in_range(l->sigma_a[c], 0.0, 1e4);
         if (!ok)
-            return fail(out, ABRDF_E_RANGE, "layer %d is outside the layer parameter ranges "
-                        "(eta [1, 4], kappa [0, 10], r [0, 1], sigma_a [0, 1e4], depth [0, 100])", i);
+            return fail(out, ABRDF_E_RANGE,
+                        "layer %d is outside the layer parameter ranges "
+                        "(eta [1, 4], kappa [0, 10], r [0, 1], sigma_a [0, 1e4], depth [0, 100])",
+                        i);
     }
     return ABRDF_OK;
 }
@@ -409,9 +426,11 @@ static int check_material(const abrdf_material *m, abrdf_selection *out)
 static int check_tolerance(const abrdf_tolerance *t, abrdf_selection *out)
 {
     if (!(t->max_rel_pct >= 0.0))
-        return fail(out, ABRDF_E_RANGE, "max relative error %g is not >= 0 (INFINITY = no limit)", t->max_rel_pct);
+        return fail(out, ABRDF_E_RANGE, "max relative error %g is not >= 0 (INFINITY = no limit)",
+                    t->max_rel_pct);
     if (!(t->max_abs >= 0.0))
-        return fail(out, ABRDF_E_RANGE, "max absolute error %g is not >= 0 (INFINITY = no limit)", t->max_abs);
+        return fail(out, ABRDF_E_RANGE, "max absolute error %g is not >= 0 (INFINITY = no limit)",
+                    t->max_abs);
     return ABRDF_OK;
 }
 
@@ -453,13 +472,15 @@ static void performance(walk *w, abrdf_surface type, const abrdf_tolerance *tol,
     limit_text(tol->max_abs, "", al, sizeof al);
     add_step(w, step(ABRDF_STEP_GOAL, ABRDF_MODEL_NONE, -1.0, -1.0, 1),
              "goal performance: Lambert diffuse + the cheapest Table-1 approximation of "
-             "Blinn-Phong within rel %s and abs %s", rl, al);
+             "Blinn-Phong within rel %s and abs %s",
+             rl, al);
     if (type != ABRDF_SURFACE_GENERAL)
         add_step(w, step(ABRDF_STEP_SURFACE, ABRDF_MODEL_NONE, -1.0, -1.0, 1),
                  "surface %s: not used by the performance branch (Fig. 2 branches on the goal "
-                 "first)", surface_names[type]);
-    add_step(w, step(ABRDF_STEP_DIFFUSE, rules.perf_diffuse, -1.0, -1.0, 1),
-             "diffuse: %s (Eq. 1)", model_name(rules.perf_diffuse));
+                 "first)",
+                 surface_names[type]);
+    add_step(w, step(ABRDF_STEP_DIFFUSE, rules.perf_diffuse, -1.0, -1.0, 1), "diffuse: %s (Eq. 1)",
+             model_name(rules.perf_diffuse));
 
     int best = -1;
     abrdf_approx_error best_err = {0, 0, 0};
@@ -486,12 +507,14 @@ static void performance(walk *w, abrdf_surface type, const abrdf_tolerance *tol,
         s.threshold2 = tol->max_abs;
         s.cost = cost;
         add_step(w, s, "%s: %s, %s: %s", name, crit, cs,
-            !(rel_ok && abs_ok) ? "rejected" : ranked ? "passes" : "passes, but cannot be ranked");
+                 !(rel_ok && abs_ok) ? "rejected"
+                 : ranked            ? "passes"
+                                     : "passes, but cannot be ranked");
         /* Cheapest first; equal cost: smaller relative, then absolute error. */
         if (ok && (cost < best_cost ||
-                   (cost == best_cost && (e.max_rel_pct < best_err.max_rel_pct ||
-                                          (e.max_rel_pct == best_err.max_rel_pct &&
-                                           e.max_abs < best_err.max_abs))))) {
+                   (cost == best_cost &&
+                    (e.max_rel_pct < best_err.max_rel_pct ||
+                     (e.max_rel_pct == best_err.max_rel_pct && e.max_abs < best_err.max_abs))))) {
             best = i;
             best_cost = cost;
             best_err = e;
@@ -506,7 +529,8 @@ static void performance(walk *w, abrdf_surface type, const abrdf_tolerance *tol,
         cost_text(best_cost, unit, cs, sizeof cs);
         char crit[112];
         criteria_text(&best_err, tol, crit, sizeof crit);
-        abrdf_select_step s = step(ABRDF_STEP_CHEAPEST, c, best_err.max_rel_pct, tol->max_rel_pct, 1);
+        abrdf_select_step s =
+            step(ABRDF_STEP_CHEAPEST, c, best_err.max_rel_pct, tol->max_rel_pct, 1);
         s.value2 = best_err.max_abs;
         s.threshold2 = tol->max_abs;
         s.cost = best_cost;
@@ -532,11 +556,11 @@ static void photoreal(walk *w, const abrdf_material *m, int n_given, double n_ra
                  surface_names[m->type], rules.special_reason[m->type]);
         char layers[96] = "";
         if (m->layer_count > 0)
-            snprintf(layers, sizeof layers, "; top layer r %g, bottom layer r %g",
-                     m->layers[0].r, m->layers[m->layer_count - 1].r);
+            snprintf(layers, sizeof layers, "; top layer r %g, bottom layer r %g", m->layers[0].r,
+                     m->layers[m->layer_count - 1].r);
         add_step(w, step(ABRDF_STEP_SPECIAL, special, out->r, -1.0, 1),
-                 "%s: the whole reflectance (its own diffuse term); r %g%s",
-                 model_name(special), out->r, layers);
+                 "%s: the whole reflectance (its own diffuse term); r %g%s", model_name(special),
+                 out->r, layers);
         out->diffuse = ABRDF_MODEL_NONE;
         out->specular = special;
         return;
@@ -552,9 +576,10 @@ static void photoreal(walk *w, const abrdf_material *m, int n_given, double n_ra
     if (!smooth) {
         out->diffuse = rules.rough_diffuse;
         out->specular = aniso ? rules.rough_specular_aniso : rules.rough_specular;
-        add_step(w, step(ABRDF_STEP_ANISOTROPY, out->specular, m->anisotropy, rules.aniso_min, aniso),
-                 "anisotropy %g %s %g: %s (%s)", m->anisotropy, aniso ? ">" : "<=",
-                 rules.aniso_min, model_name(out->specular),
+        add_step(w,
+                 step(ABRDF_STEP_ANISOTROPY, out->specular, m->anisotropy, rules.aniso_min, aniso),
+                 "anisotropy %g %s %g: %s (%s)", m->anisotropy, aniso ? ">" : "<=", rules.aniso_min,
+                 model_name(out->specular),
                  aniso ? "anisotropic GGX, Eqs. 5, 7, 8, 9" : "GGX, Eqs. 5, 6, 8, 9");
         add_step(w, step(ABRDF_STEP_DIFFUSE, out->diffuse, -1.0, -1.0, 1), "diffuse: %s (Eq. 3)",
                  model_name(out->diffuse));
@@ -564,7 +589,8 @@ static void photoreal(walk *w, const abrdf_material *m, int n_given, double n_ra
     out->diffuse = rules.smooth_diffuse;
     out->specular = rules.smooth_specular;
     if (aniso)
-        add_step(w, step(ABRDF_STEP_ANISOTROPY, ABRDF_MODEL_NONE, m->anisotropy, rules.aniso_min, 0),
+        add_step(w,
+                 step(ABRDF_STEP_ANISOTROPY, ABRDF_MODEL_NONE, m->anisotropy, rules.aniso_min, 0),
                  "anisotropy %g ignored: the smooth branch has no anisotropic lobe", m->anisotropy);
     add_step(w, step(ABRDF_STEP_DIFFUSE, out->diffuse, -1.0, -1.0, 1), "diffuse: %s (Eq. 2)",
              model_name(out->diffuse));
@@ -577,12 +603,15 @@ static void photoreal(walk *w, const abrdf_material *m, int n_given, double n_ra
         add_step(w, step(ABRDF_STEP_EXPONENT, out->specular, nc, -1.0, 1),
                  "%s: n %g from r %g by abrdf_alpha_g_to_n(r^2) = 2/alpha_g^2 - 2%s",
                  model_name(out->specular), nc, r,
-                 n > rules.n_max ? " (clamped to 1e6)" : n < rules.n_min ? " (clamped to 1)" : "");
+                 n > rules.n_max   ? " (clamped to 1e6)"
+                 : n < rules.n_min ? " (clamped to 1)"
+                                   : "");
     out->n = nc;
     int row = nmse_row(r * r);
     out->err_nmse = table6_f2e[row];
-    add_step(w, step(ABRDF_STEP_EXPONENT, out->specular, out->err_nmse, rules.nmse_class_max[0],
-                     out->err_nmse < rules.nmse_class_max[0]),
+    add_step(w,
+             step(ABRDF_STEP_EXPONENT, out->specular, out->err_nmse, rules.nmse_class_max[0],
+                  out->err_nmse < rules.nmse_class_max[0]),
              "%s vs the GGX lobe: NMSE %g at alpha_g %g (paper, Table 6): %s",
              model_name(out->specular), out->err_nmse, table6_alpha_g[row],
              nmse_class(out->err_nmse));
@@ -619,11 +648,15 @@ static int select_full(walk *w, const abrdf_material *m, abrdf_goal goal,
     double n_raw = out->n;
     if (!n_given) out->n = clampd(out->n, 0.0, rules.n_max);
     char nt[96], rt[96];
-    if (n_given) snprintf(nt, sizeof nt, "n %g (given)", out->n);
-    else snprintf(nt, sizeof nt, "n %g (from r: 2/alpha_g^2 - 2 = %.4g%s)", out->n, n_raw,
-                  n_raw > rules.n_max ? ", clamped" : "");
-    if (r_given) snprintf(rt, sizeof rt, "r %g (given)", out->r);
-    else snprintf(rt, sizeof rt, "r %.4g (from n: alpha_g = sqrt(2/(n + 2)))", out->r);
+    if (n_given)
+        snprintf(nt, sizeof nt, "n %g (given)", out->n);
+    else
+        snprintf(nt, sizeof nt, "n %g (from r: 2/alpha_g^2 - 2 = %.4g%s)", out->n, n_raw,
+                 n_raw > rules.n_max ? ", clamped" : "");
+    if (r_given)
+        snprintf(rt, sizeof rt, "r %g (given)", out->r);
+    else
+        snprintf(rt, sizeof rt, "r %.4g (from n: alpha_g = sqrt(2/(n + 2)))", out->r);
     add_step(w, step(ABRDF_STEP_INPUT, ABRDF_MODEL_NONE, out->n, -1.0, 1), "%s%s: %s, %s",
              m->name ? "material " : "", m->name ? m->name : "explicit material", nt, rt);
 
@@ -637,7 +670,8 @@ static int select_full(walk *w, const abrdf_material *m, abrdf_goal goal,
 
     /* Costs of what was chosen; the special models carry their own diffuse term. */
     out->cost_specular = abrdf_costs_get(costs, out->specular);
-    out->cost_diffuse = out->diffuse == ABRDF_MODEL_NONE ? 0.0 : abrdf_costs_get(costs, out->diffuse);
+    out->cost_diffuse =
+        out->diffuse == ABRDF_MODEL_NONE ? 0.0 : abrdf_costs_get(costs, out->diffuse);
     if (out->cost_specular >= 0.0 && out->cost_diffuse >= 0.0)
         out->cost_total = out->cost_specular + out->cost_diffuse;
 
@@ -671,16 +705,20 @@ int abrdf_select(const abrdf_material *m, abrdf_goal goal, const abrdf_tolerance
     if (!m) {
         st = fail(&w.sel, ABRDF_E_NULL, "no material");
     } else if (!read_in(&mm, sizeof mm, m, MATERIAL_SIZE_0_2)) {
-        st = fail(&w.sel, ABRDF_E_SIZE, "abrdf_material: struct_size %zu is below the %zu bytes "
-                  "of the 0.2.0 layout: initialise it with abrdf_material_init", m->struct_size,
-                  (size_t)MATERIAL_SIZE_0_2);
+        st = fail(&w.sel, ABRDF_E_SIZE,
+                  "abrdf_material: struct_size %zu is below the %zu bytes "
+                  "of the 0.2.0 layout: initialise it with abrdf_material_init",
+                  m->struct_size, (size_t)MATERIAL_SIZE_0_2);
     } else if (tol && !read_in(&tt, sizeof tt, tol, TOLERANCE_SIZE_0_2)) {
-        st = fail(&w.sel, ABRDF_E_SIZE, "abrdf_tolerance: struct_size %zu is below the %zu bytes "
-                  "of the 0.2.0 layout: initialise it with abrdf_tolerance_init", tol->struct_size,
-                  (size_t)TOLERANCE_SIZE_0_2);
+        st = fail(&w.sel, ABRDF_E_SIZE,
+                  "abrdf_tolerance: struct_size %zu is below the %zu bytes "
+                  "of the 0.2.0 layout: initialise it with abrdf_tolerance_init",
+                  tol->struct_size, (size_t)TOLERANCE_SIZE_0_2);
     } else if (params && !abrdf__params_view(ABRDF_MODEL_NONE, params, &pp)) {
-        st = fail(&w.sel, ABRDF_E_SIZE, "abrdf_params: struct_size %zu is below the 0.2.0 "
-                  "layout: initialise it with abrdf_params_init", params->struct_size);
+        st = fail(&w.sel, ABRDF_E_SIZE,
+                  "abrdf_params: struct_size %zu is below the 0.2.0 "
+                  "layout: initialise it with abrdf_params_init",
+                  params->struct_size);
     } else {
         st = select_full(&w, &mm, goal, &tt, costs, &pp);
         if (st == ABRDF_OK && params) copy_out(params, &pp, sizeof pp);

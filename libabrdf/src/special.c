@@ -10,10 +10,8 @@ int abrdf__is_double_only(abrdf_model model)
     case ABRDF_MARSCHNER:
     case ABRDF_HUANG:
     case ABRDF_WEIDLICH_WILKIE:
-    case ABRDF_BELCOUR:
-        return 1;
-    default:
-        return 0;
+    case ABRDF_BELCOUR: return 1;
+    default: return 0;
     }
 }
 

@@ -25,17 +25,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     /* With the effect plan, and without it (every effect everywhere). */
     for (int full = 0; full < 2; ++full) {
-    render_options opt = {3, 2, 1, 1, 1, 0};
-    render_scene rs;
-    if (render_prepare(&s, &opt, &rs, err, sizeof err) == 0) {
-        if (full && render_plan_ignore(&rs) != 0) abort();
-        float rgb[3 * 2 * 3];
-        if (render_image(&rs, &opt, rgb, NULL) != 0) abort();
-        for (size_t k = 0; k < sizeof rgb / sizeof rgb[0]; ++k)
-            if (!(rgb[k] >= 0.0f) || isinf(rgb[k])) abort();
-        render_release(&rs);
-        fuzz_scene_rendered += full;
-    }
+        render_options opt = {3, 2, 1, 1, 1, 0};
+        render_scene rs;
+        if (render_prepare(&s, &opt, &rs, err, sizeof err) == 0) {
+            if (full && render_plan_ignore(&rs) != 0) abort();
+            float rgb[3 * 2 * 3];
+            if (render_image(&rs, &opt, rgb, NULL) != 0) abort();
+            for (size_t k = 0; k < sizeof rgb / sizeof rgb[0]; ++k)
+                if (!(rgb[k] >= 0.0f) || isinf(rgb[k])) abort();
+            render_release(&rs);
+            fuzz_scene_rendered += full;
+        }
     }
     scene_free(&s);
     return 0;

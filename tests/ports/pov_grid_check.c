@@ -31,7 +31,9 @@
 
 /* The grid, then NM cells of the sweep wi = wo (model_grid.pov); NA = NB = NC = n. */
 enum { COLS = 48, N_FULL = 12, NM_FULL = 576 };
-typedef struct grid { int n, nm; } grid;
+typedef struct grid {
+    int n, nm;
+} grid;
 static grid grid_of[ABRDF_MODEL_COUNT];
 #define PI 3.14159265358979323846
 #define BAR 1e-4
@@ -43,12 +45,28 @@ typedef struct pset {
 } pset;
 static const pset sets[3] = {
     {{0}, {0}, {0}, 0, 0, 0, 0, 0, {0}},
-    {{0.2, 0.5, 0.8}, {0.9, 0.6, 0.3}, {0.95, 0.64, 0.54}, 20, 0.15, 0.8, 0.8, 0.4, {1.9, 0.8, 0.5, -5, 0.8}},
-    {{0.7, 0.1, 0.4}, {0.05, 1, 0.5}, {0.02, 1, 0.3}, 3000, 0.05, 1.5, 1, 0, {1.2, 0.1, 0, 8, 0.75}},
+    {{0.2, 0.5, 0.8},
+     {0.9, 0.6, 0.3},
+     {0.95, 0.64, 0.54},
+     20,
+     0.15,
+     0.8,
+     0.8,
+     0.4,
+     {1.9, 0.8, 0.5, -5, 0.8}},
+    {{0.7, 0.1, 0.4},
+     {0.05, 1, 0.5},
+     {0.02, 1, 0.3},
+     3000,
+     0.05,
+     1.5,
+     1,
+     0,
+     {1.2, 0.1, 0, 8, 0.75}},
 };
 
-static int set_param(abrdf_params *p, const abrdf_model_info *m, const char *name,
-                     const double *v, int count)
+static int set_param(abrdf_params *p, const abrdf_model_info *m, const char *name, const double *v,
+                     int count)
 {
     for (int i = 0; i < m->param_count; ++i) {
         const abrdf_param_info *pi = abrdf_param_get(m->params[i].id);
@@ -75,8 +93,14 @@ static int make_params(const abrdf_model_info *m, int s, abrdf_params *p)
     /* layer stacks, as model_grid.pov: {eta, kappa, r, sigma_a r, g, b, depth} */
     static const double layers[3][4][7] = {
         {{0}},
-        {{1.5, 0, 0.1, 0.5, 1, 2, 0.3}, {1.2, 0, 0.3, 0, 0, 0, 0}, {0.3, 3, 0.25, 0, 0, 0, 0}, {1.5, 0, 0.1, 0, 0, 0, 0}},
-        {{1.5, 0, 0.05, 0, 0, 0, 0}, {0.7, 0, 0.4, 0.1, 0.1, 0.1, 1}, {1.5, 0, 0.1, 0, 0, 0, 0}, {1.5, 0, 0.1, 0, 0, 0, 0}},
+        {{1.5, 0, 0.1, 0.5, 1, 2, 0.3},
+         {1.2, 0, 0.3, 0, 0, 0, 0},
+         {0.3, 3, 0.25, 0, 0, 0, 0},
+         {1.5, 0, 0.1, 0, 0, 0, 0}},
+        {{1.5, 0, 0.05, 0, 0, 0, 0},
+         {0.7, 0, 0.4, 0.1, 0.1, 0.1, 1},
+         {1.5, 0, 0.1, 0, 0, 0, 0},
+         {1.5, 0, 0.1, 0, 0, 0, 0}},
     };
     double count = s == 1 ? 3 : 2;
     st = st ? st : set_param(p, m, "layer_count", &count, 1);
@@ -118,7 +142,8 @@ static pid_t render_start(const char *povray, const char *inc, const char *scene
              "'%s' -D -V -GA +WT1 +I'%s' +L'%s' +O'%s' +FE +W%d +H%d -A "
              "Declare=ABRDF_GRID_MODEL=%d Declare=ABRDF_GRID_SET=%d Declare=ABRDF_GRID_N=%d "
              "Declare=ABRDF_GRID_NM=%d >'%s.log' 2>&1",
-             povray, scene, inc, out, 3 * COLS, (g.n * g.n * g.n + g.nm) / COLS, pov_id, s, g.n, g.nm, out);
+             povray, scene, inc, out, 3 * COLS, (g.n * g.n * g.n + g.nm) / COLS, pov_id, s, g.n,
+             g.nm, out);
     remove(out);
     fflush(NULL);
     pid_t pid = fork();
@@ -158,7 +183,8 @@ static int check(const char *work, const abrdf_model_info *m, int s, double *nms
         double f[3];
         abrdf_eval(m->id, &p, NULL, wi, wo, f);
         for (int ch = 0; ch < 3; ++ch) {
-            const float *px = img.pixels + 3 * ((size_t)(k / COLS) * img.width + 3 * (k % COLS) + ch);
+            const float *px =
+                img.pixels + 3 * ((size_t)(k / COLS) * img.width + 3 * (k % COLS) + ch);
             double g = decode(px), ref = f[ch] < ldexp(1.0, -400) ? 0.0 : f[ch];
             sse += (g - ref) * (g - ref);
             energy += ref * ref;
@@ -175,7 +201,8 @@ static int check(const char *work, const abrdf_model_info *m, int s, double *nms
 int main(int argc, char **argv)
 {
     if (argc < 5) {
-        fprintf(stderr, "usage: pov_grid_check POVRAY INCLUDE_DIR SCENE WORK_DIR [--grid MODEL=N,NM ...] [MODEL ...]\n");
+        fprintf(stderr, "usage: pov_grid_check POVRAY INCLUDE_DIR SCENE WORK_DIR [--grid "
+                        "MODEL=N,NM ...] [MODEL ...]\n");
         return 2;
     }
     for (int id = 0; id < ABRDF_MODEL_COUNT; ++id) grid_of[id] = (grid){N_FULL, NM_FULL};
@@ -190,7 +217,8 @@ int main(int argc, char **argv)
                 if (mi && !strcmp(mi->name, name)) gm = mi;
             }
         if (!gm || n < 1 || n > N_FULL || nm < 0 || (n * n * n + nm) % COLS) {
-            fprintf(stderr, "pov_grid_check: bad --grid %s (MODEL=N,NM; N^3 + NM a multiple of %d)\n",
+            fprintf(stderr,
+                    "pov_grid_check: bad --grid %s (MODEL=N,NM; N^3 + NM a multiple of %d)\n",
                     argv[first + 1], COLS);
             return 2;
         }
@@ -241,9 +269,11 @@ int main(int argc, char **argv)
                 grid g = grid_of[m->id];
                 char cells[64] = "";
                 if (g.n != N_FULL || g.nm != NM_FULL)
-                    snprintf(cells, sizeof cells, " (%d x %d x %d + %d cells)", g.n, g.n, g.n, g.nm);
-                printf("| %s | %s%s | %.2e | %.2e |%s\n", m->name, s ? (s == 1 ? "set 1" : "set 2") : "defaults",
-                       cells, nmse, rel, ok ? "" : " FAIL");
+                    snprintf(cells, sizeof cells, " (%d x %d x %d + %d cells)", g.n, g.n, g.n,
+                             g.nm);
+                printf("| %s | %s%s | %.2e | %.2e |%s\n", m->name,
+                       s ? (s == 1 ? "set 1" : "set 2") : "defaults", cells, nmse, rel,
+                       ok ? "" : " FAIL");
             }
         }
     }

@@ -16,7 +16,8 @@ static inline int pov_has_line(const char *inc_dir, const char *file, const char
     snprintf(path, sizeof path, "%s/%s", inc_dir, file);
     FILE *f = fopen(path, "r");
     int found = 0;
-    while (f && !found && fgets(line, sizeof line, f)) found = strncmp(line, want, strlen(want)) == 0;
+    while (f && !found && fgets(line, sizeof line, f))
+        found = strncmp(line, want, strlen(want)) == 0;
     if (f) fclose(f);
     return found;
 }

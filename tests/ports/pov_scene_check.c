@@ -29,8 +29,8 @@
 #include "metrics.h"
 #include "pov_ported.h"
 
-#define K 2          /* samples per pixel side */
-#define JOBS 6       /* concurrent jobs: POV-Ray idles through much of a small render */
+#define K 2    /* samples per pixel side */
+#define JOBS 6 /* concurrent jobs: POV-Ray idles through much of a small render */
 #define BAR 1e-4
 #define MAX_SCENES 8
 #define MAX_SIZES 8
@@ -60,7 +60,9 @@ static const char *scene_mode(const char *arg)
 
 static const char *export_flag(const char *arg)
 {
-    return !strncmp(arg, "emissive:", 9) ? " --no-shadows" : !strncmp(arg, "native:", 7) ? " --native" : "";
+    return !strncmp(arg, "emissive:", 9) ? " --no-shadows"
+           : !strncmp(arg, "native:", 7) ? " --native"
+                                         : "";
 }
 
 static const char *base(const char *path)
@@ -73,7 +75,8 @@ static void stem(char *out, size_t size, const char *work, const char *scene, co
                  const char *suffix)
 {
     char name[256];
-    snprintf(name, sizeof name, "%s%s%s", scene_mode(scene), *scene_mode(scene) ? "_" : "", base(scene_path(scene)));
+    snprintf(name, sizeof name, "%s%s%s", scene_mode(scene), *scene_mode(scene) ? "_" : "",
+             base(scene_path(scene)));
     char *dot = strrchr(name, '.');
     if (dot) *dot = '\0';
     snprintf(out, size, "%s/%s_%s%s", work, name, model, suffix);
@@ -92,12 +95,13 @@ static pid_t job_start(char **argv, const char *scene, const char *model, int si
     if (strcmp(model, "scene")) snprintf(mopt, sizeof mopt, "--model %s", model);
     static char cmd[65536]; /* child-local after fork; static keeps it off the stack */
     snprintf(cmd, sizeof cmd,
-             "'%s' render '%s' %s -o '%s' --width %d --height %d --spp %d --threads 1 --no-preview >'%s' 2>&1 && "
+             "'%s' render '%s' %s -o '%s' --width %d --height %d --spp %d --threads 1 --no-preview "
+             ">'%s' 2>&1 && "
              "'%s' export --pov '%s' %s%s -o '%s' --width %d --height %d >>'%s' 2>&1 && "
              "'%s' -D +WT1 +I'%s' +O'%s' +FE +W%d +H%d -A +L'%s' >>'%s' 2>&1",
-             abrdf, scene_path(scene), mopt, ref, size, size, K * K, log, abrdf, scene_path(scene), mopt,
-             export_flag(scene), pov, size, size, log,
-             povray, pov, big, K * size, K * size, inc, log);
+             abrdf, scene_path(scene), mopt, ref, size, size, K * K, log, abrdf, scene_path(scene),
+             mopt, export_flag(scene), pov, size, size, log, povray, pov, big, K * size, K * size,
+             inc, log);
     remove(big);
     fflush(NULL);
     pid_t pid = fork();
@@ -139,8 +143,13 @@ static int compare(const char *work, const char *scene, const char *model, int s
                         sum += b.pixels[3 * ((size_t)(K * y + sy) * b.width + (K * x + sx)) + c];
                 small[3 * ((size_t)y * size + x) + c] = (float)(sum / (K * K));
             }
-    rc = abrdf_metrics_compute(small, r.pixels, size, size, 3, m) == ABRDF_METRICS_OK && m->nmse_defined ? 0 : -1;
-    if (rc) fprintf(stderr, "pov_scene_check: %s: no NMSE (non-finite pixels or black reference)\n", log);
+    rc = abrdf_metrics_compute(small, r.pixels, size, size, 3, m) == ABRDF_METRICS_OK &&
+                 m->nmse_defined
+             ? 0
+             : -1;
+    if (rc)
+        fprintf(stderr, "pov_scene_check: %s: no NMSE (non-finite pixels or black reference)\n",
+                log);
 done:
     free(small);
     abrdf_image_free(&r);
@@ -171,7 +180,8 @@ static double trace_cpu(const char *work, const char *scene, const char *model)
 int main(int argc, char **argv)
 {
     if (argc < 7) {
-        fprintf(stderr, "usage: pov_scene_check ABRDF POVRAY INCLUDE_DIR WORK_DIR SIZE [--report] SCENE... [-- MODEL...]\n");
+        fprintf(stderr, "usage: pov_scene_check ABRDF POVRAY INCLUDE_DIR WORK_DIR SIZE [--report] "
+                        "SCENE... [-- MODEL...]\n");
         return 2;
     }
     int size = atoi(argv[5]);
@@ -212,7 +222,8 @@ int main(int argc, char **argv)
 
     int running = 0;
     for (int m = 0; m < nmodels; ++m)
-        for (int s = 0; s < nscenes && (!strcmp(models[m], "scene") || pov_ported(argv[3], models[m])); ++s) {
+        for (int s = 0;
+             s < nscenes && (!strcmp(models[m], "scene") || pov_ported(argv[3], models[m])); ++s) {
             if (running == JOBS) {
                 wait(NULL);
                 --running;
@@ -225,7 +236,8 @@ int main(int argc, char **argv)
     double worst = 0;
     printf("| model |");
     for (int s = 0; s < nscenes; ++s)
-        printf(" %s%s%s%s NMSE | max abs. error | POV-Ray trace CPU s |", base(scene_path(scenes[s])), *scene_mode(scenes[s]) ? " (" : "",
+        printf(" %s%s%s%s NMSE | max abs. error | POV-Ray trace CPU s |",
+               base(scene_path(scenes[s])), *scene_mode(scenes[s]) ? " (" : "",
                scene_mode(scenes[s]), *scene_mode(scenes[s]) ? ")" : "");
     printf("\n|---|");
     for (int s = 0; s < nscenes; ++s) printf("---|---|---|");
@@ -257,7 +269,7 @@ int main(int argc, char **argv)
         }
         printf("\n");
     }
-    printf("\n%dx%d pixels, %d x %d samples per pixel; worst NMSE %.2e (bar %.0e); %d failure(s)\n", size,
-           size, K, K, worst, BAR, fails);
+    printf("\n%dx%d pixels, %d x %d samples per pixel; worst NMSE %.2e (bar %.0e); %d failure(s)\n",
+           size, size, K, K, worst, BAR, fails);
     return fails ? 1 : 0;
 }

@@ -14,8 +14,12 @@ void clq_batch_matches_scalar(const abrdf_model *ms, int nm, int n, unsigned see
         double a[3], b[3];
         quad_rand_dir(&s, 0.05, a);
         quad_rand_dir(&s, 0.05, b);
-        ix[i] = (float)a[0]; iy[i] = (float)a[1]; iz[i] = (float)a[2];
-        ox[i] = (float)b[0]; oy[i] = (float)b[1]; oz[i] = (float)b[2];
+        ix[i] = (float)a[0];
+        iy[i] = (float)a[1];
+        iz[i] = (float)a[2];
+        ox[i] = (float)b[0];
+        oy[i] = (float)b[1];
+        oz[i] = (float)b[2];
     }
     abrdf_batch bt = {(size_t)n, ix, iy, iz, ox, oy, oz, fr, fg, fb};
     for (int k = 0; k < nm; ++k) {

@@ -35,10 +35,10 @@ START_TEST(schlick_fresnel)
     static const double f0s[] = {0.0, 0.04, 0.5, 1.0};
     for (int k = 0; k < 4; ++k) {
         double f0 = f0s[k];
-        ck_assert(f_schlick_d(f0, 1.0) == f0);                       /* normal incidence */
-        ck_assert(tu_close(f_schlick_d(f0, 0.0), 1.0, 1e-15, 0.0));  /* grazing */
+        ck_assert(f_schlick_d(f0, 1.0) == f0);                      /* normal incidence */
+        ck_assert(tu_close(f_schlick_d(f0, 0.0), 1.0, 1e-15, 0.0)); /* grazing */
         ck_assert(tu_close(f_schlick_d(f0, 0.5), f0 + (1.0 - f0) / 32.0, 1e-15, 0.0));
-        ck_assert(f_schlick_d(f0, 1.5) == f0);                       /* cos_d clamped */
+        ck_assert(f_schlick_d(f0, 1.5) == f0); /* cos_d clamped */
         ck_assert(tu_close(f_schlick_d(f0, -0.5), 1.0, 1e-15, 0.0));
     }
 }
@@ -47,8 +47,8 @@ END_TEST
 /* 2 pi int_0^{pi/2} D(theta) cos(theta) sin(theta) dtheta by composite Gauss-Legendre on
  * panels graded towards theta = 0 (where narrow distributions live). */
 static const double glx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
-                              -0.1834346424956498, 0.1834346424956498, 0.5255324099163290,
-                              0.7966664774136267, 0.9602898564975363};
+                              -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                              0.7966664774136267,  0.9602898564975363};
 static const double glw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
                               0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
                               0.2223810344533745, 0.1012285362903763};
@@ -90,9 +90,12 @@ START_TEST(distributions_normalised)
     ck_assert(tu_close(d_gtr1_d(0.7, 0.51, 1.0), 1.0 / PI_, 1e-15, 0.0)); /* alpha = 1 limit */
     /* hand values (Eq. 6, Beckmann, GTR1) at theta_h = 20 deg */
     double t = 20.0 * PI_ / 180.0, c = cos(t), s2 = sin(t) * sin(t), a = 0.3, a2 = a * a;
-    ck_assert(tu_close(d_ggx_d(c, s2, a), a2 / (PI_ * pow(1.0 + (a2 - 1.0) * c * c, 2.0)), 1e-13, 0.0));
-    ck_assert(tu_close(d_beckmann_d(c, s2, a), exp(-tan(t) * tan(t) / a2) / (PI_ * a2 * pow(c, 4.0)), 1e-13, 0.0));
-    ck_assert(tu_close(d_gtr1_d(c, s2, a), (a2 - 1.0) / (PI_ * log(a2) * (1.0 + (a2 - 1.0) * c * c)), 1e-13, 0.0));
+    ck_assert(
+        tu_close(d_ggx_d(c, s2, a), a2 / (PI_ * pow(1.0 + (a2 - 1.0) * c * c, 2.0)), 1e-13, 0.0));
+    ck_assert(tu_close(d_beckmann_d(c, s2, a),
+                       exp(-tan(t) * tan(t) / a2) / (PI_ * a2 * pow(c, 4.0)), 1e-13, 0.0));
+    ck_assert(tu_close(d_gtr1_d(c, s2, a),
+                       (a2 - 1.0) / (PI_ * log(a2) * (1.0 + (a2 - 1.0) * c * c)), 1e-13, 0.0));
     ck_assert(d_beckmann_d(0.0, 1.0, 0.3) == 0.0 && d_beckmann_d(-0.5, 0.75, 0.3) == 0.0);
 }
 END_TEST
@@ -103,8 +106,10 @@ START_TEST(anisotropic_ggx)
     double h[3] = {0.3, -0.2, 0.0};
     h[2] = sqrt(1.0 - h[0] * h[0] - h[1] * h[1]);
     double sh2 = h[0] * h[0] + h[1] * h[1];
-    ck_assert(tu_close(d_ggx_aniso_d(h[0], h[1], h[2], 0.2, 0.2), d_ggx_d(h[2], sh2, 0.2), 1e-13, 0.0));
-    ck_assert(tu_close(v1_smith_ggx_aniso_d(h[0], h[1], h[2], 0.2, 0.2), v1_smith_ggx_d(h[2], 0.2), 1e-13, 0.0));
+    ck_assert(
+        tu_close(d_ggx_aniso_d(h[0], h[1], h[2], 0.2, 0.2), d_ggx_d(h[2], sh2, 0.2), 1e-13, 0.0));
+    ck_assert(tu_close(v1_smith_ggx_aniso_d(h[0], h[1], h[2], 0.2, 0.2), v1_smith_ggx_d(h[2], 0.2),
+                       1e-13, 0.0));
     /* ax != ay: int D cos dw = 1 by a product rule (GL in theta on graded panels x
      * trapezoid in phi, spectrally accurate for this smooth periodic integrand) */
     double ax = 0.4, ay = 0.1, sum = 0.0, lo = 0.0;
@@ -116,7 +121,8 @@ START_TEST(anisotropic_ggx)
             for (int q = 0; q < nphi; ++q) {
                 double p = 2.0 * PI_ * (q + 0.5) / nphi;
                 double x = sin(t) * cos(p), y = sin(t) * sin(p), z = cos(t);
-                sum += 0.5 * (hi - lo) * glw[j] * (2.0 * PI_ / nphi) * d_ggx_aniso_d(x, y, z, ax, ay) * z * sin(t);
+                sum += 0.5 * (hi - lo) * glw[j] * (2.0 * PI_ / nphi) *
+                       d_ggx_aniso_d(x, y, z, ax, ay) * z * sin(t);
             }
         }
         lo = hi;
@@ -158,7 +164,8 @@ START_TEST(table5_normalisations)
     for (int k = 0; k < 4; ++k) {
         double n = ns[k];
         ck_assert(tu_close(norm_phe_d(n), (n + 2) / (2 * PI_), 1e-15, 0.0));
-        ck_assert(tu_close(norm_be_d(n), (n + 2) * (n + 4) / (8 * PI_ * (pow(2, -n / 2) + n)), 1e-15, 0.0));
+        ck_assert(tu_close(norm_be_d(n), (n + 2) * (n + 4) / (8 * PI_ * (pow(2, -n / 2) + n)),
+                           1e-15, 0.0));
         ck_assert(tu_close(norm_16e_d(n), (1.063 * n + 1) / (2 * PI_), 1e-15, 0.0));
         ck_assert(tu_close(norm_ge_d(n), (n + 2) / (4 * PI_ * (2 - pow(2, -n / 2))), 1e-15, 0.0));
         if (n > 0) ck_assert(tu_close(norm_2e_d(n), 0.111 / n + 0.238 * (0.481 + n), 1e-15, 0.0));
@@ -176,7 +183,8 @@ START_TEST(geometry)
     geo_make_d(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
     double s = sqrt(0.36 + 0.36 + 2.56);
     ck_assert(tu_close(g.hx, 0.6 / s, 1e-15, 0.0) && tu_close(g.hz, 1.6 / s, 1e-15, 0.0));
-    ck_assert(tu_close(g.cd, wi[0] * g.hx + wi[1] * g.hy + wi[2] * g.hz, 1e-15, 0.0)); /* |L+V|/2 = L.H */
+    ck_assert(
+        tu_close(g.cd, wi[0] * g.hx + wi[1] * g.hy + wi[2] * g.hz, 1e-15, 0.0)); /* |L+V|/2 = L.H */
     ck_assert(tu_close(g.sh2, 1.0 - g.ch * g.ch, 1e-15, 0.0));
     ck_assert(tu_close(g.rv, 2 * 0.8 * 0.8 - (0.6 * 0.0 + 0.0 * 0.6 + 0.8 * 0.8), 1e-15, 0.0));
     geo_make_d(&g, 0.6, 0.0, 0.8, -0.6, 0.0, -0.8); /* wi = -wo: H undefined, rejected */

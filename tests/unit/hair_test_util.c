@@ -11,7 +11,8 @@ void htu_fdir(double theta, double phi, double w[3])
     w[2] = cos(theta) * sin(phi);
 }
 
-double htu_fibre_albedo(htu_fibre_fn S, const void *m, double theta_o, unsigned lobes, int nt, int np)
+double htu_fibre_albedo(htu_fibre_fn S, const void *m, double theta_o, unsigned lobes, int nt,
+                        int np)
 {
     double wo[3], sum = 0.0;
     htu_fdir(theta_o, 0.3, wo);

@@ -6,10 +6,11 @@
 void htu_fdir(double theta, double phi, double w[3]);
 
 /* A fibre scattering function S (hair.h convention) of model state m. */
-typedef void (*htu_fibre_fn)(const void *m, const double wi[3], const double wo[3],
-                             unsigned lobes, double s[3]);
+typedef void (*htu_fibre_fn)(const void *m, const double wi[3], const double wo[3], unsigned lobes,
+                             double s[3]);
 
 /* Fibre albedo: integral of S (channel 0) over the sphere of wi, view at theta_o (azimuth
  * 0.3), by the midpoint rule on nt x np cells. */
-double htu_fibre_albedo(htu_fibre_fn S, const void *m, double theta_o, unsigned lobes, int nt, int np);
+double htu_fibre_albedo(htu_fibre_fn S, const void *m, double theta_o, unsigned lobes, int nt,
+                        int np);
 #endif

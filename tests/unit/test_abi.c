@@ -13,11 +13,11 @@
 
 /* The structs that may grow: the caller's (they start with struct_size) and the library's
  * own (handed out by pointer). Every other struct is frozen. */
-static const char *const growing[] = {
-    "abrdf_params", "abrdf_material", "abrdf_tolerance", "abrdf_selection",
-    "abrdf_param_info", "abrdf_model_info", "abrdf_select_rules", "abrdf_select_step"};
-static const char *const with_struct_size[] = {
-    "abrdf_params", "abrdf_material", "abrdf_tolerance", "abrdf_selection"};
+static const char *const growing[] = {"abrdf_params",       "abrdf_material",   "abrdf_tolerance",
+                                      "abrdf_selection",    "abrdf_param_info", "abrdf_model_info",
+                                      "abrdf_select_rules", "abrdf_select_step"};
+static const char *const with_struct_size[] = {"abrdf_params", "abrdf_material", "abrdf_tolerance",
+                                               "abrdf_selection"};
 
 static int listed(const char *name, const char *const *list, size_t n)
 {
@@ -94,8 +94,8 @@ START_TEST(no_struct_depends_on_a_count)
         if (now->kind == ABI_VALUE) continue;
         ck_assert_msg(more->offset == now->offset && more->size == now->size,
                       "%s depends on a count: %zu bytes at %zu with one more model, surface, goal "
-                      "and step kind, %zu at %zu now", what(now, w, sizeof w), more->size,
-                      more->offset, now->size, now->offset);
+                      "and step kind, %zu at %zu now",
+                      what(now, w, sizeof w), more->size, more->offset, now->size, now->offset);
         ++compared;
     }
     ck_assert_int_eq(compared, 14 + 121);

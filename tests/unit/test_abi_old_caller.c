@@ -36,8 +36,10 @@ static void guard_intact(const void *block, size_t size, const char *what)
 {
     const unsigned char *g = (const unsigned char *)block + size;
     for (int i = 0; i < GUARD; ++i)
-        ck_assert_msg(g[i] == GUARD_BYTE, "the library wrote byte %d past the caller's %s "
-                      "(%zu bytes)", i, what, size);
+        ck_assert_msg(g[i] == GUARD_BYTE,
+                      "the library wrote byte %d past the caller's %s "
+                      "(%zu bytes)",
+                      i, what, size);
 }
 
 /* An input the library only reads, in a block of exactly its size. */
@@ -110,8 +112,9 @@ START_TEST(params_of_this_layout)
     ck_assert_msg(close_to(fr, expect, 1e-4), "batch %.9g, by hand %.17g", fr, expect);
     const double light[3] = {2.0, 2.0, 2.0}, ambient[3] = {0.1, 0.1, 0.1};
     double out[3];
-    ck_assert_int_eq(abrdf_shade(ABRDF_MODEL_NONE, ABRDF_BLINN_PHONG, in, NULL, wi, wo, light,
-                                 ambient, out), ABRDF_OK);
+    ck_assert_int_eq(
+        abrdf_shade(ABRDF_MODEL_NONE, ABRDF_BLINN_PHONG, in, NULL, wi, wo, light, ambient, out),
+        ABRDF_OK);
     ck_assert(close_to(out[0], 0.1 + 2.0 * (1.0 / li) * expect, 1e-12));
     free(in);
     free(p);
@@ -174,7 +177,8 @@ START_TEST(selection_of_this_layout)
     m->n = -1.0;
     m->r = 0.3;
     min = exact_copy(m, sizeof *m);
-    ck_assert_int_eq(abrdf_select(min, ABRDF_GOAL_PHOTOREAL, NULL, NULL, s, p, NULL, NULL), ABRDF_OK);
+    ck_assert_int_eq(abrdf_select(min, ABRDF_GOAL_PHOTOREAL, NULL, NULL, s, p, NULL, NULL),
+                     ABRDF_OK);
     ck_assert_int_eq(s->diffuse, ABRDF_MODEL_NONE);
     ck_assert_int_eq(s->specular, ABRDF_NEUBELT_PETTINEO);
     const double wi[3] = {0.3, 0.0, 1.0}, wo[3] = {-0.2, 0.1, 1.0};
@@ -187,7 +191,8 @@ START_TEST(selection_of_this_layout)
     m->type = ABRDF_SURFACE_GENERAL;
     m->r = 0.2;
     min = exact_copy(m, sizeof *m);
-    ck_assert_int_eq(abrdf_select(min, ABRDF_GOAL_PHOTOREAL, NULL, NULL, s, p, NULL, NULL), ABRDF_OK);
+    ck_assert_int_eq(abrdf_select(min, ABRDF_GOAL_PHOTOREAL, NULL, NULL, s, p, NULL, NULL),
+                     ABRDF_OK);
     ck_assert_int_eq(s->diffuse, ABRDF_DISNEY_DIFFUSE);
     ck_assert_int_eq(s->specular, ABRDF_DISNEY_SPECULAR);
     ck_assert(p->r == 0.2 && s->r == 0.2 && s->err_rel_pct < 0.0);
@@ -226,7 +231,8 @@ START_TEST(costs_of_this_layout)
     abrdf_material_init(&m);
     abrdf_selection_init(&s);
     m.n = 300.0;
-    ck_assert_int_eq(abrdf_select(&m, ABRDF_GOAL_PERFORMANCE, NULL, c, &s, NULL, NULL, NULL), ABRDF_OK);
+    ck_assert_int_eq(abrdf_select(&m, ABRDF_GOAL_PERFORMANCE, NULL, c, &s, NULL, NULL, NULL),
+                     ABRDF_OK);
     ck_assert_int_eq(s.specular, ABRDF_F16);
     ck_assert_str_eq(s.cost_unit, "ns/eval");
     free(c);

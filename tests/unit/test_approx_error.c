@@ -21,8 +21,8 @@ START_TEST(power_form_exact_at_n_equal_m)
     const abrdf_model m[] = {ABRDF_F2, ABRDF_F4, ABRDF_F8, ABRDF_F16};
     for (int i = 0; i < 4; ++i) {
         abrdf_approx_error e = err(m[i], (double)(2 << i));
-        ck_assert_msg(e.max_rel_pct < 1e-9 && e.max_abs < 1e-12, "f%d at n=%d: %g %% %g",
-                      2 << i, 2 << i, e.max_rel_pct, e.max_abs);
+        ck_assert_msg(e.max_rel_pct < 1e-9 && e.max_abs < 1e-12, "f%d at n=%d: %g %% %g", 2 << i,
+                      2 << i, e.max_rel_pct, e.max_abs);
     }
 }
 END_TEST
@@ -51,11 +51,13 @@ END_TEST
 START_TEST(f2_at_n4_by_hand)
 {
     abrdf_approx_error e = err(ABRDF_F2, 4.0);
-    ck_assert_msg(tu_close(e.max_abs, (5.0 * sqrt(5.0) - 11.0) / 2.0, 1e-10, 0.0), "abs %.15g", e.max_abs);
+    ck_assert_msg(tu_close(e.max_abs, (5.0 * sqrt(5.0) - 11.0) / 2.0, 1e-10, 0.0), "abs %.15g",
+                  e.max_abs);
     double c0 = sqrt(3.0) / 2.0;
     double rel = 100.0 * (1 - c0) * (1 - c0) * (c0 * c0 + 2 * c0 - 1) / pow(c0, 4);
     ck_assert(tu_close(e.zone_cos, c0, 1e-15, 0.0));
-    ck_assert_msg(tu_close(e.max_rel_pct, rel, 1e-9, 0.0), "rel %.15g vs %.15g", e.max_rel_pct, rel);
+    ck_assert_msg(tu_close(e.max_rel_pct, rel, 1e-9, 0.0), "rel %.15g vs %.15g", e.max_rel_pct,
+                  rel);
 }
 END_TEST
 
@@ -75,8 +77,10 @@ START_TEST(large_n_limits)
             lim_abs = fmax(lim_abs, fabs(exp(-x) - pow(b, mm)));
         }
         abrdf_approx_error e = err(m[i], 1e6);
-        ck_assert_msg(fabs(e.max_rel_pct - lim_rel) < 1e-3, "f%d rel %g vs %g", 2 << i, e.max_rel_pct, lim_rel);
-        ck_assert_msg(fabs(e.max_abs - lim_abs) < 1e-5, "f%d abs %g vs %g", 2 << i, e.max_abs, lim_abs);
+        ck_assert_msg(fabs(e.max_rel_pct - lim_rel) < 1e-3, "f%d rel %g vs %g", 2 << i,
+                      e.max_rel_pct, lim_rel);
+        ck_assert_msg(fabs(e.max_abs - lim_abs) < 1e-5, "f%d abs %g vs %g", 2 << i, e.max_abs,
+                      lim_abs);
     }
     abrdf_approx_error e = err(ABRDF_FS, 1e6);
     ck_assert(fabs(e.max_rel_pct - 100.0 * (exp(0.5) / 1.5 - 1.0)) < 1e-3);
@@ -165,7 +169,8 @@ START_TEST(costs_accessors_stay_inside_the_table)
     ck_assert_int_eq(abrdf_costs_init(NULL, "x"), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_costs_init(&c, "ns/eval"), ABRDF_OK);
     ck_assert_str_eq(c.unit, "ns/eval");
-    for (int i = 0; i < ABRDF_COSTS_CAPACITY; ++i) ck_assert(abrdf_costs_get(&c, (abrdf_model)i) == -1.0);
+    for (int i = 0; i < ABRDF_COSTS_CAPACITY; ++i)
+        ck_assert(abrdf_costs_get(&c, (abrdf_model)i) == -1.0);
     ck_assert_int_eq(abrdf_costs_set(&c, ABRDF_F8, 2.5), ABRDF_OK);
     ck_assert(abrdf_costs_get(&c, ABRDF_F8) == 2.5);
     ck_assert_int_eq(abrdf_costs_set(&c, ABRDF_F8, -3.0), ABRDF_OK); /* unknown again */

@@ -23,14 +23,17 @@ static const double PI = 3.14159265358979323846;
 
 /* ---- hand geometry ------------------------------------------------------------------ */
 
-static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 typedef struct hand {
     double wi[3], wo[3];
-    double ci, co;  /* cos theta_i, cos theta_o */
-    double h[3];    /* half vector */
-    double ch, cd;  /* N.H, L.H */
-    double rv;      /* (2 (N.L) N - L) . V */
+    double ci, co; /* cos theta_i, cos theta_o */
+    double h[3];   /* half vector */
+    double ch, cd; /* N.H, L.H */
+    double rv;     /* (2 (N.L) N - L) . V */
 } hand;
 
 /* The configurations every model is checked on: (theta_i, phi_i, theta_o, phi_o) in
@@ -65,7 +68,10 @@ static hand hand_make(int k)
     return g;
 }
 
-static double schlick(double f0, double cd) { return f0 + (1.0 - f0) * pow(1.0 - cd, 5.0); } /* Eq. 8 */
+static double schlick(double f0, double cd)
+{
+    return f0 + (1.0 - f0) * pow(1.0 - cd, 5.0);
+} /* Eq. 8 */
 
 /* Compares channel 0 of the library against `expect` for model m with params p. */
 static void expect_eq(abrdf_model m, const abrdf_params *p, const hand *g, double expect,
@@ -99,8 +105,8 @@ START_TEST(diffuse_models)
             p = params(ABRDF_LAMBERT_FRESNEL);
             p.kd[0] = 0.8;
             p.f0[0] = f0s[j];
-            expect_eq(ABRDF_LAMBERT_FRESNEL, &p, &g, 0.8 / PI * (1.0 - schlick(f0s[j], g.cd)),
-                      REL, "Eq. 2");
+            expect_eq(ABRDF_LAMBERT_FRESNEL, &p, &g, 0.8 / PI * (1.0 - schlick(f0s[j], g.cd)), REL,
+                      "Eq. 2");
         }
 
         static const double rs[] = {0.0, 0.5, 1.0};
@@ -126,7 +132,8 @@ START_TEST(diffuse_models)
             double ti = acos(g.ci), to = acos(g.co);
             double pi_xy = hypot(g.wi[0], g.wi[1]), po_xy = hypot(g.wo[0], g.wo[1]);
             double cphi = (pi_xy > 0 && po_xy > 0)
-                              ? (g.wi[0] * g.wo[0] + g.wi[1] * g.wo[1]) / (pi_xy * po_xy) : 0.0;
+                              ? (g.wi[0] * g.wo[0] + g.wi[1] * g.wo[1]) / (pi_xy * po_xy)
+                              : 0.0;
             double alpha = fmax(ti, to), beta = fmin(ti, to);
             double e = 0.9 / PI * (A + B * fmax(0.0, cphi) * sin(alpha) * tan(beta));
             expect_eq(ABRDF_OREN_NAYAR, &p, &g, e, 1e-10, "qualitative ON");
@@ -169,7 +176,8 @@ START_TEST(table1_approximations)
             p.n = n;
             for (int q = 0; q < 4; ++q) { /* ((n/m)(c - 1) + 1)^m, zero where the base < 0 */
                 double base = (n / ms[q]) * (c - 1.0) + 1.0;
-                expect_eq(fm[q], &p, &g, 0.75 * (base > 0 ? pow(base, ms[q]) : 0.0), REL, "Table 1");
+                expect_eq(fm[q], &p, &g, 0.75 * (base > 0 ? pow(base, ms[q]) : 0.0), REL,
+                          "Table 1");
             }
             expect_eq(ABRDF_FS, &p, &g, 0.75 * c / (n - n * c + c), REL, "Schlick");
             double a = 0.786 * n;
@@ -198,7 +206,8 @@ START_TEST(fkub_cubic)
         double abd[3], x0;
         abrdf__fkub_coeffs(ns[j], abd, &x0);
         double A = -abd[2], B = abd[1] + 3.0 * abd[2], C = -abd[0] - 2.0 * abd[1] - 3.0 * abd[2];
-        ck_assert_msg(fabs(A + B + C - 1.0) < 1e-9, "fkub n=%g: f(1) = A + B + C = %.17g", ns[j], A + B + C);
+        ck_assert_msg(fabs(A + B + C - 1.0) < 1e-9, "fkub n=%g: f(1) = A + B + C = %.17g", ns[j],
+                      A + B + C);
         /* the zone starts where c^n falls to a fixed fraction of its peak, for every n */
         double abd2[3], x02;
         abrdf__fkub_coeffs(1.0, abd2, &x02);
@@ -237,7 +246,10 @@ END_TEST
 /* ---- Table 5 ------------------------------------------------------------------------ */
 
 static double k_phe(double n) { return (n + 2.0) / (2.0 * PI); }
-static double k_be(double n) { return (n + 2.0) * (n + 4.0) / (8.0 * PI * (pow(2.0, -n / 2.0) + n)); }
+static double k_be(double n)
+{
+    return (n + 2.0) * (n + 4.0) / (8.0 * PI * (pow(2.0, -n / 2.0) + n));
+}
 static double k_2e(double n) { return 0.111 / n + 0.238 * (0.481 + n); }
 static double k_16e(double n) { return (1.063 * n + 1.0) / (2.0 * PI); }
 static double k_ge(double n) { return (n + 2.0) / (4.0 * PI * (2.0 - pow(2.0, -n / 2.0))); }
@@ -266,12 +278,15 @@ START_TEST(table5_energy_conserving)
             for (int q = 0; q < 3; ++q) {
                 p.f0[0] = f0s[q];
                 double F = schlick(f0s[q], g.cd);
-                expect_eq(ABRDF_F_GE, &p, &g,
-                          0.6 * k_ge(n) * F * pow(g.ch, n) / fmax(g.ci, g.co), REL, "f_ge");
+                expect_eq(ABRDF_F_GE, &p, &g, 0.6 * k_ge(n) * F * pow(g.ch, n) / fmax(g.ci, g.co),
+                          REL, "f_ge");
                 double den = 4.0 * g.ci * g.co; /* G = 1; D on N.H */
-                expect_eq(ABRDF_F_CTPHE, &p, &g, 0.6 * k_phe(n) * pow(g.ch, n) * F / den, REL, "f_ctphe");
-                expect_eq(ABRDF_F_CT2E, &p, &g, 0.6 * k_2e(n) * lobe(n, 2, g.ch) * F / den, REL, "f_ct2e");
-                expect_eq(ABRDF_F_CT16E, &p, &g, 0.6 * k_16e(n) * lobe(n, 16, g.ch) * F / den, REL, "f_ct16e");
+                expect_eq(ABRDF_F_CTPHE, &p, &g, 0.6 * k_phe(n) * pow(g.ch, n) * F / den, REL,
+                          "f_ctphe");
+                expect_eq(ABRDF_F_CT2E, &p, &g, 0.6 * k_2e(n) * lobe(n, 2, g.ch) * F / den, REL,
+                          "f_ct2e");
+                expect_eq(ABRDF_F_CT16E, &p, &g, 0.6 * k_16e(n) * lobe(n, 16, g.ch) * F / den, REL,
+                          "f_ct16e");
             }
         }
     }
@@ -292,7 +307,10 @@ END_TEST
 
 /* ---- microfacet --------------------------------------------------------------------- */
 
-static double g1_lambda(double a2tan2) { return 2.0 / (1.0 + sqrt(1.0 + a2tan2)); } /* Smith, Eq. 9 */
+static double g1_lambda(double a2tan2)
+{
+    return 2.0 / (1.0 + sqrt(1.0 + a2tan2));
+} /* Smith, Eq. 9 */
 
 START_TEST(cook_torrance_beckmann)
 {
@@ -328,8 +346,9 @@ START_TEST(disney_specular_ggx)
             p.f0[0] = 0.9;
             double ag = rs[j] * rs[j], a2 = ag * ag;
             double D = a2 / (PI * pow(1.0 + (a2 - 1.0) * g.ch * g.ch, 2.0)); /* Eq. 6 */
-            double ti2 = (1.0 - g.ci * g.ci) / (g.ci * g.ci), to2 = (1.0 - g.co * g.co) / (g.co * g.co);
-            double G = g1_lambda(a2 * ti2) * g1_lambda(a2 * to2); /* Eq. 9 */
+            double ti2 = (1.0 - g.ci * g.ci) / (g.ci * g.ci),
+                   to2 = (1.0 - g.co * g.co) / (g.co * g.co);
+            double G = g1_lambda(a2 * ti2) * g1_lambda(a2 * to2);        /* Eq. 9 */
             double e = schlick(0.9, g.cd) * D * G / (4.0 * g.ci * g.co); /* Eq. 5 */
             /* 1e-9: 1 + (a2 - 1) ch^2 cancels near the peak for r = 0.05 in this form */
             expect_eq(ABRDF_DISNEY_SPECULAR, &p, &g, e, 1e-9, "Eqs. 5, 6, 8, 9");
@@ -354,8 +373,10 @@ START_TEST(disney_specular_anisotropic)
                 double ax = rs[q] * rs[q] / aspect, ay = rs[q] * rs[q] * aspect;
                 double u = g.h[0] / ax, v = g.h[1] / ay;
                 double D = 1.0 / (PI * ax * ay * pow(u * u + v * v + g.ch * g.ch, 2.0)); /* Eq. 7 */
-                double li = (ax * ax * g.wi[0] * g.wi[0] + ay * ay * g.wi[1] * g.wi[1]) / (g.ci * g.ci);
-                double lo = (ax * ax * g.wo[0] * g.wo[0] + ay * ay * g.wo[1] * g.wo[1]) / (g.co * g.co);
+                double li =
+                    (ax * ax * g.wi[0] * g.wi[0] + ay * ay * g.wi[1] * g.wi[1]) / (g.ci * g.ci);
+                double lo =
+                    (ax * ax * g.wo[0] * g.wo[0] + ay * ay * g.wo[1] * g.wo[1]) / (g.co * g.co);
                 double G = g1_lambda(li) * g1_lambda(lo);
                 double e = schlick(0.3, g.cd) * D * G / (4.0 * g.ci * g.co);
                 expect_eq(ABRDF_DISNEY_SPECULAR_ANISO, &p, &g, e, 1e-10, "Eq. 7");
@@ -383,7 +404,8 @@ START_TEST(disney_clearcoat_gtr1)
             p.clearcoat_gloss = gloss[j];
             double a = 0.1 + (0.001 - 0.1) * gloss[j], a2 = a * a;
             double D = (a2 - 1.0) / (PI * log(a2) * (1.0 + (a2 - 1.0) * g.ch * g.ch)); /* GTR1 */
-            double ti2 = (1.0 - g.ci * g.ci) / (g.ci * g.ci), to2 = (1.0 - g.co * g.co) / (g.co * g.co);
+            double ti2 = (1.0 - g.ci * g.ci) / (g.ci * g.ci),
+                   to2 = (1.0 - g.co * g.co) / (g.co * g.co);
             double G = g1_lambda(0.0625 * ti2) * g1_lambda(0.0625 * to2); /* alpha_g = 0.25 */
             double e = 0.8 * 0.25 * schlick(0.04, g.cd) * D * G / (4.0 * g.ci * g.co);
             expect_eq(ABRDF_DISNEY_CLEARCOAT, &p, &g, e, 1e-9, "GTR1 clearcoat");
@@ -433,32 +455,47 @@ START_TEST(shade_pixel_intensity)
     memcpy(p.ks, ks, sizeof ks);
     p.n = 20.0;
     double light[3] = {2.0, 1.0, 0.5}, amb[3] = {0.01, 0.02, 0.03}, out[3];
-    ck_assert_int_eq(abrdf_shade(ABRDF_LAMBERT, ABRDF_BLINN_PHONG, &p, &fr, wi, wo, light, amb, out), ABRDF_OK);
+    ck_assert_int_eq(
+        abrdf_shade(ABRDF_LAMBERT, ABRDF_BLINN_PHONG, &p, &fr, wi, wo, light, amb, out), ABRDF_OK);
     /* by hand, in world space: I = ka Ia + Il max(0, N.L) (kd/pi + ks (N.H)^n) */
     double nn = sqrt(dot(n, n)), li = sqrt(dot(wi, wi)), lo = sqrt(dot(wo, wo));
     double N[3] = {n[0] / nn, n[1] / nn, n[2] / nn}, L[3], V[3], H[3];
-    for (int c = 0; c < 3; ++c) { L[c] = wi[c] / li; V[c] = wo[c] / lo; H[c] = L[c] + V[c]; }
+    for (int c = 0; c < 3; ++c) {
+        L[c] = wi[c] / li;
+        V[c] = wo[c] / lo;
+        H[c] = L[c] + V[c];
+    }
     double hl = sqrt(dot(H, H));
     for (int c = 0; c < 3; ++c) H[c] /= hl;
     for (int c = 0; c < 3; ++c) {
         double e = amb[c] + light[c] * dot(N, L) * (kd[c] / PI + ks[c] * pow(dot(N, H), 20.0));
-        ck_assert_msg(tu_close(out[c], e, 1e-12, 0.0), "shade channel %d: %.17g vs %.17g", c, out[c], e);
+        ck_assert_msg(tu_close(out[c], e, 1e-12, 0.0), "shade channel %d: %.17g vs %.17g", c,
+                      out[c], e);
     }
     /* omitted terms, light from behind: ambient only */
     double back[3] = {-wi[0], -wi[1], -wi[2]};
-    ck_assert_int_eq(abrdf_shade(ABRDF_MODEL_NONE, ABRDF_BLINN_PHONG, &p, &fr, back, wo, light, amb, out), ABRDF_OK);
+    ck_assert_int_eq(
+        abrdf_shade(ABRDF_MODEL_NONE, ABRDF_BLINN_PHONG, &p, &fr, back, wo, light, amb, out),
+        ABRDF_OK);
     for (int c = 0; c < 3; ++c) ck_assert(out[c] == amb[c]);
-    ck_assert_int_eq(abrdf_shade(ABRDF_LAMBERT, ABRDF_MODEL_NONE, &p, &fr, wi, wo, light, amb, out), ABRDF_OK);
+    ck_assert_int_eq(abrdf_shade(ABRDF_LAMBERT, ABRDF_MODEL_NONE, &p, &fr, wi, wo, light, amb, out),
+                     ABRDF_OK);
     for (int c = 0; c < 3; ++c)
         ck_assert(tu_close(out[c], amb[c] + light[c] * dot(N, L) * kd[c] / PI, 1e-12, 0.0));
     /* an invalid parameter is an error and the output is 0 */
     p.n = -1.0;
-    ck_assert_int_eq(abrdf_shade(ABRDF_LAMBERT, ABRDF_BLINN_PHONG, &p, &fr, wi, wo, light, amb, out), ABRDF_E_RANGE);
+    ck_assert_int_eq(
+        abrdf_shade(ABRDF_LAMBERT, ABRDF_BLINN_PHONG, &p, &fr, wi, wo, light, amb, out),
+        ABRDF_E_RANGE);
     for (int c = 0; c < 3; ++c) ck_assert(out[c] == 0.0);
-    ck_assert_int_eq(abrdf_shade(ABRDF_LAMBERT, ABRDF_BLINN_PHONG, NULL, &fr, wi, wo, light, amb, out), ABRDF_E_NULL);
+    ck_assert_int_eq(
+        abrdf_shade(ABRDF_LAMBERT, ABRDF_BLINN_PHONG, NULL, &fr, wi, wo, light, amb, out),
+        ABRDF_E_NULL);
     /* "none" is ABRDF_MODEL_NONE: a *_COUNT is not a model, whatever the header's count */
     p.n = 20.0;
-    ck_assert_int_eq(abrdf_shade(ABRDF_MODEL_COUNT, ABRDF_BLINN_PHONG, &p, &fr, wi, wo, light, amb, out), ABRDF_E_MODEL);
+    ck_assert_int_eq(
+        abrdf_shade(ABRDF_MODEL_COUNT, ABRDF_BLINN_PHONG, &p, &fr, wi, wo, light, amb, out),
+        ABRDF_E_MODEL);
 }
 END_TEST
 

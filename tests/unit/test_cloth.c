@@ -8,7 +8,10 @@
 
 static const double PI = 3.14159265358979323846;
 
-static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 /* Neubelt-Pettineo by hand: Ashikhmin-Premoze D (sin^4 form), Schlick F, smooth visibility. */
 static double np_hand(const double wi[3], const double wo[3], double kd, double ks, double f0,
@@ -39,7 +42,8 @@ START_TEST(np_by_hand)
             tu_dir(70.0, 30.0, wo);
             double got = tu_eval1(ABRDF_NEUBELT_PETTINEO, &p, wi, wo);
             double want = np_hand(wi, wo, 0.6, 1.0, 0.1, rs[i], ks[j]);
-            ck_assert_msg(tu_close(got, want, 1e-12, 0.0), "r=%g k=%g: %.17g vs %.17g", rs[i], ks[j], got, want);
+            ck_assert_msg(tu_close(got, want, 1e-12, 0.0), "r=%g k=%g: %.17g vs %.17g", rs[i],
+                          ks[j], got, want);
         }
 }
 END_TEST
@@ -68,7 +72,8 @@ START_TEST(np_d_integrates_to_one)
                 double D = tu_eval1(ABRDF_NEUBELT_PETTINEO, &p, h, h) * 4.0 * (2.0 * c - c * c);
                 sum += D * c * sin(th) * 2.0 * PI * (PI / 2) / N;
             }
-            ck_assert_msg(fabs(sum - 1.0) < 1e-4, "r=%g k_amp=%g: int D cos = %.8f", rs[i], ks[j], sum);
+            ck_assert_msg(fabs(sum - 1.0) < 1e-4, "r=%g k_amp=%g: int D cos = %.8f", rs[i], ks[j],
+                          sum);
         }
 }
 END_TEST
@@ -82,7 +87,8 @@ START_TEST(np_reciprocal)
         double a[3], b[3];
         quad_rand_dir(&s, 0.001, a);
         quad_rand_dir(&s, 0.001, b);
-        double f1 = tu_eval1(ABRDF_NEUBELT_PETTINEO, &p, a, b), f2 = tu_eval1(ABRDF_NEUBELT_PETTINEO, &p, b, a);
+        double f1 = tu_eval1(ABRDF_NEUBELT_PETTINEO, &p, a, b),
+               f2 = tu_eval1(ABRDF_NEUBELT_PETTINEO, &p, b, a);
         ck_assert_msg(tu_close(f1, f2, 1e-12, 0.0), "%.17g vs %.17g", f1, f2);
     }
     ck_assert(abrdf_model_get(ABRDF_NEUBELT_PETTINEO)->props & ABRDF_PROP_RECIPROCAL);
@@ -105,7 +111,8 @@ START_TEST(np_white_furnace)
             p.r = rs[i];
             p.kd[0] = 1.0;
             p.f0[0] = 0.0;
-            double a = quad_albedo(ABRDF_NEUBELT_PETTINEO, &p, th[j], fmax(0.05, rs[i] * rs[i]), 96, 0);
+            double a =
+                quad_albedo(ABRDF_NEUBELT_PETTINEO, &p, th[j], fmax(0.05, rs[i] * rs[i]), 96, 0);
             ck_assert_msg(a <= 1.0 + 2e-3 && a > 0.97, "r=%g th=%g: rho = %.6f", rs[i], th[j], a);
             p.kd[0] = 0.0;
             p.f0[0] = 1.0;
@@ -179,13 +186,15 @@ START_TEST(kk_reciprocity)
         double a[3], b[3];
         quad_rand_dir(&s, 0.001, a);
         quad_rand_dir(&s, 0.001, b);
-        ck_assert(tu_close(tu_eval1(ABRDF_KAJIYA_KAY, &p, a, b), tu_eval1(ABRDF_KAJIYA_KAY, &p, b, a), 1e-12, 0.0));
+        ck_assert(tu_close(tu_eval1(ABRDF_KAJIYA_KAY, &p, a, b),
+                           tu_eval1(ABRDF_KAJIYA_KAY, &p, b, a), 1e-12, 0.0));
     }
     p.kd[0] = 0.5;
     double a[3], b[3];
     tu_dir(10.0, 0.0, a);
     tu_dir(80.0, 0.0, b);
-    ck_assert(!tu_close(tu_eval1(ABRDF_KAJIYA_KAY, &p, a, b), tu_eval1(ABRDF_KAJIYA_KAY, &p, b, a), 1e-3, 0.0));
+    ck_assert(!tu_close(tu_eval1(ABRDF_KAJIYA_KAY, &p, a, b), tu_eval1(ABRDF_KAJIYA_KAY, &p, b, a),
+                        1e-3, 0.0));
     ck_assert(!(abrdf_model_get(ABRDF_KAJIYA_KAY)->props & ABRDF_PROP_RECIPROCAL));
     ck_assert(!(abrdf_model_get(ABRDF_KAJIYA_KAY)->props & ABRDF_PROP_ENERGY_CONSERVING));
     ck_assert(abrdf_model_get(ABRDF_KAJIYA_KAY)->needs & ABRDF_NEEDS_TANGENT);
@@ -237,12 +246,15 @@ START_TEST(cloth_stability_grid)
             for (int i = 0; i < 400; ++i) {
                 double L[3], V[3], n[3] = {0, 0, 1}, t[3];
                 quad_rand_dir(&s, i % 4 == 0 ? 0.0 : -0.2, L);
-                if (i % 4 == 0) L[2] = 1e-9 * (i % 3);       /* grazing */
+                if (i % 4 == 0) L[2] = 1e-9 * (i % 3); /* grazing */
                 quad_rand_dir(&s, -0.2, V);
-                if (i % 7 == 0) for (int c = 0; c < 3; ++c) V[c] = L[c];   /* L = V */
-                if (i % 11 == 0) for (int c = 0; c < 3; ++c) V[c] = -L[c]; /* L = -V */
+                if (i % 7 == 0)
+                    for (int c = 0; c < 3; ++c) V[c] = L[c]; /* L = V */
+                if (i % 11 == 0)
+                    for (int c = 0; c < 3; ++c) V[c] = -L[c]; /* L = -V */
                 int tk = i % 4; /* tangent: parallel to L, parallel to V, zero, random */
-                for (int c = 0; c < 3; ++c) t[c] = tk == 0 ? L[c] : tk == 1 ? V[c] : tk == 2 ? 0.0 : V[c] - L[c];
+                for (int c = 0; c < 3; ++c)
+                    t[c] = tk == 0 ? L[c] : tk == 1 ? V[c] : tk == 2 ? 0.0 : V[c] - L[c];
                 abrdf_frame fr;
                 abrdf_frame_make(n, t, &fr);
                 double f[3];
@@ -255,8 +267,10 @@ START_TEST(cloth_stability_grid)
                 tu_count(&k, f);
                 abrdf_eval(ms[mi], &p, NULL, Vl, Ll, f);
                 tu_count(&k, f);
-                float bx[2] = {(float)L[0], 1.0f}, by[2] = {(float)L[1], 0.0f}, bz[2] = {(float)L[2], 1e-30f};
-                float cx[2] = {(float)V[0], (float)V[0]}, cy[2] = {(float)V[1], (float)V[1]}, cz[2] = {(float)V[2], (float)V[2]};
+                float bx[2] = {(float)L[0], 1.0f}, by[2] = {(float)L[1], 0.0f},
+                      bz[2] = {(float)L[2], 1e-30f};
+                float cx[2] = {(float)V[0], (float)V[0]}, cy[2] = {(float)V[1], (float)V[1]},
+                      cz[2] = {(float)V[2], (float)V[2]};
                 float o0[2], o1[2], o2[2];
                 abrdf_batch bt = {2, bx, by, bz, cx, cy, cz, o0, o1, o2};
                 abrdf_eval_batch(ms[mi], &p, &bt);
@@ -266,8 +280,10 @@ START_TEST(cloth_stability_grid)
                 }
             }
         }
-        printf("stability %s: scalar %ld values (NaN %ld, Inf %ld, negative %ld); batch %ld (NaN %ld, Inf %ld, negative %ld)\n",
-               abrdf_model_get(ms[mi])->name, k.evals, k.nan, k.inf, k.neg, kb.evals, kb.nan, kb.inf, kb.neg);
+        printf("stability %s: scalar %ld values (NaN %ld, Inf %ld, negative %ld); batch %ld (NaN "
+               "%ld, Inf %ld, negative %ld)\n",
+               abrdf_model_get(ms[mi])->name, k.evals, k.nan, k.inf, k.neg, kb.evals, kb.nan,
+               kb.inf, kb.neg);
         ck_assert(k.evals >= 100000);
         ck_assert(k.nan == 0 && k.inf == 0 && k.neg == 0);
         ck_assert(kb.nan == 0 && kb.inf == 0 && kb.neg == 0);

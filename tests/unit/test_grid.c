@@ -17,7 +17,10 @@ typedef struct tg_vals {
     double v[6][3]; /* one RGB triple per value; scalars use v[k][0] */
 } tg_vals;
 
-#define S(x) {x, x, x}
+#define S(x)                                                                                       \
+    {                                                                                              \
+        x, x, x                                                                                    \
+    }
 static const tg_vals typical[] = {
     {"kd", 2, {S(1.0), {0.25, 0.5, 1.0}}},
     {"ks", 2, {S(1.0), {0.25, 0.5, 1.0}}},
@@ -63,13 +66,14 @@ static const tg_vals *find_vals(const tg_vals *t, int n, const char *name)
 }
 
 /* The values of one model parameter for `kind`, inside the model's range, deduplicated. */
-static int param_values(tg_kind kind, unsigned props, const abrdf_model_param *mp,
-                        double out[8][3])
+static int param_values(tg_kind kind, unsigned props, const abrdf_model_param *mp, double out[8][3])
 {
     const abrdf_param_info *pi = abrdf_param_get(mp->id);
     const tg_vals *v = NULL;
-    if (kind == TG_TYPICAL) v = find_vals(typical, (int)(sizeof typical / sizeof *typical), pi->name);
-    if (kind == TG_FURNACE) v = find_vals(furnace, (int)(sizeof furnace / sizeof *furnace), pi->name);
+    if (kind == TG_TYPICAL)
+        v = find_vals(typical, (int)(sizeof typical / sizeof *typical), pi->name);
+    if (kind == TG_FURNACE)
+        v = find_vals(furnace, (int)(sizeof furnace / sizeof *furnace), pi->name);
     if (kind == TG_HARD) v = find_vals(hard, (int)(sizeof hard / sizeof *hard), pi->name);
     double cand[8][3];
     int nc = 0;
@@ -108,9 +112,23 @@ void *tg_param_ptr(abrdf_params *p, int id)
     const abrdf_param_info *pi = abrdf_param_get(id);
     if (!pi) return NULL;
     const char *nm = pi->name;
-#define F(field) if (!strcmp(nm, #field)) return (void *)&p->field
-    F(kd); F(ks); F(f0); F(n); F(r); F(anisotropic); F(sigma); F(clearcoat_gloss); F(k_amp);
-    F(eta); F(melanin); F(redness); F(cuticle_tilt); F(aspect_ratio); F(layer_count);
+#define F(field)                                                                                   \
+    if (!strcmp(nm, #field)) return (void *)&p->field
+    F(kd);
+    F(ks);
+    F(f0);
+    F(n);
+    F(r);
+    F(anisotropic);
+    F(sigma);
+    F(clearcoat_gloss);
+    F(k_amp);
+    F(eta);
+    F(melanin);
+    F(redness);
+    F(cuticle_tilt);
+    F(aspect_ratio);
+    F(layer_count);
 #undef F
     int k;
     char rest[32];
@@ -130,9 +148,12 @@ static void store(abrdf_params *p, int id, const double v[3])
     const abrdf_param_info *pi = abrdf_param_get(id);
     void *ptr = tg_param_ptr(p, id);
     if (!ptr) return;
-    if (pi->kind == ABRDF_PARAM_INT) *(int *)ptr = (int)v[0];
-    else if (pi->kind == ABRDF_PARAM_RGB) memcpy(ptr, v, 3 * sizeof(double));
-    else *(double *)ptr = v[0];
+    if (pi->kind == ABRDF_PARAM_INT)
+        *(int *)ptr = (int)v[0];
+    else if (pi->kind == ABRDF_PARAM_RGB)
+        memcpy(ptr, v, 3 * sizeof(double));
+    else
+        *(double *)ptr = v[0];
 }
 
 static void label_append(char *buf, size_t size, const char *name, const double v[3], int rgb)
@@ -166,14 +187,20 @@ int tg_param_sets(abrdf_model model, tg_kind kind, tg_set *out, int max)
     for (long s = 0; s < total; ++s) {
         if (product <= max) { /* full product: mixed-radix digits of s */
             long q = s;
-            for (int i = 0; i < np; ++i) { idx[i] = (int)(q % nv[i]); q /= nv[i]; }
+            for (int i = 0; i < np; ++i) {
+                idx[i] = (int)(q % nv[i]);
+                q /= nv[i];
+            }
         } else { /* defaults, then one parameter at a time, then random combinations */
             long q = s;
             for (int i = 0; i < np; ++i) idx[i] = 0;
             int walked = 0;
             for (int i = 0; i < np && !walked; ++i) {
-                if (q < nv[i] - 1) { idx[i] = (int)q + 1; walked = 1; }
-                else q -= nv[i] - 1;
+                if (q < nv[i] - 1) {
+                    idx[i] = (int)q + 1;
+                    walked = 1;
+                } else
+                    q -= nv[i] - 1;
             }
             if (!walked && s > 0)
                 for (int i = 0; i < np; ++i) idx[i] = (int)(tg_uniform(&rng) * nv[i]);
@@ -185,7 +212,8 @@ int tg_param_sets(abrdf_model model, tg_kind kind, tg_set *out, int max)
             store(&t->p, m->params[i].id, vals[i][idx[i]]);
             if (nv[i] > 1)
                 label_append(t->label, sizeof t->label, abrdf_param_get(m->params[i].id)->name,
-                             vals[i][idx[i]], abrdf_param_get(m->params[i].id)->kind == ABRDF_PARAM_RGB);
+                             vals[i][idx[i]],
+                             abrdf_param_get(m->params[i].id)->kind == ABRDF_PARAM_RGB);
         }
         if (!t->label[0]) snprintf(t->label, sizeof t->label, "defaults");
     }
@@ -231,8 +259,8 @@ void tg_mirror(const double w[3], double out[3])
 
 /* 8-point Gauss-Legendre on [-1, 1] (exact for polynomials of degree <= 15). */
 static const double gl_x[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
-                               -0.1834346424956498, 0.1834346424956498, 0.5255324099163290,
-                               0.7966664774136267, 0.9602898564975363};
+                               -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                               0.7966664774136267,  0.9602898564975363};
 static const double gl_w[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
                                0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
                                0.2223810344533745, 0.1012285362903763};
@@ -243,8 +271,8 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-double tg_albedo(abrdf_model model, const abrdf_params *p, const double wi[3], int panels,
-                 int nphi, long *evals)
+double tg_albedo(abrdf_model model, const abrdf_params *p, const double wi[3], int panels, int nphi,
+                 long *evals)
 {
     /* Every lobe of the library peaks at (or near) the mirror direction, at mu_r = cos
      * theta_i and azimuth phi_r = phi_i + pi. Panel breakpoints are graded geometrically
@@ -290,8 +318,8 @@ double tg_albedo(abrdf_model model, const abrdf_params *p, const double wi[3], i
     return fmax(sum[0], fmax(sum[1], sum[2]));
 }
 
-double tg_albedo_converged(abrdf_model model, const abrdf_params *p, const double wi[3],
-                           double tol, int max_level, double *diff, int *level, long *evals)
+double tg_albedo_converged(abrdf_model model, const abrdf_params *p, const double wi[3], double tol,
+                           int max_level, double *diff, int *level, long *evals)
 {
     int panels = 4, nphi = 32;
     double prev = tg_albedo(model, p, wi, panels, nphi, evals), cur = prev, d = INFINITY;

@@ -30,10 +30,12 @@ int tg_param_sets(abrdf_model model, tg_kind kind, tg_set *out, int max);
 void *tg_param_ptr(abrdf_params *p, int id);
 
 /* xorshift64*: deterministic, reproducible on every platform. */
-typedef struct tg_rng { unsigned long long s; } tg_rng;
-double tg_uniform(tg_rng *r);                   /* [0, 1) */
-void tg_sphere(tg_rng *r, double out[3]);       /* uniform on the unit sphere */
-void tg_hemisphere(tg_rng *r, double out[3]);   /* uniform on the upper hemisphere */
+typedef struct tg_rng {
+    unsigned long long s;
+} tg_rng;
+double tg_uniform(tg_rng *r);                 /* [0, 1) */
+void tg_sphere(tg_rng *r, double out[3]);     /* uniform on the unit sphere */
+void tg_hemisphere(tg_rng *r, double out[3]); /* uniform on the upper hemisphere */
 
 /* Mirror of w about the normal +z. */
 void tg_mirror(const double w[3], double out[3]);
@@ -45,13 +47,13 @@ void tg_mirror(const double w[3], double out[3]);
  * that clusters `nphi` points around the mirror azimuth (spectrally accurate for smooth
  * lobes).
  * Returns -1 if an evaluation fails. `evals` (if not NULL) is increased by the count. */
-double tg_albedo(abrdf_model model, const abrdf_params *p, const double wi[3], int panels,
-                 int nphi, long *evals);
+double tg_albedo(abrdf_model model, const abrdf_params *p, const double wi[3], int panels, int nphi,
+                 long *evals);
 
 /* tg_albedo refined (panels, nphi doubled) until two successive levels agree to within
  * `tol`, starting at (4, 32), at most `max_level` doublings. Returns the finer value;
  * *diff receives the last difference (converged if <= tol), *level the doublings used. */
-double tg_albedo_converged(abrdf_model model, const abrdf_params *p, const double wi[3],
-                           double tol, int max_level, double *diff, int *level, long *evals);
+double tg_albedo_converged(abrdf_model model, const abrdf_params *p, const double wi[3], double tol,
+                           int max_level, double *diff, int *level, long *evals);
 
 #endif

@@ -18,7 +18,8 @@ static void setup(abrdf__huang *m, double melanin, double aspect)
     abrdf__huang_setup(&p, m);
 }
 
-static void fibre(const void *m, const double wi[3], const double wo[3], unsigned lobes, double s[3])
+static void fibre(const void *m, const double wi[3], const double wo[3], unsigned lobes,
+                  double s[3])
 {
     abrdf__huang_fibre(m, wi, wo, lobes, s);
 }
@@ -91,7 +92,8 @@ START_TEST(white_furnace_uncompensated)
         m.n2 = 2;
         m.compensate = 0;
         double e = fibre_albedo(&m, 0.0, 7u, 12), t = fibre_albedo(&m, 0.0, 8u, 12);
-        printf("huang white furnace, no compensation, b=%.2f theta_o=0: R+TT+TRT %.4f, TRRT+ %.4f, total %.4f\n",
+        printf("huang white furnace, no compensation, b=%.2f theta_o=0: R+TT+TRT %.4f, TRRT+ %.4f, "
+               "total %.4f\n",
                asp[k], e, t, e + t);
         ck_assert_msg(e <= 1.0 && e > 0.2, "R+TT+TRT albedo %.4f", e);
         if (k >= 1) ck_assert_msg(e <= prev + 5e-3, "loss must grow with eccentricity: %.4f", e);
@@ -106,7 +108,8 @@ START_TEST(white_furnace_uncompensated)
         m.n2 = 2;
         m.compensate = 0;
         double a = fibre_albedo(&m, deg[k] * PI / 180, 15u, 12);
-        printf("huang white furnace, no compensation, b=0.85 theta_o=%.0f: total %.4f\n", deg[k], a);
+        printf("huang white furnace, no compensation, b=0.85 theta_o=%.0f: total %.4f\n", deg[k],
+               a);
         ck_assert_msg(a <= 1.02 && a > 0.6, "total albedo %.4f at %g deg", a, deg[k]);
     }
 }
@@ -156,27 +159,33 @@ START_TEST(stability_grid)
     const double rr[] = {0.05, 1.0};
     const double tilt[] = {-10, 10};
     const double asp[] = {0.01, 0.85, 1.0};
-    const double dirs[][3] = {{1, 0, 1e-12}, {-1, 0, 1e-12}, {0, 0, 1}, {0.6, 0, 0.8},
+    const double dirs[][3] = {{1, 0, 1e-12}, {-1, 0, 1e-12},    {0, 0, 1},         {0.6, 0, 0.8},
                               {0, 1, 1e-12}, {0.3, 0.4, 0.866}, {0.99, -0.1, 0.1}, {0, 0, 0}};
     const int nd = (int)(sizeof dirs / sizeof dirs[0]);
     tu_counts cnt = {0, 0, 0, 0};
     abrdf_params p;
     abrdf_params_init(ABRDF_HUANG, &p);
     for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 2; ++b)
-    for (int c = 0; c < 2; ++c)
-    for (int d = 0; d < 2; ++d)
-    for (int e = 0; e < 3; ++e) {
-        p.eta = etas[a]; p.melanin = mel[b]; p.r = rr[c]; p.cuticle_tilt = tilt[d];
-        p.aspect_ratio = asp[e];
-        for (int i = 0; i < nd; ++i)
-            for (int o = 0; o < nd; ++o) {
-                if (c == 0 && (i + o) % 5) continue; /* alpha = 0.05 is slow: a fifth */
-                double f[3];
-                ck_assert_int_eq(abrdf_eval(ABRDF_HUANG, &p, NULL, dirs[i], dirs[o], f), ABRDF_OK);
-                tu_count(&cnt, f);
-            }
-    }
+        for (int b = 0; b < 2; ++b)
+            for (int c = 0; c < 2; ++c)
+                for (int d = 0; d < 2; ++d)
+                    for (int e = 0; e < 3; ++e) {
+                        p.eta = etas[a];
+                        p.melanin = mel[b];
+                        p.r = rr[c];
+                        p.cuticle_tilt = tilt[d];
+                        p.aspect_ratio = asp[e];
+                        for (int i = 0; i < nd; ++i)
+                            for (int o = 0; o < nd; ++o) {
+                                if (c == 0 && (i + o) % 5)
+                                    continue; /* alpha = 0.05 is slow: a fifth */
+                                double f[3];
+                                ck_assert_int_eq(
+                                    abrdf_eval(ABRDF_HUANG, &p, NULL, dirs[i], dirs[o], f),
+                                    ABRDF_OK);
+                                tu_count(&cnt, f);
+                            }
+                    }
     const double zero[3] = {0, 0, 0}, n[3] = {0, 0, 1};
     abrdf_frame fr;
     abrdf_frame_make(n, zero, &fr);
@@ -203,9 +212,11 @@ END_TEST
  * deg, 0 at 1e-13 deg; held to 1e-6. */
 START_TEST(coplanar_continuity)
 {
-    const struct { double ti, pi, to, po; } cfg[] = {
-        {85, 180, 85, 180}, {85, 0, 85, 0}, {40, 0, 70, 180}, {40, 180, 70, 0},
-        {40, 0, 70, 0}, {60, 180, 30, 180}, {10, 0, 80, 0}, {85, 0, 85, 180}, {60, 0, 20, 180}};
+    const struct {
+        double ti, pi, to, po;
+    } cfg[] = {{85, 180, 85, 180}, {85, 0, 85, 0},   {40, 0, 70, 180},
+               {40, 180, 70, 0},   {40, 0, 70, 0},   {60, 180, 30, 180},
+               {10, 0, 80, 0},     {85, 0, 85, 180}, {60, 0, 20, 180}};
     const double d[] = {1e-13, 1e-9, 1e-6};
     const int sides[][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}};
     abrdf_params p;
@@ -228,9 +239,11 @@ START_TEST(coplanar_continuity)
                 for (int ch = 0; ch < 3; ++ch) {
                     double rel = fabs(f[ch] - f0[ch]) / f0[ch];
                     worst = fmax(worst, rel);
-                    ck_assert_msg(rel <= 1e-6, "theta %g/%g phi %g/%g turned by (%d, %d) x %g deg: "
-                                  "%.9g vs %.9g", cfg[c].ti, cfg[c].to, cfg[c].pi, cfg[c].po,
-                                  sides[sd][0], sides[sd][1], d[k], f[ch], f0[ch]);
+                    ck_assert_msg(rel <= 1e-6,
+                                  "theta %g/%g phi %g/%g turned by (%d, %d) x %g deg: "
+                                  "%.9g vs %.9g",
+                                  cfg[c].ti, cfg[c].to, cfg[c].pi, cfg[c].po, sides[sd][0],
+                                  sides[sd][1], d[k], f[ch], f0[ch]);
                 }
             }
     }

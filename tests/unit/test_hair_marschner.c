@@ -18,13 +18,15 @@ static void setup(abrdf__marschner *m, double melanin)
     abrdf__marschner_setup(&p, m);
 }
 
-static void fibre(const void *m, const double wi[3], const double wo[3], unsigned lobes, double s[3])
+static void fibre(const void *m, const double wi[3], const double wo[3], unsigned lobes,
+                  double s[3])
 {
     abrdf__marschner_fibre(m, wi, wo, lobes, s);
 }
 
 /* Fibre albedo: integral of S over the sphere of wi (midpoint rule, nt x np cells). */
-static double fibre_albedo(const abrdf__marschner *m, double theta_o, unsigned lobes, int nt, int np)
+static double fibre_albedo(const abrdf__marschner *m, double theta_o, unsigned lobes, int nt,
+                           int np)
 {
     return htu_fibre_albedo(fibre, m, theta_o, lobes, nt, np);
 }
@@ -41,7 +43,8 @@ START_TEST(n_r_closed_form)
         double c = cos(phi / 2), ct = sqrt(1 - (1 - c * c) / (1.55 * 1.55));
         double rs = (c - 1.55 * ct) / (c + 1.55 * ct), rp = (1.55 * c - ct) / (1.55 * c + ct);
         double expect = 0.5 * (rs * rs + rp * rp) * c / 4.0;
-        ck_assert_msg(tu_close(n[0], expect, 1e-9, 1e-15), "N_R(%g) %.12g vs %.12g", phi, n[0], expect);
+        ck_assert_msg(tu_close(n[0], expect, 1e-9, 1e-15), "N_R(%g) %.12g vs %.12g", phi, n[0],
+                      expect);
     }
 }
 END_TEST
@@ -53,7 +56,7 @@ START_TEST(fresnel_limits)
     ck_assert(tu_close(abrdf__fresnel_dielectric(1.55, 1.0), f0, 1e-14, 0));
     ck_assert(tu_close(abrdf__fresnel_dielectric(1.55, 0.0), 1.0, 1e-14, 0));
     ck_assert(abrdf__fresnel_dielectric(1.0, 0.3) < 1e-30);
-    ck_assert(abrdf__fresnel_dielectric(1.0 / 1.55, 0.2) == 1.0);        /* beyond critical */
+    ck_assert(abrdf__fresnel_dielectric(1.0 / 1.55, 0.2) == 1.0); /* beyond critical */
     ck_assert(tu_close(abrdf__fresnel_dielectric(1.0 / 1.55, 1.0), f0, 1e-14, 0));
 }
 END_TEST
@@ -76,7 +79,8 @@ START_TEST(m_p_integrates_to_one)
         sum *= PI / n;
         double s2 = m.beta[p] * sqrt(2.0);
         double expect = 0.5 * (erf((b - m.alpha[p]) / s2) - erf((a - m.alpha[p]) / s2));
-        ck_assert_msg(tu_close(sum, expect, 1e-8, 0), "M_%d integrates to %.12f, not %.12f", p, sum, expect);
+        ck_assert_msg(tu_close(sum, expect, 1e-8, 0), "M_%d integrates to %.12f, not %.12f", p, sum,
+                      expect);
         ck_assert(expect > 0.99);
     }
 }
@@ -122,7 +126,8 @@ START_TEST(r_lobe_by_hand)
     htu_fdir(to, po, wo);
     abrdf__marschner_fibre(&m, wi, wo, 1u, s);
     double th = 0.5 * (ti + to), td = 0.5 * (to - ti);
-    double mr = 0.5 * exp(-0.5 * pow((th - m.alpha[0]) / m.beta[0], 2)) / (m.beta[0] * sqrt(2 * PI));
+    double mr =
+        0.5 * exp(-0.5 * pow((th - m.alpha[0]) / m.beta[0], 2)) / (m.beta[0] * sqrt(2 * PI));
     /* N_R: h = -sin(phi/2), eta', eta'' Fresnel for the two polarisations */
     double phi = po - pi_, c = cos(phi / 2);
     double e1 = sqrt(1.55 * 1.55 - sin(td) * sin(td)) / cos(td);
@@ -196,27 +201,32 @@ START_TEST(stability_grid)
     const double rr[] = {0.01, 0.13, 1.0};
     const double tilt[] = {-10, 0, 10};
     const double asp[] = {0.75, 1.0};
-    const double dirs[][3] = {{1, 0, 1e-12}, {-1, 0, 1e-12}, {1, 1e-9, 1e-9}, {0, 0, 1},
-                              {0.6, 0, 0.8}, {-0.6, 0, 0.8}, {0, 1, 1e-12}, {0, -1, 1e-12},
-                              {0.3, 0.4, 0.866}, {0.99, -0.1, 0.1}, {0, 0, -1}, {0, 0, 0}};
+    const double dirs[][3] = {{1, 0, 1e-12},     {-1, 0, 1e-12},    {1, 1e-9, 1e-9}, {0, 0, 1},
+                              {0.6, 0, 0.8},     {-0.6, 0, 0.8},    {0, 1, 1e-12},   {0, -1, 1e-12},
+                              {0.3, 0.4, 0.866}, {0.99, -0.1, 0.1}, {0, 0, -1},      {0, 0, 0}};
     const int nd = (int)(sizeof dirs / sizeof dirs[0]);
     tu_counts cnt = {0, 0, 0, 0};
     abrdf_params p;
     abrdf_params_init(ABRDF_MARSCHNER, &p);
     for (int a = 0; a < 6; ++a)
-    for (int b = 0; b < 3; ++b)
-    for (int c = 0; c < 3; ++c)
-    for (int d = 0; d < 3; ++d)
-    for (int e = 0; e < 2; ++e) {
-        p.eta = etas[a]; p.melanin = mel[b]; p.r = rr[c]; p.cuticle_tilt = tilt[d];
-        p.aspect_ratio = asp[e];
-        for (int i = 0; i < nd; ++i)
-            for (int o = 0; o < nd; ++o) {
-                double f[3];
-                ck_assert_int_eq(abrdf_eval(ABRDF_MARSCHNER, &p, NULL, dirs[i], dirs[o], f), ABRDF_OK);
-                tu_count(&cnt, f);
-            }
-    }
+        for (int b = 0; b < 3; ++b)
+            for (int c = 0; c < 3; ++c)
+                for (int d = 0; d < 3; ++d)
+                    for (int e = 0; e < 2; ++e) {
+                        p.eta = etas[a];
+                        p.melanin = mel[b];
+                        p.r = rr[c];
+                        p.cuticle_tilt = tilt[d];
+                        p.aspect_ratio = asp[e];
+                        for (int i = 0; i < nd; ++i)
+                            for (int o = 0; o < nd; ++o) {
+                                double f[3];
+                                ck_assert_int_eq(
+                                    abrdf_eval(ABRDF_MARSCHNER, &p, NULL, dirs[i], dirs[o], f),
+                                    ABRDF_OK);
+                                tu_count(&cnt, f);
+                            }
+                    }
     /* a zero tangent and a tangent parallel to N: abrdf_frame_make picks one */
     const double zero[3] = {0, 0, 0}, up[3] = {0, 0, 1}, n[3] = {0, 0, 1};
     const double *tans[2] = {zero, up};
@@ -227,7 +237,8 @@ START_TEST(stability_grid)
         for (int i = 0; i < nd; ++i)
             for (int o = 0; o < nd; ++o) {
                 double f[3];
-                ck_assert_int_eq(abrdf_eval(ABRDF_MARSCHNER, &p, &fr, dirs[i], dirs[o], f), ABRDF_OK);
+                ck_assert_int_eq(abrdf_eval(ABRDF_MARSCHNER, &p, &fr, dirs[i], dirs[o], f),
+                                 ABRDF_OK);
                 tu_count(&cnt, f);
             }
     }

@@ -24,7 +24,8 @@ static const char *tmp_path(const char *name)
 static float *ramp(int w, int h)
 {
     float *p = malloc((size_t)w * h * 3 * sizeof *p);
-    for (int i = 0; i < w * h * 3; ++i) p[i] = (float)(0.001 + 7.3 * sin(0.37 * i) * sin(0.37 * i)) / (float)(1 + i % 5);
+    for (int i = 0; i < w * h * 3; ++i)
+        p[i] = (float)(0.001 + 7.3 * sin(0.37 * i) * sin(0.37 * i)) / (float)(1 + i % 5);
     return p;
 }
 
@@ -59,7 +60,8 @@ START_TEST(hdr_round_trip_is_close)
     /* RGBE: 8-bit mantissa shared by the pixel's largest channel. */
     for (int i = 0; i < w * h; ++i) {
         float mx = fmaxf(p[3 * i], fmaxf(p[3 * i + 1], p[3 * i + 2]));
-        for (int c = 0; c < 3; ++c) ck_assert(fabsf(img.pixels[3 * i + c] - p[3 * i + c]) <= mx / 64);
+        for (int c = 0; c < 3; ++c)
+            ck_assert(fabsf(img.pixels[3 * i + c] - p[3 * i + c]) <= mx / 64);
     }
     abrdf_image_free(&img);
     free(p);
@@ -72,14 +74,16 @@ START_TEST(preview_is_srgb_encoded)
     float px[4 * 3] = {0.18f, 0.18f, 0.18f, 1, 1, 1, 0, 0, 0, 4, 4, 4};
     char err[512];
     const char *png = tmp_path("grey.png");
-    ck_assert_msg(abrdf_image_write_preview(png, 2, 2, px, NULL, NULL, NULL, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(abrdf_image_write_preview(png, 2, 2, px, NULL, NULL, NULL, err, sizeof err) == 0,
+                  "%s", err);
     /* Reading decodes sRGB back to linear: 0.18 must come back as exactly code 118's value
      * (codes 117 and 119 decode to 0.1779 and 0.1845). */
     abrdf_image img;
     ck_assert_msg(abrdf_image_read(png, &img, err, sizeof err) == 0, "%s", err);
     double code118 = pow((118 / 255.0 + 0.055) / 1.055, 2.4);
     for (int c = 0; c < 3; ++c) {
-        ck_assert_msg(fabs(img.pixels[c] - code118) < 2e-5, "grey decoded to %g, want %g", img.pixels[c], code118);
+        ck_assert_msg(fabs(img.pixels[c] - code118) < 2e-5, "grey decoded to %g, want %g",
+                      img.pixels[c], code118);
         ck_assert(fabs(img.pixels[3 + c] - 1) < 1e-5);
         ck_assert(fabs(img.pixels[6 + c]) < 1e-6);
         ck_assert(fabs(img.pixels[9 + c] - 1) < 1e-5);
@@ -92,9 +96,13 @@ START_TEST(preview_rejects_unknown_view)
 {
     float px[3] = {0.5f, 0.5f, 0.5f};
     char err[512] = "";
-    ck_assert_int_eq(abrdf_image_write_preview(tmp_path("v.png"), 1, 1, px, NULL, NULL, "NoSuchView", err, sizeof err), -1);
+    ck_assert_int_eq(abrdf_image_write_preview(tmp_path("v.png"), 1, 1, px, NULL, NULL,
+                                               "NoSuchView", err, sizeof err),
+                     -1);
     ck_assert_ptr_nonnull(strstr(err, "NoSuchView"));
-    ck_assert_int_eq(abrdf_image_write_preview(tmp_path("v.png"), 1, 1, px, "no-such-config.ocio", NULL, NULL, err, sizeof err), -1);
+    ck_assert_int_eq(abrdf_image_write_preview(tmp_path("v.png"), 1, 1, px, "no-such-config.ocio",
+                                               NULL, NULL, err, sizeof err),
+                     -1);
 }
 END_TEST
 
@@ -109,7 +117,8 @@ START_TEST(errors_name_the_file)
     ck_assert_int_eq(abrdf_image_write_linear(tmp_path("lin.png"), 1, 1, px, err, sizeof err), -1);
     ck_assert_ptr_nonnull(strstr(err, "lin.png"));
     ck_assert_int_eq(abrdf_image_write_linear(tmp_path("zero.exr"), 0, 1, px, err, sizeof err), -1);
-    ck_assert_int_eq(abrdf_image_write_linear(tmp_path("x.unknownext"), 1, 1, px, err, sizeof err), -1);
+    ck_assert_int_eq(abrdf_image_write_linear(tmp_path("x.unknownext"), 1, 1, px, err, sizeof err),
+                     -1);
     FILE *f = fopen(tmp_path("garbage.exr"), "wb");
     fputs("not an image", f);
     fclose(f);
@@ -122,7 +131,8 @@ START_TEST(heatmap_is_written)
     float v[6] = {0, 0.2f, 0.4f, 0.6f, 0.8f, 1};
     char err[512];
     const char *png = tmp_path("heat.png");
-    ck_assert_msg(abrdf_image_write_heatmap(png, 3, 2, v, 1.0, NULL, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(abrdf_image_write_heatmap(png, 3, 2, v, 1.0, NULL, err, sizeof err) == 0, "%s",
+                  err);
     abrdf_image img;
     ck_assert_msg(abrdf_image_read(png, &img, err, sizeof err) == 0, "%s", err);
     ck_assert_int_eq(img.width, 3);
@@ -150,7 +160,8 @@ static Suite *suite(void)
 
 int main(void)
 {
-    snprintf(tmpdir, sizeof tmpdir, "%s/abrdf_image_io_XXXXXX", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
+    snprintf(tmpdir, sizeof tmpdir, "%s/abrdf_image_io_XXXXXX",
+             getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp");
     if (!mkdtemp(tmpdir)) return 1;
     int rc = tu_run(suite());
     char cmd[400];

@@ -18,7 +18,9 @@
 /* Models that are not reciprocal on purpose, with the reason. A model without
  * ABRDF_PROP_RECIPROCAL must be listed here (and in docs/MODELS.md), and must measurably
  * break reciprocity on the grid (otherwise its flag is probably just missing). */
-static const struct { const char *name, *why; } nonreciprocal[] = {
+static const struct {
+    const char *name, *why;
+} nonreciprocal[] = {
     {"kajiya_kay", "its diffuse term kd sin(T, L) depends on the light direction only (a "
                    "radiance-like fur lobe, MODELS.md B6.4); the specular bracket is symmetric"},
     {"marschner", "f_r = S / cos(theta_i): the fibre's projected width is taken for the "
@@ -130,9 +132,8 @@ START_TEST(finite_nonnegative_reciprocal)
                 if (st1 || st2 || !is_finite_nonneg(a) || !is_finite_nonneg(b)) {
                     if (bad++ < MAX_REPORT)
                         printf("BAD %s [%s] wi=(%g,%g,%g) wo=(%g,%g,%g): st %d/%d f=%g/%g\n",
-                               m->name, sets[s].label, grid.wi[k][0], grid.wi[k][1],
-                               grid.wi[k][2], grid.wo[k][0], grid.wo[k][1], grid.wo[k][2], st1,
-                               st2, a[0], b[0]);
+                               m->name, sets[s].label, grid.wi[k][0], grid.wi[k][1], grid.wi[k][2],
+                               grid.wo[k][0], grid.wo[k][1], grid.wo[k][2], st1, st2, a[0], b[0]);
                     continue;
                 }
                 for (int c = 0; c < 3; ++c) {
@@ -143,9 +144,8 @@ START_TEST(finite_nonnegative_reciprocal)
                     if (rec && rel > 1e-12 && asym_bad++ < MAX_REPORT)
                         printf("NOT RECIPROCAL %s [%s] wi=(%.17g,%.17g,%.17g) "
                                "wo=(%.17g,%.17g,%.17g): %.17g vs %.17g (rel %.3g)\n",
-                               m->name, sets[s].label, grid.wi[k][0], grid.wi[k][1],
-                               grid.wi[k][2], grid.wo[k][0], grid.wo[k][1], grid.wo[k][2], a[c],
-                               b[c], rel);
+                               m->name, sets[s].label, grid.wi[k][0], grid.wi[k][1], grid.wi[k][2],
+                               grid.wo[k][0], grid.wo[k][1], grid.wo[k][2], a[c], b[c], rel);
                 }
             }
         if (rec) {
@@ -157,7 +157,8 @@ START_TEST(finite_nonnegative_reciprocal)
             if (!why) {
                 ++flag_bad;
                 printf("  %s lacks ABRDF_PROP_RECIPROCAL but no reason is recorded in "
-                       "nonreciprocal[] (tests/unit/test_invariants.c) and docs/MODELS.md\n", m->name);
+                       "nonreciprocal[] (tests/unit/test_invariants.c) and docs/MODELS.md\n",
+                       m->name);
             }
             if (!(worst > 1e-9)) {
                 ++flag_bad;
@@ -185,7 +186,8 @@ static double lobe_moment(double n, int m) /* int_0^1 max(0, (n/m)(mu - 1) + 1)^
 {
     if (n < 1e-300) return 0.5;
     double q = m / n, u0 = fmax(0.0, 1.0 - n / m);
-    return q * ((1.0 - q) * (1.0 - pow(u0, m + 1)) / (m + 1) + q * (1.0 - pow(u0, m + 2)) / (m + 2));
+    return q *
+           ((1.0 - q) * (1.0 - pow(u0, m + 1)) / (m + 1) + q * (1.0 - pow(u0, m + 2)) / (m + 2));
 }
 
 static double albedo_bound(const abrdf_model_info *m, const abrdf_params *p, const char **why)
@@ -228,7 +230,8 @@ START_TEST(white_furnace)
         int ec = (m->props & ABRDF_PROP_ENERGY_CONSERVING) != 0;
         if (m->needs & ABRDF_NEEDS_INTEGRATION) {
             printf("  %-22s skipped: evaluates by integration (too slow for a nested "
-                   "quadrature here)\n", m->name);
+                   "quadrature here)\n",
+                   m->name);
             continue;
         }
         int nphi_i = (m->needs & ABRDF_NEEDS_TANGENT) ? 2 : 1; /* phi_i = 0 and 90 deg */
@@ -249,16 +252,19 @@ START_TEST(white_furnace)
                                   : tg_albedo(m->id, &sets[s].p, wi, 8, 64, &evals);
                     if (!ec) diff = NAN;
                     if (ec && !(v + diff <= bound + QUAD_TOL)) /* inconclusive: refine more */
-                        v = tg_albedo_converged(m->id, &sets[s].p, wi, QUAD_TOL,
-                                                QUAD_MAX_LEVEL + 2, &diff, &level, &evals);
+                        v = tg_albedo_converged(m->id, &sets[s].p, wi, QUAD_TOL, QUAD_MAX_LEVEL + 2,
+                                                &diff, &level, &evals);
                     a[t] = v;
                     e[t] = diff;
-                    if (v > model_max) { model_max = v; model_err = diff; }
+                    if (v > model_max) {
+                        model_max = v;
+                        model_err = diff;
+                    }
                     if (ec && !(v + diff <= bound + QUAD_TOL)) {
                         ++fails;
                         printf("  EXCEEDS %s [%s] theta_i=%g phi_i=%d: albedo %.6f (+- %.2g) > "
-                               "%s = %.6f\n", m->name, sets[s].label, thetas[t], 90 * ph, v,
-                               diff, why, bound);
+                               "%s = %.6f\n",
+                               m->name, sets[s].label, thetas[t], 90 * ph, v, diff, why, bound);
                     }
                 }
                 printf("  %-22s %-2s [%s%s] %.4f %.4f %.4f %.4f", m->name, ec ? "EC" : "-",
@@ -274,11 +280,14 @@ START_TEST(white_furnace)
         else
             printf("  %-22s max albedo %.4f%s [%ld evaluations]\n", m->name, model_max,
                    model_max > 1.0 + QUAD_TOL ? "; exceeds 1: not energy conserving"
-                                              : "; below 1 on this grid", evals - evals0);
+                                              : "; below 1 on this grid",
+                   evals - evals0);
     }
     printf("white furnace: %ld evaluations\n", evals);
-    ck_assert_msg(fails == 0, "%d energy-conserving cases exceed (or cannot be shown below) "
-                  "their bound", fails);
+    ck_assert_msg(fails == 0,
+                  "%d energy-conserving cases exceed (or cannot be shown below) "
+                  "their bound",
+                  fails);
 }
 END_TEST
 
@@ -324,8 +333,8 @@ static double sensitivity(abrdf_model model, const abrdf_params *p, const double
 START_TEST(float_batch_matches_double)
 {
     static tg_set sets[MAX_SETS];
-    static float ix[MAXPAIRS], iy[MAXPAIRS], iz[MAXPAIRS], ox[MAXPAIRS], oy[MAXPAIRS],
-        oz[MAXPAIRS], fr[MAXPAIRS], fg[MAXPAIRS], fb[MAXPAIRS];
+    static float ix[MAXPAIRS], iy[MAXPAIRS], iz[MAXPAIRS], ox[MAXPAIRS], oy[MAXPAIRS], oz[MAXPAIRS],
+        fr[MAXPAIRS], fg[MAXPAIRS], fb[MAXPAIRS];
     static double ref[MAXPAIRS][3];
     tg_rng rng = {12345};
     long fails = 0, evals = 0, sens_used = 0;
@@ -335,8 +344,12 @@ START_TEST(float_batch_matches_double)
         if (!m) continue;
         int np = 0;
         for (int j = 0; j < grid.count; j += grid_stride(m), ++np) {
-            ix[np] = (float)grid.wi[j][0]; iy[np] = (float)grid.wi[j][1]; iz[np] = (float)grid.wi[j][2];
-            ox[np] = (float)grid.wo[j][0]; oy[np] = (float)grid.wo[j][1]; oz[np] = (float)grid.wo[j][2];
+            ix[np] = (float)grid.wi[j][0];
+            iy[np] = (float)grid.wi[j][1];
+            iz[np] = (float)grid.wi[j][2];
+            ox[np] = (float)grid.wo[j][0];
+            oy[np] = (float)grid.wo[j][1];
+            oz[np] = (float)grid.wo[j][2];
         }
         abrdf_batch b = {(size_t)np, ix, iy, iz, ox, oy, oz, fr, fg, fb};
         int ns = tg_param_sets(m->id, TG_TYPICAL, sets, set_cap(m, MAX_SETS));
@@ -376,8 +389,8 @@ START_TEST(float_batch_matches_double)
                     if (fails++ < MAX_REPORT)
                         printf("FLOAT %s [%s] wi=(%.9g,%.9g,%.9g) wo=(%.9g,%.9g,%.9g) ch %d: "
                                "float %.9g double %.17g (tol %.3g, sensitivity %.3g)\n",
-                               m->name, sets[s].label, ix[k], iy[k], iz[k], ox[k], oy[k], oz[k],
-                               c, got[c], ref[k][c], tol[c], sens);
+                               m->name, sets[s].label, ix[k], iy[k], iz[k], ox[k], oy[k], oz[k], c,
+                               got[c], ref[k][c], tol[c], sens);
                 }
             }
         }
@@ -385,7 +398,8 @@ START_TEST(float_batch_matches_double)
                m->name, ns, worst_rel, fails > fails0 ? "  OUTSIDE TOLERANCE" : "");
     }
     printf("float vs double: %ld evaluations, %ld pairs needed the sensitivity term, %ld "
-           "failures\n", evals, sens_used, fails);
+           "failures\n",
+           evals, sens_used, fails);
     ck_assert_msg(fails == 0, "%ld float results outside tolerance", fails);
 }
 END_TEST
@@ -419,8 +433,10 @@ START_TEST(frame_invariance)
                 ck_assert_int_eq(abrdf_frame_make(n, t, &fr), ABRDF_OK);
                 double wi[3], wo[3], a[3], b[3];
                 for (int c = 0; c < 3; ++c) {
-                    wi[c] = grid.wi[k][0] * fr.t[c] + grid.wi[k][1] * fr.b[c] + grid.wi[k][2] * fr.n[c];
-                    wo[c] = grid.wo[k][0] * fr.t[c] + grid.wo[k][1] * fr.b[c] + grid.wo[k][2] * fr.n[c];
+                    wi[c] =
+                        grid.wi[k][0] * fr.t[c] + grid.wi[k][1] * fr.b[c] + grid.wi[k][2] * fr.n[c];
+                    wo[c] =
+                        grid.wo[k][0] * fr.t[c] + grid.wo[k][1] * fr.b[c] + grid.wo[k][2] * fr.n[c];
                 }
                 abrdf_eval(m->id, &sets[s].p, &fr, wi, wo, a);
                 abrdf_eval(m->id, &sets[s].p, NULL, grid.wi[k], grid.wo[k], b);
@@ -437,13 +453,13 @@ START_TEST(frame_invariance)
                     double d = fabs(a[c] - b[c]) / fmax(fmax(fabs(a[c]), fabs(b[c])), 1e-300);
                     if (fabs(a[c] - b[c]) > 1e-7 * peak && d > worst) worst = d;
                     if (!tu_close(a[c], b[c], rel, 1e-7 * peak) && fails++ < MAX_REPORT)
-                        printf("FRAME %s [%s]: world %.17g local %.17g\n", m->name,
-                               sets[s].label, a[c], b[c]);
+                        printf("FRAME %s [%s]: world %.17g local %.17g\n", m->name, sets[s].label,
+                               a[c], b[c]);
                 }
             }
         }
-        printf("frame invariance %-22s max relative difference %.3g (tolerance %.0e)\n",
-               m->name, worst, rel);
+        printf("frame invariance %-22s max relative difference %.3g (tolerance %.0e)\n", m->name,
+               worst, rel);
     }
     ck_assert_msg(fails == 0, "%ld world/local mismatches", fails);
 }

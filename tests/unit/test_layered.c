@@ -11,7 +11,10 @@
 
 static const double PI = 3.14159265358979323846;
 
-static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 static void half(const double a[3], const double b[3], double h[3])
 {
@@ -49,7 +52,8 @@ static double ggx_lobe(const double wi[3], const double wo[3], double a, double 
            smith_g1(wo[2], a) / (4.0 * wi[2] * wo[2]);
 }
 
-static void set_layer(abrdf_params *p, int k, double eta, double kappa, double r, double sigma, double depth)
+static void set_layer(abrdf_params *p, int k, double eta, double kappa, double r, double sigma,
+                      double depth)
 {
     p->layers[k].eta = eta;
     p->layers[k].kappa = kappa;
@@ -143,7 +147,8 @@ START_TEST(ww_reciprocal)
         double a[3], b[3];
         quad_rand_dir(&s, 0.001, a);
         quad_rand_dir(&s, 0.001, b);
-        double f1 = tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, a, b), f2 = tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, b, a);
+        double f1 = tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, a, b),
+               f2 = tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, b, a);
         ck_assert_msg(tu_close(f1, f2, 1e-12, 1e-300), "%.17g vs %.17g", f1, f2);
     }
     ck_assert(abrdf_model_get(ABRDF_WEIDLICH_WILKIE)->props & ABRDF_PROP_RECIPROCAL);
@@ -170,8 +175,10 @@ START_TEST(ww_white_furnace)
         for (int r = 0; r < 3; ++r) {
             set_layer(&p, 0, etas[e], 0.0, rs[r], 0.0, 0.0);
             for (int t = 0; t < 2; ++t) {
-                double a = quad_albedo(ABRDF_WEIDLICH_WILKIE, &p, th[t], fmax(0.05, rs[r] * rs[r]), 96, 0);
-                ck_assert_msg(a <= 1.0 + 3e-3 && a > 0.75, "eta %g r %g th %g: rho = %.5f", etas[e], rs[r], th[t], a);
+                double a =
+                    quad_albedo(ABRDF_WEIDLICH_WILKIE, &p, th[t], fmax(0.05, rs[r] * rs[r]), 96, 0);
+                ck_assert_msg(a <= 1.0 + 3e-3 && a > 0.75, "eta %g r %g th %g: rho = %.5f", etas[e],
+                              rs[r], th[t], a);
             }
         }
     set_layer(&p, 0, 1.5, 0.0, 0.3, 0.0, 0.0);
@@ -256,7 +263,8 @@ START_TEST(belcour_one_interface_is_fgd_lobe)
             quad_rand_dir(&s, 0.05, L);
             quad_rand_dir(&s, 0.05, V);
             half(L, V, h);
-            double lobe = ggx_d(h[2], a) * smith_g1(L[2], a) * smith_g1(V[2], a) / (4 * L[2] * V[2]);
+            double lobe =
+                ggx_d(h[2], a) * smith_g1(L[2], a) * smith_g1(V[2], a) / (4 * L[2] * V[2]);
             double want = abrdf__belcour_fgd(dot(L, h), a, cases[k][0], cases[k][1]) * lobe;
             ck_assert(tu_close(tu_eval1(ABRDF_BELCOUR, &p, L, V), want, 1e-9, 0.0));
         }
@@ -272,12 +280,14 @@ START_TEST(belcour_fgd_table_accuracy)
     double worst = 0.0;
     for (int i = 0; i < 40; ++i) {
         double c = 0.1 + 0.9 * quad_rand(&s), a = 0.15 + 0.85 * quad_rand(&s);
-        double eta = 0.25 * pow(16.0, quad_rand(&s)), kappa = i % 2 ? 10.0 * pow(quad_rand(&s), 2) : 0.0;
+        double eta = 0.25 * pow(16.0, quad_rand(&s)),
+               kappa = i % 2 ? 10.0 * pow(quad_rand(&s), 2) : 0.0;
         double d = fabs(abrdf__belcour_fgd(c, a, eta, kappa) - fgd_direct(c, a, eta, kappa));
         ck_assert_msg(d < 0.01, "FGD(%g, %g, %g, %g) off by %g", c, a, eta, kappa, d);
         worst = fmax(worst, d);
     }
-    printf("belcour: FGD table vs direct quadrature, 40 off-node points: max |error| = %.2g\n", worst);
+    printf("belcour: FGD table vs direct quadrature, 40 off-node points: max |error| = %.2g\n",
+           worst);
 }
 END_TEST
 
@@ -286,10 +296,11 @@ END_TEST
 START_TEST(belcour_tir_table)
 {
     ck_assert(abrdf__belcour_tir(0.3, 0.5, 1.2) == 1.0);
-    ck_assert(abrdf__belcour_tir(0.9, 0.0, 0.6) > 0.99);  /* sin 0.44 < 0.6 */
-    ck_assert(abrdf__belcour_tir(0.3, 0.0, 0.6) < 0.01);  /* sin 0.95 > 0.6 */
+    ck_assert(abrdf__belcour_tir(0.9, 0.0, 0.6) > 0.99); /* sin 0.44 < 0.6 */
+    ck_assert(abrdf__belcour_tir(0.3, 0.0, 0.6) < 0.01); /* sin 0.95 > 0.6 */
     for (int i = 0; i < 20; ++i) {
-        double lo = abrdf__belcour_tir(0.5, 0.4, 0.3 + 0.03 * i), hi = abrdf__belcour_tir(0.5, 0.4, 0.33 + 0.03 * i);
+        double lo = abrdf__belcour_tir(0.5, 0.4, 0.3 + 0.03 * i),
+               hi = abrdf__belcour_tir(0.5, 0.4, 0.33 + 0.03 * i);
         ck_assert(lo <= hi + 1e-12);
     }
 }
@@ -312,7 +323,8 @@ START_TEST(belcour_index_matched_and_zero_depth)
         double L[3], V[3];
         quad_rand_dir(&s, 0.01, L);
         quad_rand_dir(&s, 0.01, V);
-        ck_assert(tu_close(tu_eval1(ABRDF_BELCOUR, &p, L, V), tu_eval1(ABRDF_BELCOUR, &q, L, V), 1e-9, 1e-300));
+        ck_assert(tu_close(tu_eval1(ABRDF_BELCOUR, &p, L, V), tu_eval1(ABRDF_BELCOUR, &q, L, V),
+                           1e-9, 1e-300));
     }
 }
 END_TEST
@@ -328,10 +340,12 @@ START_TEST(layered_huge_sigma_a)
     double L[3], V[3];
     tu_dir(30.0, 180.0, L);
     tu_dir(40.0, 10.0, V);
-    ck_assert(tu_close(tu_eval1(ABRDF_BELCOUR, &p, L, V), tu_eval1(ABRDF_BELCOUR, &q, L, V), 1e-12, 0.0));
+    ck_assert(
+        tu_close(tu_eval1(ABRDF_BELCOUR, &p, L, V), tu_eval1(ABRDF_BELCOUR, &q, L, V), 1e-12, 0.0));
     abrdf_params_init(ABRDF_WEIDLICH_WILKIE, &p);
     set_layer(&p, 0, 1.5, 0.0, 0.3, 1e4, 100.0);
-    ck_assert(tu_close(tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, L, V), ggx_lobe(L, V, 0.09, 1.5, 0.0), 1e-10, 0.0));
+    ck_assert(tu_close(tu_eval1(ABRDF_WEIDLICH_WILKIE, &p, L, V), ggx_lobe(L, V, 0.09, 1.5, 0.0),
+                       1e-10, 0.0));
 }
 END_TEST
 
@@ -348,7 +362,8 @@ START_TEST(belcour_reciprocal)
         double a[3], b[3];
         quad_rand_dir(&s, 0.001, a);
         quad_rand_dir(&s, 0.001, b);
-        ck_assert(tu_close(tu_eval1(ABRDF_BELCOUR, &p, a, b), tu_eval1(ABRDF_BELCOUR, &p, b, a), 1e-12, 1e-300));
+        ck_assert(tu_close(tu_eval1(ABRDF_BELCOUR, &p, a, b), tu_eval1(ABRDF_BELCOUR, &p, b, a),
+                           1e-12, 1e-300));
     }
     ck_assert(abrdf_model_get(ABRDF_BELCOUR)->props & ABRDF_PROP_RECIPROCAL);
 }
@@ -370,7 +385,8 @@ START_TEST(belcour_white_furnace)
         double r0 = cfg % 2 ? 0.3 : 0.6;
         p.layer_count = 1 + cfg / 2;
         set_layer(&p, 0, 1.5, 0.0, r0, 0.0, 0.0);
-        if (p.layer_count >= 2) set_layer(&p, 1, cfg >= 4 ? 1.2 : 1.0, cfg >= 4 ? 0.0 : 10.0, 0.4, 0.0, 0.0);
+        if (p.layer_count >= 2)
+            set_layer(&p, 1, cfg >= 4 ? 1.2 : 1.0, cfg >= 4 ? 0.0 : 10.0, 0.4, 0.0, 0.0);
         if (p.layer_count >= 3) set_layer(&p, 2, 1.0, 10.0, 0.5, 0.0, 0.0);
         for (int t = 0; t < 3; ++t) {
             double a = quad_albedo(ABRDF_BELCOUR, &p, th[t], r0 * r0, 96, 0);
@@ -410,7 +426,8 @@ START_TEST(layered_stability_grid)
             p.layer_count = 1 + cfg % ABRDF_MAX_LAYERS;
             for (int l = 0; l < ABRDF_MAX_LAYERS; ++l) {
                 unsigned u = (unsigned)(cfg * 7 + l * 13);
-                set_layer(&p, l, etas[u % 5], kappas[(u / 5) % 4], rs[(u / 3) % 4], sig[(u / 2) % 3], dep[(u / 11) % 3]);
+                set_layer(&p, l, etas[u % 5], kappas[(u / 5) % 4], rs[(u / 3) % 4],
+                          sig[(u / 2) % 3], dep[(u / 11) % 3]);
             }
             p.kd[0] = p.kd[1] = p.kd[2] = cfg % 3 ? 1.0 : 0.0;
             for (int i = 0; i < 60; ++i) {
@@ -418,14 +435,16 @@ START_TEST(layered_stability_grid)
                 quad_rand_dir(&s, -0.1, L);
                 quad_rand_dir(&s, -0.1, V);
                 if (i % 5 == 0) L[2] = 1e-12;
-                if (i % 7 == 0) for (int c = 0; c < 3; ++c) V[c] = L[c];
-                if (i % 9 == 0) for (int c = 0; c < 3; ++c) V[c] = -L[c];
+                if (i % 7 == 0)
+                    for (int c = 0; c < 3; ++c) V[c] = L[c];
+                if (i % 9 == 0)
+                    for (int c = 0; c < 3; ++c) V[c] = -L[c];
                 ck_assert_int_eq(abrdf_eval(ms[mi], &p, NULL, L, V, f), ABRDF_OK);
                 tu_count(&k, f);
             }
         }
-        printf("stability %s: %ld values (NaN %ld, Inf %ld, negative %ld)\n", abrdf_model_get(ms[mi])->name,
-               k.evals, k.nan, k.inf, k.neg);
+        printf("stability %s: %ld values (NaN %ld, Inf %ld, negative %ld)\n",
+               abrdf_model_get(ms[mi])->name, k.evals, k.nan, k.inf, k.neg);
         ck_assert(k.evals >= 100000);
         ck_assert(k.nan == 0 && k.inf == 0 && k.neg == 0);
     }

@@ -32,15 +32,20 @@ START_TEST(table_has_40_rows_and_every_class)
     int per_type[ABRDF_SURFACE_COUNT] = {0};
     for (int i = 0; i < t.count; ++i) per_type[t.items[i].m.type]++;
     for (int i = 0; i < ABRDF_SURFACE_COUNT; ++i)
-        ck_assert_msg(per_type[i] > 0, "no material of type %s", abrdf_surface_name((abrdf_surface)i));
+        ck_assert_msg(per_type[i] > 0, "no material of type %s",
+                      abrdf_surface_name((abrdf_surface)i));
     static const char *const required[] = {
-        "gold", "silver", "copper", "aluminium", "iron", "chrome", "titanium", "nickel", "brass",
-        "platinum", "water", "glass", "acrylic", "plastic_red", "rubber_tire", "wood_oak",
-        "marble", "concrete", "skin_light", "skin_medium", "skin_dark", "wool", "cotton",
-        "denim", "silk", "satin", "velvet", "hair_blond", "hair_brown", "hair_black", "hair_red",
-        "car_paint", "coated_plastic", "varnished_wood", "transparent_plate", "coated_steel"};
+        "gold",        "silver",    "copper",         "aluminium",      "iron",
+        "chrome",      "titanium",  "nickel",         "brass",          "platinum",
+        "water",       "glass",     "acrylic",        "plastic_red",    "rubber_tire",
+        "wood_oak",    "marble",    "concrete",       "skin_light",     "skin_medium",
+        "skin_dark",   "wool",      "cotton",         "denim",          "silk",
+        "satin",       "velvet",    "hair_blond",     "hair_brown",     "hair_black",
+        "hair_red",    "car_paint", "coated_plastic", "varnished_wood", "transparent_plate",
+        "coated_steel"};
     for (size_t i = 0; i < sizeof required / sizeof required[0]; ++i)
-        ck_assert_msg(mat_table_find(&t, required[i]) != NULL, "material '%s' missing", required[i]);
+        ck_assert_msg(mat_table_find(&t, required[i]) != NULL, "material '%s' missing",
+                      required[i]);
     mat_table_free(&t);
 }
 END_TEST
@@ -62,30 +67,35 @@ START_TEST(every_row_is_valid_and_plausible)
             double x = m->eta > 0.0 ? (m->eta - 1.0) / (m->eta + 1.0) : 0.0;
             f0[c] = m->eta > 0.0 ? x * x : m->f0[c];
             /* What is reflected at the surface is not available to the diffuse lobe. */
-            ck_assert_msg(m->kd[c] + f0[c] <= 1.0, "%s: kd + F0 = %g > 1", e->name, m->kd[c] + f0[c]);
+            ck_assert_msg(m->kd[c] + f0[c] <= 1.0, "%s: kd + F0 = %g > 1", e->name,
+                          m->kd[c] + f0[c]);
         }
         int metal = m->eta <= 0.0;
         if (metal) {
             /* Measured metals reflect at least 40 % at normal incidence and have no diffuse. */
-            for (int c = 0; c < 3; ++c) ck_assert_msg(f0[c] >= 0.4 && m->kd[c] == 0.0, "%s", e->name);
+            for (int c = 0; c < 3; ++c)
+                ck_assert_msg(f0[c] >= 0.4 && m->kd[c] == 0.0, "%s", e->name);
         } else {
             /* Dielectrics of this table: eta 1.3-2.42, F0 2-17 %. */
             ck_assert_msg(m->eta >= 1.3 && m->eta <= 2.42, "%s: eta %g", e->name, m->eta);
         }
-        if (m->type == ABRDF_SURFACE_HAIR) ck_assert(m->melanin >= 0.0 && m->melanin <= 1.0 && m->eta > 1.0);
+        if (m->type == ABRDF_SURFACE_HAIR)
+            ck_assert(m->melanin >= 0.0 && m->melanin <= 1.0 && m->eta > 1.0);
         if (m->type >= ABRDF_SURFACE_LAYERED_PLASTIC) {
             ck_assert_msg(m->layer_count >= 1, "%s: layered without a coat", e->name);
             ck_assert(m->layers[0].eta >= 1.0 && m->layers[0].eta <= 4.0);
         }
         if (m->type == ABRDF_SURFACE_LAYERED_METAL) ck_assert_int_eq(m->layer_count, 2);
-        if (m->type == ABRDF_SURFACE_CLOTH_SHINY) ck_assert_msg(m->n > 0.0, "%s: Kajiya-Kay needs n", e->name);
+        if (m->type == ABRDF_SURFACE_CLOTH_SHINY)
+            ck_assert_msg(m->n > 0.0, "%s: Kajiya-Kay needs n", e->name);
         /* Every row goes through the flowchart for both goals. */
         for (int g = 0; g < ABRDF_GOAL_COUNT; ++g) {
             abrdf_selection s;
             abrdf_selection_init(&s);
             char first[256] = "";
             ck_assert_msg(abrdf_select(m, (abrdf_goal)g, NULL, NULL, &s, NULL, first_step, first) ==
-                          ABRDF_OK, "%s: %s", e->name, s.message);
+                              ABRDF_OK,
+                          "%s: %s", e->name, s.message);
             ck_assert(s.step_count > 2 && strstr(first, e->name));
         }
     }
@@ -107,7 +117,8 @@ START_TEST(metal_f0_comes_from_measured_nk)
         char name[64];
         double nk[6];
         ck_assert_int_eq(sscanf(line, "%63[^,],%lf,%lf,%lf,%lf,%lf,%lf", name, &nk[0], &nk[1],
-                                &nk[2], &nk[3], &nk[4], &nk[5]), 7);
+                                &nk[2], &nk[3], &nk[4], &nk[5]),
+                         7);
         const char *src = line;
         for (int c = 0; c < 7 && src; ++c) src = strchr(src, ',') ? strchr(src, ',') + 1 : NULL;
         ck_assert_msg(src && strlen(src) > 10, "%s: no source", name);
@@ -131,14 +142,16 @@ START_TEST(metal_f0_comes_from_measured_nk)
     ck_assert_int_ge(rows, 10);
     /* Every metal of the table has its measurement. */
     for (int i = 0; i < t.count; ++i)
-        if (t.items[i].m.eta <= 0.0) ck_assert_msg(strstr(t.items[i].source, "metal_nk"), "%s", t.items[i].name);
+        if (t.items[i].m.eta <= 0.0)
+            ck_assert_msg(strstr(t.items[i].source, "metal_nk"), "%s", t.items[i].name);
     mat_table_free(&t);
 }
 END_TEST
 
 /* ---- loader errors -------------------------------------------------------------------- */
 
-static const char *HEADER = "name,type,n,r,kd_r,kd_g,kd_b,ks_r,ks_g,ks_b,f0_r,f0_g,f0_b,eta,"
+static const char *HEADER =
+    "name,type,n,r,kd_r,kd_g,kd_b,ks_r,ks_g,ks_b,f0_r,f0_g,f0_b,eta,"
     "anisotropy,melanin,redness,coat_eta,coat_r,coat_depth,coat_sa_r,coat_sa_g,coat_sa_b,"
     "base_eta,base_kappa,source\n";
 
@@ -161,7 +174,8 @@ static void expect_error_at(const char *row, int line, const char *needle)
     mat_table t = {NULL, 0, 0};
     ck_assert_int_eq(mat_table_load(&t, path, err, sizeof err), -1);
     snprintf(prefix, sizeof prefix, "%s:%d: ", path, line);
-    ck_assert_msg(strncmp(err, prefix, strlen(prefix)) == 0, "'%s' does not start with '%s'", err, prefix);
+    ck_assert_msg(strncmp(err, prefix, strlen(prefix)) == 0, "'%s' does not start with '%s'", err,
+                  prefix);
     ck_assert_msg(strstr(err, needle) != NULL, "'%s' lacks '%s'", err, needle);
     ck_assert_int_eq(t.count, 0);
     remove(path);
@@ -192,8 +206,9 @@ START_TEST(loader_reports_file_line_and_problem)
     expect_error("gold,general,,0.2\n", "fields, expected 26");
     expect_error("pvc,layered_plastic,,0.2,0.5,0.5,0.5,1,1,1,,,,1.5,,,,,,,,,,,,src\n",
                  "needs the coat columns");
-    expect_error("m,layered_metal,,0.1,0,0,0,1,1,1,0.9,0.8,0.4,,,,,1.5,0.1,0.03,0,0,0,0.4,2.5,src\n",
-                 "outside libabrdf's layer ranges");
+    expect_error(
+        "m,layered_metal,,0.1,0,0,0,1,1,1,0.9,0.8,0.4,,,,,1.5,0.1,0.03,0,0,0,0.4,2.5,src\n",
+        "outside libabrdf's layer ranges");
     expect_error_at(GOOD GOOD, 4, "material 'gold' is already defined at line 3");
 }
 END_TEST
@@ -205,7 +220,8 @@ START_TEST(loader_rejects_a_bad_header_and_a_missing_file)
     mat_table t = {NULL, 0, 0};
     write_file(path, "name,type,r,n\n", GOOD);
     ck_assert_int_eq(mat_table_load(&t, path, err, sizeof err), -1);
-    ck_assert_msg(strstr(err, "test_materials_tmp.csv:2: header: column 3 is 'r', expected 'n'"), "%s", err);
+    ck_assert_msg(strstr(err, "test_materials_tmp.csv:2: header: column 3 is 'r', expected 'n'"),
+                  "%s", err);
     remove(path);
     ck_assert_int_eq(mat_table_load(&t, "no/such/materials.csv", err, sizeof err), -1);
     ck_assert_msg(strstr(err, "no/such/materials.csv:0: cannot open"), "%s", err);
@@ -219,8 +235,9 @@ START_TEST(user_file_overrides_by_name)
     int count = t.count;
     const char *path = "test_materials_tmp.csv";
     char err[MAT_ERR_MAX];
-    write_file(path, HEADER, "gold,general,,0.01,0,0,0,1,1,1,0.957,0.792,0.408,,,,,,,,,,,,,my polish\n"
-                             "unobtainium,general,,0.5,0.2,0.2,0.2,1,1,1,,,,1.5,,,,,,,,,,,,made up\n");
+    write_file(path, HEADER,
+               "gold,general,,0.01,0,0,0,1,1,1,0.957,0.792,0.408,,,,,,,,,,,,,my polish\n"
+               "unobtainium,general,,0.5,0.2,0.2,0.2,1,1,1,,,,1.5,,,,,,,,,,,,made up\n");
     ck_assert_msg(mat_table_load(&t, path, err, sizeof err) == 0, "%s", err);
     ck_assert_int_eq(t.count, count + 1);
     const mat_entry *g = mat_table_find(&t, "gold");

@@ -48,12 +48,14 @@ static void check_table(int table, double mad_max, double cell_max)
             abrdf_approx_error e;
             ck_assert_int_eq(abrdf_approx_error_eval(models[m], ns[i], &e), ABRDF_OK);
             double d = fabs((table == 2 ? e.max_rel_pct : e.max_abs) - p);
-            ck_assert_msg(d <= cell_max, "table %d %s n=%s: |diff| %g > %g", table, name, col, d, cell_max);
+            ck_assert_msg(d <= cell_max, "table %d %s n=%s: |diff| %g > %g", table, name, col, d,
+                          cell_max);
             sum += d;
             ++cells;
         }
     ck_assert_int_eq(cells, 50);
-    ck_assert_msg(sum / cells <= mad_max, "table %d: mean abs deviation %g > %g", table, sum / cells, mad_max);
+    ck_assert_msg(sum / cells <= mad_max, "table %d: mean abs deviation %g > %g", table,
+                  sum / cells, mad_max);
 }
 
 START_TEST(table2_reproduced) { check_table(2, 0.75, 0.5); }

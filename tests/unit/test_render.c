@@ -34,9 +34,15 @@ static result render_text_at(const char *text, int spp, int threads, int size, i
     return r;
 }
 
-static result render_text(const char *text, int spp, int threads) { return render_text_at(text, spp, threads, 0, 0); }
+static result render_text(const char *text, int spp, int threads)
+{
+    return render_text_at(text, spp, threads, 0, 0);
+}
 
-static const float *pixel(const result *r, int i, int j) { return r->rgb + 3 * ((size_t)j * r->w + i); }
+static const float *pixel(const result *r, int i, int j)
+{
+    return r->rgb + 3 * ((size_t)j * r->w + i);
+}
 
 /* Unit sphere at the origin, camera on +z: the centre pixel of an odd-sized image with one
  * sample sees (0, 0, 1) with N = +z and wo = +z. */
@@ -64,11 +70,12 @@ END_TEST
  * equals abrdf_shade for the same directions. */
 START_TEST(pair_matches_abrdf_shade)
 {
-    const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
-                       "light directional direction=0.3,0.4,0.8660254037844386 color=1,0.8,0.6 intensity=2\n"
-                       "ambient 0.05\n"
-                       "material m diffuse=disney_diffuse specular=disney_specular kd=0.4,0.3,0.2 r=0.35 f0=0.9\n"
-                       "sphere material=m radius=1\n";
+    const char *text =
+        "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
+        "light directional direction=0.3,0.4,0.8660254037844386 color=1,0.8,0.6 intensity=2\n"
+        "ambient 0.05\n"
+        "material m diffuse=disney_diffuse specular=disney_specular kd=0.4,0.3,0.2 r=0.35 f0=0.9\n"
+        "sphere material=m radius=1\n";
     result r = render_text(text, 1, 2);
     abrdf_params p;
     abrdf_params_init(ABRDF_DISNEY_DIFFUSE, &p);
@@ -79,9 +86,12 @@ START_TEST(pair_matches_abrdf_shade)
     double l = sqrt(wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2]);
     for (int c = 0; c < 3; ++c) wi[c] /= l;
     double ambient[3] = {0.4 * 0.05, 0.3 * 0.05, 0.2 * 0.05}, want[3];
-    ck_assert_int_eq(abrdf_shade(ABRDF_DISNEY_DIFFUSE, ABRDF_DISNEY_SPECULAR, &p, NULL, wi, wo, light, ambient, want), ABRDF_OK);
+    ck_assert_int_eq(abrdf_shade(ABRDF_DISNEY_DIFFUSE, ABRDF_DISNEY_SPECULAR, &p, NULL, wi, wo,
+                                 light, ambient, want),
+                     ABRDF_OK);
     for (int c = 0; c < 3; ++c)
-        ck_assert_msg(tu_close(pixel(&r, 16, 16)[c], want[c], 1e-6, 0), "c%d %.9g vs %.9g", c, pixel(&r, 16, 16)[c], want[c]);
+        ck_assert_msg(tu_close(pixel(&r, 16, 16)[c], want[c], 1e-6, 0), "c%d %.9g vs %.9g", c,
+                      pixel(&r, 16, 16)[c], want[c]);
     free(r.rgb);
 }
 END_TEST
@@ -94,7 +104,8 @@ START_TEST(point_light_falls_off_with_distance_squared)
                        "sphere material=m radius=1\n";
     result r = render_text(text, 1, 1);
     double want = 8.0 / 4.0 * 0.5 / PI; /* d = 2, cos = 1 */
-    ck_assert_msg(tu_close(pixel(&r, 16, 16)[0], want, 1e-6, 0), "%.9g vs %.9g", pixel(&r, 16, 16)[0], want);
+    ck_assert_msg(tu_close(pixel(&r, 16, 16)[0], want, 1e-6, 0), "%.9g vs %.9g",
+                  pixel(&r, 16, 16)[0], want);
     free(r.rgb);
 }
 END_TEST
@@ -120,7 +131,8 @@ START_TEST(box_filter_matches_camera_model)
             double nz = 4 + t * d[2];
             sum += nz / PI; /* E = 1, light along +z: cos = N.z */
         }
-    ck_assert_msg(tu_close(pixel(&r, 4, 4)[0], sum / 16, 1e-6, 0), "%.9g vs %.9g", pixel(&r, 4, 4)[0], sum / 16);
+    ck_assert_msg(tu_close(pixel(&r, 4, 4)[0], sum / 16, 1e-6, 0), "%.9g vs %.9g",
+                  pixel(&r, 4, 4)[0], sum / 16);
     free(r.rgb);
 }
 END_TEST
@@ -155,7 +167,8 @@ START_TEST(strata_centres_equal_block_average_of_larger_image)
                     for (int x = 0; x < 3; ++x) sum += b[3 * ((3 * j + y) * 21 + 3 * i + x) + c];
                 float v = a[3 * (j * 7 + i) + c];
                 nonzero += v > 0;
-                ck_assert_msg(tu_close(v, sum / 9, 1e-6, 1e-12), "(%d,%d) %.9g vs %.9g", i, j, v, sum / 9);
+                ck_assert_msg(tu_close(v, sum / 9, 1e-6, 1e-12), "(%d,%d) %.9g vs %.9g", i, j, v,
+                              sum / 9);
             }
     ck_assert(nonzero > 10);
     scene_free(&s);
@@ -194,7 +207,8 @@ START_TEST(bit_identical_for_any_thread_count)
         ck_assert_int_eq(render_image(&rs, &opt, img[k], &st[k]), 0);
         render_release(&rs);
     }
-    ck_assert_msg(memcmp(img[0], img[1], 64 * 64 * 3 * sizeof(float)) == 0, "1 vs 2 threads differ");
+    ck_assert_msg(memcmp(img[0], img[1], 64 * 64 * 3 * sizeof(float)) == 0,
+                  "1 vs 2 threads differ");
     ck_assert(memcmp(&st[0], &st[1], sizeof st[0]) == 0);
     /* jitter moves samples: a different image, so the test above could have failed */
     ck_assert(memcmp(img[0], img[2], 64 * 64 * 3 * sizeof(float)) != 0);
@@ -260,17 +274,18 @@ START_TEST(plan_changes_no_pixel)
     expect_plan_is_exact(read_file(FUZZ_CORPUS "/shapes.scene"), 64);
     /* Culling at the image edges and behind the eye: a wide view from inside a ring of
      * objects, one of them around the eye, one straddling the image plane's side. */
-    expect_plan_is_exact("camera position=0,0,0 look_at=0,0,-1 fov=150 resolution=40,30\n"
-                         "light point position=0,3,0 intensity=20\n"
-                         "ambient 0.1\n"
-                         "material m diffuse=lambert specular=disney_specular_aniso r=0.3 anisotropic=0.5\n"
-                         "sphere material=m radius=1 translate=0,0,-3\n"
-                         "sphere material=m radius=1 translate=0,0,3\n"
-                         "box material=m size=1,1,1 translate=4,0,-0.2\n"
-                         "capsule material=m radius=0.5 height=4 rotate=0,0,90 translate=-3,-1,0.4\n"
-                         "cylinder material=m radius=0.3 height=1 translate=0,5,-0.5\n"
-                         "box material=m size=20,20,20 translate=0,0,0\n",
-                         40);
+    expect_plan_is_exact(
+        "camera position=0,0,0 look_at=0,0,-1 fov=150 resolution=40,30\n"
+        "light point position=0,3,0 intensity=20\n"
+        "ambient 0.1\n"
+        "material m diffuse=lambert specular=disney_specular_aniso r=0.3 anisotropic=0.5\n"
+        "sphere material=m radius=1 translate=0,0,-3\n"
+        "sphere material=m radius=1 translate=0,0,3\n"
+        "box material=m size=1,1,1 translate=4,0,-0.2\n"
+        "capsule material=m radius=0.5 height=4 rotate=0,0,90 translate=-3,-1,0.4\n"
+        "cylinder material=m radius=0.3 height=1 translate=0,5,-0.5\n"
+        "box material=m size=20,20,20 translate=0,0,0\n",
+        40);
 }
 END_TEST
 

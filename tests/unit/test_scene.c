@@ -20,16 +20,17 @@ static int parse(const char *body, scene *s, char *err, size_t size)
 
 START_TEST(parses_values_and_defaults)
 {
-    const char *text = "# a comment\n"
-                       "camera position=1,2,3 look_at=0,0,0 fov=30 resolution=64,32\n"
-                       "light point position=0,5,0 color=1,0.5,0.25 intensity=10\n"
-                       "light directional direction=0,0,2\n"
-                       "ambient 0.1,0.2,0.3\n"
-                       "material a diffuse=lambert specular=disney_specular kd=0.2 r=0.3 f0=0.9\n"
-                       "material b model=disney_specular_aniso anisotropic=0.5   # trailing comment\n"
-                       "sphere material=a radius=2 translate=1,0,0\n"
-                       "box material=b size=1,2,3 rotate=0,90,0 scale=2 tangent=0,0,1\n"
-                       "capsule material=a radius=0.5 height=0 tangent=radial\n";
+    const char *text =
+        "# a comment\n"
+        "camera position=1,2,3 look_at=0,0,0 fov=30 resolution=64,32\n"
+        "light point position=0,5,0 color=1,0.5,0.25 intensity=10\n"
+        "light directional direction=0,0,2\n"
+        "ambient 0.1,0.2,0.3\n"
+        "material a diffuse=lambert specular=disney_specular kd=0.2 r=0.3 f0=0.9\n"
+        "material b model=disney_specular_aniso anisotropic=0.5   # trailing comment\n"
+        "sphere material=a radius=2 translate=1,0,0\n"
+        "box material=b size=1,2,3 rotate=0,90,0 scale=2 tangent=0,0,1\n"
+        "capsule material=a radius=0.5 height=0 tangent=radial\n";
     scene s;
     char err[256];
     ck_assert_msg(scene_parse_text("x", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
@@ -37,8 +38,10 @@ START_TEST(parses_values_and_defaults)
     ck_assert_int_eq(s.camera.height, 32);
     ck_assert(s.camera.up[1] == 1.0 && s.camera.fov_deg == 30.0);
     ck_assert_int_eq(s.light_count, 2);
-    ck_assert(s.lights[0].kind == SCENE_LIGHT_POINT && s.lights[0].intensity == 10.0 && s.lights[0].color[2] == 0.25);
-    ck_assert(s.lights[1].direction[2] == 1.0 && s.lights[1].intensity == 1.0); /* normalised, default */
+    ck_assert(s.lights[0].kind == SCENE_LIGHT_POINT && s.lights[0].intensity == 10.0 &&
+              s.lights[0].color[2] == 0.25);
+    ck_assert(s.lights[1].direction[2] == 1.0 &&
+              s.lights[1].intensity == 1.0); /* normalised, default */
     ck_assert(s.ambient[2] == 0.3);
     ck_assert_int_eq(s.material_count, 2);
     ck_assert_int_eq(s.materials[0].lobe_count, 2);
@@ -46,9 +49,11 @@ START_TEST(parses_values_and_defaults)
     ck_assert(s.materials[0].ka[0] == 0.2); /* ka defaults to kd */
     ck_assert(s.materials[1].ka[0] == 0.0); /* no diffuse albedo: no ambient reflectance */
     ck_assert_int_eq(s.object_count, 3);
-    ck_assert(s.objects[1].shape == SCENE_BOX && s.objects[1].scale[2] == 2.0 && s.objects[1].material == 1);
+    ck_assert(s.objects[1].shape == SCENE_BOX && s.objects[1].scale[2] == 2.0 &&
+              s.objects[1].material == 1);
     ck_assert(s.objects[1].tangent == SCENE_TANGENT_AXIS && s.objects[1].tangent_axis[2] == 1.0);
-    ck_assert(s.objects[2].tangent == SCENE_TANGENT_RADIAL && s.objects[0].tangent == SCENE_TANGENT_U);
+    ck_assert(s.objects[2].tangent == SCENE_TANGENT_RADIAL &&
+              s.objects[0].tangent == SCENE_TANGENT_U);
     scene_free(&s);
 }
 END_TEST
@@ -95,8 +100,10 @@ START_TEST(errors_name_file_line_and_problem)
     char err[512], want[32];
     snprintf(want, sizeof want, "t.scene:%d: ", bad[_i].line);
     ck_assert_msg(parse(bad[_i].body, &s, err, sizeof err) == -1, "accepted: %s", bad[_i].body);
-    ck_assert_msg(strncmp(err, want, strlen(want)) == 0, "'%s' does not start with '%s'", err, want);
-    ck_assert_msg(strstr(err, bad[_i].what) != NULL, "'%s' does not mention '%s'", err, bad[_i].what);
+    ck_assert_msg(strncmp(err, want, strlen(want)) == 0, "'%s' does not start with '%s'", err,
+                  want);
+    ck_assert_msg(strstr(err, bad[_i].what) != NULL, "'%s' does not mention '%s'", err,
+                  bad[_i].what);
     ck_assert(s.objects == NULL && s.object_count == 0); /* freed on failure */
 }
 END_TEST
@@ -136,8 +143,10 @@ static void expect_hit(const scene_object *so, const double o[3], const double d
     geom_object g;
     geom_object_make(so, &g);
     double t, n[3];
-    ck_assert_msg(geom_intersect(&g, o, d, 0.0, INFINITY, &t, n), "%s: no hit", scene_shape_name(so->shape));
-    ck_assert_msg(tu_close(t, t_want, 1e-12, 1e-12), "%s: t %.17g, want %.17g", scene_shape_name(so->shape), t, t_want);
+    ck_assert_msg(geom_intersect(&g, o, d, 0.0, INFINITY, &t, n), "%s: no hit",
+                  scene_shape_name(so->shape));
+    ck_assert_msg(tu_close(t, t_want, 1e-12, 1e-12), "%s: t %.17g, want %.17g",
+                  scene_shape_name(so->shape), t, t_want);
     for (int c = 0; c < 3; ++c)
         ck_assert_msg(tu_close(n[c], n_want[c], 1e-12, 1e-12), "%s: n[%d] %.17g, want %.17g",
                       scene_shape_name(so->shape), c, n[c], n_want[c]);
@@ -279,7 +288,8 @@ static Suite *suite(void)
     Suite *s = suite_create("scene");
     TCase *tp = tcase_create("parser");
     tcase_add_test(tp, parses_values_and_defaults);
-    tcase_add_loop_test(tp, errors_name_file_line_and_problem, 0, (int)(sizeof bad / sizeof bad[0]));
+    tcase_add_loop_test(tp, errors_name_file_line_and_problem, 0,
+                        (int)(sizeof bad / sizeof bad[0]));
     tcase_add_test(tp, whole_file_errors);
     suite_add_tcase(s, tp);
     TCase *tg = tcase_create("geometry");

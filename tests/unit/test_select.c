@@ -142,7 +142,8 @@ START_TEST(performance_n300_rel2_picks_f8)
     const abrdf_select_rules *R = abrdf_select_rules_get();
     int k = 0;
     for (int i = 0; i < s.step_count; ++i)
-        if (s.steps[i].kind == ABRDF_STEP_CANDIDATE) ck_assert_int_eq(s.steps[i].model, R->candidates[k++]);
+        if (s.steps[i].kind == ABRDF_STEP_CANDIDATE)
+            ck_assert_int_eq(s.steps[i].model, R->candidates[k++]);
     ck_assert_int_eq(k, R->candidate_count);
     const kept_step *f2 = step(&s, ABRDF_STEP_CANDIDATE, ABRDF_F2);
     ck_assert(!f2->passed && f2->value > 2.0 && f2->threshold == 2.0 && f2->cost == 8.0);
@@ -153,7 +154,8 @@ START_TEST(performance_n300_rel2_picks_f8)
     ck_assert(f16->passed && f16->value <= 2.0 && f16->value2 <= 0.05 && f16->threshold2 == 0.05);
     text_has(f16, "passes");
     const kept_step *c = step(&s, ABRDF_STEP_CHEAPEST, ABRDF_F8);
-    ck_assert(c->passed && c->cost == 14.0 && c->value == s.sel.err_rel_pct && c->value2 == s.sel.err_abs);
+    ck_assert(c->passed && c->cost == 14.0 && c->value == s.sel.err_rel_pct &&
+              c->value2 == s.sel.err_abs);
     text_has(c, "f8: rel ");
     text_has(c, "<= 2%");
     text_has(c, "<= 0.05");
@@ -255,7 +257,8 @@ START_TEST(performance_derives_n_from_r_and_ignores_surface_class)
     double n = abrdf_alpha_g_to_n(0.09);
     ck_assert(tu_close(s.sel.n, n, 1e-12, 0.0) && s.params.n == s.sel.n);
     text_has(step(&s, ABRDF_STEP_INPUT, ABRDF_MODEL_NONE), "from r");
-    text_has(step(&s, ABRDF_STEP_SURFACE, ABRDF_MODEL_NONE), "surface hair: not used by the performance branch");
+    text_has(step(&s, ABRDF_STEP_SURFACE, ABRDF_MODEL_NONE),
+             "surface hair: not used by the performance branch");
     ck_assert_int_eq(s.sel.diffuse, ABRDF_LAMBERT);
 }
 END_TEST
@@ -271,7 +274,8 @@ START_TEST(photoreal_rough_is_disney)
     const kept_step *r = step(&s, ABRDF_STEP_ROUGHNESS, ABRDF_MODEL_NONE);
     ck_assert(!r->passed && r->value == 0.3 && r->threshold == 0.03);
     ck_assert_str_eq(r->text, "alpha 0.3 > 0.03: rough");
-    text_has(step(&s, ABRDF_STEP_ANISOTROPY, ABRDF_DISNEY_SPECULAR), "anisotropy 0 <= 0: disney_specular");
+    text_has(step(&s, ABRDF_STEP_ANISOTROPY, ABRDF_DISNEY_SPECULAR),
+             "anisotropy 0 <= 0: disney_specular");
     text_has(step(&s, ABRDF_STEP_DIFFUSE, ABRDF_DISNEY_DIFFUSE), "disney_diffuse (Eq. 3)");
     ck_assert(s.params.r == 0.3 && s.sel.err_rel_pct < 0 && s.sel.err_nmse < 0);
     ck_assert_int_eq(abrdf_params_check(s.sel.specular, &s.params, NULL, 0), ABRDF_OK);
@@ -299,7 +303,8 @@ START_TEST(photoreal_smooth_is_lambert_fresnel_plus_f2e)
     run s = sel_ok(&m, ABRDF_GOAL_PHOTOREAL, NULL, NULL);
     ck_assert_int_eq(s.sel.diffuse, ABRDF_LAMBERT_FRESNEL);
     ck_assert_int_eq(s.sel.specular, ABRDF_F_2E);
-    ck_assert_str_eq(step(&s, ABRDF_STEP_ROUGHNESS, ABRDF_MODEL_NONE)->text, "alpha 0.02 <= 0.03: smooth");
+    ck_assert_str_eq(step(&s, ABRDF_STEP_ROUGHNESS, ABRDF_MODEL_NONE)->text,
+                     "alpha 0.02 <= 0.03: smooth");
     /* n from r: 2/alpha_g^2 - 2 = 1.25e7, clamped to the parameter's 1e6. */
     const kept_step *e = step(&s, ABRDF_STEP_EXPONENT, ABRDF_F_2E);
     text_has(e, "from r 0.02");
@@ -507,7 +512,8 @@ START_TEST(rules_table_holds_the_flowchart)
     for (int i = 0; i < R->candidate_count; ++i)
         ck_assert_str_eq(abrdf_model_get(R->candidates[i])->equation, "Table 1");
     ck_assert_int_eq(R->surface_count, ABRDF_SURFACE_COUNT);
-    for (int i = 0; i < R->surface_count; ++i) ck_assert(R->special_reason[i] && *R->special_reason[i]);
+    for (int i = 0; i < R->surface_count; ++i)
+        ck_assert(R->special_reason[i] && *R->special_reason[i]);
     for (int i = 1; i < R->surface_count; ++i) ck_assert(abrdf_model_get(R->special[i]) != NULL);
     /* The paper's Table 6 (f_2E column): 18 rows, alpha_g decreasing, NMSE in (0, 0.1). */
     double a, v, prev = INFINITY;
@@ -528,8 +534,8 @@ START_TEST(names_round_trip_and_agree_with_the_registry)
     for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) ck_assert(abrdf_model_get((abrdf_model)i) != NULL);
     ck_assert(abrdf_model_get(ABRDF_MODEL_NONE) == NULL);
     static const char *const steps[ABRDF_STEP_KIND_COUNT] = {
-        "input", "goal", "diffuse", "candidate", "cheapest", "fallback", "surface", "roughness",
-        "anisotropy", "exponent", "special"};
+        "input",   "goal",      "diffuse",    "candidate", "cheapest", "fallback",
+        "surface", "roughness", "anisotropy", "exponent",  "special"};
     for (int i = 0; i < ABRDF_STEP_KIND_COUNT; ++i)
         ck_assert_str_eq(abrdf_step_name((abrdf_step_kind)i), steps[i]);
     ck_assert(abrdf_step_name(ABRDF_STEP_KIND_COUNT) == NULL);

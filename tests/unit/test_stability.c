@@ -160,8 +160,8 @@ static long run_set(const abrdf_model_info *m, const tg_set *set, long *nd, long
         }
     for (int c = 0; c < 3; ++c)
         for (int k = 0; k < ps.count; ++k) bout[c][k] = NAN;
-    abrdf_batch b = {(size_t)ps.count, bx[0], bx[1], bx[2], bx[3], bx[4], bx[5],
-                     bout[0], bout[1], bout[2]};
+    abrdf_batch b = {(size_t)ps.count, bx[0],   bx[1],  bx[2], bx[3], bx[4], bx[5],
+                     bout[0],          bout[1], bout[2]};
     int st = abrdf_eval_batch(m->id, &set->p, &b);
     *nf += ps.count;
     if (st != ABRDF_OK) {
@@ -211,13 +211,14 @@ START_TEST(hard_cases_never_nan_inf_negative)
                slow ? " (integrating model: hard pairs only)" : "", bad > b0 ? "  BAD" : "");
     }
     printf("stability: %ld double evals, %ld float evals, %ld bad (closed-form models, %ld "
-           "hard + %ld random direction pairs per parameter set)\n", nd, nf, bad, hard_pairs,
-           extra);
+           "hard + %ld random direction pairs per parameter set)\n",
+           nd, nf, bad, hard_pairs, extra);
     if (nd_int || nf_int)
         printf("stability: integrating models: %ld double evals, %ld float evals\n", nd_int,
                nf_int);
     ck_assert_msg(bad == 0, "%ld NaN/Inf/negative or failed evaluations", bad);
-    ck_assert_msg(nd >= 1000000 && nf >= 1000000, "only %ld double / %ld float evaluations", nd, nf);
+    ck_assert_msg(nd >= 1000000 && nf >= 1000000, "only %ld double / %ld float evaluations", nd,
+                  nf);
 }
 END_TEST
 
@@ -253,16 +254,19 @@ START_TEST(out_of_range_parameters_rejected)
             const abrdf_param_info *pi = abrdf_param_get(mp->id);
             int is_int = pi->kind == ABRDF_PARAM_INT;
             double bad[5] = {mp->min - (is_int ? 1.0 : fmax(1e-9, fabs(mp->min) * 1e-9)),
-                             mp->max + (is_int ? 1.0 : fmax(1e-9, fabs(mp->max) * 1e-9)),
-                             NAN, INFINITY, -INFINITY};
+                             mp->max + (is_int ? 1.0 : fmax(1e-9, fabs(mp->max) * 1e-9)), NAN,
+                             INFINITY, -INFINITY};
             for (int k = 0; k < (is_int ? 2 : 5); ++k) {
                 abrdf_params p;
                 abrdf_params_init(m->id, &p);
                 void *ptr = tg_param_ptr(&p, mp->id);
                 ck_assert_msg(ptr != NULL, "parameter %s unknown to tg_param_ptr", pi->name);
-                if (is_int) *(int *)ptr = (int)bad[k];
-                else if (pi->kind == ABRDF_PARAM_RGB) ((double *)ptr)[1] = bad[k];
-                else *(double *)ptr = bad[k];
+                if (is_int)
+                    *(int *)ptr = (int)bad[k];
+                else if (pi->kind == ABRDF_PARAM_RGB)
+                    ((double *)ptr)[1] = bad[k];
+                else
+                    *(double *)ptr = bad[k];
                 char what[96];
                 snprintf(what, sizeof what, "%s=%g", pi->name, bad[k]);
                 ++cases;

@@ -28,9 +28,12 @@ void tu_count(tu_counts *k, const double f[3])
 {
     for (int c = 0; c < 3; ++c) {
         k->evals++;
-        if (isnan(f[c])) k->nan++;
-        else if (isinf(f[c])) k->inf++;
-        else if (f[c] < 0.0) k->neg++;
+        if (isnan(f[c]))
+            k->nan++;
+        else if (isinf(f[c]))
+            k->inf++;
+        else if (f[c] < 0.0)
+            k->neg++;
     }
 }
 

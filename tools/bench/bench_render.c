@@ -13,7 +13,6 @@
 #include "robot_scene.h"
 #include "scene_select.h"
 
-
 double bench_wall_seconds(void)
 {
     struct timespec t;
@@ -47,7 +46,8 @@ int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrd
     char msg[256];
     abrdf_model lobes[2] = {diffuse, specular};
     for (int l = 0; l < 2; ++l)
-        if (lobes[l] != ABRDF_MODEL_NONE && abrdf_params_check(lobes[l], p, msg, sizeof msg) != ABRDF_OK) {
+        if (lobes[l] != ABRDF_MODEL_NONE &&
+            abrdf_params_check(lobes[l], p, msg, sizeof msg) != ABRDF_OK) {
             snprintf(err, err_size, "%s: %s", abrdf_model_get(lobes[l])->name, msg);
             return -1;
         }
@@ -101,7 +101,8 @@ static int variant_scene(int v, scene *s, char *err, size_t err_size)
     if (v == V_PERF_EXACT)
         for (int i = 0; i < s->material_count; ++i)
             for (int l = 0; l < s->materials[i].lobe_count; ++l)
-                if (is_table1(s->materials[i].lobes[l])) s->materials[i].lobes[l] = ABRDF_BLINN_PHONG;
+                if (is_table1(s->materials[i].lobes[l]))
+                    s->materials[i].lobes[l] = ABRDF_BLINN_PHONG;
     return 0;
 }
 
@@ -197,16 +198,22 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads)
     double approx_whole = masked_nmse(img[V_PERFORMANCE], img[V_PERF_EXACT], NULL, pixels);
     for (int i = 0; i < nm; ++i) {
         if (material_mask(i, w, h, threads, mask, err, sizeof err)) goto out;
-        for (int v = 0; v < V_COUNT; ++v) nmse[v][i] = masked_nmse(img[v], img[V_DISNEY], mask, pixels);
+        for (int v = 0; v < V_COUNT; ++v)
+            nmse[v][i] = masked_nmse(img[v], img[V_DISNEY], mask, pixels);
         approx[i] = masked_nmse(img[V_PERFORMANCE], img[V_PERF_EXACT], mask, pixels);
     }
 
     char lb[128];
     if (json) {
-        fprintf(out, "{\"scene\": \"robot\", \"width\": %d, \"height\": %d, \"spp\": 1, \"threads\": %d, "
-                "\"reps\": %d, \"reference\": \"full_disney\", \"variants\": [", w, h, threads, reps);
+        fprintf(
+            out,
+            "{\"scene\": \"robot\", \"width\": %d, \"height\": %d, \"spp\": 1, \"threads\": %d, "
+            "\"reps\": %d, \"reference\": \"full_disney\", \"variants\": [",
+            w, h, threads, reps);
         for (int v = 0; v < V_COUNT; ++v) {
-            fprintf(out, "%s\n  {\"name\": \"%s\", \"time_ratio\": %.6g, \"image_nmse\": %.6g, \"materials\": [",
+            fprintf(out,
+                    "%s\n  {\"name\": \"%s\", \"time_ratio\": %.6g, \"image_nmse\": %.6g, "
+                    "\"materials\": [",
                     v ? "," : "", variant_name[v], sec[v] / sec[V_DISNEY], whole[v]);
             for (int i = 0; i < nm; ++i) {
                 lobe_names(&sv[v].materials[i], lb, sizeof lb);
@@ -218,7 +225,8 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads)
             }
             fprintf(out, "]}");
         }
-        fprintf(out, "\n], \"performance_vs_exact_bp\": {\"image_nmse\": %.6g, \"materials\": [", approx_whole);
+        fprintf(out, "\n], \"performance_vs_exact_bp\": {\"image_nmse\": %.6g, \"materials\": [",
+                approx_whole);
         for (int i = 0; i < nm; ++i) {
             fprintf(out, "%s{\"material\": ", i ? ", " : "");
             cli_json_string(out, sv[0].materials[i].name);
@@ -226,21 +234,27 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads)
         }
         fprintf(out, "]}}\n");
     } else {
-        fprintf(out, "Robot %dx%d, 1 spp, %d thread(s), median of %d renders per variant.\n"
-                "Reference (a): every material disney_diffuse + disney_specular. performance_exact_bp:\n"
-                "adaptive_performance with each Table-1 approximation replaced by Blinn-Phong.\n\n", w, h, threads, reps);
+        fprintf(out,
+                "Robot %dx%d, 1 spp, %d thread(s), median of %d renders per variant.\n"
+                "Reference (a): every material disney_diffuse + disney_specular. "
+                "performance_exact_bp:\n"
+                "adaptive_performance with each Table-1 approximation replaced by Blinn-Phong.\n\n",
+                w, h, threads, reps);
         fprintf(out, "%-22s %10s %12s %10s\n", "variant", "time/(a)", "image NMSE", "class");
         for (int v = 0; v < V_COUNT; ++v)
-            fprintf(out, "%-22s %10.3f %12.3g %10s\n", variant_name[v], sec[v] / sec[V_DISNEY], whole[v],
-                    v ? abrdf_nmse_class(whole[v]) : "-");
+            fprintf(out, "%-22s %10.3f %12.3g %10s\n", variant_name[v], sec[v] / sec[V_DISNEY],
+                    whole[v], v ? abrdf_nmse_class(whole[v]) : "-");
         fprintf(out, "\n%-8s %-22s %-36s %12s\n", "material", "variant", "models", "NMSE vs (a)");
         for (int i = 0; i < nm; ++i)
             for (int v = 0; v < V_COUNT; ++v) {
                 lobe_names(&sv[v].materials[i], lb, sizeof lb);
-                fprintf(out, "%-8s %-22s %-36s %12.3g\n", sv[v].materials[i].name, variant_name[v], lb, nmse[v][i]);
+                fprintf(out, "%-8s %-22s %-36s %12.3g\n", sv[v].materials[i].name, variant_name[v],
+                        lb, nmse[v][i]);
             }
-        fprintf(out, "\nadaptive_performance vs performance_exact_bp (the approximation's own error):\n"
-                "  image %.3g", approx_whole);
+        fprintf(out,
+                "\nadaptive_performance vs performance_exact_bp (the approximation's own error):\n"
+                "  image %.3g",
+                approx_whole);
         for (int i = 0; i < nm; ++i) fprintf(out, ", %s %.3g", sv[0].materials[i].name, approx[i]);
         fprintf(out, "\n");
     }

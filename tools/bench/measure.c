@@ -116,7 +116,8 @@ static int run_model_double(void *ctx, const abrdf_batch *b)
     const model_ctx *c = ctx;
     double f[3], acc = 0.0;
     for (size_t i = 0; i < b->count; ++i) {
-        if (abrdf_eval(c->model, &c->params, NULL, c->dir + 6 * i, c->dir + 6 * i + 3, f) != ABRDF_OK)
+        if (abrdf_eval(c->model, &c->params, NULL, c->dir + 6 * i, c->dir + 6 * i + 3, f) !=
+            ABRDF_OK)
             return -1;
         acc += f[0];
     }
@@ -128,7 +129,8 @@ static int run_unit(void *ctx, const abrdf_batch *b)
 {
     float n = *(const float *)ctx;
     for (size_t i = 0; i < b->count; ++i) {
-        float hx = b->wi_x[i] + b->wo_x[i], hy = b->wi_y[i] + b->wo_y[i], hz = b->wi_z[i] + b->wo_z[i];
+        float hx = b->wi_x[i] + b->wo_x[i], hy = b->wi_y[i] + b->wo_y[i],
+              hz = b->wi_z[i] + b->wo_z[i];
         float c = hz / sqrtf(hx * hx + hy * hy + hz * hz);
         b->f_r[i] = c > 0.0f ? powf(c, n) : 0.0f;
     }
@@ -142,8 +144,8 @@ static double time_batches(measure_set *s, size_t pairs, batch_fn fn, void *ctx,
 {
     size_t P = s->pairs;
     float *b = s->buf;
-    abrdf_batch batch = {pairs, b, b + P, b + 2 * P, b + 3 * P, b + 4 * P, b + 5 * P,
-                         b + 6 * P, b + 7 * P, b + 8 * P};
+    abrdf_batch batch = {pairs,     b,         b + P,     b + 2 * P, b + 3 * P,
+                         b + 4 * P, b + 5 * P, b + 6 * P, b + 7 * P, b + 8 * P};
     if (fn(ctx, &batch) != 0) return -1.0; /* warm-up, and the parameters are valid */
     double t0 = now_seconds();
     fn(ctx, &batch);
@@ -180,7 +182,8 @@ double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_pa
     ctx.params = *p;
     ctx.dir = s->dir;
     size_t pairs = s->pairs;
-    if ((m->needs & ABRDF_NEEDS_INTEGRATION) && pairs > o->integrating_pairs) pairs = o->integrating_pairs;
+    if ((m->needs & ABRDF_NEEDS_INTEGRATION) && pairs > o->integrating_pairs)
+        pairs = o->integrating_pairs;
     return time_batches(s, pairs, double_path ? run_model_double : run_model, &ctx, o);
 }
 
@@ -190,8 +193,8 @@ double measure_unit_ns(measure_set *s, const measure_opts *o)
     return time_batches(s, s->pairs, run_unit, &n, o);
 }
 
-int measure_models(const measure_opts *o, const abrdf_model *models, int count,
-                   abrdf_costs *out, double *unit_ns, void (*progress)(const char *name))
+int measure_models(const measure_opts *o, const abrdf_model *models, int count, abrdf_costs *out,
+                   double *unit_ns, void (*progress)(const char *name))
 {
     abrdf_costs_init(out, COSTS_UNIT);
     measure_set *s = measure_set_new(o->pairs);

@@ -6,9 +6,9 @@
 #include "abrdf_select.h"
 
 typedef struct measure_opts {
-    int reps;           /* timed repetitions; the median is reported */
-    size_t pairs;       /* direction pairs per batch (structure of arrays, warm in cache) */
-    double rep_seconds; /* each repetition repeats the batch until it lasts this long */
+    int reps;                 /* timed repetitions; the median is reported */
+    size_t pairs;             /* direction pairs per batch (structure of arrays, warm in cache) */
+    double rep_seconds;       /* each repetition repeats the batch until it lasts this long */
     size_t integrating_pairs; /* pairs for models that integrate numerically (slow) */
 } measure_opts;
 
@@ -34,7 +34,7 @@ double measure_unit_ns(measure_set *s, const measure_opts *o);
 /* Measure `models` (count of them; NULL = every registered model) into out (unit
  * COSTS_UNIT; the others < 0) and the unit into *unit_ns. progress (may be NULL) is called
  * with each name before it is timed. Returns 0, or -1 if out of memory. */
-int measure_models(const measure_opts *o, const abrdf_model *models, int count,
-                   abrdf_costs *out, double *unit_ns, void (*progress)(const char *name));
+int measure_models(const measure_opts *o, const abrdf_model *models, int count, abrdf_costs *out,
+                   double *unit_ns, void (*progress)(const char *name));
 
 #endif

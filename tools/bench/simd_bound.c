@@ -25,10 +25,11 @@ static double cpu_seconds(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-__attribute__((noinline)) static void bound(size_t n, const float *restrict ix, const float *restrict iy,
-                                            const float *restrict iz, const float *restrict ox,
-                                            const float *restrict oy, const float *restrict oz,
-                                            float *restrict fr, float *restrict fg, float *restrict fb)
+__attribute__((noinline)) static void bound(size_t n, const float *restrict ix,
+                                            const float *restrict iy, const float *restrict iz,
+                                            const float *restrict ox, const float *restrict oy,
+                                            const float *restrict oz, float *restrict fr,
+                                            float *restrict fg, float *restrict fb)
 {
     for (size_t i = 0; i < n; ++i) {
         float hx = ix[i] + ox[i], hy = iy[i] + oy[i], hz = iz[i] + oz[i];
@@ -42,10 +43,10 @@ __attribute__((noinline)) static void bound(size_t n, const float *restrict ix, 
     }
 }
 
-__attribute__((noinline)) static void unit(size_t n, const float *restrict ix, const float *restrict iy,
-                                           const float *restrict iz, const float *restrict ox,
-                                           const float *restrict oy, const float *restrict oz,
-                                           float *restrict fr)
+__attribute__((noinline)) static void unit(size_t n, const float *restrict ix,
+                                           const float *restrict iy, const float *restrict iz,
+                                           const float *restrict ox, const float *restrict oy,
+                                           const float *restrict oz, float *restrict fr)
 {
     for (size_t i = 0; i < n; ++i) {
         float hx = ix[i] + ox[i], hy = iy[i] + oy[i], hz = iz[i] + oz[i];
@@ -68,7 +69,8 @@ int main(void)
     double tb = 1e30, tu = 1e30;
     for (int r = 0; r < REPS; ++r) { /* best of REPS: interference only adds time */
         double t = cpu_seconds();
-        for (int k = 0; k < CALLS; ++k) bound(PAIRS, p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8]);
+        for (int k = 0; k < CALLS; ++k)
+            bound(PAIRS, p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8]);
         t = cpu_seconds() - t;
         tb = t < tb ? t : tb;
         t = cpu_seconds();

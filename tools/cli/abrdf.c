@@ -6,22 +6,33 @@
 static const cli_command commands[] = {
     {"models", "list every model with its formula, parameters and needs", cmd_models},
     {"eval", "evaluate a model's f_r for one direction pair", cmd_eval},
-    {"export", "write a scene for another renderer (--pov: POV-Ray 3.7 SDL; --cycles: Blender/Cycles with OSL)", cmd_export},
-    {"render", "render a scene (docs/SCENES.md) to EXR + PNG preview with the built-in ray tracer", cmd_render},
+    {"export",
+     "write a scene for another renderer (--pov: POV-Ray 3.7 SDL; --cycles: Blender/Cycles with "
+     "OSL)",
+     cmd_export},
+    {"render", "render a scene (docs/SCENES.md) to EXR + PNG preview with the built-in ray tracer",
+     cmd_render},
     {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
-    {"compare", "NMSE (the paper's metric), PSNR, max error and Table-8 class of two images", cmd_compare},
-    {"tables", "the paper's Tables 2, 3, 4, 6, 7 recomputed, beside the published values", cmd_tables},
-    {"calibrate", "measure ns/eval of every model on this machine; write a cost file", cmd_calibrate},
-    {"bench", "what accuracy costs in time: cost ratios, image errors, Pareto plot; --render", cmd_bench},
-    {"advise", "choose the models for a material by the paper's flowchart, and say why", cmd_advise},
+    {"compare", "NMSE (the paper's metric), PSNR, max error and Table-8 class of two images",
+     cmd_compare},
+    {"tables", "the paper's Tables 2, 3, 4, 6, 7 recomputed, beside the published values",
+     cmd_tables},
+    {"calibrate", "measure ns/eval of every model on this machine; write a cost file",
+     cmd_calibrate},
+    {"bench", "what accuracy costs in time: cost ratios, image errors, Pareto plot; --render",
+     cmd_bench},
+    {"advise", "choose the models for a material by the paper's flowchart, and say why",
+     cmd_advise},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 
 static void usage(FILE *f)
 {
-    fprintf(f, "abrdf %s - adaptive selection of surface reflectance models\n\n"
-               "usage: abrdf COMMAND [options]   (abrdf COMMAND --help for its options)\n\n"
-               "commands:\n", abrdf_version());
+    fprintf(f,
+            "abrdf %s - adaptive selection of surface reflectance models\n\n"
+            "usage: abrdf COMMAND [options]   (abrdf COMMAND --help for its options)\n\n"
+            "commands:\n",
+            abrdf_version());
     for (size_t i = 0; i < COMMAND_COUNT; ++i)
         fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
 }
@@ -45,12 +56,14 @@ int main(int argc, char **argv)
     char names[512] = "", near[256] = "";
     for (size_t i = 0; i < COMMAND_COUNT; ++i) {
         size_t len = strlen(commands[i].name) + 3;
-        if (strlen(names) + len < sizeof names) strcat(strcat(names, i ? ", " : ""), commands[i].name);
+        if (strlen(names) + len < sizeof names)
+            strcat(strcat(names, i ? ", " : ""), commands[i].name);
         if (cli_is_near(argv[1], commands[i].name) && strlen(near) + len < sizeof near)
             strcat(strcat(near, *near ? ", " : ""), commands[i].name);
     }
     if (*near)
-        fprintf(stderr, "abrdf: unknown command '%s'; did you mean %s? commands: %s\n", argv[1], near, names);
+        fprintf(stderr, "abrdf: unknown command '%s'; did you mean %s? commands: %s\n", argv[1],
+                near, names);
     else
         fprintf(stderr, "abrdf: unknown command '%s'; commands: %s\n", argv[1], names);
     return CLI_EXIT_USAGE;

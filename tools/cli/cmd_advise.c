@@ -16,7 +16,8 @@
 
 static void usage(FILE *f)
 {
-    fprintf(f,
+    fprintf(
+        f,
         "usage: abrdf advise [MATERIAL] [options]\n"
         "       abrdf advise --list [--json] [--materials FILE]...\n"
         "       abrdf advise --rules [--json]\n\n"
@@ -35,9 +36,11 @@ static void usage(FILE *f)
         "  --type T               general, cloth_rough, cloth_shiny, hair, layered_plastic,\n"
         "                         layered_plate, layered_metal\n"
         "  --materials FILE       extra material file (same format; overrides by name)\n"
-        "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table 4)\n"
+        "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table "
+        "4)\n"
         "  --list                 list the materials\n"
-        "  --rules                the flowchart's thresholds and model choices (abrdf_select_rules)\n"
+        "  --rules                the flowchart's thresholds and model choices "
+        "(abrdf_select_rules)\n"
         "  --json                 machine-readable output\n",
         abrdf_select_rules_get()->default_max_rel_pct, abrdf_select_rules_get()->default_max_abs);
 }
@@ -46,26 +49,29 @@ static void usage(FILE *f)
 
 static void json_num(double v)
 {
-    if (isfinite(v)) printf("%.10g", v);
-    else printf("null");
+    if (isfinite(v))
+        printf("%.10g", v);
+    else
+        printf("null");
 }
 
 /* -1 marks "not applicable" in abrdf_selection; JSON says null. */
 static void json_opt(double v)
 {
-    if (v < 0.0) printf("null");
-    else json_num(v);
+    if (v < 0.0)
+        printf("null");
+    else
+        json_num(v);
 }
 
-static void json_rgb(const double v[3])
-{
-    printf("[%.10g, %.10g, %.10g]", v[0], v[1], v[2]);
-}
+static void json_rgb(const double v[3]) { printf("[%.10g, %.10g, %.10g]", v[0], v[1], v[2]); }
 
 static void json_name(const char *s)
 {
-    if (s) cli_json_string(stdout, s);
-    else printf("null");
+    if (s)
+        cli_json_string(stdout, s);
+    else
+        printf("null");
 }
 
 /* The model's stable name; NULL for ABRDF_MODEL_NONE. */
@@ -140,10 +146,11 @@ static void print_rules(int json)
 {
     const abrdf_select_rules *R = abrdf_select_rules_get();
     if (!json) {
-        printf("smooth if r <= %g; anisotropic lobe if anisotropy > %g\n", R->smooth_r_max, R->aniso_min);
+        printf("smooth if r <= %g; anisotropic lobe if anisotropy > %g\n", R->smooth_r_max,
+               R->aniso_min);
         printf("default tolerances: rel %g%%, abs %g; n derived from r capped at %g, f_2e's n "
-               "clamped to [%g, %g]\n", R->default_max_rel_pct, R->default_max_abs, R->n_max,
-               R->n_min, R->n_max);
+               "clamped to [%g, %g]\n",
+               R->default_max_rel_pct, R->default_max_abs, R->n_max, R->n_min, R->n_max);
         printf("performance: %s + cheapest of", rule_name(R->perf_diffuse));
         for (int i = 0; i < R->candidate_count; ++i) printf(" %s", rule_name(R->candidates[i]));
         printf("; none passes: %s\n", rule_name(R->perf_fallback));
@@ -158,12 +165,14 @@ static void print_rules(int json)
     }
     printf("{\"smooth_r_max\": %.17g, \"aniso_min\": %.17g, \"default_max_rel_pct\": %.17g, "
            "\"default_max_abs\": %.17g, \"n_min\": %.17g, \"n_max\": %.17g,\n",
-           R->smooth_r_max, R->aniso_min, R->default_max_rel_pct, R->default_max_abs, R->n_min, R->n_max);
+           R->smooth_r_max, R->aniso_min, R->default_max_rel_pct, R->default_max_abs, R->n_min,
+           R->n_max);
     printf(" \"perf_diffuse\": \"%s\", \"perf_fallback\": \"%s\", \"candidates\": [",
            rule_name(R->perf_diffuse), rule_name(R->perf_fallback));
     for (int i = 0; i < R->candidate_count; ++i)
         printf("%s\"%s\"", i ? ", " : "", rule_name(R->candidates[i]));
-    printf("],\n \"rough_diffuse\": \"%s\", \"rough_specular\": \"%s\", \"rough_specular_aniso\": \"%s\", "
+    printf("],\n \"rough_diffuse\": \"%s\", \"rough_specular\": \"%s\", \"rough_specular_aniso\": "
+           "\"%s\", "
            "\"smooth_diffuse\": \"%s\", \"smooth_specular\": \"%s\",\n \"special\": {",
            rule_name(R->rough_diffuse), rule_name(R->rough_specular),
            rule_name(R->rough_specular_aniso), rule_name(R->smooth_diffuse),
@@ -187,8 +196,7 @@ static void print_rules(int json)
 static int range_value(const char *opt, const char *s, double lo, double hi, double *out)
 {
     if (!s) return cli_fail(CMD, "%s needs a value", opt);
-    if (!cli_parse_double(s, out))
-        return cli_fail(CMD, "%s: '%s' is not a finite number", opt, s);
+    if (!cli_parse_double(s, out)) return cli_fail(CMD, "%s: '%s' is not a finite number", opt, s);
     if (!(*out >= lo && *out <= hi))
         return cli_fail(CMD, "%s: %s is outside [%g, %g]", opt, s, lo, hi);
     return 0;
@@ -198,7 +206,8 @@ static int color_value(const char *opt, const char *s, double v[3])
 {
     if (!s) return cli_fail(CMD, "%s needs V or R,G,B", opt);
     if (strchr(s, ',')) {
-        if (!cli_parse_vec3(s, v)) return cli_fail(CMD, "%s: '%s' is not R,G,B (finite numbers)", opt, s);
+        if (!cli_parse_vec3(s, v))
+            return cli_fail(CMD, "%s: '%s' is not R,G,B (finite numbers)", opt, s);
     } else if (cli_parse_double(s, &v[0])) {
         v[1] = v[2] = v[0];
     } else {
@@ -220,11 +229,14 @@ static int limit_value(const char *opt, const char *s, double *out)
 
 /* ---- output --------------------------------------------------------------------------- */
 
-static void print_human(const abrdf_selection *s, const abrdf_params *p,
-                        const select_trace *trace, const mat_entry *e)
+static void print_human(const abrdf_selection *s, const abrdf_params *p, const select_trace *trace,
+                        const mat_entry *e)
 {
-    if (e) printf("material  %s (%s; %s:%d)\n", e->name, abrdf_surface_name(s->type), e->file, e->line);
-    else printf("material  explicit values (%s)\n", abrdf_surface_name(s->type));
+    if (e)
+        printf("material  %s (%s; %s:%d)\n", e->name, abrdf_surface_name(s->type), e->file,
+               e->line);
+    else
+        printf("material  explicit values (%s)\n", abrdf_surface_name(s->type));
     printf("goal      %s\n", abrdf_goal_name(s->goal));
     printf("diffuse   %s\n", s->diffuse == ABRDF_MODEL_NONE ? "none (part of the specular model)"
                                                             : model_name(s->diffuse));
@@ -251,12 +263,16 @@ static void print_human(const abrdf_selection *s, const abrdf_params *p,
     char unit[32] = "";
     sscanf(s->cost_unit ? s->cost_unit : "units", "%31s", unit);
     printf("cost      %s ", model_name(s->specular));
-    if (s->cost_specular >= 0.0) printf("%g %s", s->cost_specular, unit);
-    else printf("not in the cost table");
+    if (s->cost_specular >= 0.0)
+        printf("%g %s", s->cost_specular, unit);
+    else
+        printf("not in the cost table");
     if (s->diffuse != ABRDF_MODEL_NONE) {
         printf("; %s ", model_name(s->diffuse));
-        if (s->cost_diffuse >= 0.0) printf("%g %s", s->cost_diffuse, unit);
-        else printf("not in the cost table");
+        if (s->cost_diffuse >= 0.0)
+            printf("%g %s", s->cost_diffuse, unit);
+        else
+            printf("not in the cost table");
     }
     if (s->cost_total >= 0.0) printf("; total %g %s", s->cost_total, unit);
     printf("  [%s]\n", s->cost_unit ? s->cost_unit : "");
@@ -265,8 +281,8 @@ static void print_human(const abrdf_selection *s, const abrdf_params *p,
     if (e) printf("source: %s\n", e->source);
 }
 
-static void print_json(const abrdf_selection *s, const abrdf_params *p,
-                       const select_trace *trace, const mat_entry *e, const abrdf_tolerance *tol)
+static void print_json(const abrdf_selection *s, const abrdf_params *p, const select_trace *trace,
+                       const mat_entry *e, const abrdf_tolerance *tol)
 {
     printf("{\"material\": ");
     json_name(e ? e->name : NULL);
@@ -287,11 +303,14 @@ static void print_json(const abrdf_selection *s, const abrdf_params *p,
     json_rgb(p->ks);
     printf(", \"f0\": ");
     json_rgb(p->f0);
-    printf(", \"n\": %.10g, \"r\": %.10g, \"anisotropic\": %.10g, \"eta\": %.10g, \"melanin\": %.10g, "
-           "\"redness\": %.10g, \"layers\": [", p->n, p->r, p->anisotropic, p->eta, p->melanin, p->redness);
+    printf(
+        ", \"n\": %.10g, \"r\": %.10g, \"anisotropic\": %.10g, \"eta\": %.10g, \"melanin\": %.10g, "
+        "\"redness\": %.10g, \"layers\": [",
+        p->n, p->r, p->anisotropic, p->eta, p->melanin, p->redness);
     for (int i = 0; i < p->layer_count; ++i) {
         printf("%s{\"eta\": %.10g, \"kappa\": %.10g, \"r\": %.10g, \"depth\": %.10g, \"sigma_a\": ",
-               i ? ", " : "", p->layers[i].eta, p->layers[i].kappa, p->layers[i].r, p->layers[i].depth);
+               i ? ", " : "", p->layers[i].eta, p->layers[i].kappa, p->layers[i].r,
+               p->layers[i].depth);
         json_rgb(p->layers[i].sigma_a);
         printf("}");
     }
@@ -317,13 +336,17 @@ static void print_json(const abrdf_selection *s, const abrdf_params *p,
         printf(", \"value\": ");
         json_opt(t->value);
         printf(", \"threshold\": ");
-        if (isinf(t->threshold)) printf("null");
-        else json_opt(t->threshold);
+        if (isinf(t->threshold))
+            printf("null");
+        else
+            json_opt(t->threshold);
         printf(", \"value2\": ");
         json_opt(t->value2);
         printf(", \"threshold2\": ");
-        if (isinf(t->threshold2)) printf("null");
-        else json_opt(t->threshold2);
+        if (isinf(t->threshold2))
+            printf("null");
+        else
+            json_opt(t->threshold2);
         printf(", \"cost\": ");
         json_opt(t->cost);
         printf(", \"passed\": %s, \"text\": ", t->passed ? "true" : "false");
@@ -387,12 +410,15 @@ int cmd_advise(int argc, char **argv)
             st = range_value(a, v, 0.0, 1.0, &red), has_red = 1;
         } else if (!strcmp(a, "--type")) {
             if (!v || abrdf_surface_find(v, &type) != ABRDF_OK)
-                return cli_fail(CMD, "--type needs one of general, cloth_rough, cloth_shiny, hair, "
-                                "layered_plastic, layered_plate, layered_metal; got '%s'", v ? v : "");
+                return cli_fail(CMD,
+                                "--type needs one of general, cloth_rough, cloth_shiny, hair, "
+                                "layered_plastic, layered_plate, layered_metal; got '%s'",
+                                v ? v : "");
             has_type = 1;
         } else if (!strcmp(a, "--materials")) {
             if (!v) return cli_fail(CMD, "--materials needs a file");
-            if (nfiles == MAX_FILES) return cli_fail(CMD, "at most %d --materials files", MAX_FILES);
+            if (nfiles == MAX_FILES)
+                return cli_fail(CMD, "at most %d --materials files", MAX_FILES);
             files[nfiles++] = v;
         } else if (!strcmp(a, "--costs")) {
             if (!v) return cli_fail(CMD, "--costs needs a file (abrdf calibrate writes one)");
@@ -432,8 +458,10 @@ int cmd_advise(int argc, char **argv)
             int k = mat_table_nearest(&table, name, near, 5);
             char hint[256] = "";
             for (int i = 0; i < k; ++i) strcat(strcat(hint, i ? ", " : ""), near[i]);
-            rc = k ? cli_fail(CMD, "unknown material '%s'; did you mean: %s? (abrdf advise --list)", name, hint)
-                   : cli_fail(CMD, "unknown material '%s'; abrdf advise --list shows the %d known ones",
+            rc = k ? cli_fail(CMD, "unknown material '%s'; did you mean: %s? (abrdf advise --list)",
+                              name, hint)
+                   : cli_fail(CMD,
+                              "unknown material '%s'; abrdf advise --list shows the %d known ones",
                               name, table.count);
             mat_table_free(&table);
             return rc;
@@ -443,7 +471,8 @@ int cmd_advise(int argc, char **argv)
         abrdf_material_init(&m);
         if (!has_n && !has_r) {
             mat_table_free(&table);
-            return cli_fail(CMD, "give a MATERIAL name or at least --n or --r (abrdf advise --help)");
+            return cli_fail(CMD,
+                            "give a MATERIAL name or at least --n or --r (abrdf advise --help)");
         }
     }
     if (has_n) m.n = n;
@@ -470,8 +499,8 @@ int cmd_advise(int argc, char **argv)
     select_trace trace = SELECT_TRACE_INIT;
     abrdf_selection_init(&sel);
     abrdf_params_init(ABRDF_MODEL_NONE, &params);
-    if (abrdf_select(&m, goal, &tol, costs_file ? &costs : NULL, &sel, &params,
-                     select_trace_keep, &trace) != ABRDF_OK) {
+    if (abrdf_select(&m, goal, &tol, costs_file ? &costs : NULL, &sel, &params, select_trace_keep,
+                     &trace) != ABRDF_OK) {
         rc = cli_fail(CMD, "%s", sel.message);
     } else if (trace.lost) {
         rc = cli_fail(CMD, "out of memory");

@@ -15,30 +15,37 @@
 #include "metrics.h"
 
 /* The accuracy experiments (docs/BENCHMARKS.md, "Accuracy"). */
-#define APPROX_N 100.0     /* exponent of Blinn-Phong and its Table-1 approximations */
-#define SPEC_ALPHA_G 0.1   /* roughness of the Disney GGX reference for the Table-5 lobes */
-#define SPEC_F0 0.04       /* F0 of the GGX reference (a dielectric) */
-#define LAMBERT_KD 0.5     /* diffuse albedo under the specular lobes, and of the diffuse models */
-#define DIFFUSE_R 0.5      /* roughness of the Disney diffuse reference */
+#define APPROX_N 100.0   /* exponent of Blinn-Phong and its Table-1 approximations */
+#define SPEC_ALPHA_G 0.1 /* roughness of the Disney GGX reference for the Table-5 lobes */
+#define SPEC_F0 0.04     /* F0 of the GGX reference (a dielectric) */
+#define LAMBERT_KD 0.5   /* diffuse albedo under the specular lobes, and of the diffuse models */
+#define DIFFUSE_R 0.5    /* roughness of the Disney diffuse reference */
 /* The exponents searched for the Table-5 lobes (the paper's list, Sec. 4). */
-static const double paper_n[] = {1, 5, 10, 20, 40, 60, 80, 100, 200, 300, 400, 500,
-                                 600, 700, 800, 900, 950, 1000};
+static const double paper_n[] = {1,   5,   10,  20,  40,  60,  80,  100, 200,
+                                 300, 400, 500, 600, 700, 800, 900, 950, 1000};
 static const double quick_n[] = {10, 100, 1000};
 
-typedef enum ref_kind { REF_NONE, REF_BLINN_PHONG, REF_DISNEY_SPECULAR, REF_DISNEY_DIFFUSE, REF_SELF } ref_kind;
-static const char *const ref_name[] = {"", "blinn_phong", "disney_specular", "disney_diffuse", "(reference)"};
+typedef enum ref_kind {
+    REF_NONE,
+    REF_BLINN_PHONG,
+    REF_DISNEY_SPECULAR,
+    REF_DISNEY_DIFFUSE,
+    REF_SELF
+} ref_kind;
+static const char *const ref_name[] = {"", "blinn_phong", "disney_specular", "disney_diffuse",
+                                       "(reference)"};
 
 typedef struct row {
     const abrdf_model_info *m;
-    char vary;                 /* 'n', 'r' or 0: the parameter the cost is swept over */
+    char vary; /* 'n', 'r' or 0: the parameter the cost is swept over */
     double vals[3];
     int nvals;
-    double f_ns[3], d_ns[3];   /* per swept value (index 0 = default parameters when nvals = 1) */
-    double f_def, d_def;       /* at the model's default parameters */
+    double f_ns[3], d_ns[3]; /* per swept value (index 0 = default parameters when nvals = 1) */
+    double f_def, d_def;     /* at the model's default parameters */
     ref_kind ref;
-    double nmse;               /* robot NMSE vs the reference, NAN if none */
-    double best_n;             /* argmin n of the search (Table-5 lobes), NAN otherwise */
-    double t2_rel, t3_abs;     /* Table-2 max relative error (%) and Table-3 max abs error */
+    double nmse;           /* robot NMSE vs the reference, NAN if none */
+    double best_n;         /* argmin n of the search (Table-5 lobes), NAN otherwise */
+    double t2_rel, t3_abs; /* Table-2 max relative error (%) and Table-3 max abs error */
 } row;
 
 static int usage(void)
@@ -46,7 +53,8 @@ static int usage(void)
     printf("usage: abrdf bench [--json] [--plot OUT.svg] [--quick] [--render] [--size N]\n"
            "                   [--threads N] [--reps N]\n\n"
            "For every model: ns/eval of the float batch path (abrdf_eval_batch) and of the\n"
-           "double scalar path (abrdf_eval, local frame), as ratios to a powf Blinn-Phong loop on the\n"
+           "double scalar path (abrdf_eval, local frame), as ratios to a powf Blinn-Phong loop on "
+           "the\n"
            "same structure-of-arrays data timed in the same run (warm cache, median of the\n"
            "repetitions, swept over n or r where the model reads them), and the accuracy\n"
            "against the model it replaces: NMSE on a robot render (Table-1 approximations vs\n"
@@ -95,18 +103,29 @@ static void set_vary(abrdf_params *p, char vary, double x)
 static ref_kind reference_of(abrdf_model id)
 {
     switch (id) {
-    case ABRDF_F2: case ABRDF_F4: case ABRDF_F8: case ABRDF_F16: case ABRDF_FS: case ABRDF_FKV:
-    case ABRDF_FKUB:
-        return REF_BLINN_PHONG;
-    case ABRDF_F_PHE: case ABRDF_F_BE: case ABRDF_F_2E: case ABRDF_F_16E: case ABRDF_F_GE:
-    case ABRDF_F_CTPHE: case ABRDF_F_CT2E: case ABRDF_F_CT16E: case ABRDF_COOK_TORRANCE:
-        return REF_DISNEY_SPECULAR;
-    case ABRDF_LAMBERT: case ABRDF_LAMBERT_FRESNEL: case ABRDF_OREN_NAYAR:
-        return REF_DISNEY_DIFFUSE;
-    case ABRDF_BLINN_PHONG: case ABRDF_DISNEY_SPECULAR: case ABRDF_DISNEY_DIFFUSE:
-        return REF_SELF;
-    default:
-        return REF_NONE;
+    case ABRDF_F2:
+    case ABRDF_F4:
+    case ABRDF_F8:
+    case ABRDF_F16:
+    case ABRDF_FS:
+    case ABRDF_FKV:
+    case ABRDF_FKUB: return REF_BLINN_PHONG;
+    case ABRDF_F_PHE:
+    case ABRDF_F_BE:
+    case ABRDF_F_2E:
+    case ABRDF_F_16E:
+    case ABRDF_F_GE:
+    case ABRDF_F_CTPHE:
+    case ABRDF_F_CT2E:
+    case ABRDF_F_CT16E:
+    case ABRDF_COOK_TORRANCE: return REF_DISNEY_SPECULAR;
+    case ABRDF_LAMBERT:
+    case ABRDF_LAMBERT_FRESNEL:
+    case ABRDF_OREN_NAYAR: return REF_DISNEY_DIFFUSE;
+    case ABRDF_BLINN_PHONG:
+    case ABRDF_DISNEY_SPECULAR:
+    case ABRDF_DISNEY_DIFFUSE: return REF_SELF;
+    default: return REF_NONE;
     }
 }
 
@@ -132,7 +151,8 @@ static void accuracy_params(abrdf_model id, ref_kind ref, abrdf_params *p)
 static int render_one(scene *s, int size, int threads, abrdf_model id, ref_kind ref,
                       const abrdf_params *p, float *rgb, char *err, size_t n)
 {
-    if (ref == REF_DISNEY_DIFFUSE) return bench_robot_lobes(s, size, threads, id, ABRDF_MODEL_NONE, p, rgb, NULL, err, n);
+    if (ref == REF_DISNEY_DIFFUSE)
+        return bench_robot_lobes(s, size, threads, id, ABRDF_MODEL_NONE, p, rgb, NULL, err, n);
     return bench_robot_lobes(s, size, threads, ABRDF_LAMBERT, id, p, rgb, NULL, err, n);
 }
 
@@ -144,8 +164,8 @@ static int accuracy(row *rows, int count, int size, int threads, int quick, char
     float *ref[4] = {NULL}, *img = malloc(px * sizeof *img);
     int rc = -1;
     if (!img) goto out;
-    static const abrdf_model ref_model[4] = {ABRDF_MODEL_NONE, ABRDF_BLINN_PHONG, ABRDF_DISNEY_SPECULAR,
-                                             ABRDF_DISNEY_DIFFUSE};
+    static const abrdf_model ref_model[4] = {ABRDF_MODEL_NONE, ABRDF_BLINN_PHONG,
+                                             ABRDF_DISNEY_SPECULAR, ABRDF_DISNEY_DIFFUSE};
     for (int k = 1; k < 4; ++k) {
         abrdf_params p;
         accuracy_params(ref_model[k], (ref_kind)k, &p);
@@ -164,10 +184,12 @@ static int accuracy(row *rows, int count, int size, int threads, int quick, char
         r->nmse = INFINITY;
         for (int j = 0; j < (search ? nn : 1); ++j) {
             if (search) p.n = ns[j];
-            if (abrdf_params_check(r->m->id, &p, NULL, 0) != ABRDF_OK) continue; /* n out of range */
+            if (abrdf_params_check(r->m->id, &p, NULL, 0) != ABRDF_OK)
+                continue; /* n out of range */
             if (render_one(&s, size, threads, r->m->id, r->ref, &p, img, err, n)) goto out;
             abrdf_metrics mt;
-            if (abrdf_metrics_compute(img, ref[r->ref], size, size, 3, &mt) != ABRDF_METRICS_OK || !mt.nmse_defined) {
+            if (abrdf_metrics_compute(img, ref[r->ref], size, size, 3, &mt) != ABRDF_METRICS_OK ||
+                !mt.nmse_defined) {
                 snprintf(err, n, "no NMSE for %s", r->m->name);
                 goto out;
             }
@@ -198,8 +220,10 @@ static int cmp_double(const void *a, const void *b)
 
 static void json_num(FILE *f, double v)
 {
-    if (isfinite(v)) fprintf(f, "%.6g", v);
-    else fputs("null", f);
+    if (isfinite(v))
+        fprintf(f, "%.6g", v);
+    else
+        fputs("null", f);
 }
 
 /* The batch-path targets (docs/BENCHMARKS.md): slowest Table-1 approximation's speedup,
@@ -215,10 +239,13 @@ static targets compute_targets(const row *rows, int count, double unit_ns)
     for (int i = 0; i < count; ++i) {
         const row *r = &rows[i];
         double sp = unit_ns / r->f_def;
-        if (r->ref == REF_BLINN_PHONG && sp < t.approx_min_speedup) t.approx_min_speedup = sp, t.approx_min_name = r->m->name;
-        if (r->ref == REF_BLINN_PHONG && sp > t.approx_max_speedup) t.approx_max_speedup = sp, t.approx_max_name = r->m->name;
+        if (r->ref == REF_BLINN_PHONG && sp < t.approx_min_speedup)
+            t.approx_min_speedup = sp, t.approx_min_name = r->m->name;
+        if (r->ref == REF_BLINN_PHONG && sp > t.approx_max_speedup)
+            t.approx_max_speedup = sp, t.approx_max_name = r->m->name;
         if (r->m->id == ABRDF_F_2E) t.f2e_speedup = unit_ns / r->f_def;
-        if (r->m->id == ABRDF_DISNEY_DIFFUSE || r->m->id == ABRDF_DISNEY_SPECULAR) t.disney_full_ratio += r->f_def / unit_ns;
+        if (r->m->id == ABRDF_DISNEY_DIFFUSE || r->m->id == ABRDF_DISNEY_SPECULAR)
+            t.disney_full_ratio += r->f_def / unit_ns;
     }
     return t;
 }
@@ -226,28 +253,36 @@ static targets compute_targets(const row *rows, int count, double unit_ns)
 static void print_json(FILE *f, const row *rows, int count, double unit_ns, double drift,
                        const measure_opts *mo, int size)
 {
-    fprintf(f, "{\"unit\": \"powf_blinn_phong\", \"unit_spread\": %.4g, \"pairs\": %zu, \"reps\": %d, "
-            "\"robot_size\": %d, \"approx_n\": %g, \"spec_alpha_g\": %g,\n \"unit_ns\": %.4g,\n \"models\": [",
+    fprintf(f,
+            "{\"unit\": \"powf_blinn_phong\", \"unit_spread\": %.4g, \"pairs\": %zu, \"reps\": %d, "
+            "\"robot_size\": %d, \"approx_n\": %g, \"spec_alpha_g\": %g,\n \"unit_ns\": %.4g,\n "
+            "\"models\": [",
             drift, mo->pairs, mo->reps, size, APPROX_N, SPEC_ALPHA_G, unit_ns);
     for (int i = 0; i < count; ++i) {
         const row *r = &rows[i];
-        fprintf(f, "%s\n  {\"name\": \"%s\", \"float_ratio\": %.6g, \"double_ratio\": %.6g, "
-                "\"float_speedup\": %.6g, \"sweep\": ", i ? "," : "", r->m->name, r->f_def / unit_ns,
-                r->d_def / unit_ns, unit_ns / r->f_def);
+        fprintf(f,
+                "%s\n  {\"name\": \"%s\", \"float_ratio\": %.6g, \"double_ratio\": %.6g, "
+                "\"float_speedup\": %.6g, \"sweep\": ",
+                i ? "," : "", r->m->name, r->f_def / unit_ns, r->d_def / unit_ns,
+                unit_ns / r->f_def);
         if (r->vary) {
             fprintf(f, "{\"param\": \"%c\", \"values\": [", r->vary);
             for (int k = 0; k < r->nvals; ++k) fprintf(f, "%s%g", k ? ", " : "", r->vals[k]);
             fprintf(f, "], \"float_ratio\": [");
-            for (int k = 0; k < r->nvals; ++k) fprintf(f, "%s%.6g", k ? ", " : "", r->f_ns[k] / unit_ns);
+            for (int k = 0; k < r->nvals; ++k)
+                fprintf(f, "%s%.6g", k ? ", " : "", r->f_ns[k] / unit_ns);
             fprintf(f, "], \"double_ratio\": [");
-            for (int k = 0; k < r->nvals; ++k) fprintf(f, "%s%.6g", k ? ", " : "", r->d_ns[k] / unit_ns);
+            for (int k = 0; k < r->nvals; ++k)
+                fprintf(f, "%s%.6g", k ? ", " : "", r->d_ns[k] / unit_ns);
             fprintf(f, "]}");
         } else {
             fprintf(f, "null");
         }
         fprintf(f, ", \"reference\": ");
-        if (r->ref == REF_NONE) fputs("null", f);
-        else fprintf(f, "\"%s\"", ref_name[r->ref]);
+        if (r->ref == REF_NONE)
+            fputs("null", f);
+        else
+            fprintf(f, "\"%s\"", ref_name[r->ref]);
         fprintf(f, ", \"robot_nmse\": ");
         json_num(f, r->nmse);
         fprintf(f, ", \"best_n\": ");
@@ -259,7 +294,9 @@ static void print_json(FILE *f, const row *rows, int count, double unit_ns, doub
         fputc('}', f);
     }
     targets t = compute_targets(rows, count, unit_ns);
-    fprintf(f, "\n], \"targets\": {\"approx_min_speedup\": %.6g, \"approx_max_speedup\": %.6g, \"approx_target\": 20, \"f_2e_speedup\": %.6g, "
+    fprintf(f,
+            "\n], \"targets\": {\"approx_min_speedup\": %.6g, \"approx_max_speedup\": %.6g, "
+            "\"approx_target\": 20, \"f_2e_speedup\": %.6g, "
             "\"f_2e_target\": 10, \"full_disney_ratio\": %.6g, \"full_disney_target\": 3}}\n",
             t.approx_min_speedup, t.approx_max_speedup, t.f2e_speedup, t.disney_full_ratio);
 }
@@ -267,14 +304,17 @@ static void print_json(FILE *f, const row *rows, int count, double unit_ns, doub
 static void print_table(FILE *f, const row *rows, int count, double unit_ns, double drift,
                         const measure_opts *mo, int size)
 {
-    fprintf(f, "Cost: ns/eval as a ratio to powf Blinn-Phong (the unit), each model divided by the unit\n"
-            "timed just before it (spread of the unit's timings (max - min) / median: %.1f%%),\n"
-            "%zu pairs, median of %d. 'speedup' = unit / float cost.\n"
-            "Accuracy: robot %dx%d NMSE vs the reference; Table 2 = max rel. error %% in the highlight\n"
-            "zone, Table 3 = max abs. error, both at n = %g.\n\n", 100 * drift, mo->pairs, mo->reps,
-            size, size, APPROX_N);
-    fprintf(f, "%-22s %8s %8s %8s %-14s %-16s %10s %6s %8s %8s\n", "model", "float", "speedup", "double",
-            "float range", "reference", "robot NMSE", "n", "Table 2", "Table 3");
+    fprintf(
+        f,
+        "Cost: ns/eval as a ratio to powf Blinn-Phong (the unit), each model divided by the unit\n"
+        "timed just before it (spread of the unit's timings (max - min) / median: %.1f%%),\n"
+        "%zu pairs, median of %d. 'speedup' = unit / float cost.\n"
+        "Accuracy: robot %dx%d NMSE vs the reference; Table 2 = max rel. error %% in the "
+        "highlight\n"
+        "zone, Table 3 = max abs. error, both at n = %g.\n\n",
+        100 * drift, mo->pairs, mo->reps, size, size, APPROX_N);
+    fprintf(f, "%-22s %8s %8s %8s %-14s %-16s %10s %6s %8s %8s\n", "model", "float", "speedup",
+            "double", "float range", "reference", "robot NMSE", "n", "Table 2", "Table 3");
     for (int i = 0; i < count; ++i) {
         const row *r = &rows[i];
         char range[32] = "", nm[16] = "", bn[16] = "", t2[16] = "", t3[16] = "";
@@ -287,17 +327,20 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
         if (isfinite(r->best_n)) snprintf(bn, sizeof bn, "%g", r->best_n);
         if (isfinite(r->t2_rel)) snprintf(t2, sizeof t2, "%.3g", r->t2_rel);
         if (isfinite(r->t3_abs)) snprintf(t3, sizeof t3, "%.3g", r->t3_abs);
-        fprintf(f, "%-22s %8.3f %8.2f %8.3f %-14s %-16s %10s %6s %8s %8s\n", r->m->name, r->f_def / unit_ns,
-                unit_ns / r->f_def, r->d_def / unit_ns, range, ref_name[r->ref], nm, bn, t2, t3);
+        fprintf(f, "%-22s %8.3f %8.2f %8.3f %-14s %-16s %10s %6s %8s %8s\n", r->m->name,
+                r->f_def / unit_ns, unit_ns / r->f_def, r->d_def / unit_ns, range, ref_name[r->ref],
+                nm, bn, t2, t3);
     }
     targets t = compute_targets(rows, count, unit_ns);
-    fprintf(f, "\nTargets (float batch path vs the unit):\n"
+    fprintf(f,
+            "\nTargets (float batch path vs the unit):\n"
             "  Table-1 approximations >= 20x faster: %.2fx (%s) to %.2fx (%s)  %s\n"
             "  f_2e >= 10x faster: %.2fx  %s\n"
             "  full Disney (disney_diffuse + disney_specular) <= 3x the unit: %.2fx  %s\n",
             t.approx_min_speedup, t.approx_min_name, t.approx_max_speedup, t.approx_max_name,
             t.approx_min_speedup >= 20 ? "met" : "missed", t.f2e_speedup,
-            t.f2e_speedup >= 10 ? "met" : "missed", t.disney_full_ratio, t.disney_full_ratio <= 3 ? "met" : "missed");
+            t.f2e_speedup >= 10 ? "met" : "missed", t.disney_full_ratio,
+            t.disney_full_ratio <= 3 ? "met" : "missed");
 }
 
 /* Pareto plot: robot NMSE (log) vs float cost ratio (log), one colour per reference, the
@@ -313,46 +356,69 @@ static int write_plot(const char *path, const row *rows, int count, double unit_
         if (r->ref == REF_NONE) continue;
         double x = r->f_def / unit_ns;
         x0 = fmin(x0, x), x1 = fmax(x1, x);
-        if (r->ref != REF_SELF && r->nmse > 0 && isfinite(r->nmse)) y0 = fmin(y0, r->nmse), y1 = fmax(y1, r->nmse);
+        if (r->ref != REF_SELF && r->nmse > 0 && isfinite(r->nmse))
+            y0 = fmin(y0, r->nmse), y1 = fmax(y1, r->nmse);
     }
     if (!(x1 > 0) || !(y1 > 0)) y0 = 1e-6, y1 = 1;
-    double lx0 = floor(log10(x0)), lx1 = ceil(log10(x1)), ly0 = floor(log10(y0)), ly1 = ceil(log10(y1));
+    double lx0 = floor(log10(x0)), lx1 = ceil(log10(x1)), ly0 = floor(log10(y0)),
+           ly1 = ceil(log10(y1));
     if (lx1 <= lx0) lx1 = lx0 + 1;
     if (ly1 <= ly0) ly1 = ly0 + 1;
 #define PX(v) (L + (log10(v) - lx0) / (lx1 - lx0) * (W - L - Rm))
 #define PY(v) (H - B - (log10(v) - ly0) / (ly1 - ly0) * (H - T - B))
-    fprintf(f, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" font-family=\"sans-serif\" font-size=\"11\">\n"
-            "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n", W, H);
+    fprintf(f,
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" "
+            "font-family=\"sans-serif\" font-size=\"11\">\n"
+            "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
+            W, H);
     for (double e = lx0; e <= lx1; ++e) {
         double x = PX(pow(10, e));
-        fprintf(f, "<line x1=\"%.1f\" y1=\"%g\" x2=\"%.1f\" y2=\"%g\" stroke=\"#ddd\"/><text x=\"%.1f\" y=\"%g\" text-anchor=\"middle\">1e%g</text>\n",
+        fprintf(f,
+                "<line x1=\"%.1f\" y1=\"%g\" x2=\"%.1f\" y2=\"%g\" stroke=\"#ddd\"/><text "
+                "x=\"%.1f\" y=\"%g\" text-anchor=\"middle\">1e%g</text>\n",
                 x, T, x, H - B, x, H - B + 15, e);
     }
     for (double e = ly0; e <= ly1; ++e) {
         double y = PY(pow(10, e));
-        fprintf(f, "<line x1=\"%g\" y1=\"%.1f\" x2=\"%g\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%g\" y=\"%.1f\" text-anchor=\"end\">1e%g</text>\n",
+        fprintf(f,
+                "<line x1=\"%g\" y1=\"%.1f\" x2=\"%g\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%g\" "
+                "y=\"%.1f\" text-anchor=\"end\">1e%g</text>\n",
                 L, y, W - Rm, y, L - 5, y + 4, e);
     }
-    fprintf(f, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"none\" stroke=\"black\"/>\n", L, T, W - L - Rm, H - T - B);
-    fprintf(f, "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">cost per evaluation, float batch path (x powf Blinn-Phong)</text>\n",
+    fprintf(f,
+            "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"none\" stroke=\"black\"/>\n",
+            L, T, W - L - Rm, H - T - B);
+    fprintf(f,
+            "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">cost per evaluation, float batch path "
+            "(x powf Blinn-Phong)</text>\n",
             (L + W - Rm) / 2, H - 20);
-    fprintf(f, "<text transform=\"translate(18,%g) rotate(-90)\" text-anchor=\"middle\">robot NMSE vs reference</text>\n", (T + H - B) / 2);
+    fprintf(f,
+            "<text transform=\"translate(18,%g) rotate(-90)\" text-anchor=\"middle\">robot NMSE vs "
+            "reference</text>\n",
+            (T + H - B) / 2);
     /* The paper's Table-8 classes as horizontal lines, where they fall in range. */
     const double cls[3] = {ABRDF_NMSE_SLIGHT, ABRDF_NMSE_NOTICEABLE, ABRDF_NMSE_SIGNIFICANT};
     for (int k = 0; k < 3; ++k)
         if (log10(cls[k]) >= ly0 && log10(cls[k]) <= ly1)
-            fprintf(f, "<line x1=\"%g\" y1=\"%.1f\" x2=\"%g\" y2=\"%.1f\" stroke=\"#c80\" stroke-dasharray=\"2,3\"/>"
-                    "<text x=\"%g\" y=\"%.1f\" fill=\"#c80\">%s</text>\n", L, PY(cls[k]), W - Rm, PY(cls[k]),
-                    W - Rm + 4, PY(cls[k]) + 4, abrdf_nmse_class(cls[k]));
+            fprintf(f,
+                    "<line x1=\"%g\" y1=\"%.1f\" x2=\"%g\" y2=\"%.1f\" stroke=\"#c80\" "
+                    "stroke-dasharray=\"2,3\"/>"
+                    "<text x=\"%g\" y=\"%.1f\" fill=\"#c80\">%s</text>\n",
+                    L, PY(cls[k]), W - Rm, PY(cls[k]), W - Rm + 4, PY(cls[k]) + 4,
+                    abrdf_nmse_class(cls[k]));
     static const char *const colour[] = {"", "#1f77b4", "#d62728", "#2ca02c"};
     for (int g = 1; g <= 3; ++g) {
         /* the reference's cost */
         for (int i = 0; i < count; ++i)
             if (rows[i].ref == REF_SELF && !strcmp(rows[i].m->name, ref_name[g])) {
                 double x = PX(rows[i].f_def / unit_ns);
-                fprintf(f, "<line x1=\"%.1f\" y1=\"%g\" x2=\"%.1f\" y2=\"%g\" stroke=\"%s\" stroke-dasharray=\"6,4\"/>"
-                        "<text x=\"%.1f\" y=\"%g\" fill=\"%s\" transform=\"rotate(-90 %.1f %g)\">%s (reference)</text>\n",
-                        x, T, x, H - B, colour[g], x - 3, H - B - 5, colour[g], x - 3, H - B - 5, ref_name[g]);
+                fprintf(f,
+                        "<line x1=\"%.1f\" y1=\"%g\" x2=\"%.1f\" y2=\"%g\" stroke=\"%s\" "
+                        "stroke-dasharray=\"6,4\"/>"
+                        "<text x=\"%.1f\" y=\"%g\" fill=\"%s\" transform=\"rotate(-90 %.1f "
+                        "%g)\">%s (reference)</text>\n",
+                        x, T, x, H - B, colour[g], x - 3, H - B - 5, colour[g], x - 3, H - B - 5,
+                        ref_name[g]);
             }
         /* Pareto front: sorted by cost, keep points that lower the error */
         int idx[64], n = 0;
@@ -360,10 +426,13 @@ static int write_plot(const char *path, const row *rows, int count, double unit_
             if ((int)rows[i].ref == g && rows[i].nmse > 0 && isfinite(rows[i].nmse)) idx[n++] = i;
         for (int a = 1; a < n; ++a)
             for (int b = a; b > 0 && rows[idx[b]].f_def < rows[idx[b - 1]].f_def; --b) {
-                int t = idx[b]; idx[b] = idx[b - 1]; idx[b - 1] = t;
+                int t = idx[b];
+                idx[b] = idx[b - 1];
+                idx[b - 1] = t;
             }
         double best = INFINITY;
-        fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-opacity=\"0.5\" points=\"", colour[g]);
+        fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-opacity=\"0.5\" points=\"",
+                colour[g]);
         double py = 0;
         int first = 1;
         for (int a = 0; a < n; ++a) {
@@ -378,11 +447,16 @@ static int write_plot(const char *path, const row *rows, int count, double unit_
         for (int a = 0; a < n; ++a) {
             const row *r = &rows[idx[a]];
             double x = PX(r->f_def / unit_ns), y = PY(r->nmse);
-            fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\"/><text x=\"%.1f\" y=\"%.1f\">%s</text>\n",
+            fprintf(f,
+                    "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\"/><text x=\"%.1f\" "
+                    "y=\"%.1f\">%s</text>\n",
                     x, y, colour[g], x + 6, y - 4, r->m->name);
         }
-        fprintf(f, "<circle cx=\"%g\" cy=\"%g\" r=\"4\" fill=\"%s\"/><text x=\"%g\" y=\"%g\">vs %s</text>\n",
-                W - Rm + 10, T + 80 + 18.0 * g, colour[g], W - Rm + 18, T + 84 + 18.0 * g, ref_name[g]);
+        fprintf(f,
+                "<circle cx=\"%g\" cy=\"%g\" r=\"4\" fill=\"%s\"/><text x=\"%g\" y=\"%g\">vs "
+                "%s</text>\n",
+                W - Rm + 10, T + 80 + 18.0 * g, colour[g], W - Rm + 18, T + 84 + 18.0 * g,
+                ref_name[g]);
     }
 #undef PX
 #undef PY
@@ -401,9 +475,12 @@ int cmd_bench(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         if (cli_is_help(a)) return usage();
-        if (!strcmp(a, "--json")) json = 1;
-        else if (!strcmp(a, "--quick")) quick = 1;
-        else if (!strcmp(a, "--render")) render = 1;
+        if (!strcmp(a, "--json"))
+            json = 1;
+        else if (!strcmp(a, "--quick"))
+            quick = 1;
+        else if (!strcmp(a, "--render"))
+            render = 1;
         else if (!strcmp(a, "--plot")) {
             if (i + 1 >= argc) return cli_fail(cmd, "--plot needs a file name");
             plot = argv[++i];
@@ -417,8 +494,10 @@ int cmd_bench(int argc, char **argv)
             if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, 1000, &reps))
                 return cli_fail(cmd, "--reps needs a whole number in [1, 1000]");
         } else {
-            return cli_fail(cmd, "unknown argument '%s'; options: --json --plot FILE --quick --render "
-                            "--size N --threads N --reps N", a);
+            return cli_fail(cmd,
+                            "unknown argument '%s'; options: --json --plot FILE --quick --render "
+                            "--size N --threads N --reps N",
+                            a);
         }
     }
     if (threads == 0) {
@@ -426,8 +505,14 @@ int cmd_bench(int argc, char **argv)
         threads = cpus > 0 ? (cpus < 64 ? cpus : 64) : 1;
     }
     if (render)
-        return bench_render_report(stdout, json, (int)(size ? size : quick ? 64 : 0),
-                                   (int)(reps ? reps : quick ? 1 : 5), (int)threads);
+        return bench_render_report(stdout, json,
+                                   (int)(size    ? size
+                                         : quick ? 64
+                                                 : 0),
+                                   (int)(reps    ? reps
+                                         : quick ? 1
+                                                 : 5),
+                                   (int)threads);
     if (!size) size = quick ? 48 : 128;
 
     measure_opts mo;
@@ -496,8 +581,10 @@ int cmd_bench(int argc, char **argv)
         fprintf(stderr, "abrdf bench: %s\n", err);
         rc = 1;
     } else {
-        if (json) print_json(stdout, rows, count, unit_ns, drift, &mo, (int)size);
-        else print_table(stdout, rows, count, unit_ns, drift, &mo, (int)size);
+        if (json)
+            print_json(stdout, rows, count, unit_ns, drift, &mo, (int)size);
+        else
+            print_table(stdout, rows, count, unit_ns, drift, &mo, (int)size);
         if (plot && write_plot(plot, rows, count, unit_ns) != 0) {
             fprintf(stderr, "abrdf bench: cannot write %s\n", plot);
             rc = 1;

@@ -22,10 +22,7 @@ static int usage(void)
     return 0;
 }
 
-static void progress(const char *name)
-{
-    fprintf(stderr, " %s", name);
-}
+static void progress(const char *name) { fprintf(stderr, " %s", name); }
 
 int cmd_calibrate(int argc, char **argv)
 {
@@ -48,7 +45,8 @@ int cmd_calibrate(int argc, char **argv)
         } else if (!strcmp(a, "--quick")) {
             quick = 1;
         } else {
-            return cli_fail(cmd, "unknown argument '%s'; options: -o FILE --reps N --pairs N --quick", a);
+            return cli_fail(
+                cmd, "unknown argument '%s'; options: -o FILE --reps N --pairs N --quick", a);
         }
     }
     measure_opts mo;
@@ -63,11 +61,13 @@ int cmd_calibrate(int argc, char **argv)
     }
     char command[512] = "abrdf";
     for (int i = 0; i < argc; ++i)
-        if (strlen(command) + strlen(argv[i]) + 2 < sizeof command) strcat(strcat(command, " "), argv[i]);
+        if (strlen(command) + strlen(argv[i]) + 2 < sizeof command)
+            strcat(strcat(command, " "), argv[i]);
     char how[256];
-    snprintf(how, sizeof how, "float batch path, %zu random front-facing pairs (SoA, warm cache), "
-             "median of %d repetitions of %.0f ms, default parameters", mo.pairs, mo.reps,
-             1e3 * mo.rep_seconds);
+    snprintf(how, sizeof how,
+             "float batch path, %zu random front-facing pairs (SoA, warm cache), "
+             "median of %d repetitions of %.0f ms, default parameters",
+             mo.pairs, mo.reps, 1e3 * mo.rep_seconds);
 
     abrdf_costs costs;
     double unit_ns;

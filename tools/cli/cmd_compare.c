@@ -15,7 +15,8 @@ static int usage(void)
            "Compares TEST with REFERENCE (the first image is the reference) over every pixel\n"
            "and the R, G, B channels, in scene-linear values (8-bit sRGB files are decoded):\n"
            "  NMSE  = sum (TEST - REF)^2 / sum REF^2   (Zavalniuk & Romanyuk 2024, Sec. 4)\n"
-           "  PSNR  = 10 log10(peak^2 / MSE) dB, peak = the largest value in either image (as idiff),\n"
+           "  PSNR  = 10 log10(peak^2 / MSE) dB, peak = the largest value in either image (as "
+           "idiff),\n"
            "  max |TEST - REF| and its pixel (x from the left, y from the top),\n"
            "  class = Table 8: none < 1e-4 <= slight < 2.5e-4 <= noticeable < 1e-3 <= significant\n"
            "--diff writes max-over-channels |TEST - REF| per pixel as a false-colour map\n"
@@ -29,22 +30,27 @@ static int usage(void)
 static void json_number(FILE *f, const char *key, double v)
 {
     fprintf(f, "  \"%s\": ", key);
-    if (isfinite(v)) fprintf(f, "%.17g,\n", v);
-    else fprintf(f, "null,\n");
+    if (isfinite(v))
+        fprintf(f, "%.17g,\n", v);
+    else
+        fprintf(f, "null,\n");
 }
 
-static int write_diff(const char *cmd, const char *path, const abrdf_image *a, const abrdf_image *b, double vmax)
+static int write_diff(const char *cmd, const char *path, const abrdf_image *a, const abrdf_image *b,
+                      double vmax)
 {
     size_t n = (size_t)a->width * (size_t)a->height;
     float *v = malloc(n * sizeof *v);
     if (!v) return cli_fail(cmd, "out of memory");
     for (size_t p = 0; p < n; ++p) {
         float m = 0;
-        for (int c = 0; c < 3; ++c) m = fmaxf(m, fabsf(b->pixels[3 * p + c] - a->pixels[3 * p + c]));
+        for (int c = 0; c < 3; ++c)
+            m = fmaxf(m, fabsf(b->pixels[3 * p + c] - a->pixels[3 * p + c]));
         v[p] = m;
     }
     char err[1024];
-    int rc = abrdf_image_write_heatmap(path, a->width, a->height, v, vmax, "inferno", err, sizeof err);
+    int rc =
+        abrdf_image_write_heatmap(path, a->width, a->height, v, vmax, "inferno", err, sizeof err);
     free(v);
     if (rc) return cli_fail(cmd, "--diff: %s", err);
     return 0;
@@ -60,7 +66,8 @@ int cmd_compare(int argc, char **argv)
         const char *a = argv[i];
         if (cli_is_help(a)) return usage();
         int has_val = i + 1 < argc;
-        if (!strcmp(a, "--json")) json = 1;
+        if (!strcmp(a, "--json"))
+            json = 1;
         else if (!strcmp(a, "--diff")) {
             if (!has_val) return cli_fail(cmd, "--diff needs an output file (e.g. heat.png)");
             diff = argv[++i];
@@ -76,7 +83,8 @@ int cmd_compare(int argc, char **argv)
             return cli_fail(cmd, "unexpected argument '%s' (two images: REFERENCE TEST)", a);
         }
     }
-    if (nfiles != 2) return cli_fail(cmd, "needs two images: REFERENCE TEST (see abrdf compare --help)");
+    if (nfiles != 2)
+        return cli_fail(cmd, "needs two images: REFERENCE TEST (see abrdf compare --help)");
 
     abrdf_image ref, test;
     char err[1024];
@@ -87,8 +95,11 @@ int cmd_compare(int argc, char **argv)
     }
     int rc = 0;
     if (ref.width != test.width || ref.height != test.height || ref.channels != test.channels) {
-        rc = cli_fail(cmd, "images differ in size or channels: %s is %dx%d with %d channels, %s is %dx%d with %d channels",
-                      files[0], ref.width, ref.height, ref.channels, files[1], test.width, test.height, test.channels);
+        rc = cli_fail(cmd,
+                      "images differ in size or channels: %s is %dx%d with %d channels, %s is "
+                      "%dx%d with %d channels",
+                      files[0], ref.width, ref.height, ref.channels, files[1], test.width,
+                      test.height, test.channels);
         goto done;
     }
     abrdf_metrics m;
@@ -112,7 +123,8 @@ int cmd_compare(int argc, char **argv)
         cli_json_string(stdout, files[0]);
         printf(",\n  \"test\": ");
         cli_json_string(stdout, files[1]);
-        printf(",\n  \"width\": %d,\n  \"height\": %d,\n  \"channels\": %d,\n", ref.width, ref.height, ref.channels);
+        printf(",\n  \"width\": %d,\n  \"height\": %d,\n  \"channels\": %d,\n", ref.width,
+               ref.height, ref.channels);
         json_number(stdout, "nmse", m.nmse_defined ? m.nmse : NAN);
         json_number(stdout, "sse", m.sse);
         json_number(stdout, "reference_energy", m.ref_energy);
@@ -120,26 +132,37 @@ int cmd_compare(int argc, char **argv)
         json_number(stdout, "peak", m.peak);
         json_number(stdout, "psnr", m.psnr);
         json_number(stdout, "max_abs_error", m.max_abs);
-        printf("  \"max_pixel\": [%d, %d],\n  \"max_channel\": \"%c\",\n", m.max_x, m.max_y, "RGB"[m.max_c]);
+        printf("  \"max_pixel\": [%d, %d],\n  \"max_channel\": \"%c\",\n", m.max_x, m.max_y,
+               "RGB"[m.max_c]);
         printf("  \"class\": \"%s\",\n", cls);
         json_number(stdout, "threshold", threshold);
         printf("  \"pass\": %s\n}\n", pass ? "true" : "false");
     } else {
-        printf("reference  %s (%dx%d, %d channels)\n", files[0], ref.width, ref.height, ref.channels);
+        printf("reference  %s (%dx%d, %d channels)\n", files[0], ref.width, ref.height,
+               ref.channels);
         printf("test       %s\n", files[1]);
         if (m.nmse_defined)
-            printf("NMSE       %.6e  (%s, Table 8)\n", m.nmse, abrdf_nmse_class_description(m.nmse));
+            printf("NMSE       %.6e  (%s, Table 8)\n", m.nmse,
+                   abrdf_nmse_class_description(m.nmse));
         else
-            printf("NMSE       undefined: the reference %s is all black (sum of squares 0)\n", files[0]);
-        if (isfinite(m.psnr)) printf("PSNR       %.3f dB (peak %g)\n", m.psnr, m.peak);
-        else printf("PSNR       %s\n", m.psnr > 0 ? "inf (identical)" : "-inf (no positive value)");
-        printf("max error  %.6e at pixel (%d, %d) channel %c\n", m.max_abs, m.max_x, m.max_y, "RGB"[m.max_c]);
+            printf("NMSE       undefined: the reference %s is all black (sum of squares 0)\n",
+                   files[0]);
+        if (isfinite(m.psnr))
+            printf("PSNR       %.3f dB (peak %g)\n", m.psnr, m.peak);
+        else
+            printf("PSNR       %s\n", m.psnr > 0 ? "inf (identical)" : "-inf (no positive value)");
+        printf("max error  %.6e at pixel (%d, %d) channel %c\n", m.max_abs, m.max_x, m.max_y,
+               "RGB"[m.max_c]);
         if (diff) printf("diff map   %s (0 .. %.6e)\n", diff, m.max_abs);
-        if (!m.nmse_defined) printf("result     UNDEFINED\n");
-        else printf("result     %s (NMSE %s %g)\n", pass ? "PASS" : "FAIL", pass ? "<" : ">=", threshold);
+        if (!m.nmse_defined)
+            printf("result     UNDEFINED\n");
+        else
+            printf("result     %s (NMSE %s %g)\n", pass ? "PASS" : "FAIL",
+                   pass ? "<" : ">=", threshold);
     }
     if (!m.nmse_defined) {
-        fprintf(stderr, "abrdf compare: NMSE is undefined because the reference %s is all black\n", files[0]);
+        fprintf(stderr, "abrdf compare: NMSE is undefined because the reference %s is all black\n",
+                files[0]);
         rc = CLI_EXIT_USAGE;
     } else {
         rc = pass ? 0 : 1;

@@ -27,12 +27,15 @@ int cmd_eval(int argc, char **argv)
         const char *a = argv[i];
         if (cli_is_help(a)) return usage();
         int has_val = i + 1 < argc;
-        if (!strcmp(a, "--json")) json = 1;
-        else if (!strcmp(a, "--wi") || !strcmp(a, "--wo") || !strcmp(a, "--normal") || !strcmp(a, "--tangent")) {
+        if (!strcmp(a, "--json"))
+            json = 1;
+        else if (!strcmp(a, "--wi") || !strcmp(a, "--wo") || !strcmp(a, "--normal") ||
+                 !strcmp(a, "--tangent")) {
             if (!has_val) return cli_fail(cmd, "%s needs a vector X,Y,Z", a);
             double *dst = a[2] == 'w' ? (a[3] == 'i' ? wi : wo) : (a[2] == 'n' ? n : t);
             if (!cli_parse_vec3(argv[++i], dst))
-                return cli_fail(cmd, "%s: '%s' is not a vector X,Y,Z of finite numbers", a, argv[i]);
+                return cli_fail(cmd, "%s: '%s' is not a vector X,Y,Z of finite numbers", a,
+                                argv[i]);
             if (dst == wi) have_wi = 1;
             if (dst == wo) have_wo = 1;
             if (dst == t) have_t = 1;
@@ -41,7 +44,8 @@ int cmd_eval(int argc, char **argv)
             if (nsets == 64) return cli_fail(cmd, "too many --set options (64 at most)");
             sets[nsets++] = argv[++i];
         } else if (a[0] == '-' && a[1]) {
-            return cli_fail(cmd, "unknown option '%s'; options: --wi --wo --normal --tangent --set --json", a);
+            return cli_fail(
+                cmd, "unknown option '%s'; options: --wi --wo --normal --tangent --set --json", a);
         } else if (!name) {
             name = a;
         } else {

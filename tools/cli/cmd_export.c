@@ -74,28 +74,41 @@ int cmd_export(int argc, char **argv)
         const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
         long v;
         if (cli_is_help(a)) return usage();
-        if (!strcmp(a, "--pov")) pov = 1;
-        else if (!strcmp(a, "--cycles")) cycles = 1;
-        else if (!strcmp(a, "--no-shadows")) no_shadows = 1;
-        else if (!strcmp(a, "--native")) native = 1;
+        if (!strcmp(a, "--pov"))
+            pov = 1;
+        else if (!strcmp(a, "--cycles"))
+            cycles = 1;
+        else if (!strcmp(a, "--no-shadows"))
+            no_shadows = 1;
+        else if (!strcmp(a, "--native"))
+            native = 1;
         else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--set") ||
                  !strcmp(a, "--osl-dir") || !strcmp(a, "--mode")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
-            if (!strcmp(a, "-o")) out = val;
-            else if (!strcmp(a, "--model")) model_name = val;
-            else if (!strcmp(a, "--osl-dir")) osl_dir = val;
-            else if (!strcmp(a, "--mode")) mode = val;
-            else if (nsets == 64) return cli_fail(cmd, "too many --set options (64 at most)");
-            else sets[nsets++] = val;
+            if (!strcmp(a, "-o"))
+                out = val;
+            else if (!strcmp(a, "--model"))
+                model_name = val;
+            else if (!strcmp(a, "--osl-dir"))
+                osl_dir = val;
+            else if (!strcmp(a, "--mode"))
+                mode = val;
+            else if (nsets == 64)
+                return cli_fail(cmd, "too many --set options (64 at most)");
+            else
+                sets[nsets++] = val;
         } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp")) {
             long hi = !strcmp(a, "--spp") ? 65536 : SCENE_MAX_RESOLUTION;
             if (!cli_parse_int(val, 1, hi, &v))
                 return cli_fail(cmd, "%s needs a whole number in [1, %ld]", a, hi);
             ++i;
-            if (!strcmp(a, "--width")) opt.width = (int)v;
-            else if (!strcmp(a, "--height")) opt.height = (int)v;
-            else spp = (int)v;
+            if (!strcmp(a, "--width"))
+                opt.width = (int)v;
+            else if (!strcmp(a, "--height"))
+                opt.height = (int)v;
+            else
+                spp = (int)v;
         } else if (a[0] == '-') {
             return cli_fail(cmd, "unknown option '%s' (abrdf export --help)", a);
         } else if (!path) {
@@ -112,7 +125,8 @@ int cmd_export(int argc, char **argv)
         return cli_fail(cmd, "--spp, --mode and --osl-dir are options of --cycles");
     if (cycles && (native || no_shadows))
         return cli_fail(cmd, "--native and --no-shadows are options of --pov");
-    if (native && no_shadows) return cli_fail(cmd, "--native uses POV-Ray's lights (with shadows); drop --no-shadows");
+    if (native && no_shadows)
+        return cli_fail(cmd, "--native uses POV-Ray's lights (with shadows); drop --no-shadows");
     if (mode && strcmp(mode, "eval") && strcmp(mode, "closure") && strcmp(mode, "generic"))
         return cli_fail(cmd, "--mode is eval, closure or generic, not '%s'", mode);
 

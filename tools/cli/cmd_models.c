@@ -10,9 +10,13 @@ static const char *kind_name(abrdf_param_kind k)
 
 static void needs_list(unsigned needs, char *buf, size_t size)
 {
-    static const struct { unsigned bit; const char *name; } names[] = {
-        {ABRDF_NEEDS_TANGENT, "tangent"}, {ABRDF_NEEDS_FRESNEL, "fresnel"},
-        {ABRDF_NEEDS_LAYERS, "layers"}, {ABRDF_NEEDS_INTEGRATION, "integration"}};
+    static const struct {
+        unsigned bit;
+        const char *name;
+    } names[] = {{ABRDF_NEEDS_TANGENT, "tangent"},
+                 {ABRDF_NEEDS_FRESNEL, "fresnel"},
+                 {ABRDF_NEEDS_LAYERS, "layers"},
+                 {ABRDF_NEEDS_INTEGRATION, "integration"}};
     buf[0] = '\0';
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
         if ((needs & names[i].bit) && strlen(buf) + strlen(names[i].name) + 2 < size)
@@ -50,16 +54,21 @@ static void print_json(void)
         printf("], \"reciprocal\": %s, \"energy_conserving\": %s, \"kind\": \"%s\"",
                (m->props & ABRDF_PROP_RECIPROCAL) ? "true" : "false",
                (m->props & ABRDF_PROP_ENERGY_CONSERVING) ? "true" : "false",
-               (m->props & ABRDF_PROP_DIFFUSE) ? "diffuse" : (m->props & ABRDF_PROP_SPECULAR) ? "specular" : "special");
-        if (m->paper_cycles >= 0) printf(", \"paper_cycles\": %d", m->paper_cycles);
-        else printf(", \"paper_cycles\": null");
+               (m->props & ABRDF_PROP_DIFFUSE)    ? "diffuse"
+               : (m->props & ABRDF_PROP_SPECULAR) ? "specular"
+                                                  : "special");
+        if (m->paper_cycles >= 0)
+            printf(", \"paper_cycles\": %d", m->paper_cycles);
+        else
+            printf(", \"paper_cycles\": null");
         printf(", \"params\": [");
         for (int k = 0; k < m->param_count; ++k) {
             const abrdf_param_info *pi = abrdf_param_get(m->params[k].id);
             double lo = m->params[k].min, hi = m->params[k].max;
             printf("%s{\"name\": ", k ? ", " : "");
             cli_json_string(stdout, pi->name);
-            printf(", \"kind\": \"%s\", \"min\": %.17g, \"max\": %.17g, \"default\": %.17g, \"help\": ",
+            printf(", \"kind\": \"%s\", \"min\": %.17g, \"max\": %.17g, \"default\": %.17g, "
+                   "\"help\": ",
                    kind_name(pi->kind), lo, hi, m->params[k].def);
             cli_json_string(stdout, pi->help);
             printf("}");
@@ -71,7 +80,8 @@ static void print_json(void)
 
 static void print_table(void)
 {
-    printf("%-22s %-16s %-20s %s\n", "model", "formula", "needs", "parameters (default [min, max])");
+    printf("%-22s %-16s %-20s %s\n", "model", "formula", "needs",
+           "parameters (default [min, max])");
     for (int i = 0; i < abrdf_model_count(); ++i) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)i);
         if (!m) continue;
@@ -99,9 +109,14 @@ int cmd_models(int argc, char **argv)
                    "and the paper's Table-4 cycle count.\n");
             return 0;
         }
-        if (!strcmp(argv[i], "--json")) json = 1;
-        else return cli_fail("models", "unknown option '%s'; options: --json", argv[i]);
+        if (!strcmp(argv[i], "--json"))
+            json = 1;
+        else
+            return cli_fail("models", "unknown option '%s'; options: --json", argv[i]);
     }
-    if (json) print_json(); else print_table();
+    if (json)
+        print_json();
+    else
+        print_table();
     return 0;
 }

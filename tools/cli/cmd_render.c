@@ -15,26 +15,27 @@
 
 static int usage(void)
 {
-    printf("usage: abrdf render SCENE -o OUT.exr [--width W] [--height H] [--spp N] [--jitter]\n"
-           "                    [--model NAME [--set NAME=VALUE ...] | --adaptive --goal G]\n"
-           "                    [--materials FILE ...] [--threads N] [--explain] [--stats]\n"
-           "                    [--full] [--no-preview]\n"
-           "                    [--config OCIO] [--display D] [--view V]\n\n"
-           "Renders SCENE (docs/SCENES.md) to a linear float image (format from the extension,\n"
-           "EXR recommended) and an sRGB PNG preview with the same name (.png).\n"
-           "  --width/--height  override the scene's resolution\n"
-           "  --spp N           samples per pixel, a square (1, 4, 9, 16, ...); default 4\n"
-           "  --jitter          jitter samples inside their strata (deterministic)\n"
-           "  --model NAME      render every material with this model (shared parameters kept)\n"
-           "  --set NAME=VALUE  with --model: set a parameter of every material\n"
-           "  --adaptive --goal photoreal|performance   choose models per material (abrdf_select)\n"
-           "  --materials FILE  material-table file merged over data/materials.csv (table= entries)\n"
-           "  --threads N       worker threads; default: online CPUs\n"
-           "  --explain         print the effect plan (what is simulated and why) and counters\n"
-           "  --stats           print the work counters (and the render time on stderr)\n"
-           "  --full            ignore the effect plan: every ray tests every object, tangent\n"
-           "                    frames and ambient everywhere (to measure what the plan saves)\n"
-           "  --config/--display/--view   OpenColorIO preview transform (default: built-in sRGB)\n");
+    printf(
+        "usage: abrdf render SCENE -o OUT.exr [--width W] [--height H] [--spp N] [--jitter]\n"
+        "                    [--model NAME [--set NAME=VALUE ...] | --adaptive --goal G]\n"
+        "                    [--materials FILE ...] [--threads N] [--explain] [--stats]\n"
+        "                    [--full] [--no-preview]\n"
+        "                    [--config OCIO] [--display D] [--view V]\n\n"
+        "Renders SCENE (docs/SCENES.md) to a linear float image (format from the extension,\n"
+        "EXR recommended) and an sRGB PNG preview with the same name (.png).\n"
+        "  --width/--height  override the scene's resolution\n"
+        "  --spp N           samples per pixel, a square (1, 4, 9, 16, ...); default 4\n"
+        "  --jitter          jitter samples inside their strata (deterministic)\n"
+        "  --model NAME      render every material with this model (shared parameters kept)\n"
+        "  --set NAME=VALUE  with --model: set a parameter of every material\n"
+        "  --adaptive --goal photoreal|performance   choose models per material (abrdf_select)\n"
+        "  --materials FILE  material-table file merged over data/materials.csv (table= entries)\n"
+        "  --threads N       worker threads; default: online CPUs\n"
+        "  --explain         print the effect plan (what is simulated and why) and counters\n"
+        "  --stats           print the work counters (and the render time on stderr)\n"
+        "  --full            ignore the effect plan: every ray tests every object, tangent\n"
+        "                    frames and ambient everywhere (to measure what the plan saves)\n"
+        "  --config/--display/--view   OpenColorIO preview transform (default: built-in sRGB)\n");
     return 0;
 }
 
@@ -65,38 +66,56 @@ int cmd_render(int argc, char **argv)
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         long v;
         if (cli_is_help(a)) return usage();
-        if (!strcmp(a, "--explain")) explain = 1;
-        else if (!strcmp(a, "--stats")) stats = 1;
-        else if (!strcmp(a, "--jitter")) opt.jitter = 1;
-        else if (!strcmp(a, "--adaptive")) adaptive = 1;
-        else if (!strcmp(a, "--no-preview")) preview = 0;
-        else if (!strcmp(a, "--full")) full = 1;
-        else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--goal") || !strcmp(a, "--set") ||
-                 !strcmp(a, "--config") || !strcmp(a, "--display") || !strcmp(a, "--view") ||
-                 !strcmp(a, "--materials")) {
+        if (!strcmp(a, "--explain"))
+            explain = 1;
+        else if (!strcmp(a, "--stats"))
+            stats = 1;
+        else if (!strcmp(a, "--jitter"))
+            opt.jitter = 1;
+        else if (!strcmp(a, "--adaptive"))
+            adaptive = 1;
+        else if (!strcmp(a, "--no-preview"))
+            preview = 0;
+        else if (!strcmp(a, "--full"))
+            full = 1;
+        else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--goal") ||
+                 !strcmp(a, "--set") || !strcmp(a, "--config") || !strcmp(a, "--display") ||
+                 !strcmp(a, "--view") || !strcmp(a, "--materials")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
-            if (!strcmp(a, "-o")) out = val;
-            else if (!strcmp(a, "--model")) model_name = val;
-            else if (!strcmp(a, "--goal")) goal = val;
-            else if (!strcmp(a, "--config")) config = val;
-            else if (!strcmp(a, "--display")) display = val;
-            else if (!strcmp(a, "--view")) view = val;
+            if (!strcmp(a, "-o"))
+                out = val;
+            else if (!strcmp(a, "--model"))
+                model_name = val;
+            else if (!strcmp(a, "--goal"))
+                goal = val;
+            else if (!strcmp(a, "--config"))
+                config = val;
+            else if (!strcmp(a, "--display"))
+                display = val;
+            else if (!strcmp(a, "--view"))
+                view = val;
             else if (!strcmp(a, "--materials")) {
                 if (nmats == 16) return cli_fail(cmd, "too many --materials files (16 at most)");
                 mats[nmats++] = val;
-            }
-            else if (nsets == 64) return cli_fail(cmd, "too many --set options (64 at most)");
-            else sets[nsets++] = val;
+            } else if (nsets == 64)
+                return cli_fail(cmd, "too many --set options (64 at most)");
+            else
+                sets[nsets++] = val;
         } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp") ||
                    !strcmp(a, "--threads")) {
             long hi = a[2] == 's' ? 4096 : a[2] == 't' ? 64 : SCENE_MAX_RESOLUTION;
-            if (!cli_parse_int(val, 1, hi, &v)) return cli_fail(cmd, "%s needs a whole number in [1, %ld]", a, hi);
+            if (!cli_parse_int(val, 1, hi, &v))
+                return cli_fail(cmd, "%s needs a whole number in [1, %ld]", a, hi);
             ++i;
-            if (a[2] == 'w') opt.width = (int)v;
-            else if (a[2] == 'h') opt.height = (int)v;
-            else if (a[2] == 't') opt.threads = (int)v;
-            else opt.spp = (int)v;
+            if (a[2] == 'w')
+                opt.width = (int)v;
+            else if (a[2] == 'h')
+                opt.height = (int)v;
+            else if (a[2] == 't')
+                opt.threads = (int)v;
+            else
+                opt.spp = (int)v;
         } else if (a[0] == '-' && a[1]) {
             return cli_fail(cmd, "unknown option '%s' (abrdf render --help)", a);
         } else if (!path) {
@@ -108,10 +127,13 @@ int cmd_render(int argc, char **argv)
     if (!path) return cli_fail(cmd, "missing SCENE (abrdf render --help)");
     if (!out) return cli_fail(cmd, "missing -o OUT.exr");
     long k = lround(sqrt((double)opt.spp));
-    if (k * k != opt.spp) return cli_fail(cmd, "--spp %d is not a square (1, 4, 9, 16, ...): strata form a k x k grid", opt.spp);
+    if (k * k != opt.spp)
+        return cli_fail(
+            cmd, "--spp %d is not a square (1, 4, 9, 16, ...): strata form a k x k grid", opt.spp);
     if (adaptive && model_name) return cli_fail(cmd, "--adaptive and --model exclude each other");
     if (goal && !adaptive) return cli_fail(cmd, "--goal needs --adaptive");
-    if (nsets && !model_name) return cli_fail(cmd, "--set needs --model (the scene file sets materials' parameters)");
+    if (nsets && !model_name)
+        return cli_fail(cmd, "--set needs --model (the scene file sets materials' parameters)");
     if (adaptive && (!goal || (strcmp(goal, "photoreal") && strcmp(goal, "performance"))))
         return cli_fail(cmd, "--adaptive needs --goal photoreal or --goal performance");
     opt.progress = isatty(2) && !explain;
@@ -131,7 +153,8 @@ int cmd_render(int argc, char **argv)
     if (adaptive || scene_needs_table(&s)) {
         char tpath[1024];
         if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
-            fprintf(stderr, "abrdf render: material table %s not found (set ABRDF_DATA_DIR)\n", tpath);
+            fprintf(stderr, "abrdf render: material table %s not found (set ABRDF_DATA_DIR)\n",
+                    tpath);
             goto done;
         }
         if (mat_table_load(&table, tpath, err, sizeof err)) {
@@ -146,7 +169,8 @@ int cmd_render(int argc, char **argv)
         }
     abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
     if (adaptive) abrdf_goal_find(goal, &g);
-    if (scene_select_materials(&s, path, &table, adaptive ? (int)g : -1, explain ? stdout : NULL, err, sizeof err)) {
+    if (scene_select_materials(&s, path, &table, adaptive ? (int)g : -1, explain ? stdout : NULL,
+                               err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
@@ -187,7 +211,9 @@ int cmd_render(int argc, char **argv)
         /* Wall time on stderr: stdout stays identical between runs. */
         fflush(stdout);
         /* CPU time (all threads) is robust on a shared machine; wall time shows the threads. */
-        fprintf(stderr, "abrdf render: %dx%d, %d spp, %d threads%s: %.3f s wall, %.3f s CPU (ray tracing only)\n",
+        fprintf(stderr,
+                "abrdf render: %dx%d, %d spp, %d threads%s: %.3f s wall, %.3f s CPU (ray tracing "
+                "only)\n",
                 rs.width, rs.height, opt.spp, opt.threads, full ? ", --full" : "",
                 (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec), cpu);
     }
@@ -201,7 +227,8 @@ int cmd_render(int argc, char **argv)
             fprintf(stderr, "abrdf render: output %s leaves no name for the .png preview\n", out);
             goto done;
         }
-        if (abrdf_image_write_preview(png, rs.width, rs.height, rgb, config, display, view, err, sizeof err)) {
+        if (abrdf_image_write_preview(png, rs.width, rs.height, rgb, config, display, view, err,
+                                      sizeof err)) {
             fprintf(stderr, "abrdf render: %s\n", err);
             goto done;
         }

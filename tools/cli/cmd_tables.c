@@ -8,11 +8,14 @@
 #include "tables.h"
 
 static const table_gen generators[] = {
-    {"2", "maximum relative error (%) of the Table-1 approximations in the highlight zone", tables_error},
+    {"2", "maximum relative error (%) of the Table-1 approximations in the highlight zone",
+     tables_error},
     {"3", "maximum absolute error of the Table-1 approximations", tables_error},
     {"4", "cost: the paper's Zen 4 cycles beside ns/eval measured on this machine", tables_cost},
-    {"6", "image experiment: min NMSE over n of f_phe, f_be, f_2e, f_16e vs Disney GGX (robot)", tables_images},
-    {"7", "image experiment: min NMSE over n of f_ge, f_ctphe, f_ct2e, f_ct16e vs Disney GGX", tables_images},
+    {"6", "image experiment: min NMSE over n of f_phe, f_be, f_2e, f_16e vs Disney GGX (robot)",
+     tables_images},
+    {"7", "image experiment: min NMSE over n of f_ge, f_ctphe, f_ct2e, f_ct16e vs Disney GGX",
+     tables_images},
 };
 #define GEN_COUNT (sizeof generators / sizeof generators[0])
 
@@ -34,7 +37,8 @@ static int usage(void)
            "  --kd V         Lambert albedo under the specular (default 0.5; 0: specular only)\n"
            "  --scene FILE   render another scene than the built-in robot\n\n"
            "tables:\n");
-    for (size_t i = 0; i < GEN_COUNT; ++i) printf("  %-3s %s\n", generators[i].id, generators[i].summary);
+    for (size_t i = 0; i < GEN_COUNT; ++i)
+        printf("  %-3s %s\n", generators[i].id, generators[i].summary);
     return 0;
 }
 
@@ -48,13 +52,16 @@ int cmd_tables(int argc, char **argv)
         const char *a = argv[i];
         long v;
         if (cli_is_help(a)) return usage();
-        if (!strcmp(a, "--csv")) o.csv = 1;
-        else if (!strcmp(a, "--markdown")) o.csv = 0;
+        if (!strcmp(a, "--csv"))
+            o.csv = 1;
+        else if (!strcmp(a, "--markdown"))
+            o.csv = 0;
         else if (!strcmp(a, "--paper")) {
             if (i + 1 >= argc) return cli_fail(cmd, "--paper needs a file");
             paper_path = argv[++i];
         } else if (!strcmp(a, "--costs")) {
-            if (i + 1 >= argc) return cli_fail(cmd, "--costs needs a cost file (abrdf calibrate -o FILE)");
+            if (i + 1 >= argc)
+                return cli_fail(cmd, "--costs needs a cost file (abrdf calibrate -o FILE)");
             o.costs_path = argv[++i];
         } else if (!strcmp(a, "--reps")) {
             if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, 1000, &v))
@@ -65,24 +72,33 @@ int cmd_tables(int argc, char **argv)
             long hi = a[2] == 's' ? 4096 : a[2] == 't' ? 64 : 16384;
             if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, hi, &v))
                 return cli_fail(cmd, "%s needs a whole number in [1, %ld]", a, hi);
-            if (a[2] == 'w') o.images.width = (int)v;
-            else if (a[2] == 'h') o.images.height = (int)v;
-            else if (a[2] == 't') o.images.threads = (int)v;
-            else o.images.spp = (int)v;
+            if (a[2] == 'w')
+                o.images.width = (int)v;
+            else if (a[2] == 'h')
+                o.images.height = (int)v;
+            else if (a[2] == 't')
+                o.images.threads = (int)v;
+            else
+                o.images.spp = (int)v;
             long k = lround(sqrt((double)v));
-            if (a[2] == 's' && k * k != v) return cli_fail(cmd, "--spp %ld is not a square (1, 4, 9, 16, ...)", v);
+            if (a[2] == 's' && k * k != v)
+                return cli_fail(cmd, "--spp %ld is not a square (1, 4, 9, 16, ...)", v);
         } else if (!strcmp(a, "--f0") || !strcmp(a, "--kd")) {
             double d;
             if (i + 1 >= argc || !cli_parse_double(argv[++i], &d) || d < 0 || d > 1)
                 return cli_fail(cmd, "%s needs a value in [0, 1]", a);
-            if (a[2] == 'f') o.images.f0 = d;
-            else o.images.kd = d;
+            if (a[2] == 'f')
+                o.images.f0 = d;
+            else
+                o.images.kd = d;
         } else if (!strcmp(a, "--scene")) {
             if (i + 1 >= argc) return cli_fail(cmd, "--scene needs a scene file");
             o.images.scene_path = argv[++i];
         } else if (a[0] == '-' && a[1]) {
-            return cli_fail(cmd, "unknown option '%s'; options: --csv --markdown --paper --costs --reps "
-                                 "--width --height --spp --threads --f0 --kd --scene", a);
+            return cli_fail(cmd,
+                            "unknown option '%s'; options: --csv --markdown --paper --costs --reps "
+                            "--width --height --spp --threads --f0 --kd --scene",
+                            a);
         } else if (!id) {
             id = a;
         } else {

@@ -94,10 +94,12 @@ int cli_model(const char *cmd, const char *name, abrdf_model *out)
         if (!m) continue;
         if (name && cli_is_near(name, m->name) && strlen(near) + strlen(m->name) + 3 < sizeof near)
             strcat(strcat(near, *near ? ", " : ""), m->name);
-        if (strlen(all) + strlen(m->name) + 3 < sizeof all) strcat(strcat(all, *all ? ", " : ""), m->name);
+        if (strlen(all) + strlen(m->name) + 3 < sizeof all)
+            strcat(strcat(all, *all ? ", " : ""), m->name);
     }
     if (!name) return cli_fail(cmd, "missing model name; models: %s", all);
-    if (*near) return cli_fail(cmd, "unknown model '%s'; did you mean %s? models: %s", name, near, all);
+    if (*near)
+        return cli_fail(cmd, "unknown model '%s'; did you mean %s? models: %s", name, near, all);
     return cli_fail(cmd, "unknown model '%s'; models: %s", name, all);
 }
 
@@ -117,10 +119,13 @@ int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const cha
     model_param_names(m, names, sizeof names);
     const char *eq = strchr(assign, '=');
     if (!eq || eq == assign)
-        return cli_fail(cmd, "--set needs NAME=VALUE, got '%s'; %s parameters: %s", assign, m->name, names);
+        return cli_fail(cmd, "--set needs NAME=VALUE, got '%s'; %s parameters: %s", assign, m->name,
+                        names);
     char key[64];
     size_t kl = (size_t)(eq - assign);
-    if (kl >= sizeof key) return cli_fail(cmd, "unknown parameter in '%s'; %s parameters: %s", assign, m->name, names);
+    if (kl >= sizeof key)
+        return cli_fail(cmd, "unknown parameter in '%s'; %s parameters: %s", assign, m->name,
+                        names);
     memcpy(key, assign, kl);
     key[kl] = '\0';
     int id = -1;
@@ -128,19 +133,20 @@ int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const cha
     if (abrdf_param_find(key, &id) == ABRDF_OK)
         for (int i = 0; i < m->param_count; ++i)
             if (m->params[i].id == id) mp = &m->params[i];
-    if (!mp) return cli_fail(cmd, "unknown parameter '%s' for %s; parameters: %s", key, m->name, names);
+    if (!mp)
+        return cli_fail(cmd, "unknown parameter '%s' for %s; parameters: %s", key, m->name, names);
     const abrdf_param_info *pi = abrdf_param_get(id);
     const char *want = pi->kind == ABRDF_PARAM_RGB ? "a number or R,G,B" : "one number";
     double v[3];
     int count = 1;
     if (strchr(eq + 1, ',')) {
         if (pi->kind != ABRDF_PARAM_RGB || !cli_parse_vec3(eq + 1, v))
-            return cli_fail(cmd, "parameter '%s' needs %s in [%g, %g], got '%s'", key, want, mp->min,
-                            mp->max, eq + 1);
+            return cli_fail(cmd, "parameter '%s' needs %s in [%g, %g], got '%s'", key, want,
+                            mp->min, mp->max, eq + 1);
         count = 3;
     } else if (!cli_parse_double(eq + 1, &v[0])) {
-        return cli_fail(cmd, "parameter '%s' needs %s in [%g, %g], got '%s' (not a finite number)", key,
-                        want, mp->min, mp->max, eq + 1);
+        return cli_fail(cmd, "parameter '%s' needs %s in [%g, %g], got '%s' (not a finite number)",
+                        key, want, mp->min, mp->max, eq + 1);
     }
     /* The model's range, which may be narrower than the parameter's own (abrdf_model_param). */
     for (int c = 0; c < count; ++c)
@@ -148,8 +154,8 @@ int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const cha
             return cli_fail(cmd, "parameter '%s' = %s is outside %s's range [%g, %g]", key, eq + 1,
                             m->name, mp->min, mp->max);
     if (abrdf_param_set(p, id, v, count) != ABRDF_OK)
-        return cli_fail(cmd, "parameter '%s' = %s is outside [%g, %g]%s", key, eq + 1, pi->min, pi->max,
-                        pi->kind == ABRDF_PARAM_INT ? " or not a whole number" : "");
+        return cli_fail(cmd, "parameter '%s' = %s is outside [%g, %g]%s", key, eq + 1, pi->min,
+                        pi->max, pi->kind == ABRDF_PARAM_INT ? " or not a whole number" : "");
     char msg[256];
     if (abrdf_params_check(model, p, msg, sizeof msg) != ABRDF_OK) return cli_fail(cmd, "%s", msg);
     return 0;
@@ -160,9 +166,12 @@ void cli_json_string(FILE *f, const char *s)
     fputc('"', f);
     for (; s && *s; ++s) {
         unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\') fprintf(f, "\\%c", c);
-        else if (c < 0x20) fprintf(f, "\\u%04x", c);
-        else fputc(c, f);
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
     }
     fputc('"', f);
 }

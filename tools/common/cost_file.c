@@ -31,7 +31,8 @@ int costs_load(const char *path, abrdf_costs *out, double *unit_ns, char *err, s
         if (k <= 0) continue; /* blank or comment */
         double v;
         if (k != 2 || !cli_parse_double(num, &v) || !(v > 0.0)) {
-            snprintf(err, err_size, "%s:%d: expected 'NAME NS_PER_EVAL' with a positive number", path, lineno);
+            snprintf(err, err_size, "%s:%d: expected 'NAME NS_PER_EVAL' with a positive number",
+                     path, lineno);
             rc = -1;
             break;
         }
@@ -52,7 +53,8 @@ int costs_load(const char *path, abrdf_costs *out, double *unit_ns, char *err, s
             abrdf_costs_set(out, m, v);
             ++entries;
         } else {
-            snprintf(err, err_size, "%s:%d: unknown model '%s' (see abrdf models)", path, lineno, name);
+            snprintf(err, err_size, "%s:%d: unknown model '%s' (see abrdf models)", path, lineno,
+                     name);
             rc = -1;
             break;
         }
@@ -93,9 +95,10 @@ void costs_write(FILE *f, const abrdf_costs *c, double unit_ns, const char *comm
     costs_machine(machine, sizeof machine);
     time_t now = time(NULL);
     strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
-    fprintf(f, "# abrdf %s cost file: nanoseconds per evaluation of every model on this machine\n"
-               "# machine: %s\n# date: %s\n# command: %s\n# method: %s\n"
-               "# format: NAME NS_PER_EVAL; %s is the unit of the ratios in the comments\n",
+    fprintf(f,
+            "# abrdf %s cost file: nanoseconds per evaluation of every model on this machine\n"
+            "# machine: %s\n# date: %s\n# command: %s\n# method: %s\n"
+            "# format: NAME NS_PER_EVAL; %s is the unit of the ratios in the comments\n",
             abrdf_version(), machine, date, command, how, COSTS_UNIT_NAME);
     fprintf(f, "%-24s %10.4f  # 1.00 x unit: powf(N.H, n) with H normalised, no guards\n",
             COSTS_UNIT_NAME, unit_ns);

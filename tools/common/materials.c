@@ -10,15 +10,31 @@
 #include "materials.h"
 
 const char *const mat_columns[] = {
-    "name", "type", "n", "r", "kd_r", "kd_g", "kd_b", "ks_r", "ks_g", "ks_b", "f0_r", "f0_g",
-    "f0_b", "eta", "anisotropy", "melanin", "redness", "coat_eta", "coat_r", "coat_depth",
-    "coat_sa_r", "coat_sa_g", "coat_sa_b", "base_eta", "base_kappa", "source"};
+    "name",       "type",      "n",        "r",          "kd_r",   "kd_g",       "kd_b",
+    "ks_r",       "ks_g",      "ks_b",     "f0_r",       "f0_g",   "f0_b",       "eta",
+    "anisotropy", "melanin",   "redness",  "coat_eta",   "coat_r", "coat_depth", "coat_sa_r",
+    "coat_sa_g",  "coat_sa_b", "base_eta", "base_kappa", "source"};
 const int mat_column_count = (int)(sizeof mat_columns / sizeof mat_columns[0]);
 
 enum {
-    C_NAME, C_TYPE, C_N, C_R, C_KD, C_KS = C_KD + 3, C_F0 = C_KS + 3, C_ETA = C_F0 + 3,
-    C_ANISO, C_MELANIN, C_REDNESS, C_COAT_ETA, C_COAT_R, C_COAT_DEPTH, C_COAT_SA,
-    C_BASE_ETA = C_COAT_SA + 3, C_BASE_KAPPA, C_SOURCE
+    C_NAME,
+    C_TYPE,
+    C_N,
+    C_R,
+    C_KD,
+    C_KS = C_KD + 3,
+    C_F0 = C_KS + 3,
+    C_ETA = C_F0 + 3,
+    C_ANISO,
+    C_MELANIN,
+    C_REDNESS,
+    C_COAT_ETA,
+    C_COAT_R,
+    C_COAT_DEPTH,
+    C_COAT_SA,
+    C_BASE_ETA = C_COAT_SA + 3,
+    C_BASE_KAPPA,
+    C_SOURCE
 };
 
 #define LINE_MAX_LEN 2048
@@ -66,8 +82,8 @@ static int split(char *line, char **f)
 }
 
 /* A number in [lo, hi]; empty -> *out = def and *given = 0. */
-static int number(ctx *c, const char *field, int col, double lo, double hi, double def,
-                  double *out, int *given)
+static int number(ctx *c, const char *field, int col, double lo, double hi, double def, double *out,
+                  int *given)
 {
     if (given) *given = 0;
     if (!*field) {
@@ -92,8 +108,8 @@ static int rgb(ctx *c, char **f, int col, double lo, double hi, double v[3])
         all &= g[k];
     }
     if (any && !all)
-        return fail(c, "columns '%s'..'%s': give all three components or none",
-                    mat_columns[col], mat_columns[col + 2]);
+        return fail(c, "columns '%s'..'%s': give all three components or none", mat_columns[col],
+                    mat_columns[col + 2]);
     return all;
 }
 
@@ -115,7 +131,8 @@ static int parse_row(ctx *c, char *line, mat_entry *e)
     abrdf_material *m = &e->m;
     abrdf_material_init(m);
     if (!valid_name(f[C_NAME]))
-        return fail(c, "name '%s' must be 1-%d characters of a-z, 0-9, _", f[C_NAME], MAT_NAME_MAX - 1);
+        return fail(c, "name '%s' must be 1-%d characters of a-z, 0-9, _", f[C_NAME],
+                    MAT_NAME_MAX - 1);
     strcpy(e->name, f[C_NAME]);
     if (abrdf_surface_find(f[C_TYPE], &m->type) != ABRDF_OK) {
         char types[256] = "";
@@ -140,15 +157,16 @@ static int parse_row(ctx *c, char *line, mat_entry *e)
     if (number(c, f[C_ANISO], C_ANISO, 0.0, 1.0, 0.0, &m->anisotropy, NULL)) return -1;
     if (number(c, f[C_MELANIN], C_MELANIN, 0.0, 1.0, 0.3, &m->melanin, NULL)) return -1;
     if (number(c, f[C_REDNESS], C_REDNESS, 0.0, 1.0, 0.0, &m->redness, NULL)) return -1;
-    if (m->type == ABRDF_SURFACE_HAIR && !*f[C_MELANIN])
-        return fail(c, "hair needs 'melanin'");
+    if (m->type == ABRDF_SURFACE_HAIR && !*f[C_MELANIN]) return fail(c, "hair needs 'melanin'");
 
     /* Coat (layer 0) and, for metals, the base interface (layer 1), relative to the coat. */
     double coat[6];
     int g[6], any = 0, all = 1;
-    static const double lo[6] = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0}, hi[6] = {4.0, 1.0, 100.0, 1e4, 1e4, 1e4};
+    static const double lo[6] = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0},
+                        hi[6] = {4.0, 1.0, 100.0, 1e4, 1e4, 1e4};
     for (int k = 0; k < 6; ++k) {
-        if (number(c, f[C_COAT_ETA + k], C_COAT_ETA + k, lo[k], hi[k], 0.0, &coat[k], &g[k])) return -1;
+        if (number(c, f[C_COAT_ETA + k], C_COAT_ETA + k, lo[k], hi[k], 0.0, &coat[k], &g[k]))
+            return -1;
         any |= g[k];
         all &= g[k];
     }
@@ -179,11 +197,14 @@ static int parse_row(ctx *c, char *line, mat_entry *e)
         l->kappa = bk / coat[0];
         l->r = m->r >= 0.0 ? m->r : abrdf_alpha_g_to_r(abrdf_n_to_alpha_g(m->n));
         if (!(l->eta >= 1.0 && l->eta <= 4.0 && l->kappa <= 10.0))
-            return fail(c, "base relative to the coat: eta %g, kappa %g outside libabrdf's layer "
-                        "ranges (eta [1, 4], kappa [0, 10])", l->eta, l->kappa);
+            return fail(c,
+                        "base relative to the coat: eta %g, kappa %g outside libabrdf's layer "
+                        "ranges (eta [1, 4], kappa [0, 10])",
+                        l->eta, l->kappa);
         m->layer_count = 2;
     }
-    if (!*f[C_SOURCE]) return fail(c, "column 'source' is empty: every row needs the source of its numbers");
+    if (!*f[C_SOURCE])
+        return fail(c, "column 'source' is empty: every row needs the source of its numbers");
     if (strlen(f[C_SOURCE]) >= MAT_SOURCE_MAX)
         return fail(c, "column 'source' is longer than %d characters", MAT_SOURCE_MAX - 1);
     strcpy(e->source, f[C_SOURCE]);
@@ -303,7 +324,8 @@ int mat_table_nearest(const mat_table *t, const char *name, const char **out, in
         for (int i = 0; i < t->count && found < max; ++i) {
             const char *cand = t->items[i].name;
             /* A prefix ("alumin") is as good a hint as a typo. */
-            int dist = strncmp(cand, name, strlen(name)) == 0 && *name ? 1 : cli_edit_distance(name, cand);
+            int dist =
+                strncmp(cand, name, strlen(name)) == 0 && *name ? 1 : cli_edit_distance(name, cand);
             if (dist == d) out[found++] = cand;
         }
     return found;

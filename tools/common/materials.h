@@ -13,10 +13,10 @@
 
 typedef struct mat_entry {
     char name[MAT_NAME_MAX];
-    char source[MAT_SOURCE_MAX];  /* where the numbers come from (never empty) */
-    char file[MAT_FILE_MAX];      /* file and line that defined it (last one wins) */
+    char source[MAT_SOURCE_MAX]; /* where the numbers come from (never empty) */
+    char file[MAT_FILE_MAX];     /* file and line that defined it (last one wins) */
     int line;
-    abrdf_material m;             /* m.name points at name */
+    abrdf_material m; /* m.name points at name */
 } mat_entry;
 
 typedef struct mat_table {

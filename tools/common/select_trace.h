@@ -9,10 +9,13 @@
 typedef struct select_trace {
     abrdf_select_step *steps; /* copies; each text is owned by the trace */
     int count, cap;
-    int lost;                 /* steps not kept for want of memory */
+    int lost; /* steps not kept for want of memory */
 } select_trace;
 
-#define SELECT_TRACE_INIT {NULL, 0, 0, 0}
+#define SELECT_TRACE_INIT                                                                          \
+    {                                                                                              \
+        NULL, 0, 0, 0                                                                              \
+    }
 
 /* An abrdf_select_trace_fn: append a copy of `step` to the select_trace at `trace`. */
 void select_trace_keep(void *trace, const abrdf_select_step *step);

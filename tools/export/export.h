@@ -13,10 +13,10 @@
 #include "render.h"
 
 typedef struct export_options {
-    const char *scene_path;  /* for the header comment */
-    const char *osl_dir;     /* directory holding abrdf_osl.h, abrdf_trace.h, abrdf_material.osl */
-    int spp;                 /* samples per pixel of the host renderer */
-    const char *mode;        /* default mode of the script: "eval" or "closure" */
+    const char *scene_path; /* for the header comment */
+    const char *osl_dir;    /* directory holding abrdf_osl.h, abrdf_trace.h, abrdf_material.osl */
+    int spp;                /* samples per pixel of the host renderer */
+    const char *mode;       /* default mode of the script: "eval" or "closure" */
 } export_options;
 
 /* Write the script to f; returns 0, or -1 with a message in err. */

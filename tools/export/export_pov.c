@@ -22,7 +22,8 @@ static void material(FILE *f, int index, const scene_material *sm, const render_
 {
     char id[64];
     upper(id, abrdf_model_get(m->lobes[0])->name, sizeof id);
-    fprintf(f, "// material '%s'\n#declare Abrdf_Mat_%d = Abrdf_Default(ABRDF_ID_%s);\n", sm->name, index, id);
+    fprintf(f, "// material '%s'\n#declare Abrdf_Mat_%d = Abrdf_Default(ABRDF_ID_%s);\n", sm->name,
+            index, id);
     if (m->lobe_count > 1) {
         upper(id, abrdf_model_get(m->lobes[1])->name, sizeof id);
         fprintf(f, "#declare Abrdf_Mat_%d[1] = ABRDF_ID_%s;\n", index, id);
@@ -36,7 +37,8 @@ static void material(FILE *f, int index, const scene_material *sm, const render_
             int n = abrdf_param_read(&m->params, mi->params[k].id, v);
             upper(id, pi->name, sizeof id);
             for (int c = 0; c < n; ++c)
-                fprintf(f, "#declare Abrdf_Mat_%d[ABRDF_SLOT_%s + %d] = %.17g;\n", index, id, c, v[c]);
+                fprintf(f, "#declare Abrdf_Mat_%d[ABRDF_SLOT_%s + %d] = %.17g;\n", index, id, c,
+                        v[c]);
         }
     }
     fprintf(f, "Abrdf__Check(Abrdf_Mat_%d, \"material '%s'\")\n", index, sm->name);
@@ -47,29 +49,38 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
 {
     const scene *s = rs->src;
     if (opt->lit && rs->light_count != 1) {
-        snprintf(err, err_size, "POV-Ray's own shadows need exactly one light (the scene has %d); "
-                 "export without them", rs->light_count);
+        snprintf(err, err_size,
+                 "POV-Ray's own shadows need exactly one light (the scene has %d); "
+                 "export without them",
+                 rs->light_count);
         return -1;
     }
     for (int l = 0; opt->native && l < rs->light_count; ++l)
         if (rs->lights[l].kind == SCENE_LIGHT_POINT) {
-            snprintf(err, err_size, "--native: POV-Ray's light fading is 2 / (1 + (d/D)^p), never the "
+            snprintf(err, err_size,
+                     "--native: POV-Ray's light fading is 2 / (1 + (d/D)^p), never the "
                      "1/d^2 of a point light; export without --native");
             return -1;
         }
     double extent = rs->eps / 1e-9; /* render.c: eps = 1e-9 * scene size */
     fprintf(f, "// %s - exported by `abrdf export --pov` (docs/POVRAY.md).\n", opt->source);
-    fprintf(f, "// Render linear HDR without antialiasing, e.g. with k x k supersampling:\n"
-               "//   povray +I<this file> +O<out>.exr +FE +W%d +H%d -A +L<abrdf>/povray_macros\n"
-               "// and average k x k pixel blocks (k = 1 here): the samples are those of\n"
-               "// `abrdf render --spp k*k` (stratum centres).\n", rs->width, rs->height);
+    fprintf(f,
+            "// Render linear HDR without antialiasing, e.g. with k x k supersampling:\n"
+            "//   povray +I<this file> +O<out>.exr +FE +W%d +H%d -A +L<abrdf>/povray_macros\n"
+            "// and average k x k pixel blocks (k = 1 here): the samples are those of\n"
+            "// `abrdf render --spp k*k` (stratum centres).\n",
+            rs->width, rs->height);
     fprintf(f, "// Shading: %s\n",
             opt->native ? "POV-Ray's own finishes (abrdf_native.inc), its lights and shadows."
-            : opt->lit ? "function pigments; POV-Ray's light_source and shadow test (one light)."
-                       : "function pigments, emissive: each pigment sums every light unoccluded (no shadows).");
-    fprintf(f, "#version 3.7;\nglobal_settings { assumed_gamma 1 ambient_light %d max_trace_level 1 }\n",
-            opt->native ? 1 : 0);
-    fprintf(f, "#include \"abrdf.inc\"\n#include \"abrdf_shading.inc\"  // shapes, transforms\n%s\n",
+            : opt->lit  ? "function pigments; POV-Ray's light_source and shadow test (one light)."
+                        : "function pigments, emissive: each pigment sums every light unoccluded "
+                          "(no shadows).");
+    fprintf(
+        f,
+        "#version 3.7;\nglobal_settings { assumed_gamma 1 ambient_light %d max_trace_level 1 }\n",
+        opt->native ? 1 : 0);
+    fprintf(f,
+            "#include \"abrdf.inc\"\n#include \"abrdf_shading.inc\"  // shapes, transforms\n%s\n",
             opt->native ? "#include \"abrdf_native.inc\"\n" : "");
     fprintf(f, "#declare Abrdf_Eye = ");
     vec(f, rs->eye, 1);
@@ -81,12 +92,14 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
     vec(f, rs->up, 2);
     fprintf(f, " }\n\n");
 
-    fprintf(f, "#declare Abrdf_Lights = array[%d][7] {\n", rs->light_count > 0 ? rs->light_count : 1);
+    fprintf(f, "#declare Abrdf_Lights = array[%d][7] {\n",
+            rs->light_count > 0 ? rs->light_count : 1);
     for (int l = 0; l < rs->light_count; ++l) {
         const render_light *lt = &rs->lights[l];
         const double *p = lt->kind == SCENE_LIGHT_POINT ? lt->position : lt->direction;
-        fprintf(f, "  {%d, %.17g, %.17g, %.17g, %.17g, %.17g, %.17g}%s\n", lt->kind == SCENE_LIGHT_POINT ? 0 : 1,
-                p[0], p[1], -p[2], lt->e[0], lt->e[1], lt->e[2], l + 1 < rs->light_count ? "," : "");
+        fprintf(f, "  {%d, %.17g, %.17g, %.17g, %.17g, %.17g, %.17g}%s\n",
+                lt->kind == SCENE_LIGHT_POINT ? 0 : 1, p[0], p[1], -p[2], lt->e[0], lt->e[1],
+                lt->e[2], l + 1 < rs->light_count ? "," : "");
     }
     if (rs->light_count == 0) fprintf(f, "  {1, 0, 1, 0, 0, 0, 0}  // no light: a black one\n");
     fprintf(f, "}\n");
@@ -102,7 +115,8 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
         } else {
             /* far beyond the scene: POV-Ray's parallel light shadows up to its location */
             vec(f, lt->direction, 1e6 * fmax(extent, 1.0));
-            fprintf(f, " color rgb <%.17g, %.17g, %.17g> parallel point_at <0, 0, 0> }\n", e[0], e[1], e[2]);
+            fprintf(f, " color rgb <%.17g, %.17g, %.17g> parallel point_at <0, 0, 0> }\n", e[0],
+                    e[1], e[2]);
         }
     }
     fprintf(f, "\n");
@@ -115,14 +129,17 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
         const scene_object *o = &s->objects[i];
         const geom_object *g = &rs->objects[i];
         const render_material *m = &rs->materials[o->material];
-        fprintf(f, "// %s, scene line %d\n#declare Abrdf_M = array[12] {", shapes[o->shape], o->line);
+        fprintf(f, "// %s, scene line %d\n#declare Abrdf_M = array[12] {", shapes[o->shape],
+                o->line);
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 4; ++c)
-                fprintf(f, "%.17g%s", r == 2 ? -g->xf.m[r][c] : g->xf.m[r][c], r == 2 && c == 3 ? "" : ", ");
+                fprintf(f, "%.17g%s", r == 2 ? -g->xf.m[r][c] : g->xf.m[r][c],
+                        r == 2 && c == 3 ? "" : ", ");
         fprintf(f, "}\n");
         double dims[3] = {o->radius, o->height, 0};
         if (o->shape == SCENE_BOX) memcpy(dims, o->size, sizeof dims);
-        fprintf(f, "object { Abrdf_Shape(\"%s\", <%.17g, %.17g, %.17g>)\n", shapes[o->shape], dims[0], dims[1], dims[2]);
+        fprintf(f, "object { Abrdf_Shape(\"%s\", <%.17g, %.17g, %.17g>)\n", shapes[o->shape],
+                dims[0], dims[1], dims[2]);
         if (opt->native) {
             fprintf(f, "  Abrdf_Native_Texture(Abrdf_Mat_%d, <%.17g, %.17g, %.17g>)\n", o->material,
                     m->use_ambient ? m->ambient[0] : 0.0, m->use_ambient ? m->ambient[1] : 0.0,
@@ -130,10 +147,10 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
             fprintf(f, "  Abrdf_Xform_Matrix(Abrdf_M) }\n");
             continue;
         }
-        fprintf(f, "  Abrdf_Shaded_Texture(Abrdf_Mat_%d, \"%s\", <%.17g, %.17g, %.17g>, Abrdf_M,\n", o->material,
-                shapes[o->shape], dims[0], dims[1], dims[2]);
-        fprintf(f, "    array[4] {%d, %.17g, %.17g, %.17g}, Abrdf_Eye, Abrdf_Lights,\n", (int)o->tangent,
-                o->tangent_axis[0], o->tangent_axis[1], o->tangent_axis[2]);
+        fprintf(f, "  Abrdf_Shaded_Texture(Abrdf_Mat_%d, \"%s\", <%.17g, %.17g, %.17g>, Abrdf_M,\n",
+                o->material, shapes[o->shape], dims[0], dims[1], dims[2]);
+        fprintf(f, "    array[4] {%d, %.17g, %.17g, %.17g}, Abrdf_Eye, Abrdf_Lights,\n",
+                (int)o->tangent, o->tangent_axis[0], o->tangent_axis[1], o->tangent_axis[2]);
         fprintf(f, "    <%.17g, %.17g, %.17g>, %s)\n", m->use_ambient ? m->ambient[0] : 0.0,
                 m->use_ambient ? m->ambient[1] : 0.0, m->use_ambient ? m->ambient[2] : 0.0,
                 opt->lit ? "true" : "false");

@@ -15,8 +15,8 @@
 #include "render.h"
 
 typedef struct export_pov_options {
-    int lit;          /* 1: one light through POV-Ray's light_source (its shadows); 0: emissive, no shadows */
-    int native;       /* POV-Ray's own finishes (abrdf_native.inc): lambert, phong, blinn_phong;
+    int lit; /* 1: one light through POV-Ray's light_source (its shadows); 0: emissive, no shadows */
+    int native;         /* POV-Ray's own finishes (abrdf_native.inc): lambert, phong, blinn_phong;
                          every light a light_source (shadows), directional lights only */
     const char *source; /* scene file name for the header comment */
 } export_pov_options;

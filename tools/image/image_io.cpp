@@ -21,7 +21,8 @@
 namespace OCIO = OCIO_NAMESPACE;
 namespace OIIO = OIIO_NAMESPACE;
 
-namespace {
+namespace
+{
 
 // Largest image accepted, in pixels: keeps width*height*3 floats far from size_t overflow
 // and a corrupt header from asking for an absurd allocation.
@@ -36,7 +37,8 @@ std::string lower_ext(const char *path)
 {
     std::string p(path), ext;
     size_t dot = p.find_last_of('.'), slash = p.find_last_of('/');
-    if (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ext = p.substr(dot + 1);
+    if (dot != std::string::npos && (slash == std::string::npos || dot > slash))
+        ext = p.substr(dot + 1);
     for (char &c : ext) c = (char)std::tolower((unsigned char)c);
     return ext;
 }
@@ -55,7 +57,8 @@ OCIO::ConstConfigRcPtr builtin_config()
 {
     OCIO::ConfigRcPtr cfg = OCIO::Config::CreateRaw()->createEditableCopy();
     cfg->setName("abrdf-builtin-srgb");
-    cfg->setDescription("sRGB display for scene-linear Rec.709, from OpenColorIO built-in transforms");
+    cfg->setDescription(
+        "sRGB display for scene-linear Rec.709, from OpenColorIO built-in transforms");
     // CreateRaw brings one "raw" colour space, a "raw" view and a "Raw" display; start clean.
     cfg->clearColorSpaces();
     cfg->clearDisplays();
@@ -129,7 +132,8 @@ OCIO::ConstCPUProcessorRcPtr display_processor(const char *config, const char *d
 bool valid_size(int width, int height, const void *data, char *err, int err_size)
 {
     if (width <= 0 || height <= 0 || (long long)width * height > kMaxPixels) {
-        set_err(err, err_size, "invalid image size " + std::to_string(width) + "x" + std::to_string(height));
+        set_err(err, err_size,
+                "invalid image size " + std::to_string(width) + "x" + std::to_string(height));
         return false;
     }
     if (!data) {
@@ -151,19 +155,19 @@ int write_file(const char *path, int width, int height, int nch, const float *da
     OIIO::ImageSpec spec(width, height, nch, type);
     spec.attribute("oiio:ColorSpace", colorspace);
     spec.attribute("Software", "abrdf");
-    if (!out->open(path, spec) ||
-        !out->write_image(OIIO::TypeDesc::FLOAT, data) || !out->close()) {
+    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, data) || !out->close()) {
         set_err(err, err_size, std::string(path) + ": " + out->geterror());
         return -1;
     }
     return 0;
 }
 
-}  // namespace
+} // namespace
 
 extern "C" int abrdf_image_is_display_format(const char *path)
 {
-    static const char *const display_ext[] = {"png", "jpg", "jpeg", "bmp", "gif", "webp", "ppm", "pgm", "pnm"};
+    static const char *const display_ext[] = {"png",  "jpg", "jpeg", "bmp", "gif",
+                                              "webp", "ppm", "pgm",  "pnm"};
     if (!path) return 0;
     std::string ext = lower_ext(path);
     for (const char *e : display_ext)
@@ -180,12 +184,14 @@ extern "C" int abrdf_image_write_linear(const char *path, int width, int height,
             return -1;
         }
         if (abrdf_image_is_display_format(path)) {
-            set_err(err, err_size, std::string(path) +
-                    ": an 8-bit display format cannot hold scene-linear data; write .exr/.hdr/.tif (or a preview)");
+            set_err(err, err_size,
+                    std::string(path) + ": an 8-bit display format cannot hold scene-linear data; "
+                                        "write .exr/.hdr/.tif (or a preview)");
             return -1;
         }
         // 32-bit float where the format has it (EXR, TIFF); .hdr stores its own RGBE encoding.
-        return write_file(path, width, height, 3, rgb, OIIO::TypeDesc::FLOAT, "Linear", err, err_size);
+        return write_file(path, width, height, 3, rgb, OIIO::TypeDesc::FLOAT, "Linear", err,
+                          err_size);
     } catch (const std::exception &e) {
         set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
     } catch (...) {
@@ -208,7 +214,8 @@ extern "C" int abrdf_image_write_preview(const char *path, int width, int height
         OCIO::PackedImageDesc desc(buf.data(), width, height, 3);
         cpu->apply(desc);
         // OpenImageIO quantises to 8 bits (clamping to [0,1], rounding to nearest).
-        return write_file(path, width, height, 3, buf.data(), OIIO::TypeDesc::UINT8, "sRGB", err, err_size);
+        return write_file(path, width, height, 3, buf.data(), OIIO::TypeDesc::UINT8, "sRGB", err,
+                          err_size);
     } catch (const std::exception &e) {
         set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
     } catch (...) {
@@ -217,8 +224,9 @@ extern "C" int abrdf_image_write_preview(const char *path, int width, int height
     return -1;
 }
 
-extern "C" int abrdf_image_write_heatmap(const char *path, int width, int height, const float *value,
-                                         double vmax, const char *map, char *err, int err_size)
+extern "C" int abrdf_image_write_heatmap(const char *path, int width, int height,
+                                         const float *value, double vmax, const char *map,
+                                         char *err, int err_size)
 {
     try {
         if (!path || !valid_size(width, height, value, err, err_size)) {
@@ -270,8 +278,10 @@ extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, i
         const OIIO::ImageSpec spec = in->spec();
         int w = spec.width, h = spec.height, nch = spec.nchannels;
         if (w <= 0 || h <= 0 || nch <= 0 || (long long)w * h > kMaxPixels || spec.deep) {
-            set_err(err, err_size, std::string(path) + ": unsupported image (size " + std::to_string(w) + "x" +
-                    std::to_string(h) + ", " + std::to_string(nch) + " channels" + (spec.deep ? ", deep" : "") + ")");
+            set_err(err, err_size,
+                    std::string(path) + ": unsupported image (size " + std::to_string(w) + "x" +
+                        std::to_string(h) + ", " + std::to_string(nch) + " channels" +
+                        (spec.deep ? ", deep" : "") + ")");
             return -1;
         }
         std::vector<float> all((size_t)w * h * nch);
@@ -298,7 +308,8 @@ extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, i
                        spec.format.basetype != OIIO::TypeDesc::DOUBLE;
         if (cs == "srgb" || (cs.empty() && integer)) {
             try {
-                OCIO::ConstCPUProcessorRcPtr cpu = display_processor(nullptr, nullptr, nullptr, true);
+                OCIO::ConstCPUProcessorRcPtr cpu =
+                    display_processor(nullptr, nullptr, nullptr, true);
                 OCIO::PackedImageDesc desc(rgb, w, h, 3);
                 cpu->apply(desc);
             } catch (...) {

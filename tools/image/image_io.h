@@ -21,22 +21,22 @@ extern "C" {
 
 typedef struct abrdf_image {
     int width, height;
-    int channels;   /* channels in the file that was read (pixels always hold RGB) */
-    float *pixels;  /* width * height * 3 floats, malloc'd; free with abrdf_image_free */
+    int channels;  /* channels in the file that was read (pixels always hold RGB) */
+    float *pixels; /* width * height * 3 floats, malloc'd; free with abrdf_image_free */
 } abrdf_image;
 
 /* Write linear float RGB as a scene-linear file; the format follows the extension
  * (.exr and .tif as 32-bit float, .hdr as RGBE). Display formats (.png, .jpg) are refused:
  * use abrdf_image_write_preview. */
-int abrdf_image_write_linear(const char *path, int width, int height, const float *rgb,
-                             char *err, int err_size);
+int abrdf_image_write_linear(const char *path, int width, int height, const float *rgb, char *err,
+                             int err_size);
 /* Write a display-referred 8-bit preview (.png, .jpg): the OpenColorIO display/view
  * transform from the scene_linear role of `config` (a .ocio file; NULL: the built-in config,
  * scene-linear Rec.709 -> display "sRGB", view "Standard" = piecewise sRGB encoding, no tone
  * mapping). NULL display/view: the config's defaults. Values above 1 clip. */
 int abrdf_image_write_preview(const char *path, int width, int height, const float *rgb,
-                              const char *config, const char *display, const char *view,
-                              char *err, int err_size);
+                              const char *config, const char *display, const char *view, char *err,
+                              int err_size);
 /* Write value[width*height] (one per pixel) as a false-colour 8-bit image: value/vmax clamped
  * to [0,1] (vmax <= 0: all zero) through OpenImageIO's colour map `map` ("inferno" if NULL;
  * also "viridis", "magma", "plasma", "turbo", "heat", ...). */

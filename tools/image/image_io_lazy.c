@@ -23,7 +23,8 @@
 typedef int (*write_linear_fn)(const char *, int, int, const float *, char *, int);
 typedef int (*write_preview_fn)(const char *, int, int, const float *, const char *, const char *,
                                 const char *, char *, int);
-typedef int (*write_heatmap_fn)(const char *, int, int, const float *, double, const char *, char *, int);
+typedef int (*write_heatmap_fn)(const char *, int, int, const float *, double, const char *, char *,
+                                int);
 typedef int (*read_fn)(const char *, abrdf_image *, char *, int);
 typedef void (*free_fn)(abrdf_image *);
 typedef int (*is_display_fn)(const char *);
@@ -44,7 +45,8 @@ static struct {
 static void *open_in(const char *dir, const char *rel)
 {
     char path[4096];
-    if (snprintf(path, sizeof path, "%s/%s%s", dir, rel, MODULE_NAME) >= (int)sizeof path) return NULL;
+    if (snprintf(path, sizeof path, "%s/%s%s", dir, rel, MODULE_NAME) >= (int)sizeof path)
+        return NULL;
     if (access(path, R_OK) != 0) return NULL;
     return dlopen(path, RTLD_NOW | RTLD_LOCAL);
 }
@@ -93,16 +95,16 @@ static int load(char *err, int err_size)
     return -1;
 }
 
-int abrdf_image_write_linear(const char *path, int width, int height, const float *rgb,
-                             char *err, int err_size)
+int abrdf_image_write_linear(const char *path, int width, int height, const float *rgb, char *err,
+                             int err_size)
 {
     if (load(err, err_size)) return -1;
     return mod.write_linear(path, width, height, rgb, err, err_size);
 }
 
 int abrdf_image_write_preview(const char *path, int width, int height, const float *rgb,
-                              const char *config, const char *display, const char *view,
-                              char *err, int err_size)
+                              const char *config, const char *display, const char *view, char *err,
+                              int err_size)
 {
     if (load(err, err_size)) return -1;
     return mod.write_preview(path, width, height, rgb, config, display, view, err, err_size);

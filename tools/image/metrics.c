@@ -4,8 +4,8 @@
 #include <math.h>
 #include <stddef.h>
 
-int abrdf_metrics_compute(const float *test, const float *ref, int width, int height,
-                          int channels, abrdf_metrics *m)
+int abrdf_metrics_compute(const float *test, const float *ref, int width, int height, int channels,
+                          abrdf_metrics *m)
 {
     if (!m) return ABRDF_METRICS_BAD_ARGS;
     *m = (abrdf_metrics){0};
@@ -34,7 +34,7 @@ int abrdf_metrics_compute(const float *test, const float *ref, int width, int he
     m->sse = sse;
     m->ref_energy = energy;
     m->nmse_defined = energy > 0;
-    m->nmse = energy > 0 ? sse / energy : 0;  /* paper Sec. 4, NMSE */
+    m->nmse = energy > 0 ? sse / energy : 0; /* paper Sec. 4, NMSE */
     m->mse = sse / (double)n;
     m->peak = peak;
     /* Peak = the brightest value present, so that PSNR means something for HDR images too. */

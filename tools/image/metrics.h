@@ -15,28 +15,28 @@ extern "C" {
 #endif
 
 typedef struct abrdf_metrics {
-    double nmse;          /* sum (I-R)^2 / sum R^2; 0 when !nmse_defined */
-    int nmse_defined;     /* 0 if the reference is all zero (sum R^2 == 0) */
-    double sse;           /* sum over pixels and channels of (I-R)^2 */
-    double ref_energy;    /* sum over pixels and channels of R^2 */
-    double mse;           /* sse / (pixels * channels) */
-    double peak;          /* largest channel value in either image (as OpenImageIO's compare) */
-    double psnr;          /* 10 log10(peak^2 / mse) dB; +inf if mse == 0, -inf if peak <= 0 < mse */
-    double max_abs;       /* largest |I - R| over pixels and channels */
-    int max_x, max_y;     /* pixel of max_abs (first in row-major order), column x, row y from top */
-    int max_c;            /* channel of max_abs (0 R, 1 G, 2 B) */
+    double nmse;       /* sum (I-R)^2 / sum R^2; 0 when !nmse_defined */
+    int nmse_defined;  /* 0 if the reference is all zero (sum R^2 == 0) */
+    double sse;        /* sum over pixels and channels of (I-R)^2 */
+    double ref_energy; /* sum over pixels and channels of R^2 */
+    double mse;        /* sse / (pixels * channels) */
+    double peak;       /* largest channel value in either image (as OpenImageIO's compare) */
+    double psnr;       /* 10 log10(peak^2 / mse) dB; +inf if mse == 0, -inf if peak <= 0 < mse */
+    double max_abs;    /* largest |I - R| over pixels and channels */
+    int max_x, max_y;  /* pixel of max_abs (first in row-major order), column x, row y from top */
+    int max_c;         /* channel of max_abs (0 R, 1 G, 2 B) */
 } abrdf_metrics;
 
 enum {
     ABRDF_METRICS_OK = 0,
-    ABRDF_METRICS_BAD_ARGS = -1,   /* NULL buffer, non-positive size or channel count */
-    ABRDF_METRICS_NONFINITE = -2   /* a NaN or infinity in either image */
+    ABRDF_METRICS_BAD_ARGS = -1, /* NULL buffer, non-positive size or channel count */
+    ABRDF_METRICS_NONFINITE = -2 /* a NaN or infinity in either image */
 };
 
 /* Compare test image I with reference R, both width*height*channels floats (interleaved,
  * same layout). On ABRDF_METRICS_NONFINITE, *m->max_x/max_y/max_c name the first bad sample. */
-int abrdf_metrics_compute(const float *test, const float *ref, int width, int height,
-                          int channels, abrdf_metrics *m);
+int abrdf_metrics_compute(const float *test, const float *ref, int width, int height, int channels,
+                          abrdf_metrics *m);
 
 /* Table 8 of the paper, with half-open intervals (the paper leaves the boundaries unstated):
  *   [0, 1e-4) "none"   [1e-4, 2.5e-4) "slight"   [2.5e-4, 1e-3) "noticeable"

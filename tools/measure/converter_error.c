@@ -81,18 +81,22 @@ static void compare(ndf_fn ref, double a, double n, stats *s)
 static void ndf_table(void)
 {
     static const double alphas[] = {0.0015, 0.005, 0.01, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.0};
-    printf("| alpha_g | n | ref | peak ratio | max rel. err (D >= 50%% peak) | max rel. err (D >= 1%% peak) | L1 | norm D_bp | norm D_ref |\n");
+    printf("| alpha_g | n | ref | peak ratio | max rel. err (D >= 50%% peak) | max rel. err (D >= "
+           "1%% peak) | L1 | norm D_bp | norm D_ref |\n");
     printf("|---|---|---|---|---|---|---|---|---|\n");
     for (size_t i = 0; i < sizeof alphas / sizeof alphas[0]; ++i) {
         double a = alphas[i], n = abrdf_alpha_g_to_n(a);
-        static const struct { const char *name; ndf_fn fn; } refs[] = {
-            {"GGX", d_ggx}, {"Beckmann", d_beckmann}};
+        static const struct {
+            const char *name;
+            ndf_fn fn;
+        } refs[] = {{"GGX", d_ggx}, {"Beckmann", d_beckmann}};
         for (int r = 0; r < 2; ++r) {
             stats s;
             compare(refs[r].fn, a, n, &s);
             double ratio = d_blinn_phong(0.0, a, n) / refs[r].fn(0.0, a, n);
             printf("| %g | %.6g | %s | %.6f | %.2f%% | %.2f%% | %.4f | %.6f | %.6f |\n", a, n,
-                   refs[r].name, ratio, 100.0 * s.rel50, 100.0 * s.rel1, s.l1, s.norm_bp, s.norm_ref);
+                   refs[r].name, ratio, 100.0 * s.rel50, 100.0 * s.rel1, s.l1, s.norm_bp,
+                   s.norm_ref);
         }
     }
 }
@@ -118,9 +122,11 @@ static void pov_table(void)
         double lobe = fabs(pow(0.01, (np - n) / n) - 1.0);
         if (lobe > worst_lobe) worst_lobe = lobe;
     }
-    printf("| mapping | grid | max rel. error of the exponent | at n | max rel. lobe error (c^n >= 1%% peak) |\n");
+    printf("| mapping | grid | max rel. error of the exponent | at n | max rel. lobe error (c^n >= "
+           "1%% peak) |\n");
     printf("|---|---|---|---|---|\n");
-    printf("| n -> POV-Ray roughness -> exponent POV-Ray applies | n = 10^(0..6), 6001 points | %.3g | %.6g | %.3g |\n",
+    printf("| n -> POV-Ray roughness -> exponent POV-Ray applies | n = 10^(0..6), 6001 points | "
+           "%.3g | %.6g | %.3g |\n",
            worst, worst_n, worst_lobe);
 }
 
@@ -128,13 +134,13 @@ static void round_trips(void)
 {
     double e_r = 0, e_a = 0, e_n = 0, e_p = 0;
     for (int i = 0; i <= 10000; ++i) {
-        double x = i / 10000.0;                                   /* r and alpha_g in [0, 1] */
+        double x = i / 10000.0; /* r and alpha_g in [0, 1] */
         double r = abrdf_alpha_g_to_r(abrdf_r_to_alpha_g(x));
         e_r = fmax(e_r, fabs(r - x) / fmax(x, 1e-300));
-        double a = fmax(x, 0.0015);                               /* alpha_g with n <= 1e6 */
+        double a = fmax(x, 0.0015); /* alpha_g with n <= 1e6 */
         double a2 = abrdf_n_to_alpha_g(abrdf_alpha_g_to_n(a));
         e_a = fmax(e_a, fabs(a2 - a) / a);
-        double n = pow(10.0, -3.0 + 9.0 * x);                     /* n in [1e-3, 1e6] */
+        double n = pow(10.0, -3.0 + 9.0 * x); /* n in [1e-3, 1e6] */
         double n2 = abrdf_alpha_g_to_n(abrdf_n_to_alpha_g(n));
         e_n = fmax(e_n, fabs(n2 - n) / n);
         double n3 = abrdf_pov_roughness_to_n(abrdf_n_to_pov_roughness(n));

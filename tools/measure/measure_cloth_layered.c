@@ -24,7 +24,8 @@
 int main(int argc, char **argv)
 {
     const char *cmd = "measure_cloth_layered";
-    if (argc < 2) return cli_fail(cmd, "usage: MODEL [--order N] [--evals N] [--set NAME=VALUE ...]");
+    if (argc < 2)
+        return cli_fail(cmd, "usage: MODEL [--order N] [--evals N] [--set NAME=VALUE ...]");
     abrdf_model m;
     if (cli_model(cmd, argv[1], &m)) return CLI_EXIT_USAGE;
     abrdf_params p;
@@ -32,11 +33,14 @@ int main(int argc, char **argv)
     int order = 128;
     long evals = 200000;
     for (int i = 2; i < argc; ++i) {
-        if (!strcmp(argv[i], "--order") && i + 1 < argc) order = atoi(argv[++i]);
-        else if (!strcmp(argv[i], "--evals") && i + 1 < argc) evals = atol(argv[++i]);
+        if (!strcmp(argv[i], "--order") && i + 1 < argc)
+            order = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--evals") && i + 1 < argc)
+            evals = atol(argv[++i]);
         else if (!strcmp(argv[i], "--set") && i + 1 < argc) {
             if (cli_set_param(cmd, m, &p, argv[++i])) return CLI_EXIT_USAGE;
-        } else return cli_fail(cmd, "unknown argument '%s'", argv[i]);
+        } else
+            return cli_fail(cmd, "unknown argument '%s'", argv[i]);
     }
     if (order < 4 || order > 512) return cli_fail(cmd, "--order must be in [4, 512]");
     double a = 1.0;
@@ -53,7 +57,8 @@ int main(int argc, char **argv)
     const double th[3] = {0.0, 45.0, 80.0};
     for (int k = 0; k < 3; ++k)
         printf("albedo(%2.0f deg) = %.5f (order %d), %.5f (order %d)\n", th[k],
-               quad_albedo(m, &p, th[k], a, 2 * order, 0), 2 * order, quad_albedo(m, &p, th[k], a, order, 0), order);
+               quad_albedo(m, &p, th[k], a, 2 * order, 0), 2 * order,
+               quad_albedo(m, &p, th[k], a, order, 0), order);
     unsigned s = 12345u;
     double worst = 0.0;
     for (int i = 0; i < 100000; ++i) {

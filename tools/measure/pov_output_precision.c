@@ -23,15 +23,16 @@ int main(int argc, char **argv)
     fprintf(f, "#version 3.7;\nglobal_settings { assumed_gamma 1 }\n#declare S = pow(2, 24);\n"
                "#declare V = function(x) { pow(2, (floor(x) - 512) / 37) * (1 + floor(x) / 997) }\n"
                "camera { orthographic location <512, 0.5, -1> direction z right 1024 * x up y }\n"
-               "plane { z, 0 texture { pigment { function { min(V(x) / S, 1) } color_map { [0 rgb 0] [1 rgb S] } }\n"
+               "plane { z, 0 texture { pigment { function { min(V(x) / S, 1) } color_map { [0 rgb "
+               "0] [1 rgb S] } }\n"
                "  finish { ambient 0 diffuse 0 emission 1 } } }\n");
     fclose(f);
     const char *fmt[2][3] = {{"E", "exr", "EXR (+FE)"}, {"H", "hdr", "Radiance HDR (+FH)"}};
     printf("| POV-Ray output | max relative error over [6.8e-5, 2.9e4] |\n|---|---|\n");
     for (int k = 0; k < 2; ++k) {
         snprintf(out, sizeof out, "%s/precision.%s", argv[2], fmt[k][1]);
-        snprintf(cmd, sizeof cmd, "'%s' -D -GA +I'%s' +O'%s' +F%s +W1024 +H1 -A >/dev/null 2>&1", argv[1], pov, out,
-                 fmt[k][0]);
+        snprintf(cmd, sizeof cmd, "'%s' -D -GA +I'%s' +O'%s' +F%s +W1024 +H1 -A >/dev/null 2>&1",
+                 argv[1], pov, out, fmt[k][0]);
         abrdf_image img;
         if (system(cmd) != 0 || abrdf_image_read(out, &img, err, sizeof err)) {
             fprintf(stderr, "pov_output_precision: %s failed\n", fmt[k][2]);

@@ -26,9 +26,11 @@ static int field(char **s, char *out, size_t size, int last)
 int paper_data_load(const char *path, paper_data *d, char *err, size_t err_size)
 {
     memset(d, 0, sizeof *d);
-    if (path) snprintf(d->path, sizeof d->path, "%s", path);
+    if (path)
+        snprintf(d->path, sizeof d->path, "%s", path);
     else if (data_path_find(PAPER_DATA_FILE, d->path, sizeof d->path) != 0) {
-        snprintf(err, err_size, "cannot find %s (looked in $ABRDF_DATA_DIR, %s)", PAPER_DATA_FILE, d->path);
+        snprintf(err, err_size, "cannot find %s (looked in $ABRDF_DATA_DIR, %s)", PAPER_DATA_FILE,
+                 d->path);
         return -1;
     }
     FILE *f = fopen(d->path, "r");
@@ -92,13 +94,13 @@ void paper_data_free(paper_data *d)
 const char *paper_data_text(const paper_data *d, int table, const char *row, const char *col)
 {
     for (size_t i = 0; i < d->count; ++i)
-        if (d->cells[i].table == table && !strcmp(d->cells[i].row, row) && !strcmp(d->cells[i].col, col))
+        if (d->cells[i].table == table && !strcmp(d->cells[i].row, row) &&
+            !strcmp(d->cells[i].col, col))
             return d->cells[i].value;
     return NULL;
 }
 
-int paper_data_number(const paper_data *d, int table, const char *row, const char *col,
-                      double *out)
+int paper_data_number(const paper_data *d, int table, const char *row, const char *col, double *out)
 {
     const char *v = paper_data_text(d, table, row, col);
     return v && cli_parse_double(v, out) ? 0 : -1;

@@ -15,23 +15,22 @@
 #include "render.h"
 #include "robot_scene.h"
 
-
 /* The paper's alpha_g values, as printed in Tables 6-7 (the rows of the published data). */
 static const char *const alpha_g_label[PAPER_IMAGES_ROWS] = {
-    "1.0", "0.9", "0.8", "0.7", "0.6", "0.5", "0.4", "0.3", "0.2", "0.1", "0.05", "0.01",
-    "0.005", "0.001", "0.0005", "0.0001", "0.00005", "0.00001"};
+    "1.0", "0.9",  "0.8",  "0.7",   "0.6",   "0.5",    "0.4",    "0.3",     "0.2",
+    "0.1", "0.05", "0.01", "0.005", "0.001", "0.0005", "0.0001", "0.00005", "0.00001"};
 /* The exponents searched, as listed in the paper (Sec. 4). */
 const double paper_images_exponents[PAPER_IMAGES_EXPONENTS] = {
     1, 5, 10, 20, 40, 60, 80, 100, 200, 300, 400, 500, 600, 700, 800, 900, 950, 1000};
 static const char *const table_models[2][PAPER_IMAGES_MODELS] = {
-    {"f_phe", "f_be", "f_2e", "f_16e"},     /* Table 6: no Fresnel factor */
+    {"f_phe", "f_be", "f_2e", "f_16e"},      /* Table 6: no Fresnel factor */
     {"f_ge", "f_ctphe", "f_ct2e", "f_ct16e"} /* Table 7: with a Fresnel factor */
 };
 
 void paper_images_defaults(paper_images_options *o)
 {
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    *o = (paper_images_options){128, 128, 1, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1,
+    *o = (paper_images_options){128,  128, 1,    cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1,
                                 0.04, 0.5, NULL, 0};
 }
 
@@ -64,7 +63,8 @@ static int render_with(scene *s, const paper_images_options *o, abrdf_model mode
                        const abrdf_params *p, float *rgb, char *err, size_t err_size)
 {
     if (set_material(s, model, p, o->kd, err, err_size)) return -1;
-    render_options ro = {.width = o->width, .height = o->height, .spp = o->spp, .threads = o->threads};
+    render_options ro = {
+        .width = o->width, .height = o->height, .spp = o->spp, .threads = o->threads};
     render_scene rs;
     if (render_prepare(s, &ro, &rs, err, err_size)) return -1;
     int rc = render_image(&rs, &ro, rgb, NULL);
@@ -91,7 +91,8 @@ int paper_images_compute(int table, const paper_images_options *o, paper_images_
     long k = lround(sqrt((double)o->spp));
     if (o->width < 1 || o->height < 1 || o->spp < 1 || k * k != o->spp || o->threads < 1 ||
         !(o->f0 >= 0 && o->f0 <= 1) || !(o->kd >= 0 && o->kd <= 1)) {
-        snprintf(err, err_size, "invalid options (size, square spp, threads >= 1, f0 and kd in [0, 1])");
+        snprintf(err, err_size,
+                 "invalid options (size, square spp, threads >= 1, f0 and kd in [0, 1])");
         return -1;
     }
     const int t = table - 6;
@@ -105,9 +106,10 @@ int paper_images_compute(int table, const paper_images_options *o, paper_images_
         }
     }
     scene s;
-    int parsed = o->scene_path ? scene_parse_file(o->scene_path, &s, err, err_size)
-                               : scene_parse_text("robot.scene", abrdf_robot_scene_text,
-                                                  strlen(abrdf_robot_scene_text), &s, err, err_size);
+    int parsed = o->scene_path
+                     ? scene_parse_file(o->scene_path, &s, err, err_size)
+                     : scene_parse_text("robot.scene", abrdf_robot_scene_text,
+                                        strlen(abrdf_robot_scene_text), &s, err, err_size);
     if (parsed) return -1;
 
     const int rows = PAPER_IMAGES_ROWS, total = rows + PAPER_IMAGES_MODELS * PAPER_IMAGES_EXPONENTS;
@@ -115,7 +117,8 @@ int paper_images_compute(int table, const paper_images_options *o, paper_images_
     float *ref = malloc((size_t)rows * px * sizeof *ref), *img = malloc(px * sizeof *img);
     int rc = -1;
     if (!ref || !img) {
-        snprintf(err, err_size, "out of memory for %d images of %dx%d", rows + 1, o->width, o->height);
+        snprintf(err, err_size, "out of memory for %d images of %dx%d", rows + 1, o->width,
+                 o->height);
         goto out;
     }
     /* Reference: Disney specular, ks = 1, F0 = f0, r = sqrt(alpha_g) (alpha_g = r^2). */
@@ -126,8 +129,10 @@ int paper_images_compute(int table, const paper_images_options *o, paper_images_
         abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
         for (int c = 0; c < 3; ++c) p.ks[c] = 1, p.f0[c] = o->f0;
         p.r = sqrt(res->alpha_g[r]);
-        if (render_with(&s, o, ABRDF_DISNEY_SPECULAR, &p, ref + (size_t)r * px, err, err_size)) goto out;
-        for (int m = 0; m < PAPER_IMAGES_MODELS; ++m) res->nmse[r][m] = INFINITY, res->n[r][m] = NAN;
+        if (render_with(&s, o, ABRDF_DISNEY_SPECULAR, &p, ref + (size_t)r * px, err, err_size))
+            goto out;
+        for (int m = 0; m < PAPER_IMAGES_MODELS; ++m)
+            res->nmse[r][m] = INFINITY, res->n[r][m] = NAN;
         progress(o, table, ++res->renders, total);
     }
     /* Candidates: lobes without a Fresnel factor get ks = f0 (the reference's reflectance at
@@ -149,7 +154,8 @@ int paper_images_compute(int table, const paper_images_options *o, paper_images_
                     goto out;
                 }
                 res->defined[r] = mt.nmse_defined;
-                if (mt.nmse_defined && mt.nmse < res->nmse[r][m]) res->nmse[r][m] = mt.nmse, res->n[r][m] = paper_images_exponents[j];
+                if (mt.nmse_defined && mt.nmse < res->nmse[r][m])
+                    res->nmse[r][m] = mt.nmse, res->n[r][m] = paper_images_exponents[j];
             }
             progress(o, table, ++res->renders, total);
         }

@@ -8,9 +8,9 @@
 #include "paper_images.h"
 
 typedef struct tables_opts {
-    int csv;                /* 1: CSV, 0: Markdown (default) */
-    const char *costs_path; /* Table 4: a cost file instead of measuring now */
-    int reps;               /* Table 4: repetitions when measuring now */
+    int csv;                     /* 1: CSV, 0: Markdown (default) */
+    const char *costs_path;      /* Table 4: a cost file instead of measuring now */
+    int reps;                    /* Table 4: repetitions when measuring now */
     paper_images_options images; /* Tables 6-7: the rendering set-up */
 } tables_opts;
 
@@ -26,12 +26,12 @@ struct table_gen {
 #define TAB_MAX_COLS 16
 
 typedef struct tab_grid {
-    const char *title;   /* Markdown heading (### title); unused in CSV */
-    const char *corner;  /* header of the label column */
+    const char *title;  /* Markdown heading (### title); unused in CSV */
+    const char *corner; /* header of the label column */
     int rows, cols;
     char row[TAB_MAX_ROWS][32];
     char col[TAB_MAX_COLS][40];
-    const char *fmt[TAB_MAX_COLS]; /* printf format per column, e.g. "%.2f" */
+    const char *fmt[TAB_MAX_COLS];        /* printf format per column, e.g. "%.2f" */
     double v[TAB_MAX_ROWS][TAB_MAX_COLS]; /* NAN = no value (an empty cell) */
 } tab_grid;
 

@@ -11,8 +11,18 @@
 #include "measure.h"
 #include "tables.h"
 
-enum { C_ADDS, C_MULS, C_DIVS, C_CYCLES_PAPER, C_CYCLES_OPS, C_CYCLES_F2, C_NS, C_NS_F2,
-       C_UNIT, C_COUNT };
+enum {
+    C_ADDS,
+    C_MULS,
+    C_DIVS,
+    C_CYCLES_PAPER,
+    C_CYCLES_OPS,
+    C_CYCLES_F2,
+    C_NS,
+    C_NS_F2,
+    C_UNIT,
+    C_COUNT
+};
 
 /* The paper's cycle weights on Zen 4: ADD 1, MUL 3, DIV 10. */
 #define CYCLES(adds, muls, divs) ((adds) + 3.0 * (muls) + 10.0 * (divs))
@@ -37,7 +47,8 @@ int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *p
             return 1;
         }
         const char *base = strrchr(o->costs_path, '/');
-        snprintf(source, sizeof source, "read from the cost file %s", base ? base + 1 : o->costs_path);
+        snprintf(source, sizeof source, "read from the cost file %s",
+                 base ? base + 1 : o->costs_path);
     } else {
         measure_opts mo;
         measure_defaults(&mo, 1);
@@ -46,7 +57,8 @@ int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *p
         abrdf_model which[ABRDF_MODEL_COUNT];
         int count = 0;
         for (int i = 0; i < ABRDF_MODEL_COUNT; ++i)
-            if (abrdf_costs_get(&lib, (abrdf_model)i) >= 0.0 || i == ABRDF_BLINN_PHONG) which[count++] = (abrdf_model)i;
+            if (abrdf_costs_get(&lib, (abrdf_model)i) >= 0.0 || i == ABRDF_BLINN_PHONG)
+                which[count++] = (abrdf_model)i;
         fprintf(stderr, "abrdf tables 4: measuring ");
         if (measure_models(&mo, which, count, &meas, &unit_ns, progress) != 0) {
             fprintf(stderr, "\nabrdf tables: out of memory\n");
@@ -55,17 +67,19 @@ int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *p
         fprintf(stderr, "\n");
         char machine[384];
         costs_machine(machine, sizeof machine);
-        snprintf(source, sizeof source,
-                 "measured now on %s: float batch path, %zu random front-facing pairs, median of %d "
-                 "repetitions of %.0f ms", machine, mo.pairs, mo.reps, 1e3 * mo.rep_seconds);
+        snprintf(
+            source, sizeof source,
+            "measured now on %s: float batch path, %zu random front-facing pairs, median of %d "
+            "repetitions of %.0f ms",
+            machine, mo.pairs, mo.reps, 1e3 * mo.rep_seconds);
     }
 
-    static const char *cols[C_COUNT] = {"adds", "muls", "divs", "paper_cycles", "ops_cycles",
-                                        "cycles_vs_f2", "ns_per_eval", "ns_vs_f2",
-                                        "vs_powf_blinn_phong"};
-    static const char *md_cols[C_COUNT] = {"ADDs", "MULs", "DIVs", "cycles (paper)",
-                                           "ADD+3MUL+10DIV", "cycles / f2", "ns/eval (here)",
-                                           "ns / f2", "x powf Blinn-Phong"};
+    static const char *cols[C_COUNT] = {"adds",         "muls",       "divs",
+                                        "paper_cycles", "ops_cycles", "cycles_vs_f2",
+                                        "ns_per_eval",  "ns_vs_f2",   "vs_powf_blinn_phong"};
+    static const char *md_cols[C_COUNT] = {
+        "ADDs",        "MULs",           "DIVs",    "cycles (paper)",    "ADD+3MUL+10DIV",
+        "cycles / f2", "ns/eval (here)", "ns / f2", "x powf Blinn-Phong"};
     tab_grid g;
     tab_init(&g, NULL, "model", C_COUNT, "%.2f");
     for (int c = 0; c < C_COUNT; ++c) strcpy(g.col[c], o->csv ? cols[c] : md_cols[c]);
@@ -87,8 +101,10 @@ int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *p
         if (!isnan(g.v[r][C_ADDS]) && !isnan(g.v[r][C_MULS]) && !isnan(g.v[r][C_DIVS]))
             g.v[r][C_CYCLES_OPS] = CYCLES(g.v[r][C_ADDS], g.v[r][C_MULS], g.v[r][C_DIVS]);
         if (abrdf_costs_get(&lib, (abrdf_model)i) >= 0.0) { /* the library's default cost model */
-            if (f2_cycles > 0.0) g.v[r][C_CYCLES_F2] = abrdf_costs_get(&lib, (abrdf_model)i) / f2_cycles;
-            mismatch |= abrdf_costs_get(&lib, (abrdf_model)i) != g.v[r][C_CYCLES_PAPER] || abrdf_costs_get(&lib, (abrdf_model)i) != g.v[r][C_CYCLES_OPS];
+            if (f2_cycles > 0.0)
+                g.v[r][C_CYCLES_F2] = abrdf_costs_get(&lib, (abrdf_model)i) / f2_cycles;
+            mismatch |= abrdf_costs_get(&lib, (abrdf_model)i) != g.v[r][C_CYCLES_PAPER] ||
+                        abrdf_costs_get(&lib, (abrdf_model)i) != g.v[r][C_CYCLES_OPS];
         }
         if (abrdf_costs_get(&meas, (abrdf_model)i) > 0.0) {
             g.v[r][C_NS] = abrdf_costs_get(&meas, (abrdf_model)i);
@@ -120,6 +136,7 @@ int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *p
         if (note) printf("- %s (paper): %s\n", m->name, note);
     }
     printf("\nabrdf_costs_paper() (the selection's default costs) %s the published cycles and\n"
-           "ADD + 3 MUL + 10 DIV for every model of the table.\n", mismatch ? "DIFFERS from" : "equals");
+           "ADD + 3 MUL + 10 DIV for every model of the table.\n",
+           mismatch ? "DIFFERS from" : "equals");
     return 0;
 }

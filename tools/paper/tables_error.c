@@ -12,8 +12,8 @@ static const double paper_n[] = {2, 5, 10, 20, 50, 100, 200, 500, 700, 1000};
 #define NCOLS ((int)(sizeof paper_n / sizeof paper_n[0]))
 #define MAD_COL NCOLS
 
-static const abrdf_model rows[] = {ABRDF_F2, ABRDF_F4, ABRDF_F8, ABRDF_F16, ABRDF_FS,
-                                   ABRDF_FKV, ABRDF_FKUB};
+static const abrdf_model rows[] = {ABRDF_F2, ABRDF_F4,  ABRDF_F8,  ABRDF_F16,
+                                   ABRDF_FS, ABRDF_FKV, ABRDF_FKUB};
 #define NROWS ((int)(sizeof rows / sizeof rows[0]))
 /* The models of the reproduction criterion (fkv's constant is unverified and fkub's
  * coefficients are not published, so their rows are fits of unknown forms). */
@@ -58,7 +58,8 @@ int tables_error(const table_gen *self, const tables_opts *o, const paper_data *
             abrdf_approx_error e;
             int st = abrdf_approx_error_eval(rows[r], paper_n[c], &e);
             if (st != ABRDF_OK) {
-                fprintf(stderr, "abrdf tables: %s at n = %g: %s\n", name, paper_n[c], abrdf_strerror(st));
+                fprintf(stderr, "abrdf tables: %s at n = %g: %s\n", name, paper_n[c],
+                        abrdf_strerror(st));
                 return 1;
             }
             zone[c] = e.zone_cos;
@@ -87,8 +88,10 @@ int tables_error(const table_gen *self, const tables_opts *o, const paper_data *
     }
     printf("## Table %d: %s of the Table-1 approximations vs Blinn-Phong cos^n\n\n", t, what);
     if (rel) {
-        printf("Highlight zone: N.H >= max(sqrt(1 - 1/n), 0.5^(1/n)), the concave core of the lobe\n"
-               "(peak to inflection point) within its half-maximum cone (docs/TABLES.md). Zone start:\n\n");
+        printf(
+            "Highlight zone: N.H >= max(sqrt(1 - 1/n), 0.5^(1/n)), the concave core of the lobe\n"
+            "(peak to inflection point) within its half-maximum cone (docs/TABLES.md). Zone "
+            "start:\n\n");
         tab_grid z;
         tab_init(&z, NULL, "n", NCOLS, "%.5f");
         for (int c = 0; c < NCOLS; ++c) strcpy(z.col[c], comp.col[c]);
@@ -100,8 +103,8 @@ int tables_error(const table_gen *self, const tables_opts *o, const paper_data *
     tab_markdown(&pub);
     tab_markdown(&diff);
     printf("Mean absolute deviation over f2, f4, f8, f16, fs (%d published cells): %.4g "
-           "(reproduction criterion <= %g): %s\n", crit_cells, mad, criterion[t - 2],
-           mad <= criterion[t - 2] ? "met" : "NOT met");
+           "(reproduction criterion <= %g): %s\n",
+           crit_cells, mad, criterion[t - 2], mad <= criterion[t - 2] ? "met" : "NOT met");
     const char *base = strrchr(paper->path, '/');
     printf("Published values: %s\n", base ? base + 1 : paper->path);
     return 0;

@@ -52,7 +52,8 @@ void tab_markdown(const tab_grid *g)
         printf("| %s |", g->row[r]);
         for (int c = 0; c < g->cols; ++c) {
             if (!column_used(g, c)) continue;
-            if (isnan(g->v[r][c])) printf(" — |");
+            if (isnan(g->v[r][c]))
+                printf(" — |");
             else {
                 printf(" ");
                 printf(g->fmt[c], cell(g, r, c));

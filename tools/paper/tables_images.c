@@ -33,8 +33,10 @@ int tables_images(const table_gen *self, const tables_opts *o, const paper_data 
     }
     /* Shared columns: alpha, then per model its NMSE and argmin n. */
     tab_grid comp, pub;
-    tab_init(&comp, "computed: minimum NMSE over n, and the argmin n", "alpha_g", 1 + 2 * PAPER_IMAGES_MODELS, "%.2e");
-    tab_init(&pub, "published (Zavalniuk & Romanyuk 2024)", "alpha_g", 1 + 2 * PAPER_IMAGES_MODELS, "%g");
+    tab_init(&comp, "computed: minimum NMSE over n, and the argmin n", "alpha_g",
+             1 + 2 * PAPER_IMAGES_MODELS, "%.2e");
+    tab_init(&pub, "published (Zavalniuk & Romanyuk 2024)", "alpha_g", 1 + 2 * PAPER_IMAGES_MODELS,
+             "%g");
     strcpy(comp.col[0], "alpha");
     strcpy(pub.col[0], "alpha");
     comp.fmt[0] = "%.4f";
@@ -61,7 +63,8 @@ int tables_images(const table_gen *self, const tables_opts *o, const paper_data 
         }
     }
     if (o->csv) {
-        for (int m = 0; m < PAPER_IMAGES_MODELS; ++m) comp.fmt[1 + 2 * m] = "%.9e"; /* for re-checks */
+        for (int m = 0; m < PAPER_IMAGES_MODELS; ++m)
+            comp.fmt[1 + 2 * m] = "%.9e"; /* for re-checks */
         tab_csv(&comp, "kind", "computed", 1);
         tab_csv(&pub, NULL, "published", 0);
         return 0;
@@ -69,13 +72,16 @@ int tables_images(const table_gen *self, const tables_opts *o, const paper_data 
     const paper_images_options *io = &o->images;
     printf("## Table %d: minimum NMSE over n, %s vs the Disney GGX specular\n\n", table,
            table == 6 ? "simple empirical lobes" : "lobes with a Fresnel factor");
-    printf("Robot %dx%d, %d spp%s, one directional light, no ambient; ", io->width, io->height, io->spp,
-           io->spp == 1 ? " (pixel centres)" : "");
-    if (io->kd > 0) printf("Lambert kd = %g + specular", io->kd);
-    else printf("specular only");
+    printf("Robot %dx%d, %d spp%s, one directional light, no ambient; ", io->width, io->height,
+           io->spp, io->spp == 1 ? " (pixel centres)" : "");
+    if (io->kd > 0)
+        printf("Lambert kd = %g + specular", io->kd);
+    else
+        printf("specular only");
     printf("; F0 = %g%s; n over the paper's %d values %g..%g; %d renders (docs/TABLES_6_7.md).\n\n",
            io->f0, table == 6 ? " (these lobes have no Fresnel factor: ks = F0)" : "",
-           PAPER_IMAGES_EXPONENTS, paper_images_exponents[0], paper_images_exponents[PAPER_IMAGES_EXPONENTS - 1], res.renders);
+           PAPER_IMAGES_EXPONENTS, paper_images_exponents[0],
+           paper_images_exponents[PAPER_IMAGES_EXPONENTS - 1], res.renders);
     tab_markdown(&comp);
     tab_markdown(&pub);
 
@@ -102,7 +108,10 @@ int tables_images(const table_gen *self, const tables_opts *o, const paper_data 
         ours[r] = res.defined[r] ? res.nmse[r][PAPER_IMAGES_QUADRATIC] : NAN;
         theirs[r] = published_v[r][PAPER_IMAGES_QUADRATIC];
     }
-    static const struct { const char *name; double limit; } cls[] = {
+    static const struct {
+        const char *name;
+        double limit;
+    } cls[] = {
         {"noticeable or better (NMSE < 1e-3)", ABRDF_NMSE_SIGNIFICANT},
         {"slight or better (NMSE < 2.5e-4)", ABRDF_NMSE_NOTICEABLE},
         {"no visible difference (NMSE < 1e-4)", ABRDF_NMSE_SLIGHT},
@@ -113,10 +122,14 @@ int tables_images(const table_gen *self, const tables_opts *o, const paper_data 
     for (int c = 0; c < 3; ++c) {
         int a = reach_row(ours, cls[c].limit), b = reach_row(theirs, cls[c].limit);
         printf("| %s |", cls[c].name);
-        if (a >= 0) printf(" %s (%.4f) |", res.label[a], sqrt(res.alpha_g[a]));
-        else printf(" never |");
-        if (b >= 0) printf(" %s (%.4f) |\n", res.label[b], sqrt(res.alpha_g[b]));
-        else printf(" never |\n");
+        if (a >= 0)
+            printf(" %s (%.4f) |", res.label[a], sqrt(res.alpha_g[a]));
+        else
+            printf(" never |");
+        if (b >= 0)
+            printf(" %s (%.4f) |\n", res.label[b], sqrt(res.alpha_g[b]));
+        else
+            printf(" never |\n");
     }
     const char *base = strrchr(paper->path, '/');
     printf("\nPublished values: %s\n", base ? base + 1 : paper->path);

@@ -48,7 +48,8 @@ void geom_xform_make(const scene_object *o, geom_xform *xf)
         for (int j = 0; j < 3; ++j) rt[i][j] = lin[j][i] / o->scale[i];
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) xf->inv[i][j] = rt[i][j];
-        xf->inv[i][3] = -(rt[i][0] * o->translate[0] + rt[i][1] * o->translate[1] + rt[i][2] * o->translate[2]);
+        xf->inv[i][3] =
+            -(rt[i][0] * o->translate[0] + rt[i][1] * o->translate[1] + rt[i][2] * o->translate[2]);
     }
 }
 
@@ -64,7 +65,8 @@ void geom_xform_vector(const double m[3][4], const double v[3], double out[3])
 
 void geom_xform_normal(const geom_xform *xf, const double n[3], double out[3])
 {
-    for (int i = 0; i < 3; ++i) out[i] = xf->inv[0][i] * n[0] + xf->inv[1][i] * n[1] + xf->inv[2][i] * n[2];
+    for (int i = 0; i < 3; ++i)
+        out[i] = xf->inv[0][i] * n[0] + xf->inv[1][i] * n[1] + xf->inv[2][i] * n[2];
     double l = sqrt(geom_dot(out, out));
     if (l > 0) out[0] /= l, out[1] /= l, out[2] /= l;
 }
@@ -78,7 +80,9 @@ void geom_object_make(const scene_object *o, geom_object *g)
     double local_bound = 0;
     switch (o->shape) {
     case SCENE_SPHERE: local_bound = o->radius; break;
-    case SCENE_CYLINDER: local_bound = sqrt(o->radius * o->radius + 0.25 * o->height * o->height); break;
+    case SCENE_CYLINDER:
+        local_bound = sqrt(o->radius * o->radius + 0.25 * o->height * o->height);
+        break;
     case SCENE_CAPSULE: local_bound = o->radius + 0.5 * o->height; break;
     case SCENE_BOX:
         for (int c = 0; c < 3; ++c) g->half[c] = 0.5 * o->size[c];
@@ -183,7 +187,9 @@ static int hit_box(const double h[3], const double o[3], const double d[3], doub
         double ta = (-h[c] - o[c]) * inv, tb = (h[c] - o[c]) * inv;
         double sa = -1, sb = 1; /* face sign where the ray crosses at ta, tb */
         if (ta > tb) {
-            double x = ta; ta = tb; tb = x;
+            double x = ta;
+            ta = tb;
+            tb = x;
             sa = 1, sb = -1;
         }
         if (ta > t0) t0 = ta, a0 = c, s0 = sa;
@@ -205,8 +211,8 @@ static int hit_box(const double h[3], const double o[3], const double d[3], doub
     return 0;
 }
 
-int geom_intersect_local(const geom_object *g, const double o[3], const double d[3],
-                         double tmin, double tmax, double *t, double n[3])
+int geom_intersect_local(const geom_object *g, const double o[3], const double d[3], double tmin,
+                         double tmax, double *t, double n[3])
 {
     double best = tmax;
     int hit = 0;

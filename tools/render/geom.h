@@ -16,8 +16,8 @@ typedef struct geom_object {
     scene_shape shape;
     double radius, height, half[3]; /* object-space dimensions (box: half extents) */
     geom_xform xf;
-    double center[3], bound;        /* world-space bounding sphere */
-    int convex;                     /* a convex solid cannot shadow itself */
+    double center[3], bound; /* world-space bounding sphere */
+    int convex;              /* a convex solid cannot shadow itself */
 } geom_object;
 
 /* Ray epsilon: hits closer than GEOM_T_MIN * scene scale are the surface the ray left. */
@@ -38,8 +38,8 @@ void geom_xform_normal(const geom_xform *xf, const double n[3], double out[3]);
 
 /* Closest hit of the object-space ray o + t d with t in (tmin, tmax) (d need not be unit).
  * Returns 1 and sets *t and the outward object-space normal n (not normalised), else 0. */
-int geom_intersect_local(const geom_object *g, const double o[3], const double d[3],
-                         double tmin, double tmax, double *t, double n[3]);
+int geom_intersect_local(const geom_object *g, const double o[3], const double d[3], double tmin,
+                         double tmax, double *t, double n[3]);
 /* World-space ray against object: bounding sphere test first, then the exact shape. */
 int geom_intersect(const geom_object *g, const double o[3], const double d[3], double tmin,
                    double tmax, double *t, double n_world[3]);

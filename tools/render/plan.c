@@ -14,11 +14,14 @@ static void sub3(const double a[3], const double b[3], double o[3])
 
 /* Distance from point c to the segment a + s (b - a), s in [0, 1] (or the ray s >= 0 with
  * direction d if b is NULL). */
-static double dist_to_segment(const double c[3], const double a[3], const double *b, const double *d)
+static double dist_to_segment(const double c[3], const double a[3], const double *b,
+                              const double *d)
 {
     double ab[3], ac[3];
-    if (b) sub3(b, a, ab);
-    else memcpy(ab, d, sizeof ab);
+    if (b)
+        sub3(b, a, ab);
+    else
+        memcpy(ab, d, sizeof ab);
     sub3(c, a, ac);
     double l2 = geom_dot(ab, ab);
     double s = l2 > 0 ? geom_dot(ac, ab) / l2 : 0;
@@ -38,8 +41,9 @@ static int may_occlude(const render_scene *rs, const render_light *l, int i, int
 {
     const geom_object *a = &rs->objects[i], *b = &rs->objects[j];
     if (i == j) return !a->convex;
-    double d = l->kind == SCENE_LIGHT_POINT ? dist_to_segment(b->center, a->center, l->position, NULL)
-                                            : dist_to_segment(b->center, a->center, NULL, l->direction);
+    double d = l->kind == SCENE_LIGHT_POINT
+                   ? dist_to_segment(b->center, a->center, l->position, NULL)
+                   : dist_to_segment(b->center, a->center, NULL, l->direction);
     return d <= a->bound + b->bound;
 }
 
@@ -93,7 +97,8 @@ int plan_shadows(render_scene *rs)
  * projects onto that plane as a disc of the same radius). `scale` is the plane's half-size
  * (a h or h), `size` the image size in pixels, `flip` for y (raster y grows downward).
  * Returns 0 if no ray in front of the eye can reach the ball. */
-static int raster_range(double c, double z, double r, double scale, int size, int flip, int *lo, int *hi)
+static int raster_range(double c, double z, double r, double scale, int size, int flip, int *lo,
+                        int *hi)
 {
     const double HALF_PI = 1.5707963267948966;
     double d = sqrt(c * c + z * z);
@@ -141,13 +146,16 @@ int plan_visibility(render_scene *rs, int cull)
         int seen = 1;
         rows[2 * k] = 0, rows[2 * k + 1] = H - 1, cols[2 * k] = 0, cols[2 * k + 1] = W - 1;
         if (cull)
-            seen = raster_range(geom_dot(v, uhat), z, g->bound, h, H, 1, &rows[2 * k], &rows[2 * k + 1]) &&
-                   raster_range(geom_dot(v, rhat), z, g->bound, a * h, W, 0, &cols[2 * k], &cols[2 * k + 1]);
+            seen = raster_range(geom_dot(v, uhat), z, g->bound, h, H, 1, &rows[2 * k],
+                                &rows[2 * k + 1]) &&
+                   raster_range(geom_dot(v, rhat), z, g->bound, a * h, W, 0, &cols[2 * k],
+                                &cols[2 * k + 1]);
         if (!seen) rows[2 * k] = 1, rows[2 * k + 1] = 0; /* empty */
         for (int j = rows[2 * k]; j <= rows[2 * k + 1]; ++j) ++start[j + 1], ++total;
     }
     for (int j = 0; j < H; ++j) start[j + 1] += start[j];
-    int *list = malloc((total ? total : 1) * sizeof *list), *fill = malloc(((size_t)H + 1) * sizeof *fill);
+    int *list = malloc((total ? total : 1) * sizeof *list),
+        *fill = malloc(((size_t)H + 1) * sizeof *fill);
     if (!list || !fill) {
         free(rows), free(cols), free(start), free(list), free(fill);
         return -1;
@@ -195,8 +203,8 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
 {
     const scene *s = rs->src;
     int n = rs->object_count;
-    fprintf(f, "effect plan: %d objects, %d lights, %d materials, %dx%d, %d spp, %d threads\n",
-            n, rs->light_count, rs->material_count, rs->width, rs->height, opt->spp, opt->threads);
+    fprintf(f, "effect plan: %d objects, %d lights, %d materials, %dx%d, %d spp, %d threads\n", n,
+            rs->light_count, rs->material_count, rs->width, rs->height, opt->spp, opt->threads);
     if (rs->full) {
         fprintf(f, "--full: the plan below is ignored; camera and shadow rays test every object, "
                    "every material builds tangent frames and adds the ambient term\n");
@@ -222,17 +230,19 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
             int a = rs->occ_start[l * n + i], b = rs->occ_start[l * n + i + 1];
             pairs += b - a == 1 && rs->occ[a] < 0 ? n : b - a;
         }
-        fprintf(f, "  light %d (%s, line %d): ", l, lt->kind == SCENE_LIGHT_POINT ? "point" : "directional",
-                s->lights[l].line);
+        fprintf(f, "  light %d (%s, line %d): ", l,
+                lt->kind == SCENE_LIGHT_POINT ? "point" : "directional", s->lights[l].line);
         if (!(lt->e[0] > 0 || lt->e[1] > 0 || lt->e[2] > 0))
             fprintf(f, "OFF - zero intensity, lights nothing\n");
         else if (lt->shadow_receivers == 0)
-            fprintf(f, "no shadow rays - no object can block it from any object (%s)\n",
-                    n == 1 ? "a single convex solid cannot shadow itself"
-                           : "bounding capsules toward the light are disjoint from every other object");
+            fprintf(
+                f, "no shadow rays - no object can block it from any object (%s)\n",
+                n == 1 ? "a single convex solid cannot shadow itself"
+                       : "bounding capsules toward the light are disjoint from every other object");
         else
-            fprintf(f, "shadow rays for %d of %d receivers, %d occluder candidates in all "
-                       "(bounding capsule toward the light meets another object)\n",
+            fprintf(f,
+                    "shadow rays for %d of %d receivers, %d occluder candidates in all "
+                    "(bounding capsule toward the light meets another object)\n",
                     lt->shadow_receivers, n, pairs);
     }
     fprintf(f, "materials:\n");
@@ -245,12 +255,16 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
         if (!m->used) continue;
         fprintf(f, "    tangent frames: %s\n",
                 m->use_tangent ? "yes - an anisotropic/fibre lobe reads T and B"
-                : (m->needs & ABRDF_NEEDS_TANGENT) ? "no - anisotropic = 0 makes the lobe isotropic"
-                                                   : "no - every lobe is isotropic (local frame from N and the view)");
-        fprintf(f, "    fresnel: %s\n", (m->needs & ABRDF_NEEDS_FRESNEL) ? "yes - evaluated inside the lobe"
-                                                                         : "no - no lobe has a Fresnel term");
-        fprintf(f, "    layers: %s\n", (m->needs & ABRDF_NEEDS_LAYERS) ? "yes - layer stack evaluated" : "no");
-        fprintf(f, "    numerical integration: %s\n", (m->needs & ABRDF_NEEDS_INTEGRATION) ? "yes (slow lobe)" : "no");
+                : (m->needs & ABRDF_NEEDS_TANGENT)
+                    ? "no - anisotropic = 0 makes the lobe isotropic"
+                    : "no - every lobe is isotropic (local frame from N and the view)");
+        fprintf(f, "    fresnel: %s\n",
+                (m->needs & ABRDF_NEEDS_FRESNEL) ? "yes - evaluated inside the lobe"
+                                                 : "no - no lobe has a Fresnel term");
+        fprintf(f, "    layers: %s\n",
+                (m->needs & ABRDF_NEEDS_LAYERS) ? "yes - layer stack evaluated" : "no");
+        fprintf(f, "    numerical integration: %s\n",
+                (m->needs & ABRDF_NEEDS_INTEGRATION) ? "yes (slow lobe)" : "no");
         fprintf(f, "    ambient: %s\n", m->use_ambient ? "yes - ka * Ia > 0" : "no - ka * Ia = 0");
     }
 }

@@ -48,9 +48,11 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     for (int i = 0; i < s->material_count; ++i) {
         const scene_material *m = &s->materials[i];
         if (m->kind == SCENE_MAT_TABLE || m->kind == SCENE_MAT_ADAPTIVE) {
-            snprintf(err, err_size, "material '%s' (line %d) is %s and not resolved to models "
+            snprintf(err, err_size,
+                     "material '%s' (line %d) is %s and not resolved to models "
                      "(scene_select_materials)",
-                     m->name, m->line, m->kind == SCENE_MAT_TABLE ? "a material-table entry" : "adaptive");
+                     m->name, m->line,
+                     m->kind == SCENE_MAT_TABLE ? "a material-table entry" : "adaptive");
             return -1;
         }
     }
@@ -277,8 +279,10 @@ static void shade(const render_scene *rs, int obj, const double p[3], const doub
         }
         if (!tangent) iso_local(n, wi, wo, li, lo);
         for (int k = 0; k < m->lobe_count; ++k) {
-            if (tangent) abrdf_eval(m->lobes[k], &m->params, &frame, wi, wo, fl);
-            else abrdf_eval(m->lobes[k], &m->params, NULL, li, lo, fl);
+            if (tangent)
+                abrdf_eval(m->lobes[k], &m->params, &frame, wi, wo, fl);
+            else
+                abrdf_eval(m->lobes[k], &m->params, NULL, li, lo, fl);
             unsigned needs = abrdf_model_get(m->lobes[k])->needs;
             ++st->brdf_evals;
             st->fresnel_evals += (needs & ABRDF_NEEDS_FRESNEL) != 0;
@@ -310,14 +314,16 @@ static void render_row(const render_scene *rs, const render_options *opt, int j,
             for (int sx = 0; sx < k; ++sx) {
                 double u = 0.5, v = 0.5;
                 if (opt->jitter) {
-                    uint64_t id = ((uint64_t)j * (uint64_t)rs->width + (uint64_t)i) * (uint64_t)opt->spp +
-                                  (uint64_t)(sy * k + sx);
+                    uint64_t id =
+                        ((uint64_t)j * (uint64_t)rs->width + (uint64_t)i) * (uint64_t)opt->spp +
+                        (uint64_t)(sy * k + sx);
                     u = hash01(2 * id), v = hash01(2 * id + 1);
                 }
                 double x = i + (sx + u) / k, y = j + (sy + v) / k;
                 double px = 2.0 * x / rs->width - 1.0, py = 1.0 - 2.0 * y / rs->height;
                 double d[3];
-                for (int c = 0; c < 3; ++c) d[c] = rs->forward[c] + px * rs->right[c] + py * rs->up[c];
+                for (int c = 0; c < 3; ++c)
+                    d[c] = rs->forward[c] + px * rs->right[c] + py * rs->up[c];
                 normalize(d);
                 ++st->primary_rays;
                 double t, n[3];
@@ -378,8 +384,7 @@ static void add_stats(render_stats *a, const render_stats *b)
     a->ambient_terms += b->ambient_terms;
 }
 
-int render_image(const render_scene *rs, const render_options *opt, float *rgb,
-                 render_stats *stats)
+int render_image(const render_scene *rs, const render_options *opt, float *rgb, render_stats *stats)
 {
     long k = lround(sqrt((double)opt->spp));
     if (opt->spp < 1 || k * k != opt->spp) return -1; /* strata form a k x k grid */
@@ -406,13 +411,14 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb,
 
 void render_stats_print(const render_stats *s, FILE *f)
 {
-    fprintf(f, "counters:\n"
-               "  primary rays        %llu\n  primary tests       %llu\n  hits                %llu\n"
-               "  shadow rays         %llu\n  shadow rays skipped %llu (plan: unoccludable)\n"
-               "  occluder tests      %llu\n  tangent frames      %llu\n"
-               "  brdf evals          %llu\n  fresnel evals       %llu\n"
-               "  layer evals         %llu\n  integration evals   %llu\n  ambient terms       %llu\n",
-            s->primary_rays, s->primary_tests, s->hits, s->shadow_rays, s->shadow_rays_skipped, s->occluder_tests,
-            s->tangent_frames, s->brdf_evals, s->fresnel_evals, s->layer_evals,
+    fprintf(f,
+            "counters:\n"
+            "  primary rays        %llu\n  primary tests       %llu\n  hits                %llu\n"
+            "  shadow rays         %llu\n  shadow rays skipped %llu (plan: unoccludable)\n"
+            "  occluder tests      %llu\n  tangent frames      %llu\n"
+            "  brdf evals          %llu\n  fresnel evals       %llu\n"
+            "  layer evals         %llu\n  integration evals   %llu\n  ambient terms       %llu\n",
+            s->primary_rays, s->primary_tests, s->hits, s->shadow_rays, s->shadow_rays_skipped,
+            s->occluder_tests, s->tangent_frames, s->brdf_evals, s->fresnel_evals, s->layer_evals,
             s->integration_evals, s->ambient_terms);
 }

@@ -29,7 +29,7 @@
 /* Work counters: what the renderer actually did. */
 typedef struct render_stats {
     unsigned long long primary_rays;
-    unsigned long long primary_tests;       /* ray/object tests made by primary rays */
+    unsigned long long primary_tests; /* ray/object tests made by primary rays */
     unsigned long long hits;
     unsigned long long shadow_rays;         /* cast: the plan lists an occluder */
     unsigned long long shadow_rays_skipped; /* lit samples the plan proved unoccludable */
@@ -47,19 +47,19 @@ typedef struct render_material {
     int lobe_count;
     abrdf_model lobes[SCENE_MAX_LOBES];
     abrdf_params params;
-    double ambient[3];   /* ka * Ia */
-    int use_ambient;     /* ka * Ia is non-zero */
-    int use_tangent;     /* some lobe needs a tangent frame (and is not isotropic here) */
-    unsigned needs;      /* union of the lobes' ABRDF_NEEDS_* */
-    int used;            /* some object uses it */
-    int full;            /* render_plan_ignore: frames and ambient regardless of the plan */
+    double ambient[3]; /* ka * Ia */
+    int use_ambient;   /* ka * Ia is non-zero */
+    int use_tangent;   /* some lobe needs a tangent frame (and is not isotropic here) */
+    unsigned needs;    /* union of the lobes' ABRDF_NEEDS_* */
+    int used;          /* some object uses it */
+    int full;          /* render_plan_ignore: frames and ambient regardless of the plan */
 } render_material;
 
 typedef struct render_light {
     scene_light_kind kind;
     double position[3], direction[3];
-    double e[3];            /* color * intensity */
-    int shadow_receivers;   /* objects for which some occluder is possible */
+    double e[3];          /* color * intensity */
+    int shadow_receivers; /* objects for which some occluder is possible */
 } render_light;
 
 #define RENDER_OCC_LIST_MAX 64
@@ -68,7 +68,7 @@ typedef struct render_scene {
     const scene *src;
     int width, height;
     double eye[3], right[3], up[3], forward[3]; /* right, up scaled to the plane half-size */
-    double eps;                 /* ray offset, proportional to the scene's size */
+    double eps;                                 /* ray offset, proportional to the scene's size */
     int object_count, light_count, material_count;
     geom_object *objects;
     render_material *materials;
@@ -80,15 +80,15 @@ typedef struct render_scene {
      * vis[vis_start[j] .. vis_start[j+1]), in object order; object k covers columns
      * [vis_cols[2k], vis_cols[2k+1]]. */
     int *vis_start, *vis, *vis_cols;
-    int full;                   /* render_plan_ignore was applied */
+    int full; /* render_plan_ignore was applied */
 } render_scene;
 
 typedef struct render_options {
-    int width, height;   /* 0: the scene's resolution */
-    int spp;             /* samples per pixel, a square k*k >= 1 */
-    int jitter;          /* jitter inside the strata (deterministic hash) */
-    int threads;         /* >= 1 */
-    int progress;        /* draw a progress bar on stderr */
+    int width, height; /* 0: the scene's resolution */
+    int spp;           /* samples per pixel, a square k*k >= 1 */
+    int jitter;        /* jitter inside the strata (deterministic hash) */
+    int threads;       /* >= 1 */
+    int progress;      /* draw a progress bar on stderr */
 } render_options;
 
 int render_prepare(const scene *s, const render_options *opt, render_scene *rs, char *err,

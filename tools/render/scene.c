@@ -89,12 +89,13 @@ static int get_rgb(parser *p, const char *key, const char *val, double v[3])
     int n = parse_list(val, v, 3);
     if (n == 1) v[1] = v[2] = v[0];
     if (n != 1 && n != 3) return fail(p, "%s needs one number or R,G,B, got '%s'", key, val);
-    if (v[0] < 0 || v[1] < 0 || v[2] < 0) return fail(p, "%s must not be negative, got '%s'", key, val);
+    if (v[0] < 0 || v[1] < 0 || v[2] < 0)
+        return fail(p, "%s must not be negative, got '%s'", key, val);
     return 0;
 }
 
-static int get_num(parser *p, const char *key, const char *val, double lo, double hi,
-                   int open_lo, double *out)
+static int get_num(parser *p, const char *key, const char *val, double lo, double hi, int open_lo,
+                   double *out)
 {
     double v;
     if (!parse_num(val, &v)) return fail(p, "%s needs a finite number, got '%s'", key, val);
@@ -109,8 +110,8 @@ static int nonzero3(const double v[3]) { return v[0] != 0 || v[1] != 0 || v[2] !
 /* ---- words ------------------------------------------------------------------------- */
 
 typedef struct word {
-    char *key;  /* NUL-terminated */
-    char *val;  /* after '=', or NULL for a bare word */
+    char *key; /* NUL-terminated */
+    char *val; /* after '=', or NULL for a bare word */
     int used;
 } word;
 
@@ -137,7 +138,8 @@ static int split(parser *p, char *line, word *w, int *count)
             if (!*w[n].key) return fail(p, "'=%s' has no key before '='", w[n].val);
         }
         for (const unsigned char *c = (const unsigned char *)w[n].key; *c; ++c)
-            if (*c < 0x20 || *c > 0x7e) return fail(p, "unexpected byte 0x%02x (not printable ASCII)", *c);
+            if (*c < 0x20 || *c > 0x7e)
+                return fail(p, "unexpected byte 0x%02x (not printable ASCII)", *c);
         ++n;
     }
     /* A key given twice is a mistake worth naming. */
@@ -165,7 +167,9 @@ static int leftovers(parser *p, word *w, int n, int from, const char *valid)
 {
     for (int i = from; i < n; ++i)
         if (!w[i].used) {
-            if (!w[i].val) return fail(p, "unexpected word '%s' (expected KEY=VALUE; keys: %s)", w[i].key, valid);
+            if (!w[i].val)
+                return fail(p, "unexpected word '%s' (expected KEY=VALUE; keys: %s)", w[i].key,
+                            valid);
             return fail(p, "unknown key '%s'; keys: %s", w[i].key, valid);
         }
     return 0;
@@ -191,14 +195,17 @@ static int do_camera(parser *p, word *w, int n)
         double r[2];
         if (parse_list(v, r, 2) != 2 || r[0] != floor(r[0]) || r[1] != floor(r[1]) || r[0] < 1 ||
             r[1] < 1 || r[0] > SCENE_MAX_RESOLUTION || r[1] > SCENE_MAX_RESOLUTION)
-            return fail(p, "resolution needs W,H (whole numbers in [1, %d]), got '%s'", SCENE_MAX_RESOLUTION, v);
+            return fail(p, "resolution needs W,H (whole numbers in [1, %d]), got '%s'",
+                        SCENE_MAX_RESOLUTION, v);
         c->width = (int)r[0];
         c->height = (int)r[1];
     }
     if (leftovers(p, w, n, 1, "position, look_at, up, fov, resolution")) return -1;
-    double d[3] = {c->look_at[0] - c->position[0], c->look_at[1] - c->position[1], c->look_at[2] - c->position[2]};
+    double d[3] = {c->look_at[0] - c->position[0], c->look_at[1] - c->position[1],
+                   c->look_at[2] - c->position[2]};
     if (!nonzero3(d)) return fail(p, "camera look_at equals position");
-    double x[3] = {d[1] * c->up[2] - d[2] * c->up[1], d[2] * c->up[0] - d[0] * c->up[2], d[0] * c->up[1] - d[1] * c->up[0]};
+    double x[3] = {d[1] * c->up[2] - d[2] * c->up[1], d[2] * c->up[0] - d[0] * c->up[2],
+                   d[0] * c->up[1] - d[1] * c->up[0]};
     double dl = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     double ul = sqrt(c->up[0] * c->up[0] + c->up[1] * c->up[1] + c->up[2] * c->up[2]);
     /* 1e-9 of |d||up|: the view direction and up must span a plane to define "right". */
@@ -210,17 +217,20 @@ static int do_camera(parser *p, word *w, int n)
 
 static int do_ambient(parser *p, word *w, int n)
 {
-    if (n != 2 || w[1].val) return fail(p, "ambient needs one colour: 'ambient R,G,B' or 'ambient V'");
+    if (n != 2 || w[1].val)
+        return fail(p, "ambient needs one colour: 'ambient R,G,B' or 'ambient V'");
     return get_rgb(p, "ambient", w[1].key, p->s->ambient);
 }
 
 static int do_light(parser *p, word *w, int n)
 {
-    if (p->s->light_count == SCENE_MAX_LIGHTS) return fail(p, "more than %d lights", SCENE_MAX_LIGHTS);
+    if (p->s->light_count == SCENE_MAX_LIGHTS)
+        return fail(p, "more than %d lights", SCENE_MAX_LIGHTS);
     scene_light l;
     memset(&l, 0, sizeof l);
     l.line = p->line;
-    if (n < 2 || w[1].val) return fail(p, "light needs a kind: 'light point ...' or 'light directional ...'");
+    if (n < 2 || w[1].val)
+        return fail(p, "light needs a kind: 'light point ...' or 'light directional ...'");
     const char *v;
     if (!strcmp(w[1].key, "point")) {
         l.kind = SCENE_LIGHT_POINT;
@@ -228,10 +238,12 @@ static int do_light(parser *p, word *w, int n)
         if (get_vec3(p, "position", v, l.position)) return -1;
     } else if (!strcmp(w[1].key, "directional")) {
         l.kind = SCENE_LIGHT_DIRECTIONAL;
-        if (!(v = take(w, n, 2, "direction"))) return fail(p, "directional light needs direction=X,Y,Z (toward the light)");
+        if (!(v = take(w, n, 2, "direction")))
+            return fail(p, "directional light needs direction=X,Y,Z (toward the light)");
         if (get_vec3(p, "direction", v, l.direction)) return -1;
         if (!nonzero3(l.direction)) return fail(p, "direction must not be zero");
-        double len = sqrt(l.direction[0] * l.direction[0] + l.direction[1] * l.direction[1] + l.direction[2] * l.direction[2]);
+        double len = sqrt(l.direction[0] * l.direction[0] + l.direction[1] * l.direction[1] +
+                          l.direction[2] * l.direction[2]);
         for (int c = 0; c < 3; ++c) l.direction[c] /= len;
     } else {
         return fail(p, "unknown light kind '%s'; kinds: point, directional", w[1].key);
@@ -239,9 +251,12 @@ static int do_light(parser *p, word *w, int n)
     l.color[0] = l.color[1] = l.color[2] = 1.0;
     if ((v = take(w, n, 2, "color")) && get_rgb(p, "color", v, l.color)) return -1;
     l.intensity = 1.0;
-    if ((v = take(w, n, 2, "intensity")) && get_num(p, "intensity", v, 0.0, SCENE_MAX_COORD, 0, &l.intensity))
+    if ((v = take(w, n, 2, "intensity")) &&
+        get_num(p, "intensity", v, 0.0, SCENE_MAX_COORD, 0, &l.intensity))
         return -1;
-    if (leftovers(p, w, n, 2, l.kind == SCENE_LIGHT_POINT ? "position, color, intensity" : "direction, color, intensity"))
+    if (leftovers(p, w, n, 2,
+                  l.kind == SCENE_LIGHT_POINT ? "position, color, intensity"
+                                              : "direction, color, intensity"))
         return -1;
     scene_light *grown = realloc(p->s->lights, (size_t)(p->s->light_count + 1) * sizeof *grown);
     if (!grown) return fail(p, "out of memory");
@@ -274,7 +289,8 @@ static int model_uses(abrdf_model m, int param)
 static int copy_name(parser *p, const char *what, const char *src, char dst[SCENE_NAME_MAX])
 {
     size_t len = strlen(src);
-    if (len == 0 || len >= SCENE_NAME_MAX) return fail(p, "%s must have 1 to %d characters", what, SCENE_NAME_MAX - 1);
+    if (len == 0 || len >= SCENE_NAME_MAX)
+        return fail(p, "%s must have 1 to %d characters", what, SCENE_NAME_MAX - 1);
     memcpy(dst, src, len + 1);
     return 0;
 }
@@ -282,7 +298,8 @@ static int copy_name(parser *p, const char *what, const char *src, char dst[SCEN
 static int do_material(parser *p, word *w, int n)
 {
     scene *s = p->s;
-    if (s->material_count == SCENE_MAX_MATERIALS) return fail(p, "more than %d materials", SCENE_MAX_MATERIALS);
+    if (s->material_count == SCENE_MAX_MATERIALS)
+        return fail(p, "more than %d materials", SCENE_MAX_MATERIALS);
     if (n < 2 || w[1].val) return fail(p, "material needs a name: 'material NAME model=...'");
     scene_material m;
     memset(&m, 0, sizeof m);
@@ -301,13 +318,17 @@ static int do_material(parser *p, word *w, int n)
         if (strcmp(goal, "photoreal") && strcmp(goal, "performance"))
             return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
         strcpy(m.goal, goal);
-        if (model || dif || spe) return fail(p, "an adaptive material chooses its own models; drop model=/diffuse=/specular=");
+        if (model || dif || spe)
+            return fail(
+                p, "an adaptive material chooses its own models; drop model=/diffuse=/specular=");
     } else if (table) {
         m.kind = SCENE_MAT_TABLE;
-        if (model || dif || spe) return fail(p, "table= names a complete material; drop model=/diffuse=/specular=");
+        if (model || dif || spe)
+            return fail(p, "table= names a complete material; drop model=/diffuse=/specular=");
     } else {
         m.kind = SCENE_MAT_MODELS;
-        if (model && (dif || spe)) return fail(p, "give either model= or diffuse=/specular=, not both");
+        if (model && (dif || spe))
+            return fail(p, "give either model= or diffuse=/specular=, not both");
         if (model) {
             if (set_model(p, "model", model, &m.lobes[0])) return -1;
             m.lobe_count = 1;
@@ -315,7 +336,9 @@ static int do_material(parser *p, word *w, int n)
             if (dif && set_model(p, "diffuse", dif, &m.lobes[m.lobe_count++])) return -1;
             if (spe && set_model(p, "specular", spe, &m.lobes[m.lobe_count++])) return -1;
         } else {
-            return fail(p, "material '%s' needs model=, diffuse=/specular=, table= or adaptive goal=", m.name);
+            return fail(
+                p,
+                "material '%s' needs model=, diffuse=/specular=, table= or adaptive goal=", m.name);
         }
     }
     if (table && copy_name(p, "table entry", table, m.table)) return -1;
@@ -349,17 +372,21 @@ static int do_material(parser *p, word *w, int n)
         }
         int id;
         if (abrdf_param_find(w[i].key, &id) != ABRDF_OK)
-            return fail(p, "unknown key '%s'; keys: model, diffuse, specular, table, goal, ka and the "
-                           "models' parameters (abrdf models)", w[i].key);
+            return fail(p,
+                        "unknown key '%s'; keys: model, diffuse, specular, table, goal, ka and the "
+                        "models' parameters (abrdf models)",
+                        w[i].key);
         int used = m.kind != SCENE_MAT_MODELS;
         for (int l = 0; l < m.lobe_count; ++l) used |= model_uses(m.lobes[l], id);
-        if (!used) return fail(p, "parameter '%s' is not used by the material's model(s)", w[i].key);
+        if (!used)
+            return fail(p, "parameter '%s' is not used by the material's model(s)", w[i].key);
         const abrdf_param_info *pi = abrdf_param_get(id);
         double v[3];
         int cnt = parse_list(w[i].val, v, 3);
         if (cnt != 1 && !(cnt == 3 && pi->kind == ABRDF_PARAM_RGB))
             return fail(p, "%s needs %s, got '%s'", w[i].key,
-                        pi->kind == ABRDF_PARAM_RGB ? "one number or R,G,B" : "one number", w[i].val);
+                        pi->kind == ABRDF_PARAM_RGB ? "one number or R,G,B" : "one number",
+                        w[i].val);
         if (abrdf_param_set(&m.params, id, v, cnt) != ABRDF_OK)
             return fail(p, "%s = %s is outside [%g, %g]%s", w[i].key, w[i].val, pi->min, pi->max,
                         pi->kind == ABRDF_PARAM_INT ? " or not a whole number" : "");
@@ -398,15 +425,18 @@ const char *scene_tangent_name(scene_tangent t)
 static int do_object(parser *p, scene_shape shape, word *w, int n)
 {
     scene *s = p->s;
-    if (s->object_count == SCENE_MAX_OBJECTS) return fail(p, "more than %d objects", SCENE_MAX_OBJECTS);
+    if (s->object_count == SCENE_MAX_OBJECTS)
+        return fail(p, "more than %d objects", SCENE_MAX_OBJECTS);
     scene_object o;
     memset(&o, 0, sizeof o);
     o.shape = shape;
     o.line = p->line;
     o.scale[0] = o.scale[1] = o.scale[2] = 1.0;
     const char *v;
-    if (!(v = take(w, n, 1, "material"))) return fail(p, "%s needs material=NAME", shape_names[shape]);
-    if ((o.material = find_material(s, v)) < 0) return fail(p, "material '%s' is not defined above", v);
+    if (!(v = take(w, n, 1, "material")))
+        return fail(p, "%s needs material=NAME", shape_names[shape]);
+    if ((o.material = find_material(s, v)) < 0)
+        return fail(p, "material '%s' is not defined above", v);
     const char *valid = "material, radius, translate, rotate, scale, tangent";
     if (shape == SCENE_SPHERE || shape == SCENE_CYLINDER || shape == SCENE_CAPSULE) {
         if (!(v = take(w, n, 1, "radius"))) return fail(p, "%s needs radius=R", shape_names[shape]);
@@ -415,13 +445,15 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
     if (shape == SCENE_CYLINDER || shape == SCENE_CAPSULE) {
         valid = "material, radius, height, translate, rotate, scale, tangent";
         if (!(v = take(w, n, 1, "height"))) return fail(p, "%s needs height=H", shape_names[shape]);
-        if (get_num(p, "height", v, 0.0, SCENE_MAX_COORD, shape == SCENE_CYLINDER, &o.height)) return -1;
+        if (get_num(p, "height", v, 0.0, SCENE_MAX_COORD, shape == SCENE_CYLINDER, &o.height))
+            return -1;
     }
     if (shape == SCENE_BOX) {
         valid = "material, size, translate, rotate, scale, tangent";
         if (!(v = take(w, n, 1, "size"))) return fail(p, "box needs size=X,Y,Z");
         if (get_vec3(p, "size", v, o.size)) return -1;
-        if (!(o.size[0] > 0 && o.size[1] > 0 && o.size[2] > 0)) return fail(p, "box size must be positive, got '%s'", v);
+        if (!(o.size[0] > 0 && o.size[1] > 0 && o.size[2] > 0))
+            return fail(p, "box size must be positive, got '%s'", v);
     }
     if ((v = take(w, n, 1, "translate")) && get_vec3(p, "translate", v, o.translate)) return -1;
     if ((v = take(w, n, 1, "rotate")) && get_vec3(p, "rotate", v, o.rotate_deg)) return -1;
@@ -429,8 +461,10 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
         int cnt = parse_list(v, o.scale, 3);
         if (cnt == 1) o.scale[1] = o.scale[2] = o.scale[0];
         /* 1e-6: a thinner object makes the inverse transform ill-conditioned. */
-        if ((cnt != 1 && cnt != 3) || !(o.scale[0] >= 1e-6 && o.scale[1] >= 1e-6 && o.scale[2] >= 1e-6))
-            return fail(p, "scale needs S or X,Y,Z, each in [1e-6, %g], got '%s'", SCENE_MAX_COORD, v);
+        if ((cnt != 1 && cnt != 3) ||
+            !(o.scale[0] >= 1e-6 && o.scale[1] >= 1e-6 && o.scale[2] >= 1e-6))
+            return fail(p, "scale needs S or X,Y,Z, each in [1e-6, %g], got '%s'", SCENE_MAX_COORD,
+                        v);
     }
     o.tangent = SCENE_TANGENT_U;
     if ((v = take(w, n, 1, "tangent"))) {
@@ -442,7 +476,8 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
         } else if (parse_list(v, o.tangent_axis, 3) == 3 && nonzero3(o.tangent_axis)) {
             o.tangent = SCENE_TANGENT_AXIS;
         } else {
-            return fail(p, "tangent must be u, v, radial or a non-zero direction X,Y,Z, got '%s'", v);
+            return fail(p, "tangent must be u, v, radial or a non-zero direction X,Y,Z, got '%s'",
+                        v);
         }
     }
     if (leftovers(p, w, n, 1, valid)) return -1;
@@ -467,8 +502,10 @@ static int do_line(parser *p, char *line)
     if (!strcmp(d, "material")) return do_material(p, w, n);
     for (int k = 0; k < SCENE_SHAPE_COUNT; ++k)
         if (!strcmp(d, shape_names[k])) return do_object(p, (scene_shape)k, w, n);
-    return fail(p, "unknown directive '%s'; directives: camera, ambient, light, material, "
-                   "sphere, cylinder, capsule, box", d);
+    return fail(p,
+                "unknown directive '%s'; directives: camera, ambient, light, material, "
+                "sphere, cylinder, capsule, box",
+                d);
 }
 
 void scene_free(scene *s)
@@ -538,7 +575,8 @@ int scene_parse_file(const char *path, scene *out, char *err, size_t err_size)
     for (;;) {
         if (len == cap) {
             if (cap >= SCENE_MAX_FILE) {
-                if (err && err_size) snprintf(err, err_size, "%s: larger than %u bytes", path, SCENE_MAX_FILE);
+                if (err && err_size)
+                    snprintf(err, err_size, "%s: larger than %u bytes", path, SCENE_MAX_FILE);
                 free(buf);
                 fclose(f);
                 return -1;

@@ -17,31 +17,31 @@
 #include <stddef.h>
 #include "abrdf.h"
 
-#define SCENE_NAME_MAX 64         /* material names, table entries, goals (with the NUL) */
-#define SCENE_MAX_OBJECTS 4096    /* keeps a hostile file from exhausting memory */
+#define SCENE_NAME_MAX 64      /* material names, table entries, goals (with the NUL) */
+#define SCENE_MAX_OBJECTS 4096 /* keeps a hostile file from exhausting memory */
 #define SCENE_MAX_LIGHTS 64
 #define SCENE_MAX_MATERIALS 256
 #define SCENE_MAX_RESOLUTION 16384
-#define SCENE_MAX_COORD 1e6       /* |coordinate|, size or scale: far from double trouble */
+#define SCENE_MAX_COORD 1e6 /* |coordinate|, size or scale: far from double trouble */
 
 typedef struct scene_camera {
-    double position[3];   /* eye point */
-    double look_at[3];    /* point on the optical axis, != position */
-    double up[3];         /* not parallel to look_at - position */
-    double fov_deg;       /* full vertical field of view, (0, 180) */
-    int width, height;    /* resolution in pixels, [1, SCENE_MAX_RESOLUTION] */
+    double position[3]; /* eye point */
+    double look_at[3];  /* point on the optical axis, != position */
+    double up[3];       /* not parallel to look_at - position */
+    double fov_deg;     /* full vertical field of view, (0, 180) */
+    int width, height;  /* resolution in pixels, [1, SCENE_MAX_RESOLUTION] */
 } scene_camera;
 
 typedef enum scene_light_kind { SCENE_LIGHT_POINT = 0, SCENE_LIGHT_DIRECTIONAL } scene_light_kind;
 
 typedef struct scene_light {
     scene_light_kind kind;
-    double position[3];   /* point light: its position */
-    double direction[3];  /* directional light: unit vector from the scene TOWARD the light */
-    double color[3];      /* linear RGB, >= 0 */
-    double intensity;     /* >= 0; point: irradiance intensity/d^2 at distance d; directional:
+    double position[3];  /* point light: its position */
+    double direction[3]; /* directional light: unit vector from the scene TOWARD the light */
+    double color[3];     /* linear RGB, >= 0 */
+    double intensity;    /* >= 0; point: irradiance intensity/d^2 at distance d; directional:
                              irradiance on a surface facing the light */
-    int line;             /* line of the definition, for messages */
+    int line;            /* line of the definition, for messages */
 } scene_light;
 
 /* How a material chooses its models. */
@@ -56,22 +56,22 @@ typedef enum scene_material_kind {
 typedef struct scene_material {
     char name[SCENE_NAME_MAX];
     scene_material_kind kind;
-    int lobe_count;                     /* SCENE_MAT_MODELS: 1 (model=) or 2 (diffuse=, specular=) */
+    int lobe_count; /* SCENE_MAT_MODELS: 1 (model=) or 2 (diffuse=, specular=) */
     abrdf_model lobes[SCENE_MAX_LOBES]; /* summed: f_r = lobes[0] + lobes[1] */
-    abrdf_params params;                /* shared by the lobes; defaults of lobes[0], then lobes[1] */
-    unsigned long long params_set;      /* bit `id`: parameter id given in the file (ids < 64) */
-    double ka[3];                       /* ambient reflectance: ambient term = ka * scene ambient */
-    int ka_given;                       /* ka given in the file (else it follows kd) */
-    char table[SCENE_NAME_MAX];         /* TABLE / ADAPTIVE: material table entry ("" if none) */
-    char goal[SCENE_NAME_MAX];          /* ADAPTIVE: "photoreal" or "performance" */
+    abrdf_params params;           /* shared by the lobes; defaults of lobes[0], then lobes[1] */
+    unsigned long long params_set; /* bit `id`: parameter id given in the file (ids < 64) */
+    double ka[3];                  /* ambient reflectance: ambient term = ka * scene ambient */
+    int ka_given;                  /* ka given in the file (else it follows kd) */
+    char table[SCENE_NAME_MAX];    /* TABLE / ADAPTIVE: material table entry ("" if none) */
+    char goal[SCENE_NAME_MAX];     /* ADAPTIVE: "photoreal" or "performance" */
     int line;
 } scene_material;
 
 typedef enum scene_shape {
-    SCENE_SPHERE = 0,   /* radius; centred at the origin */
-    SCENE_CYLINDER,     /* radius, height; axis y, y in [-height/2, height/2], flat caps */
-    SCENE_CAPSULE,      /* radius, height; segment y in [-height/2, height/2], round caps */
-    SCENE_BOX,          /* size X,Y,Z; centred at the origin */
+    SCENE_SPHERE = 0, /* radius; centred at the origin */
+    SCENE_CYLINDER,   /* radius, height; axis y, y in [-height/2, height/2], flat caps */
+    SCENE_CAPSULE,    /* radius, height; segment y in [-height/2, height/2], round caps */
+    SCENE_BOX,        /* size X,Y,Z; centred at the origin */
     SCENE_SHAPE_COUNT
 } scene_shape;
 
@@ -85,12 +85,12 @@ typedef enum scene_tangent {
 
 typedef struct scene_object {
     scene_shape shape;
-    double radius;          /* sphere, cylinder, capsule; > 0 */
-    double height;          /* cylinder, capsule; > 0 (capsule: >= 0, 0 is a sphere) */
-    double size[3];         /* box: full extents; > 0 */
+    double radius;  /* sphere, cylinder, capsule; > 0 */
+    double height;  /* cylinder, capsule; > 0 (capsule: >= 0, 0 is a sphere) */
+    double size[3]; /* box: full extents; > 0 */
     /* object -> world: p_world = T * Rz * Ry * Rx * S * p_object (scale first, then rotate
      * about x, y, z in that order, then translate; POV-Ray's and Blender's XYZ order). */
-    double scale[3];        /* > 0 */
+    double scale[3]; /* > 0 */
     double rotate_deg[3];
     double translate[3];
     scene_tangent tangent;
@@ -101,7 +101,7 @@ typedef struct scene_object {
 
 typedef struct scene {
     scene_camera camera;
-    double ambient[3];      /* Ia, linear RGB; the ambient term is ka * Ia */
+    double ambient[3]; /* Ia, linear RGB; the ambient term is ka * Ia */
     scene_light *lights;
     int light_count;
     scene_material *materials;

@@ -34,14 +34,15 @@ static void take_rgb(const scene_material *m, const char *name, const double *sr
     if (described(m, name)) memcpy(dst, src, 3 * sizeof *dst);
 }
 
-int scene_select_materials(scene *s, const char *scene_name, const mat_table *table,
-                           int force_goal, FILE *explain, char *err, size_t err_size)
+int scene_select_materials(scene *s, const char *scene_name, const mat_table *table, int force_goal,
+                           FILE *explain, char *err, size_t err_size)
 {
     for (int i = 0; i < s->material_count; ++i) {
         scene_material *sm = &s->materials[i];
         if (sm->kind == SCENE_MAT_MODELS && force_goal < 0) continue;
         abrdf_goal goal = ABRDF_GOAL_PHOTOREAL; /* a bare table= entry renders photoreal */
-        if (force_goal >= 0) goal = (abrdf_goal)force_goal;
+        if (force_goal >= 0)
+            goal = (abrdf_goal)force_goal;
         else if (sm->kind == SCENE_MAT_ADAPTIVE && abrdf_goal_find(sm->goal, &goal) != ABRDF_OK) {
             snprintf(err, err_size, "%s:%d: unknown goal '%s'", scene_name, sm->line, sm->goal);
             return -1;
@@ -56,9 +57,10 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
                 int k = table ? mat_table_nearest(table, sm->table, near, 4) : 0;
                 char hint[256] = "";
                 for (int j = 0; j < k; ++j) strcat(strcat(hint, j ? ", " : ""), near[j]);
-                snprintf(err, err_size, "%s:%d: material '%s': no entry '%s' in the material table%s%s%s",
-                         scene_name, sm->line, sm->name, sm->table, k ? "; did you mean: " : "", hint,
-                         k ? "?" : " (abrdf advise --list)");
+                snprintf(err, err_size,
+                         "%s:%d: material '%s': no entry '%s' in the material table%s%s%s",
+                         scene_name, sm->line, sm->name, sm->table, k ? "; did you mean: " : "",
+                         hint, k ? "?" : " (abrdf advise --list)");
                 return -1;
             }
             am = e->m;
@@ -68,8 +70,9 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         if (described(sm, "r")) am.r = p->r;
         if (described(sm, "n")) am.n = p->n;
         if (!e && !described(sm, "r") && !described(sm, "n")) {
-            snprintf(err, err_size, "%s:%d: adaptive material '%s' needs table=ENTRY, r= or n=",
-                     scene_name, sm->line, sm->name);
+            snprintf(err, err_size,
+                     "%s:%d: adaptive material '%s' needs table=ENTRY, r= or n=", scene_name,
+                     sm->line, sm->name);
             return -1;
         }
         take_rgb(sm, "kd", p->kd, am.kd);
@@ -83,7 +86,8 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         abrdf_params_init(ABRDF_MODEL_NONE, &chosen);
         if (abrdf_select(&am, goal, NULL, NULL, &sel, &chosen, explain ? select_trace_keep : NULL,
                          &trace) != ABRDF_OK) {
-            snprintf(err, err_size, "%s:%d: material '%s': %s", scene_name, sm->line, sm->name, sel.message);
+            snprintf(err, err_size, "%s:%d: material '%s': %s", scene_name, sm->line, sm->name,
+                     sel.message);
             select_trace_free(&trace);
             return -1;
         }
@@ -105,16 +109,17 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
             fprintf(explain, "selection: material '%s' (line %d), goal %s%s%s: %s%s%s\n", sm->name,
                     sm->line, abrdf_goal_name(goal), e ? ", table entry " : "", e ? e->name : "",
                     sel.diffuse != ABRDF_MODEL_NONE ? abrdf_model_get(sel.diffuse)->name : "",
-                    sel.diffuse != ABRDF_MODEL_NONE ? " + " : "", abrdf_model_get(sel.specular)->name);
-            for (int k = 0; k < trace.count; ++k) fprintf(explain, "  %2d. %s\n", k + 1, trace.steps[k].text);
+                    sel.diffuse != ABRDF_MODEL_NONE ? " + " : "",
+                    abrdf_model_get(sel.specular)->name);
+            for (int k = 0; k < trace.count; ++k)
+                fprintf(explain, "  %2d. %s\n", k + 1, trace.steps[k].text);
         }
         select_trace_free(&trace);
     }
     return 0;
 }
 
-int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets,
-                    int nsets)
+int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets, int nsets)
 {
     abrdf_model m;
     char err[512];

@@ -14,8 +14,8 @@
  * describe the material). `table` may be NULL if no material names an entry. If explain is
  * not NULL, each choice is printed with the selection's trace. Returns 0, or -1 with
  * "SCENE:LINE: problem" in err. */
-int scene_select_materials(scene *s, const char *scene_name, const mat_table *table,
-                           int force_goal, FILE *explain, char *err, size_t err_size);
+int scene_select_materials(scene *s, const char *scene_name, const mat_table *table, int force_goal,
+                           FILE *explain, char *err, size_t err_size);
 
 /* Does any material need the material table (or does force_goal make them adaptive)? */
 int scene_needs_table(const scene *s);
