@@ -140,11 +140,12 @@ def transcripts(doc):
     """Fenced blocks that start with `$ `: [(line number, [(command, [expected lines])])]."""
     out, lines, i = [], doc.splitlines(), 0
     while i < len(lines):
-        if lines[i].startswith("```"):
+        if lines[i].lstrip().startswith("```"):
+            indent = len(lines[i]) - len(lines[i].lstrip())  # a block inside a list item
             j = i + 1
-            while j < len(lines) and not lines[j].startswith("```"):
+            while j < len(lines) and not lines[j].lstrip().startswith("```"):
                 j += 1
-            body = lines[i + 1:j]
+            body = [l[indent:] for l in lines[i + 1:j]]
             if body and body[0].startswith("$ "):
                 steps = []
                 for l in body:
