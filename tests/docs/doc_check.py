@@ -8,6 +8,7 @@ Three ways a document quotes a program:
     followed by the lines it prints: `check_transcripts`;
   - a number in prose or in a hand-made table: `require_number`, which accepts the document's
     figure when it is the program's value rounded to the figure's own last digit."""
+import math
 import os
 import re
 import subprocess
@@ -105,19 +106,30 @@ def half_unit(text):
     return 0.5 * 10.0 ** (exp - decimals)
 
 
-def agrees(quoted, value):
-    """The quoted figure is `value` rounded to the figure's last digit. `value` is a string as
-    the program printed it (its own rounding is allowed for) or a float."""
-    q = float(quoted)
-    if isinstance(value, str):
-        v, slack = float(value), half_unit(value)
-    else:
-        v, slack = float(value), 0.0
-    return abs(q - v) <= half_unit(quoted) + slack + 1e-12 * abs(v)
+def agrees(quoted, value, sig=None):
+    """The quoted figure is `value` rounded to the figure's last digit (a quoted 0 must be 0).
+    `value` is a float, or a string as the program printed it: its own rounding is allowed
+    for, at its last digit, or at `sig` significant digits for a `%.<sig>g` format (which
+    drops trailing zeros)."""
+    q, v = float(quoted), float(value)
+    slack = 0.0
+    if isinstance(value, str) and v != 0:
+        slack = 0.5 * 10.0 ** (math.floor(math.log10(abs(v))) - sig + 1) if sig else half_unit(value)
+    tol = (half_unit(quoted) if q != 0 else 0.0) + slack
+    return abs(q - v) <= tol * (1 + 1e-9)
 
 
-def require_number(doc_name, doc, quoted, value, what):
-    if not agrees(quoted, value):
+def round_sig(value, digits):
+    """value rounded to `digits` significant digits (101.6, 2 -> 100.0)."""
+    return 0.0 if value == 0 else round(value, digits - 1 - math.floor(math.log10(abs(value))))
+
+
+def require_number(doc_name, doc, quoted, value, what, sig=None):
+    try:
+        ok = agrees(quoted, value, sig)
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
         fail(f"{doc_name}:{line_of(doc, quoted)}: {what}: the document says {quoted}, "
              f"the program gives {value}")
 

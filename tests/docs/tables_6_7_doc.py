@@ -9,7 +9,7 @@ import re
 import statistics
 
 from doc_check import (DocError, fail, guarded, line_of, main_args, parse_table, quoted, read, require_lines,
-                       require_number, run)
+                       require_number, round_sig, run)
 
 abrdf, src = main_args("ABRDF SRC", 2)
 DOC = "docs/TABLES_6_7.md"
@@ -73,7 +73,9 @@ def discussion(doc, t6, t7):
         for quoted, value, what in zip(m.groups()[3 * k:3 * k + 3],
                                        (statistics.median(ratios), min(ratios), max(ratios)),
                                        ("median", "smallest", "largest")):
-            require_number(DOC, doc, quoted, "%.2g" % value, f"Table {6 + k}: {what} published/computed ratio")
+            if float(quoted) != round_sig(value, 2):
+                fail(f"{DOC}:{line_of(doc, m[0])}: Table {6 + k}: the {what} published/computed ratio is "
+                     f"{value:.3g}, the page says {quoted}")
     # Cells in the same Table-8 class (the tool prints "Same class in N of 72 cells.").
     m = re.search(r"only (\d+) of 72 \(Table 6\) and (\d+) of 72 \(Table 7\)", doc)
     if not m:
