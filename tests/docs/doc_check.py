@@ -116,7 +116,7 @@ def agrees(quoted, value, sig=None):
     if isinstance(value, str) and v != 0:
         slack = 0.5 * 10.0 ** (math.floor(math.log10(abs(v))) - sig + 1) if sig else half_unit(value)
     tol = (half_unit(quoted) if q != 0 else 0.0) + slack
-    return abs(q - v) <= tol * (1 + 1e-9)
+    return q == v or abs(q - v) < tol * (1 - 1e-9)  # at the edge the true value would round away
 
 
 def round_sig(value, digits):
