@@ -5,7 +5,6 @@ render times are timings: the page marks them as one-off measurements, and they 
 compared. `--reps 1` keeps the timing part short; it does not change the accuracy."""
 import json
 import os
-import re
 
 from doc_check import DocError, fail, guarded, main_args, parse_table, read, require_number, run
 

@@ -46,13 +46,13 @@ def read(path):
 _RUNS = {}
 
 
-def run(cmd, cwd=None, ok=(0,)):
+def run(cmd, cwd=None):
     """Run a command (list), return its stdout; a failure to run is a check failure. A
     command is run once per check (the programs are deterministic)."""
     key = (tuple(cmd), cwd)
     if key not in _RUNS:
         p = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=600)
-        if p.returncode not in ok:
+        if p.returncode != 0:
             raise DocError(f"`{' '.join(cmd)}` exited with {p.returncode}:\n{p.stderr[-2000:]}")
         _RUNS[key] = p.stdout
     return _RUNS[key]
@@ -74,13 +74,13 @@ def quoted(doc, line):
     return False
 
 
-def require_lines(doc_name, doc, output, what, rows_only=False, also=None):
-    """Every non-empty line of `output` (only `|` table rows if rows_only) is a line of the
-    document; `also(line)` may accept a line another way. Returns the number checked."""
+def require_lines(doc_name, doc, output, what, also=None):
+    """Every non-empty line of `output` is a line of the document; `also(line)` may accept a
+    line another way. Returns the number checked."""
     n = 0
     for line in output.splitlines():
         line = line.rstrip()
-        if not line or (rows_only and not line.startswith("|")):
+        if not line:
             continue
         n += 1
         if not quoted(doc, line) and not (also and also(line)):
