@@ -87,7 +87,7 @@ if len(used) < 10:
 def tracked():
     out = subprocess.run(["git", "-C", SRC, "ls-files", "--cached", "--others", "--exclude-standard"], capture_output=True, text=True)
     if out.returncode == 0 and out.stdout.strip():
-        return out.stdout.split()
+        return sorted(set(out.stdout.split()))  # a file in a merge is listed once per stage
     files = []
     for root, dirs, names in os.walk(SRC):
         dirs[:] = [d for d in dirs if not d.startswith(".") and not d.startswith("build")]
