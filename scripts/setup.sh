@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what abrdf needs on a Debian machine, only what is missing. Idempotent.
-#   scripts/setup.sh            build + test dependencies (Debian packages, then bpy in .venv)
+#   scripts/setup.sh            build + test dependencies (Debian packages, then bpy in .venv
+#                               and the Python route's tools in .venv-python)
 #   scripts/setup.sh --no-bpy   the Debian packages only (enough to build and render)
 set -euo pipefail
 with_bpy=1
@@ -27,7 +28,9 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-# The OSL port's tests render in Blender's Cycles: bpy from PyPI in .venv.
+# The OSL port's tests render in Blender's Cycles: bpy from PyPI in .venv. The Python package,
+# its tests and the Blender extension's wheel are built with .venv-python.
 if ((with_bpy)); then
   "$(dirname "$0")/setup_bpy.sh"
+  "$(dirname "$0")/setup_python.sh"
 fi
