@@ -7,10 +7,11 @@ extension module links libabrdf and calls it.
 
     >>> import numpy as np, abrdf
     >>> wi, wo = np.array([0.3, 0.0, 1.0]), np.array([-0.2, 0.1, 1.0])
-    >>> abrdf.eval("disney_specular", wi, wo, r=0.3)       # f_r, RGB, 1/sr, no cosine
-    array([0.16682263, 0.16682263, 0.16682263], dtype=float32)
+    >>> abrdf.eval("disney_specular", wi, wo, r=0.3, precision="double")  # f_r per RGB, 1/sr
+    array([0.16682263, 0.16682263, 0.16682263])
     >>> s = abrdf.select("gold", goal="performance")
     >>> s.diffuse, s.specular, s.trace[-1].text
+    ('lambert', 'f8', 'f8: rel 1.61% <= 2%, abs 0.0351 <= 0.05, 14 cycles: cheapest that passes')
 
 Functions:
     models(), model(name)        the registry: every model, its formula, parameters, ranges

@@ -30,20 +30,35 @@ static void row(const void *buf, abrdf_py_real kind, Py_ssize_t k, double v[3])
     }
 }
 
-/* Rows [start, start + n) normalised into x, y, z (the batch wants unit length); scaled by
- * the largest component first, so that squaring neither overflows nor underflows. */
+/* Squared lengths that square and invert in double without overflow or loss: outside them a
+ * row is first scaled by its largest component. */
+#define LEN2_MIN 1e-290
+#define LEN2_MAX 1e290
+
+/* Rows [start, start + n) normalised into x, y, z (the batch wants unit length). A row within
+ * UNIT_TOL of unit length squared is unit to float precision (a float's rounding is 6e-8) and
+ * is only converted: directions that are already unit skip the square root and division. */
+#define UNIT_TOL 1e-7
 static void load(const void *buf, abrdf_py_real kind, Py_ssize_t start, int n, float *x, float *y,
                  float *z)
 {
     for (int k = 0; k < n; ++k) {
         double v[3];
         row(buf, kind, start + k, v);
-        double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
-        x[k] = y[k] = z[k] = 0.0f;
-        if (!(m > 0.0) || !isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2])) continue;
-        double s0 = v[0] / m, s1 = v[1] / m, s2 = v[2] / m;
-        double inv = 1.0 / sqrt(s0 * s0 + s1 * s1 + s2 * s2);
-        x[k] = (float)(s0 * inv), y[k] = (float)(s1 * inv), z[k] = (float)(s2 * inv);
+        double len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        if (fabs(len2 - 1.0) <= UNIT_TOL) {
+            x[k] = (float)v[0], y[k] = (float)v[1], z[k] = (float)v[2];
+            continue;
+        }
+        if (!(len2 >= LEN2_MIN && len2 <= LEN2_MAX)) { /* rare: tiny, huge, zero or NaN */
+            double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+            x[k] = y[k] = z[k] = 0.0f;
+            if (!(m > 0.0) || !isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2])) continue;
+            v[0] /= m, v[1] /= m, v[2] /= m;
+            len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        }
+        double inv = 1.0 / sqrt(len2);
+        x[k] = (float)(v[0] * inv), y[k] = (float)(v[1] * inv), z[k] = (float)(v[2] * inv);
     }
 }
 
@@ -138,22 +153,25 @@ static PyObject *py_eval_double(PyObject *self, PyObject *args)
     Py_RETURN_NONE;
 }
 
+/* The thread's CPU time, as `abrdf calibrate` times models: time spent descheduled on a busy
+ * machine is not counted. */
 static double now(void)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* _time_eval_batch(params, wi, wo, out, repeats) -> list of seconds: one abrdf_eval_batch over
- * all rows per repeat, on structure-of-arrays copies made before the clock starts. */
+/* _time_eval_batch(params, wi, wo, out, calls) -> seconds per call of abrdf_eval_batch over all
+ * rows, `calls` calls between two reads of the clock (a read costs about as much as a call on
+ * a few pairs), on structure-of-arrays copies made before the clock starts. */
 static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *p, *wi, *wo, *out;
-    int repeats;
-    if (!PyArg_ParseTuple(args, "OOOOi", &p, &wi, &wo, &out, &repeats)) return NULL;
-    if (repeats < 1) return PyErr_Format(PyExc_ValueError, "repeats must be >= 1");
+    int calls;
+    if (!PyArg_ParseTuple(args, "OOOOi", &p, &wi, &wo, &out, &calls)) return NULL;
+    if (calls < 1) return PyErr_Format(PyExc_ValueError, "calls must be >= 1");
     PyObject *tuple = Py_BuildValue("(OOOO)", p, wi, wo, out);
     if (!tuple) return NULL;
     eval_args a;
@@ -162,14 +180,12 @@ static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
     if (bad) return NULL;
     size_t n = (size_t)a.rows;
     float *mem = malloc(9 * (n ? n : 1) * sizeof *mem);
-    double *secs = malloc((size_t)repeats * sizeof *secs);
-    if (!mem || !secs) {
-        free(mem);
-        free(secs);
+    if (!mem) {
         release(&a);
         return PyErr_NoMemory();
     }
     int st = ABRDF_OK;
+    double seconds;
     Py_BEGIN_ALLOW_THREADS;
     for (size_t start = 0; start < n; start += CHUNK) {
         int m = n - start < CHUNK ? (int)(n - start) : CHUNK;
@@ -180,22 +196,18 @@ static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
     }
     abrdf_batch b = {n,           mem,         mem + n,     mem + 2 * n, mem + 3 * n,
                      mem + 4 * n, mem + 5 * n, mem + 6 * n, mem + 7 * n, mem + 8 * n};
-    for (int r = 0; r < repeats && st == ABRDF_OK; ++r) {
-        double t0 = now();
+    double t0 = now();
+    for (int r = 0; r < calls && st == ABRDF_OK; ++r)
         st = abrdf_eval_batch(a.params->model, &a.params->params, &b);
-        secs[r] = now() - t0;
-    }
+    seconds = (now() - t0) / calls;
     float *o = a.out.buf;
     for (size_t k = 0; k < n; ++k)
         o[3 * k] = b.f_r[k], o[3 * k + 1] = b.f_g[k], o[3 * k + 2] = b.f_b[k];
     Py_END_ALLOW_THREADS;
     release(&a);
     free(mem);
-    PyObject *list = st == ABRDF_OK ? PyList_New(repeats) : NULL;
-    for (int r = 0; list && r < repeats; ++r) PyList_SET_ITEM(list, r, PyFloat_FromDouble(secs[r]));
-    free(secs);
     if (st != ABRDF_OK) return abrdf_py_fail(st, "abrdf_eval_batch: %s", abrdf_strerror(st));
-    return list;
+    return PyFloat_FromDouble(seconds);
 }
 
 PyMethodDef abrdf_py_eval_methods[] = {
@@ -207,7 +219,8 @@ PyMethodDef abrdf_py_eval_methods[] = {
      "eval_double(params, wi, wo, out) -> None: the same by the double-precision scalar "
      "reference (abrdf_eval, local frame); out: writable (N, 3) float64. Releases the GIL."},
     {"_time_eval_batch", py_time_eval_batch, METH_VARARGS,
-     "_time_eval_batch(params, wi, wo, out, repeats) -> list[float]: seconds of each of "
-     "`repeats` calls of abrdf_eval_batch over all rows, on structure-of-arrays copies made "
-     "before timing (the C batch path alone, for the binding's benchmark)."},
+     "_time_eval_batch(params, wi, wo, out, calls) -> float: seconds of thread CPU time per "
+     "call of abrdf_eval_batch over all rows, `calls` calls timed together, on "
+     "structure-of-arrays copies made before timing (the C batch path alone, for the "
+     "binding's benchmark); out receives the result."},
     {NULL, NULL, 0, NULL}};
