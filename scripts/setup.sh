@@ -10,6 +10,7 @@ with_bpy=1
 debs=(build-essential g++ cmake pkg-config check python3 povray
       libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
       python3-openimageio python3-numpy   # independent image checks in tests
+      python3-dev   # the Python module (python/src), which the sanitizer build compiles
       clang-format  # the C style, checked by the test check_format
       time)  # /usr/bin/time: POV-Ray's CPU time in tools/bench/renderers.sh (bpy: scripts/setup_bpy.sh)
 
