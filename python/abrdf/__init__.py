@@ -39,6 +39,8 @@ from ._select import (Layer, Material, Selection, Step, goals, material, materia
 
 __version__: str = "0.2.0"
 
+# `eval` is abrdf.eval; it stays out of __all__ so that `from abrdf import *` keeps the
+# builtin.
 __all__ = [
     "BRDF",
     "Comparison",
@@ -52,7 +54,6 @@ __all__ = [
     "Selection",
     "Step",
     "compare",
-    "eval",
     "goals",
     "material",
     "materials",
