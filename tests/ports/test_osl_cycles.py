@@ -90,6 +90,37 @@ def compile_osl(path, oso):
     return ok, out["text"]
 
 
+def render_pair(scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1, sets=(),
+                variant="", prepare=None):
+    """`abrdf render` and Cycles on the exported scene (abrdf_cycles.build in `mode`); the NMSE
+    of the Cycles image against the C one. prepare(sc, s), if given, changes the built scene
+    before it renders (tests/ports/test_blender_extension.py puts its materials on it)."""
+    tag = "%s_%s_%s%s_%d" % (mode, scene, model or "scene", variant, samples)
+    d = os.path.join(WORK, tag)
+    os.makedirs(d, exist_ok=True)
+    extra = ["--model", model] if model else []
+    for a in sets:
+        extra += ["--set", a]
+    size = ["--width", str(w), "--height", str(h)]
+    ref, test, script = (os.path.join(d, n) for n in ("c.exr", "cycles.exr", "scene.py"))
+    run("render", os.path.join(SRC, path), "-o", ref, "--spp", str(c_spp), "--no-preview",
+        "--threads", "2", *size, *extra)
+    run("export", "--cycles", os.path.join(SRC, path), "-o", script, "--spp", str(samples),
+        "--osl-dir", OSL_DIR, *size, *extra)
+    s = runpy.run_path(script, run_name="abrdf_scene")["SCENE"]
+    with captured_fds():
+        # Tessellation matters only in closure mode (eval re-traces the exact shapes).
+        sc = abrdf_cycles.build(s, mode, os.path.join(d, "osl"), OSL_DIR,
+                                segments=64 if mode == "closure" else 16)
+        if prepare:
+            prepare(sc, s)
+        sc.render.threads_mode = "FIXED"
+        sc.render.threads = 2
+        abrdf_cycles.render(sc, test)
+    # compare exits 1 when the images differ; the NMSE is judged here.
+    return json.loads(run("compare", ref, test, "--json", check=False))["nmse"]
+
+
 class OslCompile(unittest.TestCase):
     def test_every_shader_compiles_without_warnings(self):
         work = os.path.join(WORK, "compile")
@@ -153,31 +184,6 @@ class CrossCheck(unittest.TestCase):
             self.assertIn("color abrdf_%s(vector wi, vector wo" % m, header)
             self.assertIn('model == "%s"' % m, header)
 
-    def render_pair(self, scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1,
-                    sets=(), variant=""):
-        tag = "%s_%s_%s%s_%d" % (mode, scene, model or "scene", variant, samples)
-        d = os.path.join(WORK, tag)
-        os.makedirs(d, exist_ok=True)
-        extra = ["--model", model] if model else []
-        for a in sets:
-            extra += ["--set", a]
-        size = ["--width", str(w), "--height", str(h)]
-        ref, test, script = (os.path.join(d, n) for n in ("c.exr", "cycles.exr", "scene.py"))
-        run("render", os.path.join(SRC, path), "-o", ref, "--spp", str(c_spp), "--no-preview",
-            "--threads", "2", *size, *extra)
-        run("export", "--cycles", os.path.join(SRC, path), "-o", script, "--spp", str(samples),
-            "--osl-dir", OSL_DIR, *size, *extra)
-        s = runpy.run_path(script, run_name="abrdf_scene")["SCENE"]
-        with captured_fds():
-            # Tessellation matters only in closure mode (eval re-traces the exact shapes).
-            sc = abrdf_cycles.build(s, mode, os.path.join(d, "osl"), OSL_DIR,
-                                    segments=64 if mode == "closure" else 16)
-            sc.render.threads_mode = "FIXED"
-            sc.render.threads = 2
-            abrdf_cycles.render(sc, test)
-        # compare exits 1 when the images differ; the NMSE is judged here.
-        return json.loads(run("compare", ref, test, "--json", check=False))["nmse"]
-
     # The layered models' defaults (two interfaces, no media) leave most of the stack code
     # unused; this stack has four interfaces, coloured absorbing media, a less dense layer
     # (total internal reflection on the way up) and a dielectric bottom.
@@ -196,7 +202,7 @@ class CrossCheck(unittest.TestCase):
             rows.append(row)
             for scene, path, w, h in SCENES:
                 try:
-                    nmse = self.render_pair(scene, path, w, h, model, sets=sets,
+                    nmse = render_pair(scene, path, w, h, model, sets=sets,
                                             variant="_stack" if sets else "")
                 except subprocess.CalledProcessError as e:
                     nmse = None
@@ -210,7 +216,7 @@ class CrossCheck(unittest.TestCase):
             scene, path, w, h = SCENES[0]
             row = " ".join((model,) + sets)
             rows.append(row)
-            nmse = self.render_pair(scene, path, w, h, model, sets=sets,
+            nmse = render_pair(scene, path, w, h, model, sets=sets,
                                     variant="".join("_" + a for a in sets))
             self.table[(row, scene)] = nmse
             if not nmse < NMSE_MAX:
@@ -234,7 +240,7 @@ class CrossCheck(unittest.TestCase):
         skip = {"huang"}
         failures = []
         for model in [m for m in self.rendered if m not in skip]:
-            nmse = self.render_pair("box_point", "tests/data/scenes/box_point.scene", 48, 48, model,
+            nmse = render_pair("box_point", "tests/data/scenes/box_point.scene", 48, 48, model,
                                     samples=64, mode="generic", c_spp=64,
                                     sets=sets.get(model, ()))
             self.table[(model, "box_point (abrdf_eval.osl)")] = nmse
@@ -250,7 +256,7 @@ class CrossCheck(unittest.TestCase):
         # as docs/OSL.md (measured 2e-5 there; at 32x32 and 16 samples the silhouette
         # pixels, where 16 random and 16 stratified samples see different coverage, alone
         # give 4.5e-4).
-        nmse = self.render_pair("sphere", SCENES[0][1], 64, 64, None, samples=64,
+        nmse = render_pair("sphere", SCENES[0][1], 64, 64, None, samples=64,
                                 mode="closure", c_spp=64)
         self.assertLess(nmse, NMSE_MAX)
 
@@ -262,14 +268,14 @@ class CrossCheck(unittest.TestCase):
         for model in self.layered:
             if model in self.rendered:
                 with self.subTest(model=model):
-                    nmse = self.render_pair("sphere", SCENES[0][1], 64, 64, model, samples=64,
+                    nmse = render_pair("sphere", SCENES[0][1], 64, 64, model, samples=64,
                                             mode="closure", c_spp=64)
                     sys.stdout.write("\nclosure mode, %s on the sphere: NMSE %.1e\n" % (model, nmse))
                     self.assertLess(nmse, bound)
 
     def test_samples_do_not_change_the_image(self):
         # Every sample of a pixel re-traces the pixel-centre ray: 4 samples = 1 sample.
-        nmse = self.render_pair("sphere", SCENES[0][1], 32, 32, None, samples=4)
+        nmse = render_pair("sphere", SCENES[0][1], 32, 32, None, samples=4)
         self.assertLess(nmse, 1e-10)
 
 
