@@ -9,6 +9,8 @@ with_bpy=1
 debs=(build-essential g++ cmake pkg-config check python3 povray
       libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
       python3-openimageio python3-numpy   # independent image checks in tests
+      libembree-dev        # ray queries of the built-in renderer (tools/render/accel.c)
+      libtinyobjloader-dev # OBJ meshes (tools/render/mesh_obj.cpp)
       clang-format  # the C style, checked by the test check_format
       time)  # /usr/bin/time: POV-Ray's CPU time in tools/bench/renderers.sh (bpy: scripts/setup_bpy.sh)
 
