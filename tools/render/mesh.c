@@ -376,7 +376,8 @@ static int compute_normals(mesh *m)
     }
     for (size_t v = 0; v < nv; ++v) {
         double *a = acc + 3 * v, l = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-        for (int x = 0; x < 3; ++x) nrm[3 * v + (size_t)x] = l > 0 ? (float)(a[x] / l) : 0.0f;
+        /* no direction: +z, unit like every normal (no corner uses it, see below) */
+        for (int x = 0; x < 3; ++x) nrm[3 * v + (size_t)x] = l > 0 ? (float)(a[x] / l) : x == 2;
         a[0] = l; /* remembered: has a direction */
     }
     count = nv;
