@@ -8,9 +8,9 @@ Two modes:
            lighting as emission (abrdf_osl.h models). Analytic primitives get no host
            geometry: a backdrop sphere makes every pixel run the shader. Triangle meshes
            (`mesh` objects) are Cycles geometry with the scene's corner normals: on a mesh the
-           shader takes Cycles' point and interpolated normal (the pixel filter narrowed to
-           0.01 pixel keeps the sample at the pixel centre) and meshes cast shadows through
-           OSL's trace(). The image matches `abrdf render --spp 1`.
+           shader takes Cycles' point and interpolated normal, so a scene with meshes renders
+           one sample per pixel (Cycles' first sample lies at the pixel centre), and meshes
+           cast shadows through OSL's trace(). The image matches `abrdf render --spp 1`.
   generic  abrdf_eval.osl, the host-independent evaluation shader, on the meshes with the
            scene's lights as parameters (one lobe per material, at most four lights, no
            shadows); exact where the mesh is (boxes), approximate on curved shapes.
@@ -321,9 +321,11 @@ def build(s, mode, workdir, osl_dir, segments=64):
     variants = {}
     has_mesh = any(o["shape"] == "mesh" for o in s["objects"])
     if mode == "eval" and has_mesh:
-        # Cycles' camera sample stands for the pixel-centre ray on meshes: box filter of the
-        # smallest width Cycles allows.
-        sc.cycles.filter_width = 0.01
+        # On a mesh the shader shades Cycles' own sample point, and only a pixel's first
+        # sample lies at its centre (measured: the same image with box filters 1 and 0.01
+        # pixel wide; from the second sample on, samples spread over the pixel whatever the
+        # filter width): one sample per pixel, the built-in renderer's --spp 1.
+        sc.cycles.samples = 1
     for k, o in enumerate(s["objects"]):
         if o["shape"] == "mesh":
             me = mesh_from_data(s["meshes"][o["mesh"]], o["smooth"], "mesh%d" % k)

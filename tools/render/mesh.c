@@ -183,7 +183,9 @@ static int reserve_triangles(loader *ld, size_t need)
     int use[3] = {1, ld->face_has_uv, ld->face_has_n};
     for (int k = 0; k < 3; ++k) {
         if (!use[k]) continue;
-        int *g = realloc(*arr[k], 3 * c * sizeof *g);
+        /* tri is Embree's index buffer as it is (accel.c), and Embree may read the last
+         * triangle with a 16-byte load: 4 spare ints */
+        int *g = realloc(*arr[k], (3 * c + 4) * sizeof *g);
         if (!g) return -1;
         *arr[k] = g;
     }

@@ -24,15 +24,15 @@
 #define MESH_MAX_COORD 1e6 /* |coordinate|, as the scene format's (SCENE_MAX_COORD) */
 
 typedef struct mesh {
-    char *path;            /* the file as the scene names it, resolved (messages, exporters) */
-    int vertex_count;      /* positions */
-    int normal_count;      /* unit normals */
-    int uv_count;          /* texture coordinates (0: the file has none) */
-    int triangle_count;    /* 1 .. MESH_MAX_TRIANGLES */
-    float *position;       /* 3 per vertex */
-    float *normal;         /* 3 per normal, unit length */
-    float *uv;             /* 2 per texture coordinate, or NULL */
-    int *tri;              /* 3 position indices per triangle; counter-clockwise = front */
+    char *path;         /* the file as the scene names it, resolved (messages, exporters) */
+    int vertex_count;   /* positions */
+    int normal_count;   /* unit normals */
+    int uv_count;       /* texture coordinates (0: the file has none) */
+    int triangle_count; /* 1 .. MESH_MAX_TRIANGLES */
+    float *position;    /* 3 per vertex */
+    float *normal;      /* 3 per normal, unit length */
+    float *uv;          /* 2 per texture coordinate, or NULL */
+    int *tri; /* 3 position indices per triangle (4 spare ints follow: Embree reads 16 bytes) */
     int *tri_normal;       /* 3 normal indices per triangle */
     int *tri_uv;           /* 3 texture-coordinate indices per triangle, or NULL */
     int normals_from_file; /* 1: the file's vn; 0: computed (angle-weighted, above) */
