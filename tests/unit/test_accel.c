@@ -23,6 +23,11 @@ static double rnd(double lo, double hi)
     return lo + (hi - lo) * (double)(rng >> 11) * (1.0 / 9007199254740992.0);
 }
 
+/* Rays per check; the sanitizer build sets fewer (the loop it checks against is slow there). */
+#ifndef TEST_ACCEL_RAYS
+#define TEST_ACCEL_RAYS 8000
+#endif
+
 #define ANALYTIC 60
 #define COUNT (ANALYTIC + 4) /* + a duplicate primitive, two teapots, a duplicate teapot */
 
@@ -122,7 +127,7 @@ START_TEST(closest_hits_match_the_loop)
     accel *a;
     char err[256];
     ck_assert_msg(accel_build(go, COUNT, 40.0, &a, err, sizeof err) == 0, "%s", err);
-    int rays = 8000, analytic = 0, meshes = 0, other_triangle = 0, ties = 0;
+    int rays = TEST_ACCEL_RAYS, analytic = 0, meshes = 0, other_triangle = 0, ties = 0;
     unsigned long long tests = 0;
     for (int r = 0; r < rays; ++r) {
         double o[3], d[3];
@@ -156,7 +161,7 @@ START_TEST(closest_hits_match_the_loop)
            "triangle), %d on a coincident pair, %llu exact tests (%.2f per ray against %d "
            "objects)\n",
            rays, analytic, meshes, other_triangle, ties, tests, (double)tests / rays, COUNT);
-    ck_assert(analytic > 1000 && meshes > 500 && ties > 50);
+    ck_assert(analytic > rays / 5 && meshes > rays / 20 && ties > rays / 100);
     ck_assert(other_triangle <= meshes / 1000);
     /* the BVH prunes: far fewer exact tests than objects per ray */
     ck_assert(tests < (unsigned long long)rays * ANALYTIC / 4);
@@ -173,7 +178,7 @@ START_TEST(occlusion_matches_the_loop)
     accel *a;
     char err[256];
     ck_assert_msg(accel_build(go, COUNT, 40.0, &a, err, sizeof err) == 0, "%s", err);
-    int differ = 0, blocked = 0, rays = 8000;
+    int differ = 0, blocked = 0, rays = TEST_ACCEL_RAYS;
     for (int r = 0; r < rays; ++r) {
         double o[3], d[3];
         random_ray(o, d);
@@ -224,7 +229,7 @@ START_TEST(rebuilds_agree)
     char err[256];
     ck_assert(accel_build(go, COUNT, 40.0, &a, err, sizeof err) == 0);
     ck_assert(accel_build(go, COUNT, 40.0, &b, err, sizeof err) == 0);
-    for (int r = 0; r < 5000; ++r) {
+    for (int r = 0; r < TEST_ACCEL_RAYS / 2; ++r) {
         double o[3], d[3];
         random_ray(o, d);
         accel_hit x, y;
