@@ -21,6 +21,7 @@ typedef struct parser {
     size_t err_size;
     scene *s;
     int have_camera;
+    int object_cap; /* allocated length of s->objects */
 } parser;
 
 static int fail(parser *p, const char *fmt, ...)
@@ -409,8 +410,9 @@ static int do_material(parser *p, word *w, int n)
     return 0;
 }
 
-static const char *const shape_names[SCENE_SHAPE_COUNT] = {"sphere", "cylinder", "capsule", "box"};
-static const char *const tangent_names[] = {"u", "v", "radial", "axis"};
+static const char *const shape_names[SCENE_SHAPE_COUNT] = {"sphere", "cylinder", "capsule", "box",
+                                                           "mesh"};
+static const char *const tangent_names[] = {"u", "v", "radial", "axis", "uv"};
 
 const char *scene_shape_name(scene_shape shape)
 {
@@ -419,7 +421,73 @@ const char *scene_shape_name(scene_shape shape)
 
 const char *scene_tangent_name(scene_tangent t)
 {
-    return (unsigned)t <= SCENE_TANGENT_AXIS ? tangent_names[t] : "?";
+    return (unsigned)t <= SCENE_TANGENT_UV ? tangent_names[t] : "?";
+}
+
+/* Append to a growing array (capacity doubles: a scene of 1e5 objects is not quadratic). */
+static int append(parser *p, void **arr, int *count, int *cap, const void *item, size_t size)
+{
+    if (*count == *cap) {
+        int c = *cap ? 2 * *cap : 16;
+        void *g = realloc(*arr, (size_t)c * size);
+        if (!g) return fail(p, "out of memory");
+        *arr = g;
+        *cap = c;
+    }
+    memcpy((char *)*arr + (size_t)*count * size, item, size);
+    ++*count;
+    return 0;
+}
+
+/* The mesh file of `mesh file=PATH`, relative to the scene file's directory; read once. */
+static int load_mesh(parser *p, const char *file, scene_object *o)
+{
+    scene *s = p->s;
+    for (const unsigned char *c = (const unsigned char *)file; *c; ++c)
+        if (*c < 0x20 || *c > 0x7e)
+            return fail(p, "file= holds byte 0x%02x (not printable ASCII)", *c);
+    if (!*file) return fail(p, "file= is empty");
+    const char *slash = strrchr(p->name, '/');
+    size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - p->name) + 1;
+    size_t flen = strlen(file);
+    char *path = malloc(dir + flen + 1);
+    if (!path) return fail(p, "out of memory");
+    memcpy(path, p->name, dir);
+    memcpy(path + dir, file, flen + 1);
+    for (int i = 0; i < s->mesh_count; ++i)
+        if (!strcmp(s->meshes[i]->path, path)) {
+            free(path);
+            o->mesh = i;
+            o->mesh_data = s->meshes[i];
+            return 0;
+        }
+    if (s->mesh_count == SCENE_MAX_MESH_FILES) {
+        free(path);
+        return fail(p, "more than %d mesh files", SCENE_MAX_MESH_FILES);
+    }
+    mesh *m = malloc(sizeof *m);
+    mesh **grown = realloc(s->meshes, (size_t)(s->mesh_count + 1) * sizeof *grown);
+    if (!m || !grown) {
+        free(m), free(path);
+        if (grown) s->meshes = grown;
+        return fail(p, "out of memory");
+    }
+    s->meshes = grown;
+    char err[512];
+    int st = mesh_load_file(path, MESH_MAX_TRIANGLES, m, err, sizeof err);
+    if (st) {
+        free(m), free(path);
+        if (st != -1) return fail(p, "%s", err); /* the file as a whole: name the scene line */
+        /* A problem inside the mesh file: its FILE:LINE first, the scene line after. */
+        if (p->err && p->err_size)
+            snprintf(p->err, p->err_size, "%.400s (mesh at %s:%d)", err, p->name, p->line);
+        return -1;
+    }
+    free(path);
+    s->meshes[s->mesh_count] = m;
+    o->mesh = s->mesh_count++;
+    o->mesh_data = m;
+    return 0;
 }
 
 static int do_object(parser *p, scene_shape shape, word *w, int n)
@@ -431,6 +499,7 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
     memset(&o, 0, sizeof o);
     o.shape = shape;
     o.line = p->line;
+    o.mesh = -1;
     o.scale[0] = o.scale[1] = o.scale[2] = 1.0;
     const char *v;
     if (!(v = take(w, n, 1, "material")))
@@ -455,6 +524,17 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
         if (!(o.size[0] > 0 && o.size[1] > 0 && o.size[2] > 0))
             return fail(p, "box size must be positive, got '%s'", v);
     }
+    const char *file = NULL;
+    if (shape == SCENE_MESH) {
+        valid = "file, material, smooth, translate, rotate, scale, tangent";
+        if (!(file = take(w, n, 1, "file"))) return fail(p, "mesh needs file=PATH");
+        o.smooth = 1;
+        if ((v = take(w, n, 1, "smooth"))) {
+            if (strcmp(v, "on") && strcmp(v, "off"))
+                return fail(p, "smooth must be on or off, got '%s'", v);
+            o.smooth = !strcmp(v, "on");
+        }
+    }
     if ((v = take(w, n, 1, "translate")) && get_vec3(p, "translate", v, o.translate)) return -1;
     if ((v = take(w, n, 1, "rotate")) && get_vec3(p, "rotate", v, o.rotate_deg)) return -1;
     if ((v = take(w, n, 1, "scale"))) {
@@ -467,25 +547,37 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
                         v);
     }
     o.tangent = SCENE_TANGENT_U;
-    if ((v = take(w, n, 1, "tangent"))) {
+    const char *tangent = take(w, n, 1, "tangent");
+    if (tangent) {
         int k;
-        for (k = 0; k < SCENE_TANGENT_AXIS; ++k)
-            if (!strcmp(v, tangent_names[k])) break;
-        if (k < SCENE_TANGENT_AXIS) {
+        for (k = 0; k <= SCENE_TANGENT_UV; ++k)
+            if (k != SCENE_TANGENT_AXIS && !strcmp(tangent, tangent_names[k])) break;
+        if (k <= SCENE_TANGENT_UV) {
             o.tangent = (scene_tangent)k;
-        } else if (parse_list(v, o.tangent_axis, 3) == 3 && nonzero3(o.tangent_axis)) {
+        } else if (parse_list(tangent, o.tangent_axis, 3) == 3 && nonzero3(o.tangent_axis)) {
             o.tangent = SCENE_TANGENT_AXIS;
         } else {
-            return fail(p, "tangent must be u, v, radial or a non-zero direction X,Y,Z, got '%s'",
-                        v);
+            return fail(p,
+                        "tangent must be u, v, radial, uv (meshes) or a non-zero direction "
+                        "X,Y,Z, got '%s'",
+                        tangent);
         }
+        if (o.tangent == SCENE_TANGENT_UV && shape != SCENE_MESH)
+            return fail(p, "tangent=uv needs a mesh (a %s has no texture coordinates)",
+                        shape_names[shape]);
     }
     if (leftovers(p, w, n, 1, valid)) return -1;
-    scene_object *grown = realloc(s->objects, (size_t)(s->object_count + 1) * sizeof *grown);
-    if (!grown) return fail(p, "out of memory");
-    s->objects = grown;
-    grown[s->object_count++] = o;
-    return 0;
+    if (file) {
+        if (load_mesh(p, file, &o)) return -1;
+        if (o.tangent == SCENE_TANGENT_UV && !o.mesh_data->uv)
+            return fail(p, "tangent=uv: %s has no texture coordinates (vt)", o.mesh_data->path);
+        long long total = s->triangle_count + o.mesh_data->triangle_count;
+        if (total > SCENE_MAX_TRIANGLES)
+            return fail(p, "this mesh brings the scene to %lld triangles, more than %d", total,
+                        SCENE_MAX_TRIANGLES);
+        s->triangle_count = total;
+    }
+    return append(p, (void **)&s->objects, &s->object_count, &p->object_cap, &o, sizeof o);
 }
 
 static int do_line(parser *p, char *line)
@@ -504,7 +596,7 @@ static int do_line(parser *p, char *line)
         if (!strcmp(d, shape_names[k])) return do_object(p, (scene_shape)k, w, n);
     return fail(p,
                 "unknown directive '%s'; directives: camera, ambient, light, material, "
-                "sphere, cylinder, capsule, box",
+                "sphere, cylinder, capsule, box, mesh",
                 d);
 }
 
@@ -514,6 +606,11 @@ void scene_free(scene *s)
     free(s->lights);
     free(s->materials);
     free(s->objects);
+    for (int i = 0; i < s->mesh_count; ++i) {
+        mesh_free(s->meshes[i]);
+        free(s->meshes[i]);
+    }
+    free(s->meshes);
     memset(s, 0, sizeof *s);
 }
 
@@ -523,7 +620,7 @@ int scene_parse_text(const char *name, const char *text, size_t len, scene *out,
     if (err && err_size) err[0] = '\0';
     if (!out) return -1;
     memset(out, 0, sizeof *out);
-    parser p = {name ? name : "<scene>", 0, err, err_size, out, 0};
+    parser p = {name ? name : "<scene>", 0, err, err_size, out, 0, 0};
     if (!text) return fail(&p, "no text");
     char line[LINE_MAX_CHARS + 1];
     size_t i = 0;
@@ -553,7 +650,7 @@ int scene_parse_text(const char *name, const char *text, size_t len, scene *out,
     }
     if (out->object_count == 0) {
         p.line = 0;
-        fail(&p, "no objects (sphere, cylinder, capsule or box)");
+        fail(&p, "no objects (sphere, cylinder, capsule, box or mesh)");
         goto bad;
     }
     return 0;
