@@ -62,19 +62,19 @@ double abrdf__tlogistic_mass(double s, double a, double b);
 /* ---- hair (sample_hair.c) ------------------------------------------------------------ */
 #define ABRDF__HAIR_NODES 32 /* offsets h_k of the far-field proposal */
 
-/* The R/TT/TRT proposal of a hair fibre for one wo: per offset h_k the lobe probabilities
- * from the smooth-fibre attenuations A_p, per lobe the logistic widths. */
+/* The R/TT/TRT proposal of a hair fibre for one wo: the probability of each (offset h_k,
+ * lobe p) pair, per lobe the logistic centres and widths (sample_hair.c). */
 typedef struct abrdf__hair_sampler {
     double theta_o, phi_o;             /* fibre angles of wo (hair.h) */
     double eta;                        /* index of refraction */
     double mu[3], s_theta[3];          /* theta_i centre and logistic scale per lobe */
     double s_phi[3];                   /* azimuthal logistic scale per lobe */
-    double phi_mass[3];                /* its mass on [-pi, pi] */
     double asin_h[ABRDF__HAIR_NODES];  /* asin(h_k) */
-    double prob[ABRDF__HAIR_NODES][3]; /* P(lobe p | node k) */
+    double prob[ABRDF__HAIR_NODES][3]; /* P(node k, lobe p), summing to 1 */
 } abrdf__hair_sampler;
 
-/* Setup for marschner or huang (their parameters' meaning differs) and local wo. */
+/* Setup for marschner or huang (their parameters' meaning differs) and local wo above the
+ * ribbon. The proposal only draws directions above it (wi.z >= 0). */
 void abrdf__hair_sampler_setup(abrdf_model model, const abrdf_params *p, const double wo[3],
                                abrdf__hair_sampler *h);
 void abrdf__hair_sampler_sample(const abrdf__hair_sampler *h, double u1, double u2, double wi[3]);

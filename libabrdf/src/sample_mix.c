@@ -271,8 +271,8 @@ static const abrdf_sampler_info samplers[ABRDF_MODEL_COUNT] = {
     [ABRDF_DISNEY_CLEARCOAT] = {"gtr1_d_cos", "half vector from D_GTR1 cos(theta_h), cos^2 = (1 - alpha^(2(1-u)))/(1 - alpha^2)", CIT_BURLEY, BELOW},
     [ABRDF_NEUBELT_PETTINEO] = {"cosine_velvet", "cosine for (1 - F) kd/pi, half vector from the velvet D cos for the sheen; one-sample MIS", CIT_VEACH, MIX | BELOW},
     [ABRDF_KAJIYA_KAY] = {"fibre_lobes", "kd sin(T, wi) N.wi exactly; trimmed logistic about the specular cone for the ks lobe; one-sample MIS", CIT_VEACH, MIX},
-    [ABRDF_MARSCHNER] = {"hair_lobes", "far-field R/TT/TRT: offset h, lobe by attenuation, logistic theta_i about M_p's peak, logistic azimuth about Phi(p, h); 10% cosine", CIT_HAIR, MIX | BELOW},
-    [ABRDF_HUANG] = {"hair_lobes", "the R/TT/TRT proposal of marschner with widths from the GGX roughness (approximate: no exact Huang sampler), 10% cosine", CIT_HAIR, MIX | BELOW},
+    [ABRDF_MARSCHNER] = {"hair_lobes", "far-field R/TT/TRT above the ribbon: (offset h, lobe) by attenuation, logistic theta_i about M_p's peak, logistic azimuth about Phi(p, h); 10% cosine", CIT_HAIR, MIX},
+    [ABRDF_HUANG] = {"hair_lobes", "marschner's R/TT/TRT proposal with widths from the GGX roughness (approximate: no exact sampler of Huang's integrals), 10% cosine", CIT_HAIR, MIX},
     [ABRDF_WEIDLICH_WILKIE] = {"layered_vndf_cosine", "GGX visible normals per interface, cosine for the Lambert base, shares from Fresnel and transmission at N.wo", CIT_VNDF "; " CIT_VEACH, MIX | BELOW},
     [ABRDF_BELCOUR] = {"belcour_vndf", "GGX visible normals per lobe of Eq. 16, energies and roughnesses at N.wo", CIT_VNDF "; " CIT_VEACH, MIX | BELOW},
 };
