@@ -25,19 +25,17 @@ typedef enum abrdf__dist_kind {
     ABRDF__DIST_SCHLICK,  /* p ~ 1 / (1 + n t) on t in [0, 1]: Schlick's rational form */
     ABRDF__DIST_LINEAR,   /* p ~ 1 - a t on t in [0, min(1, 1/a)]: fkv */
     ABRDF__DIST_BECKMANN, /* p = 2 pi D_Beckmann(c) c (Walter et al. 2007) */
-    ABRDF__DIST_GTR1,     /* p = 2 pi D_GTR1(c) c (Burley 2012, App. B) */
-    ABRDF__DIST_VELVET    /* p = 2 pi D_velvet(c) c (Ashikhmin-Premoze inverted Gaussian + 1) */
+    ABRDF__DIST_GTR1      /* p = 2 pi D_GTR1(c) c (Burley 2012, App. B) */
 } abrdf__dist_kind;
 
 typedef struct abrdf__dist {
     abrdf__dist_kind kind;
     double n;     /* exponent (POW, FM, SCHLICK) */
     int m;        /* degree of the power form (FM) */
-    double a;     /* slope (LINEAR), roughness alpha (BECKMANN, GTR1, VELVET) */
-    double k_amp; /* inverted-Gaussian amplitude (VELVET) */
+    double a;     /* slope (LINEAR), roughness alpha (BECKMANN, GTR1) */
     double t_max; /* support in t: [0, t_max] (set by abrdf__dist_setup) */
     double norm;  /* normalisation (set by abrdf__dist_setup) */
-    double q;     /* FM: 1 - b_end^(m+1); VELVET: probability of the inverted Gaussian */
+    double q;     /* FM: 1 - b_end^(m+1) */
 } abrdf__dist;
 
 /* Fill the derived fields for a density on c in [lo, 1] (lo = -1: the whole sphere about
@@ -83,6 +81,7 @@ double abrdf__hair_sampler_pdf(const abrdf__hair_sampler *h, const double wi[3])
 /* ---- components and mixtures (sample_mix.c) ------------------------------------------ */
 typedef enum abrdf__lobe_kind {
     ABRDF__LOBE_COSINE,     /* cos(theta)/pi about N (Malley's method) */
+    ABRDF__LOBE_UNIFORM,    /* 1/(2 pi) on the hemisphere above N */
     ABRDF__LOBE_MIRROR,     /* dist about R = mirror of wo, the whole sphere */
     ABRDF__LOBE_HALF,       /* dist for the half vector about N, wi = reflect(wo, h) */
     ABRDF__LOBE_GGX_VNDF,   /* GGX visible normals of wo (Heitz 2018; Dupuy, Benyoub 2023) */

@@ -15,11 +15,6 @@
  *   refraction through rough surfaces", EGSR 2007, Eqs. 28-29: tan^2 = -alpha^2 log(1 - u).
  * GTR1, D cos: B. Burley, "Physically-Based Shading at Disney", SIGGRAPH 2012 course notes,
  *   App. B, Eq. 2: cos^2 = (1 - alpha^(2(1 - u)))/(1 - alpha^2).
- * VELVET, D cos of the Ashikhmin-Premoze inverted Gaussian with offset 1 (M. Ashikhmin,
- *   S. Premoze, "Distribution-based BRDFs", 2007): a mixture of the offset (cos, weight
- *   1/(1 + k alpha^2)) and of the inverted Gaussian, for which x = cot(theta) has the
- *   Rayleigh density (2x/alpha^2) exp(-x^2/alpha^2) (substitute x = cot: the integral of
- *   exp(-cot^2/alpha^2) cos / sin^4 over the hemisphere is pi alpha^2; MODELS.md B6.1).
  * Trimmed logistic: the density pbrt-v4 draws hair azimuths from (M. Pharr, W. Jakob,
  *   G. Humphreys, "Physically Based Rendering", 4th ed., Sec. 9.9), any interval. */
 #include <math.h>
@@ -81,11 +76,6 @@ void abrdf__dist_setup(abrdf__dist *d, double lo)
             d->n = 1.0;
         }
         break;
-    case ABRDF__DIST_VELVET: {
-        double ka2 = d->k_amp * d->a * d->a;
-        d->q = ka2 / (1.0 + ka2); /* probability of the inverted Gaussian */
-        break;
-    }
     case ABRDF__DIST_BECKMANN: break;
     }
 }
@@ -132,17 +122,6 @@ double abrdf__dist_sample(const abrdf__dist *d, double u, double *s)
         *s = sqrt(fmax(0.0, s2));
         return fmax(0.0, s2) / (1.0 + c);
     }
-    case ABRDF__DIST_VELVET: {
-        if (u < 1.0 - d->q) { /* the offset: D cos = cos/pi */
-            t = pow_sample(1.0, fmin(u / (1.0 - d->q), ABRDF__SAMPLE_U_MAX));
-            break;
-        }
-        double v = fmin((u - (1.0 - d->q)) / d->q, ABRDF__SAMPLE_U_MAX);
-        double x = d->a * sqrt(-log1p(-v)); /* cot(theta), Rayleigh */
-        double r = sqrt(1.0 + x * x);
-        *s = 1.0 / r;
-        return 1.0 / ((r + x) * r);
-    }
     }
     t = fmin(fmax(t, 0.0), 2.0);
     *s = sqrt(fmax(0.0, t * (2.0 - t)));
@@ -172,15 +151,6 @@ double abrdf__dist_pdf(const abrdf__dist *d, double c, double s2)
         if (!(c > 0.0)) return 0.0;
         double a2 = d->a * d->a;
         return 2.0 * c * (a2 - 1.0) / (log(a2) * (s2 + a2 * c * c)); /* 2 pi D_GTR1 c */
-    }
-    case ABRDF__DIST_VELVET: {
-        if (!(c > 0.0)) return 0.0;
-        double p = (1.0 - d->q) * 2.0 * c;
-        if (d->q > 0.0 && s2 > 0.0) {
-            double a2 = d->a * d->a;
-            p += d->q * 2.0 * c / a2 * exp(-(c * c) / (s2 * a2) - 2.0 * log(s2));
-        }
-        return p;
     }
     }
     return 0.0;

@@ -4,6 +4,7 @@
  *
  * COSINE: cos(theta)/pi, by Malley's method (a uniform disk point lifted to the hemisphere;
  *   Pharr, Jakob, Humphreys, "Physically Based Rendering", 4th ed., Sec. A.5.3).
+ * UNIFORM: 1/(2 pi) on the hemisphere, cos(theta) = u1 (the same book, Sec. A.5.2).
  * MIRROR: a 1-D density of c = wi.R about R, the mirror of wo, azimuth uniform (Lafortune,
  *   Willems 1994 for Phong; the other lobes on R.V the same way).
  * HALF: a 1-D density of c = N.h for the half vector, azimuth uniform, wi = 2 (wo.h) h - wo;
@@ -155,6 +156,13 @@ int abrdf__lobe_sample(const abrdf__lobe *l, const abrdf__mixture *mx, double u1
         wi[2] = sqrt(fmax(0.0, 1.0 - u1));
         return normalise(wi);
     }
+    case ABRDF__LOBE_UNIFORM: {
+        double z = u1, r = sqrt(fmax(0.0, 1.0 - z * z)), phi = TWO_PI * u2;
+        wi[0] = r * cos(phi);
+        wi[1] = r * sin(phi);
+        wi[2] = z;
+        return normalise(wi);
+    }
     case ABRDF__LOBE_MIRROR: {
         double r[3] = {-wo[0], -wo[1], wo[2]}, e1[3], e2[3], s;
         double t = abrdf__dist_sample(&l->dist, u1, &s), phi = TWO_PI * u2;
@@ -192,6 +200,7 @@ double abrdf__lobe_pdf(const abrdf__lobe *l, const abrdf__mixture *mx, const dou
     const double *wo = mx->wo;
     switch (l->kind) {
     case ABRDF__LOBE_COSINE: return wi[2] > 0.0 ? wi[2] * ABRDF__INV_PI : 0.0;
+    case ABRDF__LOBE_UNIFORM: return wi[2] >= 0.0 ? 0.5 * ABRDF__INV_PI : 0.0;
     case ABRDF__LOBE_MIRROR: {
         double r[3] = {-wo[0], -wo[1], wo[2]};
         return abrdf__dist_pdf(&l->dist, dot3(wi, r), cross2(wi, r)) / TWO_PI;

@@ -41,7 +41,6 @@ static void add_dist(abrdf__mixture *mx, abrdf__lobe_kind kind, double weight, a
     l->dist.n = n;
     l->dist.m = m;
     l->dist.a = a;
-    l->dist.k_amp = 0.0;
     abrdf__dist_setup(&l->dist, kind == ABRDF__LOBE_MIRROR ? -1.0 : 0.0);
 }
 
@@ -160,14 +159,11 @@ void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double
         break;
     /* cloth */
     case ABRDF_NEUBELT_PETTINEO: {
-        ABRDF__FN(k_neubelt_pettineo_setup)(&k, p);
+        /* cosine for the diffuse term, uniform for the sheen, whose f cos is nearly flat
+         * over the hemisphere: measured better than the velvet D cos (docs/SAMPLING.md) */
         double f = ABRDF__FN(f_schlick)(mean3(p->f0), wo[2]);
         add(mx, ABRDF__LOBE_COSINE, mean3(p->kd) * (1.0 - f));
-        abrdf__lobe *l = add(mx, half, mean3(p->ks) * f);
-        l->dist.kind = ABRDF__DIST_VELVET;
-        l->dist.a = k.ag;
-        l->dist.k_amp = k.k_amp;
-        abrdf__dist_setup(&l->dist, 0.0);
+        add(mx, ABRDF__LOBE_UNIFORM, mean3(p->ks) * f);
         break;
     }
     case ABRDF_KAJIYA_KAY: {
@@ -269,7 +265,7 @@ static const abrdf_sampler_info samplers[ABRDF_MODEL_COUNT] = {
     [ABRDF_DISNEY_SPECULAR] = {"ggx_vndf", "GGX visible normals of wo (spherical caps), reflected: weight = F G1(wi)", CIT_VNDF, BELOW},
     [ABRDF_DISNEY_SPECULAR_ANISO] = {"ggx_vndf", "anisotropic GGX visible normals of wo (spherical caps), reflected: weight = F G1(wi)", CIT_VNDF, BELOW},
     [ABRDF_DISNEY_CLEARCOAT] = {"gtr1_d_cos", "half vector from D_GTR1 cos(theta_h), cos^2 = (1 - alpha^(2(1-u)))/(1 - alpha^2)", CIT_BURLEY, BELOW},
-    [ABRDF_NEUBELT_PETTINEO] = {"cosine_velvet", "cosine for (1 - F) kd/pi, half vector from the velvet D cos for the sheen; one-sample MIS", CIT_VEACH, MIX | BELOW},
+    [ABRDF_NEUBELT_PETTINEO] = {"cosine_uniform", "cosine for (1 - F) kd/pi, uniform hemisphere for the sheen (its f cos is nearly flat; the velvet D cos measured worse); one-sample MIS", CIT_MALLEY "; " CIT_VEACH, MIX},
     [ABRDF_KAJIYA_KAY] = {"fibre_lobes", "kd sin(T, wi) N.wi exactly; trimmed logistic about the specular cone for the ks lobe; one-sample MIS", CIT_VEACH, MIX},
     [ABRDF_MARSCHNER] = {"hair_lobes", "far-field R/TT/TRT above the ribbon: (offset h, lobe) by attenuation, logistic theta_i about M_p's peak, logistic azimuth about Phi(p, h); 10% cosine", CIT_HAIR, MIX},
     [ABRDF_HUANG] = {"hair_lobes", "marschner's R/TT/TRT proposal with widths from the GGX roughness (approximate: no exact sampler of Huang's integrals), 10% cosine", CIT_HAIR, MIX},
