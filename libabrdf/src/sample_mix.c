@@ -160,10 +160,11 @@ void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double
     /* cloth */
     case ABRDF_NEUBELT_PETTINEO: {
         /* cosine for the diffuse term, uniform for the sheen, whose f cos is nearly flat
-         * over the hemisphere: measured better than the velvet D cos (docs/SAMPLING.md) */
+         * over the hemisphere: measured better than the velvet D cos (docs/SAMPLING.md).
+         * The sheen's albedo with F = 1 is 0.15-0.6 (0.3 typical) over r, k_amp, theta_o. */
         double f = ABRDF__FN(f_schlick)(mean3(p->f0), wo[2]);
         add(mx, ABRDF__LOBE_COSINE, mean3(p->kd) * (1.0 - f));
-        add(mx, ABRDF__LOBE_UNIFORM, mean3(p->ks) * f);
+        add(mx, ABRDF__LOBE_UNIFORM, mean3(p->ks) * f * 0.3);
         break;
     }
     case ABRDF_KAJIYA_KAY: {
