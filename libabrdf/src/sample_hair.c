@@ -4,7 +4,7 @@
  * M. Hill, J. Letteri, J.-M. Aubry, "An energy-conserving hair reflectance model", EGSR 2011
  * (lobe p chosen by its attenuation A_p, theta_i from the longitudinal lobe M_p, phi from
  * the azimuthal lobe about Phi(p, h)), as pbrt-v4 implements it (Pharr, Jakob, Humphreys,
- * "Physically Based Rendering", 4th ed., Sec. 9.9.6: h given by the hit point, A_p by the
+ * "Physically Based Rendering", 4th ed., Sec. 9.9: h given by the hit point, A_p by the
  * smooth-fibre attenuation at theta_o, a trimmed logistic about Phi). abrdf's hair models
  * are FAR-FIELD, averaged over the offset h in [-1, 1], and defined ABOVE THE RIBBON only
  * (hair.h: f_r = 0 for wi below it), so the proposal averages h and keeps wi above:

@@ -3,8 +3,8 @@
  * one is a density over the whole sphere that integrates to 1.
  *
  * COSINE: cos(theta)/pi, by Malley's method (a uniform disk point lifted to the hemisphere;
- *   Pharr, Jakob, Humphreys, "Physically Based Rendering", 4th ed., Sec. A.5.3).
- * UNIFORM: 1/(2 pi) on the hemisphere, cos(theta) = u1 (the same book, Sec. A.5.2).
+ *   Pharr, Jakob, Humphreys, "Physically Based Rendering", 4th ed., App. A.5).
+ * UNIFORM: 1/(2 pi) on the hemisphere, cos(theta) = u1 (the same book and appendix).
  * MIRROR: a 1-D density of c = wi.R about R, the mirror of wo, azimuth uniform (Lafortune,
  *   Willems 1994 for Phong; the other lobes on R.V the same way).
  * HALF: a 1-D density of c = N.h for the half vector, azimuth uniform, wi = 2 (wo.h) h - wo;

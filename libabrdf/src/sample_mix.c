@@ -215,7 +215,7 @@ double abrdf__mixture_pdf(const abrdf__mixture *mx, const double wi[3])
 #define BELOW ABRDF_SAMPLER_BELOW
 #define MIX ABRDF_SAMPLER_MIXTURE
 #define CIT_MALLEY                                                                                 \
-    "Malley's method (Pharr, Jakob, Humphreys, Physically Based Rendering, 4th ed., Sec. A.5.3)"
+    "Malley's method (Pharr, Jakob, Humphreys, Physically Based Rendering, 4th ed., App. A.5)"
 #define CIT_LW                                                                                     \
     "E. Lafortune, Y. Willems, Using the modified Phong reflectance model for physically based "   \
     "rendering, KU Leuven TR CW197, 1994"
@@ -233,7 +233,7 @@ double abrdf__mixture_pdf(const abrdf__mixture *mx, const double wi[3])
 #define CIT_HAIR                                                                                   \
     "E. d'Eon, G. Francois, M. Hill, J. Letteri, J.-M. Aubry, An energy-conserving hair "          \
     "reflectance model, EGSR 2011; Pharr, Jakob, Humphreys, Physically Based Rendering, 4th ed., " \
-    "Sec. 9.9.6"
+    "Sec. 9.9"
 #define HALF_BP "half vector from (n + 1) cos^n(theta_h) / (2 pi) about N, wi = reflect(wo, h)"
 #define HALF_FM "half vector from the lobe's own ((n/m)(N.h - 1) + 1)^m, inverted in closed form"
 #define MIRROR_FM                                                                                  \

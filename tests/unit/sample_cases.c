@@ -6,7 +6,7 @@
 
 /* One parameter at a time: lobes from broad to as peaked as a 24 x 48 grid warped toward
  * the pole resolves (Phong n = 500, alpha_g = 0.0225), the ends of the cloth, clearcoat and
- * anisotropy ranges, a second layer, other hair indices and tilts. Colours steer the
+ * anisotropy ranges, one to three layers, other hair indices and tilts. Colours steer the
  * mixtures' lobe probabilities. */
 static const struct {
     const char *name;
@@ -23,7 +23,9 @@ static const struct {
     {"kd", 0.05},
     {"ks", 0.1},
     {"f0", 0.5},
+    {"layer_count", 1.0},
     {"layer_count", 2.0},
+    {"layer_count", 3.0},
     {"eta", 1.3},
     {"cuticle_tilt", -6.0},
 };
