@@ -40,8 +40,8 @@ typedef struct abrdf__dist {
 
 /* Fill the derived fields for a density on c in [lo, 1] (lo = -1: the whole sphere about
  * the axis, lo = 0: a hemisphere). A lobe so flat over its support that its own inversion
- * would lose precision (POW with n = 0, FM and SCHLICK with n below ABRDF__SAMPLE_FLAT)
- * becomes UNIFORM, the density it is then within 1e-8 of. */
+ * would cancel (POW with n = 0; FM, SCHLICK and LINEAR varying by less than
+ * ABRDF__SAMPLE_FLAT) becomes UNIFORM, the density it then equals to that accuracy. */
 void abrdf__dist_setup(abrdf__dist *d, double lo);
 /* Draw t = 1 - c from u in [0, 1); *s receives sin(theta) = sqrt(t (2 - t)). */
 double abrdf__dist_sample(const abrdf__dist *d, double u, double *s);

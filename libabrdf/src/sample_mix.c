@@ -10,7 +10,6 @@
 #include <math.h>
 
 #include "sample.h"
-#include "hair.h"
 #include "k_dispatch.h"
 #include "layered.h"
 #include "layered_optics.h"
