@@ -38,15 +38,17 @@
  *     size your own arrays with it, ask abrdf_model_count() at run time, and never pass a
  *     *_COUNT to the library. "No model" is ABRDF_MODEL_NONE (-1).
  *   - A struct you allocate that can grow starts with `size_t struct_size` (here
- *     abrdf_params; in abrdf_select.h the material, tolerance and selection). Its _init
- *     function is a static inline that passes your sizeof to the library's _init_sized
- *     function, which fills the defaults and sets struct_size. New fields are only ever
- *     appended. The library reads and writes only the first struct_size bytes; a field
- *     beyond them takes its default. struct_size 0 (a block never initialised) or below
- *     the first published layout (0.2.0) is rejected with ABRDF_E_SIZE; copying an
+ *     abrdf_params and abrdf_sample_result; in abrdf_select.h the material, tolerance and
+ *     selection). Its _init function is a static inline that passes your sizeof to the
+ *     library's _init_sized function, which fills the defaults and sets struct_size. New
+ *     fields are only ever appended. The library reads and writes only the first
+ *     struct_size bytes; a field beyond them takes its default. struct_size 0 (a block
+ *     never initialised) or below the struct's first published layout (0.2.0; the sample
+ *     result's first layout is the one here) is rejected with ABRDF_E_SIZE; copying an
  *     initialised struct copies struct_size with it.
  *   - A struct the library owns and hands out by pointer (abrdf_model_info,
- *     abrdf_param_info; abrdf_select_rules and abrdf_select_step) only grows at its end:
+ *     abrdf_param_info, abrdf_sampler_info; abrdf_select_rules and abrdf_select_step) only
+ *     grows at its end:
  *     read the fields your header declares.
  *   - Every other struct (abrdf_layer, abrdf_model_param, abrdf_frame, abrdf_batch; in
  *     abrdf_select.h abrdf_approx_error and abrdf_costs) is frozen: new data would come as
@@ -74,6 +76,12 @@
  *                            or local-frame directions with frame = NULL
  *   abrdf_eval_batch         float structure-of-arrays batch evaluation, local frame
  *   abrdf_shade              the paper's pixel intensity I = ka Ia + Il cos (f_d + f_s)
+ *   abrdf_sample             importance sampling: a direction wi for wo, its pdf and the
+ *                            weight f_r cos / pdf (double reference)
+ *   abrdf_pdf                the density with which abrdf_sample returns wi
+ *   abrdf_sample_result_init fill a sample result block, set its struct_size (static inline)
+ *   abrdf_sample_result_init_sized  the same for a block of struct_size bytes
+ *   abrdf_model_sampler      which sampler a model has (stable name, method, citation)
  *   abrdf_r_to_alpha_g, abrdf_alpha_g_to_r, abrdf_alpha_g_to_n, abrdf_n_to_alpha_g,
  *   abrdf_n_to_pov_roughness, abrdf_pov_roughness_to_n   roughness converters
  */
@@ -324,6 +332,67 @@ ABRDF_API double abrdf_alpha_g_to_n(double alpha_g);     /* Blinn-Phong n = 2/al
 ABRDF_API double abrdf_n_to_alpha_g(double n);           /* alpha_g = sqrt(2/(n + 2)) */
 ABRDF_API double abrdf_n_to_pov_roughness(double n);     /* POV-Ray roughness = 1/n; n = 0 -> 0 */
 ABRDF_API double abrdf_pov_roughness_to_n(double rough); /* n = 1/rough; rough = 0 -> 0 */
+
+/* ---- sampling ----------------------------------------------------------------------- *
+ * What a path tracer needs beside evaluation (pbrt-v4's Sample_f/PDF, Mitsuba's
+ * sample/pdf): for the viewer direction wo, a light direction wi drawn with a density close
+ * to f_r(wi, wo) |N.wi|, its density and the weight f_r |N.wi| / pdf. docs/SAMPLING.md
+ * lists the sampler of every model with its citation (abrdf_model_sampler names it).
+ *   - pdf is per unit solid angle (1/sr), over the whole sphere of directions: a sampler
+ *     may return wi below the surface (N.wi <= 0), where f_r = 0, so its weight is 0. Such
+ *     samples are part of the distribution (count them, do not redraw).
+ *   - weight = f_r(wi, wo) max(0, N.wi) / pdf exactly, per channel: for a model with
+ *     several lobes one lobe is chosen at random and pdf is the density of the whole
+ *     mixture at wi (one-sample MIS), never the chosen lobe's alone.
+ *   - Random numbers: u1, u2 in [0, 1]. Where a lobe must be chosen, u1 chooses it and is
+ *     reused, rescaled, for the direction (as pbrt-v4 does); no third number is needed.
+ *   - wo below or on the surface, or degenerate: no sample, reported as pdf = 0 (wi = N,
+ *     weight 0) with ABRDF_OK, as abrdf_eval reports f = 0.
+ *   - Deterministic: the same inputs give the same sample. No allocation, thread-safe. */
+typedef struct abrdf_sample_result {
+    size_t struct_size; /* bytes of this struct as the caller compiled it; set by _init */
+    double wi[3];       /* sampled direction toward the light, unit; world frame, or local
+                           if frame is NULL */
+    double pdf;         /* density of wi, 1/sr, >= 0; 0 = no sample */
+    double weight[3];   /* f_r(wi, wo) max(0, N.wi) / pdf per channel, finite, >= 0 */
+} abrdf_sample_result;
+
+/* Sets struct_size and clears the block (ABRDF_E_SIZE, writing nothing, below the first
+ * layout). Call it once through abrdf_sample_result_init; a block can be reused. */
+ABRDF_API int abrdf_sample_result_init_sized(abrdf_sample_result *result, size_t struct_size);
+static inline int abrdf_sample_result_init(abrdf_sample_result *result)
+{
+    return abrdf_sample_result_init_sized(result, sizeof(abrdf_sample_result));
+}
+
+/* Sample wi for wo (world, normalised here; frame NULL: local-frame directions as in
+ * abrdf_eval). Returns ABRDF_OK, an error of abrdf_params_check, ABRDF_E_NULL,
+ * ABRDF_E_SIZE (result not initialised) or ABRDF_E_RANGE (u1 or u2 outside [0, 1] or NaN);
+ * on error the result holds no sample. Double precision, the reference of any later
+ * batch form. */
+ABRDF_API int abrdf_sample(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
+                           const double wo[3], double u1, double u2, abrdf_sample_result *result);
+
+/* The density (1/sr) with which abrdf_sample returns wi for wo, for the same model,
+ * parameters and frame: what MIS needs for a direction another strategy (a light) drew.
+ * Degenerate vectors or wo below the surface give 0. Returns ABRDF_OK or an error as
+ * abrdf_sample (then *pdf = 0). */
+ABRDF_API int abrdf_pdf(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
+                        const double wi[3], const double wo[3], double *pdf);
+
+/* Which sampler a model has (bit flags of abrdf_sampler_info.flags). */
+#define ABRDF_SAMPLER_MIXTURE 0x01u /* several components, one chosen per sample (MIS) */
+#define ABRDF_SAMPLER_BELOW 0x02u   /* may return wi below the surface (with weight 0) */
+
+typedef struct abrdf_sampler_info {
+    const char *name;     /* stable lower-case name, e.g. "cosine", "ggx_vndf" */
+    const char *method;   /* one line: the components and what each draws */
+    const char *citation; /* where the sampling method is published */
+    unsigned flags;       /* ABRDF_SAMPLER_* */
+} abrdf_sampler_info;
+
+/* The sampler of `model`; NULL for an unknown model. Owned by the library. */
+ABRDF_API const abrdf_sampler_info *abrdf_model_sampler(abrdf_model model);
 
 #ifdef __cplusplus
 }

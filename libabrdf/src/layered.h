@@ -10,6 +10,12 @@ void abrdf__eval_weidlich_wilkie(const abrdf_params *p, const double wi[3], cons
 void abrdf__eval_belcour(const abrdf_params *p, const double wi[3], const double wo[3],
                          double f[3]);
 
+/* Belcour's lobes (Eq. 16) for the mean direction of cosine cos_theta: energies e[k] (RGB)
+ * and GGX roughnesses alpha[k] (alpha_g, floored at ABRDF__ALPHA_G_MIN), the same pass as
+ * abrdf__eval_belcour makes at cos = H.L; returns the count (<= ABRDF_MAX_LAYERS). The
+ * sampler calls it at cos = N.wo. */
+int abrdf__belcour_lobes(const abrdf_params *p, double cos_theta, double e[][3], double alpha[]);
+
 /* Belcour's precomputed tables, interpolated (belcour_tables.h gives their axes):
  * FGD = directional albedo of one GGX reflection with exact Fresnel, TIR = fraction of the
  * visible microfacets through which light can leave a rough interface from the dense side. */

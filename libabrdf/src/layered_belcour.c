@@ -222,3 +222,27 @@ void abrdf__eval_belcour(const abrdf_params *p, const double wi[3], const double
         if (p->layers[k].depth > 0.0) add_medium(&st, &p->layers[k]);
     }
 }
+
+int abrdf__belcour_lobes(const abrdf_params *p, double cos_theta, double e[][3], double alpha[])
+{
+    stack_stats st = {{0, 0, 0},
+                      {1, 1, 1},
+                      {0, 0, 0},
+                      {1, 1, 1},
+                      0,
+                      0,
+                      0,
+                      0,
+                      1,
+                      1,
+                      fmin(fmax(cos_theta, ABRDF__BELCOUR_COS_MIN), 1.0)};
+    int n = p->layer_count < ABRDF_MAX_LAYERS ? p->layer_count : ABRDF_MAX_LAYERS, count = 0;
+    for (int k = 0; k < n; ++k) {
+        double ak;
+        int below = add_interface(&st, p, k, e[count], &ak);
+        alpha[count++] = fmax(ak, ABRDF__ALPHA_G_MIN);
+        if (!below) break;
+        if (p->layers[k].depth > 0.0) add_medium(&st, &p->layers[k]);
+    }
+    return count;
+}

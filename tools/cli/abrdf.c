@@ -6,6 +6,8 @@
 static const cli_command commands[] = {
     {"models", "list every model with its formula, parameters and needs", cmd_models},
     {"eval", "evaluate a model's f_r for one direction pair", cmd_eval},
+    {"sample", "draw light directions by a model's importance sampler: wi, pdf, weight",
+     cmd_sample},
     {"export",
      "write a scene for another renderer (--pov: POV-Ray 3.7 SDL; --cycles: Blender/Cycles with "
      "OSL)",
