@@ -75,8 +75,8 @@ void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double th
 void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const double wo[3],
                             unsigned lobes, double s[3]);
 
-/* f_r for the surface (the dispatch entry). */
-void abrdf__marschner_eval(const abrdf_params *p, const double wi[3], const double wo[3],
+/* f_r for the surface from the model's setup (the dispatch entry, special.c). */
+void abrdf__marschner_eval(const abrdf__marschner *m, const double wi[3], const double wo[3],
                            double f[3]);
 
 /* ---- Huang, Hullin, Hanika 2022 (hair_huang.c) -------------------------------------- */
@@ -113,6 +113,7 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m);
 /* Fibre function S (hair.h convention); lobes: R (1), TT (2), TRT (4), TRRT+ (8). */
 void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double wo[3],
                         unsigned lobes, double s[3]);
-void abrdf__huang_eval(const abrdf_params *p, const double wi[3], const double wo[3], double f[3]);
+/* f_r for the surface from the model's setup (the dispatch entry, special.c). */
+void abrdf__huang_eval(const abrdf__huang *m, const double wi[3], const double wo[3], double f[3]);
 
 #endif /* ABRDF_HAIR_H */

@@ -543,13 +543,11 @@ void abrdf__huang_fibre(const abrdf__huang *m, const double wi_[3], const double
     for (int c = 0; c < 3; ++c) s[c] = (r + res[c]) / area;
 }
 
-void abrdf__huang_eval(const abrdf_params *p, const double wi[3], const double wo[3], double f[3])
+void abrdf__huang_eval(const abrdf__huang *m, const double wi[3], const double wo[3], double f[3])
 {
     f[0] = f[1] = f[2] = 0.0;
     if (!(wi[2] > 0.0 && wo[2] > 0.0)) return;
-    abrdf__huang m;
-    abrdf__huang_setup(p, &m);
     double s[3];
-    abrdf__huang_fibre(&m, wi, wo, 15u, s);
+    abrdf__huang_fibre(m, wi, wo, 15u, s);
     for (int c = 0; c < 3; ++c) f[c] = s[c] / wi[2]; /* f_r = S / |N.wi| */
 }

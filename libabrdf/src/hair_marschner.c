@@ -238,14 +238,12 @@ void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const
     }
 }
 
-void abrdf__marschner_eval(const abrdf_params *p, const double wi[3], const double wo[3],
+void abrdf__marschner_eval(const abrdf__marschner *m, const double wi[3], const double wo[3],
                            double f[3])
 {
     f[0] = f[1] = f[2] = 0.0;
     if (!(wi[2] > 0.0 && wo[2] > 0.0)) return;
-    abrdf__marschner m;
-    abrdf__marschner_setup(p, &m);
     double s[3];
-    abrdf__marschner_fibre(&m, wi, wo, 7u, s);
+    abrdf__marschner_fibre(m, wi, wo, 7u, s);
     for (int c = 0; c < 3; ++c) f[c] = s[c] / wi[2]; /* f_r = S / |N.wi| */
 }
