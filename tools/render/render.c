@@ -1,8 +1,10 @@
 /* render.c - the built-in ray tracer: camera rays, closest hits, direct lighting with the
- * library's scalar reference BRDFs, shadow rays where the effect plan (plan.c) lists an
- * occluder, box-filtered stratified supersampling, rows shared by pthreads. Each pixel is a
- * pure function of the scene and its coordinates, so the image is bit-identical for any
- * number of threads. */
+ * library's prepared BRDFs (the float batch path by default, the double scalar reference on
+ * request: render.h, render_precision), shadow rays where the effect plan (plan.c) lists an
+ * occluder, box-filtered stratified supersampling, rows shared by pthreads. A row is traced
+ * and shaded as one batch of hits (in chunks of RENDER_TILE samples), so each pixel is a
+ * pure function of the scene and its row: the image is bit-identical for any number of
+ * threads, in each precision. */
 #include <float.h>
 #include <math.h>
 #include <pthread.h>
@@ -93,6 +95,18 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         m->lobe_count = sm->lobe_count;
         memcpy(m->lobes, sm->lobes, sizeof m->lobes);
         m->params = sm->params;
+        /* Validate and precompute each lobe once: shading then evaluates with no check. */
+        for (int k = 0; k < m->lobe_count; ++k) {
+            int st = abrdf_prepare(m->lobes[k], &m->params, &m->prepared[k]);
+            if (st != ABRDF_OK) {
+                char msg[256];
+                abrdf_params_check(m->lobes[k], &m->params, msg, sizeof msg);
+                snprintf(err, err_size, "material '%s' (line %d): %s", sm->name, sm->line, msg);
+                render_release(rs);
+                return -1;
+            }
+            m->lobe_needs[k] = abrdf_model_get(m->lobes[k])->needs;
+        }
         plan_material(m, s->ambient, sm->ka);
     }
     for (int l = 0; l < s->light_count; ++l) {
@@ -161,37 +175,11 @@ int render_set_model(scene *s, abrdf_model model, char *err, size_t err_size)
     return 0;
 }
 
-/* ---- tracing ----------------------------------------------------------------------- */
+/* ---- shading ----------------------------------------------------------------------- */
 
-typedef struct worker {
-    const render_scene *rs;
-    const render_options *opt;
-    float *rgb;
-    render_stats stats;
-    pthread_mutex_t *lock;
-    int *next_row, *rows_done;
-} worker;
-
-/* Closest hit of a camera ray through pixel (i, j): only the objects the plan lists for
- * row j and whose column range holds i. */
-static int closest_hit(const render_scene *rs, int i, int j, const double o[3], const double d[3],
-                       double *t, double n[3], render_stats *st)
+const char *render_precision_name(int precision)
 {
-    int best = -1;
-    double tmax = INFINITY;
-    for (int q = rs->vis_start[j]; q < rs->vis_start[j + 1]; ++q) {
-        int k = rs->vis[q];
-        if (i < rs->vis_cols[2 * k] || i > rs->vis_cols[2 * k + 1]) continue;
-        double ti, ni[3];
-        ++st->primary_tests;
-        if (geom_intersect(&rs->objects[k], o, d, 0.0, tmax, &ti, ni)) {
-            tmax = ti;
-            best = k;
-            memcpy(n, ni, sizeof ni);
-        }
-    }
-    *t = tmax;
-    return best;
+    return precision == RENDER_DOUBLE ? "double" : "float";
 }
 
 /* Is the segment o + t d, t in (0, tmax), blocked by one of the listed occluders? */
@@ -228,70 +216,283 @@ static void iso_local(const double n[3], const double wi[3], const double wo[3],
     }
 }
 
-static void shade(const render_scene *rs, int obj, const double p[3], const double n[3],
-                  const double wo[3], double out[3], render_stats *st)
+static void to_local(const abrdf_frame *fr, const double v[3], double out[3])
 {
-    const scene_object *so = &rs->src->objects[obj];
+    out[0] = geom_dot(v, fr->t);
+    out[1] = geom_dot(v, fr->b);
+    out[2] = geom_dot(v, fr->n);
+}
+
+/* One light as seen from a hit: the direction to it, the irradiance factor E falloff cos_i,
+ * and whether it lights the point (in front, not shadowed as the plan says). */
+static int light_at(const render_scene *rs, int l, const render_hit *h, const double o[3],
+                    double wi[3], double w[3], render_stats *st)
+{
+    const render_light *lt = &rs->lights[l];
+    double d[3], tmax, falloff = 1.0;
+    if (lt->kind == SCENE_LIGHT_POINT) {
+        for (int k = 0; k < 3; ++k) d[k] = lt->position[k] - o[k];
+        double d2 = geom_dot(d, d);
+        if (!(d2 > 0)) return 0;
+        falloff = 1.0 / d2;
+        double inv = 1.0 / sqrt(d2);
+        for (int k = 0; k < 3; ++k) wi[k] = d[k] * inv;
+        tmax = 1.0; /* d spans the whole segment to the light */
+    } else {
+        memcpy(wi, lt->direction, 3 * sizeof *wi);
+        memcpy(d, wi, sizeof d);
+        tmax = INFINITY;
+    }
+    double ci = geom_dot(h->n, wi);
+    if (!(ci > 0)) return 0;
+    int no = rs->object_count;
+    int a = rs->occ_start[l * no + h->obj], b = rs->occ_start[l * no + h->obj + 1];
+    if (b > a) {
+        ++st->shadow_rays;
+        if (occluded(rs, rs->occ + a, b - a, o, d, tmax, st)) return 0;
+    } else {
+        ++st->shadow_rays_skipped;
+    }
+    for (int c = 0; c < 3; ++c) w[c] = lt->e[c] * falloff * ci;
+    return 1;
+}
+
+/* The ambient term, the shadow-ray origin and (for a material with a tangent rule) the
+ * shading frame of a hit; 0 if the hit is seen from behind (no direct light). */
+static int hit_begin(const render_scene *rs, const render_hit *h, double L[3], double o[3],
+                     abrdf_frame *frame, render_stats *st)
+{
+    const scene_object *so = &rs->src->objects[h->obj];
     const render_material *m = &rs->materials[so->material];
-    out[0] = out[1] = out[2] = 0;
-    int tangent = m->use_tangent || m->full;
+    L[0] = L[1] = L[2] = 0;
     if (m->use_ambient || m->full) {
-        for (int c = 0; c < 3; ++c) out[c] = m->ambient[c];
+        for (int c = 0; c < 3; ++c) L[c] = m->ambient[c];
         ++st->ambient_terms;
     }
-    if (!(geom_dot(n, wo) > 0)) return; /* seen from behind: no direct light reaches the eye */
-    double o[3] = {p[0] + rs->eps * n[0], p[1] + rs->eps * n[1], p[2] + rs->eps * n[2]};
+    if (!(geom_dot(h->n, h->wo) > 0)) return 0; /* seen from behind: no light reaches the eye */
+    for (int c = 0; c < 3; ++c) o[c] = h->p[c] + rs->eps * h->n[c];
+    if (m->use_tangent || m->full) {
+        double t[3];
+        geom_tangent(so, &rs->objects[h->obj].xf, h->p, t);
+        abrdf_frame_make(h->n, t, frame);
+        ++st->tangent_frames;
+    }
+    return 1;
+}
+
+static void count_evals(const render_material *m, unsigned long long pairs, render_stats *st)
+{
+    for (int k = 0; k < m->lobe_count; ++k) {
+        unsigned needs = m->lobe_needs[k];
+        st->brdf_evals += pairs;
+        st->fresnel_evals += (needs & ABRDF_NEEDS_FRESNEL) ? pairs : 0;
+        st->layer_evals += (needs & ABRDF_NEEDS_LAYERS) ? pairs : 0;
+        st->integration_evals += (needs & ABRDF_NEEDS_INTEGRATION) ? pairs : 0;
+    }
+}
+
+/* The double reference: every lobe per hit and light, abrdf_eval_prepared. */
+static void shade_double(const render_scene *rs, const render_hit *h, double out[3],
+                         render_stats *st)
+{
+    const render_material *m = &rs->materials[rs->src->objects[h->obj].material];
+    double o[3];
     abrdf_frame frame;
-    int have_frame = 0;
-    int no = rs->object_count;
+    if (!hit_begin(rs, h, out, o, &frame, st)) return;
+    int tangent = m->use_tangent || m->full;
     for (int l = 0; l < rs->light_count; ++l) {
-        const render_light *lt = &rs->lights[l];
-        double wi[3], d[3], tmax, falloff = 1.0;
-        if (lt->kind == SCENE_LIGHT_POINT) {
-            for (int k = 0; k < 3; ++k) d[k] = lt->position[k] - o[k];
-            double d2 = geom_dot(d, d);
-            if (!(d2 > 0)) continue;
-            falloff = 1.0 / d2;
-            memcpy(wi, d, sizeof wi);
-            normalize(wi);
-            tmax = 1.0; /* d spans the whole segment to the light */
-        } else {
-            memcpy(wi, lt->direction, sizeof wi);
-            memcpy(d, wi, sizeof d);
-            tmax = INFINITY;
-        }
-        double ci = geom_dot(n, wi);
-        if (!(ci > 0)) continue;
-        int a = rs->occ_start[l * no + obj], b = rs->occ_start[l * no + obj + 1];
-        if (b > a) {
-            ++st->shadow_rays;
-            if (occluded(rs, rs->occ + a, b - a, o, d, tmax, st)) continue;
-        } else {
-            ++st->shadow_rays_skipped;
-        }
-        double f[3] = {0, 0, 0}, fl[3], li[3], lo[3];
-        if (tangent && !have_frame) {
-            double t[3];
-            geom_tangent(so, &rs->objects[obj].xf, p, t);
-            abrdf_frame_make(n, t, &frame);
-            have_frame = 1;
-            ++st->tangent_frames;
-        }
-        if (!tangent) iso_local(n, wi, wo, li, lo);
+        double wi[3], w[3], f[3] = {0, 0, 0}, fl[3], li[3], lo[3];
+        if (!light_at(rs, l, h, o, wi, w, st)) continue;
+        if (!tangent) iso_local(h->n, wi, h->wo, li, lo);
         for (int k = 0; k < m->lobe_count; ++k) {
             if (tangent)
-                abrdf_eval(m->lobes[k], &m->params, &frame, wi, wo, fl);
+                abrdf_eval_prepared(&m->prepared[k], &frame, wi, h->wo, fl);
             else
-                abrdf_eval(m->lobes[k], &m->params, NULL, li, lo, fl);
-            unsigned needs = abrdf_model_get(m->lobes[k])->needs;
-            ++st->brdf_evals;
-            st->fresnel_evals += (needs & ABRDF_NEEDS_FRESNEL) != 0;
-            st->layer_evals += (needs & ABRDF_NEEDS_LAYERS) != 0;
-            st->integration_evals += (needs & ABRDF_NEEDS_INTEGRATION) != 0;
+                abrdf_eval_prepared(&m->prepared[k], NULL, li, lo, fl);
             for (int c = 0; c < 3; ++c) f[c] += fl[c];
         }
-        for (int c = 0; c < 3; ++c) out[c] += lt->e[c] * falloff * ci * f[c];
+        count_evals(m, 1, st);
+        for (int c = 0; c < 3; ++c) out[c] += w[c] * f[c];
     }
+}
+
+/* Lit (hit, light) pairs gathered for the float path, at most this many per batch. */
+#define RENDER_PAIRS_MAX 16384
+
+struct render_shade_scratch {
+    int pair_cap;          /* pairs per batch */
+    int *hit, *mat, *slot; /* per pair in gathering order: hit, material, sorted slot */
+    double *w;             /* per pair: E falloff cos_i (3) */
+    float *li, *lo;        /* per pair: local directions (3 each), gathering order */
+    float *ix, *iy, *iz, *ox, *oy, *oz; /* sorted by material: the batch inputs */
+    float *f[3], *acc[3];               /* sorted: one lobe's f_r, the sum over lobes */
+    int *start;                         /* per material: first sorted slot (material_count + 1) */
+};
+
+void render_shade_scratch_free(render_shade_scratch *sc)
+{
+    if (!sc) return;
+    free(sc->hit), free(sc->mat), free(sc->slot), free(sc->w), free(sc->li), free(sc->lo);
+    free(sc->ix), free(sc->iy), free(sc->iz), free(sc->ox), free(sc->oy), free(sc->oz);
+    for (int c = 0; c < 3; ++c) free(sc->f[c]), free(sc->acc[c]);
+    free(sc->start);
+    free(sc);
+}
+
+render_shade_scratch *render_shade_scratch_new(const render_scene *rs, int capacity)
+{
+    render_shade_scratch *sc = calloc(1, sizeof *sc);
+    if (!sc) return NULL;
+    long want = (long)(capacity > 0 ? capacity : 1) * (rs->light_count > 0 ? rs->light_count : 1);
+    long lights = rs->light_count > 0 ? rs->light_count : 1;
+    if (want > RENDER_PAIRS_MAX) want = RENDER_PAIRS_MAX > lights ? RENDER_PAIRS_MAX : lights;
+    size_t n = (size_t)want;
+    sc->pair_cap = (int)want;
+    sc->hit = malloc(n * sizeof *sc->hit), sc->mat = malloc(n * sizeof *sc->mat);
+    sc->slot = malloc(n * sizeof *sc->slot), sc->w = malloc(3 * n * sizeof *sc->w);
+    sc->li = malloc(3 * n * sizeof *sc->li), sc->lo = malloc(3 * n * sizeof *sc->lo);
+    sc->ix = malloc(n * sizeof(float)), sc->iy = malloc(n * sizeof(float));
+    sc->iz = malloc(n * sizeof(float)), sc->ox = malloc(n * sizeof(float));
+    sc->oy = malloc(n * sizeof(float)), sc->oz = malloc(n * sizeof(float));
+    int ok = sc->hit && sc->mat && sc->slot && sc->w && sc->li && sc->lo && sc->ix && sc->iy &&
+             sc->iz && sc->ox && sc->oy && sc->oz;
+    for (int c = 0; c < 3; ++c) {
+        sc->f[c] = malloc(n * sizeof(float)), sc->acc[c] = malloc(n * sizeof(float));
+        ok = ok && sc->f[c] && sc->acc[c];
+    }
+    sc->start = calloc((size_t)rs->material_count + 2, sizeof *sc->start);
+    if (!ok || !sc->start) {
+        render_shade_scratch_free(sc);
+        return NULL;
+    }
+    return sc;
+}
+
+/* Evaluate the gathered pairs: sort them by material (stable), run each lobe of a material
+ * over its pairs with the batch API, and add w * sum of lobes to each pair's hit. */
+static void flush_pairs(const render_scene *rs, int np, double (*L)[3], render_shade_scratch *sc,
+                        render_stats *st)
+{
+    int nm = rs->material_count;
+    int *start = sc->start;
+    memset(start, 0, ((size_t)nm + 2) * sizeof *start);
+    for (int q = 0; q < np; ++q) ++start[sc->mat[q] + 2];
+    for (int m = 0; m < nm; ++m) start[m + 2] += start[m + 1];
+    for (int q = 0; q < np; ++q) { /* start[m + 1] is material m's next free slot */
+        int s = start[sc->mat[q] + 1]++;
+        sc->slot[q] = s;
+        sc->ix[s] = sc->li[3 * q], sc->iy[s] = sc->li[3 * q + 1], sc->iz[s] = sc->li[3 * q + 2];
+        sc->ox[s] = sc->lo[3 * q], sc->oy[s] = sc->lo[3 * q + 1], sc->oz[s] = sc->lo[3 * q + 2];
+    }
+    /* now start[m] is material m's first slot and start[m + 1] its end */
+    for (int m = 0; m < nm; ++m) {
+        int a = start[m], n = start[m + 1] - a;
+        if (n == 0) continue;
+        const render_material *mat = &rs->materials[m];
+        for (int k = 0; k < mat->lobe_count; ++k) {
+            float **out = k == 0 ? sc->acc : sc->f;
+            abrdf_batch b = {(size_t)n,  sc->ix + a, sc->iy + a, sc->iz + a, sc->ox + a,
+                             sc->oy + a, sc->oz + a, out[0] + a, out[1] + a, out[2] + a};
+            abrdf_eval_prepared_batch(&mat->prepared[k], &b);
+            if (k > 0)
+                for (int c = 0; c < 3; ++c)
+                    for (int i = a; i < a + n; ++i) sc->acc[c][i] += sc->f[c][i];
+        }
+        count_evals(mat, (unsigned long long)n, st);
+    }
+    for (int q = 0; q < np; ++q) { /* gathering order: each hit's lights in light order */
+        int s = sc->slot[q];
+        double *out = L[sc->hit[q]];
+        for (int c = 0; c < 3; ++c) out[c] += sc->w[3 * q + c] * (double)sc->acc[c][s];
+    }
+}
+
+/* The float path: lit pairs gathered over the batch, evaluated per material and lobe. */
+static void shade_float(const render_scene *rs, const render_hit *hits, int count, double (*L)[3],
+                        render_shade_scratch *sc, render_stats *st)
+{
+    int np = 0;
+    for (int h = 0; h < count; ++h) {
+        const render_hit *hit = &hits[h];
+        int mi = rs->src->objects[hit->obj].material;
+        const render_material *m = &rs->materials[mi];
+        double o[3];
+        abrdf_frame frame;
+        if (!hit_begin(rs, hit, L[h], o, &frame, st)) continue;
+        if (np + rs->light_count > sc->pair_cap) { /* full: evaluate what is gathered */
+            flush_pairs(rs, np, L, sc, st);
+            np = 0;
+        }
+        int tangent = m->use_tangent || m->full;
+        for (int l = 0; l < rs->light_count; ++l) {
+            double wi[3], li[3], lo[3];
+            if (!light_at(rs, l, hit, o, wi, sc->w + 3 * np, st)) continue;
+            if (tangent) {
+                to_local(&frame, wi, li);
+                to_local(&frame, hit->wo, lo);
+            } else {
+                iso_local(hit->n, wi, hit->wo, li, lo);
+            }
+            for (int c = 0; c < 3; ++c) {
+                sc->li[3 * np + c] = (float)li[c];
+                sc->lo[3 * np + c] = (float)lo[c];
+            }
+            sc->hit[np] = h;
+            sc->mat[np] = mi;
+            ++np;
+        }
+    }
+    if (np) flush_pairs(rs, np, L, sc, st);
+}
+
+void render_shade_hits(const render_scene *rs, const render_options *opt, const render_hit *hits,
+                       int count, double (*L)[3], render_shade_scratch *sc, render_stats *st)
+{
+    if (opt->precision == RENDER_DOUBLE) {
+        for (int h = 0; h < count; ++h) shade_double(rs, &hits[h], L[h], st);
+    } else {
+        shade_float(rs, hits, count, L, sc, st);
+    }
+}
+
+/* ---- tracing ----------------------------------------------------------------------- */
+
+#define RENDER_TILE 1024 /* camera samples traced, then shaded, as one batch */
+
+typedef struct worker {
+    const render_scene *rs;
+    const render_options *opt;
+    float *rgb;
+    render_stats stats;
+    pthread_mutex_t *lock;
+    int *next_row, *rows_done;
+    render_shade_scratch *scratch;
+    render_hit *hits;
+    int *hit_pixel; /* per hit: pixel column */
+    double (*L)[3]; /* per hit: radiance */
+    double *sum;    /* per pixel of a row: 3 sums */
+} worker;
+
+/* Closest hit of a camera ray through pixel (i, j): only the objects the plan lists for
+ * row j and whose column range holds i. */
+static int closest_hit(const render_scene *rs, int i, int j, const double o[3], const double d[3],
+                       double *t, double n[3], render_stats *st)
+{
+    int best = -1;
+    double tmax = INFINITY;
+    for (int q = rs->vis_start[j]; q < rs->vis_start[j + 1]; ++q) {
+        int k = rs->vis[q];
+        if (i < rs->vis_cols[2 * k] || i > rs->vis_cols[2 * k + 1]) continue;
+        double ti, ni[3];
+        ++st->primary_tests;
+        if (geom_intersect(&rs->objects[k], o, d, 0.0, tmax, &ti, ni)) {
+            tmax = ti;
+            best = k;
+            memcpy(n, ni, sizeof ni);
+        }
+    }
+    *t = tmax;
+    return best;
 }
 
 /* Deterministic hash of (pixel, sample, dimension) -> [0, 1), for jittered strata. */
@@ -304,40 +505,53 @@ static double hash01(uint64_t x)
     return (double)(x >> 11) * (1.0 / 9007199254740992.0);
 }
 
-static void render_row(const render_scene *rs, const render_options *opt, int j, float *row,
-                       render_stats *st)
+/* Row j: camera samples in pixel order (column, then stratum row, then stratum column),
+ * traced and shaded RENDER_TILE at a time; each pixel sums its samples in that order. */
+static void render_row(worker *w, int j, float *row)
 {
+    const render_scene *rs = w->rs;
+    const render_options *opt = w->opt;
+    render_stats *st = &w->stats;
     int k = (int)lround(sqrt((double)opt->spp));
-    for (int i = 0; i < rs->width; ++i) {
-        double sum[3] = {0, 0, 0};
-        for (int sy = 0; sy < k; ++sy)
-            for (int sx = 0; sx < k; ++sx) {
-                double u = 0.5, v = 0.5;
-                if (opt->jitter) {
-                    uint64_t id =
-                        ((uint64_t)j * (uint64_t)rs->width + (uint64_t)i) * (uint64_t)opt->spp +
-                        (uint64_t)(sy * k + sx);
-                    u = hash01(2 * id), v = hash01(2 * id + 1);
-                }
-                double x = i + (sx + u) / k, y = j + (sy + v) / k;
-                double px = 2.0 * x / rs->width - 1.0, py = 1.0 - 2.0 * y / rs->height;
-                double d[3];
-                for (int c = 0; c < 3; ++c)
-                    d[c] = rs->forward[c] + px * rs->right[c] + py * rs->up[c];
-                normalize(d);
-                ++st->primary_rays;
-                double t, n[3];
-                int obj = closest_hit(rs, i, j, rs->eye, d, &t, n, st);
-                if (obj < 0) continue; /* background is black */
-                ++st->hits;
-                double p[3], wo[3] = {-d[0], -d[1], -d[2]}, L[3];
-                for (int c = 0; c < 3; ++c) p[c] = rs->eye[c] + t * d[c];
-                shade(rs, obj, p, n, wo, L, st);
-                for (int c = 0; c < 3; ++c) sum[c] += L[c];
+    double inv_k = 1.0 / k, sx2 = 2.0 / rs->width, sy2 = 2.0 / rs->height;
+    long total = (long)rs->width * opt->spp;
+    memset(w->sum, 0, (size_t)rs->width * 3 * sizeof *w->sum);
+    for (long s0 = 0; s0 < total; s0 += RENDER_TILE) {
+        long s1 = s0 + RENDER_TILE < total ? s0 + RENDER_TILE : total;
+        int nh = 0;
+        for (long s = s0; s < s1; ++s) {
+            int i = (int)(s / opt->spp), q = (int)(s % opt->spp), sy = q / k, sx = q % k;
+            double u = 0.5, v = 0.5;
+            if (opt->jitter) {
+                uint64_t id =
+                    ((uint64_t)j * (uint64_t)rs->width + (uint64_t)i) * (uint64_t)opt->spp +
+                    (uint64_t)q;
+                u = hash01(2 * id), v = hash01(2 * id + 1);
             }
-        /* A point light on a surface is an infinite irradiance: keep the file finite. */
-        for (int c = 0; c < 3; ++c) row[3 * i + c] = (float)fmin(sum[c] / opt->spp, FLT_MAX);
+            double x = i + (sx + u) * inv_k, y = j + (sy + v) * inv_k;
+            double px = x * sx2 - 1.0, py = 1.0 - y * sy2;
+            double d[3];
+            for (int c = 0; c < 3; ++c) d[c] = rs->forward[c] + px * rs->right[c] + py * rs->up[c];
+            double inv = 1.0 / sqrt(geom_dot(d, d)); /* one divide per ray, not three */
+            for (int c = 0; c < 3; ++c) d[c] *= inv;
+            ++st->primary_rays;
+            double t;
+            render_hit *h = &w->hits[nh];
+            int obj = closest_hit(rs, i, j, rs->eye, d, &t, h->n, st);
+            if (obj < 0) continue; /* background is black */
+            ++st->hits;
+            h->obj = obj;
+            for (int c = 0; c < 3; ++c) h->p[c] = rs->eye[c] + t * d[c], h->wo[c] = -d[c];
+            w->hit_pixel[nh++] = i;
+        }
+        render_shade_hits(rs, opt, w->hits, nh, w->L, w->scratch, st);
+        for (int h = 0; h < nh; ++h)
+            for (int c = 0; c < 3; ++c) w->sum[3 * w->hit_pixel[h] + c] += w->L[h][c];
     }
+    /* A point light on a surface is an infinite irradiance: keep the file finite. */
+    for (int i = 0; i < rs->width; ++i)
+        for (int c = 0; c < 3; ++c)
+            row[3 * i + c] = (float)fmin(w->sum[3 * i + c] / opt->spp, FLT_MAX);
 }
 
 static void progress(int done, int total)
@@ -358,7 +572,7 @@ static void *work(void *arg)
         int j = (*w->next_row)++;
         pthread_mutex_unlock(w->lock);
         if (j >= rs->height) break;
-        render_row(rs, w->opt, j, w->rgb + (size_t)j * (size_t)rs->width * 3, &w->stats);
+        render_row(w, j, w->rgb + (size_t)j * (size_t)rs->width * 3);
         if (w->opt->progress) {
             pthread_mutex_lock(w->lock);
             progress(++*w->rows_done, rs->height);
@@ -384,6 +598,25 @@ static void add_stats(render_stats *a, const render_stats *b)
     a->ambient_terms += b->ambient_terms;
 }
 
+static void worker_free(worker *w)
+{
+    render_shade_scratch_free(w->scratch);
+    free(w->hits), free(w->hit_pixel), free(w->L), free(w->sum);
+}
+
+/* The per-thread memory of a worker; 0 or -1 (out of memory, nothing left allocated). */
+static int worker_alloc(worker *w)
+{
+    w->scratch = render_shade_scratch_new(w->rs, RENDER_TILE);
+    w->hits = malloc(RENDER_TILE * sizeof *w->hits);
+    w->hit_pixel = malloc(RENDER_TILE * sizeof *w->hit_pixel);
+    w->L = malloc(RENDER_TILE * sizeof *w->L);
+    w->sum = malloc((size_t)w->rs->width * 3 * sizeof *w->sum);
+    if (w->scratch && w->hits && w->hit_pixel && w->L && w->sum) return 0;
+    worker_free(w);
+    return -1;
+}
+
 int render_image(const render_scene *rs, const render_options *opt, float *rgb, render_stats *stats)
 {
     long k = lround(sqrt((double)opt->spp));
@@ -395,8 +628,19 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb, 
     int next_row = 0, rows_done = 0, started = 0;
     if (pthread_mutex_init(&lock, NULL)) return -1;
     for (int t = 0; t < nt; ++t) {
-        w[t] = (worker){rs, opt, rgb, {0}, &lock, &next_row, &rows_done};
-        if (t > 0 && pthread_create(&th[t], NULL, work, &w[t])) break;
+        w[t] =
+            (worker){rs, opt, rgb, {0}, &lock, &next_row, &rows_done, NULL, NULL, NULL, NULL, NULL};
+        if (worker_alloc(&w[t])) {
+            if (t == 0) {
+                pthread_mutex_destroy(&lock);
+                return -1;
+            }
+            break;
+        }
+        if (t > 0 && pthread_create(&th[t], NULL, work, &w[t])) {
+            worker_free(&w[t]);
+            break;
+        }
         started = t + 1;
     }
     work(&w[0]); /* the calling thread works too; rows left by failed starts are done here */
@@ -406,6 +650,7 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb, 
         memset(stats, 0, sizeof *stats);
         for (int t = 0; t < started; ++t) add_stats(stats, &w[t].stats);
     }
+    for (int t = 0; t < started; ++t) worker_free(&w[t]);
     return 0;
 }
 
