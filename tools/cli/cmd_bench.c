@@ -65,7 +65,9 @@ static int usage(void)
            "  --plot FILE    write the Pareto plot (robot NMSE vs float cost) as SVG\n"
            "  --quick        fewer and shorter repetitions, small renders (for tests)\n"
            "  --render       instead: robot with full Disney vs adaptive photoreal and\n"
-           "                 performance: render time ratios and NMSE per material\n"
+           "                 performance: render time ratios and NMSE per material; then\n"
+           "                 each lobe's cost in a 16-light robot render (1 thread, 256x256)\n"
+           "                 beside its per-eval cost, and the BRDFs' share of render time\n"
            "  --size N       image size of the renders (default 128; --render: the scene's)\n"
            "  --threads N    render threads (default: online CPUs)\n"
            "  --reps N       timed repetitions (default 7, quick 3)\n");
@@ -512,7 +514,7 @@ int cmd_bench(int argc, char **argv)
                                    (int)(reps    ? reps
                                          : quick ? 1
                                                  : 5),
-                                   (int)threads);
+                                   (int)threads, quick ? 24 : 256, quick);
     if (!size) size = quick ? 48 : 128;
 
     measure_opts mo;

@@ -292,8 +292,8 @@ static void count_evals(const render_material *m, unsigned long long pairs, rend
 }
 
 /* The double reference: every lobe per hit and light, abrdf_eval_prepared. */
-static void shade_double(const render_scene *rs, const render_hit *h, double out[3],
-                         render_stats *st)
+static void shade_double(const render_scene *rs, const render_options *opt, const render_hit *h,
+                         double out[3], render_stats *st)
 {
     const render_material *m = &rs->materials[rs->src->objects[h->obj].material];
     double o[3];
@@ -304,7 +304,7 @@ static void shade_double(const render_scene *rs, const render_hit *h, double out
         double wi[3], w[3], f[3] = {0, 0, 0}, fl[3], li[3], lo[3];
         if (!light_at(rs, l, h, o, wi, w, st)) continue;
         if (!tangent) iso_local(h->n, wi, h->wo, li, lo);
-        for (int k = 0; k < m->lobe_count; ++k) {
+        for (int k = 0; k < m->lobe_count && !opt->free_brdf; ++k) {
             if (tangent)
                 abrdf_eval_prepared(&m->prepared[k], &frame, wi, h->wo, fl);
             else
@@ -370,8 +370,8 @@ render_shade_scratch *render_shade_scratch_new(const render_scene *rs, int capac
 
 /* Evaluate the gathered pairs: sort them by material (stable), run each lobe of a material
  * over its pairs with the batch API, and add w * sum of lobes to each pair's hit. */
-static void flush_pairs(const render_scene *rs, int np, double (*L)[3], render_shade_scratch *sc,
-                        render_stats *st)
+static void flush_pairs(const render_scene *rs, const render_options *opt, int np, double (*L)[3],
+                        render_shade_scratch *sc, render_stats *st)
 {
     int nm = rs->material_count;
     int *start = sc->start;
@@ -393,7 +393,10 @@ static void flush_pairs(const render_scene *rs, int np, double (*L)[3], render_s
             float **out = k == 0 ? sc->acc : sc->f;
             abrdf_batch b = {(size_t)n,  sc->ix + a, sc->iy + a, sc->iz + a, sc->ox + a,
                              sc->oy + a, sc->oz + a, out[0] + a, out[1] + a, out[2] + a};
-            abrdf_eval_prepared_batch(&mat->prepared[k], &b);
+            if (opt->free_brdf)
+                for (int c = 0; c < 3; ++c) memset(out[c] + a, 0, (size_t)n * sizeof(float));
+            else
+                abrdf_eval_prepared_batch(&mat->prepared[k], &b);
             if (k > 0)
                 for (int c = 0; c < 3; ++c)
                     for (int i = a; i < a + n; ++i) sc->acc[c][i] += sc->f[c][i];
@@ -408,8 +411,8 @@ static void flush_pairs(const render_scene *rs, int np, double (*L)[3], render_s
 }
 
 /* The float path: lit pairs gathered over the batch, evaluated per material and lobe. */
-static void shade_float(const render_scene *rs, const render_hit *hits, int count, double (*L)[3],
-                        render_shade_scratch *sc, render_stats *st)
+static void shade_float(const render_scene *rs, const render_options *opt, const render_hit *hits,
+                        int count, double (*L)[3], render_shade_scratch *sc, render_stats *st)
 {
     int np = 0;
     for (int h = 0; h < count; ++h) {
@@ -420,7 +423,7 @@ static void shade_float(const render_scene *rs, const render_hit *hits, int coun
         abrdf_frame frame;
         if (!hit_begin(rs, hit, L[h], o, &frame, st)) continue;
         if (np + rs->light_count > sc->pair_cap) { /* full: evaluate what is gathered */
-            flush_pairs(rs, np, L, sc, st);
+            flush_pairs(rs, opt, np, L, sc, st);
             np = 0;
         }
         int tangent = m->use_tangent || m->full;
@@ -442,16 +445,16 @@ static void shade_float(const render_scene *rs, const render_hit *hits, int coun
             ++np;
         }
     }
-    if (np) flush_pairs(rs, np, L, sc, st);
+    if (np) flush_pairs(rs, opt, np, L, sc, st);
 }
 
 void render_shade_hits(const render_scene *rs, const render_options *opt, const render_hit *hits,
                        int count, double (*L)[3], render_shade_scratch *sc, render_stats *st)
 {
     if (opt->precision == RENDER_DOUBLE) {
-        for (int h = 0; h < count; ++h) shade_double(rs, &hits[h], L[h], st);
+        for (int h = 0; h < count; ++h) shade_double(rs, opt, &hits[h], L[h], st);
     } else {
-        shade_float(rs, hits, count, L, sc, st);
+        shade_float(rs, opt, hits, count, L, sc, st);
     }
 }
 

@@ -104,6 +104,8 @@ typedef struct render_options {
     int threads;       /* >= 1 */
     int progress;      /* draw a progress bar on stderr */
     int precision;     /* render_precision: RENDER_FLOAT (0, the default) or RENDER_DOUBLE */
+    int free_brdf;     /* benchmarks only: do all the shading work but call no BRDF (f_r = 0),
+                          so that time minus this render's is the BRDFs' (abrdf bench --render) */
 } render_options;
 
 /* A camera-ray hit to shade: object, point, unit normal and unit direction to the viewer. */
