@@ -39,6 +39,7 @@ void render_release(render_scene *rs)
     free(rs->vis_start);
     free(rs->vis);
     free(rs->vis_cols);
+    free(rs->eye_origin);
     memset(rs, 0, sizeof *rs);
 }
 
@@ -66,7 +67,8 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     rs->objects = calloc((size_t)s->object_count, sizeof *rs->objects);
     rs->materials = calloc((size_t)s->material_count + 1, sizeof *rs->materials);
     rs->lights = calloc((size_t)s->light_count + 1, sizeof *rs->lights);
-    if (!rs->objects || !rs->materials || !rs->lights) goto oom;
+    rs->eye_origin = calloc((size_t)s->object_count + 1, sizeof *rs->eye_origin);
+    if (!rs->objects || !rs->materials || !rs->lights || !rs->eye_origin) goto oom;
 
     /* Camera: right and up scaled so that raster corners land on the plane's corners. */
     const scene_camera *c = &s->camera;
@@ -83,6 +85,7 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     for (int i = 0; i < s->object_count; ++i) {
         geom_object_make(&s->objects[i], &rs->objects[i]);
         const geom_object *g = &rs->objects[i];
+        geom_origin_make(g, rs->eye, &rs->eye_origin[i]);
         extent = fmax(extent, sqrt(geom_dot(g->center, g->center)) + g->bound);
         rs->materials[s->objects[i].material].used = 1;
     }
@@ -476,10 +479,10 @@ typedef struct worker {
     double *sum;    /* per pixel of a row: 3 sums */
 } worker;
 
-/* Closest hit of a camera ray through pixel (i, j): only the objects the plan lists for
- * row j and whose column range holds i. */
-static int closest_hit(const render_scene *rs, int i, int j, const double o[3], const double d[3],
-                       double *t, double n[3], render_stats *st)
+/* Closest hit of a camera ray (from the eye) through pixel (i, j): only the objects the plan
+ * lists for row j and whose column range holds i. */
+static int closest_hit(const render_scene *rs, int i, int j, const double d[3], double *t,
+                       double n[3], render_stats *st)
 {
     int best = -1;
     double tmax = INFINITY;
@@ -488,7 +491,7 @@ static int closest_hit(const render_scene *rs, int i, int j, const double o[3], 
         if (i < rs->vis_cols[2 * k] || i > rs->vis_cols[2 * k + 1]) continue;
         double ti, ni[3];
         ++st->primary_tests;
-        if (geom_intersect(&rs->objects[k], o, d, 0.0, tmax, &ti, ni)) {
+        if (geom_intersect_from(&rs->objects[k], &rs->eye_origin[k], d, 0.0, tmax, &ti, ni)) {
             tmax = ti;
             best = k;
             memcpy(n, ni, sizeof ni);
@@ -508,49 +511,53 @@ static double hash01(uint64_t x)
     return (double)(x >> 11) * (1.0 / 9007199254740992.0);
 }
 
+/* Shade the hits gathered so far and add each to its pixel's sum. */
+static void flush_hits(worker *w, int nh)
+{
+    render_shade_hits(w->rs, w->opt, w->hits, nh, w->L, w->scratch, &w->stats);
+    for (int h = 0; h < nh; ++h)
+        for (int c = 0; c < 3; ++c) w->sum[3 * w->hit_pixel[h] + c] += w->L[h][c];
+}
+
 /* Row j: camera samples in pixel order (column, then stratum row, then stratum column),
- * traced and shaded RENDER_TILE at a time; each pixel sums its samples in that order. */
+ * traced, and shaded RENDER_TILE hits at a time; each pixel sums its samples in that order. */
 static void render_row(worker *w, int j, float *row)
 {
     const render_scene *rs = w->rs;
     const render_options *opt = w->opt;
     render_stats *st = &w->stats;
-    int k = (int)lround(sqrt((double)opt->spp));
+    int k = (int)lround(sqrt((double)opt->spp)), nh = 0;
     double inv_k = 1.0 / k, sx2 = 2.0 / rs->width, sy2 = 2.0 / rs->height;
-    long total = (long)rs->width * opt->spp;
     memset(w->sum, 0, (size_t)rs->width * 3 * sizeof *w->sum);
-    for (long s0 = 0; s0 < total; s0 += RENDER_TILE) {
-        long s1 = s0 + RENDER_TILE < total ? s0 + RENDER_TILE : total;
-        int nh = 0;
-        for (long s = s0; s < s1; ++s) {
-            int i = (int)(s / opt->spp), q = (int)(s % opt->spp), sy = q / k, sx = q % k;
-            double u = 0.5, v = 0.5;
-            if (opt->jitter) {
-                uint64_t id =
-                    ((uint64_t)j * (uint64_t)rs->width + (uint64_t)i) * (uint64_t)opt->spp +
-                    (uint64_t)q;
-                u = hash01(2 * id), v = hash01(2 * id + 1);
+    for (int i = 0; i < rs->width; ++i)
+        for (int sy = 0, q = 0; sy < k; ++sy)
+            for (int sx = 0; sx < k; ++sx, ++q) {
+                double u = 0.5, v = 0.5;
+                if (opt->jitter) {
+                    uint64_t id =
+                        ((uint64_t)j * (uint64_t)rs->width + (uint64_t)i) * (uint64_t)opt->spp +
+                        (uint64_t)q;
+                    u = hash01(2 * id), v = hash01(2 * id + 1);
+                }
+                double x = i + (sx + u) * inv_k, y = j + (sy + v) * inv_k;
+                double px = x * sx2 - 1.0, py = 1.0 - y * sy2;
+                double d[3];
+                for (int c = 0; c < 3; ++c)
+                    d[c] = rs->forward[c] + px * rs->right[c] + py * rs->up[c];
+                double inv = 1.0 / sqrt(geom_dot(d, d)); /* one divide per ray, not three */
+                for (int c = 0; c < 3; ++c) d[c] *= inv;
+                ++st->primary_rays;
+                double t;
+                render_hit *h = &w->hits[nh];
+                int obj = closest_hit(rs, i, j, d, &t, h->n, st);
+                if (obj < 0) continue; /* background is black */
+                ++st->hits;
+                h->obj = obj;
+                for (int c = 0; c < 3; ++c) h->p[c] = rs->eye[c] + t * d[c], h->wo[c] = -d[c];
+                w->hit_pixel[nh++] = i;
+                if (nh == RENDER_TILE) flush_hits(w, nh), nh = 0;
             }
-            double x = i + (sx + u) * inv_k, y = j + (sy + v) * inv_k;
-            double px = x * sx2 - 1.0, py = 1.0 - y * sy2;
-            double d[3];
-            for (int c = 0; c < 3; ++c) d[c] = rs->forward[c] + px * rs->right[c] + py * rs->up[c];
-            double inv = 1.0 / sqrt(geom_dot(d, d)); /* one divide per ray, not three */
-            for (int c = 0; c < 3; ++c) d[c] *= inv;
-            ++st->primary_rays;
-            double t;
-            render_hit *h = &w->hits[nh];
-            int obj = closest_hit(rs, i, j, rs->eye, d, &t, h->n, st);
-            if (obj < 0) continue; /* background is black */
-            ++st->hits;
-            h->obj = obj;
-            for (int c = 0; c < 3; ++c) h->p[c] = rs->eye[c] + t * d[c], h->wo[c] = -d[c];
-            w->hit_pixel[nh++] = i;
-        }
-        render_shade_hits(rs, opt, w->hits, nh, w->L, w->scratch, st);
-        for (int h = 0; h < nh; ++h)
-            for (int c = 0; c < 3; ++c) w->sum[3 * w->hit_pixel[h] + c] += w->L[h][c];
-    }
+    if (nh) flush_hits(w, nh);
     /* A point light on a surface is an infinite irradiance: keep the file finite. */
     for (int i = 0; i < rs->width; ++i)
         for (int c = 0; c < 3; ++c)

@@ -94,7 +94,8 @@ typedef struct render_scene {
      * vis[vis_start[j] .. vis_start[j+1]), in object order; object k covers columns
      * [vis_cols[2k], vis_cols[2k+1]]. */
     int *vis_start, *vis, *vis_cols;
-    int full; /* render_plan_ignore was applied */
+    geom_origin *eye_origin; /* per object: what every camera ray shares against it */
+    int full;                /* render_plan_ignore was applied */
 } render_scene;
 
 typedef struct render_options {
