@@ -113,8 +113,8 @@ static int quad_roots(double a, double b, double c, double r[2])
     /* Numerically stable pair: q = -(b + sign(b) sq). */
     double q = -(b + (b >= 0 ? sq : -sq));
     double t0 = q / a, t1 = q != 0 ? c / q : t0;
-    r[0] = fmin(t0, t1);
-    r[1] = fmax(t0, t1);
+    r[0] = t0 < t1 ? t0 : t1; /* finite here: plain selects, not libm's fmin/fmax calls */
+    r[1] = t0 < t1 ? t1 : t0;
     return 1;
 }
 
@@ -264,15 +264,13 @@ void geom_origin_make(const geom_object *g, const double o[3], geom_origin *go)
 }
 
 int geom_intersect_from(const geom_object *g, const geom_origin *go, const double d[3], double tmin,
-                        double tmax, double *t, double n_world[3])
+                        double tmax, double *t, double n_local[3])
 {
     /* A sphere is its own bounding ball: its exact test is the cheaper rejection. */
     if (g->shape != SCENE_SPHERE && !bound_test(go->oc, go->c, d, tmin, tmax)) return 0;
-    double ld[3], ln[3];
+    double ld[3];
     geom_xform_vector(g->xf.inv, d, ld);
-    if (!geom_intersect_local(g, go->local, ld, tmin, tmax, t, ln)) return 0;
-    if (n_world) geom_xform_normal(&g->xf, ln, n_world);
-    return 1;
+    return geom_intersect_local(g, go->local, ld, tmin, tmax, t, n_local);
 }
 
 int geom_intersect(const geom_object *g, const double o[3], const double d[3], double tmin,

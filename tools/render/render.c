@@ -200,19 +200,33 @@ static int occluded(const render_scene *rs, const int *occ, int count, const dou
 }
 
 /* Local-frame directions for an isotropic lobe: only the polar angles and the azimuth
- * difference matter, so the x axis is put along the view's tangential part. */
-static void iso_local(const double n[3], const double wi[3], const double wo[3], double li[3],
+ * difference matter, so the x axis is put along the view's tangential part. The view's part
+ * (iso_view) is computed once per hit, the light's (iso_local) per light. */
+typedef struct iso_view {
+    double co, ot[3];  /* N.wo and wo's tangential part */
+    double so, inv_so; /* |ot| and 1/|ot| */
+} iso_view;
+
+static void iso_view_make(const double n[3], const double wo[3], iso_view *v)
+{
+    v->co = geom_dot(n, wo);
+    for (int k = 0; k < 3; ++k) v->ot[k] = wo[k] - v->co * n[k];
+    v->so = sqrt(geom_dot(v->ot, v->ot));
+    v->inv_so = v->so > 1e-12 ? 1.0 / v->so : 0.0;
+}
+
+static void iso_local(const double n[3], const iso_view *v, const double wi[3], double li[3],
                       double lo[3])
 {
-    double co = geom_dot(n, wo), ci = geom_dot(n, wi);
-    double ot[3] = {wo[0] - co * n[0], wo[1] - co * n[1], wo[2] - co * n[2]};
+    double ci = geom_dot(n, wi);
     double it[3] = {wi[0] - ci * n[0], wi[1] - ci * n[1], wi[2] - ci * n[2]};
-    double so = sqrt(geom_dot(ot, ot)), si2 = geom_dot(it, it);
+    double si2 = geom_dot(it, it);
     /* 1e-12: below this wo is along N and its azimuth is undefined. */
-    if (so > 1e-12) {
-        double x = geom_dot(it, ot) / so;
-        lo[0] = so, lo[1] = 0, lo[2] = co;
-        li[0] = x, li[1] = sqrt(fmax(0.0, si2 - x * x)), li[2] = ci;
+    if (v->so > 1e-12) {
+        double x = geom_dot(it, v->ot) * v->inv_so;
+        lo[0] = v->so, lo[1] = 0, lo[2] = v->co;
+        double y2 = si2 - x * x;
+        li[0] = x, li[1] = sqrt(y2 > 0.0 ? y2 : 0.0), li[2] = ci;
     } else {
         lo[0] = 0, lo[1] = 0, lo[2] = 1;
         li[0] = sqrt(si2), li[1] = 0, li[2] = ci;
@@ -237,8 +251,8 @@ static int light_at(const render_scene *rs, int l, const render_hit *h, const do
         for (int k = 0; k < 3; ++k) d[k] = lt->position[k] - o[k];
         double d2 = geom_dot(d, d);
         if (!(d2 > 0)) return 0;
-        falloff = 1.0 / d2;
-        double inv = 1.0 / sqrt(d2);
+        double inv = 1.0 / sqrt(d2); /* one divide for both */
+        falloff = inv * inv;
         for (int k = 0; k < 3; ++k) wi[k] = d[k] * inv;
         tmax = 1.0; /* d spans the whole segment to the light */
     } else {
@@ -303,10 +317,12 @@ static void shade_double(const render_scene *rs, const render_options *opt, cons
     abrdf_frame frame;
     if (!hit_begin(rs, h, out, o, &frame, st)) return;
     int tangent = m->use_tangent || m->full;
+    iso_view view;
+    if (!tangent) iso_view_make(h->n, h->wo, &view);
     for (int l = 0; l < rs->light_count; ++l) {
         double wi[3], w[3], f[3] = {0, 0, 0}, fl[3], li[3], lo[3];
         if (!light_at(rs, l, h, o, wi, w, st)) continue;
-        if (!tangent) iso_local(h->n, wi, h->wo, li, lo);
+        if (!tangent) iso_local(h->n, &view, wi, li, lo);
         for (int k = 0; k < m->lobe_count && !opt->free_brdf; ++k) {
             if (tangent)
                 abrdf_eval_prepared(&m->prepared[k], &frame, wi, h->wo, fl);
@@ -430,6 +446,8 @@ static void shade_float(const render_scene *rs, const render_options *opt, const
             np = 0;
         }
         int tangent = m->use_tangent || m->full;
+        iso_view view;
+        if (!tangent) iso_view_make(hit->n, hit->wo, &view);
         for (int l = 0; l < rs->light_count; ++l) {
             double wi[3], li[3], lo[3];
             if (!light_at(rs, l, hit, o, wi, sc->w + 3 * np, st)) continue;
@@ -437,7 +455,7 @@ static void shade_float(const render_scene *rs, const render_options *opt, const
                 to_local(&frame, wi, li);
                 to_local(&frame, hit->wo, lo);
             } else {
-                iso_local(hit->n, wi, hit->wo, li, lo);
+                iso_local(hit->n, &view, wi, li, lo);
             }
             for (int c = 0; c < 3; ++c) {
                 sc->li[3 * np + c] = (float)li[c];
@@ -463,7 +481,8 @@ void render_shade_hits(const render_scene *rs, const render_options *opt, const 
 
 /* ---- tracing ----------------------------------------------------------------------- */
 
-#define RENDER_TILE 1024 /* camera samples traced, then shaded, as one batch */
+#define RENDER_TILE 1024 /* hits shaded as one batch */
+#define RENDER_RAYS 256  /* camera rays generated as one batch */
 
 typedef struct worker {
     const render_scene *rs;
@@ -477,6 +496,8 @@ typedef struct worker {
     int *hit_pixel; /* per hit: pixel column */
     double (*L)[3]; /* per hit: radiance */
     double *sum;    /* per pixel of a row: 3 sums */
+    double *ray;    /* RENDER_RAYS camera rays: plane x, y, then direction x, y, z */
+    int *ray_pixel; /* per camera ray: pixel column */
 } worker;
 
 /* Closest hit of a camera ray (from the eye) through pixel (i, j): only the objects the plan
@@ -485,7 +506,7 @@ static int closest_hit(const render_scene *rs, int i, int j, const double d[3], 
                        double n[3], render_stats *st)
 {
     int best = -1;
-    double tmax = INFINITY;
+    double tmax = INFINITY, nl[3];
     for (int q = rs->vis_start[j]; q < rs->vis_start[j + 1]; ++q) {
         int k = rs->vis[q];
         if (i < rs->vis_cols[2 * k] || i > rs->vis_cols[2 * k + 1]) continue;
@@ -494,10 +515,11 @@ static int closest_hit(const render_scene *rs, int i, int j, const double d[3], 
         if (geom_intersect_from(&rs->objects[k], &rs->eye_origin[k], d, 0.0, tmax, &ti, ni)) {
             tmax = ti;
             best = k;
-            memcpy(n, ni, sizeof ni);
+            memcpy(nl, ni, sizeof ni);
         }
     }
     *t = tmax;
+    if (best >= 0) geom_xform_normal(&rs->objects[best].xf, nl, n);
     return best;
 }
 
@@ -519,15 +541,56 @@ static void flush_hits(worker *w, int nh)
         for (int c = 0; c < 3; ++c) w->sum[3 * w->hit_pixel[h] + c] += w->L[h][c];
 }
 
+/* Unit directions of camera rays through plane points (px[s], py[s]): one loop over SoA
+ * arrays that the compiler vectorises (sqrt and divide in packed form). */
+static void camera_dirs(const render_scene *rs, int n, const double *restrict px,
+                        const double *restrict py, double *restrict dx, double *restrict dy,
+                        double *restrict dz)
+{
+    const double f0 = rs->forward[0], f1 = rs->forward[1], f2 = rs->forward[2];
+    const double r0 = rs->right[0], r1 = rs->right[1], r2 = rs->right[2];
+    const double u0 = rs->up[0], u1 = rs->up[1], u2 = rs->up[2];
+    for (int s = 0; s < n; ++s) {
+        double x = f0 + px[s] * r0 + py[s] * u0;
+        double y = f1 + px[s] * r1 + py[s] * u1;
+        double z = f2 + px[s] * r2 + py[s] * u2;
+        double inv = 1.0 / sqrt(x * x + y * y + z * z);
+        dx[s] = x * inv, dy[s] = y * inv, dz[s] = z * inv;
+    }
+}
+
+/* Trace the nr camera rays generated so far; hits go to the shading batch. */
+static void trace_rays(worker *w, int j, int nr, int *nh)
+{
+    const render_scene *rs = w->rs;
+    render_stats *st = &w->stats;
+    double *px = w->ray, *py = px + RENDER_RAYS, *dx = py + RENDER_RAYS, *dy = dx + RENDER_RAYS,
+           *dz = dy + RENDER_RAYS;
+    camera_dirs(rs, nr, px, py, dx, dy, dz);
+    for (int r = 0; r < nr; ++r) {
+        double d[3] = {dx[r], dy[r], dz[r]}, t;
+        ++st->primary_rays;
+        render_hit *h = &w->hits[*nh];
+        int obj = closest_hit(rs, w->ray_pixel[r], j, d, &t, h->n, st);
+        if (obj < 0) continue; /* background is black */
+        ++st->hits;
+        h->obj = obj;
+        for (int c = 0; c < 3; ++c) h->p[c] = rs->eye[c] + t * d[c], h->wo[c] = -d[c];
+        w->hit_pixel[(*nh)++] = w->ray_pixel[r];
+        if (*nh == RENDER_TILE) flush_hits(w, *nh), *nh = 0;
+    }
+}
+
 /* Row j: camera samples in pixel order (column, then stratum row, then stratum column),
- * traced, and shaded RENDER_TILE hits at a time; each pixel sums its samples in that order. */
+ * generated RENDER_RAYS at a time, traced, and shaded RENDER_TILE hits at a time; each
+ * pixel sums its samples in that order. */
 static void render_row(worker *w, int j, float *row)
 {
     const render_scene *rs = w->rs;
     const render_options *opt = w->opt;
-    render_stats *st = &w->stats;
-    int k = (int)lround(sqrt((double)opt->spp)), nh = 0;
+    int k = (int)lround(sqrt((double)opt->spp)), nh = 0, nr = 0;
     double inv_k = 1.0 / k, sx2 = 2.0 / rs->width, sy2 = 2.0 / rs->height;
+    double *px = w->ray, *py = px + RENDER_RAYS;
     memset(w->sum, 0, (size_t)rs->width * 3 * sizeof *w->sum);
     for (int i = 0; i < rs->width; ++i)
         for (int sy = 0, q = 0; sy < k; ++sy)
@@ -540,23 +603,11 @@ static void render_row(worker *w, int j, float *row)
                     u = hash01(2 * id), v = hash01(2 * id + 1);
                 }
                 double x = i + (sx + u) * inv_k, y = j + (sy + v) * inv_k;
-                double px = x * sx2 - 1.0, py = 1.0 - y * sy2;
-                double d[3];
-                for (int c = 0; c < 3; ++c)
-                    d[c] = rs->forward[c] + px * rs->right[c] + py * rs->up[c];
-                double inv = 1.0 / sqrt(geom_dot(d, d)); /* one divide per ray, not three */
-                for (int c = 0; c < 3; ++c) d[c] *= inv;
-                ++st->primary_rays;
-                double t;
-                render_hit *h = &w->hits[nh];
-                int obj = closest_hit(rs, i, j, d, &t, h->n, st);
-                if (obj < 0) continue; /* background is black */
-                ++st->hits;
-                h->obj = obj;
-                for (int c = 0; c < 3; ++c) h->p[c] = rs->eye[c] + t * d[c], h->wo[c] = -d[c];
-                w->hit_pixel[nh++] = i;
-                if (nh == RENDER_TILE) flush_hits(w, nh), nh = 0;
+                px[nr] = x * sx2 - 1.0, py[nr] = 1.0 - y * sy2;
+                w->ray_pixel[nr++] = i;
+                if (nr == RENDER_RAYS) trace_rays(w, j, nr, &nh), nr = 0;
             }
+    if (nr) trace_rays(w, j, nr, &nh);
     if (nh) flush_hits(w, nh);
     /* A point light on a surface is an infinite irradiance: keep the file finite. */
     for (int i = 0; i < rs->width; ++i)
@@ -611,7 +662,7 @@ static void add_stats(render_stats *a, const render_stats *b)
 static void worker_free(worker *w)
 {
     render_shade_scratch_free(w->scratch);
-    free(w->hits), free(w->hit_pixel), free(w->L), free(w->sum);
+    free(w->hits), free(w->hit_pixel), free(w->L), free(w->sum), free(w->ray), free(w->ray_pixel);
 }
 
 /* The per-thread memory of a worker; 0 or -1 (out of memory, nothing left allocated). */
@@ -622,7 +673,9 @@ static int worker_alloc(worker *w)
     w->hit_pixel = malloc(RENDER_TILE * sizeof *w->hit_pixel);
     w->L = malloc(RENDER_TILE * sizeof *w->L);
     w->sum = malloc((size_t)w->rs->width * 3 * sizeof *w->sum);
-    if (w->scratch && w->hits && w->hit_pixel && w->L && w->sum) return 0;
+    w->ray = malloc(5 * RENDER_RAYS * sizeof *w->ray);
+    w->ray_pixel = malloc(RENDER_RAYS * sizeof *w->ray_pixel);
+    if (w->scratch && w->hits && w->hit_pixel && w->L && w->sum && w->ray && w->ray_pixel) return 0;
     worker_free(w);
     return -1;
 }
@@ -638,8 +691,8 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb, 
     int next_row = 0, rows_done = 0, started = 0;
     if (pthread_mutex_init(&lock, NULL)) return -1;
     for (int t = 0; t < nt; ++t) {
-        w[t] =
-            (worker){rs, opt, rgb, {0}, &lock, &next_row, &rows_done, NULL, NULL, NULL, NULL, NULL};
+        w[t] = (worker){rs,   opt,  rgb,  {0},  &lock, &next_row, &rows_done,
+                        NULL, NULL, NULL, NULL, NULL,  NULL,      NULL};
         if (worker_alloc(&w[t])) {
             if (t == 0) {
                 pthread_mutex_destroy(&lock);
