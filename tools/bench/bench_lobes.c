@@ -6,9 +6,9 @@
  * of accuracy has the two ratios close (goal: within 1.5x). A render that does all its
  * shading work but calls no BRDF (render_options.free_brdf) gives the share of the BRDFs in
  * the render time. Times are the calling thread's CPU clock (a one-thread render runs on
- * it), so other jobs on the machine add little; the variants' repetitions are interleaved
- * and the minimum reported (a lobe's cost is a difference of two renders, and interference
- * only ever adds time). */
+ * it), so other jobs on the machine add little. A lobe's cost is a small difference of two
+ * renders, so each repetition renders lambert alone right before each variant and keeps the
+ * difference (the pair shares the machine's state); the median difference is reported. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdlib.h>
@@ -85,12 +85,12 @@ static int variant_scene(int v, scene *s, char *err, size_t err_size)
 
 int bench_lobe_report(FILE *out, int json, int size, int reps, int quick)
 {
-    reps = 3 * reps; /* renders of ~20 ms: more repetitions, the minimum is steadier */
+    reps = 3 * reps; /* renders of ~20 ms: more repetitions, a steadier median */
     char err[512];
     scene sv[NVAR];
     render_scene rs[NVAR];
     int parsed = 0, prepared = 0, rc = 1;
-    double *t = NULL, sec[NVAR], eval_ns[NLOBES], unit_ns = 0;
+    double *t = NULL, *dt = NULL, sec[NVAR], diff[NVAR], eval_ns[NLOBES], unit_ns = 0;
     float *rgb = NULL;
     measure_set *ms = NULL;
     render_options ro = {.width = size, .height = size, .spp = 1, .threads = 1};
@@ -101,24 +101,32 @@ int bench_lobe_report(FILE *out, int json, int size, int reps, int quick)
         if (render_prepare(&sv[prepared], &ro, &rs[prepared], err, sizeof err)) goto out;
     rgb = malloc((size_t)size * (size_t)size * 3 * sizeof *rgb);
     t = malloc(sizeof(double) * (size_t)(reps * NVAR));
-    if (!rgb || !t) goto oom;
+    dt = malloc(sizeof(double) * (size_t)(reps * NVAR));
+    if (!rgb || !t || !dt) goto oom;
     render_stats st;
     unsigned long long lit_pairs = 0;
     for (int r = -1; r < reps; ++r) /* r = -1: untimed warm-up */
         for (int v = 0; v < NVAR; ++v) {
-            render_options o = ro;
-            o.free_brdf = v == V_FREE;
-            double t0 = thread_seconds();
-            if (render_image(&rs[v], &o, rgb, &st)) {
-                snprintf(err, sizeof err, "cannot render");
-                goto out;
+            double tv[2];
+            for (int pass = 0; pass < 2; ++pass) { /* lambert alone, then variant v */
+                int u = pass ? v : V_LAMBERT;
+                render_options o = ro;
+                o.free_brdf = u == V_FREE;
+                double t0 = thread_seconds();
+                if (render_image(&rs[u], &o, rgb, &st)) {
+                    snprintf(err, sizeof err, "cannot render");
+                    goto out;
+                }
+                tv[pass] = thread_seconds() - t0;
+                if (u == V_LAMBERT) lit_pairs = st.brdf_evals;
             }
-            if (r >= 0) t[v * reps + r] = thread_seconds() - t0;
-            if (v == V_LAMBERT) lit_pairs = st.brdf_evals;
+            if (r >= 0) t[v * reps + r] = tv[1], dt[v * reps + r] = tv[1] - tv[0];
         }
     for (int v = 0; v < NVAR; ++v) {
         qsort(t + v * reps, (size_t)reps, sizeof(double), cmp_double);
-        sec[v] = t[v * reps];
+        qsort(dt + v * reps, (size_t)reps, sizeof(double), cmp_double);
+        sec[v] = t[v * reps + reps / 2];
+        diff[v] = dt[v * reps + reps / 2]; /* median of (v - lambert) */
     }
     /* Per-evaluation costs of the same lobes with the same parameters, batch path. */
     measure_opts mo;
@@ -134,7 +142,8 @@ int bench_lobe_report(FILE *out, int json, int size, int reps, int quick)
             goto out;
         }
     }
-    double ds_render = sec[2] - sec[V_LAMBERT], ds_eval = eval_ns[0];
+    double ds_render = diff[2], ds_eval = eval_ns[0];
+    double share = (diff[V_FULL] - diff[V_FREE]) / sec[V_FULL]; /* the BRDFs' share */
     int within = 0;
     if (json)
         fprintf(out,
@@ -143,17 +152,18 @@ int bench_lobe_report(FILE *out, int json, int size, int reps, int quick)
                 "\"free_seconds\": %.6g, \"lambert_seconds\": %.6g, \"full_disney_seconds\": "
                 "%.6g, \"brdf_share_full_disney\": %.6g, \"lobes\": [",
                 size, size, reps, lit_pairs, unit_ns, sec[V_FREE], sec[V_LAMBERT], sec[V_FULL],
-                (sec[V_FULL] - sec[V_FREE]) / sec[V_FULL]);
+                share);
     else
-        fprintf(out,
-                "\nLobe costs in the render: robot16 (16 point lights) %dx%d, 1 spp, 1 thread, "
-                "float shading,\nfastest of %d renders per variant (thread CPU time), %llu lit "
-                "(hit, light) pairs.\nrender = time(lambert + X) - time(lambert); eval = batch "
-                "ns/eval; both relative to disney_specular.\n\n%-22s %10s %10s %10s %8s\n",
-                size, size, reps, lit_pairs, "lobe X", "render ms", "render/ds", "eval/ds",
-                "ratio");
+        fprintf(
+            out,
+            "\nLobe costs in the render: robot16 (16 point lights) %dx%d, 1 spp, 1 thread, "
+            "float shading,\nmedian of %d paired renders per variant (thread CPU time), %llu lit "
+            "(hit, light) pairs.\nrender = time(lambert + X) - time(lambert), rendered one after "
+            "the other; eval = batch "
+            "ns/eval; both relative to disney_specular.\n\n%-22s %10s %10s %10s %8s\n",
+            size, size, reps, lit_pairs, "lobe X", "render ms", "render/ds", "eval/ds", "ratio");
     for (int k = 0; k < NLOBES; ++k) {
-        double cost = sec[2 + k] - sec[V_LAMBERT];
+        double cost = diff[2 + k];
         double rr = cost / ds_render, er = eval_ns[k] / ds_eval;
         double q = rr > 0 ? (rr > er ? rr / er : er / rr) : INFINITY;
         within += q <= 1.5;
@@ -175,7 +185,7 @@ int bench_lobe_report(FILE *out, int json, int size, int reps, int quick)
                 "are %.0f %% of the full-Disney render\n(time - free) / time; shading also "
                 "casts 16 shadow rays per hit, which the free variant keeps.\n",
                 within, NLOBES, 1e3 * sec[V_FREE], 1e3 * sec[V_LAMBERT], 1e3 * sec[V_FULL],
-                100.0 * (sec[V_FULL] - sec[V_FREE]) / sec[V_FULL]);
+                100.0 * share);
     rc = 0;
     goto out;
 oom:
@@ -187,5 +197,6 @@ out:
     for (int v = 0; v < parsed; ++v) scene_free(&sv[v]);
     free(rgb);
     free(t);
+    free(dt);
     return rc;
 }

@@ -337,23 +337,28 @@ static void shade_double(const render_scene *rs, const render_options *opt, cons
 
 /* Lit (hit, light) pairs gathered for the float path, at most this many per batch. */
 #define RENDER_PAIRS_MAX 16384
+#define RENDER_CHUNK 256 /* pairs per lobe call: inputs and outputs stay in L1 */
 
 struct render_shade_scratch {
-    int pair_cap;          /* pairs per batch */
-    int *hit, *mat, *slot; /* per pair in gathering order: hit, material, sorted slot */
-    double *w;             /* per pair: E falloff cos_i (3) */
-    float *li, *lo;        /* per pair: local directions (3 each), gathering order */
+    int pair_cap;                       /* pairs per batch */
+    int *hit, *mat;                     /* per pair in gathering order: hit, material */
+    int *shit;                          /* per sorted slot: the pair's hit */
+    double *sw;                         /* per sorted slot: the pair's w (3) */
+    double *w;                          /* per pair: E falloff cos_i (3) */
+    float *li, *lo;                     /* per pair: local directions (3 each), gathering order */
     float *ix, *iy, *iz, *ox, *oy, *oz; /* sorted by material: the batch inputs */
-    float *f[3], *acc[3];               /* sorted: one lobe's f_r, the sum over lobes */
+    float *f[SCENE_MAX_LOBES][3];       /* each lobe's f_r over a chunk of sorted slots */
     int *start;                         /* per material: first sorted slot (material_count + 1) */
 };
 
 void render_shade_scratch_free(render_shade_scratch *sc)
 {
     if (!sc) return;
-    free(sc->hit), free(sc->mat), free(sc->slot), free(sc->w), free(sc->li), free(sc->lo);
+    free(sc->hit), free(sc->mat), free(sc->shit), free(sc->sw), free(sc->w), free(sc->li);
+    free(sc->lo);
     free(sc->ix), free(sc->iy), free(sc->iz), free(sc->ox), free(sc->oy), free(sc->oz);
-    for (int c = 0; c < 3; ++c) free(sc->f[c]), free(sc->acc[c]);
+    for (int k = 0; k < SCENE_MAX_LOBES; ++k)
+        for (int c = 0; c < 3; ++c) free(sc->f[k][c]);
     free(sc->start);
     free(sc);
 }
@@ -368,17 +373,16 @@ render_shade_scratch *render_shade_scratch_new(const render_scene *rs, int capac
     size_t n = (size_t)want;
     sc->pair_cap = (int)want;
     sc->hit = malloc(n * sizeof *sc->hit), sc->mat = malloc(n * sizeof *sc->mat);
-    sc->slot = malloc(n * sizeof *sc->slot), sc->w = malloc(3 * n * sizeof *sc->w);
+    sc->shit = malloc(n * sizeof *sc->shit), sc->sw = malloc(3 * n * sizeof *sc->sw);
+    sc->w = malloc(3 * n * sizeof *sc->w);
     sc->li = malloc(3 * n * sizeof *sc->li), sc->lo = malloc(3 * n * sizeof *sc->lo);
     sc->ix = malloc(n * sizeof(float)), sc->iy = malloc(n * sizeof(float));
     sc->iz = malloc(n * sizeof(float)), sc->ox = malloc(n * sizeof(float));
     sc->oy = malloc(n * sizeof(float)), sc->oz = malloc(n * sizeof(float));
-    int ok = sc->hit && sc->mat && sc->slot && sc->w && sc->li && sc->lo && sc->ix && sc->iy &&
-             sc->iz && sc->ox && sc->oy && sc->oz;
-    for (int c = 0; c < 3; ++c) {
-        sc->f[c] = malloc(n * sizeof(float)), sc->acc[c] = malloc(n * sizeof(float));
-        ok = ok && sc->f[c] && sc->acc[c];
-    }
+    int ok = sc->hit && sc->mat && sc->shit && sc->sw && sc->w && sc->li && sc->lo && sc->ix &&
+             sc->iy && sc->iz && sc->ox && sc->oy && sc->oz;
+    for (int k = 0; k < SCENE_MAX_LOBES; ++k)
+        for (int c = 0; c < 3; ++c) ok = (sc->f[k][c] = malloc(RENDER_CHUNK * sizeof(float))) && ok;
     sc->start = calloc((size_t)rs->material_count + 2, sizeof *sc->start);
     if (!ok || !sc->start) {
         render_shade_scratch_free(sc);
@@ -388,7 +392,8 @@ render_shade_scratch *render_shade_scratch_new(const render_scene *rs, int capac
 }
 
 /* Evaluate the gathered pairs: sort them by material (stable), run each lobe of a material
- * over its pairs with the batch API, and add w * sum of lobes to each pair's hit. */
+ * over its pairs with the batch API (into its own arrays: no pass that adds the lobes), and
+ * add w * (sum of the lobes) to each pair's hit. */
 static void flush_pairs(const render_scene *rs, const render_options *opt, int np, double (*L)[3],
                         render_shade_scratch *sc, render_stats *st)
 {
@@ -399,33 +404,40 @@ static void flush_pairs(const render_scene *rs, const render_options *opt, int n
     for (int m = 0; m < nm; ++m) start[m + 2] += start[m + 1];
     for (int q = 0; q < np; ++q) { /* start[m + 1] is material m's next free slot */
         int s = start[sc->mat[q] + 1]++;
-        sc->slot[q] = s;
+        sc->shit[s] = sc->hit[q];
+        for (int c = 0; c < 3; ++c) sc->sw[3 * s + c] = sc->w[3 * q + c];
         sc->ix[s] = sc->li[3 * q], sc->iy[s] = sc->li[3 * q + 1], sc->iz[s] = sc->li[3 * q + 2];
         sc->ox[s] = sc->lo[3 * q], sc->oy[s] = sc->lo[3 * q + 1], sc->oz[s] = sc->lo[3 * q + 2];
     }
-    /* now start[m] is material m's first slot and start[m + 1] its end */
+    /* now start[m] is material m's first slot and start[m + 1] its end. Each material's pairs
+     * go through its lobes and back to their hits RENDER_CHUNK at a time, so that a lobe's
+     * inputs and outputs are still in the L1 cache when the next lobe and the sum read them:
+     * a lobe then costs what its evaluation costs, not the traffic of its output arrays. */
     for (int m = 0; m < nm; ++m) {
-        int a = start[m], n = start[m + 1] - a;
-        if (n == 0) continue;
         const render_material *mat = &rs->materials[m];
-        for (int k = 0; k < mat->lobe_count; ++k) {
-            float **out = k == 0 ? sc->acc : sc->f;
-            abrdf_batch b = {(size_t)n,  sc->ix + a, sc->iy + a, sc->iz + a, sc->ox + a,
-                             sc->oy + a, sc->oz + a, out[0] + a, out[1] + a, out[2] + a};
-            if (opt->free_brdf)
-                for (int c = 0; c < 3; ++c) memset(out[c] + a, 0, (size_t)n * sizeof(float));
-            else
-                abrdf_eval_prepared_batch(&mat->prepared[k], &b);
-            if (k > 0)
-                for (int c = 0; c < 3; ++c)
-                    for (int i = a; i < a + n; ++i) sc->acc[c][i] += sc->f[c][i];
+        count_evals(mat, (unsigned long long)(start[m + 1] - start[m]), st);
+        for (int a = start[m]; a < start[m + 1]; a += RENDER_CHUNK) {
+            int n = start[m + 1] - a < RENDER_CHUNK ? start[m + 1] - a : RENDER_CHUNK;
+            for (int k = 0; k < mat->lobe_count; ++k) {
+                float **out = sc->f[k];
+                abrdf_batch b = {(size_t)n,  sc->ix + a, sc->iy + a, sc->iz + a, sc->ox + a,
+                                 sc->oy + a, sc->oz + a, out[0],     out[1],     out[2]};
+                if (opt->free_brdf)
+                    for (int c = 0; c < 3; ++c) memset(out[c], 0, (size_t)n * sizeof(float));
+                else
+                    abrdf_eval_prepared_batch(&mat->prepared[k], &b);
+            }
+            /* Sorted order keeps gathering order within a material, and a hit has one
+             * material: each hit gets its lights in light order. */
+            for (int i = 0; i < n; ++i) {
+                double *out = L[sc->shit[a + i]];
+                for (int c = 0; c < 3; ++c) {
+                    float f = mat->lobe_count > 0 ? sc->f[0][c][i] : 0.0f;
+                    for (int k = 1; k < mat->lobe_count; ++k) f += sc->f[k][c][i];
+                    out[c] += sc->sw[3 * (a + i) + c] * (double)f;
+                }
+            }
         }
-        count_evals(mat, (unsigned long long)n, st);
-    }
-    for (int q = 0; q < np; ++q) { /* gathering order: each hit's lights in light order */
-        int s = sc->slot[q];
-        double *out = L[sc->hit[q]];
-        for (int c = 0; c < 3; ++c) out[c] += sc->w[3 * q + c] * (double)sc->acc[c][s];
     }
 }
 
@@ -483,6 +495,7 @@ void render_shade_hits(const render_scene *rs, const render_options *opt, const 
 
 #define RENDER_TILE 1024 /* hits shaded as one batch */
 #define RENDER_RAYS 256  /* camera rays generated as one batch */
+#define RENDER_BAND 8    /* image rows per work item (a thread's unit) */
 
 typedef struct worker {
     const render_scene *rs;
@@ -495,9 +508,10 @@ typedef struct worker {
     render_hit *hits;
     int *hit_pixel; /* per hit: pixel column */
     double (*L)[3]; /* per hit: radiance */
-    double *sum;    /* per pixel of a row: 3 sums */
+    double *sum;    /* per pixel of a band: 3 sums */
     double *ray;    /* RENDER_RAYS camera rays: plane x, y, then direction x, y, z */
-    int *ray_pixel; /* per camera ray: pixel column */
+    int *ray_pixel; /* per camera ray: pixel index within the band */
+    int *ray_ij;    /* per camera ray: column and row */
 } worker;
 
 /* Closest hit of a camera ray (from the eye) through pixel (i, j): only the objects the plan
@@ -560,7 +574,7 @@ static void camera_dirs(const render_scene *rs, int n, const double *restrict px
 }
 
 /* Trace the nr camera rays generated so far; hits go to the shading batch. */
-static void trace_rays(worker *w, int j, int nr, int *nh)
+static void trace_rays(worker *w, int nr, int *nh)
 {
     const render_scene *rs = w->rs;
     render_stats *st = &w->stats;
@@ -571,7 +585,7 @@ static void trace_rays(worker *w, int j, int nr, int *nh)
         double d[3] = {dx[r], dy[r], dz[r]}, t;
         ++st->primary_rays;
         render_hit *h = &w->hits[*nh];
-        int obj = closest_hit(rs, w->ray_pixel[r], j, d, &t, h->n, st);
+        int obj = closest_hit(rs, w->ray_ij[2 * r], w->ray_ij[2 * r + 1], d, &t, h->n, st);
         if (obj < 0) continue; /* background is black */
         ++st->hits;
         h->obj = obj;
@@ -581,38 +595,40 @@ static void trace_rays(worker *w, int j, int nr, int *nh)
     }
 }
 
-/* Row j: camera samples in pixel order (column, then stratum row, then stratum column),
- * generated RENDER_RAYS at a time, traced, and shaded RENDER_TILE hits at a time; each
- * pixel sums its samples in that order. */
-static void render_row(worker *w, int j, float *row)
+/* Rows [j0, j1), a band: camera samples in pixel order (row, column, then stratum row and
+ * column), generated RENDER_RAYS at a time, traced, and shaded RENDER_TILE hits at a time (a
+ * band gathers more hits per material than a row); each pixel sums its samples in that
+ * order. Bands are fixed by the image, so the result does not depend on the threads. */
+static void render_band(worker *w, int j0, int j1, float *rows)
 {
     const render_scene *rs = w->rs;
     const render_options *opt = w->opt;
-    int k = (int)lround(sqrt((double)opt->spp)), nh = 0, nr = 0;
-    double inv_k = 1.0 / k, sx2 = 2.0 / rs->width, sy2 = 2.0 / rs->height;
+    int k = (int)lround(sqrt((double)opt->spp)), nh = 0, nr = 0, W = rs->width;
+    double inv_k = 1.0 / k, sx2 = 2.0 / W, sy2 = 2.0 / rs->height;
     double *px = w->ray, *py = px + RENDER_RAYS;
-    memset(w->sum, 0, (size_t)rs->width * 3 * sizeof *w->sum);
-    for (int i = 0; i < rs->width; ++i)
-        for (int sy = 0, q = 0; sy < k; ++sy)
-            for (int sx = 0; sx < k; ++sx, ++q) {
-                double u = 0.5, v = 0.5;
-                if (opt->jitter) {
-                    uint64_t id =
-                        ((uint64_t)j * (uint64_t)rs->width + (uint64_t)i) * (uint64_t)opt->spp +
-                        (uint64_t)q;
-                    u = hash01(2 * id), v = hash01(2 * id + 1);
+    memset(w->sum, 0, (size_t)W * (size_t)(j1 - j0) * 3 * sizeof *w->sum);
+    for (int j = j0; j < j1; ++j)
+        for (int i = 0; i < W; ++i)
+            for (int sy = 0, q = 0; sy < k; ++sy)
+                for (int sx = 0; sx < k; ++sx, ++q) {
+                    double u = 0.5, v = 0.5;
+                    if (opt->jitter) {
+                        uint64_t id =
+                            ((uint64_t)j * (uint64_t)W + (uint64_t)i) * (uint64_t)opt->spp +
+                            (uint64_t)q;
+                        u = hash01(2 * id), v = hash01(2 * id + 1);
+                    }
+                    double x = i + (sx + u) * inv_k, y = j + (sy + v) * inv_k;
+                    px[nr] = x * sx2 - 1.0, py[nr] = 1.0 - y * sy2;
+                    w->ray_ij[2 * nr] = i, w->ray_ij[2 * nr + 1] = j;
+                    w->ray_pixel[nr++] = (j - j0) * W + i;
+                    if (nr == RENDER_RAYS) trace_rays(w, nr, &nh), nr = 0;
                 }
-                double x = i + (sx + u) * inv_k, y = j + (sy + v) * inv_k;
-                px[nr] = x * sx2 - 1.0, py[nr] = 1.0 - y * sy2;
-                w->ray_pixel[nr++] = i;
-                if (nr == RENDER_RAYS) trace_rays(w, j, nr, &nh), nr = 0;
-            }
-    if (nr) trace_rays(w, j, nr, &nh);
+    if (nr) trace_rays(w, nr, &nh);
     if (nh) flush_hits(w, nh);
     /* A point light on a surface is an infinite irradiance: keep the file finite. */
-    for (int i = 0; i < rs->width; ++i)
-        for (int c = 0; c < 3; ++c)
-            row[3 * i + c] = (float)fmin(w->sum[3 * i + c] / opt->spp, FLT_MAX);
+    for (size_t p = 0; p < (size_t)W * (size_t)(j1 - j0) * 3; ++p)
+        rows[p] = (float)fmin(w->sum[p] / opt->spp, FLT_MAX);
 }
 
 static void progress(int done, int total)
@@ -630,13 +646,16 @@ static void *work(void *arg)
     const render_scene *rs = w->rs;
     for (;;) {
         pthread_mutex_lock(w->lock);
-        int j = (*w->next_row)++;
+        int j = *w->next_row;
+        *w->next_row += RENDER_BAND;
         pthread_mutex_unlock(w->lock);
         if (j >= rs->height) break;
-        render_row(w, j, w->rgb + (size_t)j * (size_t)rs->width * 3);
+        int j1 = j + RENDER_BAND < rs->height ? j + RENDER_BAND : rs->height;
+        render_band(w, j, j1, w->rgb + (size_t)j * (size_t)rs->width * 3);
         if (w->opt->progress) {
             pthread_mutex_lock(w->lock);
-            progress(++*w->rows_done, rs->height);
+            *w->rows_done += j1 - j;
+            progress(*w->rows_done, rs->height);
             pthread_mutex_unlock(w->lock);
         }
     }
@@ -663,6 +682,7 @@ static void worker_free(worker *w)
 {
     render_shade_scratch_free(w->scratch);
     free(w->hits), free(w->hit_pixel), free(w->L), free(w->sum), free(w->ray), free(w->ray_pixel);
+    free(w->ray_ij);
 }
 
 /* The per-thread memory of a worker; 0 or -1 (out of memory, nothing left allocated). */
@@ -672,10 +692,13 @@ static int worker_alloc(worker *w)
     w->hits = malloc(RENDER_TILE * sizeof *w->hits);
     w->hit_pixel = malloc(RENDER_TILE * sizeof *w->hit_pixel);
     w->L = malloc(RENDER_TILE * sizeof *w->L);
-    w->sum = malloc((size_t)w->rs->width * 3 * sizeof *w->sum);
+    w->sum = malloc((size_t)w->rs->width * RENDER_BAND * 3 * sizeof *w->sum);
+    w->ray_ij = malloc(2 * RENDER_RAYS * sizeof *w->ray_ij);
     w->ray = malloc(5 * RENDER_RAYS * sizeof *w->ray);
     w->ray_pixel = malloc(RENDER_RAYS * sizeof *w->ray_pixel);
-    if (w->scratch && w->hits && w->hit_pixel && w->L && w->sum && w->ray && w->ray_pixel) return 0;
+    if (w->scratch && w->hits && w->hit_pixel && w->L && w->sum && w->ray && w->ray_pixel &&
+        w->ray_ij)
+        return 0;
     worker_free(w);
     return -1;
 }
@@ -691,8 +714,12 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb, 
     int next_row = 0, rows_done = 0, started = 0;
     if (pthread_mutex_init(&lock, NULL)) return -1;
     for (int t = 0; t < nt; ++t) {
-        w[t] = (worker){rs,   opt,  rgb,  {0},  &lock, &next_row, &rows_done,
-                        NULL, NULL, NULL, NULL, NULL,  NULL,      NULL};
+        w[t] = (worker){.rs = rs,
+                        .opt = opt,
+                        .rgb = rgb,
+                        .lock = &lock,
+                        .next_row = &next_row,
+                        .rows_done = &rows_done};
         if (worker_alloc(&w[t])) {
             if (t == 0) {
                 pthread_mutex_destroy(&lock);
