@@ -14,6 +14,7 @@
 
 #include "abrdf_internal.h"
 #include "hair.h"
+#include "layered.h"
 
 /* The kernels' parameters, one field list for both precisions (kernel.h: ABRDF__KP). */
 #define ABRDF__KP_FIELDS(REAL)                                                                     \
@@ -55,6 +56,7 @@ typedef struct ABRDF__MAY_ALIAS abrdf__prep {
     union {
         abrdf__marschner marschner;
         abrdf__huang huang;
+        abrdf__belcour belcour;
     } special; /* setup of a model evaluated in double only (special.c) */
 } abrdf__prep;
 
