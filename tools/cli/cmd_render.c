@@ -63,7 +63,8 @@ int cmd_render(int argc, char **argv)
     const char *sets[64], *mats[16];
     int full = 0, nsets = 0, nmats = 0, explain = 0, stats = 0, adaptive = 0, preview = 1;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    render_options opt = {0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0, RENDER_FLOAT, 0};
+    render_options opt = {0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0, RENDER_FLOAT,
+                          0};
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
