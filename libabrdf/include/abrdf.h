@@ -50,7 +50,8 @@
  *     abrdf_param_info, abrdf_sampler_info; abrdf_select_rules and abrdf_select_step) only
  *     grows at its end:
  *     read the fields your header declares.
- *   - Every other struct (abrdf_layer, abrdf_model_param, abrdf_frame, abrdf_batch; in
+ *   - Every other struct (abrdf_layer, abrdf_model_param, abrdf_frame, abrdf_batch,
+ *     abrdf_prepared (ABRDF_PREPARED_SIZE opaque bytes); in
  *     abrdf_select.h abrdf_approx_error and abrdf_costs) is frozen: new data would come as
  *     a new struct or function. So is ABRDF_MAX_LAYERS.
  *   No public struct is sized by a count that grows. tests/unit/test_abi.c holds the
@@ -75,6 +76,11 @@
  *   abrdf_eval               double-precision scalar reference: f_r for world directions,
  *                            or local-frame directions with frame = NULL
  *   abrdf_eval_batch         float structure-of-arrays batch evaluation, local frame
+ *   abrdf_prepare            validate a model's parameters once and precompute its constants
+ *   abrdf_prepared_model     the model of a prepared object (ABRDF_MODEL_NONE if not prepared)
+ *   abrdf_prepared_params    the validated parameters a prepared object holds
+ *   abrdf_eval_prepared      abrdf_eval of a prepared model (double, scalar)
+ *   abrdf_eval_prepared_batch  abrdf_eval_batch of a prepared model (float, structure of arrays)
  *   abrdf_shade              the paper's pixel intensity I = ka Ia + Il cos (f_d + f_s)
  *   abrdf_sample             importance sampling: a direction wi for wo, its pdf and the
  *                            weight f_r cos / pdf (double reference)
@@ -316,6 +322,59 @@ typedef struct abrdf_batch {
 
 ABRDF_API int abrdf_eval_batch(abrdf_model model, const abrdf_params *params,
                                const abrdf_batch *batch);
+
+/* ---- prepared evaluation ------------------------------------------------------------- *
+ * What a renderer does per material, as Cycles' closure setup and pbrt-v4's BxDF built per
+ * hit do it: validate the parameters and precompute everything that depends only on them
+ * (normalisations, alpha_g, Oren-Nayar's A and B, the fkub cubic, a hair model's absorption
+ * and lobe constants) ONCE, then evaluate per direction pair with no check and no setup.
+ * abrdf_eval and abrdf_eval_batch are exactly abrdf_prepare followed by these calls, so a
+ * prepared evaluation returns the same bits as the unprepared one.
+ *
+ *   abrdf_prepared mat;
+ *   if (abrdf_prepare(ABRDF_DISNEY_SPECULAR, &params, &mat) != ABRDF_OK) ...;  // once
+ *   abrdf_eval_prepared(&mat, &frame, wi, wo, f);                             // per sample
+ *
+ * LIFETIME AND SHARING. abrdf_prepared is plain data of a fixed size, owned by the caller
+ * (stack, array, heap) and valid as long as that memory is: it holds a copy of the
+ * parameters (the block passed to abrdf_prepare may change or go away afterwards) and no
+ * pointer, so a copy (assignment, memcpy) is a prepared object too. Nothing is allocated
+ * and nothing needs releasing. A prepared object is never modified by an evaluation, so
+ * any number of threads may evaluate one concurrently. It is valid only for the library
+ * that prepared it (the same process); do not store it in files. A block that
+ * abrdf_prepare did not fill (or filled after a failure) is "not prepared": evaluating it
+ * returns ABRDF_E_MODEL with f = 0. The struct is frozen (STABLE LAYOUTS): a later
+ * release keeps ABRDF_PREPARED_SIZE and its alignment. */
+#define ABRDF_PREPARED_SIZE 2048 /* frozen: bytes of abrdf_prepared */
+
+typedef struct abrdf_prepared {
+    union {
+        unsigned char bytes[ABRDF_PREPARED_SIZE]; /* opaque: read through the functions below */
+        double align_double;                      /* alignment of the library's layout */
+        void *align_pointer;
+    } opaque;
+} abrdf_prepared;
+
+/* Validate `params` for `model` (as abrdf_params_check, which gives the message) and
+ * precompute. On success the object holds the model, a copy of the parameters in this
+ * library's layout (fields beyond an older caller's struct_size at the model's defaults) and
+ * the constants of both the scalar and the batch path. On failure (ABRDF_E_NULL,
+ * ABRDF_E_MODEL, ABRDF_E_SIZE, ABRDF_E_RANGE, ...) *prepared is "not prepared". */
+ABRDF_API int abrdf_prepare(abrdf_model model, const abrdf_params *params,
+                            abrdf_prepared *prepared);
+/* The model prepared, or ABRDF_MODEL_NONE for NULL or a block that is not prepared. */
+ABRDF_API abrdf_model abrdf_prepared_model(const abrdf_prepared *prepared);
+/* The validated parameters held by the object (this library's layout: read the fields your
+ * header declares), or NULL if it is not prepared. Valid as long as the object is. */
+ABRDF_API const abrdf_params *abrdf_prepared_params(const abrdf_prepared *prepared);
+/* abrdf_eval of the prepared model: world directions with a frame, or local-frame
+ * directions with frame = NULL (normalised here; degenerate vectors give f = 0). */
+ABRDF_API int abrdf_eval_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame,
+                                  const double wi[3], const double wo[3], double f[3]);
+/* abrdf_eval_batch of the prepared model. The loops run the best instruction set this CPU
+ * supports (AVX2 + FMA, AVX-512 on x86-64), chosen per call from the CPU alone; results
+ * agree with the double path within the batch path's float tolerance (docs/MODELS.md). */
+ABRDF_API int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const abrdf_batch *batch);
 
 /* The paper's pixel intensity (Sec. 1), physically based convention (MODELS.md B1):
  *   I = ka*Ia + Il * max(0, N.wi) * (f_diffuse + f_specular)

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "prepared.h"
 #include "sample.h"
 #include "vec.h"
 
@@ -77,7 +78,11 @@ int abrdf_sample(abrdf_model model, const abrdf_params *params, const abrdf_fram
     double pdf = abrdf__mixture_pdf(&mx, li);
     if (!(pdf > 0.0) || !isfinite(pdf)) return ABRDF_OK; /* a set of measure zero */
     double f[3] = {0.0, 0.0, 0.0};
-    if (li[2] > 0.0) abrdf__eval_local_d(model, params, li, lo, f);
+    if (li[2] > 0.0) {
+        abrdf__prep pr;
+        abrdf__prep_make(&pr, model, params, ABRDF__PREP_DOUBLE);
+        abrdf__eval_prepared_d(&pr, li, lo, f);
+    }
     for (int c = 0; c < 3; ++c) {
         double w = f[c] * fmax(li[2], 0.0) / pdf;
         result->weight[c] = (w >= 0.0 && isfinite(w)) ? w : 0.0;

@@ -104,11 +104,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     /* With the effect plan, and without it (every effect everywhere). */
-    for (int full = 0; full < 2; ++full) {
-        render_options opt = {3, 2, 1, 1, 1, 0};
+    for (int full = 0; full < 4; ++full) { /* and each precision */
+        render_options opt = {3, 2, 1, 1, 1, 0, full >= 2 ? RENDER_DOUBLE : RENDER_FLOAT, 0};
         render_scene rs;
         if (render_prepare(&s, &opt, &rs, err, sizeof err) == 0) {
-            if (full && render_plan_ignore(&rs) != 0) abort();
+            if ((full & 1) && render_plan_ignore(&rs) != 0) abort();
             float rgb[3 * 2 * 3];
             if (render_image(&rs, &opt, rgb, NULL) != 0) abort();
             for (size_t k = 0; k < sizeof rgb / sizeof rgb[0]; ++k)

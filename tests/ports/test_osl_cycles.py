@@ -4,7 +4,8 @@
 1. every osl/*.osl compiles with Blender's OSL compiler, with no warning;
 2. every shader parameter carries help and label metadata, numeric ones min and max;
 3. every model of `abrdf models` renders the test scenes in evaluation mode
-   (`abrdf export --cycles --model M`) with NMSE < 1e-4 against `abrdf render --model M`
+   (`abrdf export --cycles --model M`) with NMSE < 1e-4 against `abrdf render --model M
+   --precision double` (the renderer's reference path)
    (`abrdf compare`); the model x scene -> NMSE table is printed;
 4. the host-independent shader abrdf_eval.osl (lights as parameters) does the same on a
    lit box;
@@ -105,8 +106,8 @@ def render_pair(scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1, 
         extra += ["--set", a]
     size = ["--width", str(w), "--height", str(h)]
     ref, test, script = (os.path.join(d, n) for n in ("c.exr", "cycles.exr", "scene.py"))
-    run("render", os.path.join(SRC, path), "-o", ref, "--spp", str(c_spp), "--no-preview",
-        "--threads", "2", *size, *extra)
+    run("render", os.path.join(SRC, path), "-o", ref, "--spp", str(c_spp), "--precision",
+        "double", "--no-preview", "--threads", "2", *size, *extra)
     run("export", "--cycles", os.path.join(SRC, path), "-o", script, "--spp", str(samples),
         "--osl-dir", OSL_DIR, *size, *extra)
     s = runpy.run_path(script, run_name="abrdf_scene")["SCENE"]

@@ -68,8 +68,11 @@ void geom_xform_normal(const geom_xform *xf, const double n[3], double out[3])
 {
     for (int i = 0; i < 3; ++i)
         out[i] = xf->inv[0][i] * n[0] + xf->inv[1][i] * n[1] + xf->inv[2][i] * n[2];
-    double l = sqrt(geom_dot(out, out));
-    if (l > 0) out[0] /= l, out[1] /= l, out[2] /= l;
+    double l2 = geom_dot(out, out);
+    if (l2 > 0) { /* one divide, not three */
+        double inv = 1.0 / sqrt(l2);
+        out[0] *= inv, out[1] *= inv, out[2] *= inv;
+    }
 }
 
 void geom_object_make(const scene_object *o, geom_object *g)
@@ -120,8 +123,8 @@ static int quad_roots(double a, double b, double c, double r[2])
     /* Numerically stable pair: q = -(b + sign(b) sq). */
     double q = -(b + (b >= 0 ? sq : -sq));
     double t0 = q / a, t1 = q != 0 ? c / q : t0;
-    r[0] = fmin(t0, t1);
-    r[1] = fmax(t0, t1);
+    r[0] = t0 < t1 ? t0 : t1; /* finite here: plain selects, not libm's fmin/fmax calls */
+    r[1] = t0 < t1 ? t1 : t0;
     return 1;
 }
 
@@ -250,15 +253,40 @@ int geom_intersect_local(const geom_object *g, const double o[3], const double d
     return hit;
 }
 
+/* The bounding-ball test of a ray o + t d, given oc = o - centre and c = |oc|^2 - bound^2:
+ * the roots (-b -+ sq)/a compared with tmin and tmax as -b -+ sq against tmin a and tmax a
+ * (a > 0), so no division. */
+static int bound_test(const double oc[3], double c, const double d[3], double tmin, double tmax)
+{
+    double a = geom_dot(d, d), b = geom_dot(oc, d);
+    double disc = b * b - a * c;
+    if (disc < 0 || !(a > 0)) return 0;
+    double sq = sqrt(disc);
+    return -b + sq > tmin * a && -b - sq < tmax * a;
+}
+
 int geom_hits_bound(const geom_object *g, const double o[3], const double d[3], double tmin,
                     double tmax)
 {
     double oc[3] = {o[0] - g->center[0], o[1] - g->center[1], o[2] - g->center[2]};
-    double a = geom_dot(d, d), b = geom_dot(oc, d), c = geom_dot(oc, oc) - g->bound * g->bound;
-    double disc = b * b - a * c;
-    if (disc < 0 || !(a > 0)) return 0;
-    double sq = sqrt(disc);
-    return (-b + sq) / a > tmin && (-b - sq) / a < tmax;
+    return bound_test(oc, geom_dot(oc, oc) - g->bound * g->bound, d, tmin, tmax);
+}
+
+void geom_origin_make(const geom_object *g, const double o[3], geom_origin *go)
+{
+    for (int k = 0; k < 3; ++k) go->oc[k] = o[k] - g->center[k];
+    go->c = geom_dot(go->oc, go->oc) - g->bound * g->bound;
+    geom_xform_point(g->xf.inv, o, go->local);
+}
+
+int geom_intersect_from(const geom_object *g, const geom_origin *go, const double d[3], double tmin,
+                        double tmax, double *t, double n_local[3])
+{
+    /* A sphere is its own bounding ball: its exact test is the cheaper rejection. */
+    if (g->shape != SCENE_SPHERE && !bound_test(go->oc, go->c, d, tmin, tmax)) return 0;
+    double ld[3];
+    geom_xform_vector(g->xf.inv, d, ld);
+    return geom_intersect_local(g, go->local, ld, tmin, tmax, t, n_local);
 }
 
 int geom_intersect(const geom_object *g, const double o[3], const double d[3], double tmin,
