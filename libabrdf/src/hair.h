@@ -86,8 +86,10 @@ void abrdf__marschner_eval(const abrdf__marschner *m, const double wi[3], const 
  * (docs/SPECIAL_HAIR.md gives the convergence that chose them). */
 #define ABRDF__HUANG_N1 6
 #define ABRDF__HUANG_N2 3
-/* Largest VNDF grid (n x n nodes) abrdf__huang_fibre takes: n1, n2 <= 16. */
-#define ABRDF__HUANG_NODES_MAX 256
+/* Largest VNDF grid (n x n nodes) abrdf__huang_fibre takes: n1, n2 <= 32, so the convergence
+ * study (docs/SPECIAL_HAIR.md, 4x the default grids) fits; the node tables of two grids then
+ * take 32 KiB of stack. */
+#define ABRDF__HUANG_NODES_MAX 1024
 
 typedef struct abrdf__huang {
     double eta;        /* index of refraction */
@@ -96,7 +98,7 @@ typedef struct abrdf__huang {
     double b;          /* minor/major axis ratio, (0, 1] */
     double sigma_a[3]; /* absorption per unit (major) radius */
     int refine;        /* Simpson step divisor in h (1 = Cycles' steps) */
-    int n1, n2;        /* VNDF midpoint grid sizes per dimension (entry, internal), <= 16
+    int n1, n2;        /* VNDF midpoint grid sizes per dimension (entry, internal), <= 32
                           (ABRDF__HUANG_NODES_MAX; larger grids give no TT/TRT/TRRT+) */
     int compensate;    /* 1: divide each interaction by the glass albedo E (Cycles) */
 } abrdf__huang;

@@ -26,7 +26,7 @@ def table_at(lines, header_start):
 
 def accuracy_columns(doc, lines):
     models = {m["name"]: m for m in json.loads(run([abrdf, "bench", "--json", "--reps", "1"]))["models"]}
-    head, rows, _ = table_at(lines, "| model | float | speedup | double | reference |")
+    head, rows, _ = table_at(lines, "| model | float | speedup | double |")
     col = {h: k for k, h in enumerate(head)}
     for row in rows:
         m = models.get(row[0])

@@ -22,7 +22,8 @@ def suite_output():
             recip[m[1]] = m[2]
         elif m := re.match(r"reciprocity (\w+) +NOT reciprocal", line):
             recip[m[1]] = "NOT"
-        elif m := re.match(r"float vs double (\w+) +\d+ sets: max relative error (\S+) ", line):
+        # the portable baseline level, the same on every CPU (the doc quotes it)
+        elif m := re.match(r"float (?:\(baseline\) )?vs double (\w+) +\d+ sets: max relative error (\S+) ", line):
             fvd[m[1]] = m[2]
         elif m := re.match(r"frame invariance (\w+) +max relative difference (\S+) ", line):
             frame[m[1]] = m[2]
