@@ -288,7 +288,7 @@ class CrossCheck(unittest.TestCase):
         failures = []
         for row in rows:
             model = None if row == "teapot material" else row
-            nmse = self.render_pair("teapot", "scenes/teapot.scene", 64, 48, model, samples=4)
+            nmse = render_pair("teapot", "scenes/teapot.scene", 64, 48, model, samples=4)
             self.table[(row, "teapot")] = nmse
             if not nmse < NMSE_MAX:
                 failures.append("%s on the teapot: NMSE %.3g" % (row, nmse))
