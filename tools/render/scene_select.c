@@ -4,6 +4,8 @@
 
 #include "scene_select.h"
 #include "cli_args.h"
+#include "data_path.h"
+#include "path_msg.h"
 #include "render.h"
 #include "select_trace.h"
 
@@ -117,6 +119,27 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         select_trace_free(&trace);
     }
     return 0;
+}
+
+int scene_resolve(scene *s, const char *scene_name, const char *const *files, int nfiles,
+                  int force_goal, FILE *explain, char *err, size_t err_size)
+{
+    mat_table table = {NULL, 0, 0};
+    int rc = -1;
+    if (force_goal >= 0 || scene_needs_table(s)) {
+        char tpath[4096];
+        if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
+            path_msg(err, err_size, tpath, ": material table not found (set ABRDF_DATA_DIR)");
+            goto done;
+        }
+        if (mat_table_load(&table, tpath, err, err_size)) goto done;
+    }
+    for (int i = 0; i < nfiles; ++i)
+        if (mat_table_load(&table, files[i], err, err_size)) goto done;
+    rc = scene_select_materials(s, scene_name, &table, force_goal, explain, err, err_size);
+done:
+    mat_table_free(&table);
+    return rc;
 }
 
 int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets, int nsets)
