@@ -79,6 +79,9 @@ int main(int argc, char **argv)
      * instead of killing the process with a half-written file. */
     signal(SIGXFSZ, SIG_IGN);
     int rc = dispatch(argc, argv);
-    if (out_stdout_check("abrdf") && rc == 0) rc = 1;
+    char who[64] = "abrdf";
+    for (size_t i = 0; argc > 1 && i < COMMAND_COUNT; ++i)
+        if (!strcmp(argv[1], commands[i].name)) snprintf(who, sizeof who, "abrdf %s", argv[1]);
+    if (out_stdout_check(who) && rc == 0) rc = 1;
     return rc;
 }

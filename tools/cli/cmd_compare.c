@@ -101,10 +101,10 @@ int cmd_compare(int argc, char **argv)
     char err[1024];
     if (diff) {
         const char *roles[2] = {"reference image", "test image"}, *out_role = "--diff image";
-        if (abrdf_image_check_output(diff, 0, err, sizeof err))
-            return cli_fail(cmd, "--diff %s", err);
         if (out_files_distinct(&diff, &out_role, 1, files, roles, 2, err, sizeof err))
             return cli_fail(cmd, "%s", err);
+        if (abrdf_image_check_output(diff, 0, err, sizeof err))
+            return cli_fail(cmd, "--diff %s", err);
     }
     abrdf_image ref, test;
     if (abrdf_image_read(files[0], &ref, err, sizeof err)) return cli_fail(cmd, "%s", err);

@@ -140,8 +140,8 @@ int cmd_render(int argc, char **argv)
         return cli_fail(cmd, "--adaptive needs --goal photoreal or --goal performance");
     opt.progress = isatty(2) && !explain;
 
-    /* Everything that can be refused is refused before the work: the output names and
-     * formats, the preview transform, outputs that are inputs. */
+    /* Everything that can be refused is refused before the work: outputs that are inputs
+     * (first: nothing is read before), the output names and formats, the preview transform. */
     char err[1024], *png = NULL;
     if (preview && !(png = preview_path(out))) {
         fprintf(stderr, "abrdf render: out of memory\n");
@@ -150,11 +150,6 @@ int cmd_render(int argc, char **argv)
     if (png && !strcmp(png, out)) {
         free(png);
         return cli_fail(cmd, "output %s leaves no name for the .png preview (--no-preview)", out);
-    }
-    if (abrdf_image_check_output(out, 1, err, sizeof err) ||
-        (png && abrdf_image_check_preview(config, display, view, err, sizeof err))) {
-        free(png);
-        return cli_fail(cmd, "%s", err);
     }
     {
         char tpath[1024];
@@ -167,6 +162,11 @@ int cmd_render(int argc, char **argv)
             free(png);
             return cli_fail(cmd, "%s", err);
         }
+    }
+    if (abrdf_image_check_output(out, 1, err, sizeof err) ||
+        (png && abrdf_image_check_preview(config, display, view, err, sizeof err))) {
+        free(png);
+        return cli_fail(cmd, "%s", err);
     }
 
     scene s;

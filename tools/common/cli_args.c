@@ -11,10 +11,25 @@
 int cli_fail(const char *cmd, const char *fmt, ...)
 {
     va_list ap;
-    fprintf(stderr, "abrdf %s: ", cmd);
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    int n = vsnprintf(NULL, 0, fmt, ap);
     va_end(ap);
+    char *msg = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    fprintf(stderr, "abrdf %s: ", cmd);
+    if (msg) {
+        va_start(ap, fmt);
+        vsnprintf(msg, (size_t)n + 1, fmt, ap);
+        va_end(ap);
+        /* One line, whatever an argument held: its control bytes are shown as \xHH. */
+        for (const char *p = msg; *p; ++p)
+            if ((unsigned char)*p < 0x20 || *p == 0x7f)
+                fprintf(stderr, "\\x%02x", (unsigned char)*p);
+            else
+                fputc(*p, stderr);
+        free(msg);
+    } else {
+        fputs("(out of memory)", stderr);
+    }
     fputc('\n', stderr);
     return CLI_EXIT_USAGE;
 }

@@ -8,7 +8,8 @@
 
 #define CLI_EXIT_USAGE 2
 
-/* Print "abrdf CMD: message" to stderr and return CLI_EXIT_USAGE. */
+/* Print "abrdf CMD: message" to stderr (one line: control bytes shown as \xHH) and return
+ * CLI_EXIT_USAGE. */
 int cli_fail(const char *cmd, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))

@@ -42,6 +42,7 @@ static void live_add(char *path)
             if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_DFL)
                 sigaction(sigs[i], &sa, NULL);
         }
+        signal(SIGXFSZ, SIG_IGN); /* write(2) then fails with EFBIG, which is reported */
     }
     for (int i = 0; i < LIVE_MAX; ++i)
         if (!live[i]) {
@@ -353,6 +354,29 @@ int out_files_distinct(const char *const *outputs, const char *const *output_rol
             }
     }
     return 0;
+}
+
+/* ---- a program's single output ------------------------------------------------------------- */
+
+FILE *out_file_or_stdout(out_file *o, const char *path, const char *program)
+{
+    char err[1024];
+    *o = (out_file)OUT_FILE_INIT;
+    if (!path) return stdout;
+    if (out_file_open(o, path, err, sizeof err) == 0) return o->f;
+    fprintf(stderr, "%s: %s\n", program, err);
+    return NULL;
+}
+
+int out_file_finish(out_file *o, const char *program)
+{
+    char err[1024];
+    if (!o->target) return out_stdout_check(program);
+    out_file *const files[1] = {o};
+    int rc = out_file_close(o, err, sizeof err) || out_file_commit(files, 1, err, sizeof err);
+    out_file_discard(o);
+    if (rc) fprintf(stderr, "%s: %s\n", program, err);
+    return rc;
 }
 
 /* ---- standard output ---------------------------------------------------------------------- */

@@ -9,7 +9,8 @@
  * temporary files are removed and existing targets are left as they were; the message names
  * the target and the reason (strerror). Concurrent writers to one target each rename a whole
  * file over it, so the last one wins whole. SIGINT, SIGTERM and SIGHUP remove the temporary
- * files of a process before it dies.
+ * files of a process before it dies; SIGXFSZ is ignored once an output is open, so that a
+ * file-size limit fails a write (EFBIG) instead of killing the process.
  *
  * A target that is a symbolic link is written where the link points (the link stays); a
  * character device or a FIFO (/dev/null, /dev/stdout, a pipe) is written in place, still with
@@ -22,6 +23,7 @@
  *   out_file_write     write bytes through the stream
  *   out_files_distinct refuse an output that is an input of the command or another output
  *   out_stdout_check   flush standard output and report a failed write to it
+ *   out_file_or_stdout / out_file_finish   a program's single output: a file or stdout
  */
 #ifndef ABRDF_OUT_FILE_H
 #define ABRDF_OUT_FILE_H
@@ -70,6 +72,13 @@ void out_file_discard(out_file *o);
 int out_files_distinct(const char *const *outputs, const char *const *output_roles, int nout,
                        const char *const *inputs, const char *const *input_roles, int nin,
                        char *err, size_t err_size);
+
+/* A program with one output, a file (path) or standard output (path NULL): the stream to
+ * write to, or NULL after printing "PROGRAM: reason" to stderr. */
+FILE *out_file_or_stdout(out_file *o, const char *path, const char *program);
+/* Then: close and commit the file (or check standard output). 0, or 1 after printing
+ * "PROGRAM: reason"; the temporary file is gone either way. */
+int out_file_finish(out_file *o, const char *program);
 
 /* Flush standard output; if a write to it failed (a full disk, a closed pipe, /dev/full),
  * print "PROGRAM: standard output: reason" to stderr and return 1, else 0. */

@@ -41,10 +41,19 @@ void set_err(char *err, int err_size, const std::string &msg)
 bool continuation(char c) { return ((unsigned char)c & 0xc0) == 0x80; }
 
 // "PATH: reason" into err; if it does not fit, the path is shortened in its middle, never the
-// reason (as path_msg.h does for the C tools).
+// reason; its control bytes are shown as \xHH (as path_msg.h does for the C tools).
 void set_err_path(char *err, int err_size, const char *path, const std::string &reason)
 {
-    std::string p = path ? path : "", r = ": " + (reason.empty() ? std::string("failed") : reason);
+    std::string p, r = ": " + (reason.empty() ? std::string("failed") : reason);
+    for (const char *c = path ? path : ""; *c; ++c) {
+        char hex[8];
+        if ((unsigned char)*c < 0x20 || *c == 0x7f) {
+            std::snprintf(hex, sizeof hex, "\\x%02x", (unsigned char)*c);
+            p += hex;
+        } else {
+            p += *c;
+        }
+    }
     if (err_size > 0 && p.size() + r.size() >= (size_t)err_size) {
         size_t room = (size_t)err_size - 1 > r.size() + 16 ? (size_t)err_size - 1 - r.size() : 16;
         if (p.size() > room) {
