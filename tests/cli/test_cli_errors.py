@@ -206,9 +206,10 @@ class JsonIsUtf8(Base):
         b = d + b"/\xc3\xa9t\xc3\xa9.exr"  # UTF-8
         for p in (a, b):
             r = subprocess.run([ABRDF, "render", SPHERE, "-o", p, "--width", "8", "--height",
-                                "8", "--no-preview"], capture_output=True)
+                                "8", "--no-preview"], capture_output=True, timeout=120)
             self.assertEqual(r.returncode, 0, r.stderr)
-        r = subprocess.run([os.fsencode(ABRDF), b"compare", a, b, b"--json"], capture_output=True)
+        r = subprocess.run([os.fsencode(ABRDF), b"compare", a, b, b"--json"], capture_output=True,
+                           timeout=120)
         self.assertEqual(r.returncode, 0, r.stderr)
         doc = json.loads(r.stdout.decode("utf-8"))  # strict: raises on invalid UTF-8
         self.assertTrue(doc["reference"].endswith("caf\ufffd-latin1.exr"), doc["reference"])
@@ -219,7 +220,7 @@ class JsonIsUtf8(Base):
         mats += b"weird,general,,0.4,0.5,0.5,0.5,1,1,1,,,,1.5,,,,,,,,,,,,caf\xe9 \xff\xfe\n"
         path = self.put("m.csv", mats)
         r = subprocess.run([ABRDF, "advise", "weird", "--materials", path, "--json"],
-                           capture_output=True)
+                           capture_output=True, timeout=120)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(json.loads(r.stdout.decode("utf-8"))["source"], "caf\ufffd \ufffd\ufffd")
 

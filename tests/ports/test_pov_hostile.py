@@ -22,8 +22,10 @@ import OpenImageIO as oiio
 ABRDF, POVRAY, INCLUDE, WORK = (None,) * 4
 SIZE, K, BAR = 24, 2, 1e-4
 
-HOSTILE_DIR = (b'h\n#fopen F "pwned" write #write(F,"x") #fclose F\n"\'\\ '
-               b'#declare Abrdf_Eye = <0, 0, -100>; \xc3\xa9\xff#')
+# Were a comment cut at the line breaks, this would parse: the directives would run, write
+# the file "pwned" and the render would still succeed, so the test would see the file.
+HOSTILE_DIR = (b'h\n#fopen F "pwned" write #write(F,"x") #fclose F\n// "\'\\ '
+               b'\xc3\xa9\xff#')
 HOSTILE_NAMES = ['a")box{-9,9}//', "x\\q", 'q"""']
 
 
@@ -68,7 +70,7 @@ class PovHostile(unittest.TestCase):
     def test_hostile_export_creates_nothing_and_matches(self):
         d = os.fsencode(WORK) + b"/" + HOSTILE_DIR
         os.makedirs(d, exist_ok=True)
-        scene = d + b"/s\n#declare X = 1;\n.scene"
+        scene = d + b"/s#1.scene"
         lines = ["camera position=0,0,4 look_at=0,0,0 resolution=24,24",
                  "light directional direction=-1,1,1 intensity=3", "ambient 0.05"]
         for i, n in enumerate(HOSTILE_NAMES):
