@@ -46,7 +46,7 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         if (force_goal >= 0)
             goal = (abrdf_goal)force_goal;
         else if (sm->kind == SCENE_MAT_ADAPTIVE && abrdf_goal_find(sm->goal, &goal) != ABRDF_OK) {
-            snprintf(err, err_size, "%s:%d: unknown goal '%s'", scene_name, sm->line, sm->goal);
+            path_msg(err, err_size, scene_name, ":%d: unknown goal '%s'", sm->line, sm->goal);
             return -1;
         }
         abrdf_material am;
@@ -59,10 +59,10 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
                 int k = table ? mat_table_nearest(table, sm->table, near, 4) : 0;
                 char hint[256] = "";
                 for (int j = 0; j < k; ++j) strcat(strcat(hint, j ? ", " : ""), near[j]);
-                snprintf(err, err_size,
-                         "%s:%d: material '%s': no entry '%s' in the material table%s%s%s",
-                         scene_name, sm->line, sm->name, sm->table, k ? "; did you mean: " : "",
-                         hint, k ? "?" : " (abrdf advise --list)");
+                path_msg(err, err_size, scene_name,
+                         ":%d: material '%s': no entry '%s' in the material table%s%s%s", sm->line,
+                         sm->name, sm->table, k ? "; did you mean: " : "", hint,
+                         k ? "?" : " (abrdf advise --list)");
                 return -1;
             }
             am = e->m;
@@ -72,9 +72,8 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         if (described(sm, "r")) am.r = p->r;
         if (described(sm, "n")) am.n = p->n;
         if (!e && !described(sm, "r") && !described(sm, "n")) {
-            snprintf(err, err_size,
-                     "%s:%d: adaptive material '%s' needs table=ENTRY, r= or n=", scene_name,
-                     sm->line, sm->name);
+            path_msg(err, err_size, scene_name,
+                     ":%d: adaptive material '%s' needs table=ENTRY, r= or n=", sm->line, sm->name);
             return -1;
         }
         take_rgb(sm, "kd", p->kd, am.kd);
@@ -88,7 +87,7 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         abrdf_params_init(ABRDF_MODEL_NONE, &chosen);
         if (abrdf_select(&am, goal, NULL, NULL, &sel, &chosen, explain ? select_trace_keep : NULL,
                          &trace) != ABRDF_OK) {
-            snprintf(err, err_size, "%s:%d: material '%s': %s", scene_name, sm->line, sm->name,
+            path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
                      sel.message);
             select_trace_free(&trace);
             return -1;
