@@ -117,9 +117,9 @@ class InputsAreNeverOutputs(Base):
 
     def test_export_over_its_scene(self):
         scene = self.put("s.scene", read_text(SPHERE))
+        self.refused(["export", "--cycles", scene, "-o", scene], "the scene")
         for name in self.aliases(scene):
-            for fmt in ("--pov", "--cycles"):
-                self.refused(["export", fmt, scene, "-o", name], "the scene")
+            self.refused(["export", "--pov", scene, "-o", name], "the scene")
 
     def test_export_over_a_materials_file(self):
         mats = self.put("m.csv", read_text(os.path.join(SRC, "data", "materials.csv")))
@@ -306,7 +306,7 @@ class WholeOrNothing(Base):
             self.assertEqual(run(ABRDF, "render", SPHERE, "-o", ref, "--width", w, "--height", h,
                                  "--no-preview")[0], 0)
             refs.append(ref)
-        for _ in range(3):
+        for _ in range(2):
             procs = [subprocess.Popen([ABRDF, "render", SPHERE, "-o", out, "--width", w,
                                        "--height", h, "--threads", "1"],
                                       stderr=subprocess.PIPE) for w, h in sizes * 2]
@@ -321,9 +321,9 @@ class WholeOrNothing(Base):
             self.assertEqual(run(ABRDF, "export", "--pov", SPHERE, "--model", model, "-o",
                                  self.path(model + ".pov"))[0], 0)
             texts[model] = read_text(self.path(model + ".pov"))
-        for _ in range(5):
+        for _ in range(3):
             procs = [subprocess.Popen([ABRDF, "export", "--pov", SPHERE, "--model", m, "-o", pov])
-                     for m in ("lambert", "blinn_phong") * 3]
+                     for m in ("lambert", "blinn_phong") * 2]
             for p in procs:
                 self.assertEqual(p.wait(), 0)
             self.assertIn(read_text(pov), texts.values())
