@@ -218,7 +218,7 @@ static void light_row(FILE *f, const render_light *lt)
             lt->kind == SCENE_LIGHT_POINT ? 0 : 1, p[0], p[1], -p[2], lt->e[0], lt->e[1], lt->e[2]);
 }
 
-/* Passes: povray -D Declare=Abrdf_Pass=k renders light k alone through its light_source (shadows)
+/* Passes: povray given Declare=Abrdf_Pass=k renders light k alone through its light_source (shadows)
  * and the ambient term in pass 0 only, so the passes' images sum to the scene's; without
  * Abrdf_Pass every light is summed in the pigment without shadows. The objects read
  * Abrdf_Pass_Lights, Abrdf_Lit and Abrdf_Ambient_On. */
@@ -302,6 +302,8 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
               "// every light emissively, without shadows."
             : "function pigments, emissive: each pigment sums every light unoccluded "
               "(no shadows).");
+    if (opt->passes)
+        fprintf(f, "// Passes: k = 0 .. %d (%d lights).\n", rs->light_count - 1, rs->light_count);
     if (opt->notes) pov_comment_lines(f, opt->notes);
     fprintf(
         f,
