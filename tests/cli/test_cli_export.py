@@ -387,5 +387,58 @@ class ExportMeshes(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
 
 
+class PovLights(unittest.TestCase):
+    """How the POV-Ray export carries the lights: one light through POV-Ray's light_source
+    (shadows); several lights as passes, light k alone with its light_source and shadows when
+    povray is given Declare=Abrdf_Pass=k, the ambient term in pass 0 only (the render check is
+    tests/ports/test_pov_lights.py); --no-shadows every light in the pigment."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def pov(self, name, *args):
+        out = os.path.join(self.tmp.name, "x.pov")
+        r = run("--pov", os.path.join(SCENES, name), "-o", out, *args)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            return f.read()
+
+    def objects(self, text):
+        return len(re.findall(r"^object \{", text, re.M))
+
+    def test_one_light_is_povrays(self):
+        text = self.pov("robot.scene")
+        self.assertNotIn("Abrdf_Pass", text)
+        self.assertEqual(len(re.findall(r"^light_source \{", text, re.M)), 1)
+        self.assertEqual(text.count("Abrdf_Eye, Abrdf_Lights,"), self.objects(text))
+        self.assertEqual(len(re.findall(r">, true\)$", text, re.M)), self.objects(text))
+
+    def test_several_lights_are_passes(self):
+        for name, n in (("robot_lights.scene", 3), ("robot16.scene", 16)):
+            text = self.pov(name)
+            self.assertIn("#declare Abrdf_Pass_Count = %d;" % n, text)
+            cases = re.findall(r"#case \((\d+)\)\n    #declare Abrdf_Pass_Lights = array\[1\]\[7\] "
+                               r"\{(\{[^}]*\})\}\n    light_source \{", text)
+            self.assertEqual([int(c[0]) for c in cases], list(range(n)), name)
+            # pass k's row is row k of every light's table
+            table = re.search(r"#declare Abrdf_Lights = array\[%d\]\[7\] \{\n(.*?)\n\}" % n,
+                              text, re.S).group(1)
+            rows = [r.strip().rstrip(",") for r in table.split("\n")]
+            self.assertEqual([c[1] for c in cases], rows, name)
+            self.assertIn("#declare Abrdf_Ambient_On = (Abrdf_Pass = 0);", text)
+            self.assertEqual(text.count("Abrdf_Eye, Abrdf_Pass_Lights,"), self.objects(text))
+            self.assertEqual(text.count(" * Abrdf_Ambient_On, Abrdf_Lit)"), self.objects(text))
+            self.assertIn("Declare=Abrdf_Pass=k", text.split("#version")[0])  # the header says how
+
+    def test_no_shadows_is_emissive(self):
+        text = self.pov("robot_lights.scene", "--no-shadows")
+        self.assertNotIn("Abrdf_Pass", text)
+        self.assertNotIn("light_source", text)
+        self.assertEqual(len(re.findall(r">, false\)$", text, re.M)), self.objects(text))
+
+
 if __name__ == "__main__":
     unittest.main()

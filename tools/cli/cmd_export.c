@@ -44,8 +44,10 @@ static int usage(void)
            "                     material (abrdf_select)\n"
            "  --materials FILE   material-table file merged over data/materials.csv\n"
            "  --width/--height   override the scene's resolution\n"
-           "  --no-shadows       (pov) emissive mode even with one light (no shadows); with\n"
-           "                     several lights this is the only mode\n"
+           "  --no-shadows       (pov) emissive mode: every light in the pigment, no shadows.\n"
+           "                     Otherwise one light uses POV-Ray's light and shadows, and\n"
+           "                     several lights one render each: povray Declare=Abrdf_Pass=k\n"
+           "                     for k = 0 .. N-1, images summed (oiiotool --add)\n"
            "  --native           (pov) POV-Ray's own finishes instead of function pigments:\n"
            "                     lambert, phong, blinn_phong only; directional lights only;\n"
            "                     phong/blinn_phong then lack the factor N.wi (docs/POVRAY.md)\n"
@@ -214,7 +216,9 @@ int cmd_export(int argc, char **argv)
     }
     const char *note = notes_len ? notes : NULL;
     if (pov) {
-        export_pov_options eo = {!native && !no_shadows && rs.light_count == 1, native, path, note};
+        int eval_lit = !native && !no_shadows; /* function pigments under POV-Ray's lights */
+        export_pov_options eo = {eval_lit && rs.light_count == 1, eval_lit && rs.light_count > 1,
+                                 native, path, note};
         if (export_pov_write(&rs, &eo, o.f, err, sizeof err)) {
             export_failed(&o, out, err, sizeof err);
             goto done;

@@ -146,6 +146,21 @@ static void pov_mesh_data(FILE *f, const mesh *m, int index)
     fputs("}\n", f);
 }
 
+/* The arguments after M of Abrdf_Shaded_Texture and Abrdf_Mesh_Texture: tangent rule, eye,
+ * lights, ambient and Lit; with passes, those of the pass povray was given (pov_passes). */
+static void eval_args(FILE *f, const scene_object *o, const double a[3],
+                      const export_pov_options *opt)
+{
+    fprintf(f, "    array[4] {%d, %.17g, %.17g, %.17g}, Abrdf_Eye, %s,\n", (int)o->tangent,
+            o->tangent_axis[0], o->tangent_axis[1], o->tangent_axis[2],
+            opt->passes ? "Abrdf_Pass_Lights" : "Abrdf_Lights");
+    fprintf(f, "    <%.17g, %.17g, %.17g>%s, %s)\n", a[0], a[1], a[2],
+            opt->passes ? " * Abrdf_Ambient_On" : "",
+            opt->passes ? "Abrdf_Lit"
+            : opt->lit  ? "true"
+                        : "false");
+}
+
 /* A mesh object: its mesh2 under the texture (evaluation or native) and the transform. */
 static void pov_mesh_object(FILE *f, const scene_object *o, const render_material *m,
                             const export_pov_options *opt)
@@ -159,10 +174,7 @@ static void pov_mesh_object(FILE *f, const scene_object *o, const render_materia
     } else {
         fprintf(f, "  Abrdf_Mesh_Texture(Abrdf_Mat_%d, Abrdf_Mesh_%d_Data, %s, Abrdf_M,\n",
                 o->material, o->mesh, o->smooth ? "true" : "false");
-        fprintf(f, "    array[4] {%d, %.17g, %.17g, %.17g}, Abrdf_Eye, Abrdf_Lights,\n",
-                (int)o->tangent, o->tangent_axis[0], o->tangent_axis[1], o->tangent_axis[2]);
-        fprintf(f, "    <%.17g, %.17g, %.17g>, %s)\n", a[0], a[1], a[2],
-                opt->lit ? "true" : "false");
+        eval_args(f, o, a, opt);
     }
     fputs("  Abrdf_Xform_Matrix(Abrdf_M) }\n", f);
 }
@@ -181,6 +193,67 @@ static void pov_meshes(FILE *f, const scene *s, int eval)
     }
 }
 
+/* One light as POV-Ray's light_source: white (the pigment holds E), or carrying E (native). */
+static void light_source(FILE *f, const render_light *lt, int native, double extent)
+{
+    double e[3] = {1, 1, 1};
+    if (native) memcpy(e, lt->e, sizeof e);
+    fprintf(f, "light_source { ");
+    if (lt->kind == SCENE_LIGHT_POINT) {
+        vec(f, lt->position, 1);
+        fprintf(f, " color rgb <%.17g, %.17g, %.17g> }\n", e[0], e[1], e[2]);
+    } else {
+        /* far beyond the scene: POV-Ray's parallel light shadows up to its location */
+        vec(f, lt->direction, 1e6 * fmax(extent, 1.0));
+        fprintf(f, " color rgb <%.17g, %.17g, %.17g> parallel point_at <0, 0, 0> }\n", e[0], e[1],
+                e[2]);
+    }
+}
+
+/* The row of Abrdf_Lights for one light: {kind, position or direction, E}. */
+static void light_row(FILE *f, const render_light *lt)
+{
+    const double *p = lt->kind == SCENE_LIGHT_POINT ? lt->position : lt->direction;
+    fprintf(f, "{%d, %.17g, %.17g, %.17g, %.17g, %.17g, %.17g}",
+            lt->kind == SCENE_LIGHT_POINT ? 0 : 1, p[0], p[1], -p[2], lt->e[0], lt->e[1], lt->e[2]);
+}
+
+/* Passes: povray given Declare=Abrdf_Pass=k renders light k alone through its light_source (shadows)
+ * and the ambient term in pass 0 only, so the passes' images sum to the scene's; without
+ * Abrdf_Pass every light is summed in the pigment without shadows. The objects read
+ * Abrdf_Pass_Lights, Abrdf_Lit and Abrdf_Ambient_On. */
+static void pov_passes(FILE *f, const render_scene *rs, double extent)
+{
+    int n = rs->light_count;
+    fprintf(f,
+            "#declare Abrdf_Pass_Count = %d;\n"
+            "#ifdef (Abrdf_Pass)\n"
+            "  #if (Abrdf_Pass != int(Abrdf_Pass) | Abrdf_Pass < 0 | Abrdf_Pass >= "
+            "Abrdf_Pass_Count)\n"
+            "    #error concat(\"Abrdf_Pass = \", str(Abrdf_Pass, 0, -1), \" is not a light: "
+            "render with Declare=Abrdf_Pass=k, k = 0 .. %d\\n\")\n"
+            "  #end\n"
+            "  #declare Abrdf_Lit = true;\n"
+            "  #declare Abrdf_Ambient_On = (Abrdf_Pass = 0);\n"
+            "  #switch (Abrdf_Pass)\n",
+            n, n - 1);
+    for (int l = 0; l < n; ++l) {
+        fprintf(f, "  #case (%d)\n    #declare Abrdf_Pass_Lights = array[1][7] {", l);
+        light_row(f, &rs->lights[l]);
+        fputs("}\n    ", f);
+        light_source(f, &rs->lights[l], 0, extent);
+        fputs("  #break\n", f);
+    }
+    fprintf(f, "  #end\n"
+               "#else\n"
+               "  #warning \"no Abrdf_Pass: every light without shadows; for shadows render "
+               "once per light with Declare=Abrdf_Pass=k and sum the images (docs/POVRAY.md)\\n\"\n"
+               "  #declare Abrdf_Lit = false;\n"
+               "  #declare Abrdf_Ambient_On = 1;\n"
+               "  #declare Abrdf_Pass_Lights = Abrdf_Lights;\n"
+               "#end\n");
+}
+
 int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE *f, char *err,
                      size_t err_size)
 {
@@ -189,6 +262,13 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
         snprintf(err, err_size,
                  "POV-Ray's own shadows need exactly one light (the scene has %d); "
                  "export without them",
+                 rs->light_count);
+        return -1;
+    }
+    if (opt->passes && (opt->lit || opt->native || rs->light_count < 2)) {
+        snprintf(err, err_size,
+                 "passes render one light each: they need two lights or more (the scene has "
+                 "%d) and function pigments (not --native)",
                  rs->light_count);
         return -1;
     }
@@ -209,11 +289,21 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
             "// and average k x k pixel blocks (k = 1 here): the samples are those of\n"
             "// `abrdf render --spp k*k` (stratum centres).\n",
             rs->width, rs->height);
-    fprintf(f, "// Shading: %s\n",
-            opt->native ? "POV-Ray's own finishes (abrdf_native.inc), its lights and shadows."
-            : opt->lit  ? "function pigments; POV-Ray's light_source and shadow test (one light)."
-                        : "function pigments, emissive: each pigment sums every light unoccluded "
-                          "(no shadows).");
+    fprintf(
+        f, "// Shading: %s\n",
+        opt->native ? "POV-Ray's own finishes (abrdf_native.inc), its lights and shadows."
+        : opt->lit  ? "function pigments; POV-Ray's light_source and shadow test (one light)."
+        : opt->passes
+            ? "function pigments; one pass per light with POV-Ray's light_source and\n"
+              "// shadow test. Render each pass k = 0 .. N-1 (N lights) with\n"
+              "//   povray ... Declare=Abrdf_Pass=k +O<out>_k.exr\n"
+              "// and sum them: oiiotool <out>_0.exr <out>_1.exr --add ... -o <out>.exr\n"
+              "// (pass 0 holds the ambient term). Without Declare=Abrdf_Pass the file renders\n"
+              "// every light emissively, without shadows."
+            : "function pigments, emissive: each pigment sums every light unoccluded "
+              "(no shadows).");
+    if (opt->passes)
+        fprintf(f, "// Passes: k = 0 .. %d (%d lights).\n", rs->light_count - 1, rs->light_count);
     if (opt->notes) pov_comment_lines(f, opt->notes);
     fprintf(
         f,
@@ -235,30 +325,16 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
     fprintf(f, "#declare Abrdf_Lights = array[%d][7] {\n",
             rs->light_count > 0 ? rs->light_count : 1);
     for (int l = 0; l < rs->light_count; ++l) {
-        const render_light *lt = &rs->lights[l];
-        const double *p = lt->kind == SCENE_LIGHT_POINT ? lt->position : lt->direction;
-        fprintf(f, "  {%d, %.17g, %.17g, %.17g, %.17g, %.17g, %.17g}%s\n",
-                lt->kind == SCENE_LIGHT_POINT ? 0 : 1, p[0], p[1], -p[2], lt->e[0], lt->e[1],
-                lt->e[2], l + 1 < rs->light_count ? "," : "");
+        fputs("  ", f);
+        light_row(f, &rs->lights[l]);
+        fputs(l + 1 < rs->light_count ? ",\n" : "\n", f);
     }
     if (rs->light_count == 0) fprintf(f, "  {1, 0, 1, 0, 0, 0, 0}  // no light: a black one\n");
     fprintf(f, "}\n");
     /* Lit: the pigment holds E, the light is white; native: the light carries E. */
-    for (int l = 0; (opt->lit || opt->native) && l < rs->light_count; ++l) {
-        const render_light *lt = &rs->lights[l];
-        double e[3] = {1, 1, 1};
-        if (opt->native) memcpy(e, lt->e, sizeof e);
-        fprintf(f, "light_source { ");
-        if (lt->kind == SCENE_LIGHT_POINT) {
-            vec(f, lt->position, 1);
-            fprintf(f, " color rgb <%.17g, %.17g, %.17g> }\n", e[0], e[1], e[2]);
-        } else {
-            /* far beyond the scene: POV-Ray's parallel light shadows up to its location */
-            vec(f, lt->direction, 1e6 * fmax(extent, 1.0));
-            fprintf(f, " color rgb <%.17g, %.17g, %.17g> parallel point_at <0, 0, 0> }\n", e[0],
-                    e[1], e[2]);
-        }
-    }
+    for (int l = 0; (opt->lit || opt->native) && l < rs->light_count; ++l)
+        light_source(f, &rs->lights[l], opt->native, extent);
+    if (opt->passes) pov_passes(f, rs, extent);
     fprintf(f, "\n");
     for (int i = 0; i < rs->material_count; ++i)
         if (rs->materials[i].used &&
@@ -296,11 +372,9 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
         }
         fprintf(f, "  Abrdf_Shaded_Texture(Abrdf_Mat_%d, \"%s\", <%.17g, %.17g, %.17g>, Abrdf_M,\n",
                 o->material, shapes[o->shape], dims[0], dims[1], dims[2]);
-        fprintf(f, "    array[4] {%d, %.17g, %.17g, %.17g}, Abrdf_Eye, Abrdf_Lights,\n",
-                (int)o->tangent, o->tangent_axis[0], o->tangent_axis[1], o->tangent_axis[2]);
-        fprintf(f, "    <%.17g, %.17g, %.17g>, %s)\n", m->use_ambient ? m->ambient[0] : 0.0,
-                m->use_ambient ? m->ambient[1] : 0.0, m->use_ambient ? m->ambient[2] : 0.0,
-                opt->lit ? "true" : "false");
+        double a[3] = {0, 0, 0};
+        if (m->use_ambient) memcpy(a, m->ambient, sizeof a);
+        eval_args(f, o, a, opt);
         fprintf(f, "  Abrdf_Xform_Matrix(Abrdf_M) }\n");
     }
     return ferror(f) ? (snprintf(err, err_size, "write error"), -1) : 0;

@@ -16,14 +16,19 @@
 
 typedef struct export_pov_options {
     int lit; /* 1: one light through POV-Ray's light_source (its shadows); 0: emissive, no shadows */
-    int native;         /* POV-Ray's own finishes (abrdf_native.inc): lambert, phong, blinn_phong;
+    int passes; /* several lights, shadows by passes: the file renders light k through POV-Ray's
+                   light_source when povray is given Declare=Abrdf_Pass=k (ambient in pass 0),
+                   and every light emissively without shadows when it is not; the images of
+                   the passes sum to the scene's (docs/POVRAY.md) */
+    int native; /* POV-Ray's own finishes (abrdf_native.inc): lambert, phong, blinn_phong;
                          every light a light_source (shadows), directional lights only */
     const char *source; /* scene file name for the header comment */
     const char *notes;  /* NULL, or lines written as comments (the selection's trace) */
 } export_pov_options;
 
-/* Returns 0, or -1 with a message in err (e.g. lit with more than one light). Every string
- * from the scene goes through export_text.h: a path or a name never becomes SDL. */
+/* Returns 0, or -1 with a message in err (e.g. lit with more than one light, passes with
+ * fewer than two or with native). Every string from the scene goes through export_text.h:
+ * a path or a name never becomes SDL. */
 int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE *f, char *err,
                      size_t err_size);
 
