@@ -16,13 +16,14 @@
 static int usage(void)
 {
     printf(
-        "usage: abrdf render SCENE -o OUT.exr [--width W] [--height H] [--spp N] [--jitter]\n"
+        "usage: abrdf render SCENE [-o OUT.exr] [--width W] [--height H] [--spp N] [--jitter]\n"
         "                    [--model NAME [--set NAME=VALUE ...] | --adaptive --goal G]\n"
         "                    [--materials FILE ...] [--threads N] [--explain] [--stats]\n"
         "                    [--full] [--precision float|double] [--no-preview]\n"
         "                    [--config OCIO] [--display D] [--view V]\n\n"
         "Renders SCENE (docs/SCENES.md) to a linear float image (format from the extension,\n"
-        "EXR recommended) and an sRGB PNG preview with the same name (.png).\n"
+        "EXR recommended) and an sRGB PNG preview with the same name (.png); without -o,\n"
+        "NAME.exr and NAME.png in the current directory for SCENE = .../NAME.scene.\n"
         "  --width/--height  override the scene's resolution\n"
         "  --spp N           samples per pixel, a square (1, 4, 9, 16, ...); default 4\n"
         "  --jitter          jitter samples inside their strata (deterministic)\n"
@@ -30,16 +31,31 @@ static int usage(void)
         "  --set NAME=VALUE  with --model: set a parameter of every material\n"
         "  --adaptive --goal photoreal|performance   choose models per material (abrdf_select)\n"
         "  --materials FILE  material-table file merged over data/materials.csv (table= entries)\n"
-        "  --threads N       worker threads; default: online CPUs\n"
+        "  --threads N       worker threads (and Embree's build threads); default: online CPUs\n"
         "  --explain         print the effect plan (what is simulated and why) and counters\n"
-        "  --stats           print the work counters (and the render time on stderr)\n"
+        "  --stats           print the work counters (and on stderr: the render time, the\n"
+        "                    time to read and prepare the scene, Embree's memory)\n"
         "  --precision P     float (default): the fast path, each material's lobes evaluated over\n"
         "                    a tile's hits by the float batch API, within NMSE 1e-8 of double;\n"
         "                    double: the scalar double reference (the ports are checked on it)\n"
-        "  --full            ignore the effect plan: every ray tests every object, tangent\n"
+        "  --full            ignore the effect plan: shadow rays at every lit point, tangent\n"
         "                    frames and ambient everywhere (to measure what the plan saves)\n"
         "  --config/--display/--view   OpenColorIO preview transform (default: built-in sRGB)\n");
     return 0;
+}
+
+/* .../NAME.scene -> NAME.exr (in the current directory), or NULL (no memory) */
+static char *default_output(const char *scene)
+{
+    const char *base = strrchr(scene, '/');
+    base = base ? base + 1 : scene;
+    const char *dot = strrchr(base, '.');
+    size_t len = dot && dot > base ? (size_t)(dot - base) : strlen(base);
+    char *p = malloc(len + 5);
+    if (!p) return NULL;
+    memcpy(p, base, len);
+    strcpy(p + len, ".exr");
+    return p;
 }
 
 /* out.exr -> out.png */
@@ -136,7 +152,6 @@ int cmd_render(int argc, char **argv)
         }
     }
     if (!path) return cli_fail(cmd, "missing SCENE (abrdf render --help)");
-    if (!out) return cli_fail(cmd, "missing -o OUT.exr");
     long k = lround(sqrt((double)opt.spp));
     if (k * k != opt.spp)
         return cli_fail(
@@ -151,13 +166,21 @@ int cmd_render(int argc, char **argv)
 
     scene s;
     char err[512];
+    struct timespec r0, r1, r2;
+    clock_gettime(CLOCK_MONOTONIC, &r0);
     if (scene_parse_file(path, &s, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
         return 1;
     }
+    clock_gettime(CLOCK_MONOTONIC, &r1);
     int rc = 1;
     float *rgb = NULL;
-    char *png = NULL;
+    char *png = NULL, *out_default = NULL;
+    if (!out && !(out = out_default = default_output(path))) {
+        fprintf(stderr, "abrdf render: out of memory\n");
+        scene_free(&s);
+        return 1;
+    }
     render_scene rs;
     mat_table table = {0};
     int prepared = 0;
@@ -196,6 +219,7 @@ int cmd_render(int argc, char **argv)
         fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
+    clock_gettime(CLOCK_MONOTONIC, &r2);
     prepared = 1;
     if (full && render_plan_ignore(&rs)) {
         fprintf(stderr, "abrdf render: out of memory\n");
@@ -228,6 +252,12 @@ int cmd_render(int argc, char **argv)
                 rs.width, rs.height, opt.spp, opt.threads, render_precision_name(opt.precision),
                 full ? ", --full" : "",
                 (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec), cpu);
+        fprintf(stderr,
+                "abrdf render: scene read in %.3f s, prepared in %.3f s wall (materials, Embree "
+                "scene, effect plan); Embree holds %zu bytes\n",
+                (double)(r1.tv_sec - r0.tv_sec) + 1e-9 * (double)(r1.tv_nsec - r0.tv_nsec),
+                (double)(r2.tv_sec - r1.tv_sec) + 1e-9 * (double)(r2.tv_nsec - r1.tv_nsec),
+                accel_bytes(rs.accel));
     }
     if (abrdf_image_write_linear(out, rs.width, rs.height, rgb, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
@@ -248,6 +278,7 @@ int cmd_render(int argc, char **argv)
     rc = 0;
 done:
     if (prepared) render_release(&rs);
+    free(out_default);
     free(png);
     free(rgb);
     mat_table_free(&table);
