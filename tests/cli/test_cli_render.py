@@ -11,10 +11,10 @@ ABRDF = os.environ["ABRDF"]
 SCENES = os.environ["SCENES"]
 
 
-def run(*args, preview=False):
+def run(*args, preview=False, cwd=None):
     """abrdf render ARGS; the PNG preview only when a test looks at it (it costs time)."""
     extra = [] if preview else ["--no-preview"]
-    return subprocess.run([ABRDF, "render", *args, *extra], capture_output=True, text=True)
+    return subprocess.run([ABRDF, "render", *args, *extra], capture_output=True, text=True, cwd=cwd)
 
 
 def counter(out, name):
@@ -76,8 +76,16 @@ class Render(unittest.TestCase):
             r = run(sphere, "-o", self.path("x.exr"), *args)
             self.assertEqual(r.returncode, 2, args)
             self.assertIn(msg, r.stderr, args)
-        r = run(sphere)
+        r = run()
         self.assertEqual(r.returncode, 2)
+        self.assertIn("missing SCENE", r.stderr)
+
+    def test_default_output_next_to_the_working_directory(self):
+        # without -o: NAME.exr and NAME.png in the current directory for .../NAME.scene
+        r = run(os.path.join(SCENES, "sphere.scene"), "--width", "16", "--height", "16", preview=True,
+                cwd=self.dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["sphere.exr", "sphere.png"])
 
     def test_model_override(self):
         r = run(os.path.join(SCENES, "sphere.scene"), "-o", self.path("m.exr"), "--width", "16", "--height", "16",

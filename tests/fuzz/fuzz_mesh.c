@@ -68,7 +68,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     accel *a;
     double reach = 4 * (sqrt(geom_dot(g[0].center, g[0].center)) + 2 * g[0].bound + 1);
-    FUZZ_REQUIRE(accel_build(g, 2, reach, &a, err, sizeof err) == 0);
+    FUZZ_REQUIRE(accel_build(g, 2, reach, 0, &a, err, sizeof err) == 0);
     for (int r = 0; r < 16; ++r) {
         double ang = r * 0.7, o3[3], d[3];
         for (int c = 0; c < 3; ++c) o3[c] = g[0].center[c];

@@ -126,7 +126,7 @@ START_TEST(closest_hits_match_the_loop)
     make_scene();
     accel *a;
     char err[256];
-    ck_assert_msg(accel_build(go, COUNT, 40.0, &a, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(accel_build(go, COUNT, 40.0, 0, &a, err, sizeof err) == 0, "%s", err);
     int rays = TEST_ACCEL_RAYS, analytic = 0, meshes = 0, other_triangle = 0, ties = 0;
     unsigned long long tests = 0;
     for (int r = 0; r < rays; ++r) {
@@ -177,7 +177,7 @@ START_TEST(occlusion_matches_the_loop)
     make_scene();
     accel *a;
     char err[256];
-    ck_assert_msg(accel_build(go, COUNT, 40.0, &a, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(accel_build(go, COUNT, 40.0, 0, &a, err, sizeof err) == 0, "%s", err);
     int differ = 0, blocked = 0, rays = TEST_ACCEL_RAYS;
     for (int r = 0; r < rays; ++r) {
         double o[3], d[3];
@@ -227,8 +227,8 @@ START_TEST(rebuilds_agree)
     make_scene();
     accel *a, *b;
     char err[256];
-    ck_assert(accel_build(go, COUNT, 40.0, &a, err, sizeof err) == 0);
-    ck_assert(accel_build(go, COUNT, 40.0, &b, err, sizeof err) == 0);
+    ck_assert(accel_build(go, COUNT, 40.0, 0, &a, err, sizeof err) == 0);
+    ck_assert(accel_build(go, COUNT, 40.0, 0, &b, err, sizeof err) == 0);
     for (int r = 0; r < TEST_ACCEL_RAYS / 2; ++r) {
         double o[3], d[3];
         random_ray(o, d);
@@ -240,7 +240,7 @@ START_TEST(rebuilds_agree)
     accel_release(a);
     accel_release(b);
     /* an empty scene has nothing to hit */
-    ck_assert(accel_build(go, 0, 1.0, &a, err, sizeof err) == 0);
+    ck_assert(accel_build(go, 0, 1.0, 0, &a, err, sizeof err) == 0);
     double o[3] = {0, 0, 0}, d[3] = {1, 0, 0};
     accel_hit h;
     ck_assert(!accel_intersect(a, o, d, 0, INFINITY, &h, NULL) && h.object == -1);
@@ -268,7 +268,7 @@ START_TEST(dense_teapot)
     geom_object g;
     geom_object_make(&o, &g);
     accel *a;
-    ck_assert_msg(accel_build(&g, 1, 40.0, &a, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(accel_build(&g, 1, 40.0, 0, &a, err, sizeof err) == 0, "%s", err);
     rng = 0x51ed2701ull;
     int hits = 0, same = 0;
     for (int r = 0; r < 64; ++r) {
@@ -298,6 +298,84 @@ START_TEST(dense_teapot)
 }
 END_TEST
 
+/* Camera-ray streams (accel_intersect_from, rtcIntersect1M) find what single rays find:
+ * streams of several lengths (one, a partial and several full ACCEL_STREAM packets) from a
+ * few eyes, rays toward random points of the scene. */
+START_TEST(streams_match_single_rays)
+{
+    rng = 0x2545f4914f6cdd1dull;
+    make_scene();
+    accel *a;
+    char err[256];
+    ck_assert_msg(accel_build(go, COUNT, 40.0, 0, &a, err, sizeof err) == 0, "%s", err);
+    enum { N = 3 * ACCEL_STREAM + 17 };
+    static double dx[N], dy[N], dz[N];
+    static accel_hit hs[N];
+    int hits = 0, meshes = 0;
+    for (int e = 0; e < 6; ++e) {
+        double th = rnd(0.2, 2.9), ph = rnd(0, 2 * ABRDF_TEST_PI), o[3];
+        o[0] = 20 * sin(th) * cos(ph), o[1] = 20 * cos(th), o[2] = 20 * sin(th) * sin(ph);
+        int n = e == 0 ? 1 : e == 1 ? ACCEL_STREAM - 5 : N;
+        for (int r = 0; r < n; ++r) {
+            dx[r] = rnd(-4, 4) - o[0], dy[r] = rnd(-4, 4) - o[1], dz[r] = rnd(-4, 4) - o[2];
+        }
+        unsigned long long ts = 0, t1 = 0;
+        accel_intersect_from(a, o, n, dx, dy, dz, 0.0, INFINITY, hs, &ts);
+        for (int r = 0; r < n; ++r) {
+            double d[3] = {dx[r], dy[r], dz[r]};
+            accel_hit h;
+            accel_intersect(a, o, d, 0.0, INFINITY, &h, &t1);
+            ck_assert_int_eq(hs[r].object, h.object);
+            if (h.object < 0) continue;
+            ++hits;
+            meshes += h.triangle >= 0;
+            if (hs[r].triangle == h.triangle) { /* the same double-precision computation */
+                ck_assert_msg(hs[r].t == h.t, "eye %d ray %d: t %.17g vs %.17g", e, r, hs[r].t,
+                              h.t);
+                for (int c = 0; c < 3; ++c) ck_assert(hs[r].n[c] == h.n[c]);
+            } else { /* the neighbour across an edge: the same point to rounding */
+                ck_assert(h.triangle >= 0 && hs[r].triangle >= 0);
+                ck_assert(fabs(hs[r].t - h.t) <= 1e-6 * h.t);
+            }
+        }
+        ck_assert(ts > 0 || n == 1);
+    }
+    ck_assert(hits > N && meshes > 0);
+    accel_release(a);
+    mesh_free(&teapot);
+}
+END_TEST
+
+/* accel_balls_capsule against the loop over every ball: segments and half-infinite
+ * capsules of several radii up to the grown size, with and without a skipped object. */
+START_TEST(capsules_match_the_loop)
+{
+    rng = 0x853c49e6748fea9bull;
+    make_scene();
+    accel *a;
+    accel_balls *b;
+    char err[256];
+    ck_assert_msg(accel_build(go, COUNT, 40.0, 0, &a, err, sizeof err) == 0, "%s", err);
+    ck_assert(accel_balls_build(a, 1.0, &b) == 0);
+    int yes = 0, no = 0;
+    for (int r = 0; r < 4000; ++r) {
+        double c[3], d[3];
+        for (int k = 0; k < 3; ++k) c[k] = rnd(-6, 6), d[k] = rnd(-3, 3);
+        double tmax = r % 3 == 0 ? INFINITY : rnd(0.1, 2), rad = rnd(0, 1);
+        int skip = r % 2 ? (int)rnd(0, COUNT) : -1, want = 0;
+        for (int j = 0; j < COUNT && !want; ++j)
+            want =
+                j != skip && geom_segment_distance(go[j].center, c, d, tmax) <= rad + go[j].bound;
+        ck_assert_int_eq(accel_balls_capsule(b, c, d, tmax, rad, skip), want);
+        yes += want, no += !want;
+    }
+    ck_assert(yes > 400 && no > 400);
+    accel_balls_release(b);
+    accel_release(a);
+    mesh_free(&teapot);
+}
+END_TEST
+
 int main(int argc, char **argv)
 {
     Suite *s = suite_create("accel");
@@ -310,6 +388,8 @@ int main(int argc, char **argv)
         tcase_add_test(tc, closest_hits_match_the_loop);
         tcase_add_test(tc, occlusion_matches_the_loop);
         tcase_add_test(tc, rebuilds_agree);
+        tcase_add_test(tc, streams_match_single_rays);
+        tcase_add_test(tc, capsules_match_the_loop);
     }
     suite_add_tcase(s, tc);
     return tu_run(s);

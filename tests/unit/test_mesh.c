@@ -1,14 +1,15 @@
 /* test_mesh.c - triangle meshes: the OBJ reader (counts, polygons, indices, computed normals,
  * every kind of malformed line named by FILE:LINE), the `mesh` directive of the scene format
  * (paths, limits, errors) and the mesh geometry of geom.c (triangle hits, interpolated
- * normals against POV-Ray's formulation, two-sided normals, uv tangents) in closed form. */
+ * normals against POV-Ray's formulation, two-sided normals, uv tangents) in closed form, and
+ * the renderer's frames from uv tangents. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-#include "geom.h"
+#include "render.h"
 #include "test_util.h"
 
 #define ABRDF_TEST_PI 3.14159265358979323846
@@ -411,6 +412,52 @@ START_TEST(teapot_axis_hit)
 }
 END_TEST
 
+/* A square in the xy plane (two triangles) whose u runs along (1, 1, 0), under an anisotropic
+ * lobe, 24x24 pixels; TANGENT is the object's tangent rule. */
+static float *render_square(const char *tangent, render_stats *st)
+{
+    write_file("square.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                             "vt 0 0.5\nvt 0.5 0\nvt 1 0.5\nvt 0.5 1\n"
+                             "f 1/1 2/2 3/3 4/4\n");
+    char body[256];
+    snprintf(body, sizeof body,
+             "light directional direction=0.3,0.5,1\n"
+             "material a model=disney_specular_aniso r=0.4 anisotropic=0.9\n"
+             "mesh file=square.obj material=a tangent=%s\n",
+             tangent);
+    scene s;
+    char err[512];
+    ck_assert_msg(parse_scene(body, &s, err, sizeof err) == 0, "%s", err);
+    render_options opt = {24, 24, 1, 0, 1, 0, RENDER_DOUBLE, 0};
+    render_scene rs;
+    ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
+    float *rgb = malloc(24 * 24 * 3 * sizeof *rgb);
+    ck_assert(rgb && render_image(&rs, &opt, rgb, st) == 0);
+    render_release(&rs);
+    scene_free(&s);
+    return rgb;
+}
+
+/* tangent=uv gives the frame of the fixed rule along dP/du, and not the one across it. */
+START_TEST(uv_tangent_frames_render)
+{
+    setup_dir();
+    render_stats st;
+    float *uv = render_square("uv", &st), *along = render_square("1,1,0", NULL),
+          *across = render_square("1,-1,0", NULL);
+    ck_assert(st.tangent_frames == st.hits && st.hits > 0);
+    double same = 0, other = 0;
+    for (int k = 0; k < 24 * 24 * 3; ++k) {
+        same = fmax(same, fabs(uv[k] - along[k]) / fmax(1e-3, fabs(along[k])));
+        other = fmax(other, fabs(uv[k] - across[k]) / fmax(1e-3, fabs(across[k])));
+    }
+    ck_assert_msg(same < 1e-9, "uv vs the rule along dP/du: rel diff %g", same);
+    ck_assert_msg(other > 0.1, "uv vs the rule across dP/du: rel diff %g", other);
+    free(uv), free(along), free(across);
+    teardown_dir();
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("mesh");
@@ -425,6 +472,7 @@ int main(void)
     tcase_add_test(tc, triangle_hit_normals_tangent);
     tcase_add_test(tc, interpolation_matches_povray_form);
     tcase_add_test(tc, teapot_axis_hit);
+    tcase_add_test(tc, uv_tangent_frames_render);
     suite_add_tcase(s, tc);
     return tu_run(s);
 }

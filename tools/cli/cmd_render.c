@@ -17,14 +17,16 @@
 static int usage(void)
 {
     printf(
-        "usage: abrdf render SCENE -o OUT.exr [--width W] [--height H] [--spp N] [--jitter]\n"
+        "usage: abrdf render SCENE [-o OUT.exr] [--width W] [--height H] [--spp N] [--jitter]\n"
         "                    [--model NAME [--set NAME=VALUE ...] | --adaptive --goal G]\n"
         "                    [--materials FILE ...] [--threads N] [--explain] [--stats]\n"
         "                    [--full] [--precision float|double] [--no-preview]\n"
         "                    [--config OCIO] [--display D] [--view V]\n\n"
         "Renders SCENE (docs/SCENES.md) to a linear float image (format from the extension,\n"
-        "EXR recommended) and an sRGB PNG preview with the same name (.png). Both files are\n"
-        "written whole or not at all: they replace existing files only when both are complete.\n"
+        "EXR recommended) and an sRGB PNG preview with the same name (.png); without -o,\n"
+        "NAME.exr and NAME.png in the current directory for SCENE = .../NAME.scene. Both\n"
+        "files are written whole or not at all: they replace existing files only when both\n"
+        "are complete.\n"
         "  --width/--height  override the scene's resolution\n"
         "  --spp N           samples per pixel, a square (1, 4, 9, 16, ...); default 4\n"
         "  --jitter          jitter samples inside their strata (deterministic)\n"
@@ -32,15 +34,29 @@ static int usage(void)
         "  --set NAME=VALUE  with --model: set a parameter of every material\n"
         "  --adaptive --goal photoreal|performance   choose models per material (abrdf_select)\n"
         "  --materials FILE  material-table file merged over data/materials.csv (table= entries)\n"
-        "  --threads N       worker threads; default: online CPUs\n"
+        "  --threads N       worker threads (and Embree's build threads); default: online CPUs\n"
         "  --explain         print the effect plan (what is simulated and why) and counters\n"
-        "  --stats           print the work counters (and the render time on stderr)\n"
+        "  --stats           print the work counters (and on stderr: the render time, the\n"
+        "                    time to read and prepare the scene, Embree's memory)\n"
         "  --precision P     float (default): the fast path, each material's lobes evaluated over\n"
         "                    a tile's hits by the float batch API, within NMSE 1e-8 of double;\n"
         "                    double: the scalar double reference (the ports are checked on it)\n"
-        "  --full            ignore the effect plan: every ray tests every object, tangent\n"
+        "  --full            ignore the effect plan: shadow rays at every lit point, tangent\n"
         "                    frames and ambient everywhere (to measure what the plan saves)\n"
         "  --config/--display/--view   OpenColorIO preview transform (default: built-in sRGB)\n");
+    return 0;
+}
+
+/* .../NAME.scene -> NAME.exr (in the current directory) in buf; 0, or -1 if it does not fit */
+static int default_output(const char *scene, char *buf, size_t size)
+{
+    const char *base = strrchr(scene, '/');
+    base = base ? base + 1 : scene;
+    const char *dot = strrchr(base, '.');
+    size_t len = dot && dot > base ? (size_t)(dot - base) : strlen(base);
+    if (len == 0 || len + 5 > size) return -1;
+    memcpy(buf, base, len);
+    strcpy(buf + len, ".exr");
     return 0;
 }
 
@@ -138,7 +154,6 @@ int cmd_render(int argc, char **argv)
         }
     }
     if (!path) return cli_fail(cmd, "missing SCENE (abrdf render --help)");
-    if (!out) return cli_fail(cmd, "missing -o OUT.exr");
     long k = lround(sqrt((double)opt.spp));
     if (k * k != opt.spp)
         return cli_fail(
@@ -150,6 +165,12 @@ int cmd_render(int argc, char **argv)
     if (adaptive && (!goal || (strcmp(goal, "photoreal") && strcmp(goal, "performance"))))
         return cli_fail(cmd, "--adaptive needs --goal photoreal or --goal performance");
     opt.progress = isatty(2) && !explain;
+    char out_default[1024];
+    if (!out) {
+        if (default_output(path, out_default, sizeof out_default))
+            return cli_fail(cmd, "no output name from scene %s: give -o OUT.exr", path);
+        out = out_default;
+    }
 
     /* Everything that can be refused is refused before the work: outputs that are inputs
      * (first: nothing is read before), the output names and formats, the preview transform. */
@@ -181,11 +202,14 @@ int cmd_render(int argc, char **argv)
     }
 
     scene s;
+    struct timespec r0, r1, r2;
+    clock_gettime(CLOCK_MONOTONIC, &r0);
     if (scene_parse_file(path, &s, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
         free(png);
         return 1;
     }
+    clock_gettime(CLOCK_MONOTONIC, &r1);
     int rc = 1;
     float *rgb = NULL;
     render_scene rs;
@@ -211,6 +235,7 @@ int cmd_render(int argc, char **argv)
         fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
+    clock_gettime(CLOCK_MONOTONIC, &r2);
     prepared = 1;
     if (full && render_plan_ignore(&rs)) {
         fprintf(stderr, "abrdf render: out of memory\n");
@@ -250,6 +275,12 @@ int cmd_render(int argc, char **argv)
                 rs.width, rs.height, opt.spp, opt.threads, render_precision_name(opt.precision),
                 full ? ", --full" : "",
                 (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec), cpu);
+        fprintf(stderr,
+                "abrdf render: scene read in %.3f s, prepared in %.3f s wall (materials, Embree "
+                "scene, effect plan); Embree holds %zu bytes\n",
+                (double)(r1.tv_sec - r0.tv_sec) + 1e-9 * (double)(r1.tv_nsec - r0.tv_nsec),
+                (double)(r2.tv_sec - r1.tv_sec) + 1e-9 * (double)(r2.tv_nsec - r1.tv_nsec),
+                accel_bytes(rs.accel));
     }
     abrdf_bytes bytes;
     if (png) {

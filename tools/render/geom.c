@@ -253,40 +253,43 @@ int geom_intersect_local(const geom_object *g, const double o[3], const double d
     return hit;
 }
 
-/* The bounding-ball test of a ray o + t d, given oc = o - centre and c = |oc|^2 - bound^2:
- * the roots (-b -+ sq)/a compared with tmin and tmax as -b -+ sq against tmin a and tmax a
- * (a > 0), so no division. */
-static int bound_test(const double oc[3], double c, const double d[3], double tmin, double tmax)
+/* The roots (-b -+ sq)/a of the ray's entry into the ball and exit from it are compared with
+ * tmin and tmax as -b -+ sq against tmin a and tmax a (a > 0), so no division. */
+int geom_hits_bound(const geom_object *g, const double o[3], const double d[3], double tmin,
+                    double tmax)
 {
-    double a = geom_dot(d, d), b = geom_dot(oc, d);
+    double oc[3] = {o[0] - g->center[0], o[1] - g->center[1], o[2] - g->center[2]};
+    double a = geom_dot(d, d), b = geom_dot(oc, d), c = geom_dot(oc, oc) - g->bound * g->bound;
     double disc = b * b - a * c;
     if (disc < 0 || !(a > 0)) return 0;
     double sq = sqrt(disc);
     return -b + sq > tmin * a && -b - sq < tmax * a;
 }
 
-int geom_hits_bound(const geom_object *g, const double o[3], const double d[3], double tmin,
-                    double tmax)
+void geom_world_box(const geom_object *g, double lo[3], double hi[3])
 {
-    double oc[3] = {o[0] - g->center[0], o[1] - g->center[1], o[2] - g->center[2]};
-    return bound_test(oc, geom_dot(oc, oc) - g->bound * g->bound, d, tmin, tmax);
+    double h[3] = {g->radius, g->radius, g->radius}; /* sphere */
+    if (g->shape == SCENE_CYLINDER) h[1] = 0.5 * g->height;
+    if (g->shape == SCENE_CAPSULE) h[1] = 0.5 * g->height + g->radius;
+    if (g->shape == SCENE_BOX) memcpy(h, g->half, sizeof h);
+    for (int i = 0; i < 3; ++i) {
+        /* the box's half extent along world axis i: the row of |M| times the half sizes */
+        double e =
+            fabs(g->xf.m[i][0]) * h[0] + fabs(g->xf.m[i][1]) * h[1] + fabs(g->xf.m[i][2]) * h[2];
+        e = fmin(e, g->bound);
+        lo[i] = g->xf.m[i][3] - e, hi[i] = g->xf.m[i][3] + e;
+    }
 }
 
-void geom_origin_make(const geom_object *g, const double o[3], geom_origin *go)
+double geom_segment_distance(const double p[3], const double o[3], const double d[3], double smax)
 {
-    for (int k = 0; k < 3; ++k) go->oc[k] = o[k] - g->center[k];
-    go->c = geom_dot(go->oc, go->oc) - g->bound * g->bound;
-    geom_xform_point(g->xf.inv, o, go->local);
-}
-
-int geom_intersect_from(const geom_object *g, const geom_origin *go, const double d[3], double tmin,
-                        double tmax, double *t, double n_local[3])
-{
-    /* A sphere is its own bounding ball: its exact test is the cheaper rejection. */
-    if (g->shape != SCENE_SPHERE && !bound_test(go->oc, go->c, d, tmin, tmax)) return 0;
-    double ld[3];
-    geom_xform_vector(g->xf.inv, d, ld);
-    return geom_intersect_local(g, go->local, ld, tmin, tmax, t, n_local);
+    double op[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+    double l2 = geom_dot(d, d);
+    double s = l2 > 0 ? geom_dot(op, d) / l2 : 0;
+    if (s < 0) s = 0;
+    if (s > smax) s = smax;
+    double q[3] = {op[0] - s * d[0], op[1] - s * d[1], op[2] - s * d[2]};
+    return sqrt(geom_dot(q, q));
 }
 
 int geom_intersect(const geom_object *g, const double o[3], const double d[3], double tmin,

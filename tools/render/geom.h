@@ -62,22 +62,14 @@ int geom_intersect_local(const geom_object *g, const double o[3], const double d
 /* World-space ray against object: bounding sphere test first, then the exact shape. */
 int geom_intersect(const geom_object *g, const double o[3], const double d[3], double tmin,
                    double tmax, double *t, double n_world[3]);
-/* What every ray from one origin o shares against one object (the camera's rays): o
- * relative to the bounding ball and o in object space. */
-typedef struct geom_origin {
-    double oc[3];    /* o - centre of the bounding ball */
-    double c;        /* |oc|^2 - bound^2 */
-    double local[3]; /* o in object space */
-} geom_origin;
-void geom_origin_make(const geom_object *g, const double o[3], geom_origin *go);
-/* geom_intersect for a ray from the origin go was made for, without the per-ray work that
- * depends on the origin only; n_local receives the OBJECT-space normal (not normalised:
- * geom_xform_normal gives the world one, so a closest-hit search transforms only the last). */
-int geom_intersect_from(const geom_object *g, const geom_origin *go, const double d[3], double tmin,
-                        double tmax, double *t, double n_local[3]);
 /* Ray against the bounding sphere only (any overlap of the segment with the ball). */
 int geom_hits_bound(const geom_object *g, const double o[3], const double d[3], double tmin,
                     double tmax);
+/* World-space axis-aligned box of an analytic object: its object-space box (centred at the
+ * origin) under the transform, clipped to the bounding sphere's box. */
+void geom_world_box(const geom_object *g, double lo[3], double hi[3]);
+/* Distance from point p to the segment o + s d, s in [0, smax] (smax may be infinite). */
+double geom_segment_distance(const double p[3], const double o[3], const double d[3], double smax);
 
 /* Tangent of the object's field rule at world point p, in world space (not normalised;
  * the frame construction projects it onto the tangent plane). The uv rule needs the hit

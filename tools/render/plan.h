@@ -5,11 +5,9 @@
 
 #include "render.h"
 
-/* Occluder candidates per (light, receiver): rs->occ_start, rs->occ. 0 or -1 (no memory). */
+/* Which (light, receiver) pairs need shadow rays: rs->shadow, lights' shadow_receivers
+ * (needs rs->accel). 0 or -1 (no memory, Embree error). */
 int plan_shadows(render_scene *rs);
-/* Objects camera rays can hit, per image row and column range; cull = 0 lists every object
- * for every pixel. 0 or -1 (no memory). */
-int plan_visibility(render_scene *rs, int cull);
 /* Tangent frames, Fresnel/layer/integration needs and the ambient term of a material. */
 void plan_material(render_material *m, const double ia[3], const double ka[3]);
 

@@ -1,7 +1,8 @@
-/* render.c - the built-in ray tracer: camera rays, closest hits, direct lighting with the
- * library's prepared BRDFs (the float batch path by default, the double scalar reference on
- * request: render.h, render_precision), shadow rays where the effect plan (plan.c) lists an
- * occluder, box-filtered stratified supersampling, rows shared by pthreads. A row is traced
+/* render.c - the built-in ray tracer: camera rays and their closest hits through the Embree
+ * scene (accel.h), direct lighting with the library's prepared BRDFs (the float batch path
+ * by default, the double scalar reference on request: render.h, render_precision), shadow
+ * rays as occlusion queries where the effect plan (plan.c) says something may block,
+ * box-filtered stratified supersampling, rows shared by pthreads. A row is traced
  * and shaded as one batch of hits (in chunks of RENDER_TILE samples), so each pixel is a
  * pure function of the scene and its row: the image is bit-identical for any number of
  * threads, in each precision. */
@@ -34,12 +35,8 @@ void render_release(render_scene *rs)
     free(rs->objects);
     free(rs->materials);
     free(rs->lights);
-    free(rs->occ_start);
-    free(rs->occ);
-    free(rs->vis_start);
-    free(rs->vis);
-    free(rs->vis_cols);
-    free(rs->eye_origin);
+    free(rs->shadow);
+    accel_release(rs->accel);
     memset(rs, 0, sizeof *rs);
 }
 
@@ -67,8 +64,8 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     rs->objects = calloc((size_t)s->object_count, sizeof *rs->objects);
     rs->materials = calloc((size_t)s->material_count + 1, sizeof *rs->materials);
     rs->lights = calloc((size_t)s->light_count + 1, sizeof *rs->lights);
-    rs->eye_origin = calloc((size_t)s->object_count + 1, sizeof *rs->eye_origin);
-    if (!rs->objects || !rs->materials || !rs->lights || !rs->eye_origin) goto oom;
+    rs->triangle_count = s->triangle_count;
+    if (!rs->objects || !rs->materials || !rs->lights) goto oom;
 
     /* Camera: right and up scaled so that raster corners land on the plane's corners. */
     const scene_camera *c = &s->camera;
@@ -85,7 +82,6 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     for (int i = 0; i < s->object_count; ++i) {
         geom_object_make(&s->objects[i], &rs->objects[i]);
         const geom_object *g = &rs->objects[i];
-        geom_origin_make(g, rs->eye, &rs->eye_origin[i]);
         extent = fmax(extent, sqrt(geom_dot(g->center, g->center)) + g->bound);
         rs->materials[s->objects[i].material].used = 1;
     }
@@ -120,7 +116,13 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         memcpy(rl->direction, sl->direction, sizeof rl->direction);
         for (int k = 0; k < 3; ++k) rl->e[k] = sl->color[k] * sl->intensity;
     }
-    if (plan_shadows(rs) || plan_visibility(rs, 1)) goto oom;
+    /* reach: the camera and every object lie within `extent` of the origin */
+    if (accel_build(rs->objects, rs->object_count, extent, opt->threads, &rs->accel, err,
+                    err_size)) {
+        render_release(rs);
+        return -1;
+    }
+    if (plan_shadows(rs)) goto oom;
     return 0;
 oom:
     render_release(rs);
@@ -130,14 +132,8 @@ oom:
 
 int render_plan_ignore(render_scene *rs)
 {
-    int n = rs->object_count, pairs = rs->light_count * n;
-    if (plan_visibility(rs, 0)) return -1;
-    int *all = malloc(((size_t)pairs + 1) * sizeof *all);
-    if (!all) return -1;
-    for (int k = 0; k < pairs; ++k) all[k] = -1; /* -1: test every object */
-    for (int k = 0; k <= pairs; ++k) rs->occ_start[k] = k;
-    free(rs->occ);
-    rs->occ = all;
+    memset(rs->shadow, 1, (size_t)rs->light_count * (size_t)rs->object_count);
+    for (int l = 0; l < rs->light_count; ++l) rs->lights[l].shadow_receivers = rs->object_count;
     for (int i = 0; i < rs->material_count; ++i) rs->materials[i].full = 1;
     rs->full = 1;
     return 0;
@@ -185,18 +181,14 @@ const char *render_precision_name(int precision)
     return precision == RENDER_DOUBLE ? "double" : "float";
 }
 
-/* Is the segment o + t d, t in (0, tmax), blocked by one of the listed occluders? */
-static int occluded(const render_scene *rs, const int *occ, int count, const double o[3],
+/* Is the segment o + t d, t in (0, tmax), from hit h toward a light blocked? An occlusion
+ * query that ignores the triangle the ray leaves, and a convex receiver as a whole (it
+ * cannot shadow its own lit side; --full tests it too). */
+static int occluded(const render_scene *rs, const render_hit *h, const double o[3],
                     const double d[3], double tmax, render_stats *st)
 {
-    int all = count == 1 && occ[0] < 0;
-    if (all) count = rs->object_count;
-    for (int k = 0; k < count; ++k) {
-        double t;
-        ++st->occluder_tests;
-        if (geom_intersect(&rs->objects[all ? k : occ[k]], o, d, 0.0, tmax, &t, NULL)) return 1;
-    }
-    return 0;
+    int skip = h->triangle >= 0 || (!rs->full && rs->objects[h->obj].convex) ? h->obj : -1;
+    return accel_occluded(rs->accel, o, d, 0.0, tmax, skip, h->triangle, &st->occluder_tests);
 }
 
 /* Local-frame directions for an isotropic lobe: only the polar angles and the azimuth
@@ -262,11 +254,9 @@ static int light_at(const render_scene *rs, int l, const render_hit *h, const do
     }
     double ci = geom_dot(h->n, wi);
     if (!(ci > 0)) return 0;
-    int no = rs->object_count;
-    int a = rs->occ_start[l * no + h->obj], b = rs->occ_start[l * no + h->obj + 1];
-    if (b > a) {
+    if (rs->shadow[(size_t)l * (size_t)rs->object_count + (size_t)h->obj]) {
         ++st->shadow_rays;
-        if (occluded(rs, rs->occ + a, b - a, o, d, tmax, st)) return 0;
+        if (occluded(rs, h, o, d, tmax, st)) return 0;
     } else {
         ++st->shadow_rays_skipped;
     }
@@ -290,7 +280,10 @@ static int hit_begin(const render_scene *rs, const render_hit *h, double L[3], d
     for (int c = 0; c < 3; ++c) o[c] = h->p[c] + rs->eps * h->n[c];
     if (m->use_tangent || m->full) {
         double t[3];
-        geom_tangent(so, &rs->objects[h->obj].xf, h->p, t);
+        if (so->tangent == SCENE_TANGENT_UV && h->triangle >= 0)
+            geom_tangent_uv(&rs->objects[h->obj], h->triangle, t);
+        else
+            geom_tangent(so, &rs->objects[h->obj].xf, h->p, t);
         abrdf_frame_make(h->n, t, frame);
         ++st->tangent_frames;
     }
@@ -506,36 +499,13 @@ typedef struct worker {
     int *next_row, *rows_done;
     render_shade_scratch *scratch;
     render_hit *hits;
-    int *hit_pixel; /* per hit: pixel column */
-    double (*L)[3]; /* per hit: radiance */
-    double *sum;    /* per pixel of a band: 3 sums */
-    double *ray;    /* RENDER_RAYS camera rays: plane x, y, then direction x, y, z */
-    int *ray_pixel; /* per camera ray: pixel index within the band */
-    int *ray_ij;    /* per camera ray: column and row */
+    int *hit_pixel;   /* per hit: pixel column */
+    double (*L)[3];   /* per hit: radiance */
+    double *sum;      /* per pixel of a band: 3 sums */
+    double *ray;      /* RENDER_RAYS camera rays: plane x, y, then direction x, y, z */
+    int *ray_pixel;   /* per camera ray: pixel index within the band */
+    accel_hit *ahits; /* per camera ray: its closest hit */
 } worker;
-
-/* Closest hit of a camera ray (from the eye) through pixel (i, j): only the objects the plan
- * lists for row j and whose column range holds i. */
-static int closest_hit(const render_scene *rs, int i, int j, const double d[3], double *t,
-                       double n[3], render_stats *st)
-{
-    int best = -1;
-    double tmax = INFINITY, nl[3];
-    for (int q = rs->vis_start[j]; q < rs->vis_start[j + 1]; ++q) {
-        int k = rs->vis[q];
-        if (i < rs->vis_cols[2 * k] || i > rs->vis_cols[2 * k + 1]) continue;
-        double ti, ni[3];
-        ++st->primary_tests;
-        if (geom_intersect_from(&rs->objects[k], &rs->eye_origin[k], d, 0.0, tmax, &ti, ni)) {
-            tmax = ti;
-            best = k;
-            memcpy(nl, ni, sizeof ni);
-        }
-    }
-    *t = tmax;
-    if (best >= 0) geom_xform_normal(&rs->objects[best].xf, nl, n);
-    return best;
-}
 
 /* Deterministic hash of (pixel, sample, dimension) -> [0, 1), for jittered strata. */
 static double hash01(uint64_t x)
@@ -573,7 +543,8 @@ static void camera_dirs(const render_scene *rs, int n, const double *restrict px
     }
 }
 
-/* Trace the nr camera rays generated so far; hits go to the shading batch. */
+/* Trace the nr camera rays generated so far (one coherent stream from the eye); hits go to
+ * the shading batch. */
 static void trace_rays(worker *w, int nr, int *nh)
 {
     const render_scene *rs = w->rs;
@@ -581,15 +552,19 @@ static void trace_rays(worker *w, int nr, int *nh)
     double *px = w->ray, *py = px + RENDER_RAYS, *dx = py + RENDER_RAYS, *dy = dx + RENDER_RAYS,
            *dz = dy + RENDER_RAYS;
     camera_dirs(rs, nr, px, py, dx, dy, dz);
+    accel_intersect_from(rs->accel, rs->eye, nr, dx, dy, dz, 0.0, INFINITY, w->ahits,
+                         &st->primary_tests);
+    st->primary_rays += (unsigned long long)nr;
     for (int r = 0; r < nr; ++r) {
-        double d[3] = {dx[r], dy[r], dz[r]}, t;
-        ++st->primary_rays;
-        render_hit *h = &w->hits[*nh];
-        int obj = closest_hit(rs, w->ray_ij[2 * r], w->ray_ij[2 * r + 1], d, &t, h->n, st);
-        if (obj < 0) continue; /* background is black */
+        const accel_hit *ah = &w->ahits[r];
+        if (ah->object < 0) continue; /* background is black */
         ++st->hits;
-        h->obj = obj;
-        for (int c = 0; c < 3; ++c) h->p[c] = rs->eye[c] + t * d[c], h->wo[c] = -d[c];
+        render_hit *h = &w->hits[*nh];
+        h->obj = ah->object, h->triangle = ah->triangle;
+        memcpy(h->n, ah->n, sizeof h->n);
+        h->p[0] = rs->eye[0] + ah->t * dx[r], h->wo[0] = -dx[r];
+        h->p[1] = rs->eye[1] + ah->t * dy[r], h->wo[1] = -dy[r];
+        h->p[2] = rs->eye[2] + ah->t * dz[r], h->wo[2] = -dz[r];
         w->hit_pixel[(*nh)++] = w->ray_pixel[r];
         if (*nh == RENDER_TILE) flush_hits(w, *nh), *nh = 0;
     }
@@ -620,7 +595,6 @@ static void render_band(worker *w, int j0, int j1, float *rows)
                     }
                     double x = i + (sx + u) * inv_k, y = j + (sy + v) * inv_k;
                     px[nr] = x * sx2 - 1.0, py[nr] = 1.0 - y * sy2;
-                    w->ray_ij[2 * nr] = i, w->ray_ij[2 * nr + 1] = j;
                     w->ray_pixel[nr++] = (j - j0) * W + i;
                     if (nr == RENDER_RAYS) trace_rays(w, nr, &nh), nr = 0;
                 }
@@ -682,7 +656,7 @@ static void worker_free(worker *w)
 {
     render_shade_scratch_free(w->scratch);
     free(w->hits), free(w->hit_pixel), free(w->L), free(w->sum), free(w->ray), free(w->ray_pixel);
-    free(w->ray_ij);
+    free(w->ahits);
 }
 
 /* The per-thread memory of a worker; 0 or -1 (out of memory, nothing left allocated). */
@@ -693,11 +667,11 @@ static int worker_alloc(worker *w)
     w->hit_pixel = malloc(RENDER_TILE * sizeof *w->hit_pixel);
     w->L = malloc(RENDER_TILE * sizeof *w->L);
     w->sum = malloc((size_t)w->rs->width * RENDER_BAND * 3 * sizeof *w->sum);
-    w->ray_ij = malloc(2 * RENDER_RAYS * sizeof *w->ray_ij);
     w->ray = malloc(5 * RENDER_RAYS * sizeof *w->ray);
     w->ray_pixel = malloc(RENDER_RAYS * sizeof *w->ray_pixel);
+    w->ahits = malloc(RENDER_RAYS * sizeof *w->ahits);
     if (w->scratch && w->hits && w->hit_pixel && w->L && w->sum && w->ray && w->ray_pixel &&
-        w->ray_ij)
+        w->ahits)
         return 0;
     worker_free(w);
     return -1;

@@ -1,5 +1,6 @@
-/* render.h - the built-in ray tracer: direct lighting of analytic primitives with the
- * library's BRDFs, and the effect plan that decides which work a scene needs.
+/* render.h - the built-in ray tracer: direct lighting of analytic primitives and triangle
+ * meshes with the library's BRDFs, visibility through one Embree scene (accel.h), and the
+ * effect plan that decides which work a scene needs.
  *
  * Camera model and pixel footprint (docs/RENDERER.md): pinhole at camera.position looking at
  * look_at; the image plane at distance 1 spans [-a*h, a*h] x [-h, h] with h = tan(fov/2),
@@ -26,16 +27,19 @@
 #define ABRDF_RENDER_H
 
 #include <stdio.h>
+#include "accel.h"
 #include "geom.h"
 
-/* Work counters: what the renderer actually did. */
+/* Work counters: what the renderer actually did. A "test" is one exact double-precision
+ * intersection on a candidate Embree's BVH offers (accel.h): an analytic object's
+ * intersector, or the refinement of a mesh triangle Embree's float ray hit. */
 typedef struct render_stats {
     unsigned long long primary_rays;
-    unsigned long long primary_tests; /* ray/object tests made by primary rays */
+    unsigned long long primary_tests; /* exact tests made by primary rays */
     unsigned long long hits;
-    unsigned long long shadow_rays;         /* cast: the plan lists an occluder */
+    unsigned long long shadow_rays;         /* cast: the plan says something may block */
     unsigned long long shadow_rays_skipped; /* lit samples the plan proved unoccludable */
-    unsigned long long occluder_tests;      /* ray/object tests made by shadow rays */
+    unsigned long long occluder_tests;      /* exact tests made by shadow rays */
     unsigned long long tangent_frames;      /* frames built from a tangent field rule */
     unsigned long long brdf_evals;          /* lobe evaluations */
     unsigned long long fresnel_evals;       /* ... of lobes with a Fresnel term */
@@ -76,26 +80,20 @@ typedef struct render_light {
     int shadow_receivers; /* objects for which some occluder is possible */
 } render_light;
 
-#define RENDER_OCC_LIST_MAX 64
-
 typedef struct render_scene {
     const scene *src;
     int width, height;
     double eye[3], right[3], up[3], forward[3]; /* right, up scaled to the plane half-size */
     double eps;                                 /* ray offset, proportional to the scene's size */
     int object_count, light_count, material_count;
+    long long triangle_count;
     geom_object *objects;
     render_material *materials;
     render_light *lights;
-    /* Occluder candidates of (light l, receiver i): occ[occ_start[l*N+i] .. occ_start[l*N+i+1]);
-     * a single -1 means every object (more than RENDER_OCC_LIST_MAX candidates). */
-    int *occ_start, *occ;
-    /* Primary visibility: the objects whose bounding sphere projects onto image row j are
-     * vis[vis_start[j] .. vis_start[j+1]), in object order; object k covers columns
-     * [vis_cols[2k], vis_cols[2k+1]]. */
-    int *vis_start, *vis, *vis_cols;
-    geom_origin *eye_origin; /* per object: what every camera ray shares against it */
-    int full;                /* render_plan_ignore was applied */
+    accel *accel; /* every object in one Embree scene: camera and shadow rays */
+    /* shadow[l * object_count + i]: light l needs shadow rays at object i (plan_shadows) */
+    unsigned char *shadow;
+    int full; /* render_plan_ignore was applied */
 } render_scene;
 
 typedef struct render_options {
@@ -109,9 +107,10 @@ typedef struct render_options {
                           so that time minus this render's is the BRDFs' (abrdf bench --render) */
 } render_options;
 
-/* A camera-ray hit to shade: object, point, unit normal and unit direction to the viewer. */
+/* A camera-ray hit to shade: object (and mesh triangle, -1 on analytic objects), point,
+ * unit shading normal and unit direction to the viewer. */
 typedef struct render_hit {
-    int obj;
+    int obj, triangle;
     double p[3], n[3], wo[3];
 } render_hit;
 
@@ -120,12 +119,13 @@ typedef struct render_shade_scratch render_shade_scratch;
 render_shade_scratch *render_shade_scratch_new(const render_scene *rs, int capacity);
 void render_shade_scratch_free(render_shade_scratch *sc);
 
+/* Builds the Embree scene with opt->threads threads (0: every core). */
 int render_prepare(const scene *s, const render_options *opt, render_scene *rs, char *err,
                    size_t err_size);
 void render_release(render_scene *rs);
-/* Ignore the effect plan: every light shadow-tests every object, every material builds
- * tangent frames and adds the ambient term (`--full`, to measure what the plan saves).
- * Returns 0 or -1 (out of memory; rs unchanged). */
+/* Ignore the effect plan: every lit point casts a shadow ray that tests every object (its
+ * own too), every material builds tangent frames and adds the ambient term (`--full`, to
+ * measure what the plan saves). Returns 0. */
 int render_plan_ignore(render_scene *rs);
 void render_explain(const render_scene *rs, const render_options *opt, FILE *f);
 /* rgb: width*height*3 floats, top row first. Returns 0, or -1 if spp is not a square
