@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "light.h"
 #include "plan.h"
 
 static void sub3(const double a[3], const double b[3], double o[3])
@@ -41,6 +42,13 @@ static int may_occlude(const render_scene *rs, const render_light *l, int i, int
 {
     const geom_object *a = &rs->objects[i], *b = &rs->objects[j];
     if (i == j) return !a->convex;
+    /* Environment: light from every direction. Sphere, rectangle: every segment from a's
+     * ball to the light's ball (radius l->bound) lies within max(r_a, bound) of the segment
+     * between the centres. */
+    if (l->kind == SCENE_LIGHT_ENVIRONMENT) return 1;
+    if (SCENE_LIGHT_SAMPLED(l->kind))
+        return dist_to_segment(b->center, a->center, l->position, NULL) <=
+               a->bound + b->bound + l->bound;
     double d = l->kind == SCENE_LIGHT_POINT
                    ? dist_to_segment(b->center, a->center, l->position, NULL)
                    : dist_to_segment(b->center, a->center, NULL, l->direction);
@@ -199,6 +207,38 @@ static void lobe_names(const render_material *m, char *buf, size_t size)
     }
 }
 
+/* Which lights are sampled, with which estimator (light.h); "off" for exact lights only. */
+static void explain_sampling(const render_scene *rs, const render_options *opt, FILE *f)
+{
+    int count[SCENE_LIGHT_ENVIRONMENT + 1] = {0};
+    for (int l = 0; l < rs->light_count; ++l) ++count[rs->lights[l].kind];
+    if (!rs->sampled_lights) {
+        fprintf(f, "light sampling: off - no area or environment light (point and directional "
+                   "lights are exact: no samples, no noise)\n");
+        return;
+    }
+    int ns = opt->light_samples > 1 ? opt->light_samples : 1;
+    fprintf(f,
+            "light sampling: on - %d sphere, %d rect, %d environment light(s) integrated by "
+            "Monte Carlo, %d sample(s) per hit, light and strategy\n",
+            count[SCENE_LIGHT_SPHERE], count[SCENE_LIGHT_RECT], count[SCENE_LIGHT_ENVIRONMENT], ns);
+    if (count[SCENE_LIGHT_SPHERE])
+        fprintf(f, "  sphere: uniform in the subtended cone (Shirley, Wang, Zimmerman 1996)\n");
+    if (count[SCENE_LIGHT_RECT])
+        fprintf(f, "  rect: uniform in the subtended spherical rectangle (Urena et al. 2013)\n");
+    if (count[SCENE_LIGHT_ENVIRONMENT])
+        fprintf(f, "  environment: per pixel by luminance x sin(theta), a 2-D piecewise-constant "
+                   "distribution\n");
+    static const char *const est[] = {
+        "MIS - one light sample and one BRDF sample (abrdf_sample_prepared), power heuristic "
+        "(Veach 1997)",
+        "light - light samples only (--estimator light)",
+        "brdf - BRDF samples only, those reaching the light count (--estimator brdf)"};
+    int e =
+        opt->estimator >= RENDER_EST_MIS && opt->estimator <= RENDER_EST_BRDF ? opt->estimator : 0;
+    fprintf(f, "  estimator: %s; shaded in double per hit in both precisions\n", est[e]);
+}
+
 void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
 {
     const scene *s = rs->src;
@@ -228,6 +268,7 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
         fprintf(f, "  %.2f of %d objects per pixel on average\n",
                 (double)covered / ((double)rs->width * rs->height), n);
     }
+    explain_sampling(rs, opt, f);
     fprintf(f, "shadows:\n");
     for (int l = 0; l < rs->light_count; ++l) {
         const render_light *lt = &rs->lights[l];
@@ -236,8 +277,7 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
             int a = rs->occ_start[l * n + i], b = rs->occ_start[l * n + i + 1];
             pairs += b - a == 1 && rs->occ[a] < 0 ? n : b - a;
         }
-        fprintf(f, "  light %d (%s, line %d): ", l,
-                lt->kind == SCENE_LIGHT_POINT ? "point" : "directional", s->lights[l].line);
+        fprintf(f, "  light %d (%s, line %d): ", l, light_kind_name(lt->kind), s->lights[l].line);
         if (!(lt->e[0] > 0 || lt->e[1] > 0 || lt->e[2] > 0))
             fprintf(f, "OFF - zero intensity, lights nothing\n");
         else if (lt->shadow_receivers == 0)
