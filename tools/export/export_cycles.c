@@ -363,6 +363,23 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
                      s->objects[i].line);
             return -1;
         }
+    for (int l = 0; l < s->light_count; ++l) {
+        const scene_light *lt = &s->lights[l];
+        if (lt->kind == SCENE_LIGHT_ENVIRONMENT) {
+            snprintf(err, err_size,
+                     "light at line %d: the environment light is not exported to Cycles yet "
+                     "(render it with abrdf render)",
+                     lt->line);
+            return -1;
+        }
+        if (SCENE_LIGHT_SAMPLED(lt->kind) && strcmp(opt->mode, "closure")) {
+            snprintf(err, err_size,
+                     "light at line %d: a %s light needs --mode closure (Cycles' own lights); "
+                     "the %s mode's shaders know point and directional lights only",
+                     lt->line, lt->kind == SCENE_LIGHT_SPHERE ? "sphere" : "rect", opt->mode);
+            return -1;
+        }
+    }
     double extent = sqrt(geom_dot(rs->eye, rs->eye));
     for (int i = 0; i < rs->object_count; ++i)
         extent = fmax(extent, sqrt(geom_dot(rs->objects[i].center, rs->objects[i].center)) +
@@ -394,9 +411,13 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
     fprintf(f, ", \"fov_deg\": " G "},\n    \"lights\": [\n", s->camera.fov_deg);
     for (int l = 0; l < s->light_count; ++l) {
         const scene_light *lt = &s->lights[l];
-        fprintf(f, "        {\"kind\": \"%s\", \"position\": ",
-                lt->kind == SCENE_LIGHT_POINT ? "point" : "directional");
+        static const char *const kinds[] = {"point", "directional", "sphere", "rect"};
+        fprintf(f, "        {\"kind\": \"%s\", \"position\": ", kinds[lt->kind]);
         vec3(f, lt->position);
+        fprintf(f, ", \"radius\": " G ", \"u\": ", lt->radius);
+        vec3(f, lt->edge_u);
+        fputs(", \"v\": ", f);
+        vec3(f, lt->edge_v);
         fputs(", \"direction\": ", f);
         vec3(f, lt->direction);
         fputs(", \"color\": ", f);
