@@ -1,21 +1,16 @@
-/* fuzz_driver.c - deterministic driver for a fuzz target (fuzz_scene.c, fuzz_mesh.c) under
- * CTest: every seed file given on the command line, then ITERATIONS inputs mutated from them
- * by a fixed-seed generator (byte flips, inserted format tokens and hostile numbers from the
- * target's fuzz_tokens, deleted and duplicated spans, splices of two seeds). A crash,
- * sanitizer report or abort() fails it.
- * usage: fuzz_driver [--iterations N] SEED...  */
+/* fuzz_driver.c - deterministic driver for a fuzz target (fuzz_scene.c, fuzz_mesh.c,
+ * fuzz_costs.c, fuzz_materials.c, fuzz_cli.c) under CTest: every seed file given on the command line, then
+ * ITERATIONS inputs mutated from them by a fixed-seed generator (byte flips, inserted tokens
+ * of the target's format and hostile numbers, deleted and duplicated spans, splices of two
+ * seeds). A crash, sanitizer report or abort() fails it. Each target defines fuzz_tokens[]
+ * (what its format is made of) and fuzz_report() (what it saw, printed at the end).
+ * usage: fuzz_X_driver [--iterations N] SEED...  */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-/* Provided by the target: words of its format to insert, and a count of the inputs that got
- * past the parser (coverage of what lies behind it), with what that count means. */
-extern const char *const fuzz_tokens[];
-extern const unsigned fuzz_token_count;
-extern unsigned long fuzz_accepted;
-extern const char *const fuzz_accepted_what;
+#include "fuzz_target.h"
 
 #define MAX_SEEDS 64
 #define MAX_INPUT (1u << 16)
@@ -40,7 +35,7 @@ static size_t mutate(uint8_t *buf, size_t len, const uint8_t *other, size_t olen
             if (len) buf[rnd((uint32_t)len)] ^= (uint8_t)(1u << rnd(8));
             break;
         case 1: { /* insert a token (the "\0" token inserts one NUL byte) */
-            const char *t = fuzz_tokens[rnd(fuzz_token_count)];
+            const char *t = fuzz_tokens[rnd((uint32_t)fuzz_token_count)];
             size_t tl = *t ? strlen(t) : 1;
             if (len + tl >= MAX_INPUT) break;
             memmove(buf + at + tl, buf + at, len - at);
@@ -116,7 +111,8 @@ int main(int argc, char **argv)
         LLVMFuzzerTestOneInput(in, len);
         free(in);
     }
-    printf("fuzz_driver: %d seeds, %ld mutated inputs (%lu %s), no failure\n", count, iterations,
-           fuzz_accepted, fuzz_accepted_what);
+    printf("fuzz_driver: %d seeds, %ld mutated inputs, no failure (", count, iterations);
+    fuzz_report(stdout);
+    printf(")\n");
     return 0;
 }

@@ -7,15 +7,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fuzz_target.h"
 #include "render.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-
 /* Inputs that parsed and rendered (the driver reports it: coverage of the renderer). */
-unsigned long fuzz_accepted;
-const char *const fuzz_accepted_what = "parsed and rendered";
+static unsigned long rendered;
 
-/* Words of the scene format and hostile numbers, inserted by the driver's mutations. */
+/* A comment longer than any line buffer, and a word longer than the parser takes. */
+#define LONG_TEXT_64 "0123456789abcdef0123456789abcdef0123456789abcdef0123456789abcdef"
+#define LONG_WORD LONG_TEXT_64 LONG_TEXT_64 LONG_TEXT_64 LONG_TEXT_64 LONG_TEXT_64
+#define LONG_COMMENT LONG_WORD " " LONG_WORD " " LONG_WORD " " LONG_WORD
+
 const char *const fuzz_tokens[] = {
     "\n",
     " ",
@@ -89,8 +91,13 @@ const char *const fuzz_tokens[] = {
     "off",
     "uv",
     "x.obj",
+    "1e-310", /* subnormal: a finite number */
+    "#" LONG_COMMENT,
+    LONG_WORD,
 };
-const unsigned fuzz_token_count = sizeof fuzz_tokens / sizeof fuzz_tokens[0];
+const size_t fuzz_token_count = sizeof fuzz_tokens / sizeof fuzz_tokens[0];
+
+void fuzz_report(FILE *f) { fprintf(f, "%lu parsed and rendered", rendered); }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
@@ -114,7 +121,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             for (size_t k = 0; k < sizeof rgb / sizeof rgb[0]; ++k)
                 if (!(rgb[k] >= 0.0f) || isinf(rgb[k])) abort();
             render_release(&rs);
-            fuzz_accepted += full;
+            rendered += full;
         }
     }
     scene_free(&s);

@@ -13,6 +13,7 @@
 #include "cli.h"
 #include "measure.h"
 #include "metrics.h"
+#include "out_file.h"
 
 /* The accuracy experiments (docs/BENCHMARKS.md, "Accuracy"). */
 #define APPROX_N 100.0   /* exponent of Blinn-Phong and its Table-1 approximations */
@@ -350,10 +351,8 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
 
 /* Pareto plot: robot NMSE (log) vs float cost ratio (log), one colour per reference, the
  * reference's own cost as a dashed line, each group's Pareto front as a staircase. */
-static int write_plot(const char *path, const row *rows, int count, double unit_ns)
+static void write_plot(FILE *f, const row *rows, int count, double unit_ns)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) return -1;
     const double W = 760, H = 520, L = 70, Rm = 170, T = 30, B = 60;
     double x0 = 1e9, x1 = 0, y0 = 1e9, y1 = 0;
     for (int i = 0; i < count; ++i) {
@@ -466,7 +465,6 @@ static int write_plot(const char *path, const row *rows, int count, double unit_
 #undef PX
 #undef PY
     fprintf(f, "</svg>\n");
-    return fclose(f);
 }
 
 /* ---- the command ------------------------------------------------------------------------ */
@@ -505,6 +503,8 @@ int cmd_bench(int argc, char **argv)
                             a);
         }
     }
+    if (render && plot)
+        return cli_fail(cmd, "--plot draws the model benchmark; it does not go with --render");
     if (threads == 0) {
         long cpus = sysconf(_SC_NPROCESSORS_ONLN);
         threads = cpus > 0 ? (cpus < 64 ? cpus : 64) : 1;
@@ -520,6 +520,15 @@ int cmd_bench(int argc, char **argv)
                                    (int)threads, quick ? 24 : 256, quick);
     if (!size) size = quick ? 48 : 128;
 
+    /* The plot exists (as a temporary file) before the measurement: a directory that is
+     * missing or read-only fails now. */
+    char err[1024] = "";
+    out_file plot_out = OUT_FILE_INIT;
+    out_file *const plot_files[1] = {&plot_out};
+    if (plot && out_file_open(&plot_out, plot, err, sizeof err)) {
+        fprintf(stderr, "abrdf bench: %s\n", err);
+        return 1;
+    }
     measure_opts mo;
     measure_defaults(&mo, quick);
     if (quick) mo.pairs = 1024, mo.integrating_pairs = 16;
@@ -529,6 +538,7 @@ int cmd_bench(int argc, char **argv)
     if (!set || !rows) {
         measure_set_free(set);
         free(rows);
+        out_file_discard(&plot_out);
         fprintf(stderr, "abrdf bench: out of memory\n");
         return 1;
     }
@@ -551,6 +561,7 @@ int cmd_bench(int argc, char **argv)
     if (!units) {
         measure_set_free(set);
         free(rows);
+        out_file_discard(&plot_out);
         fprintf(stderr, "abrdf bench: out of memory\n");
         return 1;
     }
@@ -581,7 +592,6 @@ int cmd_bench(int argc, char **argv)
         for (int k = 0; k < r->nvals; ++k) r->f_ns[k] *= unit_ns, r->d_ns[k] *= unit_ns;
     }
     fprintf(stderr, "\nabrdf bench: robot renders\n");
-    char err[512] = "";
     int rc = 0;
     if (accuracy(rows, count, (int)size, (int)threads, quick, err, sizeof err)) {
         fprintf(stderr, "abrdf bench: %s\n", err);
@@ -591,11 +601,16 @@ int cmd_bench(int argc, char **argv)
             print_json(stdout, rows, count, unit_ns, drift, &mo, (int)size);
         else
             print_table(stdout, rows, count, unit_ns, drift, &mo, (int)size);
-        if (plot && write_plot(plot, rows, count, unit_ns) != 0) {
-            fprintf(stderr, "abrdf bench: cannot write %s\n", plot);
-            rc = 1;
+        if (plot) {
+            write_plot(plot_out.f, rows, count, unit_ns);
+            if (out_file_close(&plot_out, err, sizeof err) ||
+                out_file_commit(plot_files, 1, err, sizeof err)) {
+                fprintf(stderr, "abrdf bench: %s\n", err);
+                rc = 1;
+            }
         }
     }
+    out_file_discard(&plot_out);
     free(rows);
     return rc;
 }

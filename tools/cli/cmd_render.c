@@ -10,6 +10,7 @@
 #include "cli.h"
 #include "data_path.h"
 #include "image_io.h"
+#include "out_file.h"
 #include "render.h"
 #include "scene_select.h"
 
@@ -23,7 +24,8 @@ static int usage(void)
         "                    [--estimator mis|light|brdf] [--light-samples N]\n"
         "                    [--config OCIO] [--display D] [--view V]\n\n"
         "Renders SCENE (docs/SCENES.md) to a linear float image (format from the extension,\n"
-        "EXR recommended) and an sRGB PNG preview with the same name (.png).\n"
+        "EXR recommended) and an sRGB PNG preview with the same name (.png). Both files are\n"
+        "written whole or not at all: they replace existing files only when both are complete.\n"
         "  --width/--height  override the scene's resolution\n"
         "  --spp N           samples per pixel, a square (1, 4, 9, 16, ...); default 4\n"
         "  --jitter          jitter samples inside their strata (deterministic)\n"
@@ -170,39 +172,52 @@ int cmd_render(int argc, char **argv)
         return cli_fail(cmd, "--adaptive needs --goal photoreal or --goal performance");
     opt.progress = isatty(2) && !explain;
 
+    /* Everything that can be refused is refused before the work: outputs that are inputs
+     * (first: nothing is read before), the output names and formats, the preview transform. */
+    char err[1024], *png = NULL;
+    if (preview && !(png = preview_path(out))) {
+        fprintf(stderr, "abrdf render: out of memory\n");
+        return 1;
+    }
+    if (png && !strcmp(png, out)) {
+        free(png);
+        return cli_fail(cmd, "output %s leaves no name for the .png preview (--no-preview)", out);
+    }
+    {
+        char tpath[1024];
+        data_path_find("materials.csv", tpath, sizeof tpath);
+        const char *outs[2] = {out, png}, *out_roles[2] = {"output", "preview"};
+        const char *ins[19] = {path, config, tpath},
+                   *in_roles[19] = {"scene", "--config file", "material table"};
+        for (int i = 0; i < nmats; ++i) ins[3 + i] = mats[i], in_roles[3 + i] = "--materials file";
+        if (out_files_distinct(outs, out_roles, 2, ins, in_roles, 3 + nmats, err, sizeof err)) {
+            free(png);
+            return cli_fail(cmd, "%s", err);
+        }
+    }
+    if (abrdf_image_check_output(out, 1, err, sizeof err) ||
+        (png && abrdf_image_check_preview(config, display, view, err, sizeof err))) {
+        free(png);
+        return cli_fail(cmd, "%s", err);
+    }
+
     scene s;
-    char err[512];
     if (scene_parse_file(path, &s, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
+        free(png);
         return 1;
     }
     int rc = 1;
     float *rgb = NULL;
-    char *png = NULL;
     render_scene rs;
-    mat_table table = {0};
     int prepared = 0;
-    if (adaptive || scene_needs_table(&s)) {
-        char tpath[1024];
-        if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
-            fprintf(stderr, "abrdf render: material table %s not found (set ABRDF_DATA_DIR)\n",
-                    tpath);
-            goto done;
-        }
-        if (mat_table_load(&table, tpath, err, sizeof err)) {
-            fprintf(stderr, "abrdf render: %s\n", err);
-            goto done;
-        }
-    }
-    for (int i = 0; i < nmats; ++i)
-        if (mat_table_load(&table, mats[i], err, sizeof err)) {
-            fprintf(stderr, "abrdf render: %s\n", err);
-            goto done;
-        }
+    out_file exr_out = OUT_FILE_INIT, png_out = OUT_FILE_INIT;
+    out_file *files[2] = {&png_out, &exr_out}; /* committed together, the preview first */
+    int nfiles = png ? 2 : 1;
     abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
     if (adaptive) abrdf_goal_find(goal, &g);
-    if (scene_select_materials(&s, path, &table, adaptive ? (int)g : -1, explain ? stdout : NULL,
-                               err, sizeof err)) {
+    if (scene_resolve(&s, path, mats, nmats, adaptive ? (int)g : -1, explain ? stdout : NULL, err,
+                      sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
@@ -220,6 +235,13 @@ int cmd_render(int argc, char **argv)
     prepared = 1;
     if (full && render_plan_ignore(&rs)) {
         fprintf(stderr, "abrdf render: out of memory\n");
+        goto done;
+    }
+    /* The outputs exist (as temporary files) before the render: a directory that is missing
+     * or cannot be written fails now, not after the work. */
+    if (out_file_open(&exr_out, out, err, sizeof err) ||
+        (png && out_file_open(&png_out, png, err, sizeof err))) {
+        fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
     if (explain) render_explain(&rs, &opt, stdout);
@@ -250,28 +272,38 @@ int cmd_render(int argc, char **argv)
                 full ? ", --full" : "",
                 (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec), cpu);
     }
-    if (abrdf_image_write_linear(out, rs.width, rs.height, rgb, err, sizeof err)) {
-        fprintf(stderr, "abrdf render: %s\n", err);
-        goto done;
-    }
-    if (preview) {
-        png = preview_path(out);
-        if (!png || !strcmp(png, out)) {
-            fprintf(stderr, "abrdf render: output %s leaves no name for the .png preview\n", out);
+    abrdf_bytes bytes;
+    if (png) {
+        if (abrdf_image_encode_preview(png, rs.width, rs.height, rgb, config, display, view, &bytes,
+                                       err, sizeof err)) {
+            fprintf(stderr, "abrdf render: %s\n", err);
             goto done;
         }
-        if (abrdf_image_write_preview(png, rs.width, rs.height, rgb, config, display, view, err,
-                                      sizeof err)) {
+        out_file_write(&png_out, bytes.data, bytes.size);
+        abrdf_bytes_free(&bytes);
+        if (out_file_close(&png_out, err, sizeof err)) {
             fprintf(stderr, "abrdf render: %s\n", err);
             goto done;
         }
     }
+    if (abrdf_image_encode_linear(out, rs.width, rs.height, rgb, &bytes, err, sizeof err)) {
+        fprintf(stderr, "abrdf render: %s\n", err);
+        goto done;
+    }
+    out_file_write(&exr_out, bytes.data, bytes.size);
+    abrdf_bytes_free(&bytes);
+    if (out_file_close(&exr_out, err, sizeof err) ||
+        out_file_commit(files + (png ? 0 : 1), nfiles, err, sizeof err)) {
+        fprintf(stderr, "abrdf render: %s\n", err);
+        goto done;
+    }
     rc = 0;
 done:
+    out_file_discard(&exr_out); /* committed: nothing left; else the targets stay as they were */
+    out_file_discard(&png_out);
     if (prepared) render_release(&rs);
     free(png);
     free(rgb);
-    mat_table_free(&table);
     scene_free(&s);
     return rc;
 }

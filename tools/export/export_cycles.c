@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "export.h"
+#include "export_text.h"
 
 /* 17 significant digits: the double survives the round trip through the text. */
 #define G "%.17g"
@@ -255,22 +256,6 @@ static void write_osl(FILE *f, const render_scene *rs)
 
 /* ---- the Python script ------------------------------------------------------------ */
 
-/* A Python string literal (the scene path may hold any byte). */
-static void py_str(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; ++s) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(f, "\\%c", c);
-        else if (c < 32 || c > 126)
-            fprintf(f, "\\x%02x", c);
-        else
-            fputc(c, f);
-    }
-    fputc('"', f);
-}
-
 static const char *shape_name(scene_shape s) { return scene_shape_name(s); }
 
 /* ---- meshes ------------------------------------------------------------------------ */
@@ -335,7 +320,7 @@ static void py_meshes(FILE *f, const scene *s)
     for (int i = 0; i < s->mesh_count; ++i) {
         const mesh *m = s->meshes[i];
         fputs("        {\"path\": ", f);
-        py_str(f, m->path);
+        py_string(f, m->path);
         fprintf(f,
                 ", \"vertices\": %d, \"triangles\": %d,\n         \"positions\": ", m->vertex_count,
                 m->triangle_count);
@@ -388,18 +373,21 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
 
     fputs("#!/usr/bin/env python3\n", f);
     fputs("# The abrdf scene ", f);
-    py_str(f, opt->scene_path);
-    fputs(" for Blender's Cycles, written by `abrdf export --cycles`.\n"
-          "# Run with a Python that has the bpy module (or blender -b -P THIS -- ARGS):\n"
+    py_comment(f, opt->scene_path);
+    fputs(" for Blender's Cycles, written by `abrdf export --cycles`.\n", f);
+    if (opt->notes) py_comment_lines(f, opt->notes);
+    fputs("# Run with a Python that has the bpy module (or blender -b -P THIS -- ARGS):\n"
           "#   python THIS [-o OUT.exr] [--mode eval|closure] [--samples N] [--threads N]\n"
           "# eval: the OSL twin of the built-in renderer (matches `abrdf render --spp 1`);\n"
           "# closure: abrdf_material.osl on Cycles' own closures and lights (docs/OSL.md).\n"
           "import sys\n\nSCENE = {\n    \"source\": ",
           f);
-    py_str(f, opt->scene_path);
+    py_string(f, opt->scene_path);
     fputs(",\n    \"osl_dir\": ", f);
-    py_str(f, opt->osl_dir);
-    fprintf(f, ",\n    \"osl_name\": \"abrdf_scene\",\n    \"mode\": \"%s\",\n", opt->mode);
+    py_string(f, opt->osl_dir);
+    fputs(",\n    \"osl_name\": \"abrdf_scene\",\n    \"mode\": ", f);
+    py_string(f, opt->mode);
+    fputs(",\n", f);
     fprintf(f, "    \"width\": %d, \"height\": %d, \"samples\": %d, \"extent\": " G ",\n",
             rs->width, rs->height, opt->spp, extent);
     fputs("    \"camera\": {\"position\": ", f);
@@ -428,7 +416,7 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
     for (int i = 0; i < rs->material_count; ++i) {
         const render_material *m = &rs->materials[i];
         fputs("        {\"name\": ", f);
-        py_str(f, s->materials[i].name);
+        py_string(f, s->materials[i].name);
         fputs(", \"lobes\": [", f);
         for (int k = 0; k < m->lobe_count; ++k)
             fprintf(f, "%s\"%s\"", k ? ", " : "", abrdf_model_get(m->lobes[k])->name);

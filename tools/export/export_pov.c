@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "export_pov.h"
+#include "export_text.h"
 
 /* POV-Ray's left-handed world: z negated. */
 static void vec(FILE *f, const double v[3], double scale)
@@ -18,12 +19,14 @@ static void upper(char *dst, const char *src, size_t size)
     dst[i] = '\0';
 }
 
-static void material(FILE *f, int index, const scene_material *sm, const render_material *m)
+static int material(FILE *f, int index, const scene_material *sm, const render_material *m,
+                    char *err, size_t err_size)
 {
     char id[64];
     upper(id, abrdf_model_get(m->lobes[0])->name, sizeof id);
-    fprintf(f, "// material '%s'\n#declare Abrdf_Mat_%d = Abrdf_Default(ABRDF_ID_%s);\n", sm->name,
-            index, id);
+    fputs("// material '", f);
+    pov_comment(f, sm->name);
+    fprintf(f, "'\n#declare Abrdf_Mat_%d = Abrdf_Default(ABRDF_ID_%s);\n", index, id);
     if (m->lobe_count > 1) {
         upper(id, abrdf_model_get(m->lobes[1])->name, sizeof id);
         fprintf(f, "#declare Abrdf_Mat_%d[1] = ABRDF_ID_%s;\n", index, id);
@@ -41,7 +44,18 @@ static void material(FILE *f, int index, const scene_material *sm, const render_
                         v[c]);
         }
     }
-    fprintf(f, "Abrdf__Check(Abrdf_Mat_%d, \"material '%s'\")\n", index, sm->name);
+    /* The name reaches POV-Ray's messages as a string: escaped, or refused. */
+    char what[SCENE_NAME_MAX + 16];
+    snprintf(what, sizeof what, "material '%s'", sm->name);
+    fprintf(f, "Abrdf__Check(Abrdf_Mat_%d, ", index);
+    if (pov_string(f, what)) {
+        snprintf(err, err_size,
+                 "material name '%s' (line %d) cannot be a POV-Ray string: printable ASCII only",
+                 sm->name, sm->line);
+        return -1;
+    }
+    fputs(")\n", f);
+    return 0;
 }
 
 /* ---- meshes ----------------------------------------------------------------------- */
@@ -56,8 +70,10 @@ static void fvec(FILE *f, const float *v) { fprintf(f, "<%.9g, %.9g, %.9g>", v[0
 static void pov_mesh2(FILE *f, const mesh *m, int index, int smooth, int eval)
 {
     int nt = m->triangle_count;
-    fprintf(f, "// %s: %d triangles\n#declare Abrdf_Mesh_%d_%s = mesh2 {\n  vertex_vectors { %d",
-            m->path, nt, index, smooth ? "Smooth" : "Flat", m->vertex_count);
+    fputs("// ", f);
+    pov_comment(f, m->path); /* a file name is data: escaped (export_text.h) */
+    fprintf(f, ": %d triangles\n#declare Abrdf_Mesh_%d_%s = mesh2 {\n  vertex_vectors { %d", nt,
+            index, smooth ? "Smooth" : "Flat", m->vertex_count);
     for (int i = 0; i < m->vertex_count; ++i) fputs(",\n    ", f), fvec(f, m->position + 3 * i);
     fputs(" }\n", f);
     if (smooth) {
@@ -193,7 +209,9 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
             return -1;
         }
     double extent = rs->eps / 1e-9; /* render.c: eps = 1e-9 * scene size */
-    fprintf(f, "// %s - exported by `abrdf export --pov` (docs/POVRAY.md).\n", opt->source);
+    fputs("// ", f);
+    pov_comment(f, opt->source);
+    fputs(" - exported by `abrdf export --pov` (docs/POVRAY.md).\n", f);
     fprintf(f,
             "// Render linear HDR without antialiasing, e.g. with k x k supersampling:\n"
             "//   povray +I<this file> +O<out>.exr +FE +W%d +H%d -A +L<abrdf>/povray_macros\n"
@@ -205,6 +223,7 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
             : opt->lit  ? "function pigments; POV-Ray's light_source and shadow test (one light)."
                         : "function pigments, emissive: each pigment sums every light unoccluded "
                           "(no shadows).");
+    if (opt->notes) pov_comment_lines(f, opt->notes);
     fprintf(
         f,
         "#version 3.7;\nglobal_settings { assumed_gamma 1 ambient_light %d max_trace_level 1 }\n",
@@ -251,7 +270,9 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
     }
     fprintf(f, "\n");
     for (int i = 0; i < rs->material_count; ++i)
-        if (rs->materials[i].used) material(f, i, &s->materials[i], &rs->materials[i]);
+        if (rs->materials[i].used &&
+            material(f, i, &s->materials[i], &rs->materials[i], err, err_size))
+            return -1;
     fprintf(f, "\n");
 
     pov_meshes(f, s, !opt->native);

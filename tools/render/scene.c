@@ -1,6 +1,8 @@
 /* scene.c - parser of the scene format (docs/SCENES.md): one directive per line, then
- * KEY=VALUE words. Every problem is reported as "FILE:LINE: problem"; malformed input of any
- * kind (binary, huge numbers, long lines) gives an error, never a crash (tests/fuzz/fuzz_scene.c). */
+ * KEY=VALUE words. Lines may have any length (a long comment is a comment); a word may not
+ * exceed SCENE_WORD_MAX, so every message quotes words whole. Every problem is reported as
+ * "FILE:LINE: problem"; malformed input of any kind (binary, huge numbers, long words) gives
+ * an error, never a crash (tests/fuzz/fuzz_scene.c). */
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -8,9 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "in_file.h"
+#include "path_msg.h"
 #include "scene.h"
 
-#define LINE_MAX_CHARS 4096
+#define SCENE_WORD_MAX 256 /* characters of a word: far above any valid key or value */
 #define MAX_WORDS 64
 #define SCENE_MAX_FILE (16u << 20) /* 16 MiB: far above any real scene */
 
@@ -30,15 +34,17 @@ static int fail(parser *p, const char *fmt, ...)
 #endif
     ;
 
+/* "NAME:LINE: problem": the problem whole (words are at most SCENE_WORD_MAX long), the name
+ * shortened if the buffer is small (path_msg.h). */
 static int fail(parser *p, const char *fmt, ...)
 {
     if (p->err && p->err_size) {
-        char msg[512];
+        char msg[2048];
         va_list ap;
         va_start(ap, fmt);
         vsnprintf(msg, sizeof msg, fmt, ap);
         va_end(ap);
-        snprintf(p->err, p->err_size, "%s:%d: %s", p->name, p->line, msg);
+        path_msg(p->err, p->err_size, p->name, ":%d: %s", p->line, msg);
     }
     return -1;
 }
@@ -51,7 +57,8 @@ static int parse_num(const char *s, double *out)
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (*end || errno == ERANGE || !isfinite(v) || fabs(v) > SCENE_MAX_COORD) return 0;
+    /* ERANGE with a finite result is an underflow (a subnormal or zero): still a number. */
+    if (end == s || *end || !isfinite(v) || fabs(v) > SCENE_MAX_COORD) return 0;
     *out = v;
     return 1;
 }
@@ -59,9 +66,9 @@ static int parse_num(const char *s, double *out)
 /* "A" or "A,B,C" (count 1 or 3), or exactly n numbers if want > 0. Returns the count. */
 static int parse_list(const char *s, double *v, int max)
 {
-    char buf[LINE_MAX_CHARS + 1];
+    char buf[SCENE_WORD_MAX + 1];
     size_t len = strlen(s);
-    if (len > LINE_MAX_CHARS) return 0;
+    if (len > SCENE_WORD_MAX) return 0;
     memcpy(buf, s, len + 1);
     int n = 0;
     char *q = buf;
@@ -131,6 +138,13 @@ static int split(parser *p, char *line, word *w, int *count)
         w[n].val = NULL;
         w[n].used = 0;
         while (*q && *q != ' ' && *q != '\t') ++q;
+        if (q - w[n].key > SCENE_WORD_MAX) {
+            char shown[64];
+            *q = '\0';
+            return fail(p, "a word of %ld characters ('%s'); words have at most %d",
+                        (long)(q - w[n].key), path_short(shown, sizeof shown, w[n].key, 40),
+                        SCENE_WORD_MAX);
+        }
         if (*q) *q++ = '\0';
         char *eq = strchr(w[n].key, '=');
         if (eq) {
@@ -687,26 +701,30 @@ int scene_parse_text(const char *name, const char *text, size_t len, scene *out,
     memset(out, 0, sizeof *out);
     parser p = {name ? name : "<scene>", 0, err, err_size, out, 0, 0};
     if (!text) return fail(&p, "no text");
-    char line[LINE_MAX_CHARS + 1];
+    /* Lines are split in a copy of the text, in place: any length is fine. */
+    char *copy = malloc(len + 1);
+    if (!copy) return fail(&p, "out of memory");
+    memcpy(copy, text, len);
+    copy[len] = '\0';
     size_t i = 0;
     while (i < len) {
         ++p.line;
-        size_t k = 0;
-        for (; i < len && text[i] != '\n'; ++i) {
-            if (text[i] == '\0') {
+        char *line = copy + i;
+        for (; i < len && copy[i] != '\n'; ++i) {
+            if (copy[i] == '\0') {
                 fail(&p, "NUL byte in the file (not a text scene)");
+                free(copy);
                 goto bad;
             }
-            if (k == LINE_MAX_CHARS) {
-                fail(&p, "line longer than %d characters", LINE_MAX_CHARS);
-                goto bad;
-            }
-            line[k++] = text[i] == '\r' ? ' ' : text[i];
+            if (copy[i] == '\r') copy[i] = ' ';
         }
-        line[k] = '\0';
-        ++i; /* the '\n' */
-        if (do_line(&p, line)) goto bad;
+        copy[i++] = '\0'; /* the '\n' (or the terminator) */
+        if (do_line(&p, line)) {
+            free(copy);
+            goto bad;
+        }
     }
+    free(copy);
     ++p.line;
     if (!p.have_camera) {
         p.line = 0;
@@ -727,18 +745,16 @@ bad:
 int scene_parse_file(const char *path, scene *out, char *err, size_t err_size)
 {
     if (out) memset(out, 0, sizeof *out);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (err && err_size) snprintf(err, err_size, "%s: cannot open: %s", path, strerror(errno));
-        return -1;
-    }
+    char tmp[2];
+    FILE *f = in_file_open(path, err && err_size ? err : tmp, err && err_size ? err_size : 1);
+    if (!f) return -1;
     char *buf = NULL;
     size_t len = 0, cap = 0;
     for (;;) {
         if (len == cap) {
             if (cap >= SCENE_MAX_FILE) {
                 if (err && err_size)
-                    snprintf(err, err_size, "%s: larger than %u bytes", path, SCENE_MAX_FILE);
+                    path_msg(err, err_size, path, ": larger than %u bytes", SCENE_MAX_FILE);
                 free(buf);
                 fclose(f);
                 return -1;
@@ -748,7 +764,7 @@ int scene_parse_file(const char *path, scene *out, char *err, size_t err_size)
             if (!g) {
                 free(buf);
                 fclose(f);
-                if (err && err_size) snprintf(err, err_size, "%s: out of memory", path);
+                if (err && err_size) path_msg(err, err_size, path, ": out of memory");
                 return -1;
             }
             buf = g;
@@ -757,11 +773,11 @@ int scene_parse_file(const char *path, scene *out, char *err, size_t err_size)
         len += got;
         if (got == 0) break;
     }
-    int bad = ferror(f);
+    int bad = ferror(f), code = errno;
     fclose(f);
     if (bad) {
         free(buf);
-        if (err && err_size) snprintf(err, err_size, "%s: read error", path);
+        if (err && err_size) path_msg(err, err_size, path, ": read error: %s", strerror(code));
         return -1;
     }
     int st = scene_parse_text(path, buf, len, out, err, err_size);

@@ -4,6 +4,8 @@
 
 #include "scene_select.h"
 #include "cli_args.h"
+#include "data_path.h"
+#include "path_msg.h"
 #include "render.h"
 #include "select_trace.h"
 
@@ -44,7 +46,7 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         if (force_goal >= 0)
             goal = (abrdf_goal)force_goal;
         else if (sm->kind == SCENE_MAT_ADAPTIVE && abrdf_goal_find(sm->goal, &goal) != ABRDF_OK) {
-            snprintf(err, err_size, "%s:%d: unknown goal '%s'", scene_name, sm->line, sm->goal);
+            path_msg(err, err_size, scene_name, ":%d: unknown goal '%s'", sm->line, sm->goal);
             return -1;
         }
         abrdf_material am;
@@ -57,10 +59,10 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
                 int k = table ? mat_table_nearest(table, sm->table, near, 4) : 0;
                 char hint[256] = "";
                 for (int j = 0; j < k; ++j) strcat(strcat(hint, j ? ", " : ""), near[j]);
-                snprintf(err, err_size,
-                         "%s:%d: material '%s': no entry '%s' in the material table%s%s%s",
-                         scene_name, sm->line, sm->name, sm->table, k ? "; did you mean: " : "",
-                         hint, k ? "?" : " (abrdf advise --list)");
+                path_msg(err, err_size, scene_name,
+                         ":%d: material '%s': no entry '%s' in the material table%s%s%s", sm->line,
+                         sm->name, sm->table, k ? "; did you mean: " : "", hint,
+                         k ? "?" : " (abrdf advise --list)");
                 return -1;
             }
             am = e->m;
@@ -70,9 +72,8 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         if (described(sm, "r")) am.r = p->r;
         if (described(sm, "n")) am.n = p->n;
         if (!e && !described(sm, "r") && !described(sm, "n")) {
-            snprintf(err, err_size,
-                     "%s:%d: adaptive material '%s' needs table=ENTRY, r= or n=", scene_name,
-                     sm->line, sm->name);
+            path_msg(err, err_size, scene_name,
+                     ":%d: adaptive material '%s' needs table=ENTRY, r= or n=", sm->line, sm->name);
             return -1;
         }
         take_rgb(sm, "kd", p->kd, am.kd);
@@ -86,7 +87,7 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         abrdf_params_init(ABRDF_MODEL_NONE, &chosen);
         if (abrdf_select(&am, goal, NULL, NULL, &sel, &chosen, explain ? select_trace_keep : NULL,
                          &trace) != ABRDF_OK) {
-            snprintf(err, err_size, "%s:%d: material '%s': %s", scene_name, sm->line, sm->name,
+            path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
                      sel.message);
             select_trace_free(&trace);
             return -1;
@@ -117,6 +118,27 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         select_trace_free(&trace);
     }
     return 0;
+}
+
+int scene_resolve(scene *s, const char *scene_name, const char *const *files, int nfiles,
+                  int force_goal, FILE *explain, char *err, size_t err_size)
+{
+    mat_table table = {NULL, 0, 0};
+    int rc = -1;
+    if (force_goal >= 0 || scene_needs_table(s)) {
+        char tpath[4096];
+        if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
+            path_msg(err, err_size, tpath, ": material table not found (set ABRDF_DATA_DIR)");
+            goto done;
+        }
+        if (mat_table_load(&table, tpath, err, err_size)) goto done;
+    }
+    for (int i = 0; i < nfiles; ++i)
+        if (mat_table_load(&table, files[i], err, err_size)) goto done;
+    rc = scene_select_materials(s, scene_name, &table, force_goal, explain, err, err_size);
+done:
+    mat_table_free(&table);
+    return rc;
 }
 
 int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets, int nsets)

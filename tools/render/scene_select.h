@@ -20,6 +20,12 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
 /* Does any material need the material table (or does force_goal make them adaptive)? */
 int scene_needs_table(const scene *s);
 
+/* scene_select_materials with the material table loaded as `abrdf render` and `abrdf export`
+ * do: data/materials.csv (data_path.h) if a material names an entry or force_goal >= 0, then
+ * each of the nfiles --materials files merged over it. Returns 0, or -1 with the message. */
+int scene_resolve(scene *s, const char *scene_name, const char *const *files, int nfiles,
+                  int force_goal, FILE *explain, char *err, size_t err_size);
+
 /* --model NAME [--set NAME=VALUE ...] of `abrdf render` and `abrdf export`: every material of
  * s becomes model_name (render_set_model), then each assignment is applied to every
  * material. Returns 0; CLI_EXIT_USAGE for an unknown model or a bad assignment; 1 if the
