@@ -230,7 +230,14 @@ static void write_env(const char *path, int W, int H)
             if (j == H - 1 && i == 0) p[0] = p[1] = p[2] = 0.0f; /* a black texel */
         }
     char err[512];
-    ck_assert_msg(abrdf_image_write_linear(path, W, H, px, err, (int)sizeof err) == 0, "%s", err);
+    abrdf_bytes bytes = {NULL, 0};
+    ck_assert_msg(abrdf_image_encode_linear(path, W, H, px, &bytes, err, (int)sizeof err) == 0,
+                  "%s", err);
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_uint_eq(fwrite(bytes.data, 1, bytes.size, f), bytes.size);
+    ck_assert_int_eq(fclose(f), 0);
+    abrdf_bytes_free(&bytes);
     free(px);
 }
 
