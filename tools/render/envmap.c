@@ -26,36 +26,41 @@ int envmap_load(const char *path, envmap *env, char *err, int err_size)
     memset(env, 0, sizeof *env);
     abrdf_image img;
     if (abrdf_image_read(path, &img, err, err_size)) return -1;
-    if (img.width < 1 || img.height < 1 || img.width > ENVMAP_MAX_SIDE ||
-        img.height > ENVMAP_MAX_SIDE) {
+    /* the pixels (malloc'd by abrdf_image_read) are the map's now, or freed on failure */
+    return envmap_from_pixels(path, img.width, img.height, img.pixels, env, err, err_size);
+}
+
+int envmap_from_pixels(const char *path, int W, int H, float *rgb, envmap *env, char *err,
+                       int err_size)
+{
+    memset(env, 0, sizeof *env);
+    if (W < 1 || H < 1 || W > ENVMAP_MAX_SIDE || H > ENVMAP_MAX_SIDE) {
         snprintf(err, (size_t)err_size, "%s: %dx%d pixels; an environment map needs 1 to %d a side",
-                 path, img.width, img.height, ENVMAP_MAX_SIDE);
-        abrdf_image_free(&img);
+                 path, W, H, ENVMAP_MAX_SIDE);
+        free(rgb);
         return -1;
     }
-    int W = img.width, H = img.height;
     size_t n = (size_t)W * (size_t)H;
     for (size_t k = 0; k < 3 * n; ++k)
-        if (!(img.pixels[k] >= 0.0f) || !isfinite(img.pixels[k])) {
+        if (!(rgb[k] >= 0.0f) || !isfinite(rgb[k])) {
             snprintf(err, (size_t)err_size,
                      "%s: pixel (%d, %d) holds %g; radiance must be finite and >= 0", path,
-                     (int)(k / 3 % (size_t)W), (int)(k / 3 / (size_t)W), (double)img.pixels[k]);
-            abrdf_image_free(&img);
+                     (int)(k / 3 % (size_t)W), (int)(k / 3 / (size_t)W), (double)rgb[k]);
+            free(rgb);
             return -1;
         }
     env->path = malloc(strlen(path) + 1);
     env->row_cdf = malloc(((size_t)H + 1) * sizeof *env->row_cdf);
     env->col_cdf = malloc((size_t)H * ((size_t)W + 1) * sizeof *env->col_cdf);
     env->cell_pdf = malloc(n * sizeof *env->cell_pdf);
+    env->rgb = rgb;
     if (!env->path || !env->row_cdf || !env->col_cdf || !env->cell_pdf) {
-        abrdf_image_free(&img);
         envmap_free(env);
         snprintf(err, (size_t)err_size, "%s: out of memory", path);
         return -1;
     }
     strcpy(env->path, path);
     env->width = W, env->height = H;
-    env->rgb = img.pixels; /* malloc'd by abrdf_image_read: ours now */
     /* Row sums of luminance * sin(theta at the row's centre), each row's CDF, the marginal. */
     env->row_cdf[0] = 0.0;
     for (int j = 0; j < H; ++j) {

@@ -17,6 +17,7 @@
  *
  * PUBLIC FUNCTIONS
  *   envmap_load      read the image and build the distribution
+ *   envmap_from_pixels  the same from pixels in memory (a map made by a program)
  *   envmap_free      release it
  *   envmap_lookup    radiance (the image's RGB) in a direction
  *   envmap_sample    a direction from two uniform numbers, with its density
@@ -40,6 +41,10 @@ typedef struct envmap {
 /* Read `path` (any format OpenImageIO reads; EXR or HDR for radiance) and build the
  * distribution. 0, or -1 with a one-line message naming the file in err. */
 int envmap_load(const char *path, envmap *env, char *err, int err_size);
+/* The same for W x H linear RGB pixels (top row first) that the map takes over (malloc'd;
+ * freed here on failure); `path` names the map in messages. */
+int envmap_from_pixels(const char *path, int W, int H, float *rgb, envmap *env, char *err,
+                       int err_size);
 void envmap_free(envmap *env);
 /* Radiance of the map toward direction d (unit). */
 void envmap_lookup(const envmap *env, const double d[3], double rgb[3]);
