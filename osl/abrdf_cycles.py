@@ -233,10 +233,56 @@ def setup_camera(sc, s):
     sc.camera = ob
 
 
+def setup_environment(sc, l):
+    """abrdf's environment light as Cycles' world, radiance map * color * intensity. abrdf's
+    lat-long mapping (tools/render/envmap.h): a direction d has theta from +y, column
+    0.5 + atan2(d.x, -d.z) / 2pi, nearest pixel. Cycles' equirectangular lookup of a direction
+    e has column 0.5 - atan2(e.y, e.x) / 2pi and the elevation above +z, so the world looks
+    up e = (-d.z, -d.x, d.y), a rotation of d. Camera rays do not see it, as in abrdf."""
+    w = sc.world
+    w.use_nodes = True
+    nt = w.node_tree
+    nt.nodes.clear()
+    node = nt.nodes.new
+    coord, sep, comb = (node("ShaderNodeTexCoord"), node("ShaderNodeSeparateXYZ"),
+                        node("ShaderNodeCombineXYZ"))
+    neg = []
+    for _ in range(2):
+        m = node("ShaderNodeMath")
+        m.operation = "MULTIPLY"
+        m.inputs[1].default_value = -1.0
+        neg.append(m)
+    tex = node("ShaderNodeTexEnvironment")
+    tex.image = bpy.data.images.load(l["file"])
+    tex.image.colorspace_settings.name = "Non-Color"  # the file's values, as abrdf reads them
+    tex.interpolation = "Closest"
+    tex.projection = "EQUIRECTANGULAR"
+    tint = node("ShaderNodeVectorMath")
+    tint.operation = "MULTIPLY"
+    tint.inputs[1].default_value = l["color"]
+    bg, out = node("ShaderNodeBackground"), node("ShaderNodeOutputWorld")
+    bg.inputs["Strength"].default_value = l["intensity"]
+    link = nt.links.new
+    link(coord.outputs["Generated"], sep.inputs[0])
+    link(sep.outputs["Z"], neg[0].inputs[0])
+    link(neg[0].outputs[0], comb.inputs["X"])
+    link(sep.outputs["X"], neg[1].inputs[0])
+    link(neg[1].outputs[0], comb.inputs["Y"])
+    link(sep.outputs["Y"], comb.inputs["Z"])
+    link(comb.outputs[0], tex.inputs["Vector"])
+    link(tex.outputs["Color"], tint.inputs[0])
+    link(tint.outputs[0], bg.inputs["Color"])
+    link(bg.outputs[0], out.inputs["Surface"])
+    w.cycles_visibility.camera = False
+
+
 def setup_lights(sc, s):
     """Cycles lights for closure mode: E = color * intensity (/ d^2 for point lights); sphere
-    and rect lights of radiance L = color * intensity."""
+    and rect lights of radiance L = color * intensity; the environment as the world."""
     for k, l in enumerate(s["lights"]):
+        if l["kind"] == "environment":
+            setup_environment(sc, l)
+            continue
         if l["kind"] == "sphere":
             # Cycles' sphere light (a point light with a radius, soft falloff off) of power P
             # has radiance P / (4 pi * pi r^2): P = 4 pi^2 r^2 L.

@@ -104,9 +104,8 @@ class Export(unittest.TestCase):
         self.assertEqual(r.returncode, 1)
 
     def test_area_lights_closure_mode_only(self):
-        # Sphere and rect lights reach Cycles' closure mode with their numbers; the eval mode,
-        # POV-Ray and (for both) the environment light are refused with the light's line, and
-        # nothing is written.
+        # Sphere, rect and environment lights reach Cycles' closure mode with their numbers;
+        # the eval mode and POV-Ray refuse them with the light's line, and nothing is written.
         path = os.path.join(SCENES, "area.scene")
         s = self.scene("--mode", "closure", name="area.scene")
         kinds = [(l["kind"], l["position"], l["radius"], l["u"], l["v"], l["intensity"])
@@ -131,13 +130,23 @@ class Export(unittest.TestCase):
         with open(scene, "w") as f:
             f.write("camera position=0,0,4 look_at=0,0,0\nlight environment file=env.exr\n"
                     "material m model=lambert\nsphere material=m radius=1\n")
-        for args, text in ((("--cycles", scene, "-o", self.out, "--mode", "closure"),
-                            "line 2: the environment light is not exported to Cycles"),
+        for args, text in ((("--cycles", scene, "-o", self.out),
+                            "line 2: an environment light needs --mode closure"),
                            (("--pov", scene, "-o", self.out), "light at line 2: sphere, rect")):
             r = run(*args)
             self.assertEqual(r.returncode, 1, r.stderr)
             self.assertIn(text, r.stderr)
             self.assertFalse(os.path.exists(self.out))
+        # closure mode: the map by its absolute path (the script may run anywhere)
+        cwd = os.getcwd()
+        try:
+            os.chdir(self.tmp.name)
+            s = self.scene("--mode", "closure", name=os.path.abspath("env.scene"))
+        finally:
+            os.chdir(cwd)
+        (light,) = s["lights"]
+        self.assertEqual((light["kind"], light["file"]),
+                         ("environment", os.path.realpath(env)))
 
 
 # A directory name and material names that would become code if written unescaped: a line
