@@ -30,7 +30,7 @@ int main(void)
     for (int i = 0; i < n_samples; ++i) {
         double u1 = (i + 0.5) / n_samples,
                u2 = (i * 0.6180339887498949) - (int)(i * 0.6180339887498949);
-        if (abrdf_sample(ABRDF_DISNEY_SPECULAR, &p, &frame, wo, u1, u2, &r) != ABRDF_OK) return 1;
+        if (abrdf_sample_prepared(&mat, &frame, wo, u1, u2, &r) != ABRDF_OK) return 1;
         albedo += r.weight[0] / n_samples;
     }
     printf("disney_specular albedo for wo by %d samples (%s) = %.3f\n", n_samples,

@@ -233,10 +233,83 @@ def setup_camera(sc, s):
     sc.camera = ob
 
 
+def setup_environment(sc, l):
+    """abrdf's environment light as Cycles' world, radiance map * color * intensity. abrdf's
+    lat-long mapping (tools/render/envmap.h): a direction d has theta from +y, column
+    0.5 + atan2(d.x, -d.z) / 2pi, nearest pixel. Cycles' equirectangular lookup of a direction
+    e has column 0.5 - atan2(e.y, e.x) / 2pi and the elevation above +z, so the world looks
+    up e = (-d.z, -d.x, d.y), a rotation of d. Camera rays do not see it, as in abrdf."""
+    w = sc.world
+    w.use_nodes = True
+    nt = w.node_tree
+    nt.nodes.clear()
+    node = nt.nodes.new
+    coord, sep, comb = (node("ShaderNodeTexCoord"), node("ShaderNodeSeparateXYZ"),
+                        node("ShaderNodeCombineXYZ"))
+    neg = []
+    for _ in range(2):
+        m = node("ShaderNodeMath")
+        m.operation = "MULTIPLY"
+        m.inputs[1].default_value = -1.0
+        neg.append(m)
+    tex = node("ShaderNodeTexEnvironment")
+    tex.image = bpy.data.images.load(l["file"])
+    tex.image.colorspace_settings.name = "Non-Color"  # the file's values, as abrdf reads them
+    tex.interpolation = "Closest"
+    tex.projection = "EQUIRECTANGULAR"
+    tint = node("ShaderNodeVectorMath")
+    tint.operation = "MULTIPLY"
+    tint.inputs[1].default_value = l["color"]
+    bg, out = node("ShaderNodeBackground"), node("ShaderNodeOutputWorld")
+    bg.inputs["Strength"].default_value = l["intensity"]
+    link = nt.links.new
+    link(coord.outputs["Generated"], sep.inputs[0])
+    link(sep.outputs["Z"], neg[0].inputs[0])
+    link(neg[0].outputs[0], comb.inputs["X"])
+    link(sep.outputs["X"], neg[1].inputs[0])
+    link(neg[1].outputs[0], comb.inputs["Y"])
+    link(sep.outputs["Y"], comb.inputs["Z"])
+    link(comb.outputs[0], tex.inputs["Vector"])
+    link(tex.outputs["Color"], tint.inputs[0])
+    link(tint.outputs[0], bg.inputs["Color"])
+    link(bg.outputs[0], out.inputs["Surface"])
+    w.cycles_visibility.camera = False
+
+
 def setup_lights(sc, s):
-    """Cycles lights for closure mode: E = color * intensity (/ d^2 for point lights)."""
+    """Cycles lights for closure mode: E = color * intensity (/ d^2 for point lights); sphere
+    and rect lights of radiance L = color * intensity; the environment as the world."""
     for k, l in enumerate(s["lights"]):
-        if l["kind"] == "point":
+        if l["kind"] == "environment":
+            setup_environment(sc, l)
+            continue
+        if l["kind"] == "sphere":
+            # Cycles' sphere light (a point light with a radius, soft falloff off) of power P
+            # has radiance P / (4 pi * pi r^2): P = 4 pi^2 r^2 L.
+            r = l["radius"]
+            ld = bpy.data.lights.new("light%d" % k, "POINT")
+            ld.energy = 4.0 * math.pi ** 2 * r * r * l["intensity"]
+            ld.shadow_soft_size = r
+            if hasattr(ld, "use_soft_falloff"):
+                ld.use_soft_falloff = False
+            ob = bpy.data.objects.new(ld.name, ld)
+            ob.location = l["position"]
+        elif l["kind"] == "rect":
+            # Cycles' area light emits along its local -z, its sides along x (size) and y
+            # (size_y); a one-sided Lambertian emitter of power P and area A has radiance
+            # P / (pi A): P = pi A L.
+            u, v = mathutils.Vector(l["u"]), mathutils.Vector(l["v"])
+            ld = bpy.data.lights.new("light%d" % k, "AREA")
+            ld.shape = "RECTANGLE"
+            ld.size, ld.size_y = u.length, v.length
+            ld.energy = math.pi * u.length * v.length * l["intensity"]
+            if hasattr(ld, "spread"):
+                ld.spread = math.pi
+            ob = bpy.data.objects.new(ld.name, ld)
+            x, y = u.normalized(), -v.normalized()  # x cross y = -(u x v): -z along u x v
+            rot = mathutils.Matrix((x, y, x.cross(y))).transposed()
+            ob.matrix_world = mathutils.Matrix.Translation(l["position"]) @ rot.to_4x4()
+        elif l["kind"] == "point":
             ld = bpy.data.lights.new("light%d" % k, "POINT")
             # Cycles' point light of power P has radiant intensity P / (4 pi) W/sr, so
             # irradiance P / (4 pi d^2): P = 4 pi * intensity gives the scene's E.
@@ -254,6 +327,8 @@ def setup_lights(sc, s):
             # A sun shines along its -z axis; point -z away from the light direction.
             ob.rotation_euler = mathutils.Vector(l["direction"]).to_track_quat("Z", "Y").to_euler()
         ld.color = l["color"]
+        if l["kind"] in ("sphere", "rect") and hasattr(ob, "visible_camera"):
+            ob.visible_camera = False  # abrdf's lights light surfaces; the camera never sees them
         sc.collection.objects.link(ob)
 
 
@@ -299,6 +374,10 @@ def build(s, mode, workdir, osl_dir, segments=64):
     for h in HEADERS + (("abrdf_material.osl",) if mode == "closure" else ()):
         shutil.copy2(os.path.join(osl_dir, h), os.path.join(workdir, h))
     mats = []
+    area = [l["kind"] for l in s["lights"] if l["kind"] not in ("point", "directional")]
+    if area and mode != "closure":
+        raise SystemExit("abrdf_cycles: %s lights need --mode closure (Cycles' own lights)"
+                         % ", ".join(sorted(set(area))))
     if mode == "eval":
         path = os.path.join(workdir, s["osl_name"] + ".osl")
         with open(path, "w") as f:

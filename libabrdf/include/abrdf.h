@@ -85,6 +85,8 @@
  *   abrdf_sample             importance sampling: a direction wi for wo, its pdf and the
  *                            weight f_r cos / pdf (double reference)
  *   abrdf_pdf                the density with which abrdf_sample returns wi
+ *   abrdf_sample_prepared    abrdf_sample of a prepared model (no validation per sample)
+ *   abrdf_pdf_prepared       abrdf_pdf of a prepared model
  *   abrdf_sample_result_init fill a sample result block, set its struct_size (static inline)
  *   abrdf_sample_result_init_sized  the same for a block of struct_size bytes
  *   abrdf_model_sampler      which sampler a model has (stable name, method, citation)
@@ -438,6 +440,17 @@ ABRDF_API int abrdf_sample(abrdf_model model, const abrdf_params *params, const 
  * abrdf_sample (then *pdf = 0). */
 ABRDF_API int abrdf_pdf(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
                         const double wi[3], const double wo[3], double *pdf);
+
+/* The same on a prepared model (abrdf_prepare): what a renderer calls per sample, with no
+ * validation and no setup beyond the one that depends on wo. abrdf_sample and abrdf_pdf are
+ * exactly abrdf_prepare followed by these calls, so the prepared forms return the same bits
+ * (tests/unit/test_sample.c). A block that is not prepared: ABRDF_E_MODEL, no sample,
+ * *pdf = 0. Thread-safe on a shared prepared object, which they do not modify. */
+ABRDF_API int abrdf_sample_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame,
+                                    const double wo[3], double u1, double u2,
+                                    abrdf_sample_result *result);
+ABRDF_API int abrdf_pdf_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame,
+                                 const double wi[3], const double wo[3], double *pdf);
 
 /* Which sampler a model has (bit flags of abrdf_sampler_info.flags). */
 #define ABRDF_SAMPLER_MIXTURE 0x01u /* several components, one chosen per sample (MIS) */

@@ -79,8 +79,7 @@ void abrdf__prep_make(abrdf__prep *pr, abrdf_model model, const abrdf_params *p,
     if (what & ABRDF__PREP_FLOAT) abrdf__prep_setup_f(pr);
 }
 
-/* Validate and prepare into pr; returns the status of abrdf_params_check. */
-static int prep_checked(abrdf_model model, const abrdf_params *params, abrdf__prep *pr,
+int abrdf__prep_checked(abrdf_model model, const abrdf_params *params, abrdf__prep *pr,
                         unsigned what)
 {
     int st = abrdf_params_check(model, params, NULL, 0);
@@ -90,7 +89,7 @@ static int prep_checked(abrdf_model model, const abrdf_params *params, abrdf__pr
     return ABRDF_OK;
 }
 
-static const abrdf__prep *prep_of(const abrdf_prepared *prepared)
+const abrdf__prep *abrdf__prep_of(const abrdf_prepared *prepared)
 {
     const abrdf__prep *pr = (const abrdf__prep *)(const void *)prepared;
     return prepared && pr->magic == ABRDF__PREP_MAGIC ? pr : NULL;
@@ -102,20 +101,20 @@ int abrdf_prepare(abrdf_model model, const abrdf_params *params, abrdf_prepared 
     memset(prepared, 0, sizeof *prepared); /* not prepared, and no stale bytes in a copy */
     if (!params) return ABRDF_E_NULL;
     abrdf__prep *pr = (abrdf__prep *)(void *)prepared;
-    int st = prep_checked(model, params, pr, ABRDF__PREP_DOUBLE | ABRDF__PREP_FLOAT);
+    int st = abrdf__prep_checked(model, params, pr, ABRDF__PREP_DOUBLE | ABRDF__PREP_FLOAT);
     if (st != ABRDF_OK) pr->magic = 0;
     return st;
 }
 
 abrdf_model abrdf_prepared_model(const abrdf_prepared *prepared)
 {
-    const abrdf__prep *pr = prep_of(prepared);
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
     return pr ? pr->model : ABRDF_MODEL_NONE;
 }
 
 const abrdf_params *abrdf_prepared_params(const abrdf_prepared *prepared)
 {
-    const abrdf__prep *pr = prep_of(prepared);
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
     return pr ? &pr->params : NULL;
 }
 
@@ -145,7 +144,7 @@ int abrdf_eval_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame
     if (!f) return ABRDF_E_NULL;
     f[0] = f[1] = f[2] = 0.0;
     if (!prepared || !wi || !wo) return ABRDF_E_NULL;
-    const abrdf__prep *pr = prep_of(prepared);
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
     if (!pr) return ABRDF_E_MODEL;
     return eval_prep(pr, frame, wi, wo, f);
 }
@@ -157,7 +156,7 @@ int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame 
     f[0] = f[1] = f[2] = 0.0;
     if (!params || !wi || !wo) return ABRDF_E_NULL;
     abrdf__prep pr; /* only the double path's part: abrdf_prepare's, bit for bit */
-    int st = prep_checked(model, params, &pr, ABRDF__PREP_DOUBLE);
+    int st = abrdf__prep_checked(model, params, &pr, ABRDF__PREP_DOUBLE);
     if (st != ABRDF_OK) return st;
     return eval_prep(&pr, frame, wi, wo, f);
 }
@@ -177,7 +176,7 @@ int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const abrdf_batch 
 {
     if (!prepared || !b) return ABRDF_E_NULL;
     if (!batch_ok(b)) return ABRDF_E_NULL;
-    const abrdf__prep *pr = prep_of(prepared);
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
     if (!pr) {
         batch_zero(b);
         return ABRDF_E_MODEL;
@@ -191,7 +190,7 @@ int abrdf_eval_batch(abrdf_model model, const abrdf_params *params, const abrdf_
     if (!params || !b) return ABRDF_E_NULL;
     if (!batch_ok(b)) return ABRDF_E_NULL;
     abrdf__prep pr;
-    int st = prep_checked(model, params, &pr, ABRDF__PREP_FLOAT);
+    int st = abrdf__prep_checked(model, params, &pr, ABRDF__PREP_FLOAT);
     if (st != ABRDF_OK) {
         batch_zero(b);
         return st;

@@ -68,6 +68,13 @@ typedef struct ABRDF__MAY_ALIAS abrdf__prep {
  * p is copied. what: ABRDF__PREP_DOUBLE | ABRDF__PREP_FLOAT (api.c). */
 void abrdf__prep_make(abrdf__prep *pr, abrdf_model model, const abrdf_params *p, unsigned what);
 
+/* Validate params for model (abrdf_params_check's status) and, if valid, abrdf__prep_make
+ * from them in this library's layout (api.c). */
+int abrdf__prep_checked(abrdf_model model, const abrdf_params *params, abrdf__prep *pr,
+                        unsigned what);
+/* The library's view of a caller's prepared object, or NULL if it is NULL or not prepared. */
+const abrdf__prep *abrdf__prep_of(const abrdf_prepared *prepared);
+
 /* The setups, per precision (eval_double.c, eval_float.c, special.c). */
 void abrdf__prep_setup_d(abrdf__prep *pr);
 void abrdf__prep_setup_f(abrdf__prep *pr);

@@ -57,32 +57,22 @@ static void no_sample(const abrdf_frame *fr, abrdf_sample_result *r)
     r->weight[0] = r->weight[1] = r->weight[2] = 0.0;
 }
 
-int abrdf_sample(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
-                 const double wo[3], double u1, double u2, abrdf_sample_result *result)
+/* abrdf_sample's body on a prepared model (pr holds validated parameters in this library's
+ * layout); result checked, u1 and u2 not yet. */
+static int sample_prep(const abrdf__prep *pr, const abrdf_frame *frame, const double wo[3],
+                       double u1, double u2, abrdf_sample_result *result)
 {
-    if (!result) return ABRDF_E_NULL;
-    if (result->struct_size < sizeof *result) return ABRDF_E_SIZE;
-    no_sample(frame, result);
-    if (!params || !wo) return ABRDF_E_NULL;
-    int st = abrdf_params_check(model, params, NULL, 0);
-    if (st != ABRDF_OK) return st;
     if (!(u1 >= 0.0 && u1 <= 1.0 && u2 >= 0.0 && u2 <= 1.0)) return ABRDF_E_RANGE;
-    abrdf_params full;
-    params = abrdf__params_view(model, params, &full);
     double lo[3], li[3];
     if ((frame && !frame_ok(frame)) || !to_local(frame, wo, lo) || !(lo[2] > 0.0))
         return ABRDF_OK; /* degenerate or below the surface: no sample */
     abrdf__mixture mx;
-    abrdf__mixture_setup(model, params, lo, &mx);
+    abrdf__mixture_setup(pr->model, &pr->params, lo, &mx);
     if (!abrdf__mixture_sample(&mx, u1, u2, li)) return ABRDF_OK;
     double pdf = abrdf__mixture_pdf(&mx, li);
     if (!(pdf > 0.0) || !isfinite(pdf)) return ABRDF_OK; /* a set of measure zero */
     double f[3] = {0.0, 0.0, 0.0};
-    if (li[2] > 0.0) {
-        abrdf__prep pr;
-        abrdf__prep_make(&pr, model, params, ABRDF__PREP_DOUBLE);
-        abrdf__eval_prepared_d(&pr, li, lo, f);
-    }
+    if (li[2] > 0.0) abrdf__eval_prepared_d(pr, li, lo, f);
     for (int c = 0; c < 3; ++c) {
         double w = f[c] * fmax(li[2], 0.0) / pdf;
         result->weight[c] = (w >= 0.0 && isfinite(w)) ? w : 0.0;
@@ -90,6 +80,45 @@ int abrdf_sample(abrdf_model model, const abrdf_params *params, const abrdf_fram
     result->pdf = pdf;
     to_world(frame, li, result->wi);
     return ABRDF_OK;
+}
+
+/* abrdf_pdf's body on a prepared model. */
+static double pdf_prep(const abrdf__prep *pr, const abrdf_frame *frame, const double wi[3],
+                       const double wo[3])
+{
+    double li[3], lo[3];
+    if ((frame && !frame_ok(frame)) || !to_local(frame, wi, li) || !to_local(frame, wo, lo) ||
+        !(lo[2] > 0.0))
+        return 0.0;
+    abrdf__mixture mx;
+    abrdf__mixture_setup(pr->model, &pr->params, lo, &mx);
+    double p = abrdf__mixture_pdf(&mx, li);
+    return (p >= 0.0 && isfinite(p)) ? p : 0.0;
+}
+
+int abrdf_sample(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
+                 const double wo[3], double u1, double u2, abrdf_sample_result *result)
+{
+    if (!result) return ABRDF_E_NULL;
+    if (result->struct_size < sizeof *result) return ABRDF_E_SIZE;
+    no_sample(frame, result);
+    if (!params || !wo) return ABRDF_E_NULL;
+    abrdf__prep pr; /* the double path's part of abrdf_prepare: the same bits */
+    int st = abrdf__prep_checked(model, params, &pr, ABRDF__PREP_DOUBLE);
+    if (st != ABRDF_OK) return st;
+    return sample_prep(&pr, frame, wo, u1, u2, result);
+}
+
+int abrdf_sample_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame,
+                          const double wo[3], double u1, double u2, abrdf_sample_result *result)
+{
+    if (!result) return ABRDF_E_NULL;
+    if (result->struct_size < sizeof *result) return ABRDF_E_SIZE;
+    no_sample(frame, result);
+    if (!prepared || !wo) return ABRDF_E_NULL;
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
+    if (!pr) return ABRDF_E_MODEL;
+    return sample_prep(pr, frame, wo, u1, u2, result);
 }
 
 int abrdf_pdf(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
@@ -101,14 +130,21 @@ int abrdf_pdf(abrdf_model model, const abrdf_params *params, const abrdf_frame *
     int st = abrdf_params_check(model, params, NULL, 0);
     if (st != ABRDF_OK) return st;
     abrdf_params full;
-    params = abrdf__params_view(model, params, &full);
-    double li[3], lo[3];
-    if ((frame && !frame_ok(frame)) || !to_local(frame, wi, li) || !to_local(frame, wo, lo) ||
-        !(lo[2] > 0.0))
-        return ABRDF_OK;
-    abrdf__mixture mx;
-    abrdf__mixture_setup(model, params, lo, &mx);
-    double p = abrdf__mixture_pdf(&mx, li);
-    *pdf = (p >= 0.0 && isfinite(p)) ? p : 0.0;
+    abrdf__prep pr; /* only model and params: the mixture reads nothing else */
+    pr.model = model;
+    pr.params = *abrdf__params_view(model, params, &full);
+    *pdf = pdf_prep(&pr, frame, wi, wo);
+    return ABRDF_OK;
+}
+
+int abrdf_pdf_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame, const double wi[3],
+                       const double wo[3], double *pdf)
+{
+    if (!pdf) return ABRDF_E_NULL;
+    *pdf = 0.0;
+    if (!prepared || !wi || !wo) return ABRDF_E_NULL;
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
+    if (!pr) return ABRDF_E_MODEL;
+    *pdf = pdf_prep(pr, frame, wi, wo);
     return ABRDF_OK;
 }

@@ -141,6 +141,21 @@ class RenderBench(unittest.TestCase):
             self.assertTrue(math.isfinite(x["eval_ratio"]) and x["eval_ratio"] > 0)
             self.assertTrue(math.isfinite(x["render_ratio"]))
         self.assertTrue(0 <= lc["within_1_5x"] <= len(lc["lobes"]))
+        # light sampling: the three estimators per scene and model, each a noisy estimate
+        # (NMSE > 0 against the reference); MIS and light sampling of the same image (NMSE
+        # well below 1; BRDF sampling alone may miss a small light or the sun: any size)
+        ls = d["light_sampling"]
+        self.assertGreater(ls["reference_light_samples"], ls["light_samples"])
+        self.assertEqual(sorted({r["scene"] for r in ls["rows"]}), ["area", "environment"])
+        self.assertEqual(len(ls["rows"]), 8)
+        for r in ls["rows"]:
+            self.assertEqual([e["name"] for e in r["estimators"]], ["mis", "light", "brdf"])
+            self.assertEqual(r["estimators"][0]["nmse_ratio"], 1)
+            for e in r["estimators"]:
+                self.assertTrue(0 < e["nmse"] < (0.5 if e["name"] != "brdf" else math.inf),
+                                (r["scene"], r["model"], e))
+                self.assertTrue(math.isfinite(e["seconds"]) and e["seconds"] > 0)
+                self.assertTrue(math.isfinite(e["nmse_time_ratio"]))
 
 
 class Errors(unittest.TestCase):

@@ -103,6 +103,51 @@ class Export(unittest.TestCase):
                 os.path.join(self.tmp.name, "no", "such", "dir.py"))
         self.assertEqual(r.returncode, 1)
 
+    def test_area_lights_closure_mode_only(self):
+        # Sphere, rect and environment lights reach Cycles' closure mode with their numbers;
+        # the eval mode and POV-Ray refuse them with the light's line, and nothing is written.
+        path = os.path.join(SCENES, "area.scene")
+        s = self.scene("--mode", "closure", name="area.scene")
+        kinds = [(l["kind"], l["position"], l["radius"], l["u"], l["v"], l["intensity"])
+                 for l in s["lights"]]
+        self.assertEqual(kinds, [("sphere", (-2, 3, 1.5), 0.12, (0, 0, 0), (0, 0, 0), 900),
+                                 ("rect", (2, 2.6, 0), 0, (1.2, 0, 0), (0, 0, 0.8), 9)])
+        os.remove(self.out)
+        for args, text in ((("--cycles", path, "-o", self.out), "line 8: a sphere light needs "
+                            "--mode closure"),
+                           (("--pov", path, "-o", self.out), "light at line 8: sphere, rect and "
+                            "environment lights are not exported to POV-Ray")):
+            r = run(*args)
+            self.assertEqual(r.returncode, 1, r.stderr)
+            self.assertIn(text, r.stderr)
+            self.assertFalse(os.path.exists(self.out))
+        env = os.path.join(self.tmp.name, "env.exr")
+        r = subprocess.run([ABRDF, "render", os.path.join(SCENES, "sphere.scene"), "-o", env,
+                            "--width", "8", "--height", "4", "--spp", "1", "--no-preview"],
+                           capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        scene = os.path.join(self.tmp.name, "env.scene")
+        with open(scene, "w") as f:
+            f.write("camera position=0,0,4 look_at=0,0,0\nlight environment file=env.exr\n"
+                    "material m model=lambert\nsphere material=m radius=1\n")
+        for args, text in ((("--cycles", scene, "-o", self.out),
+                            "line 2: an environment light needs --mode closure"),
+                           (("--pov", scene, "-o", self.out), "light at line 2: sphere, rect")):
+            r = run(*args)
+            self.assertEqual(r.returncode, 1, r.stderr)
+            self.assertIn(text, r.stderr)
+            self.assertFalse(os.path.exists(self.out))
+        # closure mode: the map by its absolute path (the script may run anywhere)
+        cwd = os.getcwd()
+        try:
+            os.chdir(self.tmp.name)
+            s = self.scene("--mode", "closure", name=os.path.abspath("env.scene"))
+        finally:
+            os.chdir(cwd)
+        (light,) = s["lights"]
+        self.assertEqual((light["kind"], light["file"]),
+                         ("environment", os.path.realpath(env)))
+
 
 # A directory name and material names that would become code if written unescaped: a line
 # break then POV-Ray directives, quotes of both languages, backslashes, a '#', UTF-8 and

@@ -1,6 +1,7 @@
 """benchmarks_doc.py ABRDF SRC - docs/BENCHMARKS.md: the accuracy half of `abrdf bench` is
 deterministic and is held to the page (section 1's reference, robot NMSE, n, Table 2 and
-Table 3 columns; section 2's image and per-material NMSE and classes). The cost ratios and
+Table 3 columns; section 2's image and per-material NMSE and classes; section 6's NMSE of
+each light-sampling estimator). The cost ratios and
 render times are timings: the page marks them as one-off measurements, and they are not
 compared. `--reps 1` keeps the timing part short; it does not change the accuracy."""
 import json
@@ -72,13 +73,34 @@ def render_variants(doc, lines):
             got = (per["adaptive_performance"][mat], per["performance_exact_bp"][mat], own[mat])
         for quoted, value, what in zip(row[1:], got, ("(c) vs (a)", "(d) vs (a)", "(c) vs (d)")):
             require_number(DOC, doc, quoted, str(value), f"{mat}, {what}", sig=6)
+    return out
+
+
+def light_sampling(doc, lines, out):
+    """Section 6's NMSE columns: each estimator's image against the MIS reference is
+    deterministic (the random numbers are hashes of the hit), its time is not."""
+    rows_by = {(r["scene"], r["model"]): {e["name"]: e for e in r["estimators"]}
+               for r in out["light_sampling"]["rows"]}
+    head, rows, _ = table_at(lines, "| scene | spheres |")
+    col = {h: k for k, h in enumerate(head)}
+    for row in rows:
+        est = rows_by.get((row[0], row[1].strip("`")))
+        if est is None:
+            fail(f"{DOC}: light sampling: no row {row[0]}, {row[1]} in `abrdf bench --render`")
+            continue
+        for name in ("mis", "light", "brdf"):
+            require_number(DOC, doc, row[col["NMSE " + name]], str(est[name]["nmse"]),
+                           f"{row[0]}, {row[1]}, NMSE {name}", sig=6)
+    if len(rows) != len(rows_by):
+        fail(f"{DOC}: light sampling: {len(rows)} rows, the tool has {len(rows_by)}")
 
 
 def body():
     doc = read(os.path.join(src, DOC))
     lines = doc.splitlines()
     accuracy_columns(doc, lines)
-    render_variants(doc, lines)
+    out = render_variants(doc, lines)
+    light_sampling(doc, lines, out)
 
 
 guarded("benchmarks_doc", body)

@@ -8,6 +8,8 @@
  *   - closed forms: lambert's weight is kd, phong's 2 pi ks cos_i / (n + 1), disney
  *     specular's F G1(wi) with G1 from Smith's Lambda; the cosine and GGX visible-normal
  *     densities from independent formulas;
+ *   - the prepared forms (abrdf_sample_prepared, abrdf_pdf_prepared) return the unprepared
+ *     calls' bits for every model and parameter set, in the local frame and with a frame;
  *   - bad calls: one status, no sample.
  * Sample counts per model are in the table of albedo_by_sampling_matches_quadrature; the
  * hair models get fewer (huang's f_r integrates numerically, ~2.5 ms per call) and the
@@ -345,6 +347,86 @@ START_TEST(bad_calls_give_a_status_and_no_sample)
 }
 END_TEST
 
+/* ---- the prepared forms ------------------------------------------------------------------ */
+
+START_TEST(prepared_equals_unprepared)
+{
+    abrdf_model model = (abrdf_model)_i;
+    if (!abrdf_model_get(model)) return;
+    const char *name = abrdf_model_get(model)->name;
+    static sc_set sets[SC_MAX_SETS];
+    int nsets = sc_param_sets(model, sets), count = consistency_count(model) / 4 + 1;
+    double n[3] = {0.2, 0.9, -0.3}, t[3] = {0.0, 0.3, 1.0};
+    abrdf_frame fr;
+    ck_assert_int_eq(abrdf_frame_make(n, t, &fr), ABRDF_OK);
+    tg_rng rng = {0x9e9a0000ull + (unsigned long long)model};
+    long checked = 0;
+    for (int s = 0; s < nsets; ++s) {
+        abrdf_prepared prep;
+        ck_assert_int_eq(abrdf_prepare(model, &sets[s].p, &prep), ABRDF_OK);
+        for (int i = 0; i < 3 * count; ++i) {
+            const abrdf_frame *f = (i & 1) ? &fr : NULL;
+            double lo[3], wo[3];
+            tu_dir(5.0 + 80.0 * tg_uniform(&rng), 360.0 * tg_uniform(&rng), lo);
+            for (int c = 0; c < 3; ++c)
+                wo[c] = f ? lo[0] * fr.t[c] + lo[1] * fr.b[c] + lo[2] * fr.n[c] : lo[c];
+            double u1 = tg_uniform(&rng), u2 = tg_uniform(&rng);
+            if (i % 7 == 3) u1 = 1.0, u2 = 0.0; /* the ends of the range */
+            abrdf_sample_result a, b;
+            abrdf_sample_result_init(&a);
+            abrdf_sample_result_init(&b);
+            ck_assert_int_eq(abrdf_sample(model, &sets[s].p, f, wo, u1, u2, &a), ABRDF_OK);
+            ck_assert_int_eq(abrdf_sample_prepared(&prep, f, wo, u1, u2, &b), ABRDF_OK);
+            ck_assert_msg(!memcmp(a.wi, b.wi, sizeof a.wi) &&
+                              !memcmp(&a.pdf, &b.pdf, sizeof a.pdf) &&
+                              !memcmp(a.weight, b.weight, sizeof a.weight),
+                          "%s %s: prepared sample differs (pdf %.17g vs %.17g)", name,
+                          sets[s].label, a.pdf, b.pdf);
+            /* the density of the sample and of an unrelated direction */
+            double other[3] = {wo[1], -wo[0] + 0.1, wo[2] * 0.5 + 0.2};
+            const double *wis[2] = {a.wi, other};
+            for (int k = 0; k < 2; ++k) {
+                double pa = -1.0, pb = -2.0;
+                ck_assert_int_eq(abrdf_pdf(model, &sets[s].p, f, wis[k], wo, &pa), ABRDF_OK);
+                ck_assert_int_eq(abrdf_pdf_prepared(&prep, f, wis[k], wo, &pb), ABRDF_OK);
+                ck_assert_msg(!memcmp(&pa, &pb, sizeof pa), "%s %s: pdf %.17g, prepared %.17g",
+                              name, sets[s].label, pa, pb);
+            }
+            ++checked;
+        }
+    }
+    ck_assert_int_gt(checked, 0);
+}
+END_TEST
+
+START_TEST(prepared_bad_calls)
+{
+    abrdf_params p;
+    abrdf_params_init(ABRDF_LAMBERT, &p);
+    abrdf_prepared prep, never;
+    memset(&never, 0, sizeof never);
+    ck_assert_int_eq(abrdf_prepare(ABRDF_LAMBERT, &p, &prep), ABRDF_OK);
+    double wo[3] = {0.3, 0.1, 0.9}, wi[3] = {-0.2, 0.0, 1.0}, pdf = 7.0;
+    abrdf_sample_result r, zero;
+    abrdf_sample_result_init(&r);
+    memset(&zero, 0, sizeof zero);
+    ck_assert_int_eq(abrdf_sample_prepared(&never, NULL, wo, 0.5, 0.5, &r), ABRDF_E_MODEL);
+    ck_assert(r.pdf == 0.0 && r.weight[0] == 0.0 && r.wi[2] == 1.0);
+    ck_assert_int_eq(abrdf_sample_prepared(NULL, NULL, wo, 0.5, 0.5, &r), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_sample_prepared(&prep, NULL, NULL, 0.5, 0.5, &r), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_sample_prepared(&prep, NULL, wo, 0.5, 0.5, NULL), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_sample_prepared(&prep, NULL, wo, 0.5, 0.5, &zero), ABRDF_E_SIZE);
+    ck_assert_int_eq(abrdf_sample_prepared(&prep, NULL, wo, NAN, 0.5, &r), ABRDF_E_RANGE);
+    ck_assert(r.pdf == 0.0);
+    ck_assert_int_eq(abrdf_pdf_prepared(&never, NULL, wi, wo, &pdf), ABRDF_E_MODEL);
+    ck_assert(pdf == 0.0);
+    ck_assert_int_eq(abrdf_pdf_prepared(&prep, NULL, NULL, wo, &pdf), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_pdf_prepared(&prep, NULL, wi, wo, NULL), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_pdf_prepared(&prep, NULL, wi, wo, &pdf), ABRDF_OK);
+    ck_assert(pdf > 0.0);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("sample");
@@ -355,6 +437,8 @@ int main(void)
     tcase_add_test(tc, bad_calls_give_a_status_and_no_sample);
     tcase_add_loop_test(tc, weight_is_f_cos_over_pdf, 0, abrdf_model_count());
     tcase_add_loop_test(tc, frame_rotates_the_sample, 0, abrdf_model_count());
+    tcase_add_test(tc, prepared_bad_calls);
+    tcase_add_loop_test(tc, prepared_equals_unprepared, 0, abrdf_model_count());
     tcase_add_loop_test(tc, albedo_by_sampling_matches_quadrature, 0, abrdf_model_count());
     suite_add_tcase(s, tc);
     return tu_run(s);

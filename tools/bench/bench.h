@@ -5,6 +5,8 @@
  *   bench_render_report  `abrdf bench --render`: full Disney vs adaptive photoreal and
  *                        performance on the robot: time ratios and NMSE per material
  *   bench_lobe_report    per-lobe render cost vs per-eval cost on the 16-light robot
+ *   bench_lights_report  MIS vs light-only vs BRDF-only noise on the sampled lights, at equal
+ *                        samples and equal time, per model (bench_lights.c)
  */
 #ifndef ABRDF_BENCH_H
 #define ABRDF_BENCH_H
@@ -36,5 +38,10 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads, in
  * (time with lambert + X minus lambert alone) beside its batch per-eval cost, both relative
  * to disney_specular, and the BRDFs' share of the render time (bench_lobes.c). */
 int bench_lobe_report(FILE *out, int json, int size, int reps, int quick);
+
+/* The noise of the three estimators of the sampled lights (render_estimator) against a
+ * high-sample MIS reference, and their render times, on scenes/area.scene and under a sky
+ * map, for a few models (bench_lights.c). A table (json 0) or a JSON object (json 1). */
+int bench_lights_report(FILE *out, int json, int reps, int threads, int quick);
 
 #endif

@@ -235,6 +235,8 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads, in
         }
         fprintf(out, "]},\n\"lobe_costs\": ");
         if (bench_lobe_report(out, 1, lobe_size, reps, quick)) goto out;
+        fprintf(out, ",\n\"light_sampling\": ");
+        if (bench_lights_report(out, 1, reps, threads, quick)) goto out;
         fprintf(out, "}\n");
     } else {
         fprintf(out,
@@ -261,6 +263,7 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads, in
         for (int i = 0; i < nm; ++i) fprintf(out, ", %s %.3g", sv[0].materials[i].name, approx[i]);
         fprintf(out, "\n");
         if (bench_lobe_report(out, 0, lobe_size, reps, quick)) goto out;
+        if (bench_lights_report(out, 0, reps, threads, quick)) goto out;
     }
     rc = 0;
     goto out;

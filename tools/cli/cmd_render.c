@@ -21,6 +21,7 @@ static int usage(void)
         "                    [--model NAME [--set NAME=VALUE ...] | --adaptive --goal G]\n"
         "                    [--materials FILE ...] [--threads N] [--explain] [--stats]\n"
         "                    [--full] [--precision float|double] [--no-preview]\n"
+        "                    [--estimator mis|light|brdf] [--light-samples N]\n"
         "                    [--config OCIO] [--display D] [--view V]\n\n"
         "Renders SCENE (docs/SCENES.md) to a linear float image (format from the extension,\n"
         "EXR recommended) and an sRGB PNG preview with the same name (.png); without -o,\n"
@@ -41,6 +42,10 @@ static int usage(void)
         "  --precision P     float (default): the fast path, each material's lobes evaluated over\n"
         "                    a tile's hits by the float batch API, within NMSE 1e-8 of double;\n"
         "                    double: the scalar double reference (the ports are checked on it)\n"
+        "  --estimator E     sphere, rect and environment lights: mis (default) combines one\n"
+        "                    light sample and one BRDF sample per hit by the power heuristic;\n"
+        "                    light or brdf uses that strategy alone (docs/RENDERER.md)\n"
+        "  --light-samples N samples per hit, sampled light and strategy; default 1\n"
         "  --full            ignore the effect plan: shadow rays at every lit point, tangent\n"
         "                    frames and ambient everywhere (to measure what the plan saves)\n"
         "  --config/--display/--view   OpenColorIO preview transform (default: built-in sRGB)\n");
@@ -81,8 +86,9 @@ int cmd_render(int argc, char **argv)
     const char *sets[64], *mats[16];
     int full = 0, nsets = 0, nmats = 0, explain = 0, stats = 0, adaptive = 0, preview = 1;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    render_options opt = {0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0, RENDER_FLOAT,
-                          0};
+    render_options opt = {
+        0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0, RENDER_FLOAT, 0, RENDER_EST_MIS,
+        1};
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
@@ -102,7 +108,8 @@ int cmd_render(int argc, char **argv)
             full = 1;
         else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--goal") ||
                  !strcmp(a, "--set") || !strcmp(a, "--config") || !strcmp(a, "--display") ||
-                 !strcmp(a, "--view") || !strcmp(a, "--materials") || !strcmp(a, "--precision")) {
+                 !strcmp(a, "--view") || !strcmp(a, "--materials") || !strcmp(a, "--precision") ||
+                 !strcmp(a, "--estimator")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
             if (!strcmp(a, "-o"))
@@ -124,6 +131,15 @@ int cmd_render(int argc, char **argv)
                     opt.precision = RENDER_DOUBLE;
                 else
                     return cli_fail(cmd, "--precision must be float or double, not '%s'", val);
+            } else if (!strcmp(a, "--estimator")) {
+                if (!strcmp(val, "mis"))
+                    opt.estimator = RENDER_EST_MIS;
+                else if (!strcmp(val, "light"))
+                    opt.estimator = RENDER_EST_LIGHT;
+                else if (!strcmp(val, "brdf"))
+                    opt.estimator = RENDER_EST_BRDF;
+                else
+                    return cli_fail(cmd, "--estimator must be mis, light or brdf, not '%s'", val);
             } else if (!strcmp(a, "--materials")) {
                 if (nmats == 16) return cli_fail(cmd, "too many --materials files (16 at most)");
                 mats[nmats++] = val;
@@ -131,6 +147,11 @@ int cmd_render(int argc, char **argv)
                 return cli_fail(cmd, "too many --set options (64 at most)");
             else
                 sets[nsets++] = val;
+        } else if (!strcmp(a, "--light-samples")) {
+            if (!cli_parse_int(val, 1, 4096, &v))
+                return cli_fail(cmd, "%s needs a whole number in [1, 4096]", a);
+            ++i;
+            opt.light_samples = (int)v;
         } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp") ||
                    !strcmp(a, "--threads")) {
             long hi = a[2] == 's' ? 4096 : a[2] == 't' ? 64 : SCENE_MAX_RESOLUTION;

@@ -7,6 +7,7 @@
  * (osl/abrdf_trace.h), L = ka*Ia + sum E max(0, N.wi) f_r with the library's models
  * (osl/abrdf_osl.h). All numbers come from render_prepare, so both renderers read the same
  * camera vectors, ambient terms and light irradiances. */
+#define _XOPEN_SOURCE 700 /* realpath */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -348,6 +349,30 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
                      s->objects[i].line);
             return -1;
         }
+    for (int l = 0; l < s->light_count; ++l) {
+        const scene_light *lt = &s->lights[l];
+        if (SCENE_LIGHT_SAMPLED(lt->kind) && strcmp(opt->mode, "closure")) {
+            snprintf(err, err_size,
+                     "light at line %d: a%s light needs --mode closure (Cycles' own lights); "
+                     "the %s mode's shaders know point and directional lights only",
+                     lt->line,
+                     lt->kind == SCENE_LIGHT_SPHERE ? " sphere"
+                     : lt->kind == SCENE_LIGHT_RECT ? " rect"
+                                                    : "n environment",
+                     opt->mode);
+            return -1;
+        }
+    }
+    /* The environment maps by absolute path: the script may run anywhere. */
+    char *env_path[SCENE_MAX_LIGHTS] = {NULL};
+    for (int l = 0; l < s->light_count; ++l)
+        if (s->lights[l].kind == SCENE_LIGHT_ENVIRONMENT &&
+            !(env_path[l] = realpath(s->lights[l].env->path, NULL))) {
+            snprintf(err, err_size, "light at line %d: %s: cannot resolve its path",
+                     s->lights[l].line, s->lights[l].env->path);
+            for (int k = 0; k < l; ++k) free(env_path[k]);
+            return -1;
+        }
     double extent = sqrt(geom_dot(rs->eye, rs->eye));
     for (int i = 0; i < rs->object_count; ++i)
         extent = fmax(extent, sqrt(geom_dot(rs->objects[i].center, rs->objects[i].center)) +
@@ -382,14 +407,25 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
     fprintf(f, ", \"fov_deg\": " G "},\n    \"lights\": [\n", s->camera.fov_deg);
     for (int l = 0; l < s->light_count; ++l) {
         const scene_light *lt = &s->lights[l];
-        fprintf(f, "        {\"kind\": \"%s\", \"position\": ",
-                lt->kind == SCENE_LIGHT_POINT ? "point" : "directional");
+        static const char *const kinds[] = {"point", "directional", "sphere", "rect",
+                                            "environment"};
+        fprintf(f, "        {\"kind\": \"%s\", \"position\": ", kinds[lt->kind]);
         vec3(f, lt->position);
+        fprintf(f, ", \"radius\": " G ", \"u\": ", lt->radius);
+        vec3(f, lt->edge_u);
+        fputs(", \"v\": ", f);
+        vec3(f, lt->edge_v);
         fputs(", \"direction\": ", f);
         vec3(f, lt->direction);
         fputs(", \"color\": ", f);
         vec3(f, lt->color);
-        fprintf(f, ", \"intensity\": " G "},\n", lt->intensity);
+        fprintf(f, ", \"intensity\": " G, lt->intensity);
+        if (env_path[l]) {
+            fputs(", \"file\": ", f);
+            py_string(f, env_path[l]);
+            free(env_path[l]);
+        }
+        fputs("},\n", f);
     }
     fputs("    ],\n    \"materials\": [\n", f);
     for (int i = 0; i < rs->material_count; ++i) {

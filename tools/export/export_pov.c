@@ -258,6 +258,15 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
                      size_t err_size)
 {
     const scene *s = rs->src;
+    for (int l = 0; l < s->light_count; ++l)
+        if (SCENE_LIGHT_SAMPLED(s->lights[l].kind)) {
+            snprintf(err, err_size,
+                     "light at line %d: sphere, rect and environment lights are not exported to "
+                     "POV-Ray (its area_light is a grid of point lights, not a surface of "
+                     "uniform radiance); render them with abrdf render or export to Cycles",
+                     s->lights[l].line);
+            return -1;
+        }
     if (opt->lit && rs->light_count != 1) {
         snprintf(err, err_size,
                  "POV-Ray's own shadows need exactly one light (the scene has %d); "

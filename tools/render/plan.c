@@ -1,10 +1,12 @@
 /* plan.c - the effect plan: before rendering, decide which work the scene needs (shadow rays
  * per light and receiver, tangent frames, Fresnel, layers, integration, ambient) and explain
  * why. The renderer does only what is planned (render.c). */
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "light.h"
 #include "plan.h"
 
 /* The radius class of a bounding ball: the smallest power of two >= bound (bounds below
@@ -20,42 +22,56 @@ static int radius_class(double bound)
 /* Can some object block light l from some point of object i? Conservative: every segment
  * from a point of i's bounding ball to a point light lies in the capsule of radius r_i
  * around the segment (c_i, light); for a directional light, the half-infinite capsule along
- * its direction. Object j can block only if its ball meets that capsule. A convex object
- * never blocks light from itself: a lit point (N.wi > 0) sees the light through the
- * supporting half-space, which the solid does not enter; a mesh may shadow itself.
+ * its direction; for a sphere or rectangle light (light.h), every segment from i's ball to
+ * the light's ball (radius bound) lies within r_i + bound of the segment between the
+ * centres. Object j can block only if its ball meets that capsule. An environment light
+ * comes from every direction: any other object may block it. A convex object never blocks
+ * light from itself: a lit point (N.wi > 0) sees the light through the supporting
+ * half-space, which the solid does not enter; a mesh may shadow itself.
  *
- * Each receiver asks Embree once (accel_balls_capsule: the balls grown by the receiver's
- * radius class, the capsule's axis as a ray, the exact test on the candidates), so the plan
- * costs about n log n, not the n^2 of testing every pair. */
+ * Each (light, receiver) pair asks Embree once (accel_balls_capsule: the balls grown by the
+ * capsule's radius class, the capsule's axis as a ray, the exact test on the candidates), so
+ * the plan costs about n log n per light, not the n^2 of testing every pair. */
 int plan_shadows(render_scene *rs)
 {
     int n = rs->object_count, nl = rs->light_count;
-    rs->shadow = calloc((size_t)nl * (size_t)n + 1, 1);
+    size_t pairs = (size_t)nl * (size_t)n;
+    rs->shadow = calloc(pairs + 1, 1);
     if (!rs->shadow) return -1;
     for (int l = 0; l < nl; ++l) rs->lights[l].shadow_receivers = 0;
-    int lit = 0; /* a light with no energy lights nothing: nothing to shadow */
+    if (pairs == 0) return 0;
+    /* cls[l * n + i]: the radius class of the pair's capsule; INT_MIN: no query (a light
+     * with no energy lights nothing, an environment needs none) */
+    int *cls = malloc(pairs * sizeof *cls);
+    if (!cls) return -1;
+    int lo = 0, hi = 0, queries = 0;
     for (int l = 0; l < nl; ++l) {
-        const double *e = rs->lights[l].e;
-        lit += e[0] > 0 || e[1] > 0 || e[2] > 0;
-    }
-    if (!lit || n == 0) return 0;
-    int *cls = malloc((size_t)n * sizeof *cls), *order = malloc((size_t)n * sizeof *order);
-    if (!cls || !order) {
-        free(cls), free(order);
-        return -1;
-    }
-    int lo = 0, hi = 0;
-    for (int i = 0; i < n; ++i) {
-        cls[i] = radius_class(rs->objects[i].bound);
-        if (i == 0 || cls[i] < lo) lo = cls[i];
-        if (i == 0 || cls[i] > hi) hi = cls[i];
+        render_light *lt = &rs->lights[l];
+        int dark = !(lt->e[0] > 0 || lt->e[1] > 0 || lt->e[2] > 0);
+        for (int i = 0; i < n; ++i) {
+            const geom_object *g = &rs->objects[i];
+            size_t k = (size_t)l * n + i;
+            cls[k] = INT_MIN;
+            if (dark) continue;
+            if (lt->kind == SCENE_LIGHT_ENVIRONMENT) {
+                if (n > 1 || !g->convex) {
+                    rs->shadow[k] = 1;
+                    ++lt->shadow_receivers;
+                }
+                continue;
+            }
+            double r = g->bound + (SCENE_LIGHT_SAMPLED(lt->kind) ? lt->bound : 0.0);
+            cls[k] = radius_class(r);
+            if (queries == 0 || cls[k] < lo) lo = cls[k];
+            if (queries == 0 || cls[k] > hi) hi = cls[k];
+            ++queries;
+        }
     }
     int status = 0;
-    for (int c = lo; c <= hi && !status; ++c) {
-        int m = 0;
-        for (int i = 0; i < n; ++i)
-            if (cls[i] == c) order[m++] = i;
-        if (m == 0) continue;
+    for (int c = lo; c <= hi && queries > 0 && !status; ++c) {
+        int any = 0;
+        for (size_t k = 0; k < pairs && !any; ++k) any = cls[k] == c;
+        if (!any) continue;
         accel_balls *balls;
         if (accel_balls_build(rs->accel, ldexp(1.0, c), &balls)) {
             status = -1;
@@ -63,26 +79,27 @@ int plan_shadows(render_scene *rs)
         }
         for (int l = 0; l < nl; ++l) {
             render_light *lt = &rs->lights[l];
-            if (!(lt->e[0] > 0 || lt->e[1] > 0 || lt->e[2] > 0)) continue;
-            for (int k = 0; k < m; ++k) {
-                int i = order[k];
+            for (int i = 0; i < n; ++i) {
+                size_t k = (size_t)l * n + i;
+                if (cls[k] != c) continue;
                 const geom_object *g = &rs->objects[i];
-                double d[3], tmax = 1.0;
-                if (lt->kind == SCENE_LIGHT_POINT) {
-                    for (int q = 0; q < 3; ++q) d[q] = lt->position[q] - g->center[q];
-                } else {
+                double d[3], tmax = 1.0, r = g->bound;
+                if (lt->kind == SCENE_LIGHT_DIRECTIONAL) {
                     memcpy(d, lt->direction, sizeof d);
                     tmax = INFINITY;
+                } else {
+                    for (int q = 0; q < 3; ++q) d[q] = lt->position[q] - g->center[q];
+                    if (SCENE_LIGHT_SAMPLED(lt->kind)) r += lt->bound;
                 }
-                if (!accel_balls_capsule(balls, g->center, d, tmax, g->bound, g->convex ? i : -1))
+                if (!accel_balls_capsule(balls, g->center, d, tmax, r, g->convex ? i : -1))
                     continue;
-                rs->shadow[(size_t)l * n + i] = 1;
+                rs->shadow[k] = 1;
                 ++lt->shadow_receivers;
             }
         }
         accel_balls_release(balls);
     }
-    free(cls), free(order);
+    free(cls);
     return status;
 }
 
@@ -115,6 +132,38 @@ static void lobe_names(const render_material *m, char *buf, size_t size)
     }
 }
 
+/* Which lights are sampled, with which estimator (light.h); "off" for exact lights only. */
+static void explain_sampling(const render_scene *rs, const render_options *opt, FILE *f)
+{
+    int count[SCENE_LIGHT_ENVIRONMENT + 1] = {0};
+    for (int l = 0; l < rs->light_count; ++l) ++count[rs->lights[l].kind];
+    if (!rs->sampled_lights) {
+        fprintf(f, "light sampling: off - no area or environment light (point and directional "
+                   "lights are exact: no samples, no noise)\n");
+        return;
+    }
+    int ns = opt->light_samples > 1 ? opt->light_samples : 1;
+    fprintf(f,
+            "light sampling: on - %d sphere, %d rect, %d environment light(s) integrated by "
+            "Monte Carlo, %d sample(s) per hit, light and strategy\n",
+            count[SCENE_LIGHT_SPHERE], count[SCENE_LIGHT_RECT], count[SCENE_LIGHT_ENVIRONMENT], ns);
+    if (count[SCENE_LIGHT_SPHERE])
+        fprintf(f, "  sphere: uniform in the subtended cone (Shirley, Wang, Zimmerman 1996)\n");
+    if (count[SCENE_LIGHT_RECT])
+        fprintf(f, "  rect: uniform in the subtended spherical rectangle (Urena et al. 2013)\n");
+    if (count[SCENE_LIGHT_ENVIRONMENT])
+        fprintf(f, "  environment: per pixel by luminance x sin(theta), a 2-D piecewise-constant "
+                   "distribution\n");
+    static const char *const est[] = {
+        "MIS - one light sample and one BRDF sample (abrdf_sample_prepared), power heuristic "
+        "(Veach 1997)",
+        "light - light samples only (--estimator light)",
+        "brdf - BRDF samples only, those reaching the light count (--estimator brdf)"};
+    int e =
+        opt->estimator >= RENDER_EST_MIS && opt->estimator <= RENDER_EST_BRDF ? opt->estimator : 0;
+    fprintf(f, "  estimator: %s; shaded in double per hit in both precisions\n", est[e]);
+}
+
 void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
 {
     const scene *s = rs->src;
@@ -136,11 +185,11 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
             "primary rays: one Embree BVH over the %d objects (%lld triangles); a ray runs the "
             "exact intersector only on what its boxes let through\n",
             n, rs->triangle_count);
+    explain_sampling(rs, opt, f);
     fprintf(f, "shadows:\n");
     for (int l = 0; l < rs->light_count; ++l) {
         const render_light *lt = &rs->lights[l];
-        fprintf(f, "  light %d (%s, line %d): ", l,
-                lt->kind == SCENE_LIGHT_POINT ? "point" : "directional", s->lights[l].line);
+        fprintf(f, "  light %d (%s, line %d): ", l, light_kind_name(lt->kind), s->lights[l].line);
         if (!(lt->e[0] > 0 || lt->e[1] > 0 || lt->e[2] > 0))
             fprintf(f, "OFF - zero intensity, lights nothing\n");
         else if (rs->full)

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "light.h"
 #include "plan.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
@@ -115,6 +116,8 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         memcpy(rl->position, sl->position, sizeof rl->position);
         memcpy(rl->direction, sl->direction, sizeof rl->direction);
         for (int k = 0; k < 3; ++k) rl->e[k] = sl->color[k] * sl->intensity;
+        light_setup(sl, rl);
+        rs->sampled_lights += SCENE_LIGHT_SAMPLED(sl->kind);
     }
     /* reach: the camera and every object lie within `extent` of the origin */
     if (accel_build(rs->objects, rs->object_count, extent, opt->threads, &rs->accel, err,
@@ -232,13 +235,29 @@ static void to_local(const abrdf_frame *fr, const double v[3], double out[3])
     out[2] = geom_dot(v, fr->n);
 }
 
+/* Is the segment o + t d, t in (0, tmax), from hit h toward light l blocked? Only where the
+ * plan says something may block (plan_shadows) is a shadow ray cast (light.h calls this
+ * through a pointer). */
+static int shadow_blocked(const render_scene *rs, int l, const render_hit *h, const double o[3],
+                          const double d[3], double tmax, render_stats *st)
+{
+    if (rs->shadow[(size_t)l * (size_t)rs->object_count + (size_t)h->obj]) {
+        ++st->shadow_rays;
+        return occluded(rs, h, o, d, tmax, st);
+    }
+    ++st->shadow_rays_skipped;
+    return 0;
+}
+
 /* One light as seen from a hit: the direction to it, the irradiance factor E falloff cos_i,
- * and whether it lights the point (in front, not shadowed as the plan says). */
+ * and whether it lights the point (in front, not shadowed as the plan says). Sampled lights
+ * (light.h) are not this function's: 0. */
 static int light_at(const render_scene *rs, int l, const render_hit *h, const double o[3],
                     double wi[3], double w[3], render_stats *st)
 {
     const render_light *lt = &rs->lights[l];
     double d[3], tmax, falloff = 1.0;
+    if (SCENE_LIGHT_SAMPLED(lt->kind)) return 0;
     if (lt->kind == SCENE_LIGHT_POINT) {
         for (int k = 0; k < 3; ++k) d[k] = lt->position[k] - o[k];
         double d2 = geom_dot(d, d);
@@ -254,12 +273,7 @@ static int light_at(const render_scene *rs, int l, const render_hit *h, const do
     }
     double ci = geom_dot(h->n, wi);
     if (!(ci > 0)) return 0;
-    if (rs->shadow[(size_t)l * (size_t)rs->object_count + (size_t)h->obj]) {
-        ++st->shadow_rays;
-        if (occluded(rs, h, o, d, tmax, st)) return 0;
-    } else {
-        ++st->shadow_rays_skipped;
-    }
+    if (shadow_blocked(rs, l, h, o, d, tmax, st)) return 0;
     for (int c = 0; c < 3; ++c) w[c] = lt->e[c] * falloff * ci;
     return 1;
 }
@@ -326,6 +340,8 @@ static void shade_double(const render_scene *rs, const render_options *opt, cons
         count_evals(m, 1, st);
         for (int c = 0; c < 3; ++c) out[c] += w[c] * f[c];
     }
+    if (rs->sampled_lights)
+        light_shade_sampled(rs, opt, h, o, tangent ? &frame : NULL, shadow_blocked, out, st);
 }
 
 /* Lit (hit, light) pairs gathered for the float path, at most this many per batch. */
@@ -451,6 +467,9 @@ static void shade_float(const render_scene *rs, const render_options *opt, const
             np = 0;
         }
         int tangent = m->use_tangent || m->full;
+        /* sampled lights: double, scalar, per hit (light.h), in both precisions */
+        if (rs->sampled_lights)
+            light_shade_sampled(rs, opt, hit, o, tangent ? &frame : NULL, shadow_blocked, L[h], st);
         iso_view view;
         if (!tangent) iso_view_make(hit->n, hit->wo, &view);
         for (int l = 0; l < rs->light_count; ++l) {
@@ -650,6 +669,8 @@ static void add_stats(render_stats *a, const render_stats *b)
     a->layer_evals += b->layer_evals;
     a->integration_evals += b->integration_evals;
     a->ambient_terms += b->ambient_terms;
+    a->light_samples += b->light_samples;
+    a->brdf_samples += b->brdf_samples;
 }
 
 static void worker_free(worker *w)
@@ -730,4 +751,7 @@ void render_stats_print(const render_stats *s, FILE *f)
             s->primary_rays, s->primary_tests, s->hits, s->shadow_rays, s->shadow_rays_skipped,
             s->occluder_tests, s->tangent_frames, s->brdf_evals, s->fresnel_evals, s->layer_evals,
             s->integration_evals, s->ambient_terms);
+    if (s->light_samples || s->brdf_samples) /* sampled lights only: other scenes print as before */
+        fprintf(f, "  light samples       %llu\n  brdf samples        %llu\n", s->light_samples,
+                s->brdf_samples);
 }

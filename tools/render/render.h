@@ -10,7 +10,9 @@
  * spp = k*k samples at the centres of a k x k grid of strata (or jittered inside them).
  *
  * Radiance at a hit: L = ka*Ia + sum over lights of E_l * max(0, N.wi) * sum of lobes f_r,
- * E_l = color*intensity (directional) or color*intensity/d^2 (point), zero if occluded.
+ * E_l = color*intensity (directional) or color*intensity/d^2 (point), zero if occluded; plus,
+ * for each sphere, rectangle or environment light, the Monte Carlo estimate of
+ * integral L_e(wi) f_r max(0, N.wi) dwi that render_options.estimator names (light.h).
  *
  * PUBLIC FUNCTIONS
  *   render_prepare      scene -> ray-casting data + effect plan (fails on unresolvable materials)
@@ -28,6 +30,7 @@
 
 #include <stdio.h>
 #include "accel.h"
+#include "envmap.h"
 #include "geom.h"
 
 /* Work counters: what the renderer actually did. A "test" is one exact double-precision
@@ -46,6 +49,8 @@ typedef struct render_stats {
     unsigned long long layer_evals;         /* ... of layered lobes */
     unsigned long long integration_evals;   /* ... of lobes integrated numerically (hair) */
     unsigned long long ambient_terms;       /* hits that added ka*Ia */
+    unsigned long long light_samples;       /* directions drawn on sampled lights */
+    unsigned long long brdf_samples;        /* directions drawn from the BRDFs for them */
 } render_stats;
 
 /* Which BRDF path shades (render_options.precision).
@@ -75,9 +80,15 @@ typedef struct render_material {
 
 typedef struct render_light {
     scene_light_kind kind;
-    double position[3], direction[3];
-    double e[3];          /* color * intensity */
+    double position[3], direction[3]; /* point / sphere / rectangle: position (centre) */
+    double e[3];          /* color * intensity: E (point, directional) or radiance (sampled) */
     int shadow_receivers; /* objects for which some occluder is possible */
+    /* Sampled lights (light.h): sphere, rectangle, environment. */
+    double radius;               /* sphere */
+    double edge_u[3], edge_v[3]; /* rectangle: its full edges */
+    double normal[3];            /* rectangle: unit edge_u x edge_v, the side it lights */
+    double bound;                /* sphere, rectangle: a ball about position holding it */
+    const envmap *env;           /* environment: the map (owned by the scene) */
 } render_light;
 
 typedef struct render_scene {
@@ -93,7 +104,8 @@ typedef struct render_scene {
     accel *accel; /* every object in one Embree scene: camera and shadow rays */
     /* shadow[l * object_count + i]: light l needs shadow rays at object i (plan_shadows) */
     unsigned char *shadow;
-    int full; /* render_plan_ignore was applied */
+    int full;           /* render_plan_ignore was applied */
+    int sampled_lights; /* lights with SCENE_LIGHT_SAMPLED kinds (light.h) */
 } render_scene;
 
 typedef struct render_options {
@@ -105,7 +117,22 @@ typedef struct render_options {
     int precision;     /* render_precision: RENDER_FLOAT (0, the default) or RENDER_DOUBLE */
     int free_brdf;     /* benchmarks only: do all the shading work but call no BRDF (f_r = 0),
                           so that time minus this render's is the BRDFs' (abrdf bench --render) */
+    int estimator;     /* render_estimator: how sampled (area, environment) lights are estimated */
+    int light_samples; /* per hit, sampled light and strategy; < 1 means 1 */
 } render_options;
+
+/* Estimators of the sampled lights (sphere, rectangle, environment; light.h). Point and
+ * directional lights are exact and never sampled, whatever this says.
+ *   RENDER_EST_MIS    one light sample and one BRDF sample per hit and light, combined by
+ *                     the power heuristic (Veach 1997): the default
+ *   RENDER_EST_LIGHT  light samples only (solid angle / luminance)
+ *   RENDER_EST_BRDF   BRDF samples only (abrdf_sample_prepared), counting those that reach
+ *                     the light */
+typedef enum render_estimator {
+    RENDER_EST_MIS = 0,
+    RENDER_EST_LIGHT = 1,
+    RENDER_EST_BRDF = 2
+} render_estimator;
 
 /* A camera-ray hit to shade: object (and mesh triangle, -1 on analytic objects), point,
  * unit shading normal and unit direction to the viewer. */

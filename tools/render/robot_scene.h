@@ -8,5 +8,8 @@
 extern const char abrdf_robot_scene_text[];
 /* scenes/robot16.scene: the same robot under 16 point lights (shading-bound benchmarks). */
 extern const char abrdf_robot16_scene_text[];
+/* scenes/area.scene: spheres on a floor under a small sphere light and a rectangle light
+ * (abrdf bench --render, light sampling). */
+extern const char abrdf_area_scene_text[];
 
 #endif

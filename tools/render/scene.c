@@ -237,6 +237,36 @@ static int do_ambient(parser *p, word *w, int n)
     return get_rgb(p, "ambient", w[1].key, p->s->ambient);
 }
 
+/* The map of `light environment file=PATH`, relative to the scene file's directory. */
+static int load_envmap(parser *p, const char *file, scene_light *l)
+{
+    for (const unsigned char *c = (const unsigned char *)file; *c; ++c)
+        if (*c < 0x20 || *c > 0x7e)
+            return fail(p, "file= holds byte 0x%02x (not printable ASCII)", *c);
+    if (!*file) return fail(p, "file= is empty");
+    const char *slash = strrchr(p->name, '/');
+    size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - p->name) + 1;
+    size_t flen = strlen(file);
+    char *path = malloc(dir + flen + 1);
+    l->env = calloc(1, sizeof *l->env);
+    if (!path || !l->env) {
+        free(path), free(l->env);
+        l->env = NULL;
+        return fail(p, "out of memory");
+    }
+    memcpy(path, p->name, dir);
+    memcpy(path + dir, file, flen + 1);
+    char err[512];
+    int st = envmap_load(path, l->env, err, (int)sizeof err);
+    free(path);
+    if (st) {
+        free(l->env);
+        l->env = NULL;
+        return fail(p, "environment light: %s", err);
+    }
+    return 0;
+}
+
 static int do_light(parser *p, word *w, int n)
 {
     if (p->s->light_count == SCENE_MAX_LIGHTS)
@@ -246,7 +276,7 @@ static int do_light(parser *p, word *w, int n)
     l.line = p->line;
     if (n < 2 || w[1].val)
         return fail(p, "light needs a kind: 'light point ...' or 'light directional ...'");
-    const char *v;
+    const char *v, *env_file = NULL;
     if (!strcmp(w[1].key, "point")) {
         l.kind = SCENE_LIGHT_POINT;
         if (!(v = take(w, n, 2, "position"))) return fail(p, "point light needs position=X,Y,Z");
@@ -260,8 +290,40 @@ static int do_light(parser *p, word *w, int n)
         double len = sqrt(l.direction[0] * l.direction[0] + l.direction[1] * l.direction[1] +
                           l.direction[2] * l.direction[2]);
         for (int c = 0; c < 3; ++c) l.direction[c] /= len;
+    } else if (!strcmp(w[1].key, "sphere")) {
+        l.kind = SCENE_LIGHT_SPHERE;
+        if (!(v = take(w, n, 2, "center"))) return fail(p, "sphere light needs center=X,Y,Z");
+        if (get_vec3(p, "center", v, l.position)) return -1;
+        if (!(v = take(w, n, 2, "radius"))) return fail(p, "sphere light needs radius=R");
+        if (get_num(p, "radius", v, 0.0, SCENE_MAX_COORD, 1, &l.radius)) return -1;
+    } else if (!strcmp(w[1].key, "rect")) {
+        l.kind = SCENE_LIGHT_RECT;
+        if (!(v = take(w, n, 2, "center"))) return fail(p, "rect light needs center=X,Y,Z");
+        if (get_vec3(p, "center", v, l.position)) return -1;
+        if (!(v = take(w, n, 2, "u")))
+            return fail(p, "rect light needs u=X,Y,Z and v=X,Y,Z (its edges)");
+        if (get_vec3(p, "u", v, l.edge_u)) return -1;
+        if (!(v = take(w, n, 2, "v")))
+            return fail(p, "rect light needs u=X,Y,Z and v=X,Y,Z (its edges)");
+        if (get_vec3(p, "v", v, l.edge_v)) return -1;
+        double uu = 0, vv = 0, uv = 0;
+        for (int c = 0; c < 3; ++c)
+            uu += l.edge_u[c] * l.edge_u[c], vv += l.edge_v[c] * l.edge_v[c],
+                uv += l.edge_u[c] * l.edge_v[c];
+        /* 1e-12 of the edges' squared lengths: far below any visible skew */
+        if (!(uu > 1e-18 && vv > 1e-18))
+            return fail(p, "rect light edges u and v must be non-zero");
+        if (fabs(uv) > 1e-6 * sqrt(uu * vv))
+            return fail(p, "rect light edges u and v must be orthogonal (u.v = %g)", uv);
+    } else if (!strcmp(w[1].key, "environment")) {
+        l.kind = SCENE_LIGHT_ENVIRONMENT;
+        if (!(env_file = take(w, n, 2, "file")))
+            return fail(p, "environment light needs file=PATH (a lat-long EXR)");
     } else {
-        return fail(p, "unknown light kind '%s'; kinds: point, directional", w[1].key);
+        return fail(p,
+                    "unknown light kind '%s'; kinds: point, directional, sphere, rect, "
+                    "environment",
+                    w[1].key);
     }
     l.color[0] = l.color[1] = l.color[2] = 1.0;
     if ((v = take(w, n, 2, "color")) && get_rgb(p, "color", v, l.color)) return -1;
@@ -269,13 +331,14 @@ static int do_light(parser *p, word *w, int n)
     if ((v = take(w, n, 2, "intensity")) &&
         get_num(p, "intensity", v, 0.0, SCENE_MAX_COORD, 0, &l.intensity))
         return -1;
-    if (leftovers(p, w, n, 2,
-                  l.kind == SCENE_LIGHT_POINT ? "position, color, intensity"
-                                              : "direction, color, intensity"))
-        return -1;
+    static const char *const keys[] = {"position, color, intensity", "direction, color, intensity",
+                                       "center, radius, color, intensity",
+                                       "center, u, v, color, intensity", "file, color, intensity"};
+    if (leftovers(p, w, n, 2, keys[l.kind])) return -1;
     scene_light *grown = realloc(p->s->lights, (size_t)(p->s->light_count + 1) * sizeof *grown);
     if (!grown) return fail(p, "out of memory");
     p->s->lights = grown;
+    if (env_file && load_envmap(p, env_file, &l)) return -1; /* last: nothing to undo after */
     grown[p->s->light_count++] = l;
     return 0;
 }
@@ -617,6 +680,8 @@ static int do_line(parser *p, char *line)
 void scene_free(scene *s)
 {
     if (!s) return;
+    for (int i = 0; i < s->light_count; ++i)
+        if (s->lights[i].env) envmap_free(s->lights[i].env), free(s->lights[i].env);
     free(s->lights);
     free(s->materials);
     free(s->objects);

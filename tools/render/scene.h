@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 #include "abrdf.h"
+#include "envmap.h"
 #include "mesh.h"
 
 #define SCENE_NAME_MAX 64        /* material names, table entries, goals (with the NUL) */
@@ -35,16 +36,30 @@ typedef struct scene_camera {
     int width, height;  /* resolution in pixels, [1, SCENE_MAX_RESOLUTION] */
 } scene_camera;
 
-typedef enum scene_light_kind { SCENE_LIGHT_POINT = 0, SCENE_LIGHT_DIRECTIONAL } scene_light_kind;
+typedef enum scene_light_kind {
+    SCENE_LIGHT_POINT = 0,
+    SCENE_LIGHT_DIRECTIONAL,
+    SCENE_LIGHT_SPHERE,     /* area light: a sphere of uniform radiance */
+    SCENE_LIGHT_RECT,       /* area light: a one-sided rectangle of uniform radiance */
+    SCENE_LIGHT_ENVIRONMENT /* radiance from every direction: a lat-long map (envmap.h) */
+} scene_light_kind;
+
+/* Point and directional lights are exact; the others are sampled (render.h, light.h). */
+#define SCENE_LIGHT_SAMPLED(kind) ((kind) >= SCENE_LIGHT_SPHERE)
 
 typedef struct scene_light {
     scene_light_kind kind;
-    double position[3];  /* point light: its position */
+    double position[3];  /* point light: its position; sphere, rectangle: the centre */
     double direction[3]; /* directional light: unit vector from the scene TOWARD the light */
     double color[3];     /* linear RGB, >= 0 */
     double intensity;    /* >= 0; point: irradiance intensity/d^2 at distance d; directional:
-                             irradiance on a surface facing the light */
-    int line;            /* line of the definition, for messages */
+                             irradiance on a surface facing the light; sphere, rectangle,
+                             environment: radiance color * intensity (times the map's) */
+    double radius;       /* sphere: > 0 */
+    double edge_u[3], edge_v[3]; /* rectangle: full edges, orthogonal, non-zero; it lights the
+                                    side of edge_u x edge_v */
+    envmap *env;                 /* environment: the map read from file= (owned by the scene) */
+    int line;                    /* line of the definition, for messages */
 } scene_light;
 
 /* How a material chooses its models. */
