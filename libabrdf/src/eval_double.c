@@ -3,7 +3,7 @@
 #include "k_dispatch.h"
 #include "prepared.h"
 
-#define ABRDF__SETUP_CASE(ID, SETUP, KERNEL)                                                       \
+#define ABRDF__SETUP_CASE(ID, SETUP, KERNEL, FORM)                                                 \
     case ID: ABRDF__FN(SETUP)(&pr->kd, &pr->params); break;
 
 void abrdf__prep_setup_d(abrdf__prep *pr)
@@ -14,7 +14,7 @@ void abrdf__prep_setup_d(abrdf__prep *pr)
     }
 }
 
-#define ABRDF__EVAL_CASE(ID, SETUP, KERNEL)                                                        \
+#define ABRDF__EVAL_CASE(ID, SETUP, KERNEL, FORM)                                                  \
     case ID: ABRDF__FN(KERNEL)(&pr->kd, &g, v); break;
 
 void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const double wo[3],

@@ -5,6 +5,9 @@
 #include "prepared.h"
 #include "vec.h"
 
+#include <stdint.h>
+#include <string.h>
+
 /* One loop per model with the kernel inlined. The front-facing test and the finiteness
  * guard are combined with & (not &&) so the body has no control flow, and the arrays are
  * restrict parameters (abrdf.h: outputs may not alias inputs), so the compiler needs no
@@ -23,9 +26,14 @@ static inline float abrdf__front(float ci, float co)
     float w = ci > 0.0f ? 1.0f : 0.0f;
     return co > 0.0f ? w : 0.0f;
 }
+/* finite_or_zero (kernel.h) in one compare: a binary32 is a finite number >= +0 exactly when
+ * its bits, read as an unsigned integer, are at most those of FLT_MAX (negative numbers and
+ * -0 have the sign bit set, Inf and NaN the largest exponent). -0 gives +0. */
 static inline float abrdf__keep(float front, float x)
 {
-    return ABRDF__FN(finite_or_zero)(x) * front;
+    uint32_t u;
+    memcpy(&u, &x, sizeof u);
+    return (u <= 0x7F7FFFFFu ? x : 0.0f) * front;
 }
 
 /* RUN-TIME INSTRUCTION SETS. Each loop is compiled once per level below, and every batch
@@ -67,34 +75,52 @@ const char *abrdf__isa_name(int level)
     return level >= 0 && level < ABRDF__ISA_COUNT ? names[level] : "none";
 }
 
-/* ABRDF__BATCH_LOOP_ISA(k_f8, 1) defines batch_k_f8_f_1, the loop of kernel k_f8_f at level 1. */
-#define ABRDF__BATCH_LOOP_ISA(KERNEL, L)                                                           \
-    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void ABRDF__CAT(ABRDF__FN(batch_##KERNEL), L)(      \
-        const ABRDF__KP *restrict k, size_t n, const float *restrict ix, const float *restrict iy, \
+/* The store of pair J after the geometry g is made, per form (k_dispatch.h). RGB: the
+ * kernel's three channels, each guarded. LOBE: the lobe guarded once, then times ks in
+ * [0, 1], which keeps it finite and >= 0 (the same values as guarding each channel). */
+#define ABRDF__STORE_RGB(KERNEL, J, FR, FG, FB)                                                    \
+    do {                                                                                           \
+        float v[3];                                                                                \
+        ABRDF__FN(KERNEL)(k, &g, v);                                                               \
+        float front = abrdf__front(g.ci, g.co);                                                    \
+        (FR)[J] = abrdf__keep(front, v[0]);                                                        \
+        (FG)[J] = abrdf__keep(front, v[1]);                                                        \
+        (FB)[J] = abrdf__keep(front, v[2]);                                                        \
+    } while (0)
+#define ABRDF__STORE_LOBE(KERNEL, J, FR, FG, FB)                                                   \
+    do {                                                                                           \
+        float w = abrdf__keep(abrdf__front(g.ci, g.co), ABRDF__FN(KERNEL##_lobe)(k, &g));          \
+        (FR)[J] = k->ks[0] * w;                                                                    \
+        (FG)[J] = k->ks[1] * w;                                                                    \
+        (FB)[J] = k->ks[2] * w;                                                                    \
+    } while (0)
+#define ABRDF__BATCH_ARGS                                                                          \
+    const ABRDF__KP *restrict k, size_t n, const float *restrict ix, const float *restrict iy,     \
         const float *restrict iz, const float *restrict ox, const float *restrict oy,              \
-        const float *restrict oz, float *restrict fr, float *restrict fg, float *restrict fb)      \
+        const float *restrict oz, float *restrict fr, float *restrict fg, float *restrict fb
+
+/* ABRDF__BATCH_LOOP_ISA(k_f8, LOBE, 1) defines batch_k_f8_f_1, the loop of kernel k_f8_f at
+ * level 1. */
+#define ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, L)                                                     \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void ABRDF__CAT(ABRDF__FN(batch_##KERNEL),          \
+                                                               L)(ABRDF__BATCH_ARGS)               \
     {                                                                                              \
         for (size_t i = 0; i < n; ++i) {                                                           \
             ABRDF__GEO g;                                                                          \
-            float v[3];                                                                            \
             ABRDF__FN(geo_make)(&g, ix[i], iy[i], iz[i], ox[i], oy[i], oz[i]);                     \
-            ABRDF__FN(KERNEL)(k, &g, v);                                                           \
-            float front = abrdf__front(g.ci, g.co);                                                \
-            fr[i] = abrdf__keep(front, v[0]);                                                      \
-            fg[i] = abrdf__keep(front, v[1]);                                                      \
-            fb[i] = abrdf__keep(front, v[2]);                                                      \
+            ABRDF__STORE_##FORM(KERNEL, i, fr, fg, fb);                                            \
         }                                                                                          \
     }
 #if ABRDF__ISA_X86
-#define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL)                                                       \
-    ABRDF__BATCH_LOOP_ISA(KERNEL, 0)                                                               \
-    ABRDF__BATCH_LOOP_ISA(KERNEL, 1) ABRDF__BATCH_LOOP_ISA(KERNEL, 2)
+#define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL, FORM)                                                 \
+    ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, 0)                                                         \
+    ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, 1) ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, 2)
 #else
-#define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL) ABRDF__BATCH_LOOP_ISA(KERNEL, 0)
+#define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL, FORM) ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, 0)
 #endif
 ABRDF__KERNEL_MODELS(ABRDF__BATCH_LOOP)
 
-#define ABRDF__SETUP_CASE(ID, SETUP, KERNEL)                                                       \
+#define ABRDF__SETUP_CASE(ID, SETUP, KERNEL, FORM)                                                 \
     case ID: ABRDF__FN(SETUP)(&pr->kf, &pr->params); break;
 
 void abrdf__prep_setup_f(abrdf__prep *pr)
@@ -131,9 +157,9 @@ static void abrdf__batch_special(const abrdf__prep *pr, const abrdf_batch *b)
         (&pr->kf, n, b->wi_x, b->wi_y, b->wi_z, b->wo_x, b->wo_y, b->wo_z, b->f_r, b->f_g,         \
          b->f_b);                                                                                  \
         return 0;
-#define ABRDF__BATCH_CASE_0(ID, SETUP, KERNEL) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 0)
-#define ABRDF__BATCH_CASE_1(ID, SETUP, KERNEL) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 1)
-#define ABRDF__BATCH_CASE_2(ID, SETUP, KERNEL) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 2)
+#define ABRDF__BATCH_CASE_0(ID, SETUP, KERNEL, FORM) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 0)
+#define ABRDF__BATCH_CASE_1(ID, SETUP, KERNEL, FORM) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 1)
+#define ABRDF__BATCH_CASE_2(ID, SETUP, KERNEL, FORM) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 2)
 #define ABRDF__ISA_SWITCH(L)                                                                       \
     case L:                                                                                        \
         switch (pr->model) {                                                                       \

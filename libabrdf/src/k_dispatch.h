@@ -9,42 +9,45 @@
 
 #ifndef ABRDF_K_DISPATCH_H
 #define ABRDF_K_DISPATCH_H
-/* X(id, setup, kernel) for every model evaluated in closed form. The setup fills ABRDF__KP
- * from abrdf_params once per call; the kernel gives f_r for one direction pair. Both are
+/* X(id, setup, kernel, form) for every model evaluated in closed form. The setup fills
+ * ABRDF__KP from abrdf_params once per call; the kernel gives f_r for one direction pair.
+ * form RGB: the kernel writes the three channels; form LOBE: the model is ks times one
+ * scalar lobe, kernel_lobe (k_terms.h, ABRDF__LOBE_KERNEL), and ks is in [0, 1] (registry),
+ * so the float batch loops guard the lobe once and scale it per channel (eval_float.c). Both are
  * defined in the family header named above them, except kp_base (kernel.h), the setup of
  * the models with nothing to precompute. The names are stems: ABRDF__FN adds the precision
  * suffix (kernel.h, naming rule). */
 #define ABRDF__KERNEL_MODELS(X)                                                                    \
     /* k_diffuse.h */                                                                              \
-    X(ABRDF_LAMBERT, kp_base, k_lambert)                                                           \
-    X(ABRDF_LAMBERT_FRESNEL, kp_base, k_lambert_fresnel)                                           \
-    X(ABRDF_DISNEY_DIFFUSE, kp_base, k_disney_diffuse)                                             \
-    X(ABRDF_OREN_NAYAR, k_oren_nayar_setup, k_oren_nayar)                                          \
+    X(ABRDF_LAMBERT, kp_base, k_lambert, RGB)                                                      \
+    X(ABRDF_LAMBERT_FRESNEL, kp_base, k_lambert_fresnel, RGB)                                      \
+    X(ABRDF_DISNEY_DIFFUSE, kp_base, k_disney_diffuse, RGB)                                        \
+    X(ABRDF_OREN_NAYAR, k_oren_nayar_setup, k_oren_nayar, RGB)                                     \
     /* k_empirical.h */                                                                            \
-    X(ABRDF_PHONG, kp_base, k_phong)                                                               \
-    X(ABRDF_BLINN_PHONG, kp_base, k_blinn_phong)                                                   \
-    X(ABRDF_F2, kp_base, k_f2)                                                                     \
-    X(ABRDF_F4, kp_base, k_f4)                                                                     \
-    X(ABRDF_F8, kp_base, k_f8)                                                                     \
-    X(ABRDF_F16, kp_base, k_f16)                                                                   \
-    X(ABRDF_FS, kp_base, k_fs)                                                                     \
-    X(ABRDF_FKV, kp_base, k_fkv)                                                                   \
-    X(ABRDF_FKUB, k_fkub_setup, k_fkub)                                                            \
+    X(ABRDF_PHONG, kp_base, k_phong, LOBE)                                                         \
+    X(ABRDF_BLINN_PHONG, kp_base, k_blinn_phong, LOBE)                                             \
+    X(ABRDF_F2, kp_base, k_f2, LOBE)                                                               \
+    X(ABRDF_F4, kp_base, k_f4, LOBE)                                                               \
+    X(ABRDF_F8, kp_base, k_f8, LOBE)                                                               \
+    X(ABRDF_F16, kp_base, k_f16, LOBE)                                                             \
+    X(ABRDF_FS, kp_base, k_fs, LOBE)                                                               \
+    X(ABRDF_FKV, kp_base, k_fkv, LOBE)                                                             \
+    X(ABRDF_FKUB, k_fkub_setup, k_fkub, LOBE)                                                      \
     /* k_energy.h */                                                                               \
-    X(ABRDF_F_PHE, k_f_phe_setup, k_f_phe)                                                         \
-    X(ABRDF_F_BE, k_f_be_setup, k_f_be)                                                            \
-    X(ABRDF_F_2E, k_f_2e_setup, k_f_2e)                                                            \
-    X(ABRDF_F_16E, k_f_16e_setup, k_f_16e)                                                         \
-    X(ABRDF_F_GE, k_f_ge_setup, k_f_ge)                                                            \
-    X(ABRDF_F_CTPHE, k_f_phe_setup, k_f_ctphe)                                                     \
-    X(ABRDF_F_CT2E, k_f_2e_setup, k_f_ct2e)                                                        \
-    X(ABRDF_F_CT16E, k_f_16e_setup, k_f_ct16e)                                                     \
+    X(ABRDF_F_PHE, k_f_phe_setup, k_f_phe, LOBE)                                                   \
+    X(ABRDF_F_BE, k_f_be_setup, k_f_be, LOBE)                                                      \
+    X(ABRDF_F_2E, k_f_2e_setup, k_f_2e, LOBE)                                                      \
+    X(ABRDF_F_16E, k_f_16e_setup, k_f_16e, LOBE)                                                   \
+    X(ABRDF_F_GE, k_f_ge_setup, k_f_ge, RGB)                                                       \
+    X(ABRDF_F_CTPHE, k_f_phe_setup, k_f_ctphe, RGB)                                                \
+    X(ABRDF_F_CT2E, k_f_2e_setup, k_f_ct2e, RGB)                                                   \
+    X(ABRDF_F_CT16E, k_f_16e_setup, k_f_ct16e, RGB)                                                \
     /* k_microfacet.h */                                                                           \
-    X(ABRDF_COOK_TORRANCE, k_microfacet_setup, k_cook_torrance)                                    \
-    X(ABRDF_DISNEY_SPECULAR, k_microfacet_setup, k_disney_specular)                                \
-    X(ABRDF_DISNEY_SPECULAR_ANISO, k_disney_specular_aniso_setup, k_disney_specular_aniso)         \
-    X(ABRDF_DISNEY_CLEARCOAT, k_disney_clearcoat_setup, k_disney_clearcoat)                        \
+    X(ABRDF_COOK_TORRANCE, k_microfacet_setup, k_cook_torrance, RGB)                               \
+    X(ABRDF_DISNEY_SPECULAR, k_microfacet_setup, k_disney_specular, RGB)                           \
+    X(ABRDF_DISNEY_SPECULAR_ANISO, k_disney_specular_aniso_setup, k_disney_specular_aniso, RGB)    \
+    X(ABRDF_DISNEY_CLEARCOAT, k_disney_clearcoat_setup, k_disney_clearcoat, RGB)                   \
     /* k_cloth.h */                                                                                \
-    X(ABRDF_NEUBELT_PETTINEO, k_neubelt_pettineo_setup, k_neubelt_pettineo)                        \
-    X(ABRDF_KAJIYA_KAY, kp_base, k_kajiya_kay)
+    X(ABRDF_NEUBELT_PETTINEO, k_neubelt_pettineo_setup, k_neubelt_pettineo, RGB)                   \
+    X(ABRDF_KAJIYA_KAY, kp_base, k_kajiya_kay, RGB)
 #endif /* ABRDF_K_DISPATCH_H */

@@ -29,47 +29,54 @@
 #define ABRDF_K_EMPIRICAL_H_D
 #endif
 
-static inline void ABRDF__FN(k_phong)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_phong_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, ABRDF__FN(pow_pos)(g->rv, p->n), f);
+    return ABRDF__FN(pow_pos)(g->rv, p->n);
 }
+ABRDF__LOBE_KERNEL(k_phong)
 
-static inline void ABRDF__FN(k_blinn_phong)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                            ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_blinn_phong_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, ABRDF__FN(pow_pos)(g->ch, p->n), f); /* Eq. 4 */
+    return ABRDF__FN(pow_pos)(g->ch, p->n); /* Eq. 4 */
 }
+ABRDF__LOBE_KERNEL(k_blinn_phong)
 
-static inline void ABRDF__FN(k_f2)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_f2_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, ABRDF__FN(lobe_fm)(p->n, g->ch, 1), f);
+    return ABRDF__FN(lobe_fm)(p->n, g->ch, 1);
 }
-static inline void ABRDF__FN(k_f4)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+ABRDF__LOBE_KERNEL(k_f2)
+static inline ABRDF__REAL ABRDF__FN(k_f4_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, ABRDF__FN(lobe_fm)(p->n, g->ch, 2), f);
+    return ABRDF__FN(lobe_fm)(p->n, g->ch, 2);
 }
-static inline void ABRDF__FN(k_f8)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+ABRDF__LOBE_KERNEL(k_f4)
+static inline ABRDF__REAL ABRDF__FN(k_f8_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, ABRDF__FN(lobe_fm)(p->n, g->ch, 3), f);
+    return ABRDF__FN(lobe_fm)(p->n, g->ch, 3);
 }
-static inline void ABRDF__FN(k_f16)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+ABRDF__LOBE_KERNEL(k_f8)
+static inline ABRDF__REAL ABRDF__FN(k_f16_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, ABRDF__FN(lobe_fm)(p->n, g->ch, 4), f);
+    return ABRDF__FN(lobe_fm)(p->n, g->ch, 4);
 }
+ABRDF__LOBE_KERNEL(k_f16)
 
-static inline void ABRDF__FN(k_fs)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_fs_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
     ABRDF__REAL c = ABRDF__FN(pos)(g->ch);
     /* n(1 - c) + c >= min(1, n) c-independent lower bound; 0 only at n = 0, c = 0. */
-    ABRDF__FN(lobe_out)(p, ABRDF__FN(safe_div)(c, p->n - p->n * c + c), f);
+    return ABRDF__FN(safe_div)(c, p->n - p->n * c + c);
 }
+ABRDF__LOBE_KERNEL(k_fs)
 
-static inline void ABRDF__FN(k_fkv)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_fkv_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
     ABRDF__REAL c = ABRDF__FN(pos)(g->ch);
     ABRDF__REAL a = ABRDF__K(0.786) * p->n;
-    ABRDF__FN(lobe_out)(p, ABRDF__FN(pos)(a * c * c + (ABRDF__K(1) - a) * c), f);
+    return ABRDF__FN(pos)(a * c * c + (ABRDF__K(1) - a) * c);
 }
+ABRDF__LOBE_KERNEL(k_fkv)
 
 /* The fitted cubic for this n (fkub_table.c) and the start of its zone. */
 static inline void ABRDF__FN(k_fkub_setup)(ABRDF__KP *k, const abrdf_params *p)
@@ -81,7 +88,7 @@ static inline void ABRDF__FN(k_fkub_setup)(ABRDF__KP *k, const abrdf_params *p)
     k->fkub_x0 = (ABRDF__REAL)x0;
 }
 
-static inline void ABRDF__FN(k_fkub)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_fkub_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
     ABRDF__REAL c = ABRDF__FN(pos)(g->ch);
     ABRDF__REAL t = ABRDF__K(1) - c; /* the cubic written about c = 1 (fkub_table.c) */
@@ -90,8 +97,8 @@ static inline void ABRDF__FN(k_fkub)(const ABRDF__KP *p, const ABRDF__GEO *g, AB
      * zone (NaN -> 0), written as selects with a zero arm, which vectorise to compare+and */
     v = c >= p->fkub_x0 ? v : ABRDF__K(0);
     v = v > ABRDF__K(0) ? v : ABRDF__K(0);
-    v = v < ABRDF__K(1) ? v : ABRDF__K(1);
-    ABRDF__FN(lobe_out)(p, v, f);
+    return v < ABRDF__K(1) ? v : ABRDF__K(1);
 }
+ABRDF__LOBE_KERNEL(k_fkub)
 
 #endif /* per-precision guard */

@@ -37,10 +37,11 @@ static inline void ABRDF__FN(k_f_phe_setup)(ABRDF__KP *k, const abrdf_params *p)
     k->norm = ABRDF__FN(norm_phe)(k->n);
 }
 
-static inline void ABRDF__FN(k_f_phe)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_f_phe_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, p->norm * ABRDF__FN(pow_pos)(g->rv, p->n), f);
+    return p->norm * ABRDF__FN(pow_pos)(g->rv, p->n);
 }
+ABRDF__LOBE_KERNEL(k_f_phe)
 
 static inline void ABRDF__FN(k_f_be_setup)(ABRDF__KP *k, const abrdf_params *p)
 {
@@ -48,10 +49,11 @@ static inline void ABRDF__FN(k_f_be_setup)(ABRDF__KP *k, const abrdf_params *p)
     k->norm = ABRDF__FN(norm_be)(k->n);
 }
 
-static inline void ABRDF__FN(k_f_be)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_f_be_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, p->norm * ABRDF__FN(pow_pos)(g->ch, p->n), f);
+    return p->norm * ABRDF__FN(pow_pos)(g->ch, p->n);
 }
+ABRDF__LOBE_KERNEL(k_f_be)
 
 static inline void ABRDF__FN(k_f_2e_setup)(ABRDF__KP *k, const abrdf_params *p)
 {
@@ -59,10 +61,11 @@ static inline void ABRDF__FN(k_f_2e_setup)(ABRDF__KP *k, const abrdf_params *p)
     k->norm = ABRDF__FN(norm_2e)(k->n);
 }
 
-static inline void ABRDF__FN(k_f_2e)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_f_2e_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, p->norm * ABRDF__FN(lobe_fm)(p->n, g->rv, 1), f);
+    return p->norm * ABRDF__FN(lobe_fm)(p->n, g->rv, 1);
 }
+ABRDF__LOBE_KERNEL(k_f_2e)
 
 static inline void ABRDF__FN(k_f_16e_setup)(ABRDF__KP *k, const abrdf_params *p)
 {
@@ -70,10 +73,11 @@ static inline void ABRDF__FN(k_f_16e_setup)(ABRDF__KP *k, const abrdf_params *p)
     k->norm = ABRDF__FN(norm_16e)(k->n);
 }
 
-static inline void ABRDF__FN(k_f_16e)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline ABRDF__REAL ABRDF__FN(k_f_16e_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
 {
-    ABRDF__FN(lobe_out)(p, p->norm * ABRDF__FN(lobe_fm)(p->n, g->rv, 4), f);
+    return p->norm * ABRDF__FN(lobe_fm)(p->n, g->rv, 4);
 }
+ABRDF__LOBE_KERNEL(k_f_16e)
 
 static inline void ABRDF__FN(k_f_ge_setup)(ABRDF__KP *k, const abrdf_params *p)
 {

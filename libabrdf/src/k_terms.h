@@ -130,6 +130,17 @@ static inline void ABRDF__FN(lobe_out)(const ABRDF__KP *p, ABRDF__REAL lobe, ABR
     for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * lobe;
 }
 
+/* The kernel of a model whose value is ks times one scalar lobe (form LOBE in k_dispatch.h):
+ * ABRDF__LOBE_KERNEL(k_f8) defines k_f8 from k_f8_lobe, which the family header defines just
+ * before. The float batch loops call the _lobe function and apply the guards once per pair
+ * instead of once per channel (eval_float.c). */
+#define ABRDF__LOBE_KERNEL(KERNEL)                                                                 \
+    static inline void ABRDF__FN(KERNEL)(const ABRDF__KP *p, const ABRDF__GEO *g,                  \
+                                         ABRDF__REAL f[3])                                         \
+    {                                                                                              \
+        ABRDF__FN(lobe_out)(p, ABRDF__FN(KERNEL##_lobe)(p, g), f);                                 \
+    }
+
 /* ((n/m)(c - 1) + 1)^m with m = 2^k, Table 1: the limit form of (1 + x/m)^m, the base
  * clamped at 0 (the paper's Table 4 note "the point after which the function must be
  * zeroed"), evaluated by k squarings. */

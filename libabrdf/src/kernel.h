@@ -9,6 +9,7 @@
  *
  * NAMING RULE: ABRDF__FN(name) is name_d in double and name_f in float; grep the stem.
  *   ABRDF__FN(k_f8)            k_f8_d, k_f8_f                the kernel of model f8
+ *   ABRDF__FN(k_f8_lobe)       k_f8_lobe_d, _f               its scalar lobe (form LOBE)
  *   ABRDF__FN(k_fkub_setup)    k_fkub_setup_d, _f            a model's setup
  *   ABRDF__FN(d_ggx)           d_ggx_d, d_ggx_f              a term (k_terms.h)
  *   ABRDF__KP                  abrdf__kp_d, abrdf__kp_f      the prepared parameters
