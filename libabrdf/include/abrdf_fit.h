@@ -135,6 +135,10 @@ typedef struct abrdf_fit_options {
                                 roughly doubles the directions and the time */
     const abrdf_view *view;  /* image of the prediction; NULL = the default sphere */
     int predict;             /* 1 (default): predict the image NMSE; 0: skip (nmse_pred < 0) */
+    int keep_shared;         /* 1 (default): a candidate's lobe of the same model as a lobe of
+                                the reference keeps the reference's parameters, and so does
+                                every parameter it reads; only the other lobe is fitted.
+                                0: every parameter is fitted */
 } abrdf_fit_options;
 
 ABRDF_API int abrdf_fit_options_init_sized(abrdf_fit_options *o, size_t struct_size);

@@ -217,8 +217,10 @@ int abrdf_budget_class_find(const char *name, double *max_nmse)
 /* ---- the trace ------------------------------------------------------------------------------ */
 
 #define TEXT_MAX 512
-/* The AUTO metric refits with the log and cube-root metrics only candidates whose L2 fit is
- * predicted within this factor of the budget (docs/BUDGET.md gives the measured gain). */
+/* The AUTO metric refits with the log and cube-root metrics only the candidates whose L2 fit
+ * is predicted below this factor of the largest budget class ("noticeable", 1e-3): further
+ * off, no metric brought a candidate of the material table into any class (docs/BUDGET.md).
+ * The threshold does not depend on the budget, so every budget sees the same fits. */
 #define AUTO_REACH 4.0
 
 typedef struct bwalk {
@@ -393,6 +395,7 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
         st = fail(&sel, st, "%s", msg);
         goto done;
     }
+    const abrdf_select_rules *rules = abrdf_select_rules_get();
     class_candidates cc;
     int no_diffuse;
     {
@@ -459,17 +462,15 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
             abrdf__fit_start(&ref, &cand);
             abrdf__brdf start = cand;
             abrdf__fit_run(&set, &ref, &cand, b.metric == ABRDF_FIT_AUTO ? ABRDF_FIT_L2 : b.metric,
-                           &pr, &r, &a);
-            /* Bieron & Peers 2020: the other metrics' fits too, the best predicted kept. A fit
-             * predicted beyond AUTO_REACH times the budget is not tried again: the metrics
-             * moved the prediction by less than that on every material of the table. */
+                           1, &pr, &r, &a);
+            /* Bieron & Peers 2020: the other metrics' fits too, the best predicted kept */
             if (b.metric == ABRDF_FIT_AUTO && !r.message[0] &&
-                r.nmse_pred < AUTO_REACH * b.max_nmse) {
+                r.nmse_pred < AUTO_REACH * rules->nmse_class_max[2]) {
                 for (int q = ABRDF_FIT_L2 + 1; q < ABRDF_FIT_AUTO; ++q) {
                     abrdf__brdf c2 = start;
                     abrdf_fit_result r2;
                     abrdf_fit_result_init(&r2);
-                    abrdf__fit_run(&set, &ref, &c2, (abrdf_fit_metric)q, &pr, &r2, &a);
+                    abrdf__fit_run(&set, &ref, &c2, (abrdf_fit_metric)q, 1, &pr, &r2, &a);
                     r.evals += r2.evals;
                     if (!r2.message[0] && r2.nmse_pred < r.nmse_pred) {
                         r2.evals = r.evals;
@@ -532,9 +533,9 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
                                &best.p};
         if (have)
             emit(&w, s,
-                 "%s: the cheapest within NMSE < %s: %.3g %s (the reference %s costs %.3g), "
+                 "%s: the cheapest within NMSE < %s: %.3g %s (the reference costs %.3g), "
                  "predicted NMSE %.3g (%s)",
-                 names, bt, best_cost, unit, mname(ref.lobe[1]), ref_cost, best_res.nmse_pred,
+                 names, bt, best_cost, unit, ref_cost, best_res.nmse_pred,
                  class_word(best_res.nmse_pred));
         else
             emit(&w, s, "%s: no candidate within the budget has a known cost: the reference",

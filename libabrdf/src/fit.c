@@ -460,6 +460,7 @@ typedef struct fit_work {
     int idx[COLS];           /* its coefficient index (COL_KD..COL_B), -1 if unused */
     int m;                   /* coefficients per channel */
     int lobe_varies[2];      /* the lobe reads a searched parameter */
+    int held[2];             /* the lobe is the reference's own, kept as it is */
     int lobe_schlick[2];     /* linear in f0 through ks f0 */
     int kd_id, ks_id, f0_id; /* registry ids of kd, ks, f0 */
     double kd_lo, kd_hi, ks_lo, ks_hi, f0_lo, f0_hi;
@@ -481,10 +482,12 @@ static void lobe_units_prepare(const fit_work *w, int l, const abrdf_params blk[
 {
     abrdf_model m = w->cand->lobe[l];
     for (int k = 0; k < 4; ++k) abrdf__lobe_prepare(&lu->u[k], m, &blk[k]);
-    lu->affine = fit_table[m].affine;
-    lu->kd = w->has[COL_KD] && reads(m, w->kd_id);
-    lu->ks = w->has[COL_KS] && reads(m, w->ks_id);
+    lu->kd = w->has[COL_KD] && reads(m, w->kd_id) && !w->held[l];
+    lu->ks = w->has[COL_KS] && reads(m, w->ks_id) && !w->held[l];
     lu->schlick = w->lobe_schlick[l];
+    /* a part no solved weight scales: the model's own, or weights held at their values */
+    lu->affine = fit_table[m].affine || w->held[l] || (reads(m, w->kd_id) && !lu->kd) ||
+                 (reads(m, w->ks_id) && !lu->ks);
 }
 
 /* Contributions of a prepared lobe at pair j to the columns g. */
@@ -515,8 +518,11 @@ static void lobe_columns(const fit_work *w, const lobe_units *lu, int j, double 
 static void unit_blocks(const fit_work *w, abrdf_params *pfix, abrdf_params *pkd,
                         abrdf_params *pks0, abrdf_params *pks1)
 {
-    *pfix = w->cand->p;
-    for (int c = 0; c < 3; ++c) pfix->kd[c] = pfix->ks[c] = 0.0;
+    *pfix = w->cand->p; /* the solved weights at 0, held ones at their values */
+    for (int c = 0; c < 3; ++c) {
+        if (w->has[COL_KD]) pfix->kd[c] = 0.0;
+        if (w->has[COL_KS]) pfix->ks[c] = 0.0;
+    }
     *pkd = *pfix;
     *pks0 = *pfix;
     for (int c = 0; c < 3; ++c) {
@@ -917,8 +923,8 @@ void abrdf__fit_errors(const abrdf__fit_set *s, const abrdf__brdf *cand, abrdf_f
 }
 
 void abrdf__fit_run(const abrdf__fit_set *s, const abrdf__brdf *ref, abrdf__brdf *cand,
-                    abrdf_fit_metric metric, abrdf__pred *pr, abrdf_fit_result *res,
-                    abrdf__arena *a)
+                    abrdf_fit_metric metric, int keep_shared, abrdf__pred *pr,
+                    abrdf_fit_result *res, abrdf__arena *a)
 {
     size_t mark = a->used;
     fit_work w;
@@ -931,14 +937,20 @@ void abrdf__fit_run(const abrdf__fit_set *s, const abrdf__brdf *ref, abrdf__brdf
     abrdf_param_find("ks", &w.ks_id);
     abrdf_param_find("f0", &w.f0_id);
     int kd_id = w.kd_id, ks_id = w.ks_id, f0_id = w.f0_id;
-    /* searched parameters: every lobe's, each once */
+    /* a lobe the candidate shares with the reference keeps the reference's parameters (the
+     * fit changes only what it replaces); so does every parameter such a lobe reads */
+    for (int l = 0; l < 2; ++l)
+        w.held[l] = keep_shared && cand->lobe[l] != ABRDF_MODEL_NONE &&
+                    (cand->lobe[l] == ref->lobe[0] || cand->lobe[l] == ref->lobe[1]);
+    /* searched parameters: every free lobe's, each once */
     for (int l = 0; l < 2; ++l) {
         abrdf_model m = cand->lobe[l];
-        if (m == ABRDF_MODEL_NONE) continue;
+        if (m == ABRDF_MODEL_NONE || w.held[l]) continue;
         for (int k = 0; k < fit_table[m].count && w.ns < SEARCH_MAX; ++k) {
             int id, dup = 0;
             abrdf_param_find(fit_table[m].param[k].name, &id);
             for (int i = 0; i < w.ns; ++i) dup |= w.sid[i] == id;
+            for (int h = 0; h < 2; ++h) dup |= w.held[h] && reads(cand->lobe[h], id);
             if (dup) continue;
             double lo, hi;
             brdf_range(cand, id, &lo, &hi);
@@ -950,18 +962,25 @@ void abrdf__fit_run(const abrdf__fit_set *s, const abrdf__brdf *ref, abrdf__brdf
             ++w.ns;
         }
     }
-    /* linear structure */
+    /* linear structure: a weight is solved when a free lobe reads it and no held one does */
     int f0_readers = reads(cand->lobe[0], f0_id) + reads(cand->lobe[1], f0_id);
+    int held_kd = 0, held_ks = 0;
+    for (int l = 0; l < 2; ++l)
+        if (w.held[l])
+            held_kd |= reads(cand->lobe[l], kd_id), held_ks |= reads(cand->lobe[l], ks_id);
     for (int l = 0; l < 2; ++l) {
         abrdf_model m = cand->lobe[l];
-        if (m == ABRDF_MODEL_NONE) continue;
-        w.has[COL_FIXED] |= fit_table[m].affine;
-        w.has[COL_KD] |= reads(m, kd_id);
-        w.has[COL_KS] |= reads(m, ks_id);
-        w.lobe_schlick[l] = fit_table[m].schlick && reads(m, f0_id) && f0_readers == 1;
+        if (m == ABRDF_MODEL_NONE || w.held[l]) continue;
+        w.has[COL_KD] |= reads(m, kd_id) && !held_kd;
+        w.has[COL_KS] |= reads(m, ks_id) && !held_ks;
+        w.lobe_schlick[l] = fit_table[m].schlick && reads(m, f0_id) && f0_readers == 1 &&
+                            reads(m, ks_id) && !held_ks;
         w.has[COL_B] |= w.lobe_schlick[l];
         for (int k = 0; k < w.ns; ++k) w.lobe_varies[l] |= reads(m, w.sid[k]);
     }
+    for (int l = 0; l < 2; ++l)
+        if (cand->lobe[l] != ABRDF_MODEL_NONE)
+            w.has[COL_FIXED] |= fit_table[cand->lobe[l]].affine || w.held[l];
     w.m = 0;
     for (int k = 0; k < COLS; ++k) w.idx[k] = -1;
     for (int k = COL_KD; k < COLS; ++k)
@@ -1014,7 +1033,7 @@ void abrdf__fit_run(const abrdf__fit_set *s, const abrdf__brdf *ref, abrdf__brdf
 /* ---- the public entry points ------------------------------------------------------------- */
 
 #define END_OF(type, field) (offsetof(type, field) + sizeof(((type *)0)->field))
-#define OPTIONS_SIZE_0_3 END_OF(abrdf_fit_options, predict)
+#define OPTIONS_SIZE_0_3 END_OF(abrdf_fit_options, keep_shared)
 #define RESULT_SIZE_0_3 END_OF(abrdf_fit_result, message)
 
 static const char *const metric_names[ABRDF_FIT_METRIC_COUNT] = {"l2", "log", "cbrt", "auto"};
@@ -1041,6 +1060,7 @@ static void options_defaults(abrdf_fit_options *o)
     o->struct_size = sizeof *o;
     o->metric = ABRDF_FIT_L2;
     o->predict = 1;
+    o->keep_shared = 1;
 }
 
 static void result_empty(abrdf_fit_result *r)
@@ -1098,7 +1118,7 @@ size_t abrdf_fit_workspace_size(const abrdf_fit_options *opt, const abrdf_view *
 int abrdf__fit_level(int resolution, int integrating)
 {
     if (resolution > 0) return resolution;
-    return integrating ? DEFAULT_LEVEL - 1 : DEFAULT_LEVEL;
+    return integrating ? 0 : DEFAULT_LEVEL; /* ~1 ms per hair evaluation: the smallest set */
 }
 
 int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_params *ref_params,
@@ -1173,7 +1193,7 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
         }
         if (st == ABRDF_OK) {
             if (o.metric != ABRDF_FIT_AUTO) {
-                abrdf__fit_run(&s, &ref, &cand, o.metric, ppr, &r, &a);
+                abrdf__fit_run(&s, &ref, &cand, o.metric, o.keep_shared, ppr, &r, &a);
             } else { /* Bieron & Peers 2020: each metric's fit, the best rendered one kept */
                 abrdf__brdf start = cand, best = cand;
                 abrdf_fit_result rb = r;
@@ -1183,7 +1203,8 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
                     abrdf_fit_result rk;
                     result_empty(&rk);
                     cand = start;
-                    abrdf__fit_run(&s, &ref, &cand, (abrdf_fit_metric)k, ppr, &rk, &a);
+                    abrdf__fit_run(&s, &ref, &cand, (abrdf_fit_metric)k, o.keep_shared, ppr, &rk,
+                                   &a);
                     evals += rk.evals;
                     double err = ppr ? rk.nmse_pred : rk.rel_l2;
                     if (rk.message[0] == '\0' && err < best_err) {

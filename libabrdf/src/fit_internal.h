@@ -83,18 +83,24 @@ double *abrdf__arena_doubles(abrdf__arena *a, size_t n);
 
 /* ---- the prediction (predict.c) -------------------------------------------------------- */
 
+/* The sphere is sampled on this many grids, shifted by half a sample spacing in x, y and
+ * both; the prediction is the largest of their NMSEs (predict.c explains why). */
+#define ABRDF__PRED_SHIFTS 4
+
 /* The view resolved into shading terms in each term's local frame, and the reference's
  * image over them. */
 typedef struct abrdf__pred {
-    int samples;       /* image samples */
-    int terms;         /* shading terms */
-    double *li, *lo;   /* 3 * terms: local-frame wi, wo */
-    double *ec;        /* 3 * terms: irradiance * cos(theta_i) */
-    int *sample_of;    /* terms: the sample each adds to (stored as doubles' space) */
-    double *weight;    /* samples: quadrature weight (sphere area) or 1 (caller's terms) */
-    double *ref;       /* 3 * samples: the reference's image */
-    double *img;       /* 3 * samples: scratch for a candidate's image */
-    double ref_energy; /* sum weight * ref^2 */
+    int samples; /* image samples, of every image */
+    int images;  /* the sphere: ABRDF__PRED_SHIFTS sampling grids; caller's terms: 1 */
+    int image_end[ABRDF__PRED_SHIFTS]; /* samples [image_end[k-1], image_end[k]) form image k */
+    int terms;                         /* shading terms */
+    double *li, *lo;                   /* 3 * terms: local-frame wi, wo */
+    double *ec;                        /* 3 * terms: irradiance * cos(theta_i) */
+    int *sample_of; /* terms: the sample each adds to (stored as doubles' space) */
+    double *weight; /* samples: 1 (pixels of equal area) */
+    double *ref;    /* 3 * samples: the reference's images */
+    double *img;    /* 3 * samples: scratch for a candidate's images */
+    double ref_energy[ABRDF__PRED_SHIFTS]; /* per image: sum weight * ref^2 */
 } abrdf__pred;
 
 /* Bytes the prediction needs for `view` (NULL = default sphere); 0 if the view is invalid.
@@ -129,7 +135,7 @@ typedef struct abrdf__fit_set {
 /* Bytes of the direction set and the fit's scratch at a resolution, for the larger of the
  * isotropic and tangent sets. */
 size_t abrdf__fit_bytes(int resolution);
-/* The direction-set level of a resolution option (0 = default: one level lower when a lobe
+/* The direction-set level of a resolution option (0 = default: the smallest when a lobe
  * integrates numerically). */
 int abrdf__fit_level(int resolution, int integrating);
 /* Build the set for the reference (tangent: whether the candidate or the reference reads the
@@ -138,11 +144,12 @@ int abrdf__fit_set_make(abrdf__fit_set *s, const abrdf__brdf *ref, int tangent, 
                         int resolution, abrdf__arena *a);
 
 /* Fit cand (lobes set, cand->p holding the starting block: abrdf__fit_start) with `metric`
- * (not AUTO) on the set; cand->p receives the fit. pr (may be NULL) predicts the NMSE.
- * res receives the metrics. Uses scratch from `a` (released on return). */
+ * (not AUTO) on the set; cand->p receives the fit. keep_shared: a lobe of the reference's
+ * model keeps the reference's parameters (abrdf_fit_options). pr (may be NULL) predicts the
+ * NMSE. res receives the metrics. Uses scratch from `a` (released on return). */
 void abrdf__fit_run(const abrdf__fit_set *s, const abrdf__brdf *ref, abrdf__brdf *cand,
-                    abrdf_fit_metric metric, abrdf__pred *pr, abrdf_fit_result *res,
-                    abrdf__arena *a);
+                    abrdf_fit_metric metric, int keep_shared, abrdf__pred *pr,
+                    abrdf_fit_result *res, abrdf__arena *a);
 /* The candidate's starting block: its defaults, with every parameter the reference's lobes
  * also read copied from the reference (clamped into the candidate's range). */
 void abrdf__fit_start(const abrdf__brdf *ref, abrdf__brdf *cand);

@@ -16,13 +16,15 @@ typedef struct fit_out {
     int status;
 } fit_out;
 
-static fit_out fit(abrdf_model rd, abrdf_model rs, const abrdf_params *rp, abrdf_model cd,
-                   abrdf_model cs, abrdf_fit_metric metric)
+/* keep: abrdf_fit_options.keep_shared (a lobe of the reference's model keeps its parameters) */
+static fit_out fit_keep(abrdf_model rd, abrdf_model rs, const abrdf_params *rp, abrdf_model cd,
+                        abrdf_model cs, abrdf_fit_metric metric, int keep)
 {
     fit_out o;
     abrdf_fit_options opt;
     abrdf_fit_options_init(&opt);
     opt.metric = metric;
+    opt.keep_shared = keep;
     size_t ws = abrdf_fit_workspace_size(&opt, NULL);
     ck_assert_uint_gt(ws, 0);
     void *w = malloc(ws);
@@ -32,6 +34,12 @@ static fit_out fit(abrdf_model rd, abrdf_model rs, const abrdf_params *rp, abrdf
     o.status = abrdf_fit(rd, rs, rp, cd, cs, &o.p, &opt, &o.r, w, ws);
     free(w);
     return o;
+}
+
+static fit_out fit(abrdf_model rd, abrdf_model rs, const abrdf_params *rp, abrdf_model cd,
+                   abrdf_model cs, abrdf_fit_metric metric)
+{
+    return fit_keep(rd, rs, rp, cd, cs, metric, 1);
 }
 
 static abrdf_params block(abrdf_model m)
@@ -51,8 +59,8 @@ START_TEST(self_fit_recovers_parameters)
     memcpy(g.ks, ks, sizeof ks);
     memcpy(g.f0, f0, sizeof f0);
     for (int c = 0; c < 3; ++c) g.kd[c] = 0.4;
-    fit_out o = fit(ABRDF_LAMBERT, ABRDF_DISNEY_SPECULAR, &g, ABRDF_LAMBERT, ABRDF_DISNEY_SPECULAR,
-                    ABRDF_FIT_L2);
+    fit_out o = fit_keep(ABRDF_LAMBERT, ABRDF_DISNEY_SPECULAR, &g, ABRDF_LAMBERT,
+                         ABRDF_DISNEY_SPECULAR, ABRDF_FIT_L2, 0);
     ck_assert_int_eq(o.status, ABRDF_OK);
     ck_assert_str_eq(o.r.message, "");
     ck_assert_msg(fabs(o.p.r - 0.33) < 1e-3, "r %g", o.p.r);
@@ -94,7 +102,7 @@ START_TEST(self_fit_every_fast_model)
         p.f0[0] = 0.5;
         p.clearcoat_gloss = 0.4;
         p.k_amp = 3.0;
-        fit_out o = fit(ABRDF_MODEL_NONE, m, &p, ABRDF_MODEL_NONE, m, ABRDF_FIT_L2);
+        fit_out o = fit_keep(ABRDF_MODEL_NONE, m, &p, ABRDF_MODEL_NONE, m, ABRDF_FIT_L2, 0);
         ck_assert_int_eq(o.status, ABRDF_OK);
         ck_assert_msg(o.r.rel_l2 < 2e-3, "%s: rel L2 %g", abrdf_model_get(m)->name, o.r.rel_l2);
         ck_assert_msg(o.r.nmse_pred < 1e-5, "%s: NMSE %g", abrdf_model_get(m)->name, o.r.nmse_pred);
@@ -268,6 +276,25 @@ START_TEST(bad_input)
 }
 END_TEST
 
+/* keep_shared: the candidate's lobe of the reference's model is the reference's, exactly;
+ * only the other lobe is fitted. */
+START_TEST(shared_lobe_is_kept)
+{
+    abrdf_params g = block(ABRDF_DISNEY_SPECULAR);
+    g.r = 0.05;
+    g.f0[0] = 0.2;
+    for (int c = 0; c < 3; ++c) g.kd[c] = 0.6;
+    fit_out o = fit(ABRDF_DISNEY_DIFFUSE, ABRDF_DISNEY_SPECULAR, &g, ABRDF_LAMBERT,
+                    ABRDF_DISNEY_SPECULAR, ABRDF_FIT_AUTO);
+    ck_assert_int_eq(o.status, ABRDF_OK);
+    ck_assert_double_eq(o.p.r, g.r);
+    ck_assert_mem_eq(o.p.ks, g.ks, sizeof g.ks);
+    ck_assert_mem_eq(o.p.f0, g.f0, sizeof g.f0);
+    ck_assert_int_eq(o.r.fitted, 3); /* kd per channel */
+    ck_assert_double_ne(o.p.kd[0], g.kd[0]);
+}
+END_TEST
+
 /* Every registered model has a built-in cost (the budget ranks every candidate by it). */
 START_TEST(builtin_costs_cover_every_model)
 {
@@ -291,6 +318,7 @@ int main(void)
     tcase_add_test(tc, prediction_is_image_nmse);
     tcase_add_test(tc, deterministic);
     tcase_add_test(tc, bad_input);
+    tcase_add_test(tc, shared_lobe_is_kept);
     tcase_add_test(tc, builtin_costs_cover_every_model);
     suite_add_tcase(s, tc);
     return tu_run(s);

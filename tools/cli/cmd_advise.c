@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "advise_budget.h"
+#include "budget_run.h"
 #include "cli.h"
 #include "cost_file.h"
 #include "data_path.h"
@@ -20,7 +22,9 @@ static void usage(FILE *f)
         f,
         "usage: abrdf advise [MATERIAL] [options]\n"
         "       abrdf advise --list [--json] [--materials FILE]...\n"
-        "       abrdf advise --rules [--json]\n\n"
+        "       abrdf advise --rules [--json]\n"
+        "       abrdf advise [MATERIAL] --budget none|slight|noticeable|NMSE [--json]\n"
+        "       abrdf advise [MATERIAL] --pareto [--plot FILE.svg] [--json]\n\n"
         "Chooses the diffuse and specular models for a material by the paper's flowchart\n"
         "(Zavalniuk & Romanyuk 2024, Fig. 2) and explains every decision (docs/SELECTION.md).\n\n"
         "  MATERIAL               a name from the material table (abrdf advise --list)\n"
@@ -37,7 +41,13 @@ static void usage(FILE *f)
         "                         layered_plate, layered_metal\n"
         "  --materials FILE       extra material file (same format; overrides by name)\n"
         "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table "
-        "4)\n"
+        "4;\n"
+        "                         with --budget/--pareto: the built-in table)\n"
+        "  --budget B             budget mode (docs/BUDGET.md): the cheapest candidate fitted to\n"
+        "                         the photoreal choice whose predicted image NMSE is below B, a\n"
+        "                         Table-8 class (none, slight, noticeable) or a number in (0, 1]\n"
+        "  --pareto               every candidate's cost and predicted NMSE: the front\n"
+        "  --plot FILE.svg        with --pareto: draw the cost/error plane\n"
         "  --list                 list the materials\n"
         "  --rules                the flowchart's thresholds and model choices "
         "(abrdf_select_rules)\n"
@@ -360,8 +370,9 @@ static void print_json(const abrdf_selection *s, const abrdf_params *p, const se
 
 int cmd_advise(int argc, char **argv)
 {
-    const char *name = NULL, *files[MAX_FILES], *costs_file = NULL;
-    int nfiles = 0, list = 0, json = 0, rules = 0;
+    const char *name = NULL, *files[MAX_FILES], *costs_file = NULL, *plot = NULL;
+    int nfiles = 0, list = 0, json = 0, rules = 0, pareto = 0, has_goal = 0;
+    double budget = -1.0;
     abrdf_goal goal = ABRDF_GOAL_PHOTOREAL;
     abrdf_tolerance tol;
     abrdf_tolerance_init(&tol);
@@ -386,6 +397,17 @@ int cmd_advise(int argc, char **argv)
         } else if (!strcmp(a, "--goal")) {
             if (!v || abrdf_goal_find(v, &goal) != ABRDF_OK)
                 return cli_fail(CMD, "--goal needs performance or photoreal, got '%s'", v ? v : "");
+            has_goal = 1;
+        } else if (!strcmp(a, "--budget")) {
+            char err[256];
+            if (!v) return cli_fail(CMD, "--budget needs none, slight, noticeable or an NMSE");
+            if (budget_parse(v, &budget, err, sizeof err))
+                return cli_fail(CMD, "--budget: %s", err);
+        } else if (!strcmp(a, "--pareto")) {
+            pareto = 1, takes = 0;
+        } else if (!strcmp(a, "--plot")) {
+            if (!v) return cli_fail(CMD, "--plot needs a file name (FILE.svg)");
+            plot = v;
         } else if (!strcmp(a, "--max-rel-error")) {
             st = limit_value(a, v, &tol.max_rel_pct);
         } else if (!strcmp(a, "--max-abs-error")) {
@@ -433,6 +455,13 @@ int cmd_advise(int argc, char **argv)
         i += takes;
     }
 
+    if (budget >= 0.0 && pareto) return cli_fail(CMD, "--budget and --pareto exclude each other");
+    if ((budget >= 0.0 || pareto) && has_goal)
+        return cli_fail(CMD,
+                        "--goal and --%s exclude each other: the budget's reference is the "
+                        "photoreal choice",
+                        pareto ? "pareto" : "budget");
+    if (plot && !pareto) return cli_fail(CMD, "--plot draws the front of --pareto");
     if (rules) {
         print_rules(json);
         return 0;
@@ -493,6 +522,11 @@ int cmd_advise(int argc, char **argv)
             mat_table_free(&table);
             return cli_fail(CMD, "%s", err);
         }
+    }
+    if (budget >= 0.0 || pareto) {
+        rc = advise_budget(&m, e, budget, costs_file ? &costs : NULL, json, pareto, plot);
+        mat_table_free(&table);
+        return rc;
     }
     abrdf_selection sel;
     abrdf_params params;
