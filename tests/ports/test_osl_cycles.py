@@ -267,6 +267,13 @@ class CrossCheck(unittest.TestCase):
                     sys.stdout.write("\nclosure mode, %s on the sphere: NMSE %.1e\n" % (model, nmse))
                     self.assertLess(nmse, bound)
 
+    def test_budget_scene(self):
+        # Materials chosen by the budget mode (adaptive budget=, fitted parameters): the
+        # exported script carries the same choices and parameters as abrdf render.
+        nmse = self.render_pair("budget", "tests/data/scenes/budget.scene", 64, 48)
+        sys.stdout.write("\nbudget.scene (budget-chosen materials): NMSE %.1e\n" % nmse)
+        self.assertLess(nmse, NMSE_MAX)
+
     def test_samples_do_not_change_the_image(self):
         # Every sample of a pixel re-traces the pixel-centre ray: 4 samples = 1 sample.
         nmse = self.render_pair("sphere", SCENES[0][1], 32, 32, None, samples=4)

@@ -1,12 +1,16 @@
 /* cmd_export.c - `abrdf export --pov|--cycles SCENE -o OUT`: the scene for another renderer.
- * Shared here: parsing, --model/--set (as abrdf render), render_prepare (so every exporter
- * reads the built-in renderer's own camera vectors, materials and lights). The writers live
+ * Shared here: parsing, --model/--set and the materials chosen by the selection (table=,
+ * adaptive goal=/budget=, --adaptive; as abrdf render, so a budget's fitted parameters are
+ * what the ports receive), render_prepare (so every exporter reads the built-in renderer's
+ * own camera vectors, materials and lights). The writers live
  * in export_pov.c (POV-Ray SDL, docs/POVRAY.md) and export_cycles.c (Blender/Cycles bpy
  * script with OSL, docs/OSL.md). */
 #include <stdlib.h>
 #include <string.h>
 
+#include "budget_run.h"
 #include "cli.h"
+#include "data_path.h"
 #include "export.h"
 #include "export_pov.h"
 #include "scene_select.h"
@@ -21,8 +25,10 @@
 static int usage(void)
 {
     printf("usage: abrdf export --pov SCENE -o OUT.pov [--model NAME [--set NAME=VALUE ...]]\n"
+           "                    [--adaptive --goal G | --adaptive --budget B] [--materials FILE]\n"
            "                    [--width W] [--height H] [--no-shadows | --native]\n"
            "       abrdf export --cycles SCENE -o OUT.py [--model NAME [--set NAME=VALUE ...]]\n"
+           "                    [--adaptive --goal G | --adaptive --budget B] [--materials FILE]\n"
            "                    [--width W] [--height H] [--spp N] [--mode eval|closure|generic]\n"
            "                    [--osl-dir DIR]\n\n"
            "--pov writes SCENE (docs/SCENES.md) as POV-Ray 3.7 SDL that shades every object with\n"
@@ -31,6 +37,9 @@ static int usage(void)
            "--cycles writes a Blender/Cycles (bpy) script for the same scene with the OSL port\n"
            "(osl/, docs/OSL.md); run it with a Python that has bpy.\n\n"
            "  --model/--set      as abrdf render: every material becomes this model\n"
+           "  --adaptive --goal G | --budget B   as abrdf render: the selection chooses every\n"
+           "                     material's models (a budget's choice with its fitted parameters)\n"
+           "  --materials FILE   material-table file merged over data/materials.csv\n"
            "  --width/--height   override the scene's resolution\n"
            "  --no-shadows       (pov) emissive mode even with one light (no shadows); with\n"
            "                     several lights this is the only mode\n"
@@ -63,9 +72,10 @@ static const char *osl_dir_default(void)
 int cmd_export(int argc, char **argv)
 {
     const char *cmd = "export", *path = NULL, *out = NULL, *model_name = NULL;
-    const char *osl_dir = NULL, *mode = NULL;
-    const char *sets[64];
-    int nsets = 0, pov = 0, cycles = 0, no_shadows = 0, native = 0, spp = 0;
+    const char *osl_dir = NULL, *mode = NULL, *goal = NULL, *budget_s = NULL;
+    const char *sets[64], *mats[16];
+    int nsets = 0, nmats = 0, pov = 0, cycles = 0, no_shadows = 0, native = 0, spp = 0;
+    int adaptive = 0;
     render_options opt;
     memset(&opt, 0, sizeof opt);
     opt.spp = 1;
@@ -82,8 +92,11 @@ int cmd_export(int argc, char **argv)
             no_shadows = 1;
         else if (!strcmp(a, "--native"))
             native = 1;
+        else if (!strcmp(a, "--adaptive"))
+            adaptive = 1;
         else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--set") ||
-                 !strcmp(a, "--osl-dir") || !strcmp(a, "--mode")) {
+                 !strcmp(a, "--osl-dir") || !strcmp(a, "--mode") || !strcmp(a, "--goal") ||
+                 !strcmp(a, "--budget") || !strcmp(a, "--materials")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
             if (!strcmp(a, "-o"))
@@ -94,7 +107,14 @@ int cmd_export(int argc, char **argv)
                 osl_dir = val;
             else if (!strcmp(a, "--mode"))
                 mode = val;
-            else if (nsets == 64)
+            else if (!strcmp(a, "--goal"))
+                goal = val;
+            else if (!strcmp(a, "--budget"))
+                budget_s = val;
+            else if (!strcmp(a, "--materials")) {
+                if (nmats == 16) return cli_fail(cmd, "too many --materials files (16 at most)");
+                mats[nmats++] = val;
+            } else if (nsets == 64)
                 return cli_fail(cmd, "too many --set options (64 at most)");
             else
                 sets[nsets++] = val;
@@ -129,6 +149,19 @@ int cmd_export(int argc, char **argv)
         return cli_fail(cmd, "--native uses POV-Ray's lights (with shadows); drop --no-shadows");
     if (mode && strcmp(mode, "eval") && strcmp(mode, "closure") && strcmp(mode, "generic"))
         return cli_fail(cmd, "--mode is eval, closure or generic, not '%s'", mode);
+    if (adaptive && model_name) return cli_fail(cmd, "--adaptive and --model exclude each other");
+    if ((goal || budget_s) && !adaptive)
+        return cli_fail(cmd, "--%s needs --adaptive", goal ? "goal" : "budget");
+    if (goal && budget_s) return cli_fail(cmd, "--goal and --budget exclude each other");
+    abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
+    if (adaptive && !budget_s && (!goal || abrdf_goal_find(goal, &g) != ABRDF_OK))
+        return cli_fail(cmd, "--adaptive needs --goal photoreal, --goal performance or --budget B");
+    double budget = -1.0;
+    if (budget_s) {
+        char berr[256];
+        if (budget_parse(budget_s, &budget, berr, sizeof berr))
+            return cli_fail(cmd, "--budget: %s", berr);
+    }
 
     scene s;
     char err[512];
@@ -139,6 +172,31 @@ int cmd_export(int argc, char **argv)
     int rc = 1, prepared = 0;
     render_scene rs;
     FILE *f = NULL;
+    mat_table table = {NULL, 0, 0};
+    if (adaptive || scene_needs_table(&s) || nmats) {
+        char tpath[1024];
+        if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
+            fprintf(stderr, "abrdf export: material table %s not found (set ABRDF_DATA_DIR)\n",
+                    tpath);
+            goto done;
+        }
+        if (mat_table_load(&table, tpath, err, sizeof err)) {
+            fprintf(stderr, "abrdf export: %s\n", err);
+            goto done;
+        }
+        for (int i = 0; i < nmats; ++i)
+            if (mat_table_load(&table, mats[i], err, sizeof err)) {
+                fprintf(stderr, "abrdf export: %s\n", err);
+                goto done;
+            }
+    }
+    /* the selection's choices, as abrdf render makes them (a budget's prediction samples the
+     * image the scene file describes: its resolution, 4 samples per pixel) */
+    if (scene_select_budgets(&s, path, &table, adaptive && !budget_s ? (int)g : -1, budget, 4, NULL,
+                             err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s\n", err);
+        goto done;
+    }
     if (model_name) {
         int st = scene_set_model(cmd, &s, model_name, sets, nsets);
         if (st) {
@@ -176,6 +234,7 @@ done:
         rc = 1;
     }
     if (prepared) render_release(&rs);
+    mat_table_free(&table);
     scene_free(&s);
     return rc;
 }

@@ -188,7 +188,9 @@ int cmd_render(int argc, char **argv)
         }
     abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
     if (adaptive && goal) abrdf_goal_find(goal, &g);
-    if (scene_select_budgets(&s, path, &table, adaptive && goal ? (int)g : -1, budget, opt.spp,
+    /* a budget's prediction samples the image the scene file describes (its resolution, the
+     * default 4 samples per pixel), so abrdf export makes the same choices */
+    if (scene_select_budgets(&s, path, &table, adaptive && goal ? (int)g : -1, budget, 4,
                              explain ? stdout : NULL, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
