@@ -131,8 +131,8 @@ ABRDF_API int abrdf_fit_metric_find(const char *name, abrdf_fit_metric *out);
 typedef struct abrdf_fit_options {
     size_t struct_size;      /* bytes of this struct as the caller compiled it; set by _init */
     abrdf_fit_metric metric; /* default ABRDF_FIT_L2 */
-    int resolution;          /* direction-set density, [0, 4]: 0 = default (2); each step
-                                roughly doubles the directions and the time */
+    int resolution;          /* direction-set density, [0, 5]: 1 (coarsest) to 5, each step
+                                2-4 times the directions and the time; 0 = default (3) */
     const abrdf_view *view;  /* image of the prediction; NULL = the default sphere */
     int predict;             /* 1 (default): predict the image NMSE; 0: skip (nmse_pred < 0) */
     int keep_shared;         /* 1 (default): a candidate's lobe of the same model as a lobe of

@@ -57,7 +57,9 @@ static const abrdf_model dif_general[] = {NONE, ABRDF_LAMBERT, ABRDF_DISNEY_DIFF
 static const abrdf_model dif_smooth[] = {NONE, ABRDF_LAMBERT, ABRDF_LAMBERT_FRESNEL};
 static const abrdf_model dif_cloth[] = {ABRDF_LAMBERT, ABRDF_DISNEY_DIFFUSE, ABRDF_OREN_NAYAR};
 static const abrdf_model spec_cloth[] = {NONE, ABRDF_BLINN_PHONG, ABRDF_DISNEY_SPECULAR};
-static const abrdf_model dif_layered[] = {NONE, ABRDF_LAMBERT, ABRDF_DISNEY_DIFFUSE};
+/* Lambert * (1 - F) (Eq. 2) stands for a base seen through a coat's Fresnel transmission. */
+static const abrdf_model dif_layered[] = {NONE, ABRDF_LAMBERT, ABRDF_LAMBERT_FRESNEL,
+                                          ABRDF_DISNEY_DIFFUSE};
 static const abrdf_model aniso_spec[] = {ABRDF_DISNEY_SPECULAR_ANISO};
 static const abrdf_model whole_cloth_shiny[][2] = {{NONE, ABRDF_KAJIYA_KAY}};
 static const abrdf_model whole_hair[][2] = {{NONE, ABRDF_MARSCHNER}, {NONE, ABRDF_KAJIYA_KAY}};
@@ -217,11 +219,6 @@ int abrdf_budget_class_find(const char *name, double *max_nmse)
 /* ---- the trace ------------------------------------------------------------------------------ */
 
 #define TEXT_MAX 512
-/* The AUTO metric refits with the log and cube-root metrics only the candidates whose L2 fit
- * is predicted below this factor of the largest budget class ("noticeable", 1e-3): further
- * off, no metric brought a candidate of the material table into any class (docs/BUDGET.md).
- * The threshold does not depend on the budget, so every budget sees the same fits. */
-#define AUTO_REACH 4.0
 
 typedef struct bwalk {
     abrdf_select_trace_fn trace;
@@ -374,9 +371,9 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
         goto done;
     }
     if (!((int)b.metric >= 0 && b.metric < ABRDF_FIT_METRIC_COUNT) || b.resolution < 0 ||
-        b.resolution > 4) {
+        b.resolution > 5) {
         st = fail(&sel, ABRDF_E_RANGE,
-                  "budget: metric %d is unknown or resolution %d is outside [0, 4]", (int)b.metric,
+                  "budget: metric %d is unknown or resolution %d is outside [0, 5]", (int)b.metric,
                   b.resolution);
         goto done;
     }
@@ -395,7 +392,6 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
         st = fail(&sel, st, "%s", msg);
         goto done;
     }
-    const abrdf_select_rules *rules = abrdf_select_rules_get();
     class_candidates cc;
     int no_diffuse;
     {
@@ -463,9 +459,10 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
             abrdf__brdf start = cand;
             abrdf__fit_run(&set, &ref, &cand, b.metric == ABRDF_FIT_AUTO ? ABRDF_FIT_L2 : b.metric,
                            1, &pr, &r, &a);
-            /* Bieron & Peers 2020: the other metrics' fits too, the best predicted kept */
-            if (b.metric == ABRDF_FIT_AUTO && !r.message[0] &&
-                r.nmse_pred < AUTO_REACH * rules->nmse_class_max[2]) {
+            /* Bieron & Peers 2020: the other metrics' fits too, the best predicted kept. Every
+             * candidate: no threshold on the L2 fit's prediction separates the ones the other
+             * metrics bring into a class (tools/measure/auto_reach.c: from 3.3e3 to 5.4e-4) */
+            if (b.metric == ABRDF_FIT_AUTO && !r.message[0]) {
                 for (int q = ABRDF_FIT_L2 + 1; q < ABRDF_FIT_AUTO; ++q) {
                     abrdf__brdf c2 = start;
                     abrdf_fit_result r2;

@@ -272,7 +272,7 @@ enum { SET_ISO, SET_TANGENT, SET_FIBRE, SET_KINDS };
 #define DEFAULT_LEVEL 2
 /* Nodes per level: incidence cos(theta_i), incidence azimuth, outgoing polar, outgoing
  * azimuth. Level 2 (the default) holds 1920 (isotropic), 4608 (tangent) and 4704 (fibre)
- * pairs; every level roughly doubles the previous. */
+ * pairs; each level has 2-4 times the previous one's. */
 static const int set_dims[SET_KINDS][4][LEVELS] = {
     [SET_ISO] = {{4, 6, 8, 11, 16}, {1, 1, 1, 1, 1}, {10, 14, 20, 28, 40}, {6, 9, 12, 17, 24}},
     [SET_TANGENT] = {{3, 3, 4, 6, 8}, {4, 4, 6, 8, 12}, {8, 10, 12, 16, 24}, {10, 12, 16, 24, 32}},
@@ -289,8 +289,7 @@ static int set_pairs(int kind, int level)
 
 size_t abrdf__fit_bytes(int resolution)
 {
-    int level = resolution > 0 ? resolution : DEFAULT_LEVEL;
-    if (level >= LEVELS) level = LEVELS - 1;
+    int level = abrdf__fit_level(resolution, 0); /* the larger of the two defaults */
     int n = 0;
     for (int k = 0; k < SET_KINDS; ++k)
         if (set_pairs(k, level) > n) n = set_pairs(k, level);
@@ -312,9 +311,9 @@ static void set_add(abrdf__fit_set *s, int group, const double wi[3], const doub
 }
 
 int abrdf__fit_set_make(abrdf__fit_set *s, const abrdf__brdf *ref, int tangent, int fibre,
-                        int resolution, abrdf__arena *a)
+                        int level, abrdf__arena *a)
 {
-    int level = resolution > 0 ? resolution : DEFAULT_LEVEL;
+    if (level < 0) level = 0;
     if (level >= LEVELS) level = LEVELS - 1;
     int kind = fibre ? SET_FIBRE : tangent ? SET_TANGENT : SET_ISO;
     int nm = set_dims[kind][0][level], na = set_dims[kind][1][level];
@@ -1109,7 +1108,7 @@ static int read_options(const abrdf_fit_options *opt, abrdf_fit_options *o)
 size_t abrdf_fit_workspace_size(const abrdf_fit_options *opt, const abrdf_view *view)
 {
     abrdf_fit_options o;
-    if (!read_options(opt, &o) || o.resolution < 0 || o.resolution >= LEVELS) return 0;
+    if (!read_options(opt, &o) || o.resolution < 0 || o.resolution > LEVELS) return 0;
     size_t p = abrdf__pred_bytes(view, 0);
     if (!p) return 0;
     return p + abrdf__fit_bytes(o.resolution) + 256;
@@ -1117,8 +1116,12 @@ size_t abrdf_fit_workspace_size(const abrdf_fit_options *opt, const abrdf_view *
 
 int abrdf__fit_level(int resolution, int integrating)
 {
-    if (resolution > 0) return resolution;
-    return integrating ? 0 : DEFAULT_LEVEL; /* ~1 ms per hair evaluation: the smallest set */
+    /* The default even for hair (~1 ms per evaluation, seconds per fit): the coarser sets
+     * place Kajiya-Kay's cone between their nodes and fit it to a wrong width (a predicted
+     * NMSE of 41 at level 1 against 0.14 at level 2, hair_brown). */
+    (void)integrating;
+    if (resolution > 0) return resolution < LEVELS ? resolution - 1 : LEVELS - 1;
+    return DEFAULT_LEVEL;
 }
 
 int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_params *ref_params,
@@ -1144,11 +1147,11 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
                  "with abrdf_fit_options_init",
                  opt->struct_size);
     } else if (!((int)o.metric >= 0 && o.metric < ABRDF_FIT_METRIC_COUNT) || o.resolution < 0 ||
-               o.resolution >= LEVELS) {
+               o.resolution > LEVELS) {
         st = ABRDF_E_RANGE;
         snprintf(r.message, sizeof r.message,
                  "abrdf_fit_options: metric %d is unknown or resolution %d is outside [0, %d]",
-                 (int)o.metric, o.resolution, LEVELS - 1);
+                 (int)o.metric, o.resolution, LEVELS);
     } else if ((st = abrdf__brdf_make(&ref, ref_diffuse, ref_specular, ref_params, r.message,
                                       sizeof r.message)) != ABRDF_OK) {
         /* message set */
@@ -1197,8 +1200,7 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
             } else { /* Bieron & Peers 2020: each metric's fit, the best rendered one kept */
                 abrdf__brdf start = cand, best = cand;
                 abrdf_fit_result rb = r;
-                double best_err = INFINITY;
-                int evals = 0;
+                int evals = 0, have = 0;
                 for (int k = 0; k < ABRDF_FIT_AUTO; ++k) {
                     abrdf_fit_result rk;
                     result_empty(&rk);
@@ -1206,17 +1208,21 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
                     abrdf__fit_run(&s, &ref, &cand, (abrdf_fit_metric)k, o.keep_shared, ppr, &rk,
                                    &a);
                     evals += rk.evals;
+                    if (rk.message[0]) {
+                        rb = rk; /* the workspace: reported below */
+                        break;
+                    }
+                    /* the first metric's fit, then any with a lower error (ties: the first) */
                     double err = ppr ? rk.nmse_pred : rk.rel_l2;
-                    if (rk.message[0] == '\0' && err < best_err) {
-                        best_err = err;
+                    double best_err = ppr ? rb.nmse_pred : rb.rel_l2;
+                    if (!have || err < best_err) {
                         best = cand;
                         rb = rk;
+                        have = 1;
                     }
                 }
-                if (isfinite(best_err)) {
-                    r = rb;
-                    r.evals = evals;
-                }
+                r = rb;
+                r.evals = evals;
                 cand = best;
             }
             if (r.message[0]) st = ABRDF_E_SIZE;

@@ -132,16 +132,17 @@ typedef struct abrdf__fit_set {
     int fibre;    /* outgoing directions uniform over the hemisphere (fibres) */
 } abrdf__fit_set;
 
-/* Bytes of the direction set and the fit's scratch at a resolution, for the larger of the
- * isotropic and tangent sets. */
+/* Bytes of the direction set and the fit's scratch at a resolution option (its level for a
+ * closed-form reference), for the largest of the sets. */
 size_t abrdf__fit_bytes(int resolution);
-/* The direction-set level of a resolution option (0 = default: the smallest when a lobe
- * integrates numerically). */
+/* The direction-set level, [0, 4], of a resolution option, [0, 5]: 1 to 5 are levels 0 to 4;
+ * 0 is the default, level 2. */
 int abrdf__fit_level(int resolution, int integrating);
-/* Build the set for the reference (tangent: whether the candidate or the reference reads the
- * tangent frame; fibre: whether either is a fibre model) and evaluate the reference on it. */
+/* Build the set of a level (abrdf__fit_level) for the reference (tangent: whether the
+ * candidate or the reference reads the tangent frame; fibre: whether either is a fibre model)
+ * and evaluate the reference on it. */
 int abrdf__fit_set_make(abrdf__fit_set *s, const abrdf__brdf *ref, int tangent, int fibre,
-                        int resolution, abrdf__arena *a);
+                        int level, abrdf__arena *a);
 
 /* Fit cand (lobes set, cand->p holding the starting block: abrdf__fit_start) with `metric`
  * (not AUTO) on the set; cand->p receives the fit. keep_shared: a lobe of the reference's

@@ -1,7 +1,9 @@
 # doc_tables.cmake - a document quotes measured numbers only as its tool prints them: runs
-# TOOL and requires every Markdown table row of its output to appear verbatim in DOC.
-#   cmake -DTOOL=<program> -DDOC=<file.md> -P doc_tables.cmake
-execute_process(COMMAND "${TOOL}" RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+# TOOL (with the space-separated ARGS, if given) and requires every Markdown table row of its
+# output to appear verbatim in DOC.
+#   cmake -DTOOL=<program> [-DARGS="a b c"] -DDOC=<file.md> -P doc_tables.cmake
+separate_arguments(args UNIX_COMMAND "${ARGS}")
+execute_process(COMMAND "${TOOL}" ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "doc_tables: ${TOOL} failed (${rc})")
 endif()

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "abrdf_fit.h"
+#include "fit_internal.h"
 #include "test_util.h"
 
 typedef struct fit_out {
@@ -145,6 +146,61 @@ START_TEST(fit_beats_the_converter)
             ck_assert(v[c] >= mi->params[k].min && v[c] <= mi->params[k].max);
     }
     ck_assert_int_eq(abrdf_params_check(ABRDF_BLINN_PHONG, &o.p, NULL, 0), ABRDF_OK);
+}
+END_TEST
+
+/* The fit is a minimum of its objective under the parameters' bounds: with the L2 metric the
+ * objective is rel_l2^2 times a constant, and no feasible step of a fitted weight (ks, f0 per
+ * channel; against gold some sit on their bounds) or of n lowers rel_l2 on the fit's own
+ * direction set (fit_internal.h). */
+START_TEST(fit_is_a_constrained_minimum)
+{
+    abrdf_params g = block(ABRDF_DISNEY_SPECULAR);
+    g.r = 0.2;
+    g.f0[0] = 0.957, g.f0[1] = 0.792, g.f0[2] = 0.408;
+    fit_out o = fit(ABRDF_MODEL_NONE, ABRDF_DISNEY_SPECULAR, &g, ABRDF_MODEL_NONE, ABRDF_F_GE,
+                    ABRDF_FIT_L2);
+    ck_assert_int_eq(o.status, ABRDF_OK);
+    char msg[256];
+    abrdf__brdf ref, cand;
+    ck_assert_int_eq(
+        abrdf__brdf_make(&ref, ABRDF_MODEL_NONE, ABRDF_DISNEY_SPECULAR, &g, msg, sizeof msg),
+        ABRDF_OK);
+    size_t ws = abrdf_fit_workspace_size(NULL, NULL);
+    void *w = malloc(ws);
+    abrdf__arena a;
+    abrdf__arena_init(&a, w, ws);
+    abrdf__fit_set set;
+    ck_assert_int_eq(abrdf__fit_set_make(&set, &ref, 0, 0, abrdf__fit_level(0, 0), &a), ABRDF_OK);
+    ck_assert_int_eq(set.n, o.r.directions);
+    ck_assert_int_eq(abrdf__brdf_make(&cand, ABRDF_MODEL_NONE, ABRDF_F_GE, &o.p, msg, sizeof msg),
+                     ABRDF_OK);
+    abrdf_fit_result base;
+    abrdf_fit_result_init(&base);
+    abrdf__fit_errors(&set, &cand, &base);
+    ck_assert_double_eq_tol(base.rel_l2, o.r.rel_l2, 1e-12);
+    int steps = 0;
+    for (int k = 0; k < 7; ++k)
+        for (int sgn = -1; sgn <= 1; sgn += 2) {
+            abrdf__brdf c = cand;
+            double h = 1e-3 * sgn;
+            if (k < 3)
+                c.p.ks[k] += h;
+            else if (k < 6)
+                c.p.f0[k - 3] += h;
+            else
+                c.p.n *= 1.0 + 10.0 * h;
+            if (abrdf_params_check(ABRDF_F_GE, &c.p, NULL, 0) != ABRDF_OK) continue;
+            abrdf_fit_result r;
+            abrdf_fit_result_init(&r);
+            abrdf__fit_errors(&set, &c, &r);
+            ck_assert_msg(r.rel_l2 >= base.rel_l2 * (1.0 - 1e-9),
+                          "step %d (%+g) lowers rel L2 from %.12g to %.12g", k, h, base.rel_l2,
+                          r.rel_l2);
+            ++steps;
+        }
+    ck_assert_int_ge(steps, 7); /* at least one feasible direction per parameter */
+    free(w);
 }
 END_TEST
 
@@ -315,6 +371,7 @@ int main(void)
     tcase_add_test(tc, self_fit_every_fast_model);
     tcase_add_test(tc, fit_beats_the_converter);
     tcase_add_test(tc, fit_stays_in_range);
+    tcase_add_test(tc, fit_is_a_constrained_minimum);
     tcase_add_test(tc, prediction_is_image_nmse);
     tcase_add_test(tc, deterministic);
     tcase_add_test(tc, bad_input);

@@ -20,7 +20,7 @@ static int usage(void)
 {
     printf("usage: abrdf fit (--ref MODEL[+MODEL] [--set NAME=VALUE ...] | --material NAME)\n"
            "                 --candidate MODEL[+MODEL] [--metric l2|log|cbrt|auto]\n"
-           "                 [--resolution 0..4] [--materials FILE] [--json]\n\n"
+           "                 [--resolution 0..5] [--materials FILE] [--json]\n\n"
            "Fits the candidate's parameters to the reference (abrdf_fit, docs/BUDGET.md):\n"
            "cosine-weighted least squares over a direction set covering the hemisphere, the\n"
            "weights (kd, ks, ks*f0) solved in closed form for every trial of the other\n"
@@ -34,7 +34,7 @@ static int usage(void)
            "  --candidate M[+M]  the model or diffuse+specular pair to fit; it must be one the\n"
            "                     budget mode considers for the reference's surface class\n"
            "  --metric           l2 (default), log, cbrt, or auto (each; the best predicted)\n"
-           "  --resolution N     direction-set density, 0 (default) to 4\n"
+           "  --resolution N     direction-set density, 1 (coarse) to 5; 0: default\n"
            "  --materials FILE   a material file merged over data/materials.csv\n"
            "  --json             machine-readable output\n");
     return 0;
@@ -191,8 +191,8 @@ int cmd_fit(int argc, char **argv)
                 return cli_fail(CMD, "--metric needs l2, log, cbrt or auto, got '%s'", v);
         } else if (!strcmp(a, "--resolution")) {
             long r;
-            if (!cli_parse_int(v, 0, 4, &r))
-                return cli_fail(CMD, "--resolution needs a whole number in [0, 4], got '%s'", v);
+            if (!cli_parse_int(v, 0, 5, &r))
+                return cli_fail(CMD, "--resolution needs a whole number in [0, 5], got '%s'", v);
             opt.resolution = (int)r;
         } else {
             return cli_fail(CMD, "unknown option '%s' (abrdf fit --help)", a);
@@ -298,8 +298,9 @@ int cmd_fit(int argc, char **argv)
     abrdf_fit_result r;
     abrdf_fit_result_init(&r);
     double t0 = wall();
+    clock_t c0 = clock();
     int st = abrdf_fit(ref[0], ref[1], &rp, cand[0], cand[1], &cp, &opt, &r, work, ws);
-    double secs = wall() - t0;
+    double secs = wall() - t0, cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
     free(work);
     if (st != ABRDF_OK) {
         fprintf(stderr, "abrdf fit: %s\n", r.message);
@@ -317,9 +318,9 @@ int cmd_fit(int argc, char **argv)
         print_params(cand, &cp, 1);
         printf(",\n \"rel_l2\": %.10g, \"max_rel_pct\": %.10g, \"max_abs\": %.10g, "
                "\"nmse_pred\": %.10g, \"class\": \"%s\", \"objective\": %.10g, \"fitted\": %d, "
-               "\"evals\": %d, \"directions\": %d, \"seconds\": %.4f}\n",
+               "\"evals\": %d, \"directions\": %d, \"seconds\": %.4f, \"cpu_seconds\": %.4f}\n",
                r.rel_l2, r.max_rel_pct, r.max_abs, r.nmse_pred, abrdf_nmse_class(r.nmse_pred),
-               r.objective, r.fitted, r.evals, r.directions, secs);
+               r.objective, r.fitted, r.evals, r.directions, secs, cpu);
         return 0;
     }
     printf("reference   %s\n", rn);
