@@ -1,4 +1,4 @@
-/* quickstart.c - evaluate one reflectance model with the installed libabrdf.
+/* quickstart.c - evaluate one reflectance model with the installed libabrdf, and sample it.
  *   cc quickstart.c $(pkg-config --cflags --libs abrdf) -o quickstart   (or CMake: see CMakeLists.txt) */
 #include <stdio.h>
 #include <abrdf.h>
@@ -8,15 +8,32 @@ int main(void)
     abrdf_params p;
     abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p); /* the model's defaults */
     p.r = 0.3;                                    /* perceptual roughness; alpha_g = r^2 */
-    const double n[3] = {0, 0, 1}, wi[3] = {0.3, 0, 1}, wo[3] = {-0.2, 0.1, 1};
-    abrdf_frame frame;
-    abrdf_frame_make(n, NULL, &frame); /* N, T, B from the normal */
-    double f[3];                       /* f_r per RGB channel, 1/sr, no cosine */
-    int st = abrdf_eval(ABRDF_DISNEY_SPECULAR, &p, &frame, wi, wo, f);
+    abrdf_prepared mat; /* validated and precomputed once, then evaluated per sample */
+    int st = abrdf_prepare(ABRDF_DISNEY_SPECULAR, &p, &mat);
     if (st != ABRDF_OK) {
         fprintf(stderr, "abrdf: %s\n", abrdf_strerror(st));
         return 1;
     }
+    const double n[3] = {0, 0, 1}, wi[3] = {0.3, 0, 1}, wo[3] = {-0.2, 0.1, 1};
+    abrdf_frame frame;
+    abrdf_frame_make(n, NULL, &frame); /* N, T, B from the normal */
+    double f[3];                       /* f_r per RGB channel, 1/sr, no cosine */
+    abrdf_eval_prepared(&mat, &frame, wi, wo, f);
     printf("abrdf %s: disney_specular f_r = %.6f %.6f %.6f\n", abrdf_version(), f[0], f[1], f[2]);
+
+    /* Importance sampling: light directions for the view direction wo, with pdf and weight
+     * f_r cos / pdf; their mean weight estimates the directional albedo (docs/SAMPLING.md). */
+    abrdf_sample_result r;
+    abrdf_sample_result_init(&r);
+    double albedo = 0.0;
+    const int n_samples = 4096;
+    for (int i = 0; i < n_samples; ++i) {
+        double u1 = (i + 0.5) / n_samples,
+               u2 = (i * 0.6180339887498949) - (int)(i * 0.6180339887498949);
+        if (abrdf_sample(ABRDF_DISNEY_SPECULAR, &p, &frame, wo, u1, u2, &r) != ABRDF_OK) return 1;
+        albedo += r.weight[0] / n_samples;
+    }
+    printf("disney_specular albedo for wo by %d samples (%s) = %.3f\n", n_samples,
+           abrdf_model_sampler(ABRDF_DISNEY_SPECULAR)->name, albedo);
     return 0;
 }

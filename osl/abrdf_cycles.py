@@ -5,8 +5,12 @@ Two modes:
   eval     evaluation mode: every surface runs the scene's generated OSL shader, which
            re-traces the pixel-centre camera ray and the shadow rays against the exact
            analytic primitives (abrdf_trace.h) and returns the built-in renderer's direct
-           lighting as emission (abrdf_osl.h models). Meshes only catch camera rays; a backdrop
-           sphere makes every pixel run the shader. The image matches `abrdf render --spp 1`.
+           lighting as emission (abrdf_osl.h models). Analytic primitives get no host
+           geometry: a backdrop sphere makes every pixel run the shader. Triangle meshes
+           (`mesh` objects) are Cycles geometry with the scene's corner normals: on a mesh the
+           shader takes Cycles' point and interpolated normal, so a scene with meshes renders
+           one sample per pixel (Cycles' first sample lies at the pixel centre), and meshes
+           cast shadows through OSL's trace(). The image matches `abrdf render --spp 1`.
   generic  abrdf_eval.osl, the host-independent evaluation shader, on the meshes with the
            scene's lights as parameters (one lobe per material, at most four lights, no
            shadows); exact where the mesh is (boxes), approximate on curved shapes.
@@ -20,12 +24,15 @@ Runs in any Python that imports bpy (the PyPI `bpy` package) or inside Blender
 (blender -b -P scene.py -- ARGS).
 """
 import argparse
+import base64
 import glob
 import math
 import os
 import shutil
 import sys
 import tempfile
+
+import numpy as np
 
 import bpy  # first: bmesh and mathutils come with it
 import bmesh
@@ -82,6 +89,19 @@ def shader_material(name, osl_path, inputs=None):
     return mat
 
 
+def eval_material(osl_path):
+    """The generated scene shader, told which mesh object a surface is by the object's
+    custom property abrdf_object (index + 1; absent on the backdrop: 0)."""
+    mat = shader_material("abrdf_eval", osl_path)
+    nt = mat.node_tree
+    script = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeScript")
+    attr = nt.nodes.new("ShaderNodeAttribute")
+    attr.attribute_type = "OBJECT"
+    attr.attribute_name = "abrdf_object"
+    nt.links.new(attr.outputs["Fac"], script.inputs["mesh_id"])
+    return mat
+
+
 def mesh_for(o, segments):
     """Mesh of an analytic primitive in object space (the scene format's axes: y up)."""
     bm = bmesh.new()
@@ -109,6 +129,44 @@ def mesh_for(o, segments):
     bm.free()
     if shape != "box":
         me.shade_smooth()
+    return me
+
+
+def mesh_from_data(m, smooth, name="mesh"):
+    """A `mesh` object's triangles (SCENE["meshes"] entry, object space) with the scene's
+    corner normals. Blender 4.5+ keeps them exactly as a float custom_normal attribute on
+    the face corners ("free" normals); older versions encode custom normals in 16 bits per
+    angle (normals_split_custom_set), which moves them by up to about 6e-5."""
+    pos = np.frombuffer(base64.b64decode(m["positions"]), dtype="<f4").astype(np.float32)
+    tri = np.frombuffer(base64.b64decode(m["tri"]), dtype="<i4").astype(np.int32)
+    nv, nt = len(pos) // 3, len(tri) // 3
+    me = bpy.data.meshes.new(name)
+    me.vertices.add(nv)
+    me.vertices.foreach_set("co", pos)
+    me.loops.add(3 * nt)
+    me.loops.foreach_set("vertex_index", tri)
+    me.polygons.add(nt)
+    me.polygons.foreach_set("loop_start", np.arange(0, 3 * nt, 3, dtype=np.int32))
+    me.update(calc_edges=True)
+    if not smooth:
+        me.shade_flat()
+        return me
+    me.shade_smooth()
+    nrm = np.frombuffer(base64.b64decode(m["normals"]), dtype="<f4").reshape(-1, 3)
+    corner = nrm[np.frombuffer(base64.b64decode(m["tri_normal"]), dtype="<i4")]
+    corner = np.ascontiguousarray(corner, dtype=np.float32)
+    try:
+        if "custom_normal" in me.attributes:
+            me.attributes.remove(me.attributes["custom_normal"])
+        attr = me.attributes.new("custom_normal", "FLOAT_VECTOR", "CORNER")
+        attr.data.foreach_set("vector", corner.ravel())
+        me.update()
+        if me.has_custom_normals:
+            return me
+        me.attributes.remove(me.attributes["custom_normal"])
+    except (RuntimeError, TypeError, AttributeError):
+        pass
+    me.normals_split_custom_set([tuple(v) for v in corner.astype(np.float64)])
     return me
 
 
@@ -245,7 +303,7 @@ def build(s, mode, workdir, osl_dir, segments=64):
         path = os.path.join(workdir, s["osl_name"] + ".osl")
         with open(path, "w") as f:
             f.write(s["osl"])
-        mats = [shader_material("abrdf_eval", path)]
+        mats = [eval_material(path)]
         sc.cycles.max_bounces = 0  # emission seen by the camera only
     elif mode == "generic":
         path = os.path.join(workdir, "abrdf_eval.osl")
@@ -261,8 +319,20 @@ def build(s, mode, workdir, osl_dir, segments=64):
     # generic/closure: one Blender material per (scene material, tangent field), since the
     # tangent rule belongs to the object and the shader reads it as a parameter.
     variants = {}
+    has_mesh = any(o["shape"] == "mesh" for o in s["objects"])
+    if mode == "eval" and has_mesh:
+        # On a mesh the shader shades Cycles' own sample point, and only a pixel's first
+        # sample lies at its centre (measured: the same image with box filters 1 and 0.01
+        # pixel wide; from the second sample on, samples spread over the pixel whatever the
+        # filter width): one sample per pixel, the built-in renderer's --spp 1.
+        sc.cycles.samples = 1
     for k, o in enumerate(s["objects"]):
-        me = mesh_for(o, segments)
+        if o["shape"] == "mesh":
+            me = mesh_from_data(s["meshes"][o["mesh"]], o["smooth"], "mesh%d" % k)
+        elif mode == "eval":
+            continue  # re-traced exactly by the shader; the backdrop runs it
+        else:
+            me = mesh_for(o, segments)
         if mode == "eval":
             mat = mats[0]
         else:
@@ -274,7 +344,9 @@ def build(s, mode, workdir, osl_dir, segments=64):
                 variants[key] = shader_material("%s.%d" % (m["name"], len(variants)), path, inputs)
             mat = variants[key]
         me.materials.append(mat)
-        add_object("%s%d" % (o["shape"], k), me, o)
+        ob = add_object("%s%d" % (o["shape"], k), me, o)
+        if o["shape"] == "mesh":
+            ob["abrdf_object"] = k + 1  # read by eval_material's attribute node
     if mode == "eval":
         # Backdrop: an inward-facing sphere around everything, so every pixel runs the
         # shader (a pixel whose centre hits an object may have samples that miss it).

@@ -16,6 +16,7 @@
 #define ABRDF_SHAPE_CYLINDER 1
 #define ABRDF_SHAPE_CAPSULE 2
 #define ABRDF_SHAPE_BOX 3
+#define ABRDF_SHAPE_MESH 4 // triangles the host traces (abrdf_hit_object never hits them)
 
 #define ABRDF_TANGENT_U 0
 #define ABRDF_TANGENT_V 1

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what abrdf needs on a Debian machine, only what is missing. Idempotent.
-#   scripts/setup.sh            build + test dependencies (Debian packages, then bpy in .venv)
+#   scripts/setup.sh            build + test dependencies (Debian packages, then bpy in .venv
+#                               and the Python route's tools in .venv-python)
 #   scripts/setup.sh --no-bpy   the Debian packages only (enough to build and render)
 set -euo pipefail
 with_bpy=1
@@ -9,6 +10,9 @@ with_bpy=1
 debs=(build-essential g++ cmake pkg-config check python3 povray
       libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
       python3-openimageio python3-numpy   # independent image checks in tests
+      python3-dev   # the Python module (python/src), which the sanitizer build compiles
+      libembree-dev        # ray queries of the built-in renderer (tools/render/accel.c)
+      libtinyobjloader-dev # OBJ meshes (tools/render/mesh_obj.cpp)
       clang-format  # the C style, checked by the test check_format
       time)  # /usr/bin/time: POV-Ray's CPU time in tools/bench/renderers.sh (bpy: scripts/setup_bpy.sh)
 
@@ -27,7 +31,9 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-# The OSL port's tests render in Blender's Cycles: bpy from PyPI in .venv.
+# The OSL port's tests render in Blender's Cycles: bpy from PyPI in .venv. The Python package,
+# its tests and the Blender extension's wheel are built with .venv-python.
 if ((with_bpy)); then
   "$(dirname "$0")/setup_bpy.sh"
+  "$(dirname "$0")/setup_python.sh"
 fi

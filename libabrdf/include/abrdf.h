@@ -38,17 +38,20 @@
  *     size your own arrays with it, ask abrdf_model_count() at run time, and never pass a
  *     *_COUNT to the library. "No model" is ABRDF_MODEL_NONE (-1).
  *   - A struct you allocate that can grow starts with `size_t struct_size` (here
- *     abrdf_params; in abrdf_select.h the material, tolerance and selection). Its _init
- *     function is a static inline that passes your sizeof to the library's _init_sized
- *     function, which fills the defaults and sets struct_size. New fields are only ever
- *     appended. The library reads and writes only the first struct_size bytes; a field
- *     beyond them takes its default. struct_size 0 (a block never initialised) or below
- *     the first published layout (0.2.0) is rejected with ABRDF_E_SIZE; copying an
+ *     abrdf_params and abrdf_sample_result; in abrdf_select.h the material, tolerance and
+ *     selection). Its _init function is a static inline that passes your sizeof to the
+ *     library's _init_sized function, which fills the defaults and sets struct_size. New
+ *     fields are only ever appended. The library reads and writes only the first
+ *     struct_size bytes; a field beyond them takes its default. struct_size 0 (a block
+ *     never initialised) or below the struct's first published layout (0.2.0; the sample
+ *     result's first layout is the one here) is rejected with ABRDF_E_SIZE; copying an
  *     initialised struct copies struct_size with it.
  *   - A struct the library owns and hands out by pointer (abrdf_model_info,
- *     abrdf_param_info; abrdf_select_rules and abrdf_select_step) only grows at its end:
+ *     abrdf_param_info, abrdf_sampler_info; abrdf_select_rules and abrdf_select_step) only
+ *     grows at its end:
  *     read the fields your header declares.
- *   - Every other struct (abrdf_layer, abrdf_model_param, abrdf_frame, abrdf_batch; in
+ *   - Every other struct (abrdf_layer, abrdf_model_param, abrdf_frame, abrdf_batch,
+ *     abrdf_prepared (ABRDF_PREPARED_SIZE opaque bytes); in
  *     abrdf_select.h abrdf_approx_error and abrdf_costs) is frozen: new data would come as
  *     a new struct or function. So is ABRDF_MAX_LAYERS.
  *   No public struct is sized by a count that grows. tests/unit/test_abi.c holds the
@@ -73,7 +76,18 @@
  *   abrdf_eval               double-precision scalar reference: f_r for world directions,
  *                            or local-frame directions with frame = NULL
  *   abrdf_eval_batch         float structure-of-arrays batch evaluation, local frame
+ *   abrdf_prepare            validate a model's parameters once and precompute its constants
+ *   abrdf_prepared_model     the model of a prepared object (ABRDF_MODEL_NONE if not prepared)
+ *   abrdf_prepared_params    the validated parameters a prepared object holds
+ *   abrdf_eval_prepared      abrdf_eval of a prepared model (double, scalar)
+ *   abrdf_eval_prepared_batch  abrdf_eval_batch of a prepared model (float, structure of arrays)
  *   abrdf_shade              the paper's pixel intensity I = ka Ia + Il cos (f_d + f_s)
+ *   abrdf_sample             importance sampling: a direction wi for wo, its pdf and the
+ *                            weight f_r cos / pdf (double reference)
+ *   abrdf_pdf                the density with which abrdf_sample returns wi
+ *   abrdf_sample_result_init fill a sample result block, set its struct_size (static inline)
+ *   abrdf_sample_result_init_sized  the same for a block of struct_size bytes
+ *   abrdf_model_sampler      which sampler a model has (stable name, method, citation)
  *   abrdf_r_to_alpha_g, abrdf_alpha_g_to_r, abrdf_alpha_g_to_n, abrdf_n_to_alpha_g,
  *   abrdf_n_to_pov_roughness, abrdf_pov_roughness_to_n   roughness converters
  */
@@ -309,6 +323,59 @@ typedef struct abrdf_batch {
 ABRDF_API int abrdf_eval_batch(abrdf_model model, const abrdf_params *params,
                                const abrdf_batch *batch);
 
+/* ---- prepared evaluation ------------------------------------------------------------- *
+ * What a renderer does per material, as Cycles' closure setup and pbrt-v4's BxDF built per
+ * hit do it: validate the parameters and precompute everything that depends only on them
+ * (normalisations, alpha_g, Oren-Nayar's A and B, the fkub cubic, a hair model's absorption
+ * and lobe constants) ONCE, then evaluate per direction pair with no check and no setup.
+ * abrdf_eval and abrdf_eval_batch are exactly abrdf_prepare followed by these calls, so a
+ * prepared evaluation returns the same bits as the unprepared one.
+ *
+ *   abrdf_prepared mat;
+ *   if (abrdf_prepare(ABRDF_DISNEY_SPECULAR, &params, &mat) != ABRDF_OK) ...;  // once
+ *   abrdf_eval_prepared(&mat, &frame, wi, wo, f);                             // per sample
+ *
+ * LIFETIME AND SHARING. abrdf_prepared is plain data of a fixed size, owned by the caller
+ * (stack, array, heap) and valid as long as that memory is: it holds a copy of the
+ * parameters (the block passed to abrdf_prepare may change or go away afterwards) and no
+ * pointer, so a copy (assignment, memcpy) is a prepared object too. Nothing is allocated
+ * and nothing needs releasing. A prepared object is never modified by an evaluation, so
+ * any number of threads may evaluate one concurrently. It is valid only for the library
+ * that prepared it (the same process); do not store it in files. A block that
+ * abrdf_prepare did not fill (or filled after a failure) is "not prepared": evaluating it
+ * returns ABRDF_E_MODEL with f = 0. The struct is frozen (STABLE LAYOUTS): a later
+ * release keeps ABRDF_PREPARED_SIZE and its alignment. */
+#define ABRDF_PREPARED_SIZE 2048 /* frozen: bytes of abrdf_prepared */
+
+typedef struct abrdf_prepared {
+    union {
+        unsigned char bytes[ABRDF_PREPARED_SIZE]; /* opaque: read through the functions below */
+        double align_double;                      /* alignment of the library's layout */
+        void *align_pointer;
+    } opaque;
+} abrdf_prepared;
+
+/* Validate `params` for `model` (as abrdf_params_check, which gives the message) and
+ * precompute. On success the object holds the model, a copy of the parameters in this
+ * library's layout (fields beyond an older caller's struct_size at the model's defaults) and
+ * the constants of both the scalar and the batch path. On failure (ABRDF_E_NULL,
+ * ABRDF_E_MODEL, ABRDF_E_SIZE, ABRDF_E_RANGE, ...) *prepared is "not prepared". */
+ABRDF_API int abrdf_prepare(abrdf_model model, const abrdf_params *params,
+                            abrdf_prepared *prepared);
+/* The model prepared, or ABRDF_MODEL_NONE for NULL or a block that is not prepared. */
+ABRDF_API abrdf_model abrdf_prepared_model(const abrdf_prepared *prepared);
+/* The validated parameters held by the object (this library's layout: read the fields your
+ * header declares), or NULL if it is not prepared. Valid as long as the object is. */
+ABRDF_API const abrdf_params *abrdf_prepared_params(const abrdf_prepared *prepared);
+/* abrdf_eval of the prepared model: world directions with a frame, or local-frame
+ * directions with frame = NULL (normalised here; degenerate vectors give f = 0). */
+ABRDF_API int abrdf_eval_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame,
+                                  const double wi[3], const double wo[3], double f[3]);
+/* abrdf_eval_batch of the prepared model. The loops run the best instruction set this CPU
+ * supports (AVX2 + FMA, AVX-512 on x86-64), chosen per call from the CPU alone; results
+ * agree with the double path within the batch path's float tolerance (docs/MODELS.md). */
+ABRDF_API int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const abrdf_batch *batch);
+
 /* The paper's pixel intensity (Sec. 1), physically based convention (MODELS.md B1):
  *   I = ka*Ia + Il * max(0, N.wi) * (f_diffuse + f_specular)
  * where the diffuse model carries kd and the specular model carries ks. Either model may
@@ -324,6 +391,67 @@ ABRDF_API double abrdf_alpha_g_to_n(double alpha_g);     /* Blinn-Phong n = 2/al
 ABRDF_API double abrdf_n_to_alpha_g(double n);           /* alpha_g = sqrt(2/(n + 2)) */
 ABRDF_API double abrdf_n_to_pov_roughness(double n);     /* POV-Ray roughness = 1/n; n = 0 -> 0 */
 ABRDF_API double abrdf_pov_roughness_to_n(double rough); /* n = 1/rough; rough = 0 -> 0 */
+
+/* ---- sampling ----------------------------------------------------------------------- *
+ * What a path tracer needs beside evaluation (pbrt-v4's Sample_f/PDF, Mitsuba's
+ * sample/pdf): for the viewer direction wo, a light direction wi drawn with a density close
+ * to f_r(wi, wo) |N.wi|, its density and the weight f_r |N.wi| / pdf. docs/SAMPLING.md
+ * lists the sampler of every model with its citation (abrdf_model_sampler names it).
+ *   - pdf is per unit solid angle (1/sr), over the whole sphere of directions: a sampler
+ *     may return wi below the surface (N.wi <= 0), where f_r = 0, so its weight is 0. Such
+ *     samples are part of the distribution (count them, do not redraw).
+ *   - weight = f_r(wi, wo) max(0, N.wi) / pdf exactly, per channel: for a model with
+ *     several lobes one lobe is chosen at random and pdf is the density of the whole
+ *     mixture at wi (one-sample MIS), never the chosen lobe's alone.
+ *   - Random numbers: u1, u2 in [0, 1]. Where a lobe must be chosen, u1 chooses it and is
+ *     reused, rescaled, for the direction (as pbrt-v4 does); no third number is needed.
+ *   - wo below or on the surface, or degenerate: no sample, reported as pdf = 0 (wi = N,
+ *     weight 0) with ABRDF_OK, as abrdf_eval reports f = 0.
+ *   - Deterministic: the same inputs give the same sample. No allocation, thread-safe. */
+typedef struct abrdf_sample_result {
+    size_t struct_size; /* bytes of this struct as the caller compiled it; set by _init */
+    double wi[3];       /* sampled direction toward the light, unit; world frame, or local
+                           if frame is NULL */
+    double pdf;         /* density of wi, 1/sr, >= 0; 0 = no sample */
+    double weight[3];   /* f_r(wi, wo) max(0, N.wi) / pdf per channel, finite, >= 0 */
+} abrdf_sample_result;
+
+/* Sets struct_size and clears the block (ABRDF_E_SIZE, writing nothing, below the first
+ * layout). Call it once through abrdf_sample_result_init; a block can be reused. */
+ABRDF_API int abrdf_sample_result_init_sized(abrdf_sample_result *result, size_t struct_size);
+static inline int abrdf_sample_result_init(abrdf_sample_result *result)
+{
+    return abrdf_sample_result_init_sized(result, sizeof(abrdf_sample_result));
+}
+
+/* Sample wi for wo (world, normalised here; frame NULL: local-frame directions as in
+ * abrdf_eval). Returns ABRDF_OK, an error of abrdf_params_check, ABRDF_E_NULL,
+ * ABRDF_E_SIZE (result not initialised) or ABRDF_E_RANGE (u1 or u2 outside [0, 1] or NaN);
+ * on error the result holds no sample. Double precision, the reference of any later
+ * batch form. */
+ABRDF_API int abrdf_sample(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
+                           const double wo[3], double u1, double u2, abrdf_sample_result *result);
+
+/* The density (1/sr) with which abrdf_sample returns wi for wo, for the same model,
+ * parameters and frame: what MIS needs for a direction another strategy (a light) drew.
+ * Degenerate vectors or wo below the surface give 0. Returns ABRDF_OK or an error as
+ * abrdf_sample (then *pdf = 0). */
+ABRDF_API int abrdf_pdf(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
+                        const double wi[3], const double wo[3], double *pdf);
+
+/* Which sampler a model has (bit flags of abrdf_sampler_info.flags). */
+#define ABRDF_SAMPLER_MIXTURE 0x01u /* several components, one chosen per sample (MIS) */
+#define ABRDF_SAMPLER_BELOW 0x02u   /* may return wi below the surface (with weight 0) */
+
+typedef struct abrdf_sampler_info {
+    const char *name;     /* stable lower-case name, e.g. "cosine", "ggx_vndf" */
+    const char *method;   /* one line: the components and what each draws */
+    const char *citation; /* where the sampling method is published */
+    unsigned flags;       /* ABRDF_SAMPLER_* */
+} abrdf_sampler_info;
+
+/* The sampler of `model`; NULL for an unknown model. Owned by the library. */
+ABRDF_API const abrdf_sampler_info *abrdf_model_sampler(abrdf_model model);
 
 #ifdef __cplusplus
 }

@@ -265,7 +265,8 @@ static inline int abrdf_selection_init(abrdf_selection *s)
  * abrdf_params_init, any model), receives one block for both chosen models, as abrdf_shade
  * takes it, filled from the material. trace, if not NULL, is called with trace_user once per
  * decision, in order. Returns ABRDF_OK; ABRDF_E_NULL, ABRDF_E_SIZE or ABRDF_E_RANGE with
- * out->message naming the problem (out itself NULL or too small: nothing is written). */
+ * out->message naming the problem (out itself NULL or too small: nothing is written). A cost
+ * table holding a NaN or an infinity (written to cost[] directly) is ABRDF_E_RANGE. */
 ABRDF_API int abrdf_select(const abrdf_material *m, abrdf_goal goal, const abrdf_tolerance *tol,
                            const abrdf_costs *costs, abrdf_selection *out, abrdf_params *params,
                            abrdf_select_trace_fn trace, void *trace_user);

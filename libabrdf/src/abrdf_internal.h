@@ -1,5 +1,4 @@
-/* abrdf_internal.h - internals shared by the library sources: the evaluation entry points
- * per precision and the helpers of the registry and selection. Includes guards.h, where
+/* abrdf_internal.h - internals shared by the library sources: the helpers of the registry and selection. Includes guards.h, where
  * every named threshold is.
  *
  * The closed-form models are written once, in the k_*.h kernel files (kernel.h explains
@@ -15,12 +14,9 @@
 #define ABRDF__PI 3.14159265358979323846
 #define ABRDF__INV_PI 0.31830988618379067154
 
-/* ---- evaluation entry points per precision ------------------------------------------ */
-/* Local-frame evaluation; inputs already validated. wi, wo need not be normalised here:
- * the scalar path normalises before calling. f is finite and >= 0. */
-void abrdf__eval_local_d(abrdf_model model, const abrdf_params *p, const double wi[3],
-                         const double wo[3], double f[3]);
-void abrdf__eval_batch_f(abrdf_model model, const abrdf_params *p, const abrdf_batch *b);
+/* ---- evaluation entry points ---------------------------------------------------------- */
+/* Every evaluation goes through a prepared object (prepared.h): abrdf_eval and
+ * abrdf_eval_batch prepare one on the stack and evaluate it. */
 
 /* Special-surface models that integrate numerically are implemented in double only; the
  * batch path calls them per element. Returns 1 if `model` is such a model. */

@@ -1,9 +1,11 @@
 /* api.c - the public entry points: validation, world <-> local frame, shading, converters. */
 #include <float.h>
+#include <stddef.h>
 #include <math.h>
 #include <string.h>
 
 #include "abrdf_internal.h"
+#include "prepared.h"
 #include "vec.h"
 
 int abrdf_frame_make(const double n[3], const double t[3], abrdf_frame *frame)
@@ -47,16 +49,80 @@ static void to_local(const abrdf_frame *fr, const double v[3], double out[3])
     out[2] = abrdf__dot3(v, fr->n);
 }
 
-int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
-               const double wi[3], const double wo[3], double f[3])
+/* ---- prepared evaluation ------------------------------------------------------------ */
+
+/* The prepared state must fit abrdf_prepared, whose size is frozen (abrdf.h), and the
+ * public struct's alignment (double, pointer) must suit it: a C99 compile-time check. */
+typedef char abrdf__prep_fits[sizeof(abrdf__prep) <= ABRDF_PREPARED_SIZE ? 1 : -1];
+struct abrdf__prep_align {
+    char c;
+    abrdf__prep p;
+};
+struct abrdf__prepared_align {
+    char c;
+    abrdf_prepared p;
+};
+typedef char abrdf__prep_aligned
+    [offsetof(struct abrdf__prep_align, p) <= offsetof(struct abrdf__prepared_align, p) ? 1 : -1];
+
+void abrdf__prep_make(abrdf__prep *pr, abrdf_model model, const abrdf_params *p, unsigned what)
 {
-    if (!f) return ABRDF_E_NULL;
-    f[0] = f[1] = f[2] = 0.0;
-    if (!params || !wi || !wo) return ABRDF_E_NULL;
+    pr->magic = ABRDF__PREP_MAGIC;
+    pr->model = model;
+    pr->params = *p;
+    pr->params.struct_size = sizeof(abrdf_params);
+    if (abrdf__is_double_only(model)) {
+        abrdf__prep_setup_special(pr);
+        return;
+    }
+    if (what & ABRDF__PREP_DOUBLE) abrdf__prep_setup_d(pr);
+    if (what & ABRDF__PREP_FLOAT) abrdf__prep_setup_f(pr);
+}
+
+/* Validate and prepare into pr; returns the status of abrdf_params_check. */
+static int prep_checked(abrdf_model model, const abrdf_params *params, abrdf__prep *pr,
+                        unsigned what)
+{
     int st = abrdf_params_check(model, params, NULL, 0);
     if (st != ABRDF_OK) return st;
     abrdf_params full;
-    params = abrdf__params_view(model, params, &full);
+    abrdf__prep_make(pr, model, abrdf__params_view(model, params, &full), what);
+    return ABRDF_OK;
+}
+
+static const abrdf__prep *prep_of(const abrdf_prepared *prepared)
+{
+    const abrdf__prep *pr = (const abrdf__prep *)(const void *)prepared;
+    return prepared && pr->magic == ABRDF__PREP_MAGIC ? pr : NULL;
+}
+
+int abrdf_prepare(abrdf_model model, const abrdf_params *params, abrdf_prepared *prepared)
+{
+    if (!prepared) return ABRDF_E_NULL;
+    memset(prepared, 0, sizeof *prepared); /* not prepared, and no stale bytes in a copy */
+    if (!params) return ABRDF_E_NULL;
+    abrdf__prep *pr = (abrdf__prep *)(void *)prepared;
+    int st = prep_checked(model, params, pr, ABRDF__PREP_DOUBLE | ABRDF__PREP_FLOAT);
+    if (st != ABRDF_OK) pr->magic = 0;
+    return st;
+}
+
+abrdf_model abrdf_prepared_model(const abrdf_prepared *prepared)
+{
+    const abrdf__prep *pr = prep_of(prepared);
+    return pr ? pr->model : ABRDF_MODEL_NONE;
+}
+
+const abrdf_params *abrdf_prepared_params(const abrdf_prepared *prepared)
+{
+    const abrdf__prep *pr = prep_of(prepared);
+    return pr ? &pr->params : NULL;
+}
+
+/* abrdf_eval_prepared's body, for the public prepared object and abrdf_eval's own. */
+static int eval_prep(const abrdf__prep *pr, const abrdf_frame *frame, const double wi[3],
+                     const double wo[3], double f[3])
+{
     double i[3], o[3], li[3], lo[3];
     if (!abrdf__normalise3(wi, i) || !abrdf__normalise3(wo, o))
         return ABRDF_OK; /* degenerate: f = 0 */
@@ -69,23 +135,68 @@ int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame 
         memcpy(li, i, sizeof li);
         memcpy(lo, o, sizeof lo);
     }
-    abrdf__eval_local_d(model, params, li, lo, f);
+    abrdf__eval_prepared_d(pr, li, lo, f);
+    return ABRDF_OK;
+}
+
+int abrdf_eval_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame,
+                        const double wi[3], const double wo[3], double f[3])
+{
+    if (!f) return ABRDF_E_NULL;
+    f[0] = f[1] = f[2] = 0.0;
+    if (!prepared || !wi || !wo) return ABRDF_E_NULL;
+    const abrdf__prep *pr = prep_of(prepared);
+    if (!pr) return ABRDF_E_MODEL;
+    return eval_prep(pr, frame, wi, wo, f);
+}
+
+int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
+               const double wi[3], const double wo[3], double f[3])
+{
+    if (!f) return ABRDF_E_NULL;
+    f[0] = f[1] = f[2] = 0.0;
+    if (!params || !wi || !wo) return ABRDF_E_NULL;
+    abrdf__prep pr; /* only the double path's part: abrdf_prepare's, bit for bit */
+    int st = prep_checked(model, params, &pr, ABRDF__PREP_DOUBLE);
+    if (st != ABRDF_OK) return st;
+    return eval_prep(&pr, frame, wi, wo, f);
+}
+
+static int batch_ok(const abrdf_batch *b)
+{
+    return !b->count || (b->wi_x && b->wi_y && b->wi_z && b->wo_x && b->wo_y && b->wo_z && b->f_r &&
+                         b->f_g && b->f_b);
+}
+
+static void batch_zero(const abrdf_batch *b)
+{
+    for (size_t i = 0; i < b->count; ++i) b->f_r[i] = b->f_g[i] = b->f_b[i] = 0.0f;
+}
+
+int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const abrdf_batch *b)
+{
+    if (!prepared || !b) return ABRDF_E_NULL;
+    if (!batch_ok(b)) return ABRDF_E_NULL;
+    const abrdf__prep *pr = prep_of(prepared);
+    if (!pr) {
+        batch_zero(b);
+        return ABRDF_E_MODEL;
+    }
+    abrdf__eval_prepared_f(pr, b);
     return ABRDF_OK;
 }
 
 int abrdf_eval_batch(abrdf_model model, const abrdf_params *params, const abrdf_batch *b)
 {
     if (!params || !b) return ABRDF_E_NULL;
-    if (b->count && (!b->wi_x || !b->wi_y || !b->wi_z || !b->wo_x || !b->wo_y || !b->wo_z ||
-                     !b->f_r || !b->f_g || !b->f_b))
-        return ABRDF_E_NULL;
-    int st = abrdf_params_check(model, params, NULL, 0);
+    if (!batch_ok(b)) return ABRDF_E_NULL;
+    abrdf__prep pr;
+    int st = prep_checked(model, params, &pr, ABRDF__PREP_FLOAT);
     if (st != ABRDF_OK) {
-        for (size_t i = 0; i < b->count; ++i) b->f_r[i] = b->f_g[i] = b->f_b[i] = 0.0f;
+        batch_zero(b);
         return st;
     }
-    abrdf_params full;
-    abrdf__eval_batch_f(model, abrdf__params_view(model, params, &full), b);
+    abrdf__eval_prepared_f(&pr, b);
     return ABRDF_OK;
 }
 

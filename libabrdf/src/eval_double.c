@@ -1,25 +1,33 @@
-/* eval_double.c - the double-precision scalar reference path. */
+/* eval_double.c - the double-precision scalar reference path: the closed-form models' setups
+ * in double and their kernels, one direction pair per call. */
 #include "k_dispatch.h"
-#include "special.h"
+#include "prepared.h"
+
+#define ABRDF__SETUP_CASE(ID, SETUP, KERNEL)                                                       \
+    case ID: ABRDF__FN(SETUP)(&pr->kd, &pr->params); break;
+
+void abrdf__prep_setup_d(abrdf__prep *pr)
+{
+    switch (pr->model) {
+        ABRDF__KERNEL_MODELS(ABRDF__SETUP_CASE)
+    default: break;
+    }
+}
 
 #define ABRDF__EVAL_CASE(ID, SETUP, KERNEL)                                                        \
-    case ID:                                                                                       \
-        ABRDF__FN(SETUP)(&k, p);                                                                   \
-        ABRDF__FN(KERNEL)(&k, &g, v);                                                              \
-        break;
+    case ID: ABRDF__FN(KERNEL)(&pr->kd, &g, v); break;
 
-void abrdf__eval_local_d(abrdf_model model, const abrdf_params *p, const double wi[3],
-                         const double wo[3], double f[3])
+void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const double wo[3],
+                            double f[3])
 {
     double v[3] = {0.0, 0.0, 0.0};
-    if (abrdf__is_double_only(model)) {
-        abrdf__eval_special(model, p, wi, wo, v);
+    if (abrdf__is_double_only(pr->model)) {
+        abrdf__eval_special_prepared(pr, wi, wo, v);
     } else {
         ABRDF__GEO g;
         ABRDF__FN(geo_make)(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
         if (ABRDF__FN(geo_front)(&g)) {
-            ABRDF__KP k;
-            switch (model) {
+            switch (pr->model) {
                 ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
             default: break;
             }

@@ -2,6 +2,7 @@
  * model's kernel inlined, so the compiler can vectorise it. */
 #define ABRDF__KERNEL_FLOAT 1 /* kernel.h: the kernels in float */
 #include "k_dispatch.h"
+#include "prepared.h"
 #include "vec.h"
 
 /* One loop per model with the kernel inlined. The front-facing test and the finiteness
@@ -27,9 +28,48 @@ static inline float abrdf__keep(float front, float x)
     return ABRDF__FN(finite_or_zero)(x) * front;
 }
 
-/* ABRDF__BATCH_LOOP(id, setup, k_f8) defines batch_k_f8_f, the loop of kernel k_f8_f. */
-#define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL)                                                       \
-    ABRDF__NOINLINE static void ABRDF__FN(batch_##KERNEL)(                                         \
+/* RUN-TIME INSTRUCTION SETS. Each loop is compiled once per level below, and every batch
+ * call runs the best level the CPU supports, so the default (portable) build runs AVX2 or
+ * AVX-512 code where the machine has it. The choice is a pure function of the CPU
+ * (abrdf__isa_best reads the compiler runtime's CPU model, which it fills once at program
+ * start): no state of the library's own, no ifunc (which needs the dynamic loader's
+ * cooperation that a static link does not have, and cannot be forced to a level in tests).
+ * The float tolerance of the batch path holds at every level (FMA contraction changes the
+ * last bits); tests run every level the machine has (abrdf__eval_prepared_f_isa). */
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define ABRDF__ISA_X86 1
+/* Levels: 0 the build's baseline, 1 AVX2 + FMA (x86-64-v3), 2 AVX-512 (x86-64-v4). */
+#define ABRDF__ISA_ATTR_0
+#define ABRDF__ISA_ATTR_1 __attribute__((target("avx2,fma")))
+#define ABRDF__ISA_ATTR_2                                                                          \
+    __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,avx2,fma,prefer-vector-width=512")))
+#define ABRDF__ISA_LEVELS(X) X(0) X(1) X(2)
+#else
+#define ABRDF__ISA_X86 0
+#define ABRDF__ISA_ATTR_0
+#define ABRDF__ISA_LEVELS(X) X(0)
+#endif
+
+int abrdf__isa_best(void)
+{
+#if ABRDF__ISA_X86
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq"))
+        return 2;
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return 1;
+#endif
+    return 0;
+}
+
+const char *abrdf__isa_name(int level)
+{
+    static const char *const names[] = {"baseline", "avx2+fma", "avx512"};
+    return level >= 0 && level < ABRDF__ISA_COUNT ? names[level] : "none";
+}
+
+/* ABRDF__BATCH_LOOP_ISA(k_f8, 1) defines batch_k_f8_f_1, the loop of kernel k_f8_f at level 1. */
+#define ABRDF__BATCH_LOOP_ISA(KERNEL, L)                                                           \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void ABRDF__CAT(ABRDF__FN(batch_##KERNEL), L)(      \
         const ABRDF__KP *restrict k, size_t n, const float *restrict ix, const float *restrict iy, \
         const float *restrict iz, const float *restrict ox, const float *restrict oy,              \
         const float *restrict oz, float *restrict fr, float *restrict fg, float *restrict fb)      \
@@ -45,47 +85,80 @@ static inline float abrdf__keep(float front, float x)
             fb[i] = abrdf__keep(front, v[2]);                                                      \
         }                                                                                          \
     }
+#if ABRDF__ISA_X86
+#define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL)                                                       \
+    ABRDF__BATCH_LOOP_ISA(KERNEL, 0)                                                               \
+    ABRDF__BATCH_LOOP_ISA(KERNEL, 1) ABRDF__BATCH_LOOP_ISA(KERNEL, 2)
+#else
+#define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL) ABRDF__BATCH_LOOP_ISA(KERNEL, 0)
+#endif
 ABRDF__KERNEL_MODELS(ABRDF__BATCH_LOOP)
 
-#define ABRDF__BATCH_CASE(ID, SETUP, KERNEL)                                                       \
-    case ID:                                                                                       \
-        ABRDF__FN(SETUP)(&k, p);                                                                   \
-        ABRDF__FN(batch_##KERNEL)                                                                  \
-        (&k, n, b->wi_x, b->wi_y, b->wi_z, b->wo_x, b->wo_y, b->wo_z, b->f_r, b->f_g, b->f_b);     \
-        break;
+#define ABRDF__SETUP_CASE(ID, SETUP, KERNEL)                                                       \
+    case ID: ABRDF__FN(SETUP)(&pr->kf, &pr->params); break;
+
+void abrdf__prep_setup_f(abrdf__prep *pr)
+{
+    switch (pr->model) {
+        ABRDF__KERNEL_MODELS(ABRDF__SETUP_CASE)
+    default: break;
+    }
+}
 
 /* Double-only models per element, through the scalar path itself: the float inputs are
  * renormalised in double first (they are unit only to 2^-24, and an integrating model need
  * not tolerate that), degenerate vectors give 0, and a value beyond float's range gives 0
- * like the closed-form loops, never Inf (abrdf__eval_local_d's result is finite, >= 0). */
+ * like the closed-form loops, never Inf (abrdf__eval_prepared_d's result is finite, >= 0). */
 static float abrdf__to_float(double v) { return v <= FLT_MAX ? (float)v : 0.0f; }
 
-static void abrdf__batch_special(abrdf_model model, const abrdf_params *p, const abrdf_batch *b)
+static void abrdf__batch_special(const abrdf__prep *pr, const abrdf_batch *b)
 {
     for (size_t i = 0; i < b->count; ++i) {
         double wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
         double wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
         double ui[3], uo[3], f[3] = {0.0, 0.0, 0.0};
         if (abrdf__normalise3(wi, ui) && abrdf__normalise3(wo, uo))
-            abrdf__eval_local_d(model, p, ui, uo, f);
+            abrdf__eval_prepared_d(pr, ui, uo, f);
         b->f_r[i] = abrdf__to_float(f[0]);
         b->f_g[i] = abrdf__to_float(f[1]);
         b->f_b[i] = abrdf__to_float(f[2]);
     }
 }
 
-void abrdf__eval_batch_f(abrdf_model model, const abrdf_params *p, const abrdf_batch *b)
+#define ABRDF__BATCH_CASE_ISA(ID, KERNEL, L)                                                       \
+    case ID:                                                                                       \
+        ABRDF__CAT(ABRDF__FN(batch_##KERNEL), L)                                                   \
+        (&pr->kf, n, b->wi_x, b->wi_y, b->wi_z, b->wo_x, b->wo_y, b->wo_z, b->f_r, b->f_g,         \
+         b->f_b);                                                                                  \
+        return 0;
+#define ABRDF__BATCH_CASE_0(ID, SETUP, KERNEL) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 0)
+#define ABRDF__BATCH_CASE_1(ID, SETUP, KERNEL) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 1)
+#define ABRDF__BATCH_CASE_2(ID, SETUP, KERNEL) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 2)
+#define ABRDF__ISA_SWITCH(L)                                                                       \
+    case L:                                                                                        \
+        switch (pr->model) {                                                                       \
+            ABRDF__KERNEL_MODELS(ABRDF__BATCH_CASE_##L)                                            \
+        default: break;                                                                            \
+        }                                                                                          \
+        break;
+
+int abrdf__eval_prepared_f_isa(const abrdf__prep *pr, const abrdf_batch *b, int level)
 {
-    if (abrdf__is_double_only(model)) {
-        abrdf__batch_special(model, p, b);
-        return;
+    if (level < 0 || level > abrdf__isa_best()) return -1;
+    if (abrdf__is_double_only(pr->model)) {
+        abrdf__batch_special(pr, b);
+        return 0;
     }
     const size_t n = b->count;
-    ABRDF__KP k;
-    switch (model) {
-        ABRDF__KERNEL_MODELS(ABRDF__BATCH_CASE)
-    default:
-        for (size_t i = 0; i < n; ++i) b->f_r[i] = b->f_g[i] = b->f_b[i] = 0.0f;
-        break;
+    switch (level) {
+        ABRDF__ISA_LEVELS(ABRDF__ISA_SWITCH)
+    default: break;
     }
+    for (size_t i = 0; i < n; ++i) b->f_r[i] = b->f_g[i] = b->f_b[i] = 0.0f;
+    return 0;
+}
+
+void abrdf__eval_prepared_f(const abrdf__prep *pr, const abrdf_batch *b)
+{
+    abrdf__eval_prepared_f_isa(pr, b, abrdf__isa_best());
 }

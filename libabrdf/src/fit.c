@@ -139,12 +139,14 @@ static double half_width(const abrdf__brdf *b, const double wi[3], dir_fn dir, d
         xs[n++] = 1e-4 * pow(span / 1e-4, (double)(k - 1) / (STEPS - 1));
     int best = STEPS;
     double floor_v = INFINITY;
+    abrdf__brdf_prep bp;
+    abrdf__brdf_prepare(b, &bp);
     for (int i = 0; i < n; ++i) {
         double wo[3], f[3];
         dir(wi, xs[i], wo);
         vs[i] = 0.0;
         if (wo[2] > 0.0) {
-            abrdf__brdf_eval(b, wi, wo, f);
+            abrdf__brdf_prep_eval(&bp, wi, wo, f);
             vs[i] = mean3(f) * wi[2];
         }
         floor_v = fmin(floor_v, vs[i]);

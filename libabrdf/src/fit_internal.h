@@ -8,24 +8,17 @@
 
 #include "abrdf_fit.h"
 #include "abrdf_internal.h"
+#include "prepared.h"
 
 /* ---- one lobe prepared for many evaluations (lobes.c) -------------------------------- */
 
-/* Room for a closed-form kernel's prepared parameters (abrdf__kp_d, kernel.h), checked at
- * compile time in lobes.c. */
-#define ABRDF__KP_BYTES 256
-
+/* A lobe prepared as abrdf_prepare does (prepared.h), double path only. */
 typedef struct abrdf__lobe_prep {
-    abrdf_model model;     /* ABRDF_MODEL_NONE: evaluates to 0 */
-    const abrdf_params *p; /* the block (must outlive the preparation) */
-    int closed;            /* a closed-form kernel, prepared in k */
-    union {
-        double align;
-        unsigned char bytes[ABRDF__KP_BYTES];
-    } k;
+    abrdf_model model; /* ABRDF_MODEL_NONE: evaluates to 0 */
+    abrdf__prep pr;    /* the prepared model (a copy of the block) */
 } abrdf__lobe_prep;
 
-/* Prepare lobe m with block p (validated by the caller). */
+/* Prepare lobe m with block p (this library's layout, validated by the caller; copied). */
 void abrdf__lobe_prepare(abrdf__lobe_prep *lp, abrdf_model m, const abrdf_params *p);
 /* f_r of the prepared lobe at local-frame unit directions; finite and >= 0. */
 void abrdf__lobe_eval(const abrdf__lobe_prep *lp, const double wi[3], const double wo[3],
@@ -42,9 +35,8 @@ typedef struct abrdf__brdf {
  * message naming the problem (no lobe, unknown model, parameter out of range). */
 int abrdf__brdf_make(abrdf__brdf *b, abrdf_model diffuse, abrdf_model specular,
                      const abrdf_params *p, char *msg, size_t msg_size);
-/* f_r of the sum of the lobes, local frame, unit vectors; no checks (b was made valid). */
-void abrdf__brdf_eval(const abrdf__brdf *b, const double wi[3], const double wo[3], double f[3]);
-/* The same with both lobes prepared once (b must outlive bp). */
+/* f_r of the sum of the lobes, local frame, unit vectors, no checks (b was made valid), with
+ * both lobes prepared once (a copy of b's block: b may change or go away afterwards). */
 typedef struct abrdf__brdf_prep {
     abrdf__lobe_prep lobe[2];
 } abrdf__brdf_prep;

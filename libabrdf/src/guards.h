@@ -115,6 +115,19 @@
  * the critical angle of a less dense layer, and carries no energy. */
 #define ABRDF__BELCOUR_COS_MIN 1e-6
 
+/* ---- sampling (sample_*.c) -------------------------------------------------------------- */
+
+/* A power-form or Schlick lobe whose value varies by less than this relative amount over its
+ * support (n t_max / m for ((n/m)(c - 1) + 1)^m, n for 1/(1 + n t)) is sampled uniformly:
+ * its own inverse CDF would take 1 - x^(1/(m+1)) of an x within 1e-8 of 1 and lose half
+ * the digits, while the uniform density is within 1e-8 of the lobe's. */
+#define ABRDF__SAMPLE_FLAT 1e-8
+
+/* The largest uniform number a sampler uses: abrdf_sample accepts u = 1, which every
+ * inverse CDF here maps to the end of its support (log(1 - u) = -Inf); 1 - 2^-53 is the
+ * largest double below 1. */
+#define ABRDF__SAMPLE_U_MAX (1.0 - 1.1102230246251565e-16)
+
 /* ---- guards of the double-only models --------------------------------------------------- */
 
 /* sqrt of a quantity that is >= 0 up to rounding (1 - c^2, a sum of squares minus one). */

@@ -75,8 +75,8 @@ void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double th
 void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const double wo[3],
                             unsigned lobes, double s[3]);
 
-/* f_r for the surface (the dispatch entry). */
-void abrdf__marschner_eval(const abrdf_params *p, const double wi[3], const double wo[3],
+/* f_r for the surface from the model's setup (the dispatch entry, special.c). */
+void abrdf__marschner_eval(const abrdf__marschner *m, const double wi[3], const double wo[3],
                            double f[3]);
 
 /* ---- Huang, Hullin, Hanika 2022 (hair_huang.c) -------------------------------------- */
@@ -86,6 +86,10 @@ void abrdf__marschner_eval(const abrdf_params *p, const double wi[3], const doub
  * (docs/SPECIAL_HAIR.md gives the convergence that chose them). */
 #define ABRDF__HUANG_N1 6
 #define ABRDF__HUANG_N2 3
+/* Largest VNDF grid (n x n nodes) abrdf__huang_fibre takes: n1, n2 <= 32, so the convergence
+ * study (docs/SPECIAL_HAIR.md, 4x the default grids) fits; the node tables of two grids then
+ * take 32 KiB of stack. */
+#define ABRDF__HUANG_NODES_MAX 1024
 
 typedef struct abrdf__huang {
     double eta;        /* index of refraction */
@@ -94,7 +98,8 @@ typedef struct abrdf__huang {
     double b;          /* minor/major axis ratio, (0, 1] */
     double sigma_a[3]; /* absorption per unit (major) radius */
     int refine;        /* Simpson step divisor in h (1 = Cycles' steps) */
-    int n1, n2;        /* VNDF midpoint grid sizes per dimension (entry, internal) */
+    int n1, n2;        /* VNDF midpoint grid sizes per dimension (entry, internal), <= 32
+                          (ABRDF__HUANG_NODES_MAX; larger grids give no TT/TRT/TRRT+) */
     int compensate;    /* 1: divide each interaction by the glass albedo E (Cycles) */
 } abrdf__huang;
 
@@ -113,6 +118,7 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m);
 /* Fibre function S (hair.h convention); lobes: R (1), TT (2), TRT (4), TRRT+ (8). */
 void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double wo[3],
                         unsigned lobes, double s[3]);
-void abrdf__huang_eval(const abrdf_params *p, const double wi[3], const double wo[3], double f[3]);
+/* f_r for the surface from the model's setup (the dispatch entry, special.c). */
+void abrdf__huang_eval(const abrdf__huang *m, const double wi[3], const double wo[3], double f[3]);
 
 #endif /* ABRDF_HAIR_H */

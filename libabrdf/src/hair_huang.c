@@ -84,18 +84,20 @@ static double h_to_gamma(double h_div_r, double b, v3 wi)
 
 static v3 to_point(double gamma, double b) { return mk(sin(gamma), 0.0, b * cos(gamma)); }
 
-/* Unit (meso)normal at ellipse parameter gamma, tilted by theta along the fibre. */
-static v3 sphg_dir(double theta, double gamma, double b)
+/* Unit (meso)normal at ellipse parameter gamma, tilted by theta along the fibre (st = sin
+ * theta, ct = cos theta), and, if flat is not NULL, the untilted one: both from one sine and
+ * cosine of gamma. */
+static void sphg_pair(double st, double ct, double gamma, double b, v3 *tilted, v3 *flat)
 {
-    double st = sin(theta), ct = cos(theta), sg = sin(gamma), cg = cos(gamma);
+    double sg = sin(gamma), cg = cos(gamma);
     double sp = sg, cp = cg;
-    /* the normal of x = sin g, z = b cos g */
     if (b != 1.0 && fabs(cg) >= ABRDF__HUANG_ELLIPSE_COS_MIN) {
         double tp = b * sg / cg;
         cp = (cg > 0.0 ? 1.0 : -1.0) / sqrt(tp * tp + 1.0);
         sp = cp * tp;
     }
-    return mk(sp * ct, st, cp * ct);
+    *tilted = mk(sp * ct, st, cp * ct);
+    if (flat) *flat = mk(sp, 0.0, cp);
 }
 
 /* Relative arc length of the ellipse at gamma (e2 = 1 - b^2). */
@@ -137,7 +139,43 @@ static double ggx_go(double alpha2, double ci, double co)
 /* Heitz 2018, "Sampling the GGX distribution of visible normals": maps (u1, u2) in the unit
  * square to a microfacet normal distributed as the VNDF of direction wi about normal wm.
  * Used here as a change of variables for deterministic quadrature, not for sampling. */
+/* What the map of one (wi, wm) pair shares between its nodes: the basis around wm and the
+ * stretched view direction. A quadrature over many nodes of one pair builds it once. */
+typedef struct vndf_frame {
+    double alpha;
+    v3 s, t, wm;   /* orthonormal basis around wm */
+    v3 vh, t1, t2; /* stretched wi and the basis around it */
+    double sh;     /* 0.5 (1 + vh.z) */
+} vndf_frame;
+
+static void vndf_frame_make(double alpha, v3 wi, v3 wm, vndf_frame *f);
+static v3 vndf_frame_node(const vndf_frame *f, double p1, double p2);
+
+/* The disc point of node (u1, u2), r = sqrt(u1) at angle 2 pi u2: what vndf_map_node takes.
+ * A quadrature evaluates it once per node (vndf_nodes), not once per use. */
+static void vndf_disc(double u1, double u2, double p[2])
+{
+    double r = sqrt(u1), ph = 2.0 * ABRDF__PI * u2;
+    p[0] = r * cos(ph);
+    p[1] = r * sin(ph);
+}
+
 static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
+{
+    double p[2];
+    vndf_frame f;
+    vndf_disc(u1, u2, p);
+    vndf_frame_make(alpha, wi, wm, &f);
+    return vndf_frame_node(&f, p[0], p[1]);
+}
+
+/* The disc points of the n x n midpoint grid, node j at ((j / n + 0.5) / n, (j % n + 0.5) / n). */
+static void vndf_nodes(int n, double (*p)[2])
+{
+    for (int j = 0; j < n * n; ++j) vndf_disc((j / n + 0.5) / n, (j % n + 0.5) / n, p[j]);
+}
+
+static void vndf_frame_make(double alpha, v3 wi, v3 wm, vndf_frame *f)
 {
     /* orthonormal basis s, t around wm (Duff et al. 2017). It flips where wm.z changes
      * sign, but the map does not depend on it: t1, t2 below are built from wi's projection,
@@ -151,16 +189,21 @@ static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
     vh = scl(vh, 1.0 / len(vh));
     double lensq = vh.x * vh.x + vh.y * vh.y;
     v3 t1 = lensq > 0.0 ? scl(mk(-vh.y, vh.x, 0.0), 1.0 / sqrt(lensq)) : mk(1, 0, 0);
-    v3 t2 = cross(vh, t1);
-    double r = sqrt(u1), ph = 2.0 * ABRDF__PI * u2;
-    double p1 = r * cos(ph), p2 = r * sin(ph);
-    double sh = 0.5 * (1.0 + vh.z);
+    f->alpha = alpha;
+    f->s = s, f->t = t, f->wm = wm;
+    f->vh = vh, f->t1 = t1, f->t2 = cross(vh, t1);
+    f->sh = 0.5 * (1.0 + vh.z);
+}
+
+static v3 vndf_frame_node(const vndf_frame *f, double p1, double p2)
+{
+    const double alpha = f->alpha, sh = f->sh;
     p2 = (1.0 - sh) * abrdf__safe_sqrt(1.0 - p1 * p1) + sh * p2;
     double p3 = abrdf__safe_sqrt(1.0 - p1 * p1 - p2 * p2);
-    v3 nh = add(add(scl(t1, p1), scl(t2, p2)), scl(vh, p3));
+    v3 nh = add(add(scl(f->t1, p1), scl(f->t2, p2)), scl(f->vh, p3));
     v3 ne = mk(alpha * nh.x, alpha * nh.y, fmax(0.0, nh.z));
     ne = scl(ne, 1.0 / len(ne));
-    return add(add(scl(s, ne.x), scl(t, ne.y)), scl(wm, ne.z));
+    return add(add(scl(f->s, ne.x), scl(f->t, ne.y)), scl(f->wm, ne.z));
 }
 
 /* Fresnel for unpolarised light at cosine c (sign ignored) and relative index eta; the
@@ -271,13 +314,27 @@ static double table_read(const double *t, double x, double y, double z)
 }
 
 /* 1/E: the factor that lifts a single microfacet interaction to the energy of all its
- * bounces (Cycles' bsdf_hair_huang_energy_scale); 1 when compensation is off. */
-static double energy_scale(const abrdf__huang *m, double mu, double eta)
+ * bounces (Cycles' bsdf_hair_huang_energy_scale); 1 when compensation is off. The table's x
+ * and z axes depend only on alpha and eta: energy_axes_of computes them once per
+ * evaluation, energy_scale_at looks up one cosine mu. */
+typedef struct energy_axes {
+    const double *t; /* the table for this relative index */
+    double x, z;     /* sqrt(alpha), the table's z axis for this relative index */
+} energy_axes;
+
+static energy_axes energy_axes_of(const abrdf__huang *m, double eta)
+{
+    energy_axes a;
+    a.t = eta < 1.0 ? abrdf__hair_glass_inv_e : abrdf__hair_glass_e;
+    a.x = sqrt(m->alpha);
+    a.z = sqrt(fabs((eta - 1.0) / (eta + 1.0)));
+    return a;
+}
+
+static double energy_scale_at(const abrdf__huang *m, const energy_axes *a, double mu)
 {
     if (!m->compensate) return 1.0;
-    const double *t = eta < 1.0 ? abrdf__hair_glass_inv_e : abrdf__hair_glass_e;
-    double z = sqrt(fabs((eta - 1.0) / (eta + 1.0)));
-    double e = table_read(t, sqrt(m->alpha), mu, z);
+    double e = table_read(a->t, a->x, mu, a->z);
     return 1.0 / fmax(e, ABRDF__HAIR_E_MIN);
 }
 
@@ -311,13 +368,16 @@ static double simpson_r(const abrdf__huang *m, v3 wi, v3 wo, v3 wh, double lo, d
 {
     double b = m->b, a2 = m->alpha * m->alpha, e2 = 1.0 - b * b;
     double res = (hi - lo) / n, sum = 0.0;
+    energy_axes ax = energy_axes_of(m, m->eta);
+    const double st = sin(m->tilt), ct = cos(m->tilt);
     for (int i = 0; i <= n; ++i) {
         double gm = lo + i * res;
-        v3 wm = sphg_dir(m->tilt, gm, b);
+        v3 wm;
+        sphg_pair(st, ct, gm, b, &wm, NULL);
         double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         double c = dot(wm, wh);
         sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc_length(e2, gm) *
-               energy_scale(m, dot(wm, wi), m->eta);
+               energy_scale_at(m, &ax, dot(wm, wi));
     }
     return sum * 2.0 / 3.0 * res;
 }
@@ -384,11 +444,20 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
     const int n1 = m->n1, n2 = m->n2;
     const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
     double s_tt[3] = {0, 0, 0}, s_trt[3] = {0, 0, 0}, s_trrt[3] = {0, 0, 0};
+    out[0] = out[1] = out[2] = 0.0;
+    if (n1 * n1 > ABRDF__HUANG_NODES_MAX || n2 * n2 > ABRDF__HUANG_NODES_MAX) return;
+    /* Per evaluation, not per node: the VNDF grids' disc points and the energy tables' axes. */
+    double node1[ABRDF__HUANG_NODES_MAX][2], node2[ABRDF__HUANG_NODES_MAX][2];
+    vndf_nodes(n1, node1);
+    vndf_nodes(n2, node2);
+    energy_axes ax_in = energy_axes_of(m, eta), ax_out = energy_axes_of(m, inv_eta);
+    const double st = sin(m->tilt), ct = cos(m->tilt); /* sin(-tilt) = -st */
     int n = simpson_intervals(0.8 * al, m->refine);
     double res = gr / n;
     for (int i = 0; i <= n; ++i) {
         double gmi = g0 + i * res;
-        v3 wmi = sphg_dir(m->tilt, gmi, b), wmi_ = sphg_dir(0.0, gmi, b);
+        v3 wmi, wmi_;
+        sphg_pair(st, ct, gmi, b, &wmi, &wmi_);
         /* The range is built so that wi sees every tilted mesonormal on it: cos_mi1 >= 0,
          * and 0 at the ends when the tilt hides the silhouette. Skipping cos_mi1 <= 0 let a
          * 1e-16 rounding drop an end node, whose TRRT+ (weighted by proj, not cos_mi1) is
@@ -398,17 +467,20 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
         /* Projected width of this surface element seen from wi, |dh/dgamma| cos(theta_i):
          * the light TRRT+ receives here (R, TT, TRT carry it through cos_mi1). */
         double proj = fabs(cp_i * cos(gmi) + b * sp_i * sin(gmi)) * cos_theta(wi);
+        double scale1 = energy_scale_at(m, &ax_in, cos_mi1); /* depends on the entry node only */
+        vndf_frame f1;
+        vndf_frame_make(al, wi, wmi, &f1);
         for (int j1 = 0; j1 < n1 * n1; ++j1) {
-            v3 wh1 = vndf_map(al, wi, wmi, (j1 / n1 + 0.5) / n1, (j1 % n1 + 0.5) / n1);
+            v3 wh1 = vndf_frame_node(&f1, node1[j1][0], node1[j1][1]);
             double cos_hi1 = dot(wi, wh1);
             if (!(cos_hi1 > 0.0)) continue;
             double cos_t1;
             double t1 = 1.0 - fresnel(cos_hi1, eta, &cos_t1);
-            double scale1 = energy_scale(m, cos_mi1, eta);
             v3 wt = refract_dir(wi, wh1, cos_t1, inv_eta);
             double phi_t = dir_phi(wt);
             double gmt = 2.0 * to_phi(phi_t, b) - gmi;
-            v3 wmt = sphg_dir(-m->tilt, gmt, b), wmt_ = sphg_dir(0.0, gmt, b);
+            v3 wmt, wmt_;
+            sphg_pair(-st, ct, gmt, b, &wmt, &wmt_);
             double cos_mo1 = dot(neg(wt), wmi), cos_mi2 = dot(neg(wt), wmt);
             /* wi sees wh1 (cos_hi1 > 0) and, on [g0, g0 + gr], both mesonormals: that range
              * is built from them, so testing wi.wmi_ > 0 again only let a 1e-16 rounding drop
@@ -416,7 +488,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
             if (!(dot(neg(wt), wh1) > 0.0 && dot(neg(wt), wmi) > 0.0 && dot(neg(wt), wmi_) > 0.0))
                 continue;
             double g1o = ggx_go(a2, cos_mi1, cos_mo1);
-            double scale2 = energy_scale(m, cos_mi2, inv_eta);
+            double scale2 = energy_scale_at(m, &ax_out, cos_mi2);
             double ct_t = fmax(cos_theta(wt), ABRDF__HAIR_COS_MIN);
             double chord = len(add(to_point(gmi, b), neg(to_point(gmt + ABRDF__PI, b))));
             double at[3];
@@ -447,8 +519,10 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
             if (!(lobes & 12u) || !(cos_mi2 > 0.0)) continue;
 
             /* TRT: internal reflection at wh2 (n2 x n2 VNDF nodes), exit at wh3 (Eq. 14) */
+            vndf_frame f2;
+            vndf_frame_make(al, neg(wt), wmt, &f2);
             for (int j2 = 0; j2 < n2 * n2; ++j2) {
-                v3 wh2 = vndf_map(al, neg(wt), wmt, (j2 / n2 + 0.5) / n2, (j2 % n2 + 0.5) / n2);
+                v3 wh2 = vndf_frame_node(&f2, node2[j2][0], node2[j2][1]);
                 double cos_hi2 = dot(neg(wt), wh2);
                 if (!(cos_hi2 > 0.0)) continue;
                 double r2f = fresnel(cos_hi2, inv_eta, NULL), r2 = r2f * scale2;
@@ -466,7 +540,8 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                     continue;
                 double phi_tr = dir_phi(wtr);
                 double gmtr = gmi - 2.0 * (to_phi(phi_t, b) - to_phi(phi_tr, b)) + ABRDF__PI;
-                v3 wmtr = sphg_dir(-m->tilt, gmtr, b), wmtr_ = sphg_dir(0.0, gmtr, b);
+                v3 wmtr, wmtr_;
+                sphg_pair(-st, ct, gmtr, b, &wmtr, &wmtr_);
                 v3 wh3 = add(wtr, scl(wo, inv_eta));
                 double l3 = dot(wh3, wh3);
                 if (!(l3 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
@@ -481,7 +556,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
                 double cos_hi3 = dot(wh3, wtr), cos_ho3 = dot(wh3, neg(wo));
                 double cos_mi3 = dot(wmtr, wtr), cos_mo2 = dot(wmt, neg(wtr));
                 double t3 =
-                    (1.0 - fresnel(cos_hi3, inv_eta, NULL)) * energy_scale(m, cos_mi3, inv_eta);
+                    (1.0 - fresnel(cos_hi3, inv_eta, NULL)) * energy_scale_at(m, &ax_out, cos_mi3);
                 double ct_tr = fmax(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
                 double chord2 = len(add(to_point(gmtr, b), neg(to_point(gmt, b))));
                 double v = wgt2 * t1 * scale1 * r2 * t3 * ggx_d(a2, cos_mh3) * g1o *
@@ -543,13 +618,11 @@ void abrdf__huang_fibre(const abrdf__huang *m, const double wi_[3], const double
     for (int c = 0; c < 3; ++c) s[c] = (r + res[c]) / area;
 }
 
-void abrdf__huang_eval(const abrdf_params *p, const double wi[3], const double wo[3], double f[3])
+void abrdf__huang_eval(const abrdf__huang *m, const double wi[3], const double wo[3], double f[3])
 {
     f[0] = f[1] = f[2] = 0.0;
     if (!(wi[2] > 0.0 && wo[2] > 0.0)) return;
-    abrdf__huang m;
-    abrdf__huang_setup(p, &m);
     double s[3];
-    abrdf__huang_fibre(&m, wi, wo, 15u, s);
+    abrdf__huang_fibre(m, wi, wo, 15u, s);
     for (int c = 0; c < 3; ++c) f[c] = s[c] / wi[2]; /* f_r = S / |N.wi| */
 }

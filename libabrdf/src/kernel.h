@@ -28,6 +28,7 @@
 #include <tgmath.h>
 
 #include "abrdf_internal.h"
+#include "prepared.h"
 
 #undef ABRDF__REAL
 #undef ABRDF__REAL_MAX
@@ -114,20 +115,8 @@ static inline ABRDF__REAL ABRDF__FN(finite_or_zero)(ABRDF__REAL x)
 }
 
 /* ---- parameters in the kernel's precision ------------------------------------------ */
-/* One struct for every model; a model's setup fills the fields its kernel reads. */
-typedef struct ABRDF__FN(abrdf__kp) {
-    ABRDF__REAL kd[3], ks[3], f0[3]; /* kp_base */
-    ABRDF__REAL n;                   /* exponent (kp_base) */
-    ABRDF__REAL r;                   /* perceptual roughness (kp_base) */
-    ABRDF__REAL ag;                  /* alpha_g = max(r^2, ABRDF__ALPHA_G_MIN) */
-    ABRDF__REAL ax, ay;              /* anisotropic alpha_g along T and B */
-    ABRDF__REAL on_a, on_b;          /* Oren-Nayar A and B */
-    ABRDF__REAL cc_alpha;            /* clearcoat GTR1 alpha */
-    ABRDF__REAL k_amp;               /* velvet amplitude */
-    ABRDF__REAL norm;                /* the model's normalisation constant (Table 5, velvet) */
-    ABRDF__REAL fkub[3];             /* a, b, d of the cubic approximation about c = 1 for this n */
-    ABRDF__REAL fkub_x0;             /* below this cosine the cubic is zero */
-} ABRDF__KP;
+/* One struct for every model (abrdf__kp_d, abrdf__kp_f, defined in prepared.h so that a
+ * prepared object holds both); a model's setup fills the fields its kernel reads. */
 
 /* The colours and scalars most kernels read, converted: the first step of every setup and
  * the whole setup of the models with nothing to precompute. */

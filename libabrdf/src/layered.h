@@ -7,8 +7,21 @@
  * described by p->layer_count and p->layers[]; f = 0 for back-facing pairs. */
 void abrdf__eval_weidlich_wilkie(const abrdf_params *p, const double wi[3], const double wo[3],
                                  double f[3]);
-void abrdf__eval_belcour(const abrdf_params *p, const double wi[3], const double wo[3],
-                         double f[3]);
+/* What Belcour's evaluation takes from the parameters alone, per interface: the variances
+ * of its reflection and of its two transmissions, s(alpha) of the roughness (one pow each,
+ * computed once by abrdf__belcour_setup, not per evaluation). */
+typedef struct abrdf__belcour {
+    double s_r12[ABRDF_MAX_LAYERS], s_t12[ABRDF_MAX_LAYERS], s_t21[ABRDF_MAX_LAYERS];
+} abrdf__belcour;
+void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b);
+void abrdf__eval_belcour(const abrdf__belcour *b, const abrdf_params *p, const double wi[3],
+                         const double wo[3], double f[3]);
+
+/* Belcour's lobes (Eq. 16) for the mean direction of cosine cos_theta: energies e[k] (RGB)
+ * and GGX roughnesses alpha[k] (alpha_g, floored at ABRDF__ALPHA_G_MIN), the same pass as
+ * abrdf__eval_belcour makes at cos = H.L; returns the count (<= ABRDF_MAX_LAYERS). The
+ * sampler calls it at cos = N.wo. */
+int abrdf__belcour_lobes(const abrdf_params *p, double cos_theta, double e[][3], double alpha[]);
 
 /* Belcour's precomputed tables, interpolated (belcour_tables.h gives their axes):
  * FGD = directional albedo of one GGX reflection with exact Fresnel, TIR = fraction of the

@@ -114,23 +114,36 @@ typedef struct stack_stats {
     double cos; /* cosine of the mean direction in the current medium */
 } stack_stats;
 
+void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b)
+{
+    int n = p->layer_count < ABRDF_MAX_LAYERS ? p->layer_count : ABRDF_MAX_LAYERS;
+    for (int k = 0; k < ABRDF_MAX_LAYERS; ++k) {
+        const abrdf_layer *ly = &p->layers[k];
+        double eta = ly->eta, alpha = ly->r * ly->r;
+        int used = k < n, transmits = used && !(ly->kappa > 0.0); /* what add_interface reads */
+        b->s_r12[k] = used ? var_of_alpha(alpha) : 0.0;
+        b->s_t12[k] = transmits ? var_of_alpha(alpha * 0.5 * fabs(eta - 1.0) / eta) : 0.0;
+        b->s_t21[k] = transmits ? var_of_alpha(alpha * 0.5 * fabs(1.0 / eta - 1.0) * eta) : 0.0;
+    }
+}
+
 /* Adds interface k to the stack; writes its lobe (energy e, roughness alpha). Returns 1 if
  * light continues below it. */
-static int add_interface(stack_stats *st, const abrdf_params *p, int k, double e[3],
-                         double *alpha_k)
+static int add_interface(stack_stats *st, const abrdf__belcour *bp, const abrdf_params *p, int k,
+                         double e[3], double *alpha_k)
 {
     const abrdf_layer *ly = &p->layers[k];
-    double eta = ly->eta, alpha = ly->r * ly->r;
+    double eta = ly->eta;
     int conductor = ly->kappa > 0.0;
     double c = st->cos;
     double sin_t2 = (1.0 - c * c) / (eta * eta);
     int has_t = !conductor && sin_t2 < 1.0;
     double cos_t = has_t ? sqrt(1.0 - sin_t2) : 0.0;
     if (cos_t < ABRDF__BELCOUR_COS_MIN) has_t = 0;
-    double sR12 = var_of_alpha(alpha), sT12 = 0.0, sT21 = 0.0, j12 = 1.0, j21 = 1.0;
+    double sR12 = bp->s_r12[k], sT12 = 0.0, sT21 = 0.0, j12 = 1.0, j21 = 1.0;
     if (has_t) {
-        sT12 = var_of_alpha(alpha * 0.5 * fabs(eta - 1.0) / eta);
-        sT21 = var_of_alpha(alpha * 0.5 * fabs(1.0 / eta - 1.0) * eta);
+        sT12 = bp->s_t12[k];
+        sT21 = bp->s_t21[k];
         j12 = eta * cos_t / c;
         j21 = 1.0 / j12;
     }
@@ -197,7 +210,8 @@ static void add_medium(stack_stats *st, const abrdf_layer *ly)
     }
 }
 
-void abrdf__eval_belcour(const abrdf_params *p, const double wi[3], const double wo[3], double f[3])
+void abrdf__eval_belcour(const abrdf__belcour *bp, const abrdf_params *p, const double wi[3],
+                         const double wo[3], double f[3])
 {
     f[0] = f[1] = f[2] = 0.0;
     double ci = wi[2], co = wo[2];
@@ -214,11 +228,37 @@ void abrdf__eval_belcour(const abrdf_params *p, const double wi[3], const double
     int n = p->layer_count < ABRDF_MAX_LAYERS ? p->layer_count : ABRDF_MAX_LAYERS;
     for (int k = 0; k < n; ++k) {
         double e[3], ak;
-        int below = add_interface(&st, p, k, e, &ak);
+        int below = add_interface(&st, bp, p, k, e, &ak);
         double ag = fmax(ak, ABRDF__ALPHA_G_MIN);
         double lobe = abrdf__lo_d_ggx(h[2], sh2, ag) * abrdf__lo_v1(ci, ag) * abrdf__lo_v1(co, ag);
         for (int c = 0; c < 3; ++c) f[c] += e[c] * lobe; /* Eq. 16 */
         if (!below) break;
         if (p->layers[k].depth > 0.0) add_medium(&st, &p->layers[k]);
     }
+}
+
+int abrdf__belcour_lobes(const abrdf_params *p, double cos_theta, double e[][3], double alpha[])
+{
+    stack_stats st = {{0, 0, 0},
+                      {1, 1, 1},
+                      {0, 0, 0},
+                      {1, 1, 1},
+                      0,
+                      0,
+                      0,
+                      0,
+                      1,
+                      1,
+                      fmin(fmax(cos_theta, ABRDF__BELCOUR_COS_MIN), 1.0)};
+    abrdf__belcour bp;
+    abrdf__belcour_setup(p, &bp);
+    int n = p->layer_count < ABRDF_MAX_LAYERS ? p->layer_count : ABRDF_MAX_LAYERS, count = 0;
+    for (int k = 0; k < n; ++k) {
+        double ak;
+        int below = add_interface(&st, &bp, p, k, e[count], &ak);
+        alpha[count++] = fmax(ak, ABRDF__ALPHA_G_MIN);
+        if (!below) break;
+        if (p->layers[k].depth > 0.0) add_medium(&st, &p->layers[k]);
+    }
+    return count;
 }

@@ -1,60 +1,27 @@
 /* lobes.c - a BRDF of one or two lobes over one parameter block, as the fit and the
- * prediction use it (fit_internal.h): validated once, prepared once and evaluated at many
- * direction pairs. The closed-form models run their setup (the kernel's prepared parameters,
- * k_dispatch.h) once per parameter block instead of once per pair as abrdf__eval_local_d
- * does; the models that integrate numerically are evaluated as abrdf__eval_local_d does.
- * Same formulas, same guards: the values equal abrdf_eval's. Also the caller's workspace,
- * carved into arrays. */
+ * prediction use it (fit_internal.h): validated once, prepared once (abrdf__prep_make, the
+ * library's prepared evaluation, prepared.h) and evaluated at many direction pairs on the
+ * double path: the values equal abrdf_eval's. Also the caller's workspace, carved into
+ * arrays. */
 #include <stdio.h>
 #include <string.h>
 
 #include "fit_internal.h"
-#include "k_dispatch.h"
-#include "special.h"
-
-typedef char abrdf__kp_fits_lobe_prep[sizeof(ABRDF__KP) <= ABRDF__KP_BYTES ? 1 : -1];
-
-#define KP(lp) ((ABRDF__KP *)(void *)(lp)->k.bytes)
-#define SETUP_CASE(ID, SETUP, KERNEL)                                                              \
-    case ID:                                                                                       \
-        ABRDF__FN(SETUP)(KP(lp), p);                                                               \
-        break;
-#define KERNEL_CASE(ID, SETUP, KERNEL)                                                             \
-    case ID: ABRDF__FN(KERNEL)((const ABRDF__KP *)(const void *)lp->k.bytes, &g, v); break;
 
 void abrdf__lobe_prepare(abrdf__lobe_prep *lp, abrdf_model m, const abrdf_params *p)
 {
     lp->model = m;
-    lp->p = p;
-    lp->closed = m != ABRDF_MODEL_NONE && !abrdf__is_double_only(m);
-    if (!lp->closed) return;
-    switch (m) {
-        ABRDF__KERNEL_MODELS(SETUP_CASE)
-    default: lp->closed = 0; break;
-    }
+    if (m != ABRDF_MODEL_NONE) abrdf__prep_make(&lp->pr, m, p, ABRDF__PREP_DOUBLE);
 }
 
 void abrdf__lobe_eval(const abrdf__lobe_prep *lp, const double wi[3], const double wo[3],
                       double f[3])
 {
-    double v[3] = {0.0, 0.0, 0.0};
     if (lp->model == ABRDF_MODEL_NONE) {
         f[0] = f[1] = f[2] = 0.0;
         return;
     }
-    if (!lp->closed) {
-        abrdf__eval_special(lp->model, lp->p, wi, wo, v);
-    } else {
-        ABRDF__GEO g;
-        ABRDF__FN(geo_make)(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
-        if (ABRDF__FN(geo_front)(&g)) {
-            switch (lp->model) {
-                ABRDF__KERNEL_MODELS(KERNEL_CASE)
-            default: break;
-            }
-        }
-    }
-    for (int c = 0; c < 3; ++c) f[c] = ABRDF__FN(finite_or_zero)(v[c]);
+    abrdf__eval_prepared_d(&lp->pr, wi, wo, f);
 }
 
 /* ---- a BRDF of one or two lobes --------------------------------------------------------- */
@@ -89,17 +56,6 @@ int abrdf__brdf_make(abrdf__brdf *b, abrdf_model diffuse, abrdf_model specular,
         if (st != ABRDF_OK) return st;
     }
     return ABRDF_OK;
-}
-
-void abrdf__brdf_eval(const abrdf__brdf *b, const double wi[3], const double wo[3], double f[3])
-{
-    f[0] = f[1] = f[2] = 0.0;
-    for (int l = 0; l < 2; ++l) {
-        if (b->lobe[l] == ABRDF_MODEL_NONE) continue;
-        double g[3];
-        abrdf__eval_local_d(b->lobe[l], &b->p, wi, wo, g);
-        for (int c = 0; c < 3; ++c) f[c] += g[c];
-    }
 }
 
 void abrdf__brdf_prepare(const abrdf__brdf *b, abrdf__brdf_prep *bp)

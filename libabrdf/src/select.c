@@ -636,6 +636,15 @@ static int select_full(walk *w, const abrdf_material *m, abrdf_goal goal,
             return fail(out, st, "the paper's cost table is unavailable");
         costs = &paper;
     }
+    /* cost[] is public: a NaN or infinity written there directly would rank as nothing. */
+    for (int i = 0; i < ABRDF_COSTS_CAPACITY; ++i)
+        if (!isfinite(costs->cost[i])) {
+            const abrdf_model_info *mi = abrdf_model_get((abrdf_model)i);
+            return fail(out, ABRDF_E_RANGE,
+                        "cost table: model id %d (%s) has cost %g; a cost is a finite number "
+                        "(< 0: unknown)",
+                        i, mi ? mi->name : "unregistered", costs->cost[i]);
+        }
     char unit[32];
     short_unit(costs->unit, unit, sizeof unit);
     out->cost_unit = costs->unit;

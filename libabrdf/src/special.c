@@ -1,8 +1,8 @@
 /* special.c - dispatch of the models evaluated in double only: hair (hair.h) and layered
- * models (layered.h). */
-#include "special.h"
+ * models (layered.h), their setup once per prepared object and their evaluation from it. */
 #include "hair.h"
 #include "layered.h"
+#include "prepared.h"
 
 int abrdf__is_double_only(abrdf_model model)
 {
@@ -15,15 +15,25 @@ int abrdf__is_double_only(abrdf_model model)
     }
 }
 
-void abrdf__eval_special(abrdf_model model, const abrdf_params *p, const double wi[3],
-                         const double wo[3], double f[3])
+void abrdf__prep_setup_special(abrdf__prep *pr)
+{
+    switch (pr->model) {
+    case ABRDF_MARSCHNER: abrdf__marschner_setup(&pr->params, &pr->special.marschner); break;
+    case ABRDF_HUANG: abrdf__huang_setup(&pr->params, &pr->special.huang); break;
+    case ABRDF_BELCOUR: abrdf__belcour_setup(&pr->params, &pr->special.belcour); break;
+    default: break; /* weidlich_wilkie reads the parameters itself */
+    }
+}
+
+void abrdf__eval_special_prepared(const abrdf__prep *pr, const double wi[3], const double wo[3],
+                                  double f[3])
 {
     f[0] = f[1] = f[2] = 0.0;
-    switch (model) {
-    case ABRDF_MARSCHNER: abrdf__marschner_eval(p, wi, wo, f); break;
-    case ABRDF_HUANG: abrdf__huang_eval(p, wi, wo, f); break;
-    case ABRDF_WEIDLICH_WILKIE: abrdf__eval_weidlich_wilkie(p, wi, wo, f); break;
-    case ABRDF_BELCOUR: abrdf__eval_belcour(p, wi, wo, f); break;
+    switch (pr->model) {
+    case ABRDF_MARSCHNER: abrdf__marschner_eval(&pr->special.marschner, wi, wo, f); break;
+    case ABRDF_HUANG: abrdf__huang_eval(&pr->special.huang, wi, wo, f); break;
+    case ABRDF_WEIDLICH_WILKIE: abrdf__eval_weidlich_wilkie(&pr->params, wi, wo, f); break;
+    case ABRDF_BELCOUR: abrdf__eval_belcour(&pr->special.belcour, &pr->params, wi, wo, f); break;
     default: break;
     }
 }

@@ -176,7 +176,7 @@ class Errors(unittest.TestCase):
         self.error("gold", "--type", "metal", needle="--type needs one of")
         self.error("gold", "--bogus", needle="unknown option '--bogus'")
         self.error("gold", "silver", needle="one material at a time")
-        self.error("gold", "--materials", "/nonexistent/m.csv", needle="/nonexistent/m.csv:0: cannot open")
+        self.error("gold", "--materials", "/nonexistent/m.csv", needle="/nonexistent/m.csv: cannot open: No such file or directory")
 
     def test_help(self):
         self.assertIn("usage: abrdf advise", run("--help").stdout)

@@ -127,6 +127,20 @@ class RenderBench(unittest.TestCase):
         split = d["performance_vs_exact_bp"]
         self.assertTrue(math.isfinite(split["image_nmse"]) and split["image_nmse"] > 0)
         self.assertEqual(len(split["materials"]), 3)
+        # each lobe's render cost beside its per-eval cost, relative to disney_specular
+        lc = d["lobe_costs"]
+        self.assertEqual(lc["scene"], "robot16")
+        self.assertGreater(lc["lit_pairs"], 0)
+        self.assertEqual(lc["lobes"][0]["lobe"], "disney_specular")
+        self.assertEqual(lc["lobes"][0]["render_ratio"], 1)
+        self.assertEqual(lc["lobes"][0]["eval_ratio"], 1)
+        names = [x["lobe"] for x in lc["lobes"]]
+        for n in ("f8", "fkub", "blinn_phong", "f_2e"):
+            self.assertIn(n, names)
+        for x in lc["lobes"]:
+            self.assertTrue(math.isfinite(x["eval_ratio"]) and x["eval_ratio"] > 0)
+            self.assertTrue(math.isfinite(x["render_ratio"]))
+        self.assertTrue(0 <= lc["within_1_5x"] <= len(lc["lobes"]))
 
 
 class Errors(unittest.TestCase):

@@ -1,11 +1,18 @@
 """CLI tests of `abrdf export` (no bpy needed): the Cycles script is valid Python holding
 the scene's numbers and a generated OSL shader with every object, material and light;
---model and --set act as in `abrdf render`; usage errors exit 2, scene errors 1. Run by
-CTest with ABRDF and SCENES in the environment (the rendering check is osl_cycles)."""
+--model and --set act as in `abrdf render`; table= and adaptive materials are exported as the
+selection's models with its trace as comments; hostile paths and names stay data in both
+languages (the Python script is run; the POV-Ray render of a hostile export is
+tests/ports/test_pov_hostile.py); usage errors exit 2, scene errors 1. Run by CTest with
+ABRDF and SCENES in the environment (the rendering check is osl_cycles)."""
 import ast
+import base64
+import json
 import os
 import re
+import struct
 import subprocess
+import sys
 import tempfile
 import unittest
 
@@ -95,6 +102,289 @@ class Export(unittest.TestCase):
         r = run("--cycles", os.path.join(SCENES, "sphere.scene"), "-o",
                 os.path.join(self.tmp.name, "no", "such", "dir.py"))
         self.assertEqual(r.returncode, 1)
+
+
+# A directory name and material names that would become code if written unescaped: a line
+# break then POV-Ray directives, quotes of both languages, backslashes, a '#', UTF-8 and
+# bytes that are not UTF-8.
+HOSTILE_DIR = (b'h\n#fopen F "pwned-pov" write #write(F,"x") #end\n"""\'\\ '
+               b'\nimport os; open("pwned-py", "w")\n\xc3\xa9\xff#')
+HOSTILE_NAMES = ['a")box{-9,9}//', "x\\q", 'q"""', "b'\\n"]
+
+
+def scene_text(names):
+    lines = ["camera position=0,0,4 look_at=0,0,0 resolution=24,24",
+             "light directional direction=-1,1,1 intensity=3"]
+    for i, n in enumerate(names):
+        lines.append("material %s diffuse=lambert specular=blinn_phong kd=0.%d n=%d" % (n, i + 3,
+                                                                                     10 * i + 5))
+    for i, n in enumerate(names):
+        lines.append("sphere material=%s radius=0.4 translate=%g,0,0" % (n, -1.2 + 0.8 * i))
+    return "\n".join(lines) + "\n"
+
+
+class Hostile(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.base = os.fsencode(self.tmp.name)
+        self.dir = self.base + b"/" + HOSTILE_DIR
+        os.makedirs(self.dir)
+        self.scene = self.dir + b"/s\n#declare X = 1;\n.scene"
+        with open(self.scene, "w") as f:
+            f.write(scene_text(HOSTILE_NAMES))
+        self.benign = self.base + b"/benign.scene"
+        with open(self.benign, "w") as f:
+            f.write(scene_text(["m%d" % i for i in range(len(HOSTILE_NAMES))]))
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def export(self, *args):
+        r = subprocess.run([os.fsencode(ABRDF), b"export", *args], capture_output=True,
+                           cwd=self.base)
+        self.assertEqual(r.returncode, 0, r.stderr)
+
+    def test_pov_text_has_the_same_code_as_a_benign_export(self):
+        """Line for line, the hostile export differs from the benign one only in comments and
+        in the string of the material check: no name or path became SDL."""
+        out_h, out_b = self.base + b"/h.pov", self.base + b"/b.pov"
+        self.export(b"--pov", self.scene, b"-o", out_h)
+        self.export(b"--pov", self.benign, b"-o", out_b)
+        with open(out_h, "rb") as f:
+            hostile = f.read().split(b"\n")
+        with open(out_b, "rb") as f:
+            benign = f.read().split(b"\n")
+        self.assertEqual(len(hostile), len(benign))
+        checks = 0
+        for h, b in zip(hostile, benign):
+            self.assertTrue(all(0x20 <= c <= 0x7e for c in h), h)  # ASCII, one line
+            if h == b or (h.startswith(b"//") and b.startswith(b"//")):
+                continue
+            self.assertTrue(h.startswith(b"Abrdf__Check(") and b.startswith(b"Abrdf__Check("),
+                            (h, b))
+            self.assertEqual(h.split(b", ")[0], b.split(b", ")[0])
+            checks += 1
+        self.assertEqual(checks, len(HOSTILE_NAMES))
+
+    def test_python_script_runs_as_data(self):
+        """The script parses, holds the exact path, directory and names, and running it (with a
+        stand-in for osl/abrdf_cycles.py in the hostile --osl-dir) executes nothing else."""
+        osl = self.dir + b"/osl"
+        os.makedirs(osl)
+        with open(osl + b"/abrdf_cycles.py", "w") as f:
+            f.write("import json, os\n"
+                    "def main(scene):\n"
+                    "    print(json.dumps({'source': os.fsencode(scene['source']).hex(),\n"
+                    "                      'osl_dir': os.fsencode(scene['osl_dir']).hex(),\n"
+                    "                      'names': [m['name'] for m in scene['materials']]}))\n")
+        out = self.base + b"/scene.py"
+        self.export(b"--cycles", self.scene, b"-o", out, b"--osl-dir", osl)
+        with open(out, "rb") as f:
+            text = f.read()
+        text.decode("ascii")  # the script is ASCII: every byte of a name went through escapes
+        ast.parse(text)
+        r = subprocess.run([sys.executable, out], capture_output=True, cwd=self.base)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        got = json.loads(r.stdout)
+        self.assertEqual(bytes.fromhex(got["source"]), self.scene)
+        self.assertEqual(bytes.fromhex(got["osl_dir"]), osl)
+        self.assertEqual(got["names"], HOSTILE_NAMES)
+        for root, _, files in os.walk(self.base):
+            for name in files:
+                self.assertNotIn(b"pwned", os.fsencode(name))
+
+    def test_mesh_file_names_stay_data(self):
+        """A mesh file named with quotes and a backslash (a scene word is printable ASCII
+        without '#'): the POV-Ray export keeps the name in a comment, and the Cycles script
+        holds the exact name as a string constant."""
+        name = b'm"fopen(F)\\q\'x.obj'
+        with open(self.base + b"/" + name, "w") as f:
+            f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+        scene = self.base + b"/mesh.scene"
+        with open(scene, "wb") as f:
+            f.write(scene_text(["m0"]).encode() + b"mesh file=" + name + b" material=m0\n")
+        out = self.base + b"/m.pov"
+        self.export(b"--pov", scene, b"-o", out)
+        with open(out, "rb") as f:
+            lines = f.read().split(b"\n")
+        named = [line for line in lines if b"fopen" in line]
+        self.assertTrue(named)  # the name is written, escaped, in a comment
+        for line in lines:
+            self.assertTrue(all(0x20 <= c <= 0x7e for c in line), line)
+        for line in named:
+            self.assertTrue(line.startswith(b"//"), line)
+        py = self.base + b"/m.py"
+        self.export(b"--cycles", scene, b"-o", py)
+        with open(py, "rb") as f:
+            text = f.read()
+        names = [n.value for n in ast.walk(ast.parse(text))
+                 if isinstance(n, ast.Constant) and isinstance(n.value, str) and n.value.endswith("x.obj")]
+        self.assertTrue(names)
+        for n in names:
+            self.assertTrue(os.fsencode(n).endswith(name), n)
+
+
+class Selection(unittest.TestCase):
+    """Scenes with table= and adaptive materials export as the models the selection chose,
+    the same that abrdf render uses, with the trace as comments."""
+
+    SCENE = ("camera position=0,0,4 look_at=0,0,0 resolution=24,24\n"
+             "light directional direction=-1,1,1 intensity=3\n"
+             "material gold table=gold\n"
+             "material auto adaptive goal=performance r=0.3 kd=0.5\n"
+             "material mine table=custom_red\n"
+             "sphere material=gold radius=0.5 translate=-1,0,0\n"
+             "sphere material=auto radius=0.5\n"
+             "sphere material=mine radius=0.5 translate=1,0,0\n")
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.scene = os.path.join(self.tmp.name, "sel.scene")
+        with open(self.scene, "w") as f:
+            f.write(self.SCENE)
+        self.mats = os.path.join(self.tmp.name, "mine.csv")
+        with open(os.path.join(os.path.dirname(SCENES), "data", "materials.csv")) as f:
+            header = next(l for l in f if not l.startswith("#"))
+        with open(self.mats, "w") as f:
+            f.write(header + "custom_red,general,,0.6,0.7,0.1,0.1,1,1,1,,,,1.5,,,,,,,,,,,,test\n")
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_exports_the_render_choice_with_its_trace(self):
+        r = subprocess.run([ABRDF, "render", self.scene, "--materials", self.mats, "-o",
+                            os.path.join(self.tmp.name, "x.exr"), "--no-preview", "--explain"],
+                           capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        chosen = dict(re.findall(r"^selection: material '(\w+)'.*: ([\w +]+)$", r.stdout, re.M))
+        self.assertEqual(sorted(chosen), ["auto", "gold", "mine"])
+        out = os.path.join(self.tmp.name, "sel.py")
+        r = run("--cycles", self.scene, "--materials", self.mats, "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            text = f.read()
+        tree = ast.parse(text)
+        scene = ast.literal_eval(next(n.value for n in tree.body if isinstance(n, ast.Assign)
+                                      and n.targets[0].id == "SCENE"))
+        for m in scene["materials"]:
+            self.assertEqual(" + ".join(m["lobes"]), chosen[m["name"]])
+        self.assertIn("# selection: material 'auto' (line 4), goal performance", text)
+        pov = os.path.join(self.tmp.name, "sel.pov")
+        r = run("--pov", self.scene, "--materials", self.mats, "-o", pov)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(pov) as f:
+            text = f.read()
+        self.assertIn("// selection: material 'gold' (line 3), goal photoreal, table entry gold",
+                      text)
+        self.assertIn("//    1. ", text)
+        # Without the file naming custom_red, the scene does not resolve: exit 1, its line.
+        r = run("--pov", self.scene, "-o", pov)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("sel.scene:5: material 'mine': no entry 'custom_red'", r.stderr)
+
+    def test_adaptive_goal_for_every_material(self):
+        out = os.path.join(self.tmp.name, "robot.py")
+        r = run("--cycles", os.path.join(SCENES, "robot.scene"), "--adaptive", "--goal",
+                "performance", "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            text = f.read()
+        self.assertEqual(text.count("# selection: material "), 3)
+        self.assertNotIn('"disney_specular"', text.split("\"osl\"")[0])
+        for args, msg in (([], "--adaptive needs --goal"), (["--goal", "x"], "--adaptive needs"),
+                          (["--model", "lambert"], "exclude each other")):
+            r = run("--pov", os.path.join(SCENES, "robot.scene"), "--adaptive", *args, "-o", out)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn(msg, r.stderr)
+
+
+def obj_counts(path):
+    """Statements of an OBJ file by keyword, and its vertex positions as written."""
+    counts, verts = {}, []
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if w:
+                counts[w[0]] = counts.get(w[0], 0) + 1
+                if w[0] == "v":
+                    verts.append(tuple(float(x) for x in w[1:4]))
+    return counts, verts
+
+
+class ExportMeshes(unittest.TestCase):
+    """`mesh` objects: POV-Ray mesh2 with the corner normals, Cycles mesh arrays."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.counts, self.verts = obj_counts(os.path.join(SCENES, "teapot.obj"))
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def pov(self, *args):
+        out = os.path.join(self.tmp.name, "t.pov")
+        r = run("--pov", os.path.join(SCENES, "teapot.scene"), "-o", out, *args)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            return f.read()
+
+    def test_pov_mesh2_with_the_normals(self):
+        text = self.pov()
+        nt, nn = self.counts["f"], self.counts["vn"]
+        self.assertEqual(text.count("mesh2 {"), 1)
+        self.assertIn("vertex_vectors { %d," % self.counts["v"], text)
+        self.assertIn("normal_vectors { %d," % nn, text)
+        self.assertIn("face_indices { %d," % nt, text)
+        self.assertIn("normal_indices { %d," % nt, text)
+        # the function pigments' triangle code and data
+        self.assertIn("uv_vectors { %d," % (3 * nt), text)
+        self.assertIn("<0, %d.5>, <1, %d.5>, <0, %d.5>" % (2 * (nt - 1), 2 * (nt - 1), 2 * nt - 1), text)
+        self.assertEqual(len(re.findall(r"#declare Abrdf_Mesh_0_(P0|P1|P2|N0|N1|N2|T) = function", text)), 7)
+        self.assertIn("Abrdf_Mesh_Texture(Abrdf_Mat_0, Abrdf_Mesh_0_Data, true,", text)
+        # the first vertex as the file has it (9 digits keep the float)
+        first = re.search(r"vertex_vectors \{ \d+,\s*<([^>]*)>", text).group(1)
+        self.assertEqual(tuple(float(x) for x in first.split(",")), self.verts[0])
+
+    def test_pov_native_is_plain_mesh2(self):
+        text = self.pov("--native", "--model", "lambert")
+        self.assertIn("normal_vectors {", text)
+        self.assertNotIn("uv_vectors", text)
+        self.assertNotIn("Abrdf_Mesh_0_P0", text)
+        self.assertIn("object { Abrdf_Mesh_0_Smooth\n  Abrdf_Native_Texture(", text)
+
+    def test_cycles_mesh_arrays(self):
+        out = os.path.join(self.tmp.name, "t.py")
+        r = run("--cycles", os.path.join(SCENES, "teapot.scene"), "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            tree = ast.parse(f.read())
+        s = ast.literal_eval(next(n.value for n in tree.body if isinstance(n, ast.Assign)
+                                  and n.targets[0].id == "SCENE"))
+        m = s["meshes"][0]
+        self.assertEqual((m["vertices"], m["triangles"]), (self.counts["v"], self.counts["f"]))
+        pos = struct.unpack("<%df" % (3 * m["vertices"]), base64.b64decode(m["positions"]))
+        self.assertEqual(pos[:3], struct.unpack("<3f", struct.pack("<3f", *self.verts[0])))
+        tri = struct.unpack("<%di" % (3 * m["triangles"]), base64.b64decode(m["tri"]))
+        self.assertTrue(0 <= min(tri) and max(tri) < m["vertices"])
+        nrm = struct.unpack("<%df" % (3 * self.counts["vn"]), base64.b64decode(m["normals"]))
+        self.assertAlmostEqual(sum(x * x for x in nrm[:3]), 1.0, places=6)
+        mesh_objects = [o for o in s["objects"] if o["shape"] == "mesh"]
+        self.assertEqual(len(mesh_objects), 1)
+        self.assertEqual((mesh_objects[0]["mesh"], mesh_objects[0]["smooth"]), (0, True))
+        self.assertIn("ABRDF_SHAPE_MESH", s["osl"])
+        self.assertIn("int has_mesh = 1;", s["osl"])
+
+    def test_uv_tangent_is_refused_by_cycles(self):
+        scene = os.path.join(self.tmp.name, "uv.scene")
+        with open(scene, "w") as f:
+            f.write("camera position=0,2,8 look_at=0,1,0\n"
+                    "material m model=disney_specular_aniso anisotropic=0.5\n"
+                    "mesh file=%s material=m tangent=uv\n" % os.path.join(SCENES, "teapot.obj"))
+        r = run("--cycles", scene, "-o", os.path.join(self.tmp.name, "uv.py"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("tangent=uv is not ported to Cycles", r.stderr)
+        r = run("--pov", scene, "-o", os.path.join(self.tmp.name, "uv.pov"))
+        self.assertEqual(r.returncode, 0, r.stderr)
 
 
 if __name__ == "__main__":

@@ -90,8 +90,9 @@ class ImageTablesTest(unittest.TestCase):
                         f.write(f"material {name} {mat}\n")
                     f.write("\n".join(robot) + "\n")
                 exr[key] = os.path.join(tmp, key + ".exr")
-                run("render", scene, "-o", exr[key], "--width", "40", "--height", "32", "--spp", "1",
-                    "--no-preview")
+                # The double path, as `abrdf tables 6|7` renders (paper_images.c).
+                run("render", scene, "-o", exr[key], "--precision", "double", "--width", "40",
+                    "--height", "32", "--spp", "1", "--no-preview")
             res = json.loads(run("compare", exr["ref"], exr["cand"], "--json", "--fail", "1").stdout)
         self.assertAlmostEqual(res["nmse"], float(comp[a][m]), delta=1e-9 * res["nmse"])
 

@@ -1,11 +1,24 @@
 # doc_tables.cmake - a document quotes measured numbers only as its tool prints them: runs
-# TOOL (with the space-separated ARGS, if given) and requires every Markdown table row of its
-# output to appear verbatim in DOC.
-#   cmake -DTOOL=<program> [-DARGS="a b c"] -DDOC=<file.md> -P doc_tables.cmake
-separate_arguments(args UNIX_COMMAND "${ARGS}")
-execute_process(COMMAND "${TOOL}" ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+# the tool and requires every Markdown table row of its output to appear verbatim in DOC.
+#   cmake -DTOOL=<program> -DDOC=<file.md> -P doc_tables.cmake
+#   cmake -DDOC=<file.md> -P doc_tables.cmake -- <program> [args...]
+set(cmd "")
+set(after_dashes FALSE)
+math(EXPR last "${CMAKE_ARGC} - 1")
+foreach(i RANGE ${last})
+  if(after_dashes)
+    list(APPEND cmd "${CMAKE_ARGV${i}}")
+  elseif(CMAKE_ARGV${i} STREQUAL "--")
+    set(after_dashes TRUE)
+  endif()
+endforeach()
+if(NOT cmd)
+  set(cmd "${TOOL}")
+endif()
+list(GET cmd 0 tool)
+execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
 if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "doc_tables: ${TOOL} failed (${rc})")
+  message(FATAL_ERROR "doc_tables: ${tool} failed (${rc})")
 endif()
 file(READ "${DOC}" doc)
 string(REPLACE "\n" ";" lines "${out}")
@@ -13,14 +26,14 @@ set(rows 0)
 foreach(line IN LISTS lines)
   if(line MATCHES "^\\|")
     math(EXPR rows "${rows} + 1")
-    string(FIND "${doc}" "${line}" at)
+    string(FIND "${doc}" "\n${line}\n" at)
     if(at EQUAL -1)
-      message(FATAL_ERROR "doc_tables: ${DOC} does not quote this measured row of ${TOOL}:\n${line}\n"
+      message(FATAL_ERROR "doc_tables: ${DOC} does not quote this measured row of ${tool}:\n${line}\n"
                           "(re-run the tool and paste its tables)")
     endif()
   endif()
 endforeach()
 if(rows EQUAL 0)
-  message(FATAL_ERROR "doc_tables: ${TOOL} printed no table")
+  message(FATAL_ERROR "doc_tables: ${tool} printed no table")
 endif()
-message(STATUS "doc_tables: all ${rows} rows of ${TOOL} appear in ${DOC}")
+message(STATUS "doc_tables: all ${rows} rows of ${tool} appear in ${DOC}")

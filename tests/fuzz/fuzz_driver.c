@@ -1,15 +1,16 @@
-/* fuzz_driver.c - deterministic driver for the fuzz target (fuzz_scene.c) under CTest:
- * every seed file given on the command line, then ITERATIONS inputs mutated from them by a
- * fixed-seed generator (byte flips, inserted format tokens and hostile numbers, deleted and
- * duplicated spans, splices of two seeds). A crash, sanitizer report or abort() fails it.
- * usage: fuzz_driver [--iterations N] SEED...  */
+/* fuzz_driver.c - deterministic driver for a fuzz target (fuzz_scene.c, fuzz_mesh.c,
+ * fuzz_costs.c, fuzz_materials.c, fuzz_cli.c) under CTest: every seed file given on the command line, then
+ * ITERATIONS inputs mutated from them by a fixed-seed generator (byte flips, inserted tokens
+ * of the target's format and hostile numbers, deleted and duplicated spans, splices of two
+ * seeds). A crash, sanitizer report or abort() fails it. Each target defines fuzz_tokens[]
+ * (what its format is made of) and fuzz_report() (what it saw, printed at the end).
+ * usage: fuzz_X_driver [--iterations N] SEED...  */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
-extern unsigned long fuzz_scene_rendered;
+#include "fuzz_target.h"
 
 #define MAX_SEEDS 64
 #define MAX_INPUT (1u << 16)
@@ -24,76 +25,6 @@ static uint32_t rnd(uint32_t n)
     return n ? (uint32_t)(rng_state % n) : 0;
 }
 
-static const char *const tokens[] = {
-    "\n",
-    " ",
-    "=",
-    ",",
-    "#",
-    "\r",
-    "\t",
-    "\0",
-    "0",
-    "-0",
-    "1e308",
-    "-1e308",
-    "1e-320",
-    "nan",
-    "inf",
-    "0x10",
-    "999999999999",
-    "1,2",
-    "1,2,3,4",
-    ",,,",
-    "==",
-    "sphere",
-    "box",
-    "capsule",
-    "cylinder",
-    "camera",
-    "light",
-    "point",
-    "directional",
-    "material",
-    "ambient",
-    "adaptive",
-    "radius=",
-    "height=",
-    "size=",
-    "scale=",
-    "rotate=",
-    "translate=",
-    "tangent=",
-    "material=",
-    "model=",
-    "diffuse=",
-    "specular=",
-    "kd=",
-    "r=",
-    "n=",
-    "anisotropic=",
-    "layer_count=",
-    "position=",
-    "look_at=",
-    "up=",
-    "fov=",
-    "resolution=",
-    "direction=",
-    "intensity=",
-    "color=",
-    "disney_specular_aniso",
-    "lambert",
-    "f_2e",
-    "marschner",
-    "1e6",
-    "-1e6",
-    "179",
-    "0,0,0",
-    "\xff\xfe",
-    "m",
-};
-#define TOKEN_COUNT (sizeof tokens / sizeof tokens[0])
-
 static size_t mutate(uint8_t *buf, size_t len, const uint8_t *other, size_t olen)
 {
     int edits = rnd(2) ? 1 : 1 + (int)rnd(8); /* single edits keep many inputs valid */
@@ -104,7 +35,7 @@ static size_t mutate(uint8_t *buf, size_t len, const uint8_t *other, size_t olen
             if (len) buf[rnd((uint32_t)len)] ^= (uint8_t)(1u << rnd(8));
             break;
         case 1: { /* insert a token (the "\0" token inserts one NUL byte) */
-            const char *t = tokens[rnd(TOKEN_COUNT)];
+            const char *t = fuzz_tokens[rnd((uint32_t)fuzz_token_count)];
             size_t tl = *t ? strlen(t) : 1;
             if (len + tl >= MAX_INPUT) break;
             memmove(buf + at + tl, buf + at, len - at);
@@ -180,7 +111,8 @@ int main(int argc, char **argv)
         LLVMFuzzerTestOneInput(in, len);
         free(in);
     }
-    printf("fuzz_driver: %d seeds, %ld mutated inputs (%lu parsed and rendered), no failure\n",
-           count, iterations, fuzz_scene_rendered);
+    printf("fuzz_driver: %d seeds, %ld mutated inputs, no failure (", count, iterations);
+    fuzz_report(stdout);
+    printf(")\n");
     return 0;
 }

@@ -1,5 +1,6 @@
 /* pov_scene_check.c - scene-level cross-check of the POV-Ray port: for every scene and every
- * model (plus the scene's own materials), renders the scene with `abrdf render` and, after
+ * model (plus the scene's own materials), renders the scene with `abrdf render --precision
+ * double` (the reference path) and, after
  * `abrdf export --pov`, with the real `povray` binary at k times the resolution (no
  * antialiasing, EXR), averages k x k blocks (the renderer's stratum centres) and compares.
  * Prints the model x scene -> NMSE table (Markdown); exits 1 if any NMSE reaches 1e-4.
@@ -95,7 +96,8 @@ static pid_t job_start(char **argv, const char *scene, const char *model, int si
     if (strcmp(model, "scene")) snprintf(mopt, sizeof mopt, "--model %s", model);
     static char cmd[65536]; /* child-local after fork; static keeps it off the stack */
     snprintf(cmd, sizeof cmd,
-             "'%s' render '%s' %s -o '%s' --width %d --height %d --spp %d --threads 1 --no-preview "
+             "'%s' render '%s' %s -o '%s' --width %d --height %d --spp %d --threads 1 --precision "
+             "double --no-preview "
              ">'%s' 2>&1 && "
              "'%s' export --pov '%s' %s%s -o '%s' --width %d --height %d >>'%s' 2>&1 && "
              "'%s' -D +WT1 +I'%s' +O'%s' +FE +W%d +H%d -A +L'%s' >>'%s' 2>&1",

@@ -4,12 +4,15 @@
 1. every osl/*.osl compiles with Blender's OSL compiler, with no warning;
 2. every shader parameter carries help and label metadata, numeric ones min and max;
 3. every model of `abrdf models` renders the test scenes in evaluation mode
-   (`abrdf export --cycles --model M`) with NMSE < 1e-4 against `abrdf render --model M`
+   (`abrdf export --cycles --model M`) with NMSE < 1e-4 against `abrdf render --model M
+   --precision double` (the renderer's reference path)
    (`abrdf compare`); the model x scene -> NMSE table is printed;
 4. the host-independent shader abrdf_eval.osl (lights as parameters) does the same on a
    lit box;
 5. closure mode (abrdf_material.osl on Cycles' closures and lights) renders the sphere
-   (within 1e-4 for its Lambert + GGX material, within 1e-2 for the layered models).
+   (within 1e-4 for its Lambert + GGX material, within 1e-2 for the layered models);
+6. the teapot (a triangle mesh): its corner normals reach Blender bit for bit, and
+   evaluation mode renders it with NMSE < 1e-4 for the scene's material and four models.
 
 usage: test_osl_cycles.py ABRDF SOURCE_DIR WORK_DIR [unittest args]  (the Python with bpy)
 Fails, never skips, when bpy is missing: scripts/setup_bpy.sh installs it.
@@ -90,6 +93,37 @@ def compile_osl(path, oso):
     return ok, out["text"]
 
 
+def render_pair(scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1, sets=(),
+                variant="", prepare=None):
+    """`abrdf render` and Cycles on the exported scene (abrdf_cycles.build in `mode`); the NMSE
+    of the Cycles image against the C one. prepare(sc, s), if given, changes the built scene
+    before it renders (tests/ports/test_blender_extension.py puts its materials on it)."""
+    tag = "%s_%s_%s%s_%d" % (mode, scene, model or "scene", variant, samples)
+    d = os.path.join(WORK, tag)
+    os.makedirs(d, exist_ok=True)
+    extra = ["--model", model] if model else []
+    for a in sets:
+        extra += ["--set", a]
+    size = ["--width", str(w), "--height", str(h)]
+    ref, test, script = (os.path.join(d, n) for n in ("c.exr", "cycles.exr", "scene.py"))
+    run("render", os.path.join(SRC, path), "-o", ref, "--spp", str(c_spp), "--precision",
+        "double", "--no-preview", "--threads", "2", *size, *extra)
+    run("export", "--cycles", os.path.join(SRC, path), "-o", script, "--spp", str(samples),
+        "--osl-dir", OSL_DIR, *size, *extra)
+    s = runpy.run_path(script, run_name="abrdf_scene")["SCENE"]
+    with captured_fds():
+        # Tessellation matters only in closure mode (eval re-traces the exact shapes).
+        sc = abrdf_cycles.build(s, mode, os.path.join(d, "osl"), OSL_DIR,
+                                segments=64 if mode == "closure" else 16)
+        if prepare:
+            prepare(sc, s)
+        sc.render.threads_mode = "FIXED"
+        sc.render.threads = 2
+        abrdf_cycles.render(sc, test)
+    # compare exits 1 when the images differ; the NMSE is judged here.
+    return json.loads(run("compare", ref, test, "--json", check=False))["nmse"]
+
+
 class OslCompile(unittest.TestCase):
     def test_every_shader_compiles_without_warnings(self):
         work = os.path.join(WORK, "compile")
@@ -153,31 +187,6 @@ class CrossCheck(unittest.TestCase):
             self.assertIn("color abrdf_%s(vector wi, vector wo" % m, header)
             self.assertIn('model == "%s"' % m, header)
 
-    def render_pair(self, scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1,
-                    sets=(), variant=""):
-        tag = "%s_%s_%s%s_%d" % (mode, scene, model or "scene", variant, samples)
-        d = os.path.join(WORK, tag)
-        os.makedirs(d, exist_ok=True)
-        extra = ["--model", model] if model else []
-        for a in sets:
-            extra += ["--set", a]
-        size = ["--width", str(w), "--height", str(h)]
-        ref, test, script = (os.path.join(d, n) for n in ("c.exr", "cycles.exr", "scene.py"))
-        run("render", os.path.join(SRC, path), "-o", ref, "--spp", str(c_spp), "--no-preview",
-            "--threads", "2", *size, *extra)
-        run("export", "--cycles", os.path.join(SRC, path), "-o", script, "--spp", str(samples),
-            "--osl-dir", OSL_DIR, *size, *extra)
-        s = runpy.run_path(script, run_name="abrdf_scene")["SCENE"]
-        with captured_fds():
-            # Tessellation matters only in closure mode (eval re-traces the exact shapes).
-            sc = abrdf_cycles.build(s, mode, os.path.join(d, "osl"), OSL_DIR,
-                                    segments=64 if mode == "closure" else 16)
-            sc.render.threads_mode = "FIXED"
-            sc.render.threads = 2
-            abrdf_cycles.render(sc, test)
-        # compare exits 1 when the images differ; the NMSE is judged here.
-        return json.loads(run("compare", ref, test, "--json", check=False))["nmse"]
-
     # The layered models' defaults (two interfaces, no media) leave most of the stack code
     # unused; this stack has four interfaces, coloured absorbing media, a less dense layer
     # (total internal reflection on the way up) and a dielectric bottom.
@@ -196,7 +205,7 @@ class CrossCheck(unittest.TestCase):
             rows.append(row)
             for scene, path, w, h in SCENES:
                 try:
-                    nmse = self.render_pair(scene, path, w, h, model, sets=sets,
+                    nmse = render_pair(scene, path, w, h, model, sets=sets,
                                             variant="_stack" if sets else "")
                 except subprocess.CalledProcessError as e:
                     nmse = None
@@ -210,7 +219,7 @@ class CrossCheck(unittest.TestCase):
             scene, path, w, h = SCENES[0]
             row = " ".join((model,) + sets)
             rows.append(row)
-            nmse = self.render_pair(scene, path, w, h, model, sets=sets,
+            nmse = render_pair(scene, path, w, h, model, sets=sets,
                                     variant="".join("_" + a for a in sets))
             self.table[(row, scene)] = nmse
             if not nmse < NMSE_MAX:
@@ -234,7 +243,7 @@ class CrossCheck(unittest.TestCase):
         skip = {"huang"}
         failures = []
         for model in [m for m in self.rendered if m not in skip]:
-            nmse = self.render_pair("box_point", "tests/data/scenes/box_point.scene", 48, 48, model,
+            nmse = render_pair("box_point", "tests/data/scenes/box_point.scene", 48, 48, model,
                                     samples=64, mode="generic", c_spp=64,
                                     sets=sets.get(model, ()))
             self.table[(model, "box_point (abrdf_eval.osl)")] = nmse
@@ -250,7 +259,7 @@ class CrossCheck(unittest.TestCase):
         # as docs/OSL.md (measured 2e-5 there; at 32x32 and 16 samples the silhouette
         # pixels, where 16 random and 16 stratified samples see different coverage, alone
         # give 4.5e-4).
-        nmse = self.render_pair("sphere", SCENES[0][1], 64, 64, None, samples=64,
+        nmse = render_pair("sphere", SCENES[0][1], 64, 64, None, samples=64,
                                 mode="closure", c_spp=64)
         self.assertLess(nmse, NMSE_MAX)
 
@@ -262,7 +271,7 @@ class CrossCheck(unittest.TestCase):
         for model in self.layered:
             if model in self.rendered:
                 with self.subTest(model=model):
-                    nmse = self.render_pair("sphere", SCENES[0][1], 64, 64, model, samples=64,
+                    nmse = render_pair("sphere", SCENES[0][1], 64, 64, model, samples=64,
                                             mode="closure", c_spp=64)
                     sys.stdout.write("\nclosure mode, %s on the sphere: NMSE %.1e\n" % (model, nmse))
                     self.assertLess(nmse, bound)
@@ -270,13 +279,60 @@ class CrossCheck(unittest.TestCase):
     def test_budget_scene(self):
         # Materials chosen by the budget mode (adaptive budget=, fitted parameters): the
         # exported script carries the same choices and parameters as abrdf render.
-        nmse = self.render_pair("budget", "tests/data/scenes/budget.scene", 64, 48)
+        nmse = render_pair("budget", "tests/data/scenes/budget.scene", 64, 48)
         sys.stdout.write("\nbudget.scene (budget-chosen materials): NMSE %.1e\n" % nmse)
         self.assertLess(nmse, NMSE_MAX)
 
+    # A diffuse, a rough diffuse, a specular and a tangent-frame model on the mesh.
+    MESH_MODELS = ("lambert", "oren_nayar", "blinn_phong", "disney_specular_aniso")
+
+    def test_teapot(self):
+        # scenes/teapot.scene: a 4032-triangle smooth mesh on a box under one light. On the
+        # mesh the shader takes Cycles' point and interpolated normal at Cycles' first
+        # sample, which lies at the pixel centre (a scene with meshes renders 1 sample per
+        # pixel; 4 are asked for and ignored), and OSL's trace() for the mesh's shadows.
+        rows = ["teapot material"] + [m for m in self.MESH_MODELS if m in self.rendered]
+        failures = []
+        for row in rows:
+            model = None if row == "teapot material" else row
+            nmse = render_pair("teapot", "scenes/teapot.scene", 64, 48, model, samples=4)
+            self.table[(row, "teapot")] = nmse
+            if not nmse < NMSE_MAX:
+                failures.append("%s on the teapot: NMSE %.3g" % (row, nmse))
+        print_table(rows, self.table, 0, ["teapot"])
+        self.assertEqual(failures, [])
+
+    def test_teapot_normals_reach_blender_exactly(self):
+        # The exported mesh in Blender: the same positions and, per face corner, the same
+        # normals to the bit (Blender's float "free" custom normals), in the same order.
+        import base64
+        import numpy as np
+        d = os.path.join(WORK, "teapot_normals")
+        os.makedirs(d, exist_ok=True)
+        script = os.path.join(d, "scene.py")
+        run("export", "--cycles", os.path.join(SRC, "scenes/teapot.scene"), "-o", script,
+            "--osl-dir", OSL_DIR)
+        s = runpy.run_path(script, run_name="abrdf_scene")["SCENE"]
+        with captured_fds():
+            abrdf_cycles.build(s, "eval", os.path.join(d, "osl"), OSL_DIR)
+        m = s["meshes"][0]
+
+        def arr(key, dtype):
+            return np.frombuffer(base64.b64decode(m[key]), dtype=dtype)
+
+        me = next(o.data for o in bpy.data.objects if o.name.startswith("mesh"))
+        self.assertEqual(len(me.polygons), m["triangles"])
+        pos = np.zeros(3 * len(me.vertices), np.float32)
+        me.vertices.foreach_get("co", pos)
+        np.testing.assert_array_equal(pos, arr("positions", "<f4"))
+        want = arr("normals", "<f4").reshape(-1, 3)[arr("tri_normal", "<i4")]
+        got = np.zeros(3 * len(me.loops), np.float32)
+        me.corner_normals.foreach_get("vector", got)
+        self.assertEqual(float(np.abs(got.reshape(-1, 3) - want).max()), 0.0)
+
     def test_samples_do_not_change_the_image(self):
         # Every sample of a pixel re-traces the pixel-centre ray: 4 samples = 1 sample.
-        nmse = self.render_pair("sphere", SCENES[0][1], 32, 32, None, samples=4)
+        nmse = render_pair("sphere", SCENES[0][1], 32, 32, None, samples=4)
         self.assertLess(nmse, 1e-10)
 
 

@@ -5,7 +5,8 @@
   2. no header includes itself through others (C headers and the OSL port);
   3. every OSL header uses only functions and macros that it defines or includes, directly or
      through what it includes (so none depends on its includer);
-  4. one name per file across the tree (CMakeLists.txt excepted);
+  4. one name per file across the tree (except the names a tool requires: CMakeLists.txt,
+     and __init__.py, which Python and Blender require of a package);
   5. tests link targets: no CMakeLists.txt under tests/ names a source file outside tests/.
 
 usage: check_structure.py SOURCE_DIR OBJECT_FILE...
@@ -87,7 +88,7 @@ if len(used) < 10:
 def tracked():
     out = subprocess.run(["git", "-C", SRC, "ls-files", "--cached", "--others", "--exclude-standard"], capture_output=True, text=True)
     if out.returncode == 0 and out.stdout.strip():
-        return out.stdout.split()
+        return sorted(set(out.stdout.split()))  # a file in a merge is listed once per stage
     files = []
     for root, dirs, names in os.walk(SRC):
         dirs[:] = [d for d in dirs if not d.startswith(".") and not d.startswith("build")]
@@ -154,7 +155,7 @@ for f in osl:
 seen = {}
 for f in files:
     base = os.path.basename(f)
-    if base in ("CMakeLists.txt",):
+    if base in ("CMakeLists.txt", "__init__.py"):
         continue
     if base in seen:
         problems.append("two files named %s: %s and %s" % (base, seen[base], f))

@@ -48,9 +48,12 @@ START_TEST(r_smooth_limit)
         double h = (k + 0.5) / n;
         fa += abrdf__fresnel_dielectric(1.55, sqrt(1 - h * h)) / n;
     }
-    double a = fibre_albedo(&m, 0.0, 1u, 90);
-    printf("huang R albedo, alpha 0.05: %.5f, Fresnel h-average %.5f\n", a, fa);
+    double a = fibre_albedo(&m, 0.0, 1u, 90), a2 = fibre_albedo(&m, 0.0, 1u, 180);
+    printf(
+        "huang R albedo, alpha 0.05: %.5f (90 x 180), %.5f (180 x 360), Fresnel h-average %.5f\n",
+        a, a2, fa);
     ck_assert_msg(a < fa && a > 0.88 * fa, "R albedo %.5f vs %.5f", a, fa);
+    ck_assert_msg(a2 < fa && a2 > 0.88 * fa, "R albedo %.5f vs %.5f", a2, fa);
 }
 END_TEST
 
@@ -72,6 +75,20 @@ START_TEST(quadrature_convergence)
     m.n2 = 2 * ABRDF__HUANG_N2;
     abrdf__huang_fibre(&m, wi, wo, 15u, c);
     printf("huang convergence: S %.6g, Simpson x2 %.6g, VNDF grids x2 %.6g\n", a[0], b[0], c[0]);
+    /* Further refinements, printed for docs/SPECIAL_HAIR.md. */
+    double d[3], e[3], g[3];
+    m.n1 = ABRDF__HUANG_N1;
+    m.n2 = ABRDF__HUANG_N2;
+    m.refine = 4;
+    abrdf__huang_fibre(&m, wi, wo, 15u, d);
+    m.refine = 8;
+    abrdf__huang_fibre(&m, wi, wo, 15u, e);
+    m.refine = 1;
+    m.n1 = 4 * ABRDF__HUANG_N1;
+    m.n2 = 4 * ABRDF__HUANG_N2;
+    abrdf__huang_fibre(&m, wi, wo, 15u, g);
+    printf("huang convergence: Simpson x4 %.6g, Simpson x8 %.6g, VNDF grids x4 %.6g\n", d[0], e[0],
+           g[0]);
     ck_assert_msg(tu_close(a[0], b[0], 3e-2, 0), "h refinement %.6g vs %.6g", a[0], b[0]);
     ck_assert_msg(tu_close(a[0], c[0], 5e-2, 0), "VNDF grids %.6g vs %.6g", a[0], c[0]);
 }
@@ -121,14 +138,15 @@ END_TEST
  * here at [0.85, 1.15] and documented. */
 START_TEST(white_furnace_compensated)
 {
-    const double asp[] = {1.0, 0.2};
-    for (int k = 0; k < 2; ++k) {
+    const double asp[] = {1.0, 0.85, 0.5, 0.2, 0.85, 0.85}, deg[] = {0, 0, 0, 0, 45, 80};
+    for (int k = 0; k < 6; ++k) {
         abrdf__huang m;
         setup(&m, 0.0, asp[k]);
         m.n1 = 4;
         m.n2 = 2;
-        double a = fibre_albedo(&m, 0.0, 15u, 12);
-        printf("huang white furnace, compensated, b=%.2f theta_o=0: total %.4f\n", asp[k], a);
+        double a = fibre_albedo(&m, deg[k] * PI / 180, 15u, 12);
+        printf("huang white furnace, compensated, b=%.2f theta_o=%.0f: total %.4f\n", asp[k],
+               deg[k], a);
         ck_assert_msg(a <= 1.15 && a > 0.85, "total albedo %.4f", a);
     }
 }

@@ -164,6 +164,11 @@ START_TEST(white_furnace)
         ck_assert_msg(tu_close(a, a2, 1e-2, 0), "quadrature N vs 2N: %.5f %.5f", a, a2);
         ck_assert_msg(a2 >= 0.80 && a2 <= 1.05, "albedo %.5f at %g deg", a2, deg[k]);
     }
+    /* The lobes of the theta_o = 0 albedo (docs/SPECIAL_HAIR.md). */
+    double r = fibre_albedo(&m, 0.0, 1u, 80, 160), tt = fibre_albedo(&m, 0.0, 2u, 80, 160),
+           trt = fibre_albedo(&m, 0.0, 4u, 80, 160);
+    printf("marschner white furnace theta_o= 0 by lobe: R %.4f, TT %.4f, TRT %.4f\n", r, tt, trt);
+    ck_assert(r > 0 && tt > r && trt > 0);
 }
 END_TEST
 

@@ -1,5 +1,6 @@
 /* test_image_io.c - image files through OpenImageIO/OpenColorIO: float EXR round trip,
- * sRGB preview encoding, grey/alpha handling, and errors that name the file. */
+ * sRGB preview encoding, grey/alpha handling, the checks made before any work, and errors
+ * that name the file. Encoded bytes reach disk through out_file.h, as in the tools. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <math.h>
 #include <stdio.h>
@@ -8,6 +9,7 @@
 #include <unistd.h>
 
 #include "image_io.h"
+#include "out_file.h"
 #include "test_util.h"
 
 static char tmpdir[256];
@@ -19,6 +21,44 @@ static const char *tmp_path(const char *name)
     k = (k + 1) % 4;
     snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
     return buf[k];
+}
+
+/* The file of an encoder's bytes, as the tools write it; frees the bytes. */
+static void save(const char *path, abrdf_bytes *b)
+{
+    char err[512];
+    out_file o = OUT_FILE_INIT;
+    out_file *const files[1] = {&o};
+    ck_assert_msg(out_file_open(&o, path, err, sizeof err) == 0, "%s", err);
+    out_file_write(&o, b->data, b->size);
+    ck_assert_msg(out_file_close(&o, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(out_file_commit(files, 1, err, sizeof err) == 0, "%s", err);
+    out_file_discard(&o);
+    abrdf_bytes_free(b);
+    ck_assert_ptr_null(b->data);
+}
+
+static int write_linear(const char *path, int w, int h, const float *p, char *err, int size)
+{
+    abrdf_bytes b;
+    if (abrdf_image_encode_linear(path, w, h, p, &b, err, size)) {
+        ck_assert_ptr_null(b.data);
+        return -1;
+    }
+    save(path, &b);
+    return 0;
+}
+
+static int write_preview(const char *path, int w, int h, const float *p, const char *config,
+                         const char *display, const char *view, char *err, int size)
+{
+    abrdf_bytes b;
+    if (abrdf_image_encode_preview(path, w, h, p, config, display, view, &b, err, size)) {
+        ck_assert_ptr_null(b.data);
+        return -1;
+    }
+    save(path, &b);
+    return 0;
 }
 
 static float *ramp(int w, int h)
@@ -35,7 +75,7 @@ START_TEST(exr_round_trip_is_exact)
     float *p = ramp(w, h);
     char err[512];
     const char *path = tmp_path("rt.exr");
-    ck_assert_int_eq(abrdf_image_write_linear(path, w, h, p, err, sizeof err), 0);
+    ck_assert_int_eq(write_linear(path, w, h, p, err, sizeof err), 0);
     abrdf_image img;
     ck_assert_msg(abrdf_image_read(path, &img, err, sizeof err) == 0, "%s", err);
     ck_assert_int_eq(img.width, w);
@@ -54,7 +94,7 @@ START_TEST(hdr_round_trip_is_close)
     float *p = ramp(w, h);
     char err[512];
     const char *path = tmp_path("rt.hdr");
-    ck_assert_msg(abrdf_image_write_linear(path, w, h, p, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(write_linear(path, w, h, p, err, sizeof err) == 0, "%s", err);
     abrdf_image img;
     ck_assert_msg(abrdf_image_read(path, &img, err, sizeof err) == 0, "%s", err);
     /* RGBE: 8-bit mantissa shared by the pixel's largest channel. */
@@ -74,8 +114,7 @@ START_TEST(preview_is_srgb_encoded)
     float px[4 * 3] = {0.18f, 0.18f, 0.18f, 1, 1, 1, 0, 0, 0, 4, 4, 4};
     char err[512];
     const char *png = tmp_path("grey.png");
-    ck_assert_msg(abrdf_image_write_preview(png, 2, 2, px, NULL, NULL, NULL, err, sizeof err) == 0,
-                  "%s", err);
+    ck_assert_msg(write_preview(png, 2, 2, px, NULL, NULL, NULL, err, sizeof err) == 0, "%s", err);
     /* Reading decodes sRGB back to linear: 0.18 must come back as exactly code 118's value
      * (codes 117 and 119 decode to 0.1779 and 0.1845). */
     abrdf_image img;
@@ -96,12 +135,11 @@ START_TEST(preview_rejects_unknown_view)
 {
     float px[3] = {0.5f, 0.5f, 0.5f};
     char err[512] = "";
-    ck_assert_int_eq(abrdf_image_write_preview(tmp_path("v.png"), 1, 1, px, NULL, NULL,
-                                               "NoSuchView", err, sizeof err),
-                     -1);
+    ck_assert_int_eq(
+        write_preview(tmp_path("v.png"), 1, 1, px, NULL, NULL, "NoSuchView", err, sizeof err), -1);
     ck_assert_ptr_nonnull(strstr(err, "NoSuchView"));
-    ck_assert_int_eq(abrdf_image_write_preview(tmp_path("v.png"), 1, 1, px, "no-such-config.ocio",
-                                               NULL, NULL, err, sizeof err),
+    ck_assert_int_eq(write_preview(tmp_path("v.png"), 1, 1, px, "no-such-config.ocio", NULL, NULL,
+                                   err, sizeof err),
                      -1);
 }
 END_TEST
@@ -114,11 +152,10 @@ START_TEST(errors_name_the_file)
     ck_assert_ptr_nonnull(strstr(err, "missing.exr"));
     ck_assert_ptr_null(img.pixels);
     float px[3] = {1, 2, 3};
-    ck_assert_int_eq(abrdf_image_write_linear(tmp_path("lin.png"), 1, 1, px, err, sizeof err), -1);
+    ck_assert_int_eq(write_linear(tmp_path("lin.png"), 1, 1, px, err, sizeof err), -1);
     ck_assert_ptr_nonnull(strstr(err, "lin.png"));
-    ck_assert_int_eq(abrdf_image_write_linear(tmp_path("zero.exr"), 0, 1, px, err, sizeof err), -1);
-    ck_assert_int_eq(abrdf_image_write_linear(tmp_path("x.unknownext"), 1, 1, px, err, sizeof err),
-                     -1);
+    ck_assert_int_eq(write_linear(tmp_path("zero.exr"), 0, 1, px, err, sizeof err), -1);
+    ck_assert_int_eq(write_linear(tmp_path("x.unknownext"), 1, 1, px, err, sizeof err), -1);
     FILE *f = fopen(tmp_path("garbage.exr"), "wb");
     fputs("not an image", f);
     fclose(f);
@@ -131,8 +168,10 @@ START_TEST(heatmap_is_written)
     float v[6] = {0, 0.2f, 0.4f, 0.6f, 0.8f, 1};
     char err[512];
     const char *png = tmp_path("heat.png");
-    ck_assert_msg(abrdf_image_write_heatmap(png, 3, 2, v, 1.0, NULL, err, sizeof err) == 0, "%s",
-                  err);
+    abrdf_bytes b;
+    ck_assert_msg(abrdf_image_encode_heatmap(png, 3, 2, v, 1.0, NULL, &b, err, sizeof err) == 0,
+                  "%s", err);
+    save(png, &b);
     abrdf_image img;
     ck_assert_msg(abrdf_image_read(png, &img, err, sizeof err) == 0, "%s", err);
     ck_assert_int_eq(img.width, 3);
@@ -141,6 +180,49 @@ START_TEST(heatmap_is_written)
     ck_assert(img.pixels[0] + img.pixels[1] + img.pixels[2] < 0.01);
     ck_assert(img.pixels[15] > 0.7 && img.pixels[16] > 0.7 && img.pixels[17] < img.pixels[16]);
     abrdf_image_free(&img);
+}
+END_TEST
+
+/* What the tools check before their work: names they cannot write, transforms they cannot
+ * build. Nothing is written by a check. */
+START_TEST(checks_before_the_work)
+{
+    char err[512] = "";
+    ck_assert_int_eq(abrdf_image_check_output(tmp_path("a.exr"), 1, err, sizeof err), 0);
+    ck_assert_int_eq(abrdf_image_check_output(tmp_path("a.hdr"), 1, err, sizeof err), 0);
+    ck_assert_int_eq(abrdf_image_check_output(tmp_path("a.png"), 0, err, sizeof err), 0);
+    ck_assert_int_eq(abrdf_image_check_output(tmp_path("a.png"), 1, err, sizeof err), -1);
+    ck_assert_ptr_nonnull(strstr(err, "scene-linear"));
+    ck_assert_int_eq(abrdf_image_check_output(tmp_path("a.exr"), 0, err, sizeof err), -1);
+    ck_assert_int_eq(abrdf_image_check_output(tmp_path("h.xyz"), 0, err, sizeof err), -1);
+    /* The reason, not just the name (OpenImageIO's own message for an unknown extension). */
+    ck_assert_msg(strlen(strstr(err, "h.xyz: ")) > strlen("h.xyz: ") + 10, "%s", err);
+    /* SGI has no in-memory writer: its writes could not be checked, so it is refused. */
+    ck_assert_int_eq(abrdf_image_check_output(tmp_path("a.sgi"), 1, err, sizeof err), -1);
+    ck_assert_ptr_nonnull(strstr(err, "cannot encode in memory"));
+    ck_assert_int_eq(abrdf_image_check_preview(NULL, NULL, NULL, err, sizeof err), 0);
+    ck_assert_int_eq(abrdf_image_check_preview(NULL, "nosuch", NULL, err, sizeof err), -1);
+    ck_assert_ptr_nonnull(strstr(err, "nosuch"));
+    ck_assert_int_eq(abrdf_image_check_preview(NULL, NULL, "NoView", err, sizeof err), -1);
+    ck_assert_int_eq(abrdf_image_check_preview(tmp_path("none.ocio"), NULL, NULL, err, sizeof err),
+                     -1);
+    ck_assert_int_eq(access(tmp_path("a.exr"), F_OK), -1);
+}
+END_TEST
+
+/* A 4 KiB path keeps the reason of its error: the path is shortened, not the message. */
+START_TEST(long_paths_keep_the_reason)
+{
+    char path[4200], err[256] = "";
+    int n = snprintf(path, sizeof path, "%s/", tmpdir);
+    while (n < 4000) n += snprintf(path + n, sizeof path - (size_t)n, "long-directory-name/");
+    snprintf(path + n, sizeof path - (size_t)n, "image.exr");
+    abrdf_image img;
+    ck_assert_int_eq(abrdf_image_read(path, &img, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "image.exr: cannot open: No such file or directory"), "%s", err);
+    ck_assert_ptr_nonnull(strstr(err, "..."));
+    ck_assert_int_eq(abrdf_image_read(tmpdir, &img, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "is a directory"), "%s", err);
 }
 END_TEST
 
@@ -154,6 +236,8 @@ static Suite *suite(void)
     tcase_add_test(t, preview_rejects_unknown_view);
     tcase_add_test(t, errors_name_the_file);
     tcase_add_test(t, heatmap_is_written);
+    tcase_add_test(t, checks_before_the_work);
+    tcase_add_test(t, long_paths_keep_the_reason);
     suite_add_tcase(s, t);
     return s;
 }

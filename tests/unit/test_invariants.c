@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "prepared.h"
 #include "test_grid.h"
 #include "test_util.h"
 
@@ -330,7 +331,9 @@ static double sensitivity(abrdf_model model, const abrdf_params *p, const double
     return s;
 }
 
-START_TEST(float_batch_matches_double)
+/* The batch path at instruction-set level `level` (prepared.h: every level this CPU runs is
+ * tested; the double-only models do not depend on the level and run at level 0 only). */
+static void float_batch_level(int level)
 {
     static tg_set sets[MAX_SETS];
     static float ix[MAXPAIRS], iy[MAXPAIRS], iz[MAXPAIRS], ox[MAXPAIRS], oy[MAXPAIRS], oz[MAXPAIRS],
@@ -341,7 +344,7 @@ START_TEST(float_batch_matches_double)
     grid_make();
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
-        if (!m) continue;
+        if (!m || (level > 0 && abrdf__is_double_only(m->id))) continue;
         int np = 0;
         for (int j = 0; j < grid.count; j += grid_stride(m), ++np) {
             ix[np] = (float)grid.wi[j][0];
@@ -359,7 +362,10 @@ START_TEST(float_batch_matches_double)
         double worst_rel = 0.0; /* largest relative error where f > 1e-3 of the set's max */
         long fails0 = fails;
         for (int s = 0; s < ns; ++s) {
-            ck_assert_int_eq(abrdf_eval_batch(m->id, &sets[s].p, &b), ABRDF_OK);
+            abrdf_prepared prep;
+            ck_assert_int_eq(abrdf_prepare(m->id, &sets[s].p, &prep), ABRDF_OK);
+            ck_assert_int_eq(
+                abrdf__eval_prepared_f_isa((const abrdf__prep *)(void *)&prep, &b, level), 0);
             double peak = 0.0;
             for (int k = 0; k < np; ++k) {
                 /* the double reference sees the same (float-rounded) directions */
@@ -394,13 +400,88 @@ START_TEST(float_batch_matches_double)
                 }
             }
         }
-        printf("float vs double %-22s %2d sets: max relative error %.3g (where f > 1e-3 peak)%s\n",
-               m->name, ns, worst_rel, fails > fails0 ? "  OUTSIDE TOLERANCE" : "");
+        printf("float (%s) vs double %-22s %2d sets: max relative error %.3g (where f > 1e-3 "
+               "peak)%s\n",
+               abrdf__isa_name(level), m->name, ns, worst_rel,
+               fails > fails0 ? "  OUTSIDE TOLERANCE" : "");
     }
-    printf("float vs double: %ld evaluations, %ld pairs needed the sensitivity term, %ld "
+    printf("float (%s) vs double: %ld evaluations, %ld pairs needed the sensitivity term, %ld "
            "failures\n",
-           evals, sens_used, fails);
-    ck_assert_msg(fails == 0, "%ld float results outside tolerance", fails);
+           abrdf__isa_name(level), evals, sens_used, fails);
+    ck_assert_msg(fails == 0, "%ld float results (%s) outside tolerance", fails,
+                  abrdf__isa_name(level));
+}
+
+START_TEST(float_batch_matches_double)
+{
+    /* abrdf_eval_batch runs the best level; every level the machine has is held to the
+     * same tolerance. */
+    printf("instruction-set levels: this CPU runs up to %s\n", abrdf__isa_name(abrdf__isa_best()));
+    for (int level = 0; level <= abrdf__isa_best(); ++level) float_batch_level(level);
+}
+END_TEST
+
+/* ---- prepared evaluation is the unprepared one, bit for bit -------------------------- */
+
+START_TEST(prepared_equals_unprepared)
+{
+    static tg_set sets[MAX_SETS];
+    static float ix[MAXPAIRS], iy[MAXPAIRS], iz[MAXPAIRS], ox[MAXPAIRS], oy[MAXPAIRS], oz[MAXPAIRS],
+        fa[3][MAXPAIRS], fb[3][MAXPAIRS];
+    tg_rng rng = {4242};
+    long diffs = 0, evals = 0;
+    grid_make();
+    for (int mi = 0; mi < abrdf_model_count(); ++mi) {
+        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        if (!m) continue;
+        int stride = grid_stride(m) * ((m->needs & ABRDF_NEEDS_INTEGRATION) ? 4 : 1), np = 0;
+        for (int j = 0; j < grid.count; j += stride, ++np) {
+            ix[np] = (float)grid.wi[j][0], iy[np] = (float)grid.wi[j][1];
+            iz[np] = (float)grid.wi[j][2], ox[np] = (float)grid.wo[j][0];
+            oy[np] = (float)grid.wo[j][1], oz[np] = (float)grid.wo[j][2];
+        }
+        abrdf_batch ba = {(size_t)np, ix, iy, iz, ox, oy, oz, fa[0], fa[1], fa[2]};
+        abrdf_batch bb = {(size_t)np, ix, iy, iz, ox, oy, oz, fb[0], fb[1], fb[2]};
+        int ns = tg_param_sets(m->id, TG_TYPICAL, sets, set_cap(m, MAX_SETS));
+        for (int s = 0; s < ns; ++s) {
+            abrdf_prepared prep, copy;
+            ck_assert_int_eq(abrdf_prepare(m->id, &sets[s].p, &prep), ABRDF_OK);
+            copy = prep; /* plain data: a copy is a prepared object */
+            ck_assert_int_eq(abrdf_prepared_model(&copy), m->id);
+            for (int k = 0; k < grid.count; k += stride) {
+                double a[3], b[3], c[3], d[3], n[3], t[3], wi[3], wo[3];
+                abrdf_frame fr;
+                ck_assert_int_eq(abrdf_eval(m->id, &sets[s].p, NULL, grid.wi[k], grid.wo[k], a),
+                                 ABRDF_OK);
+                ck_assert_int_eq(abrdf_eval_prepared(&copy, NULL, grid.wi[k], grid.wo[k], b),
+                                 ABRDF_OK);
+                tg_sphere(&rng, n);
+                tg_sphere(&rng, t);
+                abrdf_frame_make(n, t, &fr);
+                for (int q = 0; q < 3; ++q) {
+                    wi[q] =
+                        grid.wi[k][0] * fr.t[q] + grid.wi[k][1] * fr.b[q] + grid.wi[k][2] * fr.n[q];
+                    wo[q] =
+                        grid.wo[k][0] * fr.t[q] + grid.wo[k][1] * fr.b[q] + grid.wo[k][2] * fr.n[q];
+                }
+                abrdf_eval(m->id, &sets[s].p, &fr, wi, wo, c);
+                abrdf_eval_prepared(&prep, &fr, wi, wo, d);
+                evals += 4;
+                if ((memcmp(a, b, sizeof a) || memcmp(c, d, sizeof c)) && diffs++ < MAX_REPORT)
+                    printf("PREPARED %s [%s]: scalar %.17g / %.17g, framed %.17g / %.17g\n",
+                           m->name, sets[s].label, a[0], b[0], c[0], d[0]);
+            }
+            ck_assert_int_eq(abrdf_eval_batch(m->id, &sets[s].p, &ba), ABRDF_OK);
+            ck_assert_int_eq(abrdf_eval_prepared_batch(&copy, &bb), ABRDF_OK);
+            evals += 2L * np;
+            for (int q = 0; q < 3; ++q)
+                if (memcmp(fa[q], fb[q], (size_t)np * sizeof(float)) && diffs++ < MAX_REPORT)
+                    printf("PREPARED %s [%s]: batch channel %d differs\n", m->name, sets[s].label,
+                           q);
+        }
+    }
+    printf("prepared vs unprepared: %ld evaluations, %ld differences\n", evals, diffs);
+    ck_assert_msg(diffs == 0, "%ld prepared results differ from the unprepared ones", diffs);
 }
 END_TEST
 
@@ -472,6 +553,7 @@ static Suite *suite(void)
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, finite_nonnegative_reciprocal);
     tcase_add_test(tc, float_batch_matches_double);
+    tcase_add_test(tc, prepared_equals_unprepared);
     tcase_add_test(tc, frame_invariance);
     tcase_add_test(tc, white_furnace);
     suite_add_tcase(s, tc);

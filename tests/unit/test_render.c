@@ -16,13 +16,20 @@ typedef struct result {
     render_stats st;
 } result;
 
+/* The precision the "values" tests render in: each runs once per precision (a loop test whose
+ * index is the render_precision), the plan tests in the default (float). */
+static int precision = RENDER_FLOAT;
+/* Closed-form tolerance of a pixel: the double path is exact to rounding; the float path
+ * evaluates the BRDF in float (abrdf.h: the batch path's tolerance). */
+static double pixel_tol(void) { return precision == RENDER_DOUBLE ? 1e-6 : 2e-5; }
+
 /* Render scene text at its own resolution (size 0) or size x size. */
 static result render_text_at(const char *text, int spp, int threads, int size, int full)
 {
     scene s;
     char err[512];
     ck_assert_msg(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
-    render_options opt = {size, size, spp, 0, threads, 0};
+    render_options opt = {size, size, spp, 0, threads, 0, precision, 0};
     render_scene rs;
     ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
     if (full) ck_assert_int_eq(render_plan_ignore(&rs), 0);
@@ -48,6 +55,7 @@ static const float *pixel(const result *r, int i, int j)
  * sample sees (0, 0, 1) with N = +z and wo = +z. */
 START_TEST(lambert_centre_pixel_directional)
 {
+    precision = _i;
     const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
                        "light directional direction=0,0.5,0.8660254037844386 intensity=3\n"
                        "ambient 0.1\n"
@@ -58,7 +66,7 @@ START_TEST(lambert_centre_pixel_directional)
     double kd[3] = {0.5, 0.25, 0.125};
     for (int c = 0; c < 3; ++c) {
         double want = kd[c] * 0.1 + 3.0 * kd[c] / PI * cos(PI / 6); /* ka*Ia + E kd/pi cos */
-        ck_assert_msg(tu_close(p[c], want, 1e-6, 0), "c%d %.9g vs %.9g", c, p[c], want);
+        ck_assert_msg(tu_close(p[c], want, pixel_tol(), 0), "c%d %.9g vs %.9g", c, p[c], want);
     }
     /* The corner sees no object: black background. */
     ck_assert(pixel(&r, 0, 0)[0] == 0.0f);
@@ -70,6 +78,7 @@ END_TEST
  * equals abrdf_shade for the same directions. */
 START_TEST(pair_matches_abrdf_shade)
 {
+    precision = _i;
     const char *text =
         "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
         "light directional direction=0.3,0.4,0.8660254037844386 color=1,0.8,0.6 intensity=2\n"
@@ -90,21 +99,22 @@ START_TEST(pair_matches_abrdf_shade)
                                  light, ambient, want),
                      ABRDF_OK);
     for (int c = 0; c < 3; ++c)
-        ck_assert_msg(tu_close(pixel(&r, 16, 16)[c], want[c], 1e-6, 0), "c%d %.9g vs %.9g", c,
-                      pixel(&r, 16, 16)[c], want[c]);
+        ck_assert_msg(tu_close(pixel(&r, 16, 16)[c], want[c], pixel_tol(), 0), "c%d %.9g vs %.9g",
+                      c, pixel(&r, 16, 16)[c], want[c]);
     free(r.rgb);
 }
 END_TEST
 
 START_TEST(point_light_falls_off_with_distance_squared)
 {
+    precision = _i;
     const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=33,33\n"
                        "light point position=0,0,3 intensity=8\n"
                        "material m model=lambert kd=0.5\n"
                        "sphere material=m radius=1\n";
     result r = render_text(text, 1, 1);
     double want = 8.0 / 4.0 * 0.5 / PI; /* d = 2, cos = 1 */
-    ck_assert_msg(tu_close(pixel(&r, 16, 16)[0], want, 1e-6, 0), "%.9g vs %.9g",
+    ck_assert_msg(tu_close(pixel(&r, 16, 16)[0], want, pixel_tol(), 0), "%.9g vs %.9g",
                   pixel(&r, 16, 16)[0], want);
     free(r.rgb);
 }
@@ -114,6 +124,7 @@ END_TEST
  * radiance samples, each computed in closed form here from the same camera model. */
 START_TEST(box_filter_matches_camera_model)
 {
+    precision = _i;
     const char *text = "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=9,9\n"
                        "light directional direction=0,0,1 intensity=1\n"
                        "material m model=lambert kd=1\n"
@@ -131,7 +142,7 @@ START_TEST(box_filter_matches_camera_model)
             double nz = 4 + t * d[2];
             sum += nz / PI; /* E = 1, light along +z: cos = N.z */
         }
-    ck_assert_msg(tu_close(pixel(&r, 4, 4)[0], sum / 16, 1e-6, 0), "%.9g vs %.9g",
+    ck_assert_msg(tu_close(pixel(&r, 4, 4)[0], sum / 16, pixel_tol(), 0), "%.9g vs %.9g",
                   pixel(&r, 4, 4)[0], sum / 16);
     free(r.rgb);
 }
@@ -142,6 +153,7 @@ END_TEST
  * one-sample image gives the supersampled image. */
 START_TEST(strata_centres_equal_block_average_of_larger_image)
 {
+    precision = _i;
     const char *text = "camera position=0.3,0.2,4 look_at=0,0,0 fov=30 resolution=7,5\n"
                        "light directional direction=1,1,1\n"
                        "material m diffuse=lambert specular=disney_specular kd=0.5 r=0.3\n"
@@ -149,7 +161,8 @@ START_TEST(strata_centres_equal_block_average_of_larger_image)
     scene s;
     char err[256];
     ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
-    render_options small = {7, 5, 9, 0, 2, 0}, big = {21, 15, 1, 0, 2, 0};
+    render_options small = {7, 5, 9, 0, 2, 0, precision, 0},
+                   big = {21, 15, 1, 0, 2, 0, precision, 0};
     float a[7 * 5 * 3], b[21 * 15 * 3];
     render_scene rs;
     ck_assert(render_prepare(&s, &small, &rs, err, sizeof err) == 0);
@@ -167,8 +180,8 @@ START_TEST(strata_centres_equal_block_average_of_larger_image)
                     for (int x = 0; x < 3; ++x) sum += b[3 * ((3 * j + y) * 21 + 3 * i + x) + c];
                 float v = a[3 * (j * 7 + i) + c];
                 nonzero += v > 0;
-                ck_assert_msg(tu_close(v, sum / 9, 1e-6, 1e-12), "(%d,%d) %.9g vs %.9g", i, j, v,
-                              sum / 9);
+                ck_assert_msg(tu_close(v, sum / 9, pixel_tol(), 1e-12), "(%d,%d) %.9g vs %.9g", i,
+                              j, v, sum / 9);
             }
     ck_assert(nonzero > 10);
     scene_free(&s);
@@ -192,6 +205,7 @@ static void load_robot(void) { strcpy(robot, read_file(SCENES_DIR "/robot.scene"
 
 START_TEST(bit_identical_for_any_thread_count)
 {
+    precision = _i;
     load_robot();
     scene s;
     char err[256];
@@ -200,7 +214,7 @@ START_TEST(bit_identical_for_any_thread_count)
     render_stats st[3];
     int threads[3] = {1, 2, 2};
     for (int k = 0; k < 3; ++k) {
-        render_options opt = {64, 64, 4, k == 2, threads[k], 0};
+        render_options opt = {64, 64, 4, k == 2, threads[k], 0, precision, 0};
         render_scene rs;
         ck_assert(render_prepare(&s, &opt, &rs, err, sizeof err) == 0);
         img[k] = malloc(64 * 64 * 3 * sizeof(float));
@@ -214,6 +228,57 @@ START_TEST(bit_identical_for_any_thread_count)
     ck_assert(memcmp(img[0], img[2], 64 * 64 * 3 * sizeof(float)) != 0);
     for (int k = 0; k < 3; ++k) free(img[k]);
     scene_free(&s);
+}
+END_TEST
+
+/* The fast path against the double reference: every model, both shipped scenes, within
+ * NMSE 1e-8 (sum (F - D)^2 / sum D^2, the paper's metric). Small images: the models that
+ * integrate inside eval cost ~1e5 times more per evaluation. */
+static double nmse_fast_vs_double(const scene *s, int size)
+{
+    float *img[2];
+    for (int k = 0; k < 2; ++k) {
+        render_options opt = {size, size, 1, 0, 2, 0, k ? RENDER_DOUBLE : RENDER_FLOAT, 0};
+        render_scene rs;
+        char err[512];
+        ck_assert_msg(render_prepare(s, &opt, &rs, err, sizeof err) == 0, "%s", err);
+        img[k] = malloc((size_t)size * size * 3 * sizeof(float));
+        ck_assert_int_eq(render_image(&rs, &opt, img[k], NULL), 0);
+        render_release(&rs);
+    }
+    double num = 0, den = 0;
+    for (int q = 0; q < size * size * 3; ++q) {
+        double d = (double)img[0][q] - img[1][q];
+        num += d * d, den += (double)img[1][q] * img[1][q];
+    }
+    free(img[0]), free(img[1]);
+    ck_assert(den > 0);
+    return num / den;
+}
+
+START_TEST(fast_path_within_nmse_1e8_of_double)
+{
+    const char *scenes[2] = {SCENES_DIR "/sphere.scene", SCENES_DIR "/robot.scene"};
+    double worst = 0;
+    for (int sc = 0; sc < 2; ++sc) {
+        char *text = read_file(scenes[sc]);
+        for (int mi = -1; mi < abrdf_model_count(); ++mi) { /* -1: the scene's own materials */
+            scene s;
+            char err[512];
+            ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
+            const abrdf_model_info *m = mi < 0 ? NULL : abrdf_model_get((abrdf_model)mi);
+            if (m) ck_assert_msg(render_set_model(&s, m->id, err, sizeof err) == 0, "%s", err);
+            int size = m && (m->needs & ABRDF_NEEDS_INTEGRATION) ? 12 : 40;
+            double e = nmse_fast_vs_double(&s, size);
+            worst = e > worst ? e : worst;
+            printf("fast vs double %-6s %-22s NMSE %.3g\n", sc ? "robot" : "sphere",
+                   m ? m->name : "(scene)", e);
+            ck_assert_msg(e <= 1e-8, "%s on %s: NMSE %.3g > 1e-8", m ? m->name : "scene",
+                          scenes[sc], e);
+            scene_free(&s);
+        }
+    }
+    printf("fast vs double: largest NMSE %.3g (limit 1e-8)\n", worst);
 }
 END_TEST
 
@@ -370,7 +435,7 @@ START_TEST(unresolvable_materials_are_refused)
     scene s;
     char err[512];
     ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
-    render_options opt = {8, 8, 1, 0, 1, 0};
+    render_options opt = {8, 8, 1, 0, 1, 0, RENDER_FLOAT, 0};
     render_scene rs;
     ck_assert_int_eq(render_prepare(&s, &opt, &rs, err, sizeof err), -1);
     ck_assert_ptr_nonnull(strstr(err, "adaptive"));
@@ -394,13 +459,16 @@ static Suite *suite(void)
 {
     Suite *s = suite_create("render");
     TCase *tv = tcase_create("values");
-    tcase_add_test(tv, lambert_centre_pixel_directional);
-    tcase_add_test(tv, pair_matches_abrdf_shade);
-    tcase_add_test(tv, point_light_falls_off_with_distance_squared);
-    tcase_add_test(tv, box_filter_matches_camera_model);
-    tcase_add_test(tv, bit_identical_for_any_thread_count);
-    tcase_add_test(tv, strata_centres_equal_block_average_of_larger_image);
-    tcase_set_timeout(tv, 120);
+    tcase_add_loop_test(tv, lambert_centre_pixel_directional, RENDER_FLOAT, RENDER_DOUBLE + 1);
+    tcase_add_loop_test(tv, pair_matches_abrdf_shade, RENDER_FLOAT, RENDER_DOUBLE + 1);
+    tcase_add_loop_test(tv, point_light_falls_off_with_distance_squared, RENDER_FLOAT,
+                        RENDER_DOUBLE + 1);
+    tcase_add_loop_test(tv, box_filter_matches_camera_model, RENDER_FLOAT, RENDER_DOUBLE + 1);
+    tcase_add_loop_test(tv, bit_identical_for_any_thread_count, RENDER_FLOAT, RENDER_DOUBLE + 1);
+    tcase_add_loop_test(tv, strata_centres_equal_block_average_of_larger_image, RENDER_FLOAT,
+                        RENDER_DOUBLE + 1);
+    tcase_add_test(tv, fast_path_within_nmse_1e8_of_double);
+    tcase_set_timeout(tv, 300);
     suite_add_tcase(s, tv);
     TCase *tp = tcase_create("plan");
     tcase_add_test(tp, single_sphere_casts_no_shadow_rays);

@@ -453,6 +453,32 @@ START_TEST(invalid_inputs_are_rejected_with_a_message)
 }
 END_TEST
 
+/* cost[] is public: a NaN or an infinity written into it is refused, for either goal, with
+ * the model named (it used to pass through as a NaN cost of the choice). */
+START_TEST(non_finite_costs_are_rejected)
+{
+    run s;
+    abrdf_material m = mat(300, -1);
+    abrdf_costs c;
+    abrdf_costs_paper(&c);
+    ck_assert_int_eq(abrdf_costs_set(&c, ABRDF_F8, NAN), ABRDF_E_RANGE); /* the setter refuses */
+    for (int goal = 0; goal < 2; ++goal) {
+        c.cost[ABRDF_F8] = NAN;
+        ck_assert_int_eq(select_run(&s, &m, (abrdf_goal)goal, NULL, &c), ABRDF_E_RANGE);
+        ck_assert_msg(strstr(s.sel.message, "f8") && strstr(s.sel.message, "nan"), "%s",
+                      s.sel.message);
+        c.cost[ABRDF_F8] = -INFINITY;
+        ck_assert_int_eq(select_run(&s, &m, (abrdf_goal)goal, NULL, &c), ABRDF_E_RANGE);
+        c.cost[ABRDF_F8] = 14.0;
+        c.cost[ABRDF_COSTS_CAPACITY - 1] = INFINITY; /* an id no model has yet */
+        ck_assert_int_eq(select_run(&s, &m, (abrdf_goal)goal, NULL, &c), ABRDF_E_RANGE);
+        c.cost[ABRDF_COSTS_CAPACITY - 1] = -1.0;
+        ck_assert_int_eq(select_run(&s, &m, (abrdf_goal)goal, NULL, &c), ABRDF_OK);
+        ck_assert(isfinite(s.sel.cost_total));
+    }
+}
+END_TEST
+
 /* struct_size (abrdf.h, STABLE LAYOUTS): a struct never initialised, or smaller than the
  * 0.2.0 layout, is refused with ABRDF_E_SIZE and a message naming it; nothing is written
  * into a result that is itself too small. */
@@ -581,6 +607,7 @@ static Suite *suite(void)
     suite_add_tcase(s, sp);
     TCase *in = tcase_create("inputs");
     tcase_add_test(in, invalid_inputs_are_rejected_with_a_message);
+    tcase_add_test(in, non_finite_costs_are_rejected);
     tcase_add_test(in, struct_size_is_checked);
     tcase_add_test(in, rules_table_holds_the_flowchart);
     tcase_add_test(in, names_round_trip_and_agree_with_the_registry);

@@ -123,13 +123,21 @@ static int goodf(float f) { return f >= 0.0f && isfinite(f); }
 static pairset ps;
 static float bx[6][MAXPAIRS], bout[3][MAXPAIRS];
 
-/* Evaluates one parameter set on ps in both precisions; returns the number of bad results. */
+/* Evaluates one parameter set on ps in both precisions, through a prepared object (what a
+ * renderer uses; abrdf_eval and abrdf_eval_batch are the same calls, test_invariants holds
+ * them to it bit for bit); returns the number of bad results. */
 static long run_set(const abrdf_model_info *m, const tg_set *set, long *nd, long *nf, tg_rng *rng)
 {
     long bad = 0;
+    abrdf_prepared prep;
+    int pst = abrdf_prepare(m->id, &set->p, &prep);
+    if (pst != ABRDF_OK) {
+        printf("BAD prepare %s [%s]: status %d\n", m->name, set->label, pst);
+        return 1;
+    }
     for (int k = 0; k < ps.count; ++k) {
         double f[3] = {NAN, NAN, NAN};
-        int st = abrdf_eval(m->id, &set->p, NULL, ps.wi[k], ps.wo[k], f);
+        int st = abrdf_eval_prepared(&prep, NULL, ps.wi[k], ps.wo[k], f);
         ++*nd;
         if (st != ABRDF_OK || !good3(f)) {
             if (bad++ < MAX_REPORT)
@@ -144,7 +152,7 @@ static long run_set(const abrdf_model_info *m, const tg_set *set, long *nd, long
             tg_sphere(rng, t);
             abrdf_frame_make(n, (k & 32) ? t : NULL, &fr);
             if ((k & 63) == 0) fr.t[1] = NAN; /* a hand-made frame with a NaN: f = 0 */
-            st = abrdf_eval(m->id, &set->p, &fr, ps.wi[k], ps.wo[k], f);
+            st = abrdf_eval_prepared(&prep, &fr, ps.wi[k], ps.wo[k], f);
             ++*nd;
             if (st != ABRDF_OK || !good3(f)) {
                 if (bad++ < MAX_REPORT)
@@ -162,7 +170,7 @@ static long run_set(const abrdf_model_info *m, const tg_set *set, long *nd, long
         for (int k = 0; k < ps.count; ++k) bout[c][k] = NAN;
     abrdf_batch b = {(size_t)ps.count, bx[0],   bx[1],  bx[2], bx[3], bx[4], bx[5],
                      bout[0],          bout[1], bout[2]};
-    int st = abrdf_eval_batch(m->id, &set->p, &b);
+    int st = abrdf_eval_prepared_batch(&prep, &b);
     *nf += ps.count;
     if (st != ABRDF_OK) {
         printf("BAD batch %s [%s]: status %d\n", m->name, set->label, st);
@@ -234,12 +242,19 @@ static int rejected(const abrdf_model_info *m, const abrdf_params *p, const char
     int s1 = abrdf_params_check(m->id, p, msg, sizeof msg);
     int s2 = abrdf_eval(m->id, p, NULL, wi, wo, f);
     int s3 = abrdf_eval_batch(m->id, p, &b);
+    /* prepare refuses too, and the object it leaves is "not prepared" */
+    abrdf_prepared prep;
+    double g[3] = {NAN, NAN, NAN};
+    int s4 = abrdf_prepare(m->id, p, &prep);
+    int s5 = abrdf_eval_prepared(&prep, NULL, wi, wo, g);
     int ok = s1 == ABRDF_E_RANGE && s2 == ABRDF_E_RANGE && s3 == ABRDF_E_RANGE && f[0] == 0.0 &&
              f[1] == 0.0 && f[2] == 0.0 && fr[0] == 0.0f && fg[0] == 0.0f && fb[0] == 0.0f &&
-             msg[0] != '\0';
+             msg[0] != '\0' && s4 == ABRDF_E_RANGE && s5 == ABRDF_E_MODEL && g[0] == 0.0 &&
+             abrdf_prepared_model(&prep) == ABRDF_MODEL_NONE;
     if (!ok)
-        printf("NOT REJECTED %s %s: check %d eval %d batch %d f=%g float=%g msg='%s'\n", m->name,
-               what, s1, s2, s3, f[0], fr[0], msg);
+        printf("NOT REJECTED %s %s: check %d eval %d batch %d prepare %d eval_prepared %d f=%g "
+               "float=%g msg='%s'\n",
+               m->name, what, s1, s2, s3, s4, s5, f[0], fr[0], msg);
     return ok;
 }
 

@@ -4,6 +4,7 @@
  *   bench_robot_lobes    render the robot with every material replaced by given lobes
  *   bench_render_report  `abrdf bench --render`: full Disney vs adaptive photoreal and
  *                        performance on the robot: time ratios and NMSE per material
+ *   bench_lobe_report    per-lobe render cost vs per-eval cost on the 16-light robot
  */
 #ifndef ABRDF_BENCH_H
 #define ABRDF_BENCH_H
@@ -26,7 +27,14 @@ int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrd
 double bench_wall_seconds(void);
 
 /* `abrdf bench --render`: writes a table (json 0) or a JSON object (json 1) to out.
- * size: image size (0 = the scene's); reps: timed renders per variant (median). */
-int bench_render_report(FILE *out, int json, int size, int reps, int threads);
+ * size: image size (0 = the scene's); reps: timed renders per variant (median). Ends with
+ * bench_lobe_report at lobe_size (JSON: its object under "lobe_costs"). */
+int bench_render_report(FILE *out, int json, int size, int reps, int threads, int lobe_size,
+                        int quick);
+
+/* What each specular lobe costs in a one-thread render of scenes/robot16.scene at size x size
+ * (time with lambert + X minus lambert alone) beside its batch per-eval cost, both relative
+ * to disney_specular, and the BRDFs' share of the render time (bench_lobes.c). */
+int bench_lobe_report(FILE *out, int json, int size, int reps, int quick);
 
 #endif

@@ -157,7 +157,8 @@ static void lobe_names(const scene_material *m, char *buf, size_t n)
 
 #define MAX_MATERIALS 16
 
-int bench_render_report(FILE *out, int json, int size, int reps, int threads)
+int bench_render_report(FILE *out, int json, int size, int reps, int threads, int lobe_size,
+                        int quick)
 {
     char err[512];
     scene sv[V_COUNT];
@@ -232,7 +233,9 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads)
             cli_json_string(out, sv[0].materials[i].name);
             fprintf(out, ", \"nmse\": %.6g}", isfinite(approx[i]) ? approx[i] : -1.0);
         }
-        fprintf(out, "]}}\n");
+        fprintf(out, "]},\n\"lobe_costs\": ");
+        if (bench_lobe_report(out, 1, lobe_size, reps, quick)) goto out;
+        fprintf(out, "}\n");
     } else {
         fprintf(out,
                 "Robot %dx%d, 1 spp, %d thread(s), median of %d renders per variant.\n"
@@ -257,6 +260,7 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads)
                 approx_whole);
         for (int i = 0; i < nm; ++i) fprintf(out, ", %s %.3g", sv[0].materials[i].name, approx[i]);
         fprintf(out, "\n");
+        if (bench_lobe_report(out, 0, lobe_size, reps, quick)) goto out;
     }
     rc = 0;
     goto out;

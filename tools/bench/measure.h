@@ -24,8 +24,9 @@ void measure_set_free(measure_set *s);
 /* Median ns/eval of `model` (its default parameters) via abrdf_eval_batch. Models that
  * integrate numerically use at most o->integrating_pairs of the pairs. Returns < 0 on error. */
 double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o);
-/* The same for parameters p, on the float batch path (double_path 0) or the double scalar
- * reference path abrdf_eval in the local frame (double_path 1, one call per pair). */
+/* The same for parameters p, on the float batch path (double_path 0), the double scalar
+ * reference path abrdf_eval in the local frame (double_path 1, one call per pair), or the
+ * same prepared once per batch (double_path 2, abrdf_eval_prepared per pair). */
 double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
                                int double_path, const measure_opts *o);
 /* Median ns/eval of the unit: a bare loop H = normalise(wi + wo), powf(H.z, n), n = 100. */

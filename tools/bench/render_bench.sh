@@ -9,7 +9,7 @@ set -euo pipefail
 build=${1:-build}
 repeats=${2:-5}
 abrdf="$build/bin/abrdf"
-scene="$(dirname "$0")/../scenes/robot.scene"
+scene="$(dirname "$0")/../../scenes/robot.scene"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 

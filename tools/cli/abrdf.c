@@ -1,11 +1,17 @@
-/* abrdf.c - the `abrdf` command: dispatch to subcommands. */
+/* abrdf.c - the `abrdf` command: dispatch to subcommands. Exit status: 0 success, 1 a bad
+ * scene, input file or failed output, 2 bad arguments (README.md, "Exit status"); a failed
+ * write to standard output turns 0 into 1. */
+#include <signal.h>
 #include <string.h>
 
 #include "cli.h"
+#include "out_file.h"
 
 static const cli_command commands[] = {
     {"models", "list every model with its formula, parameters and needs", cmd_models},
     {"eval", "evaluate a model's f_r for one direction pair", cmd_eval},
+    {"sample", "draw light directions by a model's importance sampler: wi, pdf, weight",
+     cmd_sample},
     {"export",
      "write a scene for another renderer (--pov: POV-Ray 3.7 SDL; --cycles: Blender/Cycles with "
      "OSL)",
@@ -39,7 +45,7 @@ static void usage(FILE *f)
         fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
 }
 
-int main(int argc, char **argv)
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
         usage(stderr);
@@ -69,4 +75,17 @@ int main(int argc, char **argv)
     else
         fprintf(stderr, "abrdf: unknown command '%s'; commands: %s\n", argv[1], names);
     return CLI_EXIT_USAGE;
+}
+
+int main(int argc, char **argv)
+{
+    /* A file-size limit (ulimit -f) makes a write fail with EFBIG, reported like a full disk,
+     * instead of killing the process with a half-written file. */
+    signal(SIGXFSZ, SIG_IGN);
+    int rc = dispatch(argc, argv);
+    char who[64] = "abrdf";
+    for (size_t i = 0; argc > 1 && i < COMMAND_COUNT; ++i)
+        if (!strcmp(argv[1], commands[i].name)) snprintf(who, sizeof who, "abrdf %s", argv[1]);
+    if (out_stdout_check(who) && rc == 0) rc = 1;
+    return rc;
 }

@@ -8,6 +8,7 @@
 
 #include "advise_budget.h"
 #include "budget_run.h"
+#include "out_file.h"
 #include "cli.h"
 #include "metrics.h"
 
@@ -181,11 +182,9 @@ static void print_human(const budget_result *r, const mat_entry *e, double max_n
 }
 
 /* The cost/error plane: every candidate, the front as a staircase, Table 8's classes. */
-static int write_plot(const char *path, const char *title, const abrdf_select_step *const *cand,
-                      int n, const int *front, int nf)
+static void write_plot(FILE *f, const char *title, const abrdf_select_step *const *cand, int n,
+                       const int *front, int nf)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) return -1;
     const double W = 760, H = 520, L = 70, Rm = 200, T = 40, B = 60;
     double x0 = INFINITY, x1 = 0, y0 = 1e-6, y1 = 1.0;
     for (int i = 0; i < n; ++i)
@@ -265,18 +264,27 @@ static int write_plot(const char *path, const char *title, const abrdf_select_st
 #undef PX
 #undef PY
     fprintf(f, "</svg>\n");
-    return fclose(f);
 }
 
 int advise_budget(const abrdf_material *m, const mat_entry *e, double max_nmse,
                   const abrdf_costs *costs, int json, int pareto, const char *plot)
 {
     budget_result r;
-    char err[512];
+    char err[1024];
+    /* The plot exists (as a temporary file) before the fits: a directory that is missing or
+     * read-only fails now; it replaces the target only when complete (out_file.h). */
+    out_file plot_out = OUT_FILE_INIT;
+    out_file *const plot_files[1] = {&plot_out};
+    if (plot && out_file_open(&plot_out, plot, err, sizeof err)) {
+        fprintf(stderr, "abrdf advise: %s\n", err);
+        return 1;
+    }
     /* the front needs every candidate at its best fit: a budget of 1 refits every one with
      * every metric (abrdf_select_budget tries the other metrics within a factor of it) */
-    if (budget_run(m, pareto ? 1.0 : max_nmse, costs, NULL, &r, err, sizeof err))
+    if (budget_run(m, pareto ? 1.0 : max_nmse, costs, NULL, &r, err, sizeof err)) {
+        out_file_discard(&plot_out);
         return cli_fail(CMD, "%s", err);
+    }
     const abrdf_select_step *cand[MAX_CAND];
     int n = budget_candidates(&r, cand, MAX_CAND), front[MAX_CAND];
     int nf = budget_pareto(cand, n, front);
@@ -285,11 +293,14 @@ int advise_budget(const abrdf_material *m, const mat_entry *e, double max_nmse,
         char title[160];
         snprintf(title, sizeof title, "%s: budget candidates, cost vs predicted image NMSE",
                  e ? e->name : "explicit material");
-        if (write_plot(plot, title, cand, n, front, nf)) {
-            fprintf(stderr, "abrdf advise: cannot write %s\n", plot);
+        write_plot(plot_out.f, title, cand, n, front, nf);
+        if (out_file_close(&plot_out, err, sizeof err) ||
+            out_file_commit(plot_files, 1, err, sizeof err)) {
+            fprintf(stderr, "abrdf advise: %s\n", err);
             rc = 1;
         }
     }
+    out_file_discard(&plot_out);
     if (!rc) {
         if (json)
             print_json(&r, e, pareto ? 1.0 : max_nmse, cand, n, front, nf, pareto);

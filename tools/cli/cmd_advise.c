@@ -11,10 +11,41 @@
 #include "cost_file.h"
 #include "data_path.h"
 #include "materials.h"
+#include "out_file.h"
 #include "select_trace.h"
 
 #define CMD "advise"
 #define MAX_FILES 8
+
+/* The r range of the photoreal model of surface class t when it is narrower than [0, 1]
+ * (huang for hair): 1 and the range, else 0. */
+static int special_r_range(abrdf_surface t, const char **model, double *lo, double *hi)
+{
+    const abrdf_select_rules *R = abrdf_select_rules_get();
+    int id;
+    if ((int)t < 0 || (int)t >= R->surface_count || R->special[t] == ABRDF_MODEL_NONE ||
+        abrdf_param_find("r", &id) != ABRDF_OK)
+        return 0;
+    const abrdf_model_info *mi = abrdf_model_get(R->special[t]);
+    for (int k = 0; mi && k < mi->param_count; ++k)
+        if (mi->params[k].id == id && (mi->params[k].min > 0.0 || mi->params[k].max < 1.0)) {
+            *model = mi->name;
+            *lo = mi->params[k].min;
+            *hi = mi->params[k].max;
+            return 1;
+        }
+    return 0;
+}
+
+/* The largest whole n whose roughness r(n) = sqrt(alpha_g(n)) is still >= r_lo: what a
+ * lower bound on r means for n (checked through the converters, so the bound is exact). */
+static double n_max_for_r(double r_lo)
+{
+    double n = floor(abrdf_alpha_g_to_n(abrdf_r_to_alpha_g(r_lo)));
+    while (abrdf_alpha_g_to_r(abrdf_n_to_alpha_g(n + 1)) >= r_lo) n += 1;
+    while (n > 0 && !(abrdf_alpha_g_to_r(abrdf_n_to_alpha_g(n)) >= r_lo)) n -= 1;
+    return n;
+}
 
 static void usage(FILE *f)
 {
@@ -32,7 +63,18 @@ static void usage(FILE *f)
         "  --max-rel-error PCT    performance: max relative error in %% (default %g; 'none')\n"
         "  --max-abs-error X      performance: max absolute error (default %g; 'none')\n"
         "  --n N                  Blinn-Phong exponent, [0, 1e6]\n"
-        "  --r R                  perceptual roughness (the paper's alpha), [0, 1]\n"
+        "  --r R                  perceptual roughness (the paper's alpha), [0, 1]\n",
+        abrdf_select_rules_get()->default_max_rel_pct, abrdf_select_rules_get()->default_max_abs);
+    /* Where the photoreal model takes a narrower r (and so a narrower n), say so. */
+    for (int t = 0; t < ABRDF_SURFACE_COUNT; ++t) {
+        const char *model;
+        double lo, hi;
+        if (special_r_range((abrdf_surface)t, &model, &lo, &hi))
+            fprintf(f, "                         photoreal %s (%s): r in [%g, %g], so n <= %.0f\n",
+                    abrdf_surface_name((abrdf_surface)t), model, lo, hi, n_max_for_r(lo));
+    }
+    fprintf(
+        f,
         "  --kd V|R,G,B --ks V|R,G,B --f0 V|R,G,B   colours, [0, 1]\n"
         "  --eta E                index of refraction, [1, 4] (sets f0 = ((E-1)/(E+1))^2)\n"
         "  --anisotropy A         [0, 1]\n"
@@ -51,8 +93,7 @@ static void usage(FILE *f)
         "  --list                 list the materials\n"
         "  --rules                the flowchart's thresholds and model choices "
         "(abrdf_select_rules)\n"
-        "  --json                 machine-readable output\n",
-        abrdf_select_rules_get()->default_max_rel_pct, abrdf_select_rules_get()->default_max_abs);
+        "  --json                 machine-readable output\n");
 }
 
 /* ---- small printers ------------------------------------------------------------------- */
@@ -462,6 +503,16 @@ int cmd_advise(int argc, char **argv)
                         "photoreal choice",
                         pareto ? "pareto" : "budget");
     if (plot && !pareto) return cli_fail(CMD, "--plot draws the front of --pareto");
+    if (plot) { /* the plot never replaces an input */
+        char tpath[1024], perr[1024];
+        data_path_find("materials.csv", tpath, sizeof tpath);
+        const char *out_role = "--plot file", *ins[MAX_FILES + 2] = {tpath, costs_file},
+                   *in_roles[MAX_FILES + 2] = {"material table", "--costs file"};
+        for (int i = 0; i < nfiles; ++i)
+            ins[2 + i] = files[i], in_roles[2 + i] = "--materials file";
+        if (out_files_distinct(&plot, &out_role, 1, ins, in_roles, 2 + nfiles, perr, sizeof perr))
+            return cli_fail(CMD, "%s", perr);
+    }
     if (rules) {
         print_rules(json);
         return 0;
@@ -515,6 +566,24 @@ int cmd_advise(int argc, char **argv)
     if (has_red) m.redness = red;
     if (has_type) m.type = type;
 
+    /* A photoreal special model with a narrower r range: the option that left it says so. */
+    const char *special;
+    double rlo, rhi;
+    if (goal == ABRDF_GOAL_PHOTOREAL && special_r_range(m.type, &special, &rlo, &rhi) &&
+        (has_r || (has_n && !(m.r >= 0.0)))) {
+        double r_eff = has_r ? r : abrdf_alpha_g_to_r(abrdf_n_to_alpha_g(n));
+        if (!(r_eff >= rlo && r_eff <= rhi)) {
+            mat_table_free(&table);
+            if (has_r)
+                return cli_fail(CMD, "--r %g is outside [%g, %g]: photoreal %s uses %s", r, rlo,
+                                rhi, abrdf_surface_name(m.type), special);
+            return cli_fail(CMD,
+                            "--n %g gives r = %.9g, outside [%g, %g]: photoreal %s uses %s; "
+                            "give n <= %.0f",
+                            n, r_eff, rlo, rhi, abrdf_surface_name(m.type), special,
+                            n_max_for_r(rlo));
+        }
+    }
     abrdf_costs costs;
     if (costs_file) {
         char err[512];

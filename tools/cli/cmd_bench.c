@@ -14,6 +14,7 @@
 #include "cli.h"
 #include "measure.h"
 #include "metrics.h"
+#include "out_file.h"
 
 /* The accuracy experiments (docs/BENCHMARKS.md, "Accuracy"). */
 #define APPROX_N 100.0   /* exponent of Blinn-Phong and its Table-1 approximations */
@@ -43,6 +44,7 @@ typedef struct row {
     int nvals;
     double f_ns[3], d_ns[3]; /* per swept value (index 0 = default parameters when nvals = 1) */
     double f_def, d_def;     /* at the model's default parameters */
+    double p_def;            /* ... on the prepared double path (abrdf_eval_prepared) */
     ref_kind ref;
     double nmse;           /* robot NMSE vs the reference, NAN if none */
     double best_n;         /* argmin n of the search (Table-5 lobes), NAN otherwise */
@@ -54,8 +56,8 @@ static int usage(void)
     printf("usage: abrdf bench [--json] [--plot OUT.svg] [--quick] [--render] [--size N]\n"
            "                   [--threads N] [--reps N]\n\n"
            "For every model: ns/eval of the float batch path (abrdf_eval_batch) and of the\n"
-           "double scalar path (abrdf_eval, local frame), as ratios to a powf Blinn-Phong loop on "
-           "the\n"
+           "double scalar path (abrdf_eval, local frame; 'prepared': abrdf_eval_prepared after\n"
+           "one abrdf_prepare), as ratios to a powf Blinn-Phong loop on the\n"
            "same structure-of-arrays data timed in the same run (warm cache, median of the\n"
            "repetitions, swept over n or r where the model reads them), and the accuracy\n"
            "against the model it replaces: NMSE on a robot render (Table-1 approximations vs\n"
@@ -66,7 +68,9 @@ static int usage(void)
            "  --plot FILE    write the Pareto plot (robot NMSE vs float cost) as SVG\n"
            "  --quick        fewer and shorter repetitions, small renders (for tests)\n"
            "  --render       instead: robot with full Disney vs adaptive photoreal and\n"
-           "                 performance: render time ratios and NMSE per material\n"
+           "                 performance: render time ratios and NMSE per material; then\n"
+           "                 each lobe's cost in a 16-light robot render (1 thread, 256x256)\n"
+           "                 beside its per-eval cost, and the BRDFs' share of render time\n"
            "  --budget       instead: the mixed scene, photoreal vs the budget mode per\n"
            "                 Table-8 class: time ratios, image and per-material NMSE\n"
            "  --size N       image size of the renders (default 128; --render: the scene's)\n"
@@ -265,9 +269,9 @@ static void print_json(FILE *f, const row *rows, int count, double unit_ns, doub
         const row *r = &rows[i];
         fprintf(f,
                 "%s\n  {\"name\": \"%s\", \"float_ratio\": %.6g, \"double_ratio\": %.6g, "
-                "\"float_speedup\": %.6g, \"sweep\": ",
+                "\"prepared_ratio\": %.6g, \"float_speedup\": %.6g, \"sweep\": ",
                 i ? "," : "", r->m->name, r->f_def / unit_ns, r->d_def / unit_ns,
-                unit_ns / r->f_def);
+                r->p_def / unit_ns, unit_ns / r->f_def);
         if (r->vary) {
             fprintf(f, "{\"param\": \"%c\", \"values\": [", r->vary);
             for (int k = 0; k < r->nvals; ++k) fprintf(f, "%s%g", k ? ", " : "", r->vals[k]);
@@ -311,13 +315,15 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
         f,
         "Cost: ns/eval as a ratio to powf Blinn-Phong (the unit), each model divided by the unit\n"
         "timed just before it (spread of the unit's timings (max - min) / median: %.1f%%),\n"
-        "%zu pairs, median of %d. 'speedup' = unit / float cost.\n"
+        "%zu pairs, median of %d. 'speedup' = unit / float cost; 'double' = abrdf_eval per pair,\n"
+        "'prepared' = abrdf_eval_prepared per pair (prepared once).\n"
         "Accuracy: robot %dx%d NMSE vs the reference; Table 2 = max rel. error %% in the "
         "highlight\n"
         "zone, Table 3 = max abs. error, both at n = %g.\n\n",
         100 * drift, mo->pairs, mo->reps, size, size, APPROX_N);
-    fprintf(f, "%-22s %8s %8s %8s %-14s %-16s %10s %6s %8s %8s\n", "model", "float", "speedup",
-            "double", "float range", "reference", "robot NMSE", "n", "Table 2", "Table 3");
+    fprintf(f, "%-22s %8s %8s %8s %8s %-14s %-16s %10s %6s %8s %8s\n", "model", "float", "speedup",
+            "double", "prepared", "float range", "reference", "robot NMSE", "n", "Table 2",
+            "Table 3");
     for (int i = 0; i < count; ++i) {
         const row *r = &rows[i];
         char range[32] = "", nm[16] = "", bn[16] = "", t2[16] = "", t3[16] = "";
@@ -330,9 +336,9 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
         if (isfinite(r->best_n)) snprintf(bn, sizeof bn, "%g", r->best_n);
         if (isfinite(r->t2_rel)) snprintf(t2, sizeof t2, "%.3g", r->t2_rel);
         if (isfinite(r->t3_abs)) snprintf(t3, sizeof t3, "%.3g", r->t3_abs);
-        fprintf(f, "%-22s %8.3f %8.2f %8.3f %-14s %-16s %10s %6s %8s %8s\n", r->m->name,
-                r->f_def / unit_ns, unit_ns / r->f_def, r->d_def / unit_ns, range, ref_name[r->ref],
-                nm, bn, t2, t3);
+        fprintf(f, "%-22s %8.3f %8.2f %8.3f %8.3f %-14s %-16s %10s %6s %8s %8s\n", r->m->name,
+                r->f_def / unit_ns, unit_ns / r->f_def, r->d_def / unit_ns, r->p_def / unit_ns,
+                range, ref_name[r->ref], nm, bn, t2, t3);
     }
     targets t = compute_targets(rows, count, unit_ns);
     fprintf(f,
@@ -348,10 +354,8 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
 
 /* Pareto plot: robot NMSE (log) vs float cost ratio (log), one colour per reference, the
  * reference's own cost as a dashed line, each group's Pareto front as a staircase. */
-static int write_plot(const char *path, const row *rows, int count, double unit_ns)
+static void write_plot(FILE *f, const row *rows, int count, double unit_ns)
 {
-    FILE *f = fopen(path, "w");
-    if (!f) return -1;
     const double W = 760, H = 520, L = 70, Rm = 170, T = 30, B = 60;
     double x0 = 1e9, x1 = 0, y0 = 1e9, y1 = 0;
     for (int i = 0; i < count; ++i) {
@@ -464,7 +468,6 @@ static int write_plot(const char *path, const row *rows, int count, double unit_
 #undef PX
 #undef PY
     fprintf(f, "</svg>\n");
-    return fclose(f);
 }
 
 /* ---- the command ------------------------------------------------------------------------ */
@@ -505,6 +508,8 @@ int cmd_bench(int argc, char **argv)
                             a);
         }
     }
+    if (render && plot)
+        return cli_fail(cmd, "--plot draws the model benchmark; it does not go with --render");
     if (threads == 0) {
         long cpus = sysconf(_SC_NPROCESSORS_ONLN);
         threads = cpus > 0 ? (cpus < 64 ? cpus : 64) : 1;
@@ -527,9 +532,18 @@ int cmd_bench(int argc, char **argv)
                                    (int)(reps    ? reps
                                          : quick ? 1
                                                  : 5),
-                                   (int)threads);
+                                   (int)threads, quick ? 24 : 256, quick);
     if (!size) size = quick ? 48 : 128;
 
+    /* The plot exists (as a temporary file) before the measurement: a directory that is
+     * missing or read-only fails now. */
+    char err[1024] = "";
+    out_file plot_out = OUT_FILE_INIT;
+    out_file *const plot_files[1] = {&plot_out};
+    if (plot && out_file_open(&plot_out, plot, err, sizeof err)) {
+        fprintf(stderr, "abrdf bench: %s\n", err);
+        return 1;
+    }
     measure_opts mo;
     measure_defaults(&mo, quick);
     if (quick) mo.pairs = 1024, mo.integrating_pairs = 16;
@@ -539,6 +553,7 @@ int cmd_bench(int argc, char **argv)
     if (!set || !rows) {
         measure_set_free(set);
         free(rows);
+        out_file_discard(&plot_out);
         fprintf(stderr, "abrdf bench: out of memory\n");
         return 1;
     }
@@ -561,6 +576,7 @@ int cmd_bench(int argc, char **argv)
     if (!units) {
         measure_set_free(set);
         free(rows);
+        out_file_discard(&plot_out);
         fprintf(stderr, "abrdf bench: out of memory\n");
         return 1;
     }
@@ -572,6 +588,7 @@ int cmd_bench(int argc, char **argv)
         abrdf_params_init(r->m->id, &p);
         r->f_def = measure_model_params_ns(set, r->m->id, &p, 0, &mo) / u;
         r->d_def = measure_model_params_ns(set, r->m->id, &p, 1, &mo) / u;
+        r->p_def = measure_model_params_ns(set, r->m->id, &p, 2, &mo) / u;
         for (int k = 0; k < r->nvals; ++k) {
             set_vary(&p, r->vary, r->vals[k]);
             r->f_ns[k] = measure_model_params_ns(set, r->m->id, &p, 0, &mo) / u;
@@ -586,11 +603,10 @@ int cmd_bench(int argc, char **argv)
     free(units);
     for (int i = 0; i < count; ++i) { /* back to ns of the median unit */
         row *r = &rows[i];
-        r->f_def *= unit_ns, r->d_def *= unit_ns;
+        r->f_def *= unit_ns, r->d_def *= unit_ns, r->p_def *= unit_ns;
         for (int k = 0; k < r->nvals; ++k) r->f_ns[k] *= unit_ns, r->d_ns[k] *= unit_ns;
     }
     fprintf(stderr, "\nabrdf bench: robot renders\n");
-    char err[512] = "";
     int rc = 0;
     if (accuracy(rows, count, (int)size, (int)threads, quick, err, sizeof err)) {
         fprintf(stderr, "abrdf bench: %s\n", err);
@@ -600,11 +616,16 @@ int cmd_bench(int argc, char **argv)
             print_json(stdout, rows, count, unit_ns, drift, &mo, (int)size);
         else
             print_table(stdout, rows, count, unit_ns, drift, &mo, (int)size);
-        if (plot && write_plot(plot, rows, count, unit_ns) != 0) {
-            fprintf(stderr, "abrdf bench: cannot write %s\n", plot);
-            rc = 1;
+        if (plot) {
+            write_plot(plot_out.f, rows, count, unit_ns);
+            if (out_file_close(&plot_out, err, sizeof err) ||
+                out_file_commit(plot_files, 1, err, sizeof err)) {
+                fprintf(stderr, "abrdf bench: %s\n", err);
+                rc = 1;
+            }
         }
     }
+    out_file_discard(&plot_out);
     free(rows);
     return rc;
 }

@@ -6,6 +6,7 @@
 #include "cli.h"
 #include "cost_file.h"
 #include "measure.h"
+#include "out_file.h"
 
 static int usage(void)
 {
@@ -14,8 +15,8 @@ static int usage(void)
            "evaluation on the float batch path (abrdf_eval_batch), N random front-facing\n"
            "direction pairs in structure-of-arrays form, warm cache, median of the repetitions.\n"
            "A bare powf Blinn-Phong loop is measured in the same run as the unit of the ratios.\n"
-           "Writes the cost file to FILE (default: standard output); its format is described\n"
-           "in the file's header.\n"
+           "Writes the cost file to FILE (default: standard output), whole or not at all; its\n"
+           "format is described in the file's header.\n"
            "  --reps N    timed repetitions (default 7)\n"
            "  --pairs N   direction pairs per batch (default 4096)\n"
            "  --quick     3 repetitions of 5 ms instead of 7 of 20 ms\n");
@@ -54,10 +55,18 @@ int cmd_calibrate(int argc, char **argv)
     if (reps > 0) mo.reps = (int)reps;
     if (pairs > 0) mo.pairs = (size_t)pairs;
 
+    /* The output exists (as a temporary file) before the measurement: a directory that is
+     * missing or read-only fails now. */
     FILE *out = stdout;
-    if (out_path && !(out = fopen(out_path, "w"))) {
-        fprintf(stderr, "abrdf %s: cannot write %s\n", cmd, out_path);
-        return 1;
+    out_file o = OUT_FILE_INIT;
+    out_file *const files[1] = {&o};
+    char err[1024];
+    if (out_path) {
+        if (out_file_open(&o, out_path, err, sizeof err)) {
+            fprintf(stderr, "abrdf %s: %s\n", cmd, err);
+            return 1;
+        }
+        out = o.f;
     }
     char command[512] = "abrdf";
     for (int i = 0; i < argc; ++i)
@@ -76,14 +85,18 @@ int cmd_calibrate(int argc, char **argv)
     fprintf(stderr, "\n");
     if (rc != 0) {
         fprintf(stderr, "abrdf %s: out of memory\n", cmd);
-        if (out != stdout) fclose(out);
+        out_file_discard(&o);
         return 1;
     }
     costs_write(out, &costs, unit_ns, command, how);
-    if (out != stdout && fclose(out) != 0) {
-        fprintf(stderr, "abrdf %s: error writing %s\n", cmd, out_path);
-        return 1;
+    if (out_path) {
+        rc = out_file_close(&o, err, sizeof err) || out_file_commit(files, 1, err, sizeof err);
+        out_file_discard(&o);
+        if (rc) {
+            fprintf(stderr, "abrdf %s: %s\n", cmd, err);
+            return 1;
+        }
+        fprintf(stderr, "abrdf calibrate: wrote %s\n", out_path);
     }
-    if (out_path) fprintf(stderr, "abrdf calibrate: wrote %s\n", out_path);
     return 0;
 }

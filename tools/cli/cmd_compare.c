@@ -8,6 +8,7 @@
 #include "cli.h"
 #include "image_io.h"
 #include "metrics.h"
+#include "out_file.h"
 
 static int usage(void)
 {
@@ -20,7 +21,8 @@ static int usage(void)
            "  max |TEST - REF| and its pixel (x from the left, y from the top),\n"
            "  class = Table 8: none < 1e-4 <= slight < 2.5e-4 <= noticeable < 1e-3 <= significant\n"
            "--diff writes max-over-channels |TEST - REF| per pixel as a false-colour map\n"
-           "(inferno, black = 0, yellow = the maximum error).\n"
+           "(inferno, black = 0, yellow = the maximum error), whole or not at all; it must not\n"
+           "be one of the two images.\n"
            "--fail sets the NMSE threshold: PASS if NMSE < threshold (default 1e-4, 'no visible\n"
            "difference'). Exit status: 0 pass, 1 fail, 2 usage or file error, different size or\n"
            "channel count, or NMSE undefined (all-black reference).\n");
@@ -49,10 +51,20 @@ static int write_diff(const char *cmd, const char *path, const abrdf_image *a, c
         v[p] = m;
     }
     char err[1024];
-    int rc =
-        abrdf_image_write_heatmap(path, a->width, a->height, v, vmax, "inferno", err, sizeof err);
+    abrdf_bytes bytes;
+    out_file o = OUT_FILE_INIT;
+    out_file *const files[1] = {&o};
+    int rc = abrdf_image_encode_heatmap(path, a->width, a->height, v, vmax, "inferno", &bytes, err,
+                                        sizeof err);
     free(v);
-    if (rc) return cli_fail(cmd, "--diff: %s", err);
+    if (rc) return cli_fail(cmd, "--diff %s", err);
+    if (!(rc = out_file_open(&o, path, err, sizeof err))) {
+        out_file_write(&o, bytes.data, bytes.size);
+        rc = out_file_close(&o, err, sizeof err) || out_file_commit(files, 1, err, sizeof err);
+    }
+    abrdf_bytes_free(&bytes);
+    out_file_discard(&o);
+    if (rc) return cli_fail(cmd, "--diff %s", err);
     return 0;
 }
 
@@ -86,8 +98,15 @@ int cmd_compare(int argc, char **argv)
     if (nfiles != 2)
         return cli_fail(cmd, "needs two images: REFERENCE TEST (see abrdf compare --help)");
 
-    abrdf_image ref, test;
     char err[1024];
+    if (diff) {
+        const char *roles[2] = {"reference image", "test image"}, *out_role = "--diff image";
+        if (out_files_distinct(&diff, &out_role, 1, files, roles, 2, err, sizeof err))
+            return cli_fail(cmd, "%s", err);
+        if (abrdf_image_check_output(diff, 0, err, sizeof err))
+            return cli_fail(cmd, "--diff %s", err);
+    }
+    abrdf_image ref, test;
     if (abrdf_image_read(files[0], &ref, err, sizeof err)) return cli_fail(cmd, "%s", err);
     if (abrdf_image_read(files[1], &test, err, sizeof err)) {
         abrdf_image_free(&ref);

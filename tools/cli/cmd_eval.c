@@ -10,7 +10,8 @@ static int usage(void)
            "                  [--set NAME=VALUE ...] [--json]\n\n"
            "Prints f_r (RGB, 1/sr, without the cosine) for light direction wi and view\n"
            "direction wo, both pointing away from the surface. Vectors need not be unit\n"
-           "length. The normal defaults to 0,0,1; the tangent to an axis orthogonal to it.\n"
+           "length, but not zero. The normal defaults to 0,0,1; the tangent to an axis\n"
+           "orthogonal to it.\n"
            "--set changes a parameter (R,G,B or one value for colours); see abrdf models.\n");
     return 0;
 }
@@ -61,6 +62,9 @@ int cmd_eval(int argc, char **argv)
         return cli_fail(cmd, "--wi 0,0,0 has zero length; give a direction toward the light");
     if (!(fabs(wo[0]) + fabs(wo[1]) + fabs(wo[2]) > 0.0))
         return cli_fail(cmd, "--wo 0,0,0 has zero length; give a direction toward the viewer");
+    if (have_t && !(fabs(t[0]) + fabs(t[1]) + fabs(t[2]) > 0.0))
+        return cli_fail(cmd, "--tangent 0,0,0 has zero length; give a direction in the surface "
+                             "(or leave --tangent out)");
     abrdf_params p;
     abrdf_params_init(model, &p);
     for (int i = 0; i < nsets; ++i)

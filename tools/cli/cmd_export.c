@@ -1,10 +1,12 @@
 /* cmd_export.c - `abrdf export --pov|--cycles SCENE -o OUT`: the scene for another renderer.
- * Shared here: parsing, --model/--set and the materials chosen by the selection (table=,
- * adaptive goal=/budget=, --adaptive; as abrdf render, so a budget's fitted parameters are
- * what the ports receive), render_prepare (so every exporter reads the built-in renderer's
- * own camera vectors, materials and lights). The writers live
- * in export_pov.c (POV-Ray SDL, docs/POVRAY.md) and export_cycles.c (Blender/Cycles bpy
- * script with OSL, docs/OSL.md). */
+ * Shared here: parsing, the material table and the selection of table= and adaptive materials
+ * (--materials, --adaptive --goal|--budget, as abrdf render, so a budget's fitted
+ * parameters are what the ports receive; the trace goes into the file as comments),
+ * --model/--set, render_prepare (so every exporter reads the built-in renderer's own camera
+ * vectors, materials and lights), and the output, written whole or not at all (out_file.h).
+ * The writers live in export_pov.c (POV-Ray SDL, docs/POVRAY.md) and export_cycles.c
+ * (Blender/Cycles bpy script with OSL, docs/OSL.md). */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include <stdlib.h>
 #include <string.h>
 
@@ -13,6 +15,7 @@
 #include "data_path.h"
 #include "export.h"
 #include "export_pov.h"
+#include "out_file.h"
 #include "scene_select.h"
 
 #ifndef ABRDF_SOURCE_OSL_DIR
@@ -25,17 +28,19 @@
 static int usage(void)
 {
     printf("usage: abrdf export --pov SCENE -o OUT.pov [--model NAME [--set NAME=VALUE ...]]\n"
-           "                    [--adaptive --goal G | --adaptive --budget B] [--materials FILE]\n"
+           "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
            "                    [--width W] [--height H] [--no-shadows | --native]\n"
            "       abrdf export --cycles SCENE -o OUT.py [--model NAME [--set NAME=VALUE ...]]\n"
-           "                    [--adaptive --goal G | --adaptive --budget B] [--materials FILE]\n"
+           "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
            "                    [--width W] [--height H] [--spp N] [--mode eval|closure|generic]\n"
            "                    [--osl-dir DIR]\n\n"
            "--pov writes SCENE (docs/SCENES.md) as POV-Ray 3.7 SDL that shades every object with\n"
            "the library's models (povray_macros/abrdf.inc, docs/POVRAY.md): same camera, lights,\n"
            "primitives and materials. Render it with +L<abrdf>/povray_macros, linear HDR (+FE).\n"
            "--cycles writes a Blender/Cycles (bpy) script for the same scene with the OSL port\n"
-           "(osl/, docs/OSL.md); run it with a Python that has bpy.\n\n"
+           "(osl/, docs/OSL.md); run it with a Python that has bpy.\n"
+           "table= and adaptive materials are exported as the models the selection chose, with\n"
+           "its trace as comments. OUT is written whole or not at all, never over SCENE.\n\n"
            "  --model/--set      as abrdf render: every material becomes this model\n"
            "  --adaptive --goal G | --budget B   as abrdf render: the selection chooses every\n"
            "                     material's models (a budget's choice with its fitted parameters)\n"
@@ -67,6 +72,16 @@ static const char *osl_dir_default(void)
         return ABRDF_SOURCE_OSL_DIR;
     }
     return ABRDF_INSTALL_OSL_DIR;
+}
+
+/* An exporter failed: a failed write is reported with its reason (out_file_close's), any
+ * other problem with the exporter's message. */
+static void export_failed(out_file *o, const char *out, char *err, size_t err_size)
+{
+    if (o->error && out_file_close(o, err, err_size))
+        fprintf(stderr, "abrdf export: %s\n", err);
+    else
+        fprintf(stderr, "abrdf export: %s: %s\n", out, err);
 }
 
 int cmd_export(int argc, char **argv)
@@ -103,7 +118,12 @@ int cmd_export(int argc, char **argv)
                 out = val;
             else if (!strcmp(a, "--model"))
                 model_name = val;
-            else if (!strcmp(a, "--osl-dir"))
+            else if (!strcmp(a, "--goal"))
+                goal = val;
+            else if (!strcmp(a, "--materials")) {
+                if (nmats == 16) return cli_fail(cmd, "too many --materials files (16 at most)");
+                mats[nmats++] = val;
+            } else if (!strcmp(a, "--osl-dir"))
                 osl_dir = val;
             else if (!strcmp(a, "--mode"))
                 mode = val;
@@ -153,8 +173,8 @@ int cmd_export(int argc, char **argv)
     if ((goal || budget_s) && !adaptive)
         return cli_fail(cmd, "--%s needs --adaptive", goal ? "goal" : "budget");
     if (goal && budget_s) return cli_fail(cmd, "--goal and --budget exclude each other");
-    abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
-    if (adaptive && !budget_s && (!goal || abrdf_goal_find(goal, &g) != ABRDF_OK))
+    if (adaptive && !budget_s &&
+        (!goal || (strcmp(goal, "photoreal") && strcmp(goal, "performance"))))
         return cli_fail(cmd, "--adaptive needs --goal photoreal, --goal performance or --budget B");
     double budget = -1.0;
     if (budget_s) {
@@ -163,78 +183,80 @@ int cmd_export(int argc, char **argv)
             return cli_fail(cmd, "--budget: %s", berr);
     }
 
+    char err[1024];
+    {
+        char tpath[1024];
+        data_path_find("materials.csv", tpath, sizeof tpath);
+        const char *out_role = "output", *ins[18] = {path, tpath},
+                   *in_roles[18] = {"scene", "material table"};
+        for (int i = 0; i < nmats; ++i) ins[2 + i] = mats[i], in_roles[2 + i] = "--materials file";
+        if (out_files_distinct(&out, &out_role, 1, ins, in_roles, 2 + nmats, err, sizeof err))
+            return cli_fail(cmd, "%s", err);
+    }
     scene s;
-    char err[512];
     if (scene_parse_file(path, &s, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         return 1;
     }
     int rc = 1, prepared = 0;
     render_scene rs;
-    FILE *f = NULL;
-    mat_table table = {NULL, 0, 0};
-    if (adaptive || scene_needs_table(&s) || nmats) {
-        char tpath[1024];
-        if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
-            fprintf(stderr, "abrdf export: material table %s not found (set ABRDF_DATA_DIR)\n",
-                    tpath);
-            goto done;
-        }
-        if (mat_table_load(&table, tpath, err, sizeof err)) {
-            fprintf(stderr, "abrdf export: %s\n", err);
-            goto done;
-        }
-        for (int i = 0; i < nmats; ++i)
-            if (mat_table_load(&table, mats[i], err, sizeof err)) {
-                fprintf(stderr, "abrdf export: %s\n", err);
-                goto done;
-            }
-    }
-    /* the selection's choices, as abrdf render makes them (a budget's prediction samples the
-     * image the scene file describes: its resolution, 4 samples per pixel) */
-    if (scene_select_budgets(&s, path, &table, adaptive && !budget_s ? (int)g : -1, budget, 4, NULL,
-                             err, sizeof err)) {
-        fprintf(stderr, "abrdf export: %s\n", err);
+    out_file o = OUT_FILE_INIT;
+    out_file *const files[1] = {&o};
+    /* The selection's trace, kept for the file's comments. */
+    char *notes = NULL;
+    size_t notes_len = 0;
+    FILE *trace = open_memstream(&notes, &notes_len);
+    abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
+    if (!trace) {
+        fprintf(stderr, "abrdf export: out of memory\n");
         goto done;
     }
-    if (model_name) {
-        int st = scene_set_model(cmd, &s, model_name, sets, nsets);
-        if (st) {
-            rc = st;
-            goto done;
-        }
+    if (adaptive && goal) abrdf_goal_find(goal, &g);
+    /* a budget's prediction samples the image the scene file describes (its resolution, 4
+     * samples per pixel), as abrdf render's does: the same choices */
+    int st = scene_resolve_budget(&s, path, mats, nmats, adaptive && goal ? (int)g : -1, budget, 4,
+                                  trace, err, sizeof err);
+    if (fclose(trace) || st) {
+        fprintf(stderr, "abrdf export: %s\n", st ? err : "out of memory");
+        goto done;
+    }
+    if (model_name && (st = scene_set_model(cmd, &s, model_name, sets, nsets))) {
+        rc = st;
+        goto done;
     }
     if (render_prepare(&s, &opt, &rs, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;
     }
     prepared = 1;
-    if (!(f = fopen(out, "w"))) {
-        fprintf(stderr, "abrdf export: cannot write %s\n", out);
+    if (out_file_open(&o, out, err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s\n", err);
         goto done;
     }
+    const char *note = notes_len ? notes : NULL;
     if (pov) {
-        export_pov_options eo = {!native && !no_shadows && rs.light_count == 1, native, path};
-        if (export_pov_write(&rs, &eo, f, err, sizeof err)) {
-            fprintf(stderr, "abrdf export: %s: %s\n", out, err);
+        export_pov_options eo = {!native && !no_shadows && rs.light_count == 1, native, path, note};
+        if (export_pov_write(&rs, &eo, o.f, err, sizeof err)) {
+            export_failed(&o, out, err, sizeof err);
             goto done;
         }
     } else {
         export_options eo = {path, osl_dir ? osl_dir : osl_dir_default(), spp ? spp : 4,
-                             mode ? mode : "eval"};
-        if (export_cycles(f, &rs, &eo, err, sizeof err)) {
-            fprintf(stderr, "abrdf export: %s: %s\n", out, err);
+                             mode ? mode : "eval", note};
+        if (export_cycles(o.f, &rs, &eo, err, sizeof err)) {
+            export_failed(&o, out, err, sizeof err);
             goto done;
         }
     }
+    if (out_file_close(&o, err, sizeof err) || out_file_commit(files, 1, err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s\n", err);
+        goto done;
+    }
     rc = 0;
 done:
-    if (f && fclose(f) && rc == 0) {
-        fprintf(stderr, "abrdf export: cannot write %s\n", out);
-        rc = 1;
-    }
+    out_file_discard(&o); /* committed: nothing left; else OUT stays as it was */
+    free(notes);
     if (prepared) render_release(&rs);
-    mat_table_free(&table);
     scene_free(&s);
     return rc;
 }

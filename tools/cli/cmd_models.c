@@ -61,6 +61,20 @@ static void print_json(void)
             printf(", \"paper_cycles\": %d", m->paper_cycles);
         else
             printf(", \"paper_cycles\": null");
+        const abrdf_sampler_info *s = abrdf_model_sampler((abrdf_model)i);
+        if (s) {
+            printf(", \"sampler\": {\"name\": ");
+            cli_json_string(stdout, s->name);
+            printf(", \"method\": ");
+            cli_json_string(stdout, s->method);
+            printf(", \"citation\": ");
+            cli_json_string(stdout, s->citation);
+            printf(", \"mixture\": %s, \"below_surface\": %s}",
+                   (s->flags & ABRDF_SAMPLER_MIXTURE) ? "true" : "false",
+                   (s->flags & ABRDF_SAMPLER_BELOW) ? "true" : "false");
+        } else {
+            printf(", \"sampler\": null");
+        }
         printf(", \"params\": [");
         for (int k = 0; k < m->param_count; ++k) {
             const abrdf_param_info *pi = abrdf_param_get(m->params[k].id);
@@ -102,11 +116,14 @@ int cmd_models(int argc, char **argv)
     int json = 0;
     for (int i = 1; i < argc; ++i) {
         if (cli_is_help(argv[i])) {
-            printf("usage: abrdf models [--json]\n\n"
-                   "Lists every model of the library: stable name, the paper's formula number,\n"
-                   "what it needs (tangent, Fresnel, layers, integration) and its parameters with\n"
-                   "default and range. --json adds the citation, reciprocity, energy conservation\n"
-                   "and the paper's Table-4 cycle count.\n");
+            printf(
+                "usage: abrdf models [--json]\n\n"
+                "Lists every model of the library: stable name, the paper's formula number,\n"
+                "what it needs (tangent, Fresnel, layers, integration) and its parameters with\n"
+                "default and range. --json adds the citation, reciprocity, energy conservation,\n"
+                "the paper's Table-4 cycle count and the importance sampler (abrdf sample;\n"
+                "docs/SAMPLING.md): its name, method, citation, whether it mixes lobes and\n"
+                "whether it can draw directions below the surface.\n");
             return 0;
         }
         if (!strcmp(argv[i], "--json"))

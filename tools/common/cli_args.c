@@ -6,14 +6,30 @@
 #include <string.h>
 
 #include "cli_args.h"
+#include "utf8.h"
 
 int cli_fail(const char *cmd, const char *fmt, ...)
 {
     va_list ap;
-    fprintf(stderr, "abrdf %s: ", cmd);
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    int n = vsnprintf(NULL, 0, fmt, ap);
     va_end(ap);
+    char *msg = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    fprintf(stderr, "abrdf %s: ", cmd);
+    if (msg) {
+        va_start(ap, fmt);
+        vsnprintf(msg, (size_t)n + 1, fmt, ap);
+        va_end(ap);
+        /* One line, whatever an argument held: its control bytes are shown as \xHH. */
+        for (const char *p = msg; *p; ++p)
+            if ((unsigned char)*p < 0x20 || *p == 0x7f)
+                fprintf(stderr, "\\x%02x", (unsigned char)*p);
+            else
+                fputc(*p, stderr);
+        free(msg);
+    } else {
+        fputs("(out of memory)", stderr);
+    }
     fputc('\n', stderr);
     return CLI_EXIT_USAGE;
 }
@@ -26,7 +42,9 @@ int cli_parse_double(const char *s, double *out)
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (*end || errno == ERANGE || !isfinite(v)) return 0;
+    /* ERANGE with a finite result is an underflow: a subnormal (1e-310) or a zero (1e-400)
+     * is a finite number all the same; overflow gives HUGE_VAL, which is not. */
+    if (end == s || *end || !isfinite(v)) return 0;
     *out = v;
     return 1;
 }
@@ -164,14 +182,22 @@ int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const cha
 void cli_json_string(FILE *f, const char *s)
 {
     fputc('"', f);
-    for (; s && *s; ++s) {
+    while (s && *s) {
         unsigned char c = (unsigned char)*s;
+        unsigned long cp;
+        int len = utf8_decode(s, &cp);
+        if (!len) { /* JSON text is UTF-8 (RFC 8259): a stray byte becomes U+FFFD */
+            fputs("\\ufffd", f);
+            ++s;
+            continue;
+        }
         if (c == '"' || c == '\\')
             fprintf(f, "\\%c", c);
         else if (c < 0x20)
             fprintf(f, "\\u%04x", c);
         else
-            fputc(c, f);
+            fwrite(s, 1, (size_t)len, f);
+        s += len;
     }
     fputc('"', f);
 }

@@ -8,7 +8,8 @@
 
 #define CLI_EXIT_USAGE 2
 
-/* Print "abrdf CMD: message" to stderr and return CLI_EXIT_USAGE. */
+/* Print "abrdf CMD: message" to stderr (one line: control bytes shown as \xHH) and return
+ * CLI_EXIT_USAGE. */
 int cli_fail(const char *cmd, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
@@ -28,7 +29,7 @@ int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const cha
 int cli_edit_distance(const char *a, const char *b);
 /* True if `typed` is close enough to `name` to suggest it (prefix or small edit distance). */
 int cli_is_near(const char *typed, const char *name);
-/* Write s as a JSON string literal. */
+/* Write s as a JSON string literal; bytes that are not UTF-8 become U+FFFD (JSON is UTF-8). */
 void cli_json_string(FILE *f, const char *s);
 /* True if argv[i] is "-h" or "--help". */
 int cli_is_help(const char *arg);

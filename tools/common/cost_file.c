@@ -1,5 +1,6 @@
 /* cost_file.c - reading and writing cost files (format in cost_file.h). */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,61 +10,84 @@
 
 #include "cli_args.h"
 #include "cost_file.h"
+#include "in_file.h"
+#include "path_msg.h"
 
-int costs_load(const char *path, abrdf_costs *out, double *unit_ns, char *err, size_t err_size)
+int costs_read(FILE *f, const char *name, abrdf_costs *out, double *unit_ns, char *err,
+               size_t err_size)
 {
     abrdf_costs_init(out, COSTS_UNIT);
     if (unit_ns) *unit_ns = -1.0;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        snprintf(err, err_size, "%s: cannot read the cost file", path);
-        return -1;
-    }
-    char line[512];
+    char *line = NULL, shown[80];
+    size_t cap = 0;
+    ssize_t len;
     int lineno = 0, entries = 0, have_unit = 0;
     int rc = 0;
-    while (fgets(line, sizeof line, f)) {
+    while ((len = in_file_line(f, &line, &cap)) >= 0) {
         ++lineno;
+        if (strlen(line) != (size_t)len) {
+            path_msg(err, err_size, name, ":%d: NUL byte (not a text file)", lineno);
+            rc = -1;
+            break;
+        }
         char *hash = strchr(line, '#');
         if (hash) *hash = '\0';
-        char name[64], num[64], extra[8];
-        int k = sscanf(line, "%63s %63s %7s", name, num, extra);
-        if (k <= 0) continue; /* blank or comment */
+        char *tok[3], *save = NULL;
+        int k = 0;
+        for (char *t = strtok_r(line, " \t\r\v\f", &save); t && k < 3;
+             t = strtok_r(NULL, " \t\r\v\f", &save))
+            tok[k++] = t;
+        if (k == 0) continue; /* blank or comment */
         double v;
-        if (k != 2 || !cli_parse_double(num, &v) || !(v > 0.0)) {
-            snprintf(err, err_size, "%s:%d: expected 'NAME NS_PER_EVAL' with a positive number",
-                     path, lineno);
+        if (k != 2 || !cli_parse_double(tok[1], &v) || !(v > 0.0)) {
+            path_msg(err, err_size, name, ":%d: expected 'NAME NS_PER_EVAL' with a positive number",
+                     lineno);
             rc = -1;
             break;
         }
         abrdf_model m;
-        if (!strcmp(name, COSTS_UNIT_NAME)) {
+        if (!strcmp(tok[0], COSTS_UNIT_NAME)) {
             if (have_unit++) {
-                snprintf(err, err_size, "%s:%d: %s appears twice", path, lineno, name);
+                path_msg(err, err_size, name, ":%d: %s appears twice", lineno, tok[0]);
                 rc = -1;
                 break;
             }
             if (unit_ns) *unit_ns = v;
-        } else if (abrdf_model_find(name, &m) == ABRDF_OK) {
+        } else if (abrdf_model_find(tok[0], &m) == ABRDF_OK) {
             if (abrdf_costs_get(out, m) >= 0.0) {
-                snprintf(err, err_size, "%s:%d: model %s appears twice", path, lineno, name);
+                path_msg(err, err_size, name, ":%d: model %s appears twice", lineno, tok[0]);
                 rc = -1;
                 break;
             }
             abrdf_costs_set(out, m, v);
             ++entries;
         } else {
-            snprintf(err, err_size, "%s:%d: unknown model '%s' (see abrdf models)", path, lineno,
-                     name);
+            path_msg(err, err_size, name, ":%d: unknown model '%s' (see abrdf models)", lineno,
+                     path_short(shown, sizeof shown, tok[0], 64));
             rc = -1;
             break;
         }
     }
-    fclose(f);
-    if (rc == 0 && entries == 0) {
-        snprintf(err, err_size, "%s: no model costs in the file", path);
+    if (rc == 0 && ferror(f)) {
+        path_msg(err, err_size, name, ": read error: %s", strerror(errno));
         rc = -1;
     }
+    free(line);
+    if (rc == 0 && entries == 0) {
+        path_msg(err, err_size, name, ": no model costs in the file");
+        rc = -1;
+    }
+    return rc;
+}
+
+int costs_load(const char *path, abrdf_costs *out, double *unit_ns, char *err, size_t err_size)
+{
+    abrdf_costs_init(out, COSTS_UNIT);
+    if (unit_ns) *unit_ns = -1.0;
+    FILE *f = in_file_open(path, err, err_size);
+    if (!f) return -1;
+    int rc = costs_read(f, path, out, unit_ns, err, err_size);
+    fclose(f);
     return rc;
 }
 
@@ -72,15 +96,16 @@ void costs_machine(char *buf, size_t size)
     char model[256] = "unknown cpu";
     FILE *f = fopen("/proc/cpuinfo", "r");
     if (f) {
-        char line[512];
-        while (fgets(line, sizeof line, f)) {
+        char *line = NULL;
+        size_t cap = 0;
+        while (in_file_line(f, &line, &cap) >= 0) {
             char *colon = strchr(line, ':');
-            if (!strncmp(line, "model name", 10) && colon) {
+            if (!strncmp(line, "model name", 10) && colon && colon[1]) {
                 snprintf(model, sizeof model, "%s", colon + 2);
-                model[strcspn(model, "\n")] = '\0';
                 break;
             }
         }
+        free(line);
         fclose(f);
     }
     struct utsname u;

@@ -17,9 +17,13 @@
 #define COSTS_UNIT_NAME "powf_blinn_phong"
 #define COSTS_UNIT "ns/eval (measured, abrdf calibrate)"
 
-/* Load `path` into out (unit COSTS_UNIT); *unit_ns receives the powf Blinn-Phong time, or
- * -1 if absent (unit_ns may be NULL). Returns 0, or -1 with "path:line: reason" in err. */
+/* Load `path` (a regular file: in_file.h) into out (unit COSTS_UNIT); *unit_ns receives the
+ * powf Blinn-Phong time, or -1 if absent (unit_ns may be NULL). Lines may have any length.
+ * Returns 0, or -1 with "path:line: reason" in err. */
 int costs_load(const char *path, abrdf_costs *out, double *unit_ns, char *err, size_t err_size);
+/* The same from an open stream; `name` is used in messages (tests/fuzz/fuzz_costs.c). */
+int costs_read(FILE *f, const char *name, abrdf_costs *out, double *unit_ns, char *err,
+               size_t err_size);
 
 /* Write a cost file: header comments (machine, date, command and `how`), the unit line,
  * then one line per model with cost >= 0 and its ratio to the unit as a comment. */

@@ -7,7 +7,9 @@
 #include <string.h>
 
 #include "cli_args.h"
+#include "in_file.h"
 #include "materials.h"
+#include "path_msg.h"
 
 const char *const mat_columns[] = {
     "name",       "type",      "n",        "r",          "kd_r",   "kd_g",       "kd_b",
@@ -37,23 +39,32 @@ enum {
     C_SOURCE
 };
 
-#define LINE_MAX_LEN 2048
-
 typedef struct ctx {
     const char *path;
     int line;
     char *err;
     size_t err_size;
+    char quoted[2][72]; /* shown(): fields as messages quote them */
+    int next;
 } ctx;
 
+/* "PATH:LINE: problem", the problem whole and the path shortened if need be (path_msg.h). */
 static int fail(ctx *c, const char *fmt, ...)
 {
-    int w = snprintf(c->err, c->err_size, "%s:%d: ", c->path, c->line);
+    char msg[1024];
     va_list ap;
     va_start(ap, fmt);
-    if (w >= 0 && (size_t)w < c->err_size) vsnprintf(c->err + w, c->err_size - (size_t)w, fmt, ap);
+    vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    path_msg(c->err, c->err_size, c->path, ":%d: %s", c->line, msg);
     return -1;
+}
+
+/* A field as a message quotes it: a long one shortened in its middle (lines have any length). */
+static const char *shown(ctx *c, const char *field)
+{
+    c->next ^= 1;
+    return path_short(c->quoted[c->next], sizeof c->quoted[0], field, 64);
 }
 
 static char *trim(char *s)
@@ -91,9 +102,11 @@ static int number(ctx *c, const char *field, int col, double lo, double hi, doub
         return 0;
     }
     if (!cli_parse_double(field, out))
-        return fail(c, "column '%s': '%s' is not a finite number", mat_columns[col], field);
+        return fail(c, "column '%s': '%s' is not a finite number", mat_columns[col],
+                    shown(c, field));
     if (!(*out >= lo && *out <= hi))
-        return fail(c, "column '%s': %s is outside [%g, %g]", mat_columns[col], field, lo, hi);
+        return fail(c, "column '%s': %s is outside [%g, %g]", mat_columns[col], shown(c, field), lo,
+                    hi);
     if (given) *given = 1;
     return 0;
 }
@@ -131,14 +144,14 @@ static int parse_row(ctx *c, char *line, mat_entry *e)
     abrdf_material *m = &e->m;
     abrdf_material_init(m);
     if (!valid_name(f[C_NAME]))
-        return fail(c, "name '%s' must be 1-%d characters of a-z, 0-9, _", f[C_NAME],
+        return fail(c, "name '%s' must be 1-%d characters of a-z, 0-9, _", shown(c, f[C_NAME]),
                     MAT_NAME_MAX - 1);
     strcpy(e->name, f[C_NAME]);
     if (abrdf_surface_find(f[C_TYPE], &m->type) != ABRDF_OK) {
         char types[256] = "";
         for (int i = 0; i < ABRDF_SURFACE_COUNT; ++i)
             strcat(strcat(types, i ? ", " : ""), abrdf_surface_name((abrdf_surface)i));
-        return fail(c, "type '%s' is not one of: %s", f[C_TYPE], types);
+        return fail(c, "type '%s' is not one of: %s", shown(c, f[C_TYPE]), types);
     }
     int n_given, r_given, eta_given;
     if (number(c, f[C_N], C_N, 0.0, 1e6, -1.0, &m->n, &n_given)) return -1;
@@ -218,7 +231,7 @@ static int check_header(ctx *c, char *line)
     for (int i = 0; i < mat_column_count; ++i)
         if (i >= nf || strcmp(f[i], mat_columns[i]))
             return fail(c, "header: column %d is '%s', expected '%s' (docs/MATERIALS.md)", i + 1,
-                        i < nf ? f[i] : "", mat_columns[i]);
+                        i < nf ? shown(c, f[i]) : "", mat_columns[i]);
     return 0;
 }
 
@@ -229,20 +242,20 @@ static mat_entry *find_mut(mat_table *t, const char *name, int upto)
     return NULL;
 }
 
-int mat_table_load(mat_table *t, const char *path, char *err, size_t err_size)
+int mat_table_read(mat_table *t, FILE *fp, const char *path, char *err, size_t err_size)
 {
-    ctx c = {path, 0, err, err_size};
+    ctx c = {path, 0, err, err_size, {"", ""}, 0};
     if (err_size) err[0] = '\0';
-    FILE *fp = fopen(path, "r");
-    if (!fp) return fail(&c, "cannot open: %s", strerror(errno));
     /* Parse the whole file first, so a bad file leaves the table as it was. */
     mat_table add = {NULL, 0, 0};
-    char line[LINE_MAX_LEN];
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t len;
     int header = 0, rc = 0;
-    while (fgets(line, sizeof line, fp)) {
+    while ((len = in_file_line(fp, &line, &cap)) >= 0) {
         ++c.line;
-        if (!strchr(line, '\n') && !feof(fp)) {
-            rc = fail(&c, "line longer than %d characters", LINE_MAX_LEN - 2);
+        if (strlen(line) != (size_t)len) {
+            rc = fail(&c, "NUL byte (not a text file)");
             break;
         }
         char *s = trim(line);
@@ -253,14 +266,14 @@ int mat_table_load(mat_table *t, const char *path, char *err, size_t err_size)
             continue;
         }
         if (add.count == add.cap) {
-            int cap = add.cap ? 2 * add.cap : 64;
-            mat_entry *p = realloc(add.items, (size_t)cap * sizeof *p);
+            int ncap = add.cap ? 2 * add.cap : 64;
+            mat_entry *p = realloc(add.items, (size_t)ncap * sizeof *p);
             if (!p) {
                 rc = fail(&c, "out of memory");
                 break;
             }
             add.items = p;
-            add.cap = cap;
+            add.cap = ncap;
         }
         mat_entry *e = &add.items[add.count];
         if ((rc = parse_row(&c, s, e))) break;
@@ -269,13 +282,13 @@ int mat_table_load(mat_table *t, const char *path, char *err, size_t err_size)
             rc = fail(&c, "material '%s' is already defined at line %d", e->name, dup->line);
             break;
         }
-        snprintf(e->file, sizeof e->file, "%s", path);
+        path_short(e->file, sizeof e->file, path, sizeof e->file - 1);
         e->line = c.line;
         ++add.count;
     }
-    if (!rc && ferror(fp)) rc = fail(&c, "read error");
+    free(line);
+    if (!rc && ferror(fp)) rc = fail(&c, "read error: %s", strerror(errno));
     if (!rc && !header) rc = fail(&c, "no header line (expected: name,type,n,r,...,source)");
-    fclose(fp);
     if (rc) {
         free(add.items);
         return -1;
@@ -287,19 +300,28 @@ int mat_table_load(mat_table *t, const char *path, char *err, size_t err_size)
             continue;
         }
         if (t->count == t->cap) {
-            int cap = t->cap ? 2 * t->cap : 64;
-            mat_entry *p = realloc(t->items, (size_t)cap * sizeof *p);
+            int ncap = t->cap ? 2 * t->cap : 64;
+            mat_entry *p = realloc(t->items, (size_t)ncap * sizeof *p);
             if (!p) {
                 rc = fail(&c, "out of memory");
                 break;
             }
             t->items = p;
-            t->cap = cap;
+            t->cap = ncap;
         }
         t->items[t->count++] = add.items[i];
     }
     free(add.items);
     for (int i = 0; i < t->count; ++i) t->items[i].m.name = t->items[i].name;
+    return rc;
+}
+
+int mat_table_load(mat_table *t, const char *path, char *err, size_t err_size)
+{
+    FILE *fp = in_file_open(path, err, err_size);
+    if (!fp) return -1;
+    int rc = mat_table_read(t, fp, path, err, err_size);
+    fclose(fp);
     return rc;
 }
 

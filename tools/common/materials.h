@@ -4,6 +4,7 @@
 #define ABRDF_MATERIALS_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include "abrdf_select.h"
 
 #define MAT_NAME_MAX 48
@@ -28,10 +29,13 @@ typedef struct mat_table {
 extern const char *const mat_columns[];
 extern const int mat_column_count;
 
-/* Load `path` into t: new names are appended, known names replaced (a user file overrides
- * the built-in table). On failure t is unchanged except for entries of earlier files, and
- * err holds "path:line: problem". Returns 0 or -1. */
+/* Load `path` (a regular file: in_file.h) into t: new names are appended, known names
+ * replaced (a user file overrides the built-in table). Lines may have any length. On failure
+ * t is unchanged except for entries of earlier files, and err holds "path:line: problem".
+ * Returns 0 or -1. */
 int mat_table_load(mat_table *t, const char *path, char *err, size_t err_size);
+/* The same from an open stream; `path` is used in messages (tests/fuzz/fuzz_materials.c). */
+int mat_table_read(mat_table *t, FILE *fp, const char *path, char *err, size_t err_size);
 void mat_table_free(mat_table *t);
 const mat_entry *mat_table_find(const mat_table *t, const char *name);
 /* Up to max names nearest to `name` by edit distance (<= 3), closest first; returns count. */

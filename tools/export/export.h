@@ -17,6 +17,7 @@ typedef struct export_options {
     const char *osl_dir;    /* directory holding abrdf_osl.h, abrdf_trace.h, abrdf_material.osl */
     int spp;                /* samples per pixel of the host renderer */
     const char *mode;       /* default mode of the script: "eval" or "closure" */
+    const char *notes;      /* NULL, or lines written as comments (the selection's trace) */
 } export_options;
 
 /* Write the script to f; returns 0, or -1 with a message in err. */

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "export_pov.h"
+#include "export_text.h"
 
 /* POV-Ray's left-handed world: z negated. */
 static void vec(FILE *f, const double v[3], double scale)
@@ -18,12 +19,14 @@ static void upper(char *dst, const char *src, size_t size)
     dst[i] = '\0';
 }
 
-static void material(FILE *f, int index, const scene_material *sm, const render_material *m)
+static int material(FILE *f, int index, const scene_material *sm, const render_material *m,
+                    char *err, size_t err_size)
 {
     char id[64];
     upper(id, abrdf_model_get(m->lobes[0])->name, sizeof id);
-    fprintf(f, "// material '%s'\n#declare Abrdf_Mat_%d = Abrdf_Default(ABRDF_ID_%s);\n", sm->name,
-            index, id);
+    fputs("// material '", f);
+    pov_comment(f, sm->name);
+    fprintf(f, "'\n#declare Abrdf_Mat_%d = Abrdf_Default(ABRDF_ID_%s);\n", index, id);
     if (m->lobe_count > 1) {
         upper(id, abrdf_model_get(m->lobes[1])->name, sizeof id);
         fprintf(f, "#declare Abrdf_Mat_%d[1] = ABRDF_ID_%s;\n", index, id);
@@ -41,7 +44,141 @@ static void material(FILE *f, int index, const scene_material *sm, const render_
                         v[c]);
         }
     }
-    fprintf(f, "Abrdf__Check(Abrdf_Mat_%d, \"material '%s'\")\n", index, sm->name);
+    /* The name reaches POV-Ray's messages as a string: escaped, or refused. */
+    char what[SCENE_NAME_MAX + 16];
+    snprintf(what, sizeof what, "material '%s'", sm->name);
+    fprintf(f, "Abrdf__Check(Abrdf_Mat_%d, ", index);
+    if (pov_string(f, what)) {
+        snprintf(err, err_size,
+                 "material name '%s' (line %d) cannot be a POV-Ray string: printable ASCII only",
+                 sm->name, sm->line);
+        return -1;
+    }
+    fputs(")\n", f);
+    return 0;
+}
+
+/* ---- meshes ----------------------------------------------------------------------- */
+
+/* 9 significant digits: the float a mesh holds survives the text exactly. */
+static void fvec(FILE *f, const float *v) { fprintf(f, "<%.9g, %.9g, %.9g>", v[0], v[1], v[2]); }
+
+/* The mesh2 of mesh file `index` in object space (the object's matrix mirrors z, as for the
+ * analytic shapes): with its corner normals (smooth) or without (flat faces); with `eval`,
+ * uv coordinates that tell the uv-mapped pigment of Abrdf_Mesh_Texture the triangle k and
+ * the barycentric weights (abrdf_shading.inc). */
+static void pov_mesh2(FILE *f, const mesh *m, int index, int smooth, int eval)
+{
+    int nt = m->triangle_count;
+    fputs("// ", f);
+    pov_comment(f, m->path); /* a file name is data: escaped (export_text.h) */
+    fprintf(f, ": %d triangles\n#declare Abrdf_Mesh_%d_%s = mesh2 {\n  vertex_vectors { %d", nt,
+            index, smooth ? "Smooth" : "Flat", m->vertex_count);
+    for (int i = 0; i < m->vertex_count; ++i) fputs(",\n    ", f), fvec(f, m->position + 3 * i);
+    fputs(" }\n", f);
+    if (smooth) {
+        fprintf(f, "  normal_vectors { %d", m->normal_count);
+        for (int i = 0; i < m->normal_count; ++i) fputs(",\n    ", f), fvec(f, m->normal + 3 * i);
+        fputs(" }\n", f);
+    }
+    if (eval) {
+        fprintf(f, "  uv_vectors { %d", 3 * nt);
+        for (int k = 0; k < nt; ++k)
+            fprintf(f, ",\n    <0, %d.5>, <1, %d.5>, <0, %d.5>", 2 * k, 2 * k, 2 * k + 1);
+        fputs(" }\n", f);
+    }
+    fprintf(f, "  face_indices { %d", nt);
+    for (int k = 0; k < nt; ++k)
+        fprintf(f, ",\n    <%d, %d, %d>", m->tri[3 * k], m->tri[3 * k + 1], m->tri[3 * k + 2]);
+    fputs(" }\n", f);
+    if (eval) {
+        fprintf(f, "  uv_indices { %d", nt);
+        for (int k = 0; k < nt; ++k) fprintf(f, ",\n    <%d, %d, %d>", 3 * k, 3 * k + 1, 3 * k + 2);
+        fputs(" }\n", f);
+    }
+    if (smooth) {
+        fprintf(f, "  normal_indices { %d", nt);
+        for (int k = 0; k < nt; ++k)
+            fprintf(f, ",\n    <%d, %d, %d>", m->tri_normal[3 * k], m->tri_normal[3 * k + 1],
+                    m->tri_normal[3 * k + 2]);
+        fputs(" }\n", f);
+    }
+    fputs("}\n", f);
+}
+
+/* The per-triangle data Abrdf_Mesh_Texture reads: spline functions of the triangle index
+ * (corners, corner normals, uv tangent), knots at 0 .. n-1 and a copy of the last at n. */
+static void pov_mesh_data(FILE *f, const mesh *m, int index)
+{
+    static const char *const names[7] = {"P0", "P1", "P2", "N0", "N1", "N2", "T"};
+    int nt = m->triangle_count;
+    for (int q = 0; q < 7; ++q) {
+        fprintf(f, "#declare Abrdf_Mesh_%d_%s = function { spline { linear_spline", index,
+                names[q]);
+        for (int k = 0; k <= nt; ++k) {
+            int t = k < nt ? k : nt - 1;
+            float v[3] = {0, 0, 0};
+            if (q < 3) {
+                memcpy(v, m->position + 3 * m->tri[3 * t + q], sizeof v);
+            } else if (q < 6) {
+                memcpy(v, m->normal + 3 * m->tri_normal[3 * t + q - 3], sizeof v);
+            } else if (m->tri_uv) { /* dP/du of the triangle, as geom_tangent_uv */
+                const float *p[3], *uv[3];
+                for (int c = 0; c < 3; ++c)
+                    p[c] = m->position + 3 * m->tri[3 * t + c],
+                    uv[c] = m->uv + 2 * m->tri_uv[3 * t + c];
+                double du1 = (double)uv[1][0] - uv[0][0], dv1 = (double)uv[1][1] - uv[0][1];
+                double du2 = (double)uv[2][0] - uv[0][0], dv2 = (double)uv[2][1] - uv[0][1];
+                double det = du1 * dv2 - du2 * dv1;
+                for (int i = 0; i < 3 && det != 0; ++i)
+                    v[i] = (float)((dv2 * ((double)p[1][i] - p[0][i]) -
+                                    dv1 * ((double)p[2][i] - p[0][i])) /
+                                   det);
+            }
+            fprintf(f, "%s%d, ", k % 4 ? " " : "\n  ", k);
+            fvec(f, v);
+            fputc(k < nt ? ',' : ' ', f);
+        }
+        fputs("} }\n", f);
+    }
+    fprintf(f, "#declare Abrdf_Mesh_%d_Data = array[7] {", index);
+    for (int q = 0; q < 7; ++q) fprintf(f, "%sAbrdf_Mesh_%d_%s", q ? ", " : "", index, names[q]);
+    fputs("}\n", f);
+}
+
+/* A mesh object: its mesh2 under the texture (evaluation or native) and the transform. */
+static void pov_mesh_object(FILE *f, const scene_object *o, const render_material *m,
+                            const export_pov_options *opt)
+{
+    double a[3] = {0, 0, 0};
+    if (m->use_ambient) memcpy(a, m->ambient, sizeof a);
+    fprintf(f, "object { Abrdf_Mesh_%d_%s\n", o->mesh, o->smooth ? "Smooth" : "Flat");
+    if (opt->native) {
+        fprintf(f, "  Abrdf_Native_Texture(Abrdf_Mat_%d, <%.17g, %.17g, %.17g>)\n", o->material,
+                a[0], a[1], a[2]);
+    } else {
+        fprintf(f, "  Abrdf_Mesh_Texture(Abrdf_Mat_%d, Abrdf_Mesh_%d_Data, %s, Abrdf_M,\n",
+                o->material, o->mesh, o->smooth ? "true" : "false");
+        fprintf(f, "    array[4] {%d, %.17g, %.17g, %.17g}, Abrdf_Eye, Abrdf_Lights,\n",
+                (int)o->tangent, o->tangent_axis[0], o->tangent_axis[1], o->tangent_axis[2]);
+        fprintf(f, "    <%.17g, %.17g, %.17g>, %s)\n", a[0], a[1], a[2],
+                opt->lit ? "true" : "false");
+    }
+    fputs("  Abrdf_Xform_Matrix(Abrdf_M) }\n", f);
+}
+
+/* Every mesh file some object uses, in the variants the objects need. */
+static void pov_meshes(FILE *f, const scene *s, int eval)
+{
+    for (int i = 0; i < s->mesh_count; ++i) {
+        int smooth = 0, flat = 0;
+        for (int k = 0; k < s->object_count; ++k)
+            if (s->objects[k].shape == SCENE_MESH && s->objects[k].mesh == i)
+                smooth |= s->objects[k].smooth, flat |= !s->objects[k].smooth;
+        if (smooth) pov_mesh2(f, s->meshes[i], i, 1, eval);
+        if (flat) pov_mesh2(f, s->meshes[i], i, 0, eval);
+        if ((smooth || flat) && eval) pov_mesh_data(f, s->meshes[i], i);
+    }
 }
 
 int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE *f, char *err,
@@ -63,7 +200,9 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
             return -1;
         }
     double extent = rs->eps / 1e-9; /* render.c: eps = 1e-9 * scene size */
-    fprintf(f, "// %s - exported by `abrdf export --pov` (docs/POVRAY.md).\n", opt->source);
+    fputs("// ", f);
+    pov_comment(f, opt->source);
+    fputs(" - exported by `abrdf export --pov` (docs/POVRAY.md).\n", f);
     fprintf(f,
             "// Render linear HDR without antialiasing, e.g. with k x k supersampling:\n"
             "//   povray +I<this file> +O<out>.exr +FE +W%d +H%d -A +L<abrdf>/povray_macros\n"
@@ -75,6 +214,7 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
             : opt->lit  ? "function pigments; POV-Ray's light_source and shadow test (one light)."
                         : "function pigments, emissive: each pigment sums every light unoccluded "
                           "(no shadows).");
+    if (opt->notes) pov_comment_lines(f, opt->notes);
     fprintf(
         f,
         "#version 3.7;\nglobal_settings { assumed_gamma 1 ambient_light %d max_trace_level 1 }\n",
@@ -121,10 +261,13 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
     }
     fprintf(f, "\n");
     for (int i = 0; i < rs->material_count; ++i)
-        if (rs->materials[i].used) material(f, i, &s->materials[i], &rs->materials[i]);
+        if (rs->materials[i].used &&
+            material(f, i, &s->materials[i], &rs->materials[i], err, err_size))
+            return -1;
     fprintf(f, "\n");
 
-    static const char *shapes[] = {"sphere", "cylinder", "capsule", "box"};
+    pov_meshes(f, s, !opt->native);
+    static const char *shapes[] = {"sphere", "cylinder", "capsule", "box", "mesh"};
     for (int i = 0; i < rs->object_count; ++i) {
         const scene_object *o = &s->objects[i];
         const geom_object *g = &rs->objects[i];
@@ -136,6 +279,10 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
                 fprintf(f, "%.17g%s", r == 2 ? -g->xf.m[r][c] : g->xf.m[r][c],
                         r == 2 && c == 3 ? "" : ", ");
         fprintf(f, "}\n");
+        if (o->shape == SCENE_MESH) {
+            pov_mesh_object(f, o, m, opt);
+            continue;
+        }
         double dims[3] = {o->radius, o->height, 0};
         if (o->shape == SCENE_BOX) memcpy(dims, o->size, sizeof dims);
         fprintf(f, "object { Abrdf_Shape(\"%s\", <%.17g, %.17g, %.17g>)\n", shapes[o->shape],

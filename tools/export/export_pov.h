@@ -19,9 +19,11 @@ typedef struct export_pov_options {
     int native;         /* POV-Ray's own finishes (abrdf_native.inc): lambert, phong, blinn_phong;
                          every light a light_source (shadows), directional lights only */
     const char *source; /* scene file name for the header comment */
+    const char *notes;  /* NULL, or lines written as comments (the selection's trace) */
 } export_pov_options;
 
-/* Returns 0, or -1 with a message in err (e.g. lit with more than one light). */
+/* Returns 0, or -1 with a message in err (e.g. lit with more than one light). Every string
+ * from the scene goes through export_text.h: a path or a name never becomes SDL. */
 int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE *f, char *err,
                      size_t err_size);
 

@@ -21,6 +21,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "out_file.h"
+
 /* c^n level where the fit zone starts and below which fkub is zero. 0.1 reproduces the
  * paper's fkub rows best (docs/TABLES.md): its Table 2 to 1.0 and Table 3 to 0.03 on
  * average, against 9.9 and 0.02 for 0.01, whose wide zone leaves a 17 % relative error at
@@ -70,11 +72,9 @@ static void fit(double n, double *a_out, double *b_out, double *d_out, double *x
 
 int main(int argc, char **argv)
 {
-    FILE *out = stdout;
-    if (argc > 1 && !(out = fopen(argv[1], "w"))) {
-        fprintf(stderr, "fit_fkub: cannot write %s\n", argv[1]);
-        return 2;
-    }
+    out_file o;
+    FILE *out = out_file_or_stdout(&o, argc > 1 ? argv[1] : NULL, "fit_fkub");
+    if (!out) return 1;
     int octaves = (int)ceil(log2(N_MAX / N_MIN));
     int count = octaves * STEPS_PER_OCTAVE + 1;
     int total = count + (int)(sizeof paper_n / sizeof paper_n[0]);
@@ -118,6 +118,5 @@ int main(int argc, char **argv)
             "    *x0 = pow(%g, 1.0 / n);\n}\n",
             ZONE_LEVEL);
     free(ns);
-    if (out != stdout) fclose(out);
-    return 0;
+    return out_file_finish(&o, "fit_fkub"); /* whole or not at all */
 }

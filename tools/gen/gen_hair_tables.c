@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "hair.h"
+#include "out_file.h"
 
 #define QUAD 64 /* VNDF nodes per dimension; --convergence measures the error */
 
@@ -111,11 +112,9 @@ int main(int argc, char **argv)
         printf("gen_hair_tables: %s reproduced (%ld bytes)\n", argv[2], pos);
         return 0;
     }
-    FILE *out = stdout;
-    if (argc > 1 && !(out = fopen(argv[1], "w"))) {
-        fprintf(stderr, "gen_hair_tables: cannot write %s\n", argv[1]);
-        return 2;
-    }
+    out_file o;
+    FILE *out = out_file_or_stdout(&o, argc > 1 ? argv[1] : NULL, "gen_hair_tables");
+    if (!out) return 1;
     write_table(out);
-    return out == stdout ? 0 : fclose(out) != 0;
+    return out_file_finish(&o, "gen_hair_tables"); /* whole or not at all */
 }

@@ -21,6 +21,8 @@ import re
 import subprocess
 import sys
 
+import gen_output  # whole or not at all, as tools/common/out_file.h
+
 # The parameters the OSL functions take, in the order of abrdf_eval()'s signature; the
 # layer stack's layerK_<field> are passed as arrays layer_<field>[4] (OSL_LAYER_FIELDS).
 OSL_PARAMS = ["kd", "ks", "f0", "n", "r", "anisotropic", "sigma", "clearcoat_gloss", "k_amp",
@@ -307,12 +309,14 @@ def main():
         with open(os.path.join(src, "libabrdf", "src", f_name)) as f:
             hair_c.append(f.read())
     os.makedirs(out_dir, exist_ok=True)
-    for name, text in (("abrdf_meta.h", meta_header(models, rules)),
-                       ("abrdf_fkub.h", fkub_header(table_c)),
-                       ("abrdf_belcour_tables.h", belcour_header(belcour_c, belcour_h)),
-                       ("abrdf_hair_tables.h", hair_tables_header(hair_c))):
-        with open(os.path.join(out_dir, name), "w") as f:
-            f.write(text)
+    lib = os.path.join(src, "libabrdf", "src")
+    gen_output.write_all("gen_osl_meta", {
+        os.path.join(out_dir, "abrdf_meta.h"): meta_header(models, rules),
+        os.path.join(out_dir, "abrdf_fkub.h"): fkub_header(table_c),
+        os.path.join(out_dir, "abrdf_belcour_tables.h"): belcour_header(belcour_c, belcour_h),
+        os.path.join(out_dir, "abrdf_hair_tables.h"): hair_tables_header(hair_c)},
+        inputs=[os.path.join(lib, n) for n in ("fkub_table.c", "belcour_tables.c",
+                                               "belcour_tables.h", "hair_tables.c", "hair.h")])
 
 
 if __name__ == "__main__":

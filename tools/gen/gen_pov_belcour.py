@@ -22,6 +22,8 @@ import re
 import struct
 import sys
 
+import gen_output  # whole or not at all, as tools/common/out_file.h
+
 # belcour_tables.h's node -> continuous index maps, as abrdf_models.inc transcribes them
 # (whitespace-insensitive). A change there must be carried over to the SDL by hand.
 AXIS_MAPS = [
@@ -114,7 +116,8 @@ def main():
     w("")
     w("#version ABRDF_BELCOUR_TABLES_INC_TEMP;")
     w("#end")
-    open(out, "w").write("\n".join(o) + "\n")
+    gen_output.write_all("gen_pov_belcour", {out: "\n".join(o) + "\n"},
+                         inputs=[hdr_path, c_path])
 
 
 if __name__ == "__main__":

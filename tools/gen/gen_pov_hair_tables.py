@@ -18,6 +18,8 @@ lookup (y in [0, N-1]) reaches the next block.
 import re
 import sys
 
+import gen_output  # whole or not at all, as tools/common/out_file.h
+
 N = 16
 BLOCK = 32
 
@@ -60,8 +62,7 @@ def main():
         "#version ABRDF_HUANG_TABLES_INC_TEMP;",
         "#end",
     ]
-    with open(out, "w") as f:
-        f.write("\n".join(lines) + "\n")
+    gen_output.write_all("gen_pov_hair_tables", {out: "\n".join(lines) + "\n"}, inputs=[src])
 
 
 if __name__ == "__main__":

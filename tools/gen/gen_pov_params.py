@@ -19,6 +19,8 @@ import re
 import subprocess
 import sys
 
+import gen_output  # whole or not at all, as tools/common/out_file.h
+
 
 def cap(name):
     """blinn_phong -> Blinn_Phong, f_2e -> F_2e."""
@@ -280,7 +282,8 @@ def main():
     w("")
     w("#version ABRDF_PARAMS_INC_TEMP;")
     w("#end")
-    open(out, "w").write("\n".join(o) + "\n")
+    gen_output.write_all("gen_pov_params", {out: "\n".join(o) + "\n"},
+                         inputs=[abrdf, fkub_c, models_inc])
 
 
 if __name__ == "__main__":

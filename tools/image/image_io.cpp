@@ -1,16 +1,20 @@
 // image_io.cpp - the C interface of image_io.h over OpenImageIO (files) and OpenColorIO
 // (scene-linear <-> display). Nothing here encodes pixels or colour by hand: files are
-// written and read by OpenImageIO, display transforms are OpenColorIO processors, and the
-// false-colour map is OpenImageIO's ImageBufAlgo::color_map.
+// encoded (in memory, through OpenImageIO's IOVecOutput proxy) and read by OpenImageIO,
+// display transforms are OpenColorIO processors, and the false-colour map is OpenImageIO's
+// ImageBufAlgo::color_map. Writing the encoded bytes to disk is the caller's (out_file.h).
 #include "image_io.h"
 
 #include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -31,6 +35,35 @@ const long long kMaxPixels = 1LL << 28;
 void set_err(char *err, int err_size, const std::string &msg)
 {
     if (err && err_size > 0) std::snprintf(err, (size_t)err_size, "%s", msg.c_str());
+}
+
+// Is byte c the continuation of a UTF-8 sequence (no cut before it)?
+bool continuation(char c) { return ((unsigned char)c & 0xc0) == 0x80; }
+
+// "PATH: reason" into err; if it does not fit, the path is shortened in its middle, never the
+// reason; its control bytes are shown as \xHH (as path_msg.h does for the C tools).
+void set_err_path(char *err, int err_size, const char *path, const std::string &reason)
+{
+    std::string p, r = ": " + (reason.empty() ? std::string("failed") : reason);
+    for (const char *c = path ? path : ""; *c; ++c) {
+        char hex[8];
+        if ((unsigned char)*c < 0x20 || *c == 0x7f) {
+            std::snprintf(hex, sizeof hex, "\\x%02x", (unsigned char)*c);
+            p += hex;
+        } else {
+            p += *c;
+        }
+    }
+    if (err_size > 0 && p.size() + r.size() >= (size_t)err_size) {
+        size_t room = (size_t)err_size - 1 > r.size() + 16 ? (size_t)err_size - 1 - r.size() : 16;
+        if (p.size() > room) {
+            size_t head = (room - 3) / 3, from = p.size() - (room - 3 - head);
+            while (head > 0 && continuation(p[head])) --head;
+            while (from < p.size() && continuation(p[from])) ++from;
+            p = p.substr(0, head) + "..." + p.substr(from);
+        }
+    }
+    set_err(err, err_size, p + r);
 }
 
 std::string lower_ext(const char *path)
@@ -143,22 +176,49 @@ bool valid_size(int width, int height, const void *data, char *err, int err_size
     return true;
 }
 
-// Write w x h x nch floats to path as `type` (UINT8 for display files) via ImageOutput.
-int write_file(const char *path, int width, int height, int nch, const float *data,
-               OIIO::TypeDesc type, const char *colorspace, char *err, int err_size)
+// Can a file named `name` be encoded in memory? Returns the reason if not.
+std::string encodable(const char *name)
 {
-    auto out = OIIO::ImageOutput::create(path);
+    auto out = OIIO::ImageOutput::create(name);
     if (!out) {
-        set_err(err, err_size, std::string(path) + ": " + OIIO::geterror());
+        std::string e = OIIO::geterror();
+        return e.empty() ? "no image format for this extension" : e;
+    }
+    if (!out->supports("ioproxy"))
+        return std::string("OpenImageIO's ") + out->format_name() +
+               " writer cannot encode in memory, so its writes could not be checked; write "
+               ".exr, .hdr, .tif, .png or .jpg";
+    return "";
+}
+
+// Encode w x h x nch floats as the format of `name`, pixel type `type` (UINT8 for display
+// files), into out.
+int encode(const char *name, int width, int height, int nch, const float *data, OIIO::TypeDesc type,
+           const char *colorspace, abrdf_bytes *out, char *err, int err_size)
+{
+    std::string why = encodable(name);
+    if (!why.empty()) {
+        set_err_path(err, err_size, name, why);
         return -1;
     }
+    auto io = OIIO::ImageOutput::create(name);
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput vec(bytes);
     OIIO::ImageSpec spec(width, height, nch, type);
     spec.attribute("oiio:ColorSpace", colorspace);
     spec.attribute("Software", "abrdf");
-    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, data) || !out->close()) {
-        set_err(err, err_size, std::string(path) + ": " + out->geterror());
+    if (!io->set_ioproxy(&vec) || !io->open(name, spec) ||
+        !io->write_image(OIIO::TypeDesc::FLOAT, data) || !io->close() || io->has_error()) {
+        set_err_path(err, err_size, name, io->geterror());
         return -1;
     }
+    out->data = (unsigned char *)std::malloc(bytes.size() ? bytes.size() : 1);
+    if (!out->data) {
+        set_err_path(err, err_size, name, "out of memory");
+        return -1;
+    }
+    std::memcpy(out->data, bytes.data(), bytes.size());
+    out->size = bytes.size();
     return 0;
 }
 
@@ -175,38 +235,92 @@ extern "C" int abrdf_image_is_display_format(const char *path)
     return 0;
 }
 
-extern "C" int abrdf_image_write_linear(const char *path, int width, int height, const float *rgb,
-                                        char *err, int err_size)
+extern "C" void abrdf_bytes_free(abrdf_bytes *b)
+{
+    if (!b) return;
+    std::free(b->data);
+    b->data = nullptr;
+    b->size = 0;
+}
+
+extern "C" int abrdf_image_check_output(const char *name, int linear, char *err, int err_size)
 {
     try {
-        if (!path || !valid_size(width, height, rgb, err, err_size)) {
-            if (!path) set_err(err, err_size, "no output path");
+        if (!name || !*name) {
+            set_err(err, err_size, "no output name");
             return -1;
         }
-        if (abrdf_image_is_display_format(path)) {
-            set_err(err, err_size,
-                    std::string(path) + ": an 8-bit display format cannot hold scene-linear data; "
-                                        "write .exr/.hdr/.tif (or a preview)");
+        if (linear && abrdf_image_is_display_format(name)) {
+            set_err_path(err, err_size, name,
+                         "an 8-bit display format cannot hold scene-linear data; write "
+                         ".exr/.hdr/.tif (or a preview)");
             return -1;
         }
-        // 32-bit float where the format has it (EXR, TIFF); .hdr stores its own RGBE encoding.
-        return write_file(path, width, height, 3, rgb, OIIO::TypeDesc::FLOAT, "Linear", err,
-                          err_size);
+        if (!linear && !abrdf_image_is_display_format(name)) {
+            set_err_path(err, err_size, name,
+                         "not an 8-bit display format; write .png, .jpg, .bmp, .gif, .webp or "
+                         ".ppm");
+            return -1;
+        }
+        std::string why = encodable(name);
+        if (why.empty()) return 0;
+        set_err_path(err, err_size, name, why);
     } catch (const std::exception &e) {
-        set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
+        set_err_path(err, err_size, name, e.what());
     } catch (...) {
-        set_err(err, err_size, "unexpected error writing an image");
+        set_err(err, err_size, "unexpected error checking an output name");
     }
     return -1;
 }
 
-extern "C" int abrdf_image_write_preview(const char *path, int width, int height, const float *rgb,
-                                         const char *config, const char *display, const char *view,
+extern "C" int abrdf_image_check_preview(const char *config, const char *display, const char *view,
                                          char *err, int err_size)
 {
     try {
-        if (!path || !valid_size(width, height, rgb, err, err_size)) {
-            if (!path) set_err(err, err_size, "no output path");
+        display_processor(config, display, view, false);
+        return 0;
+    } catch (const std::exception &e) {
+        set_err(err, err_size, std::string("preview transform: ") + e.what());
+    } catch (...) {
+        set_err(err, err_size, "preview transform: unexpected error");
+    }
+    return -1;
+}
+
+extern "C" int abrdf_image_encode_linear(const char *name, int width, int height, const float *rgb,
+                                         abrdf_bytes *out, char *err, int err_size)
+{
+    if (!out) return -1;
+    out->data = nullptr;
+    out->size = 0;
+    try {
+        if (!name || !valid_size(width, height, rgb, err, err_size)) {
+            if (!name) set_err(err, err_size, "no output name");
+            return -1;
+        }
+        if (abrdf_image_check_output(name, 1, err, err_size)) return -1;
+        // 32-bit float where the format has it (EXR, TIFF); .hdr stores its own RGBE encoding.
+        return encode(name, width, height, 3, rgb, OIIO::TypeDesc::FLOAT, "Linear", out, err,
+                      err_size);
+    } catch (const std::exception &e) {
+        set_err_path(err, err_size, name, e.what());
+    } catch (...) {
+        set_err(err, err_size, "unexpected error encoding an image");
+    }
+    abrdf_bytes_free(out);
+    return -1;
+}
+
+extern "C" int abrdf_image_encode_preview(const char *name, int width, int height, const float *rgb,
+                                          const char *config, const char *display, const char *view,
+                                          abrdf_bytes *out, char *err, int err_size)
+{
+    if (!out) return -1;
+    out->data = nullptr;
+    out->size = 0;
+    try {
+        if (!name || !valid_size(width, height, rgb, err, err_size)) {
+            if (!name) set_err(err, err_size, "no output name");
             return -1;
         }
         std::vector<float> buf(rgb, rgb + (size_t)width * height * 3);
@@ -214,23 +328,27 @@ extern "C" int abrdf_image_write_preview(const char *path, int width, int height
         OCIO::PackedImageDesc desc(buf.data(), width, height, 3);
         cpu->apply(desc);
         // OpenImageIO quantises to 8 bits (clamping to [0,1], rounding to nearest).
-        return write_file(path, width, height, 3, buf.data(), OIIO::TypeDesc::UINT8, "sRGB", err,
-                          err_size);
+        return encode(name, width, height, 3, buf.data(), OIIO::TypeDesc::UINT8, "sRGB", out, err,
+                      err_size);
     } catch (const std::exception &e) {
-        set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
+        set_err_path(err, err_size, name, e.what());
     } catch (...) {
-        set_err(err, err_size, "unexpected error writing a preview");
+        set_err(err, err_size, "unexpected error encoding a preview");
     }
+    abrdf_bytes_free(out);
     return -1;
 }
 
-extern "C" int abrdf_image_write_heatmap(const char *path, int width, int height,
-                                         const float *value, double vmax, const char *map,
-                                         char *err, int err_size)
+extern "C" int abrdf_image_encode_heatmap(const char *name, int width, int height,
+                                          const float *value, double vmax, const char *map,
+                                          abrdf_bytes *out, char *err, int err_size)
 {
+    if (!out) return -1;
+    out->data = nullptr;
+    out->size = 0;
     try {
-        if (!path || !valid_size(width, height, value, err, err_size)) {
-            if (!path) set_err(err, err_size, "no output path");
+        if (!name || !valid_size(width, height, value, err, err_size)) {
+            if (!name) set_err(err, err_size, "no output name");
             return -1;
         }
         OIIO::ImageBuf src(OIIO::ImageSpec(width, height, 1, OIIO::TypeDesc::FLOAT));
@@ -241,21 +359,25 @@ extern "C" int abrdf_image_write_heatmap(const char *path, int width, int height
         src.set_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, v.data());
         OIIO::ImageBuf col = OIIO::ImageBufAlgo::color_map(src, 0, (map && *map) ? map : "inferno");
         if (col.has_error()) {
-            set_err(err, err_size, std::string(path) + ": " + col.geterror());
+            set_err_path(err, err_size, name, col.geterror());
             return -1;
         }
-        // The colour maps are defined in display (sRGB-encoded) values: write them as they are.
-        col.specmod().attribute("oiio:ColorSpace", "sRGB");
-        if (!col.write(path, OIIO::TypeDesc::UINT8)) {
-            set_err(err, err_size, std::string(path) + ": " + col.geterror());
+        // The colour maps are defined in display (sRGB-encoded) values: encode them as they are.
+        int nch = col.nchannels();
+        std::vector<float> px((size_t)width * height * nch);
+        if (!col.get_pixels(OIIO::ROI(0, width, 0, height, 0, 1, 0, nch), OIIO::TypeDesc::FLOAT,
+                            px.data())) {
+            set_err_path(err, err_size, name, col.geterror());
             return -1;
         }
-        return 0;
+        return encode(name, width, height, nch, px.data(), OIIO::TypeDesc::UINT8, "sRGB", out, err,
+                      err_size);
     } catch (const std::exception &e) {
-        set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
+        set_err_path(err, err_size, name, e.what());
     } catch (...) {
-        set_err(err, err_size, "unexpected error writing a heat map");
+        set_err(err, err_size, "unexpected error encoding a heat map");
     }
+    abrdf_bytes_free(out);
     return -1;
 }
 
@@ -269,24 +391,36 @@ extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, i
             set_err(err, err_size, "no input path");
             return -1;
         }
+        // A FIFO or a device would block OpenImageIO's open, a directory has no image.
+        struct stat st;
+        if (stat(path, &st) != 0) {
+            set_err_path(err, err_size, path, std::string("cannot open: ") + std::strerror(errno));
+            return -1;
+        }
+        if (!S_ISREG(st.st_mode)) {
+            set_err_path(err, err_size, path,
+                         S_ISDIR(st.st_mode) ? "is a directory, not a file"
+                                             : "is not a regular file");
+            return -1;
+        }
         auto in = OIIO::ImageInput::open(path);
         if (!in) {
             std::string e = OIIO::geterror();
-            set_err(err, err_size, std::string(path) + ": " + (e.empty() ? "cannot open" : e));
+            set_err_path(err, err_size, path, e.empty() ? "cannot open" : e);
             return -1;
         }
         const OIIO::ImageSpec spec = in->spec();
         int w = spec.width, h = spec.height, nch = spec.nchannels;
         if (w <= 0 || h <= 0 || nch <= 0 || (long long)w * h > kMaxPixels || spec.deep) {
-            set_err(err, err_size,
-                    std::string(path) + ": unsupported image (size " + std::to_string(w) + "x" +
-                        std::to_string(h) + ", " + std::to_string(nch) + " channels" +
-                        (spec.deep ? ", deep" : "") + ")");
+            set_err_path(err, err_size, path,
+                         "unsupported image (size " + std::to_string(w) + "x" + std::to_string(h) +
+                             ", " + std::to_string(nch) + " channels" +
+                             (spec.deep ? ", deep" : "") + ")");
             return -1;
         }
         std::vector<float> all((size_t)w * h * nch);
         if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, all.data())) {
-            set_err(err, err_size, std::string(path) + ": " + in->geterror());
+            set_err_path(err, err_size, path, in->geterror());
             return -1;
         }
         in->close();
@@ -294,7 +428,7 @@ extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, i
         int colour = (nch >= 3 && spec.alpha_channel != 1 && spec.alpha_channel != 2) ? 3 : 1;
         float *rgb = (float *)std::malloc((size_t)w * h * 3 * sizeof(float));
         if (!rgb) {
-            set_err(err, err_size, std::string(path) + ": out of memory");
+            set_err_path(err, err_size, path, "out of memory");
             return -1;
         }
         for (size_t p = 0; p < (size_t)w * h; ++p)
@@ -323,7 +457,7 @@ extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, i
         img->pixels = rgb;
         return 0;
     } catch (const std::exception &e) {
-        set_err(err, err_size, std::string(path ? path : "") + ": " + e.what());
+        set_err_path(err, err_size, path, e.what());
     } catch (...) {
         set_err(err, err_size, "unexpected error reading an image");
     }

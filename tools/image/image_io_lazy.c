@@ -20,11 +20,14 @@
 
 #define MODULE_NAME "libabrdf_image_io.so"
 
-typedef int (*write_linear_fn)(const char *, int, int, const float *, char *, int);
-typedef int (*write_preview_fn)(const char *, int, int, const float *, const char *, const char *,
-                                const char *, char *, int);
-typedef int (*write_heatmap_fn)(const char *, int, int, const float *, double, const char *, char *,
-                                int);
+typedef int (*encode_linear_fn)(const char *, int, int, const float *, abrdf_bytes *, char *, int);
+typedef int (*encode_preview_fn)(const char *, int, int, const float *, const char *, const char *,
+                                 const char *, abrdf_bytes *, char *, int);
+typedef int (*encode_heatmap_fn)(const char *, int, int, const float *, double, const char *,
+                                 abrdf_bytes *, char *, int);
+typedef void (*bytes_free_fn)(abrdf_bytes *);
+typedef int (*check_output_fn)(const char *, int, char *, int);
+typedef int (*check_preview_fn)(const char *, const char *, const char *, char *, int);
 typedef int (*read_fn)(const char *, abrdf_image *, char *, int);
 typedef void (*free_fn)(abrdf_image *);
 typedef int (*is_display_fn)(const char *);
@@ -34,9 +37,12 @@ typedef int (*is_display_fn)(const char *);
 static struct {
     int tried;
     char error[512];
-    write_linear_fn write_linear;
-    write_preview_fn write_preview;
-    write_heatmap_fn write_heatmap;
+    encode_linear_fn encode_linear;
+    encode_preview_fn encode_preview;
+    encode_heatmap_fn encode_heatmap;
+    bytes_free_fn bytes_free;
+    check_output_fn check_output;
+    check_preview_fn check_preview;
     read_fn read;
     free_fn free_image;
     is_display_fn is_display;
@@ -77,13 +83,17 @@ static int load(char *err, int err_size)
                      env && *env ? env : MODULE_NAME, e ? e : "not found");
         } else {
             /* POSIX: dlsym's void * converts to a function pointer through this idiom. */
-            *(void **)&mod.write_linear = dlsym(h, "abrdf_image_write_linear");
-            *(void **)&mod.write_preview = dlsym(h, "abrdf_image_write_preview");
-            *(void **)&mod.write_heatmap = dlsym(h, "abrdf_image_write_heatmap");
+            *(void **)&mod.encode_linear = dlsym(h, "abrdf_image_encode_linear");
+            *(void **)&mod.encode_preview = dlsym(h, "abrdf_image_encode_preview");
+            *(void **)&mod.encode_heatmap = dlsym(h, "abrdf_image_encode_heatmap");
+            *(void **)&mod.bytes_free = dlsym(h, "abrdf_bytes_free");
+            *(void **)&mod.check_output = dlsym(h, "abrdf_image_check_output");
+            *(void **)&mod.check_preview = dlsym(h, "abrdf_image_check_preview");
             *(void **)&mod.read = dlsym(h, "abrdf_image_read");
             *(void **)&mod.free_image = dlsym(h, "abrdf_image_free");
             *(void **)&mod.is_display = dlsym(h, "abrdf_image_is_display_format");
-            if (!mod.write_linear || !mod.write_preview || !mod.write_heatmap || !mod.read ||
+            if (!mod.encode_linear || !mod.encode_preview || !mod.encode_heatmap ||
+                !mod.bytes_free || !mod.check_output || !mod.check_preview || !mod.read ||
                 !mod.free_image || !mod.is_display) {
                 snprintf(mod.error, sizeof mod.error, "the image I/O module lacks an entry point");
                 mod.read = NULL;
@@ -95,26 +105,60 @@ static int load(char *err, int err_size)
     return -1;
 }
 
-int abrdf_image_write_linear(const char *path, int width, int height, const float *rgb, char *err,
-                             int err_size)
+static void no_bytes(abrdf_bytes *out)
 {
-    if (load(err, err_size)) return -1;
-    return mod.write_linear(path, width, height, rgb, err, err_size);
+    if (out) out->data = NULL, out->size = 0;
 }
 
-int abrdf_image_write_preview(const char *path, int width, int height, const float *rgb,
-                              const char *config, const char *display, const char *view, char *err,
+int abrdf_image_encode_linear(const char *name, int width, int height, const float *rgb,
+                              abrdf_bytes *out, char *err, int err_size)
+{
+    no_bytes(out);
+    if (load(err, err_size)) return -1;
+    return mod.encode_linear(name, width, height, rgb, out, err, err_size);
+}
+
+int abrdf_image_encode_preview(const char *name, int width, int height, const float *rgb,
+                               const char *config, const char *display, const char *view,
+                               abrdf_bytes *out, char *err, int err_size)
+{
+    no_bytes(out);
+    if (load(err, err_size)) return -1;
+    return mod.encode_preview(name, width, height, rgb, config, display, view, out, err, err_size);
+}
+
+int abrdf_image_encode_heatmap(const char *name, int width, int height, const float *value,
+                               double vmax, const char *map, abrdf_bytes *out, char *err,
+                               int err_size)
+{
+    no_bytes(out);
+    if (load(err, err_size)) return -1;
+    return mod.encode_heatmap(name, width, height, value, vmax, map, out, err, err_size);
+}
+
+void abrdf_bytes_free(abrdf_bytes *b)
+{
+    if (!b) return;
+    if (load(NULL, 0) == 0) {
+        mod.bytes_free(b);
+    } else { /* nothing was encoded through the module */
+        free(b->data);
+        b->data = NULL;
+        b->size = 0;
+    }
+}
+
+int abrdf_image_check_output(const char *name, int linear, char *err, int err_size)
+{
+    if (load(err, err_size)) return -1;
+    return mod.check_output(name, linear, err, err_size);
+}
+
+int abrdf_image_check_preview(const char *config, const char *display, const char *view, char *err,
                               int err_size)
 {
     if (load(err, err_size)) return -1;
-    return mod.write_preview(path, width, height, rgb, config, display, view, err, err_size);
-}
-
-int abrdf_image_write_heatmap(const char *path, int width, int height, const float *value,
-                              double vmax, const char *map, char *err, int err_size)
-{
-    if (load(err, err_size)) return -1;
-    return mod.write_heatmap(path, width, height, value, vmax, map, err, err_size);
+    return mod.check_preview(config, display, view, err, err_size);
 }
 
 int abrdf_image_read(const char *path, abrdf_image *img, char *err, int err_size)

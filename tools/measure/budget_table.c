@@ -79,10 +79,15 @@ static int load_scene(const opts *o, int k, scene *s)
     return 0;
 }
 
-/* Render s at its scene's size override into a new buffer. */
+/* Render s at its scene's size override into a new buffer, on the double reference path (the
+ * quoted NMSEs must not depend on the CPU's instruction set). */
 static float *render(const scene *s, const opts *o, int k)
 {
-    render_options ro = {o->size[k], o->size[k], o->spp, 0, o->threads, 0};
+    render_options ro = {.width = o->size[k],
+                         .height = o->size[k],
+                         .spp = o->spp,
+                         .threads = o->threads,
+                         .precision = RENDER_DOUBLE};
     render_scene rs;
     char err[512];
     if (render_prepare(s, &ro, &rs, err, sizeof err)) {

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "image_io.h"
+#include "out_file.h"
 
 int main(int argc, char **argv)
 {
@@ -17,7 +18,8 @@ int main(int argc, char **argv)
     }
     char pov[4096], out[4096], cmd[16384], err[512];
     snprintf(pov, sizeof pov, "%s/precision.pov", argv[2]);
-    FILE *f = fopen(pov, "w");
+    out_file o;
+    FILE *f = out_file_or_stdout(&o, pov, "pov_output_precision");
     if (!f) return 1;
     /* the pigment keeps [0, 1]: divide by a power of two, scale back in the colour map */
     fprintf(f, "#version 3.7;\nglobal_settings { assumed_gamma 1 }\n#declare S = pow(2, 24);\n"
@@ -26,7 +28,7 @@ int main(int argc, char **argv)
                "plane { z, 0 texture { pigment { function { min(V(x) / S, 1) } color_map { [0 rgb "
                "0] [1 rgb S] } }\n"
                "  finish { ambient 0 diffuse 0 emission 1 } } }\n");
-    fclose(f);
+    if (out_file_finish(&o, "pov_output_precision")) return 1;
     const char *fmt[2][3] = {{"E", "exr", "EXR (+FE)"}, {"H", "hdr", "Radiance HDR (+FH)"}};
     printf("| POV-Ray output | max relative error over [6.8e-5, 2.9e4] |\n|---|---|\n");
     for (int k = 0; k < 2; ++k) {

@@ -16,11 +16,11 @@ typedef struct paper_cell {
 typedef struct paper_data {
     paper_cell *cells;
     size_t count;
-    char path[1024];
+    char *path; /* the file read (malloc'd) */
 } paper_data;
 
-/* Load `path`, or the data file found by data_path_find when path is NULL. On failure
- * returns -1 with a one-line reason in err. */
+/* Load `path` (a regular file, lines of any length: in_file.h), or the data file found by
+ * data_path_find when path is NULL. On failure returns -1 with a one-line reason in err. */
 int paper_data_load(const char *path, paper_data *d, char *err, size_t err_size);
 void paper_data_free(paper_data *d);
 /* The cell's text, or NULL if the paper has no such cell. */

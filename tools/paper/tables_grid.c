@@ -25,10 +25,13 @@ int tab_row(tab_grid *g, const char *label)
 }
 
 /* A cell for printing: round-off residue of a difference shows as 0, not -0.0000. */
+/* A fixed-point column shows a difference below 1e-9 as 0 (not "-0.00"); a column in
+ * exponent notation (Tables 6-7's NMSE) shows every value as it is. */
 static double cell(const tab_grid *g, int r, int c)
 {
     double v = g->v[r][c];
-    return fabs(v) < 1e-9 ? 0.0 : v;
+    int fixed = strchr(g->fmt[c], 'f') != NULL;
+    return fixed && fabs(v) < 1e-9 ? 0.0 : v;
 }
 
 static int column_used(const tab_grid *g, int c)

@@ -31,6 +31,17 @@ int tables_images(const table_gen *self, const tables_opts *o, const paper_data 
         fprintf(stderr, "abrdf tables %d: %s\n", table, err);
         return 1;
     }
+    /* NMSE is relative to the reference: with every reference black nothing was measured,
+     * and an empty table must not pass for a result. */
+    int defined = 0;
+    for (int r = 0; r < PAPER_IMAGES_ROWS; ++r) defined += res.defined[r];
+    if (!defined) {
+        fprintf(stderr,
+                "abrdf tables %d: every reference image is black (%s): nothing was measured; "
+                "the scene needs a visible object lit by its light\n",
+                table, o->images.scene_path ? o->images.scene_path : "the built-in robot");
+        return 1;
+    }
     /* Shared columns: alpha, then per model its NMSE and argmin n. */
     tab_grid comp, pub;
     tab_init(&comp, "computed: minimum NMSE over n, and the argmin n", "alpha_g",

@@ -1,4 +1,5 @@
-/* geom.c - transforms, exact ray/primitive intersections and normals, tangent fields. */
+/* geom.c - transforms, exact ray/primitive intersections and normals, mesh triangles,
+ * tangent fields. */
 #include <math.h>
 #include <string.h>
 
@@ -67,8 +68,11 @@ void geom_xform_normal(const geom_xform *xf, const double n[3], double out[3])
 {
     for (int i = 0; i < 3; ++i)
         out[i] = xf->inv[0][i] * n[0] + xf->inv[1][i] * n[1] + xf->inv[2][i] * n[2];
-    double l = sqrt(geom_dot(out, out));
-    if (l > 0) out[0] /= l, out[1] /= l, out[2] /= l;
+    double l2 = geom_dot(out, out);
+    if (l2 > 0) { /* one divide, not three */
+        double inv = 1.0 / sqrt(l2);
+        out[0] *= inv, out[1] *= inv, out[2] *= inv;
+    }
 }
 
 void geom_object_make(const scene_object *o, geom_object *g)
@@ -88,12 +92,21 @@ void geom_object_make(const scene_object *o, geom_object *g)
         for (int c = 0; c < 3; ++c) g->half[c] = 0.5 * o->size[c];
         local_bound = sqrt(geom_dot(g->half, g->half));
         break;
+    case SCENE_MESH:
+        g->mesh = o->mesh_data;
+        g->smooth = o->smooth;
+        local_bound = g->mesh ? g->mesh->radius : 0.0;
+        break;
     default: break;
     }
-    g->convex = 1; /* every shape of the format is a convex solid */
+    /* Every analytic shape of the format is a convex solid; a mesh can shadow itself. */
+    g->convex = o->shape != SCENE_MESH;
     geom_xform_make(o, &g->xf);
     double smax = fmax(o->scale[0], fmax(o->scale[1], o->scale[2]));
-    for (int c = 0; c < 3; ++c) g->center[c] = g->xf.m[c][3];
+    double local_center[3] = {0, 0, 0};
+    if (o->shape == SCENE_MESH && g->mesh)
+        memcpy(local_center, g->mesh->center, sizeof local_center);
+    geom_xform_point(g->xf.m, local_center, g->center);
     /* 1 + 1e-9: rounding of the transform must not push a surface point outside. */
     g->bound = local_bound * smax * (1.0 + 1e-9);
 }
@@ -110,8 +123,8 @@ static int quad_roots(double a, double b, double c, double r[2])
     /* Numerically stable pair: q = -(b + sign(b) sq). */
     double q = -(b + (b >= 0 ? sq : -sq));
     double t0 = q / a, t1 = q != 0 ? c / q : t0;
-    r[0] = fmin(t0, t1);
-    r[1] = fmax(t0, t1);
+    r[0] = t0 < t1 ? t0 : t1; /* finite here: plain selects, not libm's fmin/fmax calls */
+    r[1] = t0 < t1 ? t1 : t0;
     return 1;
 }
 
@@ -228,21 +241,52 @@ int geom_intersect_local(const geom_object *g, const double o[3], const double d
         hit |= hit_sphere(g->radius, -0.5 * g->height, o, d, tmin, &best, n, -1);
         break;
     case SCENE_BOX: hit = hit_box(g->half, o, d, tmin, &best, n); break;
+    case SCENE_MESH: {
+        geom_mesh_hit h;
+        hit = geom_mesh_intersect_local(g, o, d, tmin, tmax, &h);
+        if (hit) best = h.t, memcpy(n, h.n, sizeof h.n);
+        break;
+    }
     default: break;
     }
     if (hit) *t = best;
     return hit;
 }
 
+/* The bounding-ball test of a ray o + t d, given oc = o - centre and c = |oc|^2 - bound^2:
+ * the roots (-b -+ sq)/a compared with tmin and tmax as -b -+ sq against tmin a and tmax a
+ * (a > 0), so no division. */
+static int bound_test(const double oc[3], double c, const double d[3], double tmin, double tmax)
+{
+    double a = geom_dot(d, d), b = geom_dot(oc, d);
+    double disc = b * b - a * c;
+    if (disc < 0 || !(a > 0)) return 0;
+    double sq = sqrt(disc);
+    return -b + sq > tmin * a && -b - sq < tmax * a;
+}
+
 int geom_hits_bound(const geom_object *g, const double o[3], const double d[3], double tmin,
                     double tmax)
 {
     double oc[3] = {o[0] - g->center[0], o[1] - g->center[1], o[2] - g->center[2]};
-    double a = geom_dot(d, d), b = geom_dot(oc, d), c = geom_dot(oc, oc) - g->bound * g->bound;
-    double disc = b * b - a * c;
-    if (disc < 0 || !(a > 0)) return 0;
-    double sq = sqrt(disc);
-    return (-b + sq) / a > tmin && (-b - sq) / a < tmax;
+    return bound_test(oc, geom_dot(oc, oc) - g->bound * g->bound, d, tmin, tmax);
+}
+
+void geom_origin_make(const geom_object *g, const double o[3], geom_origin *go)
+{
+    for (int k = 0; k < 3; ++k) go->oc[k] = o[k] - g->center[k];
+    go->c = geom_dot(go->oc, go->oc) - g->bound * g->bound;
+    geom_xform_point(g->xf.inv, o, go->local);
+}
+
+int geom_intersect_from(const geom_object *g, const geom_origin *go, const double d[3], double tmin,
+                        double tmax, double *t, double n_local[3])
+{
+    /* A sphere is its own bounding ball: its exact test is the cheaper rejection. */
+    if (g->shape != SCENE_SPHERE && !bound_test(go->oc, go->c, d, tmin, tmax)) return 0;
+    double ld[3];
+    geom_xform_vector(g->xf.inv, d, ld);
+    return geom_intersect_local(g, go->local, ld, tmin, tmax, t, n_local);
 }
 
 int geom_intersect(const geom_object *g, const double o[3], const double d[3], double tmin,
@@ -267,6 +311,111 @@ void geom_tangent(const scene_object *o, const geom_xform *xf, const double p_wo
     case SCENE_TANGENT_V: t[1] = 1; break;
     case SCENE_TANGENT_RADIAL: t[0] = p[0], t[2] = p[2]; break;
     case SCENE_TANGENT_AXIS: memcpy(t, o->tangent_axis, sizeof t); break;
+    case SCENE_TANGENT_UV: break; /* per triangle: geom_tangent_uv */
     }
     geom_xform_vector(xf->m, t, t_world);
+}
+
+/* ---- meshes ------------------------------------------------------------------------- */
+
+static void corner(const mesh *m, int k, int c, double p[3])
+{
+    const float *v = m->position + 3 * (size_t)m->tri[3 * (size_t)k + (size_t)c];
+    p[0] = v[0], p[1] = v[1], p[2] = v[2];
+}
+
+int geom_triangle_intersect(const geom_object *g, int k, const double o[3], const double d[3],
+                            double tmin, double tmax, double *t, double *b1, double *b2)
+{
+    double a[3], b[3], c[3], e1[3], e2[3], pv[3], tv[3], qv[3];
+    corner(g->mesh, k, 0, a);
+    corner(g->mesh, k, 1, b);
+    corner(g->mesh, k, 2, c);
+    for (int i = 0; i < 3; ++i) e1[i] = b[i] - a[i], e2[i] = c[i] - a[i], tv[i] = o[i] - a[i];
+    pv[0] = d[1] * e2[2] - d[2] * e2[1];
+    pv[1] = d[2] * e2[0] - d[0] * e2[2];
+    pv[2] = d[0] * e2[1] - d[1] * e2[0];
+    double det = geom_dot(e1, pv);
+    if (det == 0 || !isfinite(det)) return 0; /* parallel or degenerate */
+    double inv = 1.0 / det, u = geom_dot(tv, pv) * inv;
+    if (!(u >= 0 && u <= 1)) return 0;
+    qv[0] = tv[1] * e1[2] - tv[2] * e1[1];
+    qv[1] = tv[2] * e1[0] - tv[0] * e1[2];
+    qv[2] = tv[0] * e1[1] - tv[1] * e1[0];
+    double v = geom_dot(d, qv) * inv;
+    if (!(v >= 0 && u + v <= 1)) return 0;
+    double tt = geom_dot(e2, qv) * inv;
+    if (!(tt > tmin && tt < tmax)) return 0;
+    *t = tt, *b1 = u, *b2 = v;
+    return 1;
+}
+
+void geom_triangle_normals(const geom_object *g, int k, double b1, double b2, const double d[3],
+                           geom_mesh_hit *h)
+{
+    const mesh *m = g->mesh;
+    double a[3], b[3], c[3], e1[3], e2[3];
+    corner(m, k, 0, a);
+    corner(m, k, 1, b);
+    corner(m, k, 2, c);
+    for (int i = 0; i < 3; ++i) e1[i] = b[i] - a[i], e2[i] = c[i] - a[i];
+    h->ng[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    h->ng[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    h->ng[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    if (g->smooth) {
+        double w[3] = {1.0 - b1 - b2, b1, b2};
+        h->n[0] = h->n[1] = h->n[2] = 0;
+        for (int q = 0; q < 3; ++q) {
+            const float *nv = m->normal + 3 * (size_t)m->tri_normal[3 * (size_t)k + (size_t)q];
+            for (int i = 0; i < 3; ++i) h->n[i] += w[q] * nv[i];
+        }
+    } else {
+        memcpy(h->n, h->ng, sizeof h->n);
+    }
+    /* Two-sided: seen from behind the face, both normals turn toward the viewer. */
+    if (geom_dot(h->ng, d) > 0)
+        for (int i = 0; i < 3; ++i) h->n[i] = -h->n[i], h->ng[i] = -h->ng[i];
+    h->triangle = k;
+    h->b1 = b1, h->b2 = b2;
+}
+
+int geom_mesh_intersect_local(const geom_object *g, const double o[3], const double d[3],
+                              double tmin, double tmax, geom_mesh_hit *h)
+{
+    if (!g->mesh) return 0;
+    int best = -1;
+    double bt = tmax, bb1 = 0, bb2 = 0;
+    for (int k = 0; k < g->mesh->triangle_count; ++k) {
+        double t, b1, b2;
+        /* strict <: of two triangles at the same distance the first in the file wins */
+        if (geom_triangle_intersect(g, k, o, d, tmin, bt, &t, &b1, &b2))
+            best = k, bt = t, bb1 = b1, bb2 = b2;
+    }
+    if (best < 0) return 0;
+    geom_triangle_normals(g, best, bb1, bb2, d, h);
+    h->t = bt;
+    return 1;
+}
+
+void geom_tangent_uv(const geom_object *g, int k, double t_world[3])
+{
+    const mesh *m = g->mesh;
+    double t[3] = {0, 0, 0};
+    if (m && m->tri_uv) {
+        double a[3], b[3], c[3], uv[3][2];
+        corner(m, k, 0, a);
+        corner(m, k, 1, b);
+        corner(m, k, 2, c);
+        for (int q = 0; q < 3; ++q) {
+            const float *x = m->uv + 2 * (size_t)m->tri_uv[3 * (size_t)k + (size_t)q];
+            uv[q][0] = x[0], uv[q][1] = x[1];
+        }
+        double du1 = uv[1][0] - uv[0][0], dv1 = uv[1][1] - uv[0][1];
+        double du2 = uv[2][0] - uv[0][0], dv2 = uv[2][1] - uv[0][1];
+        double det = du1 * dv2 - du2 * dv1;
+        /* P - P0 = (u - u0) dP/du + (v - v0) dP/dv on the triangle: solve for dP/du. */
+        if (det != 0)
+            for (int i = 0; i < 3; ++i) t[i] = (dv2 * (b[i] - a[i]) - dv1 * (c[i] - a[i])) / det;
+    }
+    geom_xform_vector(g->xf.m, t, t_world);
 }

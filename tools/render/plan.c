@@ -209,6 +209,12 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
         fprintf(f, "--full: the plan below is ignored; camera and shadow rays test every object, "
                    "every material builds tangent frames and adds the ambient term\n");
     }
+    if (opt->precision == RENDER_DOUBLE)
+        fprintf(f, "shading: double - the scalar reference, every lobe per hit and light "
+                   "(abrdf_eval_prepared)\n");
+    else
+        fprintf(f, "shading: float - the fast path, each material's lobes over a tile's lit hits "
+                   "(abrdf_eval_prepared_batch); within NMSE 1e-8 of --precision double\n");
     fprintf(f, "primary rays: %s\n",
             rs->full ? "every object tested for every pixel"
                      : "a pixel tests only the objects whose bounding sphere projects onto it");

@@ -1,8 +1,10 @@
 /* render.c - the built-in ray tracer: camera rays, closest hits, direct lighting with the
- * library's scalar reference BRDFs, shadow rays where the effect plan (plan.c) lists an
- * occluder, box-filtered stratified supersampling, rows shared by pthreads. Each pixel is a
- * pure function of the scene and its coordinates, so the image is bit-identical for any
- * number of threads. */
+ * library's prepared BRDFs (the float batch path by default, the double scalar reference on
+ * request: render.h, render_precision), shadow rays where the effect plan (plan.c) lists an
+ * occluder, box-filtered stratified supersampling, rows shared by pthreads. A row is traced
+ * and shaded as one batch of hits (in chunks of RENDER_TILE samples), so each pixel is a
+ * pure function of the scene and its row: the image is bit-identical for any number of
+ * threads, in each precision. */
 #include <float.h>
 #include <math.h>
 #include <pthread.h>
@@ -37,6 +39,7 @@ void render_release(render_scene *rs)
     free(rs->vis_start);
     free(rs->vis);
     free(rs->vis_cols);
+    free(rs->eye_origin);
     memset(rs, 0, sizeof *rs);
 }
 
@@ -64,7 +67,8 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     rs->objects = calloc((size_t)s->object_count, sizeof *rs->objects);
     rs->materials = calloc((size_t)s->material_count + 1, sizeof *rs->materials);
     rs->lights = calloc((size_t)s->light_count + 1, sizeof *rs->lights);
-    if (!rs->objects || !rs->materials || !rs->lights) goto oom;
+    rs->eye_origin = calloc((size_t)s->object_count + 1, sizeof *rs->eye_origin);
+    if (!rs->objects || !rs->materials || !rs->lights || !rs->eye_origin) goto oom;
 
     /* Camera: right and up scaled so that raster corners land on the plane's corners. */
     const scene_camera *c = &s->camera;
@@ -81,6 +85,7 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
     for (int i = 0; i < s->object_count; ++i) {
         geom_object_make(&s->objects[i], &rs->objects[i]);
         const geom_object *g = &rs->objects[i];
+        geom_origin_make(g, rs->eye, &rs->eye_origin[i]);
         extent = fmax(extent, sqrt(geom_dot(g->center, g->center)) + g->bound);
         rs->materials[s->objects[i].material].used = 1;
     }
@@ -93,6 +98,18 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         m->lobe_count = sm->lobe_count;
         memcpy(m->lobes, sm->lobes, sizeof m->lobes);
         m->params = sm->params;
+        /* Validate and precompute each lobe once: shading then evaluates with no check. */
+        for (int k = 0; k < m->lobe_count; ++k) {
+            int st = abrdf_prepare(m->lobes[k], &m->params, &m->prepared[k]);
+            if (st != ABRDF_OK) {
+                char msg[256];
+                abrdf_params_check(m->lobes[k], &m->params, msg, sizeof msg);
+                snprintf(err, err_size, "material '%s' (line %d): %s", sm->name, sm->line, msg);
+                render_release(rs);
+                return -1;
+            }
+            m->lobe_needs[k] = abrdf_model_get(m->lobes[k])->needs;
+        }
         plan_material(m, s->ambient, sm->ka);
     }
     for (int l = 0; l < s->light_count; ++l) {
@@ -161,37 +178,11 @@ int render_set_model(scene *s, abrdf_model model, char *err, size_t err_size)
     return 0;
 }
 
-/* ---- tracing ----------------------------------------------------------------------- */
+/* ---- shading ----------------------------------------------------------------------- */
 
-typedef struct worker {
-    const render_scene *rs;
-    const render_options *opt;
-    float *rgb;
-    render_stats stats;
-    pthread_mutex_t *lock;
-    int *next_row, *rows_done;
-} worker;
-
-/* Closest hit of a camera ray through pixel (i, j): only the objects the plan lists for
- * row j and whose column range holds i. */
-static int closest_hit(const render_scene *rs, int i, int j, const double o[3], const double d[3],
-                       double *t, double n[3], render_stats *st)
+const char *render_precision_name(int precision)
 {
-    int best = -1;
-    double tmax = INFINITY;
-    for (int q = rs->vis_start[j]; q < rs->vis_start[j + 1]; ++q) {
-        int k = rs->vis[q];
-        if (i < rs->vis_cols[2 * k] || i > rs->vis_cols[2 * k + 1]) continue;
-        double ti, ni[3];
-        ++st->primary_tests;
-        if (geom_intersect(&rs->objects[k], o, d, 0.0, tmax, &ti, ni)) {
-            tmax = ti;
-            best = k;
-            memcpy(n, ni, sizeof ni);
-        }
-    }
-    *t = tmax;
-    return best;
+    return precision == RENDER_DOUBLE ? "double" : "float";
 }
 
 /* Is the segment o + t d, t in (0, tmax), blocked by one of the listed occluders? */
@@ -209,89 +200,341 @@ static int occluded(const render_scene *rs, const int *occ, int count, const dou
 }
 
 /* Local-frame directions for an isotropic lobe: only the polar angles and the azimuth
- * difference matter, so the x axis is put along the view's tangential part. */
-static void iso_local(const double n[3], const double wi[3], const double wo[3], double li[3],
+ * difference matter, so the x axis is put along the view's tangential part. The view's part
+ * (iso_view) is computed once per hit, the light's (iso_local) per light. */
+typedef struct iso_view {
+    double co, ot[3];  /* N.wo and wo's tangential part */
+    double so, inv_so; /* |ot| and 1/|ot| */
+} iso_view;
+
+static void iso_view_make(const double n[3], const double wo[3], iso_view *v)
+{
+    v->co = geom_dot(n, wo);
+    for (int k = 0; k < 3; ++k) v->ot[k] = wo[k] - v->co * n[k];
+    v->so = sqrt(geom_dot(v->ot, v->ot));
+    v->inv_so = v->so > 1e-12 ? 1.0 / v->so : 0.0;
+}
+
+static void iso_local(const double n[3], const iso_view *v, const double wi[3], double li[3],
                       double lo[3])
 {
-    double co = geom_dot(n, wo), ci = geom_dot(n, wi);
-    double ot[3] = {wo[0] - co * n[0], wo[1] - co * n[1], wo[2] - co * n[2]};
+    double ci = geom_dot(n, wi);
     double it[3] = {wi[0] - ci * n[0], wi[1] - ci * n[1], wi[2] - ci * n[2]};
-    double so = sqrt(geom_dot(ot, ot)), si2 = geom_dot(it, it);
+    double si2 = geom_dot(it, it);
     /* 1e-12: below this wo is along N and its azimuth is undefined. */
-    if (so > 1e-12) {
-        double x = geom_dot(it, ot) / so;
-        lo[0] = so, lo[1] = 0, lo[2] = co;
-        li[0] = x, li[1] = sqrt(fmax(0.0, si2 - x * x)), li[2] = ci;
+    if (v->so > 1e-12) {
+        double x = geom_dot(it, v->ot) * v->inv_so;
+        lo[0] = v->so, lo[1] = 0, lo[2] = v->co;
+        double y2 = si2 - x * x;
+        li[0] = x, li[1] = sqrt(y2 > 0.0 ? y2 : 0.0), li[2] = ci;
     } else {
         lo[0] = 0, lo[1] = 0, lo[2] = 1;
         li[0] = sqrt(si2), li[1] = 0, li[2] = ci;
     }
 }
 
-static void shade(const render_scene *rs, int obj, const double p[3], const double n[3],
-                  const double wo[3], double out[3], render_stats *st)
+static void to_local(const abrdf_frame *fr, const double v[3], double out[3])
 {
-    const scene_object *so = &rs->src->objects[obj];
+    out[0] = geom_dot(v, fr->t);
+    out[1] = geom_dot(v, fr->b);
+    out[2] = geom_dot(v, fr->n);
+}
+
+/* One light as seen from a hit: the direction to it, the irradiance factor E falloff cos_i,
+ * and whether it lights the point (in front, not shadowed as the plan says). */
+static int light_at(const render_scene *rs, int l, const render_hit *h, const double o[3],
+                    double wi[3], double w[3], render_stats *st)
+{
+    const render_light *lt = &rs->lights[l];
+    double d[3], tmax, falloff = 1.0;
+    if (lt->kind == SCENE_LIGHT_POINT) {
+        for (int k = 0; k < 3; ++k) d[k] = lt->position[k] - o[k];
+        double d2 = geom_dot(d, d);
+        if (!(d2 > 0)) return 0;
+        double inv = 1.0 / sqrt(d2); /* one divide for both */
+        falloff = inv * inv;
+        for (int k = 0; k < 3; ++k) wi[k] = d[k] * inv;
+        tmax = 1.0; /* d spans the whole segment to the light */
+    } else {
+        memcpy(wi, lt->direction, 3 * sizeof *wi);
+        memcpy(d, wi, sizeof d);
+        tmax = INFINITY;
+    }
+    double ci = geom_dot(h->n, wi);
+    if (!(ci > 0)) return 0;
+    int no = rs->object_count;
+    int a = rs->occ_start[l * no + h->obj], b = rs->occ_start[l * no + h->obj + 1];
+    if (b > a) {
+        ++st->shadow_rays;
+        if (occluded(rs, rs->occ + a, b - a, o, d, tmax, st)) return 0;
+    } else {
+        ++st->shadow_rays_skipped;
+    }
+    for (int c = 0; c < 3; ++c) w[c] = lt->e[c] * falloff * ci;
+    return 1;
+}
+
+/* The ambient term, the shadow-ray origin and (for a material with a tangent rule) the
+ * shading frame of a hit; 0 if the hit is seen from behind (no direct light). */
+static int hit_begin(const render_scene *rs, const render_hit *h, double L[3], double o[3],
+                     abrdf_frame *frame, render_stats *st)
+{
+    const scene_object *so = &rs->src->objects[h->obj];
     const render_material *m = &rs->materials[so->material];
-    out[0] = out[1] = out[2] = 0;
-    int tangent = m->use_tangent || m->full;
+    L[0] = L[1] = L[2] = 0;
     if (m->use_ambient || m->full) {
-        for (int c = 0; c < 3; ++c) out[c] = m->ambient[c];
+        for (int c = 0; c < 3; ++c) L[c] = m->ambient[c];
         ++st->ambient_terms;
     }
-    if (!(geom_dot(n, wo) > 0)) return; /* seen from behind: no direct light reaches the eye */
-    double o[3] = {p[0] + rs->eps * n[0], p[1] + rs->eps * n[1], p[2] + rs->eps * n[2]};
+    if (!(geom_dot(h->n, h->wo) > 0)) return 0; /* seen from behind: no light reaches the eye */
+    for (int c = 0; c < 3; ++c) o[c] = h->p[c] + rs->eps * h->n[c];
+    if (m->use_tangent || m->full) {
+        double t[3];
+        geom_tangent(so, &rs->objects[h->obj].xf, h->p, t);
+        abrdf_frame_make(h->n, t, frame);
+        ++st->tangent_frames;
+    }
+    return 1;
+}
+
+static void count_evals(const render_material *m, unsigned long long pairs, render_stats *st)
+{
+    for (int k = 0; k < m->lobe_count; ++k) {
+        unsigned needs = m->lobe_needs[k];
+        st->brdf_evals += pairs;
+        st->fresnel_evals += (needs & ABRDF_NEEDS_FRESNEL) ? pairs : 0;
+        st->layer_evals += (needs & ABRDF_NEEDS_LAYERS) ? pairs : 0;
+        st->integration_evals += (needs & ABRDF_NEEDS_INTEGRATION) ? pairs : 0;
+    }
+}
+
+/* The double reference: every lobe per hit and light, abrdf_eval_prepared. */
+static void shade_double(const render_scene *rs, const render_options *opt, const render_hit *h,
+                         double out[3], render_stats *st)
+{
+    const render_material *m = &rs->materials[rs->src->objects[h->obj].material];
+    double o[3];
     abrdf_frame frame;
-    int have_frame = 0;
-    int no = rs->object_count;
+    if (!hit_begin(rs, h, out, o, &frame, st)) return;
+    int tangent = m->use_tangent || m->full;
+    iso_view view;
+    if (!tangent) iso_view_make(h->n, h->wo, &view);
     for (int l = 0; l < rs->light_count; ++l) {
-        const render_light *lt = &rs->lights[l];
-        double wi[3], d[3], tmax, falloff = 1.0;
-        if (lt->kind == SCENE_LIGHT_POINT) {
-            for (int k = 0; k < 3; ++k) d[k] = lt->position[k] - o[k];
-            double d2 = geom_dot(d, d);
-            if (!(d2 > 0)) continue;
-            falloff = 1.0 / d2;
-            memcpy(wi, d, sizeof wi);
-            normalize(wi);
-            tmax = 1.0; /* d spans the whole segment to the light */
-        } else {
-            memcpy(wi, lt->direction, sizeof wi);
-            memcpy(d, wi, sizeof d);
-            tmax = INFINITY;
-        }
-        double ci = geom_dot(n, wi);
-        if (!(ci > 0)) continue;
-        int a = rs->occ_start[l * no + obj], b = rs->occ_start[l * no + obj + 1];
-        if (b > a) {
-            ++st->shadow_rays;
-            if (occluded(rs, rs->occ + a, b - a, o, d, tmax, st)) continue;
-        } else {
-            ++st->shadow_rays_skipped;
-        }
-        double f[3] = {0, 0, 0}, fl[3], li[3], lo[3];
-        if (tangent && !have_frame) {
-            double t[3];
-            geom_tangent(so, &rs->objects[obj].xf, p, t);
-            abrdf_frame_make(n, t, &frame);
-            have_frame = 1;
-            ++st->tangent_frames;
-        }
-        if (!tangent) iso_local(n, wi, wo, li, lo);
-        for (int k = 0; k < m->lobe_count; ++k) {
+        double wi[3], w[3], f[3] = {0, 0, 0}, fl[3], li[3], lo[3];
+        if (!light_at(rs, l, h, o, wi, w, st)) continue;
+        if (!tangent) iso_local(h->n, &view, wi, li, lo);
+        for (int k = 0; k < m->lobe_count && !opt->free_brdf; ++k) {
             if (tangent)
-                abrdf_eval(m->lobes[k], &m->params, &frame, wi, wo, fl);
+                abrdf_eval_prepared(&m->prepared[k], &frame, wi, h->wo, fl);
             else
-                abrdf_eval(m->lobes[k], &m->params, NULL, li, lo, fl);
-            unsigned needs = abrdf_model_get(m->lobes[k])->needs;
-            ++st->brdf_evals;
-            st->fresnel_evals += (needs & ABRDF_NEEDS_FRESNEL) != 0;
-            st->layer_evals += (needs & ABRDF_NEEDS_LAYERS) != 0;
-            st->integration_evals += (needs & ABRDF_NEEDS_INTEGRATION) != 0;
+                abrdf_eval_prepared(&m->prepared[k], NULL, li, lo, fl);
             for (int c = 0; c < 3; ++c) f[c] += fl[c];
         }
-        for (int c = 0; c < 3; ++c) out[c] += lt->e[c] * falloff * ci * f[c];
+        count_evals(m, 1, st);
+        for (int c = 0; c < 3; ++c) out[c] += w[c] * f[c];
     }
+}
+
+/* Lit (hit, light) pairs gathered for the float path, at most this many per batch. */
+#define RENDER_PAIRS_MAX 16384
+#define RENDER_CHUNK 256 /* pairs per lobe call: inputs and outputs stay in L1 */
+
+struct render_shade_scratch {
+    int pair_cap;                       /* pairs per batch */
+    int *hit, *mat;                     /* per pair in gathering order: hit, material */
+    int *shit;                          /* per sorted slot: the pair's hit */
+    double *sw;                         /* per sorted slot: the pair's w (3) */
+    double *w;                          /* per pair: E falloff cos_i (3) */
+    float *li, *lo;                     /* per pair: local directions (3 each), gathering order */
+    float *ix, *iy, *iz, *ox, *oy, *oz; /* sorted by material: the batch inputs */
+    float *f[SCENE_MAX_LOBES][3];       /* each lobe's f_r over a chunk of sorted slots */
+    int *start;                         /* per material: first sorted slot (material_count + 1) */
+};
+
+void render_shade_scratch_free(render_shade_scratch *sc)
+{
+    if (!sc) return;
+    free(sc->hit), free(sc->mat), free(sc->shit), free(sc->sw), free(sc->w), free(sc->li);
+    free(sc->lo);
+    free(sc->ix), free(sc->iy), free(sc->iz), free(sc->ox), free(sc->oy), free(sc->oz);
+    for (int k = 0; k < SCENE_MAX_LOBES; ++k)
+        for (int c = 0; c < 3; ++c) free(sc->f[k][c]);
+    free(sc->start);
+    free(sc);
+}
+
+render_shade_scratch *render_shade_scratch_new(const render_scene *rs, int capacity)
+{
+    render_shade_scratch *sc = calloc(1, sizeof *sc);
+    if (!sc) return NULL;
+    long want = (long)(capacity > 0 ? capacity : 1) * (rs->light_count > 0 ? rs->light_count : 1);
+    long lights = rs->light_count > 0 ? rs->light_count : 1;
+    if (want > RENDER_PAIRS_MAX) want = RENDER_PAIRS_MAX > lights ? RENDER_PAIRS_MAX : lights;
+    size_t n = (size_t)want;
+    sc->pair_cap = (int)want;
+    sc->hit = malloc(n * sizeof *sc->hit), sc->mat = malloc(n * sizeof *sc->mat);
+    sc->shit = malloc(n * sizeof *sc->shit), sc->sw = malloc(3 * n * sizeof *sc->sw);
+    sc->w = malloc(3 * n * sizeof *sc->w);
+    sc->li = malloc(3 * n * sizeof *sc->li), sc->lo = malloc(3 * n * sizeof *sc->lo);
+    sc->ix = malloc(n * sizeof(float)), sc->iy = malloc(n * sizeof(float));
+    sc->iz = malloc(n * sizeof(float)), sc->ox = malloc(n * sizeof(float));
+    sc->oy = malloc(n * sizeof(float)), sc->oz = malloc(n * sizeof(float));
+    int ok = sc->hit && sc->mat && sc->shit && sc->sw && sc->w && sc->li && sc->lo && sc->ix &&
+             sc->iy && sc->iz && sc->ox && sc->oy && sc->oz;
+    for (int k = 0; k < SCENE_MAX_LOBES; ++k)
+        for (int c = 0; c < 3; ++c) ok = (sc->f[k][c] = malloc(RENDER_CHUNK * sizeof(float))) && ok;
+    sc->start = calloc((size_t)rs->material_count + 2, sizeof *sc->start);
+    if (!ok || !sc->start) {
+        render_shade_scratch_free(sc);
+        return NULL;
+    }
+    return sc;
+}
+
+/* Evaluate the gathered pairs: sort them by material (stable), run each lobe of a material
+ * over its pairs with the batch API (into its own arrays: no pass that adds the lobes), and
+ * add w * (sum of the lobes) to each pair's hit. */
+static void flush_pairs(const render_scene *rs, const render_options *opt, int np, double (*L)[3],
+                        render_shade_scratch *sc, render_stats *st)
+{
+    int nm = rs->material_count;
+    int *start = sc->start;
+    memset(start, 0, ((size_t)nm + 2) * sizeof *start);
+    for (int q = 0; q < np; ++q) ++start[sc->mat[q] + 2];
+    for (int m = 0; m < nm; ++m) start[m + 2] += start[m + 1];
+    for (int q = 0; q < np; ++q) { /* start[m + 1] is material m's next free slot */
+        int s = start[sc->mat[q] + 1]++;
+        sc->shit[s] = sc->hit[q];
+        for (int c = 0; c < 3; ++c) sc->sw[3 * s + c] = sc->w[3 * q + c];
+        sc->ix[s] = sc->li[3 * q], sc->iy[s] = sc->li[3 * q + 1], sc->iz[s] = sc->li[3 * q + 2];
+        sc->ox[s] = sc->lo[3 * q], sc->oy[s] = sc->lo[3 * q + 1], sc->oz[s] = sc->lo[3 * q + 2];
+    }
+    /* now start[m] is material m's first slot and start[m + 1] its end. Each material's pairs
+     * go through its lobes and back to their hits RENDER_CHUNK at a time, so that a lobe's
+     * inputs and outputs are still in the L1 cache when the next lobe and the sum read them:
+     * a lobe then costs what its evaluation costs, not the traffic of its output arrays. */
+    for (int m = 0; m < nm; ++m) {
+        const render_material *mat = &rs->materials[m];
+        count_evals(mat, (unsigned long long)(start[m + 1] - start[m]), st);
+        for (int a = start[m]; a < start[m + 1]; a += RENDER_CHUNK) {
+            int n = start[m + 1] - a < RENDER_CHUNK ? start[m + 1] - a : RENDER_CHUNK;
+            for (int k = 0; k < mat->lobe_count; ++k) {
+                float **out = sc->f[k];
+                abrdf_batch b = {(size_t)n,  sc->ix + a, sc->iy + a, sc->iz + a, sc->ox + a,
+                                 sc->oy + a, sc->oz + a, out[0],     out[1],     out[2]};
+                if (opt->free_brdf)
+                    for (int c = 0; c < 3; ++c) memset(out[c], 0, (size_t)n * sizeof(float));
+                else
+                    abrdf_eval_prepared_batch(&mat->prepared[k], &b);
+            }
+            /* Sorted order keeps gathering order within a material, and a hit has one
+             * material: each hit gets its lights in light order. */
+            for (int i = 0; i < n; ++i) {
+                double *out = L[sc->shit[a + i]];
+                for (int c = 0; c < 3; ++c) {
+                    float f = mat->lobe_count > 0 ? sc->f[0][c][i] : 0.0f;
+                    for (int k = 1; k < mat->lobe_count; ++k) f += sc->f[k][c][i];
+                    out[c] += sc->sw[3 * (a + i) + c] * (double)f;
+                }
+            }
+        }
+    }
+}
+
+/* The float path: lit pairs gathered over the batch, evaluated per material and lobe. */
+static void shade_float(const render_scene *rs, const render_options *opt, const render_hit *hits,
+                        int count, double (*L)[3], render_shade_scratch *sc, render_stats *st)
+{
+    int np = 0;
+    for (int h = 0; h < count; ++h) {
+        const render_hit *hit = &hits[h];
+        int mi = rs->src->objects[hit->obj].material;
+        const render_material *m = &rs->materials[mi];
+        double o[3];
+        abrdf_frame frame;
+        if (!hit_begin(rs, hit, L[h], o, &frame, st)) continue;
+        if (np + rs->light_count > sc->pair_cap) { /* full: evaluate what is gathered */
+            flush_pairs(rs, opt, np, L, sc, st);
+            np = 0;
+        }
+        int tangent = m->use_tangent || m->full;
+        iso_view view;
+        if (!tangent) iso_view_make(hit->n, hit->wo, &view);
+        for (int l = 0; l < rs->light_count; ++l) {
+            double wi[3], li[3], lo[3];
+            if (!light_at(rs, l, hit, o, wi, sc->w + 3 * np, st)) continue;
+            if (tangent) {
+                to_local(&frame, wi, li);
+                to_local(&frame, hit->wo, lo);
+            } else {
+                iso_local(hit->n, &view, wi, li, lo);
+            }
+            for (int c = 0; c < 3; ++c) {
+                sc->li[3 * np + c] = (float)li[c];
+                sc->lo[3 * np + c] = (float)lo[c];
+            }
+            sc->hit[np] = h;
+            sc->mat[np] = mi;
+            ++np;
+        }
+    }
+    if (np) flush_pairs(rs, opt, np, L, sc, st);
+}
+
+void render_shade_hits(const render_scene *rs, const render_options *opt, const render_hit *hits,
+                       int count, double (*L)[3], render_shade_scratch *sc, render_stats *st)
+{
+    if (opt->precision == RENDER_DOUBLE) {
+        for (int h = 0; h < count; ++h) shade_double(rs, opt, &hits[h], L[h], st);
+    } else {
+        shade_float(rs, opt, hits, count, L, sc, st);
+    }
+}
+
+/* ---- tracing ----------------------------------------------------------------------- */
+
+#define RENDER_TILE 1024 /* hits shaded as one batch */
+#define RENDER_RAYS 256  /* camera rays generated as one batch */
+#define RENDER_BAND 8    /* image rows per work item (a thread's unit) */
+
+typedef struct worker {
+    const render_scene *rs;
+    const render_options *opt;
+    float *rgb;
+    render_stats stats;
+    pthread_mutex_t *lock;
+    int *next_row, *rows_done;
+    render_shade_scratch *scratch;
+    render_hit *hits;
+    int *hit_pixel; /* per hit: pixel column */
+    double (*L)[3]; /* per hit: radiance */
+    double *sum;    /* per pixel of a band: 3 sums */
+    double *ray;    /* RENDER_RAYS camera rays: plane x, y, then direction x, y, z */
+    int *ray_pixel; /* per camera ray: pixel index within the band */
+    int *ray_ij;    /* per camera ray: column and row */
+} worker;
+
+/* Closest hit of a camera ray (from the eye) through pixel (i, j): only the objects the plan
+ * lists for row j and whose column range holds i. */
+static int closest_hit(const render_scene *rs, int i, int j, const double d[3], double *t,
+                       double n[3], render_stats *st)
+{
+    int best = -1;
+    double tmax = INFINITY, nl[3];
+    for (int q = rs->vis_start[j]; q < rs->vis_start[j + 1]; ++q) {
+        int k = rs->vis[q];
+        if (i < rs->vis_cols[2 * k] || i > rs->vis_cols[2 * k + 1]) continue;
+        double ti, ni[3];
+        ++st->primary_tests;
+        if (geom_intersect_from(&rs->objects[k], &rs->eye_origin[k], d, 0.0, tmax, &ti, ni)) {
+            tmax = ti;
+            best = k;
+            memcpy(nl, ni, sizeof ni);
+        }
+    }
+    *t = tmax;
+    if (best >= 0) geom_xform_normal(&rs->objects[best].xf, nl, n);
+    return best;
 }
 
 /* Deterministic hash of (pixel, sample, dimension) -> [0, 1), for jittered strata. */
@@ -304,40 +547,88 @@ static double hash01(uint64_t x)
     return (double)(x >> 11) * (1.0 / 9007199254740992.0);
 }
 
-static void render_row(const render_scene *rs, const render_options *opt, int j, float *row,
-                       render_stats *st)
+/* Shade the hits gathered so far and add each to its pixel's sum. */
+static void flush_hits(worker *w, int nh)
 {
-    int k = (int)lround(sqrt((double)opt->spp));
-    for (int i = 0; i < rs->width; ++i) {
-        double sum[3] = {0, 0, 0};
-        for (int sy = 0; sy < k; ++sy)
-            for (int sx = 0; sx < k; ++sx) {
-                double u = 0.5, v = 0.5;
-                if (opt->jitter) {
-                    uint64_t id =
-                        ((uint64_t)j * (uint64_t)rs->width + (uint64_t)i) * (uint64_t)opt->spp +
-                        (uint64_t)(sy * k + sx);
-                    u = hash01(2 * id), v = hash01(2 * id + 1);
-                }
-                double x = i + (sx + u) / k, y = j + (sy + v) / k;
-                double px = 2.0 * x / rs->width - 1.0, py = 1.0 - 2.0 * y / rs->height;
-                double d[3];
-                for (int c = 0; c < 3; ++c)
-                    d[c] = rs->forward[c] + px * rs->right[c] + py * rs->up[c];
-                normalize(d);
-                ++st->primary_rays;
-                double t, n[3];
-                int obj = closest_hit(rs, i, j, rs->eye, d, &t, n, st);
-                if (obj < 0) continue; /* background is black */
-                ++st->hits;
-                double p[3], wo[3] = {-d[0], -d[1], -d[2]}, L[3];
-                for (int c = 0; c < 3; ++c) p[c] = rs->eye[c] + t * d[c];
-                shade(rs, obj, p, n, wo, L, st);
-                for (int c = 0; c < 3; ++c) sum[c] += L[c];
-            }
-        /* A point light on a surface is an infinite irradiance: keep the file finite. */
-        for (int c = 0; c < 3; ++c) row[3 * i + c] = (float)fmin(sum[c] / opt->spp, FLT_MAX);
+    render_shade_hits(w->rs, w->opt, w->hits, nh, w->L, w->scratch, &w->stats);
+    for (int h = 0; h < nh; ++h)
+        for (int c = 0; c < 3; ++c) w->sum[3 * w->hit_pixel[h] + c] += w->L[h][c];
+}
+
+/* Unit directions of camera rays through plane points (px[s], py[s]): one loop over SoA
+ * arrays that the compiler vectorises (sqrt and divide in packed form). */
+static void camera_dirs(const render_scene *rs, int n, const double *restrict px,
+                        const double *restrict py, double *restrict dx, double *restrict dy,
+                        double *restrict dz)
+{
+    const double f0 = rs->forward[0], f1 = rs->forward[1], f2 = rs->forward[2];
+    const double r0 = rs->right[0], r1 = rs->right[1], r2 = rs->right[2];
+    const double u0 = rs->up[0], u1 = rs->up[1], u2 = rs->up[2];
+    for (int s = 0; s < n; ++s) {
+        double x = f0 + px[s] * r0 + py[s] * u0;
+        double y = f1 + px[s] * r1 + py[s] * u1;
+        double z = f2 + px[s] * r2 + py[s] * u2;
+        double inv = 1.0 / sqrt(x * x + y * y + z * z);
+        dx[s] = x * inv, dy[s] = y * inv, dz[s] = z * inv;
     }
+}
+
+/* Trace the nr camera rays generated so far; hits go to the shading batch. */
+static void trace_rays(worker *w, int nr, int *nh)
+{
+    const render_scene *rs = w->rs;
+    render_stats *st = &w->stats;
+    double *px = w->ray, *py = px + RENDER_RAYS, *dx = py + RENDER_RAYS, *dy = dx + RENDER_RAYS,
+           *dz = dy + RENDER_RAYS;
+    camera_dirs(rs, nr, px, py, dx, dy, dz);
+    for (int r = 0; r < nr; ++r) {
+        double d[3] = {dx[r], dy[r], dz[r]}, t;
+        ++st->primary_rays;
+        render_hit *h = &w->hits[*nh];
+        int obj = closest_hit(rs, w->ray_ij[2 * r], w->ray_ij[2 * r + 1], d, &t, h->n, st);
+        if (obj < 0) continue; /* background is black */
+        ++st->hits;
+        h->obj = obj;
+        for (int c = 0; c < 3; ++c) h->p[c] = rs->eye[c] + t * d[c], h->wo[c] = -d[c];
+        w->hit_pixel[(*nh)++] = w->ray_pixel[r];
+        if (*nh == RENDER_TILE) flush_hits(w, *nh), *nh = 0;
+    }
+}
+
+/* Rows [j0, j1), a band: camera samples in pixel order (row, column, then stratum row and
+ * column), generated RENDER_RAYS at a time, traced, and shaded RENDER_TILE hits at a time (a
+ * band gathers more hits per material than a row); each pixel sums its samples in that
+ * order. Bands are fixed by the image, so the result does not depend on the threads. */
+static void render_band(worker *w, int j0, int j1, float *rows)
+{
+    const render_scene *rs = w->rs;
+    const render_options *opt = w->opt;
+    int k = (int)lround(sqrt((double)opt->spp)), nh = 0, nr = 0, W = rs->width;
+    double inv_k = 1.0 / k, sx2 = 2.0 / W, sy2 = 2.0 / rs->height;
+    double *px = w->ray, *py = px + RENDER_RAYS;
+    memset(w->sum, 0, (size_t)W * (size_t)(j1 - j0) * 3 * sizeof *w->sum);
+    for (int j = j0; j < j1; ++j)
+        for (int i = 0; i < W; ++i)
+            for (int sy = 0, q = 0; sy < k; ++sy)
+                for (int sx = 0; sx < k; ++sx, ++q) {
+                    double u = 0.5, v = 0.5;
+                    if (opt->jitter) {
+                        uint64_t id =
+                            ((uint64_t)j * (uint64_t)W + (uint64_t)i) * (uint64_t)opt->spp +
+                            (uint64_t)q;
+                        u = hash01(2 * id), v = hash01(2 * id + 1);
+                    }
+                    double x = i + (sx + u) * inv_k, y = j + (sy + v) * inv_k;
+                    px[nr] = x * sx2 - 1.0, py[nr] = 1.0 - y * sy2;
+                    w->ray_ij[2 * nr] = i, w->ray_ij[2 * nr + 1] = j;
+                    w->ray_pixel[nr++] = (j - j0) * W + i;
+                    if (nr == RENDER_RAYS) trace_rays(w, nr, &nh), nr = 0;
+                }
+    if (nr) trace_rays(w, nr, &nh);
+    if (nh) flush_hits(w, nh);
+    /* A point light on a surface is an infinite irradiance: keep the file finite. */
+    for (size_t p = 0; p < (size_t)W * (size_t)(j1 - j0) * 3; ++p)
+        rows[p] = (float)fmin(w->sum[p] / opt->spp, FLT_MAX);
 }
 
 static void progress(int done, int total)
@@ -355,13 +646,16 @@ static void *work(void *arg)
     const render_scene *rs = w->rs;
     for (;;) {
         pthread_mutex_lock(w->lock);
-        int j = (*w->next_row)++;
+        int j = *w->next_row;
+        *w->next_row += RENDER_BAND;
         pthread_mutex_unlock(w->lock);
         if (j >= rs->height) break;
-        render_row(rs, w->opt, j, w->rgb + (size_t)j * (size_t)rs->width * 3, &w->stats);
+        int j1 = j + RENDER_BAND < rs->height ? j + RENDER_BAND : rs->height;
+        render_band(w, j, j1, w->rgb + (size_t)j * (size_t)rs->width * 3);
         if (w->opt->progress) {
             pthread_mutex_lock(w->lock);
-            progress(++*w->rows_done, rs->height);
+            *w->rows_done += j1 - j;
+            progress(*w->rows_done, rs->height);
             pthread_mutex_unlock(w->lock);
         }
     }
@@ -384,6 +678,31 @@ static void add_stats(render_stats *a, const render_stats *b)
     a->ambient_terms += b->ambient_terms;
 }
 
+static void worker_free(worker *w)
+{
+    render_shade_scratch_free(w->scratch);
+    free(w->hits), free(w->hit_pixel), free(w->L), free(w->sum), free(w->ray), free(w->ray_pixel);
+    free(w->ray_ij);
+}
+
+/* The per-thread memory of a worker; 0 or -1 (out of memory, nothing left allocated). */
+static int worker_alloc(worker *w)
+{
+    w->scratch = render_shade_scratch_new(w->rs, RENDER_TILE);
+    w->hits = malloc(RENDER_TILE * sizeof *w->hits);
+    w->hit_pixel = malloc(RENDER_TILE * sizeof *w->hit_pixel);
+    w->L = malloc(RENDER_TILE * sizeof *w->L);
+    w->sum = malloc((size_t)w->rs->width * RENDER_BAND * 3 * sizeof *w->sum);
+    w->ray_ij = malloc(2 * RENDER_RAYS * sizeof *w->ray_ij);
+    w->ray = malloc(5 * RENDER_RAYS * sizeof *w->ray);
+    w->ray_pixel = malloc(RENDER_RAYS * sizeof *w->ray_pixel);
+    if (w->scratch && w->hits && w->hit_pixel && w->L && w->sum && w->ray && w->ray_pixel &&
+        w->ray_ij)
+        return 0;
+    worker_free(w);
+    return -1;
+}
+
 int render_image(const render_scene *rs, const render_options *opt, float *rgb, render_stats *stats)
 {
     long k = lround(sqrt((double)opt->spp));
@@ -395,8 +714,23 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb, 
     int next_row = 0, rows_done = 0, started = 0;
     if (pthread_mutex_init(&lock, NULL)) return -1;
     for (int t = 0; t < nt; ++t) {
-        w[t] = (worker){rs, opt, rgb, {0}, &lock, &next_row, &rows_done};
-        if (t > 0 && pthread_create(&th[t], NULL, work, &w[t])) break;
+        w[t] = (worker){.rs = rs,
+                        .opt = opt,
+                        .rgb = rgb,
+                        .lock = &lock,
+                        .next_row = &next_row,
+                        .rows_done = &rows_done};
+        if (worker_alloc(&w[t])) {
+            if (t == 0) {
+                pthread_mutex_destroy(&lock);
+                return -1;
+            }
+            break;
+        }
+        if (t > 0 && pthread_create(&th[t], NULL, work, &w[t])) {
+            worker_free(&w[t]);
+            break;
+        }
         started = t + 1;
     }
     work(&w[0]); /* the calling thread works too; rows left by failed starts are done here */
@@ -406,6 +740,7 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb, 
         memset(stats, 0, sizeof *stats);
         for (int t = 0; t < started; ++t) add_stats(stats, &w[t].stats);
     }
+    for (int t = 0; t < started; ++t) worker_free(&w[t]);
     return 0;
 }
 

@@ -1,6 +1,8 @@
 /* scene.c - parser of the scene format (docs/SCENES.md): one directive per line, then
- * KEY=VALUE words. Every problem is reported as "FILE:LINE: problem"; malformed input of any
- * kind (binary, huge numbers, long lines) gives an error, never a crash (tests/fuzz/fuzz_scene.c). */
+ * KEY=VALUE words. Lines may have any length (a long comment is a comment); a word may not
+ * exceed SCENE_WORD_MAX, so every message quotes words whole. Every problem is reported as
+ * "FILE:LINE: problem"; malformed input of any kind (binary, huge numbers, long words) gives
+ * an error, never a crash (tests/fuzz/fuzz_scene.c). */
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -8,10 +10,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "in_file.h"
+#include "path_msg.h"
 #include "scene.h"
 #include "budget_run.h"
 
-#define LINE_MAX_CHARS 4096
+#define SCENE_WORD_MAX 256 /* characters of a word: far above any valid key or value */
 #define MAX_WORDS 64
 #define SCENE_MAX_FILE (16u << 20) /* 16 MiB: far above any real scene */
 
@@ -22,6 +26,7 @@ typedef struct parser {
     size_t err_size;
     scene *s;
     int have_camera;
+    int object_cap; /* allocated length of s->objects */
 } parser;
 
 static int fail(parser *p, const char *fmt, ...)
@@ -30,15 +35,17 @@ static int fail(parser *p, const char *fmt, ...)
 #endif
     ;
 
+/* "NAME:LINE: problem": the problem whole (words are at most SCENE_WORD_MAX long), the name
+ * shortened if the buffer is small (path_msg.h). */
 static int fail(parser *p, const char *fmt, ...)
 {
     if (p->err && p->err_size) {
-        char msg[512];
+        char msg[2048];
         va_list ap;
         va_start(ap, fmt);
         vsnprintf(msg, sizeof msg, fmt, ap);
         va_end(ap);
-        snprintf(p->err, p->err_size, "%s:%d: %s", p->name, p->line, msg);
+        path_msg(p->err, p->err_size, p->name, ":%d: %s", p->line, msg);
     }
     return -1;
 }
@@ -51,7 +58,8 @@ static int parse_num(const char *s, double *out)
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (*end || errno == ERANGE || !isfinite(v) || fabs(v) > SCENE_MAX_COORD) return 0;
+    /* ERANGE with a finite result is an underflow (a subnormal or zero): still a number. */
+    if (end == s || *end || !isfinite(v) || fabs(v) > SCENE_MAX_COORD) return 0;
     *out = v;
     return 1;
 }
@@ -59,9 +67,9 @@ static int parse_num(const char *s, double *out)
 /* "A" or "A,B,C" (count 1 or 3), or exactly n numbers if want > 0. Returns the count. */
 static int parse_list(const char *s, double *v, int max)
 {
-    char buf[LINE_MAX_CHARS + 1];
+    char buf[SCENE_WORD_MAX + 1];
     size_t len = strlen(s);
-    if (len > LINE_MAX_CHARS) return 0;
+    if (len > SCENE_WORD_MAX) return 0;
     memcpy(buf, s, len + 1);
     int n = 0;
     char *q = buf;
@@ -131,6 +139,13 @@ static int split(parser *p, char *line, word *w, int *count)
         w[n].val = NULL;
         w[n].used = 0;
         while (*q && *q != ' ' && *q != '\t') ++q;
+        if (q - w[n].key > SCENE_WORD_MAX) {
+            char shown[64];
+            *q = '\0';
+            return fail(p, "a word of %ld characters ('%s'); words have at most %d",
+                        (long)(q - w[n].key), path_short(shown, sizeof shown, w[n].key, 40),
+                        SCENE_WORD_MAX);
+        }
         if (*q) *q++ = '\0';
         char *eq = strchr(w[n].key, '=');
         if (eq) {
@@ -424,8 +439,9 @@ static int do_material(parser *p, word *w, int n)
     return 0;
 }
 
-static const char *const shape_names[SCENE_SHAPE_COUNT] = {"sphere", "cylinder", "capsule", "box"};
-static const char *const tangent_names[] = {"u", "v", "radial", "axis"};
+static const char *const shape_names[SCENE_SHAPE_COUNT] = {"sphere", "cylinder", "capsule", "box",
+                                                           "mesh"};
+static const char *const tangent_names[] = {"u", "v", "radial", "axis", "uv"};
 
 const char *scene_shape_name(scene_shape shape)
 {
@@ -434,7 +450,73 @@ const char *scene_shape_name(scene_shape shape)
 
 const char *scene_tangent_name(scene_tangent t)
 {
-    return (unsigned)t <= SCENE_TANGENT_AXIS ? tangent_names[t] : "?";
+    return (unsigned)t <= SCENE_TANGENT_UV ? tangent_names[t] : "?";
+}
+
+/* Append to a growing array (capacity doubles: a scene of 1e5 objects is not quadratic). */
+static int append(parser *p, void **arr, int *count, int *cap, const void *item, size_t size)
+{
+    if (*count == *cap) {
+        int c = *cap ? 2 * *cap : 16;
+        void *g = realloc(*arr, (size_t)c * size);
+        if (!g) return fail(p, "out of memory");
+        *arr = g;
+        *cap = c;
+    }
+    memcpy((char *)*arr + (size_t)*count * size, item, size);
+    ++*count;
+    return 0;
+}
+
+/* The mesh file of `mesh file=PATH`, relative to the scene file's directory; read once. */
+static int load_mesh(parser *p, const char *file, scene_object *o)
+{
+    scene *s = p->s;
+    for (const unsigned char *c = (const unsigned char *)file; *c; ++c)
+        if (*c < 0x20 || *c > 0x7e)
+            return fail(p, "file= holds byte 0x%02x (not printable ASCII)", *c);
+    if (!*file) return fail(p, "file= is empty");
+    const char *slash = strrchr(p->name, '/');
+    size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - p->name) + 1;
+    size_t flen = strlen(file);
+    char *path = malloc(dir + flen + 1);
+    if (!path) return fail(p, "out of memory");
+    memcpy(path, p->name, dir);
+    memcpy(path + dir, file, flen + 1);
+    for (int i = 0; i < s->mesh_count; ++i)
+        if (!strcmp(s->meshes[i]->path, path)) {
+            free(path);
+            o->mesh = i;
+            o->mesh_data = s->meshes[i];
+            return 0;
+        }
+    if (s->mesh_count == SCENE_MAX_MESH_FILES) {
+        free(path);
+        return fail(p, "more than %d mesh files", SCENE_MAX_MESH_FILES);
+    }
+    mesh *m = malloc(sizeof *m);
+    mesh **grown = realloc(s->meshes, (size_t)(s->mesh_count + 1) * sizeof *grown);
+    if (!m || !grown) {
+        free(m), free(path);
+        if (grown) s->meshes = grown;
+        return fail(p, "out of memory");
+    }
+    s->meshes = grown;
+    char err[512];
+    int st = mesh_load_file(path, MESH_MAX_TRIANGLES, m, err, sizeof err);
+    if (st) {
+        free(m), free(path);
+        if (st != -1) return fail(p, "%s", err); /* the file as a whole: name the scene line */
+        /* A problem inside the mesh file: its FILE:LINE first, the scene line after. */
+        if (p->err && p->err_size)
+            snprintf(p->err, p->err_size, "%.400s (mesh at %s:%d)", err, p->name, p->line);
+        return -1;
+    }
+    free(path);
+    s->meshes[s->mesh_count] = m;
+    o->mesh = s->mesh_count++;
+    o->mesh_data = m;
+    return 0;
 }
 
 static int do_object(parser *p, scene_shape shape, word *w, int n)
@@ -446,6 +528,7 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
     memset(&o, 0, sizeof o);
     o.shape = shape;
     o.line = p->line;
+    o.mesh = -1;
     o.scale[0] = o.scale[1] = o.scale[2] = 1.0;
     const char *v;
     if (!(v = take(w, n, 1, "material")))
@@ -470,6 +553,17 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
         if (!(o.size[0] > 0 && o.size[1] > 0 && o.size[2] > 0))
             return fail(p, "box size must be positive, got '%s'", v);
     }
+    const char *file = NULL;
+    if (shape == SCENE_MESH) {
+        valid = "file, material, smooth, translate, rotate, scale, tangent";
+        if (!(file = take(w, n, 1, "file"))) return fail(p, "mesh needs file=PATH");
+        o.smooth = 1;
+        if ((v = take(w, n, 1, "smooth"))) {
+            if (strcmp(v, "on") && strcmp(v, "off"))
+                return fail(p, "smooth must be on or off, got '%s'", v);
+            o.smooth = !strcmp(v, "on");
+        }
+    }
     if ((v = take(w, n, 1, "translate")) && get_vec3(p, "translate", v, o.translate)) return -1;
     if ((v = take(w, n, 1, "rotate")) && get_vec3(p, "rotate", v, o.rotate_deg)) return -1;
     if ((v = take(w, n, 1, "scale"))) {
@@ -482,25 +576,37 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
                         v);
     }
     o.tangent = SCENE_TANGENT_U;
-    if ((v = take(w, n, 1, "tangent"))) {
+    const char *tangent = take(w, n, 1, "tangent");
+    if (tangent) {
         int k;
-        for (k = 0; k < SCENE_TANGENT_AXIS; ++k)
-            if (!strcmp(v, tangent_names[k])) break;
-        if (k < SCENE_TANGENT_AXIS) {
+        for (k = 0; k <= SCENE_TANGENT_UV; ++k)
+            if (k != SCENE_TANGENT_AXIS && !strcmp(tangent, tangent_names[k])) break;
+        if (k <= SCENE_TANGENT_UV) {
             o.tangent = (scene_tangent)k;
-        } else if (parse_list(v, o.tangent_axis, 3) == 3 && nonzero3(o.tangent_axis)) {
+        } else if (parse_list(tangent, o.tangent_axis, 3) == 3 && nonzero3(o.tangent_axis)) {
             o.tangent = SCENE_TANGENT_AXIS;
         } else {
-            return fail(p, "tangent must be u, v, radial or a non-zero direction X,Y,Z, got '%s'",
-                        v);
+            return fail(p,
+                        "tangent must be u, v, radial, uv (meshes) or a non-zero direction "
+                        "X,Y,Z, got '%s'",
+                        tangent);
         }
+        if (o.tangent == SCENE_TANGENT_UV && shape != SCENE_MESH)
+            return fail(p, "tangent=uv needs a mesh (a %s has no texture coordinates)",
+                        shape_names[shape]);
     }
     if (leftovers(p, w, n, 1, valid)) return -1;
-    scene_object *grown = realloc(s->objects, (size_t)(s->object_count + 1) * sizeof *grown);
-    if (!grown) return fail(p, "out of memory");
-    s->objects = grown;
-    grown[s->object_count++] = o;
-    return 0;
+    if (file) {
+        if (load_mesh(p, file, &o)) return -1;
+        if (o.tangent == SCENE_TANGENT_UV && !o.mesh_data->uv)
+            return fail(p, "tangent=uv: %s has no texture coordinates (vt)", o.mesh_data->path);
+        long long total = s->triangle_count + o.mesh_data->triangle_count;
+        if (total > SCENE_MAX_TRIANGLES)
+            return fail(p, "this mesh brings the scene to %lld triangles, more than %d", total,
+                        SCENE_MAX_TRIANGLES);
+        s->triangle_count = total;
+    }
+    return append(p, (void **)&s->objects, &s->object_count, &p->object_cap, &o, sizeof o);
 }
 
 static int do_line(parser *p, char *line)
@@ -519,7 +625,7 @@ static int do_line(parser *p, char *line)
         if (!strcmp(d, shape_names[k])) return do_object(p, (scene_shape)k, w, n);
     return fail(p,
                 "unknown directive '%s'; directives: camera, ambient, light, material, "
-                "sphere, cylinder, capsule, box",
+                "sphere, cylinder, capsule, box, mesh",
                 d);
 }
 
@@ -529,6 +635,11 @@ void scene_free(scene *s)
     free(s->lights);
     free(s->materials);
     free(s->objects);
+    for (int i = 0; i < s->mesh_count; ++i) {
+        mesh_free(s->meshes[i]);
+        free(s->meshes[i]);
+    }
+    free(s->meshes);
     memset(s, 0, sizeof *s);
 }
 
@@ -538,28 +649,32 @@ int scene_parse_text(const char *name, const char *text, size_t len, scene *out,
     if (err && err_size) err[0] = '\0';
     if (!out) return -1;
     memset(out, 0, sizeof *out);
-    parser p = {name ? name : "<scene>", 0, err, err_size, out, 0};
+    parser p = {name ? name : "<scene>", 0, err, err_size, out, 0, 0};
     if (!text) return fail(&p, "no text");
-    char line[LINE_MAX_CHARS + 1];
+    /* Lines are split in a copy of the text, in place: any length is fine. */
+    char *copy = malloc(len + 1);
+    if (!copy) return fail(&p, "out of memory");
+    memcpy(copy, text, len);
+    copy[len] = '\0';
     size_t i = 0;
     while (i < len) {
         ++p.line;
-        size_t k = 0;
-        for (; i < len && text[i] != '\n'; ++i) {
-            if (text[i] == '\0') {
+        char *line = copy + i;
+        for (; i < len && copy[i] != '\n'; ++i) {
+            if (copy[i] == '\0') {
                 fail(&p, "NUL byte in the file (not a text scene)");
+                free(copy);
                 goto bad;
             }
-            if (k == LINE_MAX_CHARS) {
-                fail(&p, "line longer than %d characters", LINE_MAX_CHARS);
-                goto bad;
-            }
-            line[k++] = text[i] == '\r' ? ' ' : text[i];
+            if (copy[i] == '\r') copy[i] = ' ';
         }
-        line[k] = '\0';
-        ++i; /* the '\n' */
-        if (do_line(&p, line)) goto bad;
+        copy[i++] = '\0'; /* the '\n' (or the terminator) */
+        if (do_line(&p, line)) {
+            free(copy);
+            goto bad;
+        }
     }
+    free(copy);
     ++p.line;
     if (!p.have_camera) {
         p.line = 0;
@@ -568,7 +683,7 @@ int scene_parse_text(const char *name, const char *text, size_t len, scene *out,
     }
     if (out->object_count == 0) {
         p.line = 0;
-        fail(&p, "no objects (sphere, cylinder, capsule or box)");
+        fail(&p, "no objects (sphere, cylinder, capsule, box or mesh)");
         goto bad;
     }
     return 0;
@@ -580,18 +695,16 @@ bad:
 int scene_parse_file(const char *path, scene *out, char *err, size_t err_size)
 {
     if (out) memset(out, 0, sizeof *out);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (err && err_size) snprintf(err, err_size, "%s: cannot open: %s", path, strerror(errno));
-        return -1;
-    }
+    char tmp[2];
+    FILE *f = in_file_open(path, err && err_size ? err : tmp, err && err_size ? err_size : 1);
+    if (!f) return -1;
     char *buf = NULL;
     size_t len = 0, cap = 0;
     for (;;) {
         if (len == cap) {
             if (cap >= SCENE_MAX_FILE) {
                 if (err && err_size)
-                    snprintf(err, err_size, "%s: larger than %u bytes", path, SCENE_MAX_FILE);
+                    path_msg(err, err_size, path, ": larger than %u bytes", SCENE_MAX_FILE);
                 free(buf);
                 fclose(f);
                 return -1;
@@ -601,7 +714,7 @@ int scene_parse_file(const char *path, scene *out, char *err, size_t err_size)
             if (!g) {
                 free(buf);
                 fclose(f);
-                if (err && err_size) snprintf(err, err_size, "%s: out of memory", path);
+                if (err && err_size) path_msg(err, err_size, path, ": out of memory");
                 return -1;
             }
             buf = g;
@@ -610,11 +723,11 @@ int scene_parse_file(const char *path, scene *out, char *err, size_t err_size)
         len += got;
         if (got == 0) break;
     }
-    int bad = ferror(f);
+    int bad = ferror(f), code = errno;
     fclose(f);
     if (bad) {
         free(buf);
-        if (err && err_size) snprintf(err, err_size, "%s: read error", path);
+        if (err && err_size) path_msg(err, err_size, path, ": read error: %s", strerror(code));
         return -1;
     }
     int st = scene_parse_text(path, buf, len, out, err, err_size);

@@ -16,9 +16,12 @@
 
 #include <stddef.h>
 #include "abrdf.h"
+#include "mesh.h"
 
-#define SCENE_NAME_MAX 64      /* material names, table entries, goals (with the NUL) */
-#define SCENE_MAX_OBJECTS 4096 /* keeps a hostile file from exhausting memory */
+#define SCENE_NAME_MAX 64        /* material names, table entries, goals (with the NUL) */
+#define SCENE_MAX_OBJECTS 100000 /* keeps a hostile file from exhausting memory */
+#define SCENE_MAX_TRIANGLES MESH_MAX_TRIANGLES /* of all mesh objects together */
+#define SCENE_MAX_MESH_FILES 1024              /* distinct files (each is read once) */
 #define SCENE_MAX_LIGHTS 64
 #define SCENE_MAX_MATERIALS 256
 #define SCENE_MAX_RESOLUTION 16384
@@ -73,6 +76,7 @@ typedef enum scene_shape {
     SCENE_CYLINDER,   /* radius, height; axis y, y in [-height/2, height/2], flat caps */
     SCENE_CAPSULE,    /* radius, height; segment y in [-height/2, height/2], round caps */
     SCENE_BOX,        /* size X,Y,Z; centred at the origin */
+    SCENE_MESH,       /* triangles of a mesh file (scene.meshes), in the file's coordinates */
     SCENE_SHAPE_COUNT
 } scene_shape;
 
@@ -81,7 +85,8 @@ typedef enum scene_tangent {
     SCENE_TANGENT_U = 0,  /* around the object's y axis: (-z, 0, x) */
     SCENE_TANGENT_V,      /* along the object's y axis: (0, 1, 0) */
     SCENE_TANGENT_RADIAL, /* away from the object's y axis: (x, 0, z) */
-    SCENE_TANGENT_AXIS    /* a fixed object-space direction (tangent_axis) */
+    SCENE_TANGENT_AXIS,   /* a fixed object-space direction (tangent_axis) */
+    SCENE_TANGENT_UV      /* meshes with texture coordinates: the direction of increasing u */
 } scene_tangent;
 
 typedef struct scene_object {
@@ -97,6 +102,9 @@ typedef struct scene_object {
     scene_tangent tangent;
     double tangent_axis[3]; /* SCENE_TANGENT_AXIS: non-zero object-space direction */
     int material;           /* index into scene.materials */
+    int mesh;               /* SCENE_MESH: index into scene.meshes, else -1 */
+    const mesh *mesh_data;  /* SCENE_MESH: scene.meshes[mesh], else NULL */
+    int smooth;             /* SCENE_MESH: 1 interpolate vertex normals, 0 flat faces */
     int line;
 } scene_object;
 
@@ -109,9 +117,14 @@ typedef struct scene {
     int material_count;
     scene_object *objects;
     int object_count;
+    mesh **meshes; /* the mesh files, each read once however many objects use it */
+    int mesh_count;
+    long long triangle_count; /* of all mesh objects, <= SCENE_MAX_TRIANGLES */
 } scene;
 
-/* Parse; on failure returns -1, frees everything and writes "NAME:LINE: problem" to err. */
+/* Parse; on failure returns -1, frees everything and writes "NAME:LINE: problem" to err; a
+ * problem inside a mesh file is "MESHFILE:LINE: problem (mesh at NAME:LINE)". Mesh files
+ * (`mesh file=PATH`) are read relative to the directory of NAME. */
 int scene_parse_file(const char *path, scene *out, char *err, size_t err_size);
 int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,
                      size_t err_size);

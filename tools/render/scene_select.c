@@ -7,6 +7,8 @@
 
 #include "scene_select.h"
 #include "cli_args.h"
+#include "data_path.h"
+#include "path_msg.h"
 #include "render.h"
 #include "budget_run.h"
 #include "select_trace.h"
@@ -105,11 +107,11 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
         } else if (sm->kind == SCENE_MAT_ADAPTIVE && sm->budget[0]) {
             char msg[160];
             if (budget_parse(sm->budget, &budget, msg, sizeof msg)) {
-                snprintf(err, err_size, "%s:%d: %s", scene_name, sm->line, msg);
+                path_msg(err, err_size, scene_name, ":%d: %s", sm->line, msg);
                 return -1;
             }
         } else if (sm->kind == SCENE_MAT_ADAPTIVE && abrdf_goal_find(sm->goal, &goal) != ABRDF_OK) {
-            snprintf(err, err_size, "%s:%d: unknown goal '%s'", scene_name, sm->line, sm->goal);
+            path_msg(err, err_size, scene_name, ":%d: unknown goal '%s'", sm->line, sm->goal);
             return -1;
         }
         abrdf_material am;
@@ -122,10 +124,10 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
                 int k = table ? mat_table_nearest(table, sm->table, near, 4) : 0;
                 char hint[256] = "";
                 for (int j = 0; j < k; ++j) strcat(strcat(hint, j ? ", " : ""), near[j]);
-                snprintf(err, err_size,
-                         "%s:%d: material '%s': no entry '%s' in the material table%s%s%s",
-                         scene_name, sm->line, sm->name, sm->table, k ? "; did you mean: " : "",
-                         hint, k ? "?" : " (abrdf advise --list)");
+                path_msg(err, err_size, scene_name,
+                         ":%d: material '%s': no entry '%s' in the material table%s%s%s", sm->line,
+                         sm->name, sm->table, k ? "; did you mean: " : "", hint,
+                         k ? "?" : " (abrdf advise --list)");
                 return -1;
             }
             am = e->m;
@@ -135,9 +137,8 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
         if (described(sm, "r")) am.r = p->r;
         if (described(sm, "n")) am.n = p->n;
         if (!e && !described(sm, "r") && !described(sm, "n")) {
-            snprintf(err, err_size,
-                     "%s:%d: adaptive material '%s' needs table=ENTRY, r= or n=", scene_name,
-                     sm->line, sm->name);
+            path_msg(err, err_size, scene_name,
+                     ":%d: adaptive material '%s' needs table=ENTRY, r= or n=", sm->line, sm->name);
             return -1;
         }
         take_rgb(sm, "kd", p->kd, am.kd);
@@ -152,7 +153,7 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
         if (budget > 0.0) {
             char msg[512];
             if (budget_run(&am, budget, NULL, &view, &br, msg, sizeof msg)) {
-                snprintf(err, err_size, "%s:%d: material '%s': %s", scene_name, sm->line, sm->name,
+                path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
                          msg);
                 return -1;
             }
@@ -164,7 +165,7 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
             abrdf_params_init(ABRDF_MODEL_NONE, &chosen);
             if (abrdf_select(&am, goal, NULL, NULL, &sel, &chosen,
                              explain ? select_trace_keep : NULL, &trace) != ABRDF_OK) {
-                snprintf(err, err_size, "%s:%d: material '%s': %s", scene_name, sm->line, sm->name,
+                path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
                          sel.message);
                 select_trace_free(&trace);
                 return -1;
@@ -213,6 +214,36 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
                            FILE *explain, char *err, size_t err_size)
 {
     return scene_select_budgets(s, scene_name, table, force_goal, -1.0, 4, explain, err, err_size);
+}
+
+int scene_resolve_budget(scene *s, const char *scene_name, const char *const *files, int nfiles,
+                         int force_goal, double force_budget, int spp, FILE *explain, char *err,
+                         size_t err_size)
+{
+    mat_table table = {NULL, 0, 0};
+    int rc = -1;
+    if (force_goal >= 0 || force_budget > 0.0 || scene_needs_table(s)) {
+        char tpath[4096];
+        if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
+            path_msg(err, err_size, tpath, ": material table not found (set ABRDF_DATA_DIR)");
+            goto done;
+        }
+        if (mat_table_load(&table, tpath, err, err_size)) goto done;
+    }
+    for (int i = 0; i < nfiles; ++i)
+        if (mat_table_load(&table, files[i], err, err_size)) goto done;
+    rc = scene_select_budgets(s, scene_name, &table, force_goal, force_budget, spp, explain, err,
+                              err_size);
+done:
+    mat_table_free(&table);
+    return rc;
+}
+
+int scene_resolve(scene *s, const char *scene_name, const char *const *files, int nfiles,
+                  int force_goal, FILE *explain, char *err, size_t err_size)
+{
+    return scene_resolve_budget(s, scene_name, files, nfiles, force_goal, -1.0, 4, explain, err,
+                                err_size);
 }
 
 int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets, int nsets)

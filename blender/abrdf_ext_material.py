@@ -1,0 +1,210 @@
+"""abrdf materials: a Script node running the OSL port, wired to the Material Output.
+
+The node is compiled from the extension's OSL files (osl/) into the node itself (Blender's
+"Internal" script mode keeps the bytecode in the .blend, so a saved file renders without the
+extension); its sockets are driven by the material's settings (Material.abrdf,
+abrdf_ext_props). Evaluation mode takes the scene's point and sun lights as shader
+parameters (sync_lights), with the conventions of `abrdf export --cycles`: a point light of
+power P has intensity P / (4 pi), a sun's strength is the irradiance, its direction the
+light object's +z axis.
+"""
+import math
+import os
+
+import bpy
+
+import abrdf
+
+OSL_DIR = os.path.join(os.path.dirname(__file__), "osl")
+SHADERS = {"CLOSURE": "abrdf_material.osl", "EVALUATION": "abrdf_eval.osl"}
+NODE = "abrdf"
+MAX_LIGHTS = 4  # abrdf_eval.osl's light0 ... light3
+
+
+def _osl():
+    """Cycles' OSL helpers (compile, sockets from the compiled shader's parameters)."""
+    from .osl import abrdf_cycles
+    return abrdf_cycles.cycles_osl()
+
+
+def _text(path):
+    """The text datablock of an OSL file of the extension (one per file, shared)."""
+    for t in bpy.data.texts:
+        if t.filepath and os.path.normpath(bpy.path.abspath(t.filepath)) == os.path.normpath(path):
+            return t
+    return bpy.data.texts.load(path, internal=False)
+
+
+def _compile(node, mode):
+    """Compile the mode's shader into `node` (its #includes resolve beside it in osl/)."""
+    osl = _osl()
+    node.mode = "INTERNAL"
+    node.script = _text(os.path.join(OSL_DIR, SHADERS[mode]))
+    messages = []
+    if not osl.update_script_node(node, lambda kind, msg: messages.append(msg)):
+        raise RuntimeError("OSL compilation of %s failed: %s" % (SHADERS[mode], messages))
+
+
+def new_material(name="abrdf", mode="CLOSURE"):
+    """A new material whose Script node runs the mode's shader, wired and set from the
+    material's settings (their defaults)."""
+    mat = bpy.data.materials.new(name)
+    if mat.node_tree is None:
+        mat.use_nodes = True
+    nt = mat.node_tree
+    nt.nodes.clear()
+    out = nt.nodes.new("ShaderNodeOutputMaterial")
+    out.location = (300, 0)
+    node = nt.nodes.new("ShaderNodeScript")
+    node.name = node.label = NODE
+    node.width = 240
+    mat.abrdf.enabled = True
+    mat.abrdf["mode"] = list(SHADERS).index(mode)  # set without the update: built below
+    _compile(node, mode)
+    nt.links.new(node.outputs[0], out.inputs["Surface"])
+    push(mat)
+    return mat
+
+
+def node_of(mat):
+    nt = mat.node_tree if mat else None
+    return nt.nodes.get(NODE) if nt else None
+
+
+def rebuild(mat):
+    """Recompile for the current mode (its shader's sockets differ) and push the settings."""
+    node = node_of(mat)
+    if node is None:
+        return
+    _compile(node, mat.abrdf.mode)
+    nt = mat.node_tree
+    out = next((n for n in nt.nodes if n.bl_idname == "ShaderNodeOutputMaterial"), None)
+    if out is not None:
+        nt.links.new(node.outputs[0], out.inputs["Surface"])
+    push(mat)
+
+
+def socket_values(s):
+    """The shader's inputs from the settings s, by socket identifier (the OSL names)."""
+    v = {"model": s.model, "model2": "" if s.model2 == "NONE" else s.model2,
+         "adaptive": s.adaptive, "goal": s.goal, "surface": s.surface, "n_from_r": s.n_from_r,
+         "max_rel_error": s.max_rel_error, "max_abs_error": s.max_abs_error,
+         "tangent_rule": s.tangent_rule, "tangent_axis": tuple(s.tangent_axis),
+         # Evaluation mode: the ambient term ka * Ia is given as ka, with Ia = 1.
+         "ka": tuple(s.ambient), "ambient": (1.0, 1.0, 1.0)}
+    for p in abrdf._abrdf.params():
+        value = getattr(s, p["name"])
+        v[p["name"]] = tuple(value) if p["kind"] == "rgb" else value
+    return v
+
+
+def _set(sock, value):
+    if sock.bl_idname.startswith("NodeSocketColor"):
+        value = tuple(value) + (1.0,)
+    elif sock.bl_idname.startswith("NodeSocketInt"):
+        value = int(value)
+    elif sock.bl_idname.startswith("NodeSocketBool"):
+        value = bool(value)
+    sock.default_value = value
+
+
+def push(mat):
+    """Write the settings into the Script node's sockets."""
+    node = node_of(mat)
+    if node is None or not mat.abrdf.enabled:
+        return
+    values = socket_values(mat.abrdf)
+    for sock in node.inputs:
+        if sock.identifier in values and not sock.is_linked:
+            _set(sock, values[sock.identifier])
+
+
+def scene_lights(scene):
+    """The scene's lights as evaluation-mode parameters: [(type, position, colour,
+    intensity)], type 1 point (position), 2 directional (direction toward the light).
+    ValueError for more than MAX_LIGHTS lights or a kind the shader does not have."""
+    lights = sorted((o for o in scene.objects if o.type == "LIGHT" and not o.hide_render),
+                    key=lambda o: o.name)
+    if len(lights) > MAX_LIGHTS:
+        raise ValueError("evaluation mode takes at most %d lights; the scene has %d"
+                         % (MAX_LIGHTS, len(lights)))
+    out = []
+    for o in lights:
+        d = o.data
+        if d.type == "POINT":
+            out.append((1, tuple(o.matrix_world.translation), tuple(d.color),
+                        d.energy / (4.0 * math.pi)))
+        elif d.type == "SUN":
+            z = o.matrix_world.to_3x3().col[2].normalized()
+            out.append((2, tuple(z), tuple(d.color), d.energy))
+        else:
+            raise ValueError("light %s: a %s light; evaluation mode has point and sun lights"
+                             % (o.name, d.type.lower()))
+    return out
+
+
+def sync_lights(mat, scene):
+    """Give the evaluation shader of `mat` the scene's lights; returns how many."""
+    node = node_of(mat)
+    if node is None or mat.abrdf.mode != "EVALUATION":
+        return 0
+    lights = scene_lights(scene)
+    sockets = {s.identifier: s for s in node.inputs}
+    for k in range(MAX_LIGHTS):
+        kind, pos, col, inten = lights[k] if k < len(lights) else (0, (0, 0, 0), (1, 1, 1), 0)
+        _set(sockets["light%d_type" % k], kind)
+        _set(sockets["light%d_position" % k], pos)
+        _set(sockets["light%d_color" % k], col)
+        _set(sockets["light%d_intensity" % k], inten)
+    return len(lights)
+
+
+def selection_input(s):
+    """What the flowchart starts from: the table's material, or the settings' values (as the
+    shader's adaptive mode reads them: n only when n_from_r is off)."""
+    if s.preset != "CUSTOM":
+        return s.preset
+    layers = tuple(abrdf.Layer(eta=getattr(s, "layer%d_eta" % k),
+                               kappa=getattr(s, "layer%d_kappa" % k),
+                               r=getattr(s, "layer%d_r" % k),
+                               sigma_a=tuple(getattr(s, "layer%d_sigma_a" % k)),
+                               depth=getattr(s, "layer%d_depth" % k))
+                   for k in range(s.layer_count))
+    return abrdf.Material(type=s.surface, n=None if s.n_from_r else s.n, r=s.r,
+                          kd=tuple(s.kd), ks=tuple(s.ks), f0=tuple(s.f0),
+                          anisotropy=s.anisotropic, melanin=s.melanin, redness=s.redness,
+                          layers=layers)
+
+
+def select(mat):
+    """Run the flowchart for the material's settings and apply its choice: the models, their
+    parameters, the trace. Returns the abrdf.Selection (abrdf.Error if the input is invalid)."""
+    s = mat.abrdf
+    sel = abrdf.select(selection_input(s), goal=s.goal, max_rel_error=s.max_rel_error,
+                       max_abs_error=s.max_abs_error)
+    s.adaptive = False
+    s.model = sel.diffuse or sel.specular
+    s.model2 = sel.specular if sel.diffuse else "NONE"
+    if sel.material.name:
+        s.surface = sel.type
+    for brdf in (sel.diffuse_brdf, sel.specular_brdf):
+        for k, v in (brdf.params.items() if brdf else ()):
+            setattr(s, k, v)
+    s.choice = "%s: %s%s" % (sel.goal, sel.diffuse + " + " if sel.diffuse else "", sel.specular)
+    s.trace = sel.explain()
+    return sel
+
+
+def model_defaults(mat):
+    """The chosen models' parameters to their registry defaults (the first model's, then the
+    second's for the parameters only it reads)."""
+    s = mat.abrdf
+    seen = set()
+    for name in (s.model, s.model2):
+        if name == "NONE":
+            continue
+        for p in abrdf.model(name).params:
+            if p.name not in seen:
+                seen.add(p.name)
+                setattr(s, p.name, (p.default,) * 3 if p.kind == "rgb" else
+                        int(p.default) if p.kind == "int" else p.default)

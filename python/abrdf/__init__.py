@@ -1,0 +1,65 @@
+"""abrdf - surface reflectance models and their adaptive selection, from Python.
+
+NumPy bindings over libabrdf, the C library of the reflectance models of Zavalniuk &
+Romanyuk, "Adaptive selection of the surface reflectance model for rendering tasks" (2024),
+and of its selection flowchart (Fig. 2). The C code is the library's own: the package's
+extension module links libabrdf and calls it.
+
+    >>> import numpy as np, abrdf
+    >>> wi, wo = np.array([0.3, 0.0, 1.0]), np.array([-0.2, 0.1, 1.0])
+    >>> abrdf.eval("disney_specular", wi, wo, r=0.3, precision="double")  # f_r per RGB, 1/sr
+    array([0.16682263, 0.16682263, 0.16682263])
+    >>> s = abrdf.select("gold", goal="performance")
+    >>> s.diffuse, s.specular, s.trace[-1].text
+    ('lambert', 'f8', 'f8: rel 1.61% <= 2%, abs 0.0351 <= 0.05, 14 cycles: cheapest that passes')
+
+Functions:
+    models(), model(name)        the registry: every model, its formula, parameters, ranges
+    BRDF(model, **params)        a validated parameter block; .eval(wi, wo, precision=)
+    eval(model, wi, wo, **p)     f_r over arrays of directions (the C batch path, or the
+                                 double scalar reference with precision="double")
+    materials(), material(name)  the material table (data/materials.csv, shipped here)
+    select(material, goal=...)   the paper's flowchart, with its trace
+    surfaces(), goals()          the flowchart's surface classes and goals
+    compare(reference, test)     NMSE (the paper's), PSNR, Table-8 class, of arrays or files
+    read_image(path)             a linear float RGB image (OpenImageIO)
+    Error                        a failure of the library (a ValueError), with its message
+
+Conventions are libabrdf's (abrdf.h): directions in the local frame (N = +z, T = +x), `wi`
+toward the light, `wo` toward the viewer, both away from the surface; f_r is returned
+without the cosine factor, per RGB channel.
+"""
+from __future__ import annotations
+
+from ._abrdf import MAX_LAYERS, Error, Params
+from ._brdf import BRDF, Model, Parameter, eval, model, models
+from ._compare import Comparison, compare, read_image
+from ._select import (Layer, Material, Selection, Step, goals, material, materials, select,
+                      surfaces)
+
+__version__: str = "0.2.0"
+
+# `eval` is abrdf.eval; it stays out of __all__ so that `from abrdf import *` keeps the
+# builtin.
+__all__ = [
+    "BRDF",
+    "Comparison",
+    "Error",
+    "Layer",
+    "MAX_LAYERS",
+    "Material",
+    "Model",
+    "Parameter",
+    "Params",
+    "Selection",
+    "Step",
+    "compare",
+    "goals",
+    "material",
+    "materials",
+    "model",
+    "models",
+    "read_image",
+    "select",
+    "surfaces",
+]

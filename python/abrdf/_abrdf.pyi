@@ -1,0 +1,66 @@
+"""Types of the extension module abrdf._abrdf (python/src): libabrdf's C API for the package.
+
+Arrays go in and out through the buffer protocol: C-contiguous float32/float64 blocks, as
+numpy.ascontiguousarray makes them; the package (abrdf/_brdf.py, ...) shapes them.
+"""
+from typing import Any, Mapping, Sequence, TypedDict, Union
+
+# An object with the buffer protocol (PEP 688's collections.abc.Buffer, Python 3.12+).
+Buffer = Any
+
+MAX_LAYERS: int
+
+class Error(ValueError):
+    """A failure of libabrdf: its message; `status` is its abrdf_status code (negative), or
+    None when the package itself found the problem."""
+
+    status: int | None
+
+ParamValue = Union[float, int, Sequence[float]]
+
+class Params:
+    """A parameter block validated for one model (abrdf_params_init, abrdf_param_set,
+    abrdf_params_check)."""
+
+    def __init__(self, model: str, values: Mapping[str, ParamValue] = ...) -> None: ...
+    @property
+    def model(self) -> str: ...
+    def values(self) -> dict[str, float | int | tuple[float, float, float]]: ...
+
+class _ParamDict(TypedDict):
+    name: str
+    help: str
+    kind: str
+    default: float
+    min: float
+    max: float
+
+class _ModelDict(TypedDict):
+    id: int
+    name: str
+    title: str
+    equation: str
+    citation: str
+    needs: tuple[str, ...]
+    reciprocal: bool
+    energy_conserving: bool
+    kind: str
+    paper_cycles: int | None
+    params: tuple[_ParamDict, ...]
+
+def version() -> str: ...
+def models() -> list[_ModelDict]: ...
+def params() -> list[_ParamDict]: ...
+def eval_float(params: Params, wi: Buffer, wo: Buffer, out: Buffer) -> None: ...
+def eval_double(params: Params, wi: Buffer, wo: Buffer, out: Buffer) -> None: ...
+def _time_eval_batch(params: Params, wi: Buffer, wo: Buffer, out: Buffer,
+                     calls: int) -> float: ...
+def load_materials(paths: list[str]) -> list[dict[str, Any]]: ...
+def load_costs(path: str) -> dict[str, Any]: ...
+def paper_costs() -> dict[str, Any]: ...
+def select(material: dict[str, Any], goal: str, max_rel_pct: float = ..., max_abs: float = ...,
+           costs: dict[str, float] | None = ..., cost_unit: str | None = ...) -> dict[str, Any]: ...
+def surfaces() -> list[str]: ...
+def goals() -> list[str]: ...
+def rules() -> dict[str, Any]: ...
+def compare(reference: Buffer, test: Buffer) -> dict[str, Any]: ...

@@ -1,0 +1,160 @@
+"""The registry and evaluation: models(), model(), BRDF, eval()."""
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass
+from typing import Literal, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _abrdf
+
+ParamValue = Union[float, int, Sequence[float]]
+Precision = Literal["float", "double"]
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter as a model reads it: the registry's name and help, its kind ("scalar",
+    "rgb" or "int") and this model's default and inclusive range (every component)."""
+
+    name: str
+    help: str
+    kind: str
+    default: float
+    min: float
+    max: float
+
+
+@dataclass(frozen=True)
+class Model:
+    """A registered model (abrdf_model_info): its stable name, title, the paper's formula
+    reference, citation, what it needs ("tangent", "fresnel", "layers", "integration"),
+    its properties, the paper's Table-4 cost in cycles (None when the table has none) and
+    the parameters it reads."""
+
+    id: int
+    name: str
+    title: str
+    equation: str
+    citation: str
+    needs: tuple[str, ...]
+    reciprocal: bool
+    energy_conserving: bool
+    kind: str
+    paper_cycles: int | None
+    params: tuple[Parameter, ...]
+
+    def param(self, name: str) -> Parameter:
+        """The parameter `name` as this model reads it (KeyError if it does not)."""
+        for p in self.params:
+            if p.name == name:
+                return p
+        raise KeyError("%s does not read %r" % (self.name, name))
+
+
+@functools.lru_cache(maxsize=1)
+def _registry() -> tuple[Model, ...]:
+    out = []
+    for d in _abrdf.models():
+        params = tuple(Parameter(**p) for p in d.pop("params"))
+        out.append(Model(params=params, **d))
+    return tuple(out)
+
+
+def models() -> list[Model]:
+    """Every model of the library, in registry order (the order of `abrdf models`)."""
+    return list(_registry())
+
+
+def model(name: str) -> Model:
+    """The model with this stable name; abrdf.Error if there is none."""
+    for m in _registry():
+        if m.name == name:
+            return m
+    _abrdf.Params(name)  # raises abrdf.Error with the library's message
+    raise AssertionError("unreachable")
+
+
+def _rows(v: npt.ArrayLike, what: str) -> np.ndarray:
+    a = np.asarray(v)
+    if a.dtype not in (np.float32, np.float64):
+        a = a.astype(np.float64)
+    if a.ndim == 0 or a.shape[-1] != 3:
+        raise ValueError("%s: directions are arrays of shape (..., 3), got %s" % (what, a.shape))
+    return a
+
+
+class BRDF:
+    """A model with a validated parameter block.
+
+    BRDF("disney_specular", r=0.3, f0=(0.9, 0.6, 0.3)) takes the model's defaults and sets
+    the given parameters (the registry's names; a colour as one number or three). Values
+    outside the model's range, and parameters the model does not read, raise abrdf.Error
+    with the library's message (abrdf_params_check)."""
+
+    __slots__ = ("_p",)
+
+    def __init__(self, model: str, **params: ParamValue) -> None:
+        self._p = _abrdf.Params(model, params)
+
+    @classmethod
+    def _from_params(cls, p: _abrdf.Params) -> BRDF:
+        b = cls.__new__(cls)
+        b._p = p
+        return b
+
+    @property
+    def model(self) -> str:
+        """The model's stable name."""
+        return self._p.model
+
+    @property
+    def params(self) -> dict[str, float | int | tuple[float, float, float]]:
+        """Every parameter the model reads, with its value."""
+        return self._p.values()
+
+    @property
+    def block(self) -> _abrdf.Params:
+        """The C parameter block (what the extension module's functions take)."""
+        return self._p
+
+    def __repr__(self) -> str:
+        return "BRDF(%r, %s)" % (self.model, ", ".join(
+            "%s=%r" % kv for kv in self.params.items()))
+
+    def eval(self, wi: npt.ArrayLike, wo: npt.ArrayLike,
+             precision: Precision = "float") -> np.ndarray:
+        """f_r(wi, wo) per RGB channel, 1/sr, without the cosine.
+
+        wi, wo: local-frame directions, arrays of shape (..., 3) broadcast against each
+        other; normalised here (zero or non-finite vectors give 0). precision "float": the
+        library's float batch path (abrdf_eval_batch), result float32; "double": the
+        double-precision scalar reference (abrdf_eval), float64. The result has the
+        broadcast shape (..., 3). The C loop runs without the GIL."""
+        a, b = np.broadcast_arrays(_rows(wi, "wi"), _rows(wo, "wo"))
+        shape = a.shape
+        if precision == "double":
+            a = np.ascontiguousarray(a.reshape(-1, 3), dtype=np.float64)
+            b = np.ascontiguousarray(b.reshape(-1, 3), dtype=np.float64)
+            out = np.empty(a.shape, np.float64)
+            _abrdf.eval_double(self._p, a, b, out)
+        elif precision == "float":
+            a = np.ascontiguousarray(a.reshape(-1, 3))
+            b = np.ascontiguousarray(b.reshape(-1, 3))
+            out = np.empty(a.shape, np.float32)
+            _abrdf.eval_float(self._p, a, b, out)
+        else:
+            raise ValueError("precision: 'float' or 'double', got %r" % (precision,))
+        return out.reshape(shape)
+
+
+def eval(model: str | BRDF, wi: npt.ArrayLike, wo: npt.ArrayLike,
+         precision: Precision = "float", **params: ParamValue) -> np.ndarray:
+    """f_r of `model` (a name, with its parameters as keywords, or a BRDF) for arrays of
+    direction pairs: BRDF(model, **params).eval(wi, wo, precision)."""
+    b = model if isinstance(model, BRDF) else BRDF(model, **params)
+    if isinstance(model, BRDF) and params:
+        raise TypeError("eval: parameters are given to BRDF(...), not with a BRDF")
+    return b.eval(wi, wo, precision)

@@ -1,0 +1,351 @@
+"""Nothing the user had is lost (tools/common/out_file.h): every program that writes a file
+writes it whole or not at all, never over one of its inputs, and says why when it cannot.
+
+- inputs as outputs: the same path, ./x, a symbolic link, a hard link, a derived name (the
+  preview of -o x.exr) are refused with exit 2 and one line; the input is unchanged;
+- a full disk, simulated without root: the file-size limit (RLIMIT_FSIZE, as `ulimit -f`) with
+  SIGXFSZ ignored, for every program that writes a file, and /dev/full for every command that
+  writes to standard output: exit 1, one line with the reason, the old file untouched, no
+  temporary file left;
+- a failed second output after a good first one (the render's EXR after its preview): both old
+  files untouched;
+- everything that can be refused is refused before the work (preview transform, formats,
+  directories), leaving old files untouched;
+- racing writers to one target end with one whole file from one of them.
+
+Run by CTest with ABRDF (the command), BIN (the build's programs), SCENES and SRC."""
+import os
+import resource
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import unittest
+
+ABRDF = os.environ["ABRDF"]
+BIN = os.environ["BIN"]
+SCENES = os.environ["SCENES"]
+SRC = os.environ["SRC"]
+SANITIZED = os.environ.get("ABRDF_SANITIZE") == "1"
+SPHERE = os.path.join(SCENES, "sphere.scene")
+SMALL = ["--width", "24", "--height", "16"]
+
+
+def limited(max_bytes):
+    """preexec_fn: files may not grow past max_bytes; SIGXFSZ ignored, so writes fail (EFBIG)
+    instead of killing the process (what `ulimit -f` with `trap '' XFSZ` does)."""
+    def pre():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (max_bytes, max_bytes))
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    return pre
+
+
+def run(*args, limit=None, stdout=None, timeout=600):
+    p = subprocess.run(list(args), stdout=stdout if stdout is not None else subprocess.PIPE,
+                       stderr=subprocess.PIPE, preexec_fn=limited(limit) if limit else None,
+                       timeout=timeout)
+    err = p.stderr.decode("utf-8", "replace")
+    assert "Sanitizer" not in err and "runtime error" not in err, err
+    return p.returncode, err
+
+
+def read_text(path):
+    with open(path) as f:
+        return f.read()
+
+
+def snapshot(directory):
+    """Every file of a directory with its bytes: what must not change."""
+    out = {}
+    for name in sorted(os.listdir(directory)):
+        path = os.path.join(directory, name)
+        if os.path.isfile(path) and not os.path.islink(path):
+            with open(path, "rb") as f:
+                out[name] = f.read()
+    return out
+
+
+class Base(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def put(self, name, data):
+        with open(self.path(name), "wb" if isinstance(data, bytes) else "w") as f:
+            f.write(data)
+        return self.path(name)
+
+    def one_line(self, err, *needles):
+        self.assertEqual(err.count("\n"), 1, err)
+        for n in needles:
+            self.assertIn(n, err)
+
+    def assert_untouched(self, before, *extra_ok):
+        after = snapshot(self.dir)
+        self.assertEqual(sorted(after), sorted(before) + sorted(extra_ok) if extra_ok else
+                         sorted(before), "files appeared or vanished (a temporary file left?)")
+        for name, data in before.items():
+            self.assertEqual(after[name], data, name + " changed")
+
+
+class InputsAreNeverOutputs(Base):
+    """Every way of naming an input as an output is refused (exit 2, one line)."""
+
+    def aliases(self, target):
+        """Names for the file `target` (in self.dir): itself, ./x, absolute, a symlink, a hard
+        link."""
+        os.symlink(os.path.basename(target), self.path("link"))
+        os.link(target, self.path("hard"))
+        rel = os.path.relpath(target)
+        return [target, os.path.join(os.path.dirname(target), ".", os.path.basename(target)),
+                os.path.abspath(target), rel if not rel.startswith("..") else target,
+                self.path("link"), self.path("hard")]
+
+    def refused(self, args, needle):
+        before = snapshot(self.dir)
+        rc, err = run(ABRDF, *args)
+        self.assertEqual(rc, 2, (args, err))
+        self.one_line(err, needle, "nothing was written")
+        self.assert_untouched(before)
+
+    def test_export_over_its_scene(self):
+        scene = self.put("s.scene", read_text(SPHERE))
+        self.refused(["export", "--cycles", scene, "-o", scene], "the scene")
+        for name in self.aliases(scene):
+            self.refused(["export", "--pov", scene, "-o", name], "the scene")
+
+    def test_export_over_a_materials_file(self):
+        mats = self.put("m.csv", read_text(os.path.join(SRC, "data", "materials.csv")))
+        self.refused(["export", "--pov", SPHERE, "--materials", mats, "-o", "./" +
+                      os.path.relpath(mats)], "--materials file")
+
+    def test_render_over_its_scene_or_through_its_preview(self):
+        scene = self.put("view.png", read_text(SPHERE))  # a scene that happens to end in .png
+        self.refused(["render", scene, "-o", self.path("view.exr")] + SMALL, "the preview")
+        scene2 = self.put("s.scene", read_text(SPHERE))
+        os.symlink("s.scene", self.path("alias.png"))
+        self.refused(["render", scene2, "-o", self.path("alias.exr")] + SMALL, "the preview")
+        self.refused(["render", scene2, "-o", self.path("s.scene"), "--no-preview"] + SMALL,
+                     "scene")
+
+    def test_render_over_its_materials_or_config(self):
+        mats = self.put("m.exr", "")  # refused before it is read
+        self.refused(["render", SPHERE, "--materials", mats, "-o", mats, "--no-preview"],
+                     "--materials file")
+        config = self.put("c.png", "")  # the preview of -o c.exr would replace the config
+        self.refused(["render", SPHERE, "--config", config, "-o", self.path("c.exr")],
+                     "--config file")
+
+    def test_compare_diff_over_an_image(self):
+        self.assertEqual(run(ABRDF, "render", SPHERE, "-o", self.path("a.exr"), *SMALL)[0], 0)
+        png = self.path("a.png")  # the preview: an 8-bit image compare reads
+        for name in self.aliases(png):
+            self.refused(["compare", png, self.path("a.exr"), "--diff", name], "same file")
+
+
+class FullDisk(Base):
+    """A file-size limit makes every write fail: the command says so (exit 1, one line with
+    the reason) and the file it would have replaced is untouched, with no temporary file
+    left beside it."""
+
+    def fails_whole(self, args, target, limit=64, rc_expected=1, named=None):
+        self.put(os.path.basename(target), b"the old content\n")
+        before = snapshot(self.dir)
+        rc, err = run(*args, limit=limit)
+        self.assertEqual(rc, rc_expected, (args, err))
+        # The last line (calibrate and bench print progress before it) names the file and
+        # the reason.
+        last = err.rstrip("\n").split("\n")[-1]
+        self.assertIn(named or os.path.basename(target), last, err)
+        self.assertIn("File too large", last, err)
+        self.assert_untouched(before)
+
+    def test_render(self):
+        # The preview is written first: it is the one that fails.
+        self.fails_whole([ABRDF, "render", SPHERE, "-o", self.path("x.exr")] + SMALL,
+                         self.path("x.exr"), named="x.png")
+        self.fails_whole([ABRDF, "render", SPHERE, "-o", self.path("x.exr"), "--no-preview"] +
+                         SMALL, self.path("x.exr"))
+
+    def test_compare_diff(self):
+        self.assertEqual(run(ABRDF, "render", SPHERE, "-o", self.path("a.exr"), "--no-preview",
+                             *SMALL)[0], 0)
+        self.fails_whole([ABRDF, "compare", self.path("a.exr"), self.path("a.exr"), "--diff",
+                          self.path("heat.png")], self.path("heat.png"), rc_expected=2)
+
+    def test_export_pov_and_cycles(self):
+        for fmt, name in (("--pov", "x.pov"), ("--cycles", "x.py")):
+            self.fails_whole([ABRDF, "export", fmt, SPHERE, "-o", self.path(name)],
+                             self.path(name), limit=1000)
+
+    def test_calibrate(self):
+        self.fails_whole([ABRDF, "calibrate", "--quick", "--reps", "1", "--pairs", "16", "-o",
+                          self.path("costs.txt")], self.path("costs.txt"))
+
+    def test_bench_plot(self):
+        self.fails_whole([ABRDF, "bench", "--quick", "--size", "8", "--reps", "1", "--plot",
+                          self.path("p.svg")], self.path("p.svg"), limit=1000)
+
+    def test_generators(self):
+        self.fails_whole([os.path.join(BIN, "fit_fkub"), self.path("fkub.c")],
+                         self.path("fkub.c"), limit=1000)
+        self.fails_whole([os.path.join(BIN, "gen_belcour_tables"), "--order", "2",
+                          self.path("belcour.c")], self.path("belcour.c"), limit=1000)
+        if not SANITIZED:  # minutes under the sanitizers (hair_tables_reproduce skips it too)
+            self.fails_whole([os.path.join(BIN, "gen_hair_tables"), self.path("hair.c")],
+                             self.path("hair.c"), limit=1000)
+        gen = os.path.join(SRC, "tools", "gen")
+        lib = os.path.join(SRC, "libabrdf", "src")
+        self.fails_whole([sys.executable, os.path.join(gen, "gen_pov_hair_tables.py"),
+                          os.path.join(lib, "hair_tables.c"), self.path("h.inc")],
+                         self.path("h.inc"), limit=1000)
+        self.fails_whole([sys.executable, os.path.join(gen, "gen_pov_belcour.py"),
+                          os.path.join(lib, "belcour_tables.h"),
+                          os.path.join(lib, "belcour_tables.c"), self.path("b.inc")],
+                         self.path("b.inc"), limit=1000)
+
+    def test_standard_output_on_dev_full(self):
+        """Every command that prints: a failed write to stdout is an error, with its reason."""
+        with open("/dev/full", "wb") as full:
+            for args in (["models"], ["models", "--json"],
+                         ["eval", "lambert", "--wi", "0,0,1", "--wo", "0,0,1"],
+                         ["slice", "lambert", "--csv"], ["advise", "gold"],
+                         ["advise", "--list", "--json"], ["tables", "2"],
+                         ["calibrate", "--quick", "--reps", "1", "--pairs", "16"]):
+                rc, err = run(ABRDF, *args, stdout=full)
+                self.assertEqual(rc, 1, (args, err))
+                self.assertIn("abrdf %s: standard output: No space left on device" % args[0], err)
+
+    def test_dev_full_as_the_output_file(self):
+        """A character device is written in place, every write checked."""
+        rc, err = run(ABRDF, "export", "--pov", SPHERE, "-o", "/dev/full")
+        self.assertEqual(rc, 1, err)
+        self.one_line(err, "/dev/full: write failed: No space left on device")
+
+
+class WholeOrNothing(Base):
+    def test_failed_second_output_leaves_both_old_files(self):
+        """The preview is written first and fits under the limit, the EXR does not: neither
+        old file is replaced (both are committed together)."""
+        rc, _ = run(ABRDF, "render", SPHERE, "-o", self.path("new.exr"), *SMALL)
+        self.assertEqual(rc, 0)
+        png, exr = os.path.getsize(self.path("new.png")), os.path.getsize(self.path("new.exr"))
+        self.assertLess(png, exr)
+        os.remove(self.path("new.png"))
+        os.remove(self.path("new.exr"))
+        self.put("x.exr", b"old exr")
+        self.put("x.png", b"old png")
+        before = snapshot(self.dir)
+        rc, err = run(ABRDF, "render", SPHERE, "-o", self.path("x.exr"), *SMALL,
+                      limit=(png + exr) // 2)
+        self.assertEqual(rc, 1, err)
+        self.one_line(err, "x.exr: write failed: File too large")
+        self.assert_untouched(before)
+
+    def test_refused_before_the_work(self):
+        self.put("x.exr", b"old exr")
+        self.put("x.png", b"old png")
+        before = snapshot(self.dir)
+        out = self.path("x.exr")
+        for args, needle in (
+                (["--display", "nosuch"], "no display 'nosuch'"),
+                (["--view", "nosuch"], "no view 'nosuch'"),
+                (["--config", self.path("none.ocio")], "none.ocio"),
+                (["-o", self.path("x.xyz")], "x.xyz"),
+                (["-o", self.path("x.png"), "--no-preview"], "scene-linear"),
+                (["-o", self.path("x.png")], "leaves no name for the .png preview"),
+                (["-o", self.path("x.sgi")], "cannot encode in memory")):
+            a = ["render", SPHERE, "-o", out] + SMALL + args
+            rc, err = run(ABRDF, *a)
+            self.assertEqual(rc, 2, (a, err))
+            self.one_line(err, needle)
+        self.assert_untouched(before)
+        rc, err = run(ABRDF, "render", SPHERE, "-o", self.path("no/such/dir/x.exr"), *SMALL)
+        self.assertEqual(rc, 1)
+        self.one_line(err, "No such file or directory")
+        rc, err = run(ABRDF, "compare", out, out, "--diff", self.path("h.xyz"))
+        self.assertEqual(rc, 2)
+        self.one_line(err, "h.xyz: not an 8-bit display format")
+
+    def test_failed_export_keeps_the_old_file(self):
+        """--native with a point light fails after the scene is read: the old file stays."""
+        scene = self.put("p.scene", read_text(SPHERE).replace(
+            "light directional direction=-1,1,1", "light point position=-3,3,3"))
+        self.assertIn("light point", read_text(scene))
+        self.put("x.pov", b"the old export\n")
+        before = snapshot(self.dir)
+        rc, err = run(ABRDF, "export", "--pov", scene, "--native", "-o", self.path("x.pov"))
+        self.assertEqual(rc, 1, err)
+        self.one_line(err, "--native")
+        self.assert_untouched(before)
+
+    def test_output_modes_follow_the_replaced_file(self):
+        self.put("x.pov", b"old")
+        os.chmod(self.path("x.pov"), 0o640)
+        self.assertEqual(run(ABRDF, "export", "--pov", SPHERE, "-o", self.path("x.pov"))[0], 0)
+        self.assertEqual(os.stat(self.path("x.pov")).st_mode & 0o777, 0o640)
+        os.symlink("x.pov", self.path("link.pov"))  # a link is written through, and stays
+        self.assertEqual(run(ABRDF, "export", "--pov", SPHERE, "-o", self.path("link.pov"))[0], 0)
+        self.assertTrue(os.path.islink(self.path("link.pov")))
+
+    def test_racing_writers_leave_one_whole_file(self):
+        """Renders of two sizes and exports of two models race to one target, repeatedly:
+        every run succeeds and the target is always one whole result."""
+        out = self.path("race.exr")
+        sizes = [("40", "30"), ("30", "40")]
+        refs = []
+        for w, h in sizes:
+            ref = self.path("ref%sx%s.exr" % (w, h))
+            self.assertEqual(run(ABRDF, "render", SPHERE, "-o", ref, "--width", w, "--height", h,
+                                 "--no-preview")[0], 0)
+            refs.append(ref)
+        for _ in range(2):
+            procs = [subprocess.Popen([ABRDF, "render", SPHERE, "-o", out, "--width", w,
+                                       "--height", h, "--threads", "1"],
+                                      stderr=subprocess.PIPE) for w, h in sizes * 2]
+            for p in procs:
+                _, err = p.communicate()
+                self.assertEqual(p.returncode, 0, err)
+            same = [run(ABRDF, "compare", ref, out, "--fail", "1e-30")[0] for ref in refs]
+            self.assertIn(0, same, "the raced file is none of the renders")
+        pov = self.path("race.pov")
+        texts = {}
+        for model in ("lambert", "blinn_phong"):
+            self.assertEqual(run(ABRDF, "export", "--pov", SPHERE, "--model", model, "-o",
+                                 self.path(model + ".pov"))[0], 0)
+            texts[model] = read_text(self.path(model + ".pov"))
+        for _ in range(3):
+            procs = [subprocess.Popen([ABRDF, "export", "--pov", SPHERE, "--model", m, "-o", pov])
+                     for m in ("lambert", "blinn_phong") * 2]
+            for p in procs:
+                self.assertEqual(p.wait(), 0)
+            self.assertIn(read_text(pov), texts.values())
+        self.assertEqual(sorted(f for f in os.listdir(self.dir) if f.startswith(".")), [])
+
+    def test_interrupted_render_leaves_no_temporary_file(self):
+        self.put("x.exr", b"old")
+        before = snapshot(self.dir)
+        p = subprocess.Popen([ABRDF, "render", os.path.join(SCENES, "robot.scene"), "-o",
+                              self.path("x.exr"), "--spp", "64", "--threads", "1"],
+                             stderr=subprocess.DEVNULL)
+        # The temporary files exist from before the render starts.
+        for _ in range(600):
+            if any(n.startswith(".x.") for n in os.listdir(self.dir)) or p.poll() is not None:
+                break
+            threading.Event().wait(0.05)
+        self.assertIsNone(p.poll(), "the render ended before it could be interrupted")
+        p.send_signal(signal.SIGTERM)
+        p.wait()
+        self.assertEqual(p.returncode, -signal.SIGTERM)
+        self.assert_untouched(before)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,117 @@
+"""hair_doc.py BIN SRC - docs/SPECIAL_HAIR.md quotes what its programs print now (BIN holds
+test_hair_marschner, test_hair_huang, test_invariants, measure_hair, gen_hair_tables): the
+fibre albedos, lobes and reciprocity, Huang's convergence, white furnace and R limit, the
+surface albedos, the continuity and stability figures, the table convergence. The costs are
+one-off timings, marked so on the page."""
+import os
+import re
+
+from doc_check import NUM, DocError, fail, guarded, main_args, parse_table, read, require_number, run
+
+bin_dir, src = main_args("BIN SRC", 2)
+DOC = "docs/SPECIAL_HAIR.md"
+os.environ["CK_FORK"] = "no"
+
+
+def prog(name, *args):
+    return run([os.path.join(bin_dir, name), *args])
+
+
+def grab(pattern, text, what):
+    m = re.search(pattern, text)
+    if not m:
+        raise DocError(f"{what}: no match for {pattern!r}")
+    return m
+
+
+def section(doc, start, end):
+    i = doc.index(start)
+    j = doc.index(end, i) if end else len(doc)
+    return doc[i:j]
+
+
+def triple(doc, text, label, values, what):
+    """The value cell of the row whose label starts with `label`: 'a / b / c ...'."""
+    m = grab(r"\| %s[^|]*\| (%s(?: / %s)*)" % (re.escape(label), NUM, NUM), text, f"{DOC}: row '{label}'")
+    quoted = m[1].split(" / ")
+    if len(quoted) != len(values):
+        fail(f"{DOC}: row '{label}' has {len(quoted)} figures, the program {len(values)}")
+    for q, v in zip(quoted, values):
+        require_number(DOC, doc, q, v, what)
+
+
+def surface(doc, text, model, grid):
+    for label, sets in (("surface albedo ∫f_r cos, defaults", []), ("surface albedo, melanin 0", ["--set", "melanin=0"])):
+        out = prog("measure_hair", model, "--grid", grid, "--evals", "1", *sets)
+        triple(doc, text, label, re.findall(r"albedo\(\s*\d+ deg\) = (\S+)", out), f"{model} {label}")
+
+
+def body():
+    doc = read(os.path.join(src, DOC))
+    flat = lambda t: re.sub(r"\s+", " ", t)
+    mar_text = section(doc, "## `marschner`", "## `huang`")
+    hu_text = section(doc, "## `huang`", "## Stability grid")
+    mar = prog("test_hair_marschner")
+    hu = prog("test_hair_huang")
+    inv = prog("test_invariants")
+
+    # Marschner.
+    furnace = [grab(r"theta_o=%2d: (\S+) \(N\)" % d, mar, "test_hair_marschner")[1] for d in (0, 45, 60, 80)]
+    triple(doc, mar_text, "fibre albedo ∫S dω_i", furnace, "marschner fibre albedo")
+    lobes = grab(r"by lobe: R (\S+), TT (\S+), TRT (\S+)", mar, "test_hair_marschner")
+    triple(doc, mar_text, "of which at θ_o = 0", lobes.groups(), "marschner lobes")
+    require_number(DOC, doc, grab(r"max relative error (%s) \(200 pairs\)" % NUM, mar_text, DOC)[1],
+                   grab(r"of S_M: max relative error (\S+)", mar, "test_hair_marschner")[1], "S_M reciprocity", sig=3)
+    surface(doc, mar_text, "marschner", "60,240")
+    for model, text in (("marschner", mar_text), ("huang", hu_text)):
+        q = grab(r"max relative asymmetry (%s) on the `test_invariants` grid|on the `test_invariants` grid: (%s)"
+                 % (NUM, NUM), text, f"{DOC}: {model}'s f_r asymmetry")
+        got = grab(r"reciprocity %s +NOT reciprocal \(max asymmetry (\S+)\)" % model, inv, "test_invariants")[1]
+        require_number(DOC, doc, q[1] or q[2], got, f"{model} f_r asymmetry", sig=3)
+
+    # Huang: convergence, R limit, white furnace, surface albedos, continuity.
+    conv = grab(r"S (\S+), Simpson x2 (\S+), VNDF grids x2 (\S+)", hu, "test_hair_huang")
+    conv2 = grab(r"Simpson x4 (\S+), Simpson x8 (\S+), VNDF grids x4 (\S+)", hu, "test_hair_huang")
+    ft = flat(hu_text)
+    for quoted, got in zip(grab(r"×1 / ×2 / ×4 / ×8: S = (%s) / (%s) / (%s) / (%s)" % ((NUM,) * 4), ft, DOC).groups(),
+                           (conv[1], conv[2], conv2[1], conv2[2])):
+        require_number(DOC, doc, quoted, got, "Simpson refinement", sig=6)
+    for quoted, got in zip(grab(r"\(24, 12\): S = (%s) / (%s) / (%s)" % ((NUM,) * 3), ft, DOC).groups(),
+                           (conv[1], conv[3], conv2[3])):
+        require_number(DOC, doc, quoted, got, "VNDF grids", sig=6)
+    r = grab(r"alpha 0.05: (\S+) \(90 x 180\), (\S+) \(180 x 360\), Fresnel h-average (\S+)", hu, "test_hair_huang")
+    q = grab(r"(%s) \(90 × 180 grid\) / (%s) \(180 × 360\), against its smooth limit, the Fresnel h-average (%s)"
+             % (NUM, NUM, NUM), hu_text, DOC)
+    for quoted, got in zip(q.groups(), r.groups()):
+        require_number(DOC, doc, quoted, got, "R lobe of a nearly smooth fibre")
+    lines = hu_text.splitlines()
+    _, rows, _ = parse_table(lines, next(i for i, l in enumerate(lines) if l.startswith("| b | θ_view")))
+    for b, view, e, t, total, comp in rows:
+        key = "b=%.2f theta_o=%s" % (float(b), view.rstrip("°"))
+        if e:
+            m = grab(r"no compensation, %s: R\+TT\+TRT (\S+), TRRT\+ (\S+), total (\S+)" % key, hu, key)
+            for quoted, got in zip((e, t, total), m.groups()):
+                require_number(DOC, doc, quoted, got, f"uncompensated white furnace {key}")
+        else:
+            require_number(DOC, doc, total, grab(r"no compensation, %s: total (\S+)" % key, hu, key)[1],
+                           f"uncompensated white furnace {key}")
+        require_number(DOC, doc, comp, grab(r"compensated, %s: total (\S+)" % key, hu, key)[1],
+                       f"compensated white furnace {key}")
+    surface(doc, hu_text, "huang", "16,64")
+    cop = grab(r"largest relative change (\S+)", hu, "test_hair_huang")[1]
+    require_number(DOC, doc, grab(r"The largest relative change is (%s)" % NUM, ft, DOC)[1], cop, "coplanar continuity", sig=3)
+    require_number(DOC, doc, grab(r"The example now gives f_r = (%s)" % NUM, ft, DOC)[1],
+                   grab(r"phi 180/180: f (\S+)", hu, "test_hair_huang")[1], "coplanar example")
+    ecomp = grab(r"largest change against 128 × 128 is (%s)" % NUM, ft, DOC)[1]
+    require_number(DOC, doc, ecomp, grab(r"nodes per dimension: (\S+)", prog("gen_hair_tables", "--convergence"),
+                                         "gen_hair_tables --convergence")[1], "energy table convergence", sig=3)
+
+    # Stability counts of both suites.
+    q = grab(r"Marschner ([\d ]+) values and Huang ([\d ]+) values", flat(doc), DOC)
+    for quoted, out, name in ((q[1], mar, "marschner"), (q[2], hu, "huang")):
+        got = grab(r"%s stability grid: (\d+) values" % name, out, name)[1]
+        if int(quoted.replace(" ", "")) != int(got):
+            fail(f"{DOC}: {name} stability grid: the page says {quoted}, the suite prints {got}")
+
+
+guarded("hair_doc", body)

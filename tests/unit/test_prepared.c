@@ -1,0 +1,174 @@
+/* test_prepared.c - the prepared-evaluation contract (abrdf.h, "prepared evaluation"): a
+ * frozen plain-data object that owns a copy of its parameters, refuses what abrdf_eval
+ * refuses, and a block that was never prepared evaluates to 0 with ABRDF_E_MODEL. That it
+ * returns the unprepared results bit for bit is test_invariants' prepared_equals_unprepared;
+ * the stability grid runs through it (test_stability). Also: the expensive reference models
+ * still give the values their code gave before it was made faster
+ * (tests/data/special_reference.txt, tools/gen/gen_special_reference.c). */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "abrdf.h"
+#include "test_util.h"
+
+START_TEST(layout_is_frozen)
+{
+    ck_assert_uint_eq(sizeof(abrdf_prepared), ABRDF_PREPARED_SIZE);
+    ck_assert_int_eq(ABRDF_PREPARED_SIZE, 2048);
+}
+END_TEST
+
+START_TEST(owns_a_copy_of_its_parameters)
+{
+    abrdf_params p;
+    abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
+    p.r = 0.3;
+    abrdf_prepared a;
+    ck_assert_int_eq(abrdf_prepare(ABRDF_DISNEY_SPECULAR, &p, &a), ABRDF_OK);
+    const double wi[3] = {0.3, 0.0, 1.0}, wo[3] = {-0.2, 0.1, 1.0};
+    double f0[3], f1[3], f2[3];
+    ck_assert_int_eq(abrdf_eval(ABRDF_DISNEY_SPECULAR, &p, NULL, wi, wo, f0), ABRDF_OK);
+    p.r = 0.9; /* the caller's block changes after prepare: the object keeps r = 0.3 */
+    memset(&p.ks, 0, sizeof p.ks);
+    ck_assert_int_eq(abrdf_eval_prepared(&a, NULL, wi, wo, f1), ABRDF_OK);
+    ck_assert(memcmp(f0, f1, sizeof f0) == 0);
+    ck_assert(f1[0] > 0.0);
+    ck_assert_double_eq(abrdf_prepared_params(&a)->r, 0.3);
+    ck_assert_uint_eq(abrdf_prepared_params(&a)->struct_size, sizeof(abrdf_params));
+    /* a byte copy in other memory, the original overwritten: still the same object */
+    unsigned char *heap = malloc(sizeof a);
+    ck_assert_ptr_nonnull(heap);
+    memcpy(heap, &a, sizeof a);
+    memset(&a, 0xff, sizeof a);
+    abrdf_prepared b;
+    memcpy(&b, heap, sizeof b);
+    free(heap);
+    ck_assert_int_eq(abrdf_prepared_model(&b), ABRDF_DISNEY_SPECULAR);
+    ck_assert_int_eq(abrdf_eval_prepared(&b, NULL, wi, wo, f2), ABRDF_OK);
+    ck_assert(memcmp(f0, f2, sizeof f0) == 0);
+}
+END_TEST
+
+START_TEST(not_prepared_evaluates_to_zero)
+{
+    const double wi[3] = {0, 0, 1}, wo[3] = {0, 0, 1};
+    float x[1] = {0}, y[1] = {0}, z[1] = {1}, fr[1] = {NAN}, fg[1] = {NAN}, fb[1] = {NAN};
+    abrdf_batch b = {1, x, y, z, x, y, z, fr, fg, fb};
+    abrdf_prepared zero, junk;
+    memset(&zero, 0, sizeof zero);
+    memset(&junk, 0x5a, sizeof junk);
+    const abrdf_prepared *blocks[2] = {&zero, &junk};
+    for (int k = 0; k < 2; ++k) {
+        double f[3] = {NAN, NAN, NAN};
+        ck_assert_int_eq(abrdf_eval_prepared(blocks[k], NULL, wi, wo, f), ABRDF_E_MODEL);
+        ck_assert(f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0);
+        ck_assert_int_eq(abrdf_eval_prepared_batch(blocks[k], &b), ABRDF_E_MODEL);
+        ck_assert(fr[0] == 0.0f && fg[0] == 0.0f && fb[0] == 0.0f);
+        ck_assert_int_eq(abrdf_prepared_model(blocks[k]), ABRDF_MODEL_NONE);
+        ck_assert_ptr_null(abrdf_prepared_params(blocks[k]));
+    }
+    /* NULLs and an unknown model */
+    abrdf_params p;
+    abrdf_params_init(ABRDF_LAMBERT, &p);
+    abrdf_prepared a;
+    double f[3];
+    ck_assert_int_eq(abrdf_prepare(ABRDF_LAMBERT, NULL, &a), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_prepared_model(&a), ABRDF_MODEL_NONE);
+    ck_assert_int_eq(abrdf_prepare(ABRDF_LAMBERT, &p, NULL), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_prepare(ABRDF_MODEL_COUNT, &p, &a), ABRDF_E_MODEL);
+    ck_assert_int_eq(abrdf_prepare(ABRDF_MODEL_NONE, &p, &a), ABRDF_E_MODEL);
+    ck_assert_int_eq(abrdf_eval_prepared(&a, NULL, wi, wo, f), ABRDF_E_MODEL);
+    ck_assert_int_eq(abrdf_prepared_model(NULL), ABRDF_MODEL_NONE);
+    ck_assert_int_eq(abrdf_eval_prepared(NULL, NULL, wi, wo, f), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_eval_prepared_batch(NULL, &b), ABRDF_E_NULL);
+    p.struct_size = 0; /* never initialised */
+    ck_assert_int_eq(abrdf_prepare(ABRDF_LAMBERT, &p, &a), ABRDF_E_SIZE);
+    ck_assert_int_eq(abrdf_prepared_model(&a), ABRDF_MODEL_NONE);
+}
+END_TEST
+
+/* ---- the expensive references keep their values ---------------------------------------- */
+
+START_TEST(special_models_keep_their_values)
+{
+    FILE *in = fopen(ABRDF_TEST_SPECIAL_REFERENCE, "r");
+    ck_assert_msg(in != NULL, "cannot read %s", ABRDF_TEST_SPECIAL_REFERENCE);
+    char line[1024];
+    long n = 0, bad = 0;
+    double worst = 0.0;
+    while (fgets(line, sizeof line, in)) {
+        if (line[0] == '#') continue;
+        char name[64];
+        int set, k;
+        double wi[3], wo[3], want[3], got[3];
+        ck_assert_int_eq(sscanf(line, "%63s %d %d %lf %lf %lf %lf %lf %lf %lf %lf %lf", name, &set,
+                                &k, &wi[0], &wi[1], &wi[2], &wo[0], &wo[1], &wo[2], &want[0],
+                                &want[1], &want[2]),
+                         12);
+        abrdf_model m;
+        ck_assert_int_eq(abrdf_model_find(name, &m), ABRDF_OK);
+        /* the file names the parameter sets in its header; re-read them from there */
+        static abrdf_params sets[64];
+        static int have[64];
+        ck_assert(set >= 0 && set < 64);
+        if (!have[set]) {
+            FILE *h = fopen(ABRDF_TEST_SPECIAL_REFERENCE, "r");
+            char hl[1024];
+            abrdf_params_init(m, &sets[set]);
+            while (fgets(hl, sizeof hl, h) && hl[0] == '#') {
+                int s;
+                char rest[900];
+                if (sscanf(hl, "#   %d %*[^:]: %899[^\n]", &s, rest) != 2 || s != set) continue;
+                for (char *tok = strtok(rest, " "); tok; tok = strtok(NULL, " ")) {
+                    char pn[64];
+                    double v;
+                    int id;
+                    if (!strcmp(tok, "defaults")) continue;
+                    ck_assert_int_eq(sscanf(tok, "%63[^=]=%lf", pn, &v), 2);
+                    ck_assert_int_eq(abrdf_param_find(pn, &id), ABRDF_OK);
+                    double vv[3] = {v, v, v};
+                    int cnt = abrdf_param_get(id)->kind == ABRDF_PARAM_RGB ? 3 : 1;
+                    ck_assert_int_eq(abrdf_param_set(&sets[set], id, vv, cnt), ABRDF_OK);
+                }
+            }
+            fclose(h);
+            have[set] = 1;
+        }
+        abrdf_prepared prep;
+        ck_assert_int_eq(abrdf_prepare(m, &sets[set], &prep), ABRDF_OK);
+        ck_assert_int_eq(abrdf_eval_prepared(&prep, NULL, wi, wo, got), ABRDF_OK);
+        for (int c = 0; c < 3; ++c) {
+            double d = fabs(got[c] - want[c]) / fmax(fabs(want[c]), 1e-300);
+            if (got[c] == want[c]) d = 0.0;
+            worst = fmax(worst, d);
+            if (d > 1e-10 && bad++ < 8)
+                printf("CHANGED %s set %d pair %d channel %d: %.17g, was %.17g\n", name, set, k, c,
+                       got[c], want[c]);
+        }
+        ++n;
+    }
+    fclose(in);
+    printf("special references: %ld pairs, largest relative change %.3g (tolerance 1e-10)\n", n,
+           worst);
+    ck_assert_int_eq(n, 480);
+    ck_assert_msg(bad == 0, "%ld values moved by more than 1e-10 relative", bad);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+    Suite *s = suite_create("prepared");
+    TCase *tc = tcase_create("core");
+    tcase_set_timeout(tc, 120);
+    tcase_add_test(tc, layout_is_frozen);
+    tcase_add_test(tc, owns_a_copy_of_its_parameters);
+    tcase_add_test(tc, not_prepared_evaluates_to_zero);
+    tcase_add_test(tc, special_models_keep_their_values);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+int main(void) { return tu_run(suite()); }

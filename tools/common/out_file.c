@@ -1,0 +1,393 @@
+/* out_file.c - outputs written whole or not at all (out_file.h). */
+#define _GNU_SOURCE /* fopencookie */
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "out_file.h"
+#include "path_msg.h"
+
+/* ---- temporary files removed on SIGINT, SIGTERM, SIGHUP --------------------------------- */
+
+#define LIVE_MAX 32
+static char *volatile live[LIVE_MAX]; /* temporary files of this process, not yet renamed */
+
+static void on_signal(int sig)
+{
+    for (int i = 0; i < LIVE_MAX; ++i)
+        if (live[i]) unlink(live[i]); /* async-signal-safe */
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+static void live_add(char *path)
+{
+    static int installed;
+    if (!installed) {
+        installed = 1;
+        const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+        for (int i = 0; i < 3; ++i) {
+            struct sigaction sa, old;
+            memset(&sa, 0, sizeof sa);
+            sa.sa_handler = on_signal;
+            sigemptyset(&sa.sa_mask);
+            /* A signal the caller ignores (nohup) stays ignored. */
+            if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_DFL)
+                sigaction(sigs[i], &sa, NULL);
+        }
+        signal(SIGXFSZ, SIG_IGN); /* write(2) then fails with EFBIG, which is reported */
+    }
+    for (int i = 0; i < LIVE_MAX; ++i)
+        if (!live[i]) {
+            live[i] = path;
+            return;
+        }
+}
+
+static void live_remove(const char *path)
+{
+    for (int i = 0; i < LIVE_MAX; ++i)
+        if (live[i] == path) live[i] = NULL;
+}
+
+/* ---- the checked stream ------------------------------------------------------------------ */
+
+/* Every buffer the stream flushes reaches write(2) here; the first failure is kept. */
+static ssize_t checked_write(void *cookie, const char *buf, size_t size)
+{
+    out_file *o = cookie;
+    size_t done = 0;
+    while (done < size) {
+        ssize_t w = write(o->fd, buf + done, size - done);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0) {
+            if (!o->error) o->error = w < 0 ? errno : EIO;
+            return -1;
+        }
+        done += (size_t)w;
+    }
+    return (ssize_t)size;
+}
+
+static int fail(out_file *o, char *err, size_t err_size, const char *what, int code)
+{
+    path_msg(err, err_size, o->target ? o->target : "", ": %s%s%s", what, *what ? ": " : "",
+             strerror(code));
+    return -1;
+}
+
+/* ---- names ------------------------------------------------------------------------------- */
+
+static char *dup_str(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+/* A new name beside path: DIR/.STEM.XXXXXX.EXT (OpenImageIO picks a format by its extension),
+ * the stem shortened so that the name stays within NAME_MAX. */
+static char *temp_name(const char *path, unsigned long long salt)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    size_t dir_len = (size_t)(base - path);
+    const char *dot = strrchr(base, '.');
+    if (!dot || dot == base || strlen(dot) > 16) dot = base + strlen(base);
+    size_t stem = (size_t)(dot - base), ext = strlen(dot);
+    const size_t name_max = 255, fixed = 1 + 1 + 6; /* '.', '.', XXXXXX */
+    if (stem + ext + fixed > name_max) stem = name_max - ext - fixed;
+    while (stem > 0 && ((unsigned char)base[stem] & 0xc0) == 0x80) --stem; /* whole UTF-8 */
+    char *t = malloc(dir_len + fixed + stem + ext + 1);
+    if (!t) return NULL;
+    static const char alphabet[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+    char rnd[7];
+    for (int i = 0; i < 6; ++i) {
+        salt ^= salt >> 33;
+        salt *= 0xff51afd7ed558ccdull;
+        salt ^= salt >> 33;
+        rnd[i] = alphabet[salt % 62];
+    }
+    rnd[6] = '\0';
+    memcpy(t, path, dir_len);
+    sprintf(t + dir_len, ".%.*s.%s%s", (int)stem, base, rnd, dot);
+    return t;
+}
+
+/* ---- the life of an output ---------------------------------------------------------------- */
+
+static void empty(out_file *o)
+{
+    memset(o, 0, sizeof *o);
+    o->fd = -1;
+}
+
+static void remove_temp(out_file *o)
+{
+    if (!o->temp) return;
+    unlink(o->temp);
+    live_remove(o->temp);
+    free(o->temp);
+    o->temp = NULL;
+}
+
+void out_file_discard(out_file *o)
+{
+    if (!o) return;
+    if (o->f) fclose(o->f);
+    if (o->fd >= 0) close(o->fd);
+    remove_temp(o);
+    free(o->target);
+    free(o->path);
+    empty(o);
+}
+
+int out_file_open(out_file *o, const char *target, char *err, size_t err_size)
+{
+    empty(o);
+    if (!target || !*target) {
+        snprintf(err, err_size, "empty output file name");
+        return -1;
+    }
+    if (!(o->target = dup_str(target))) return fail(o, err, err_size, "", ENOMEM), -1;
+    struct stat st;
+    int exists = 0;
+    /* A link is followed to the file it names; a dangling one is replaced. */
+    char *real = NULL;
+    if (lstat(target, &st) == 0 && S_ISLNK(st.st_mode)) real = realpath(target, NULL);
+    o->path = real ? real : dup_str(target);
+    if (!o->path) goto nomem;
+    if (stat(o->path, &st) == 0) {
+        exists = 1;
+        if (S_ISDIR(st.st_mode)) {
+            path_msg(err, err_size, target, ": is a directory, not a file");
+            goto bad;
+        }
+        if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) { /* written in place */
+            do o->fd = open(o->path, O_WRONLY | O_CLOEXEC);
+            while (o->fd < 0 && errno == EINTR);
+            if (o->fd < 0) {
+                fail(o, err, err_size, "cannot open", errno);
+                goto bad;
+            }
+            goto stream;
+        }
+        if (!S_ISREG(st.st_mode)) {
+            path_msg(err, err_size, target,
+                     ": is not a regular file, a character device or a FIFO");
+            goto bad;
+        }
+    }
+    struct timespec now;
+    clock_gettime(CLOCK_REALTIME, &now);
+    unsigned long long salt = (unsigned long long)now.tv_nsec ^
+                              ((unsigned long long)now.tv_sec << 20) ^
+                              ((unsigned long long)getpid() << 40) ^ (uintptr_t)o;
+    for (int attempt = 0; attempt < 100 && o->fd < 0; ++attempt) {
+        free(o->temp);
+        if (!(o->temp = temp_name(o->path, salt + 0x9e3779b97f4a7c15ull * (unsigned)attempt)))
+            goto nomem;
+        o->fd = open(o->temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (o->fd < 0 && errno != EEXIST) break;
+    }
+    if (o->fd < 0) {
+        int code = errno;
+        free(o->temp);
+        o->temp = NULL;
+        fail(o, err, err_size, "cannot create a file beside it", code);
+        goto bad;
+    }
+    live_add(o->temp);
+    if (exists) fchmod(o->fd, st.st_mode & 07777); /* the replaced file's permissions */
+stream:;
+    cookie_io_functions_t io = {NULL, checked_write, NULL, NULL};
+    if (!(o->f = fopencookie(o, "w", io))) goto nomem;
+    setvbuf(o->f, NULL, _IOFBF, 1 << 16);
+    return 0;
+nomem:
+    fail(o, err, err_size, "", ENOMEM);
+bad:
+    out_file_discard(o);
+    return -1;
+}
+
+void out_file_write(out_file *o, const void *data, size_t len)
+{
+    if (o->f && len) fwrite(data, 1, len, o->f);
+}
+
+int out_file_close(out_file *o, char *err, size_t err_size)
+{
+    if (!o->f) return fail(o, err, err_size, "", EBADF);
+    int flushed = fflush(o->f) == 0 && !ferror(o->f);
+    fclose(o->f); /* the cookie has no close: the descriptor stays open */
+    o->f = NULL;
+    if (o->error || !flushed)
+        return fail(o, err, err_size, "write failed", o->error ? o->error : EIO);
+    /* In place, a device or a pipe may not sync (EINVAL); a file must. */
+    if (fsync(o->fd) != 0 && (o->temp || (errno != EINVAL && errno != EROFS && errno != ENOTSUP)))
+        return fail(o, err, err_size, "write failed (sync)", errno);
+    int fd = o->fd;
+    o->fd = -1;
+    if (close(fd) != 0 && errno != EINTR)
+        return fail(o, err, err_size, "write failed (close)", errno);
+    o->closed = 1;
+    if (!o->temp) o->committed = 1; /* written in place */
+    return 0;
+}
+
+static void sync_dir(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    char *dir = slash ? malloc((size_t)(slash - path) + 2) : NULL;
+    if (slash && !dir) return;
+    if (dir) {
+        size_t n = slash == path ? 1 : (size_t)(slash - path);
+        memcpy(dir, path, n);
+        dir[n] = '\0';
+    }
+    int fd = open(dir ? dir : ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd >= 0) {
+        fsync(fd); /* durability of the rename; not every file system supports it */
+        close(fd);
+    }
+    free(dir);
+}
+
+int out_file_commit(out_file *const *files, int n, char *err, size_t err_size)
+{
+    for (int i = 0; i < n; ++i)
+        if (!files[i]->closed) {
+            fail(files[i], err, err_size, "not complete", EINVAL);
+            for (int j = 0; j < n; ++j) remove_temp(files[j]);
+            return -1;
+        }
+    for (int i = 0; i < n; ++i) {
+        out_file *o = files[i];
+        if (o->committed) continue;
+        if (rename(o->temp, o->path) != 0) {
+            fail(o, err, err_size, "cannot replace it", errno);
+            for (int j = i; j < n; ++j) remove_temp(files[j]);
+            return -1;
+        }
+        live_remove(o->temp);
+        free(o->temp);
+        o->temp = NULL;
+        o->committed = 1;
+        sync_dir(o->path);
+    }
+    return 0;
+}
+
+/* ---- inputs are never outputs ------------------------------------------------------------- */
+
+typedef struct file_key {
+    dev_t dev;
+    ino_t ino;
+    int exists;       /* 1: the file; 0: (dev, ino) are its directory's and name its name */
+    const char *name; /* last component, for a file that does not exist yet */
+} file_key;
+
+static int key_of(const char *path, file_key *k)
+{
+    struct stat st;
+    if (stat(path, &st) == 0) {
+        k->dev = st.st_dev, k->ino = st.st_ino, k->exists = 1, k->name = NULL;
+        return 0;
+    }
+    if (errno != ENOENT) return -1;
+    const char *slash = strrchr(path, '/');
+    k->name = slash ? slash + 1 : path;
+    char *dir = NULL;
+    if (slash) {
+        size_t n = slash == path ? 1 : (size_t)(slash - path);
+        if (!(dir = malloc(n + 1))) return -1;
+        memcpy(dir, path, n);
+        dir[n] = '\0';
+    }
+    int rc = stat(dir ? dir : ".", &st);
+    free(dir);
+    if (rc != 0 || !*k->name) return -1;
+    k->dev = st.st_dev, k->ino = st.st_ino, k->exists = 0;
+    return 0;
+}
+
+static int same_key(const file_key *a, const file_key *b)
+{
+    return a->exists == b->exists && a->dev == b->dev && a->ino == b->ino &&
+           (a->exists || !strcmp(a->name, b->name));
+}
+
+static void refuse(char *err, size_t err_size, const char *role_a, const char *a,
+                   const char *role_b, const char *b)
+{
+    char sa[320], sb[320];
+    snprintf(err, err_size, "the %s %s is the same file as the %s %s; nothing was written", role_a,
+             path_short(sa, sizeof sa, a, sizeof sa - 1), role_b,
+             path_short(sb, sizeof sb, b, sizeof sb - 1));
+}
+
+int out_files_distinct(const char *const *outputs, const char *const *output_roles, int nout,
+                       const char *const *inputs, const char *const *input_roles, int nin,
+                       char *err, size_t err_size)
+{
+    for (int i = 0; i < nout; ++i) {
+        file_key ko, k;
+        if (!outputs[i] || key_of(outputs[i], &ko)) continue;
+        for (int j = 0; j < nin; ++j)
+            if (inputs[j] && !key_of(inputs[j], &k) && same_key(&ko, &k)) {
+                refuse(err, err_size, output_roles[i], outputs[i], input_roles[j], inputs[j]);
+                return -1;
+            }
+        for (int j = 0; j < i; ++j)
+            if (outputs[j] && !key_of(outputs[j], &k) && same_key(&ko, &k)) {
+                refuse(err, err_size, output_roles[i], outputs[i], output_roles[j], outputs[j]);
+                return -1;
+            }
+    }
+    return 0;
+}
+
+/* ---- a program's single output ------------------------------------------------------------- */
+
+FILE *out_file_or_stdout(out_file *o, const char *path, const char *program)
+{
+    char err[1024];
+    *o = (out_file)OUT_FILE_INIT;
+    if (!path) return stdout;
+    if (out_file_open(o, path, err, sizeof err) == 0) return o->f;
+    fprintf(stderr, "%s: %s\n", program, err);
+    return NULL;
+}
+
+int out_file_finish(out_file *o, const char *program)
+{
+    char err[1024];
+    if (!o->target) return out_stdout_check(program);
+    out_file *const files[1] = {o};
+    int rc = out_file_close(o, err, sizeof err) || out_file_commit(files, 1, err, sizeof err);
+    out_file_discard(o);
+    if (rc) fprintf(stderr, "%s: %s\n", program, err);
+    return rc;
+}
+
+/* ---- standard output ---------------------------------------------------------------------- */
+
+int out_stdout_check(const char *program)
+{
+    errno = 0;
+    int flushed = fflush(stdout) == 0;
+    int code = errno;
+    if (flushed && !ferror(stdout)) return 0;
+    fprintf(stderr, "%s: standard output: %s\n", program,
+            code ? strerror(code) : "a write failed (output incomplete)");
+    return 1;
+}
