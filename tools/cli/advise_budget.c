@@ -279,8 +279,8 @@ int advise_budget(const abrdf_material *m, const mat_entry *e, double max_nmse,
         fprintf(stderr, "abrdf advise: %s\n", err);
         return 1;
     }
-    /* the front needs every candidate at its best fit: a budget of 1 refits every one with
-     * every metric (abrdf_select_budget tries the other metrics within a factor of it) */
+    /* the front lists every candidate at its best fit (abrdf_select_budget refits every one
+     * with every metric); a budget of 1 lets every candidate pass */
     if (budget_run(m, pareto ? 1.0 : max_nmse, costs, NULL, &r, err, sizeof err)) {
         out_file_discard(&plot_out);
         return cli_fail(CMD, "%s", err);
