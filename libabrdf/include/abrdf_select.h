@@ -34,6 +34,9 @@
  *   abrdf_select_rules_get      the flowchart's thresholds and model choices (one table)
  *   abrdf_select_table6         one row of the paper's Table 6 (f_2E's NMSE vs the GGX lobe)
  *   abrdf_select                the flowchart: models, parameters, predicted error, cost, trace
+ *
+ * The selection's error-budget mode (fitted candidates, predicted image error, the cheapest
+ * within a Table-8 class) is declared in abrdf_fit.h, which includes this header.
  */
 #ifndef ABRDF_SELECT_H
 #define ABRDF_SELECT_H
@@ -195,6 +198,9 @@ typedef enum abrdf_step_kind {
     ABRDF_STEP_ANISOTROPY, /* "anisotropy"  anisotropy against its threshold */
     ABRDF_STEP_EXPONENT,   /* "exponent"    the exponent n given to f_2e */
     ABRDF_STEP_SPECIAL,    /* "special"     the special-surface model */
+    ABRDF_STEP_REFERENCE,  /* "reference"   budget mode: the reference (the photoreal choice) */
+    ABRDF_STEP_FIT,        /* "fit"         budget mode: one fitted candidate and its error */
+    ABRDF_STEP_BUDGET,     /* "budget"      budget mode: the winner and why */
     ABRDF_STEP_KIND_COUNT  /* kinds in this header; grows */
 } abrdf_step_kind;
 
@@ -212,6 +218,9 @@ typedef struct abrdf_select_step {
     int passed;           /* 1 if the comparison held (or the step chose something) */
     const char *text;     /* one human-readable line with the deciding numbers; copy it
                                 to keep it */
+    /* since 0.3.0 (budget mode, abrdf_fit.h; otherwise ABRDF_MODEL_NONE and NULL): */
+    abrdf_model diffuse;        /* the diffuse lobe paired with `model` */
+    const abrdf_params *params; /* the fitted parameter block of the pair; copy it to keep it */
 } abrdf_select_step;
 
 /* Called once per decision, in order; `user` is abrdf_select's trace_user. */
@@ -229,9 +238,12 @@ typedef struct abrdf_selection {
     abrdf_model specular;  /* the specular lobe, or the whole special-surface model */
     double n;              /* Blinn-Phong exponent used (given or derived), [0, 1e6] */
     double r;              /* perceptual roughness used (given or derived), [0, 1] */
-    double err_rel_pct;    /* predicted max relative error vs Blinn-Phong, %; < 0 = n/a */
-    double err_abs;        /* predicted max absolute error vs Blinn-Phong; < 0 = n/a */
-    double err_nmse;       /* smooth branch: the paper's Table 6 NMSE of f_2E; < 0 = n/a */
+    double err_rel_pct;    /* predicted max relative error vs Blinn-Phong (budget mode: vs
+                              the reference, abrdf_fit_result.max_rel_pct), %; < 0 = n/a */
+    double err_abs;        /* predicted max absolute error vs Blinn-Phong (budget mode: vs
+                              the reference, abrdf_fit_result.max_abs); < 0 = n/a */
+    double err_nmse;       /* smooth branch: the paper's Table 6 NMSE of f_2E (budget mode:
+                              the predicted image NMSE); < 0 = n/a */
     double cost_diffuse;   /* cost of the diffuse model in cost_unit; 0 if none; < 0 = unknown */
     double cost_specular;  /* cost of the specular model in cost_unit; < 0 = unknown */
     double cost_total;     /* their sum; < 0 = unknown */

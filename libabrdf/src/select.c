@@ -111,8 +111,8 @@ static const char *const surface_names[ABRDF_SURFACE_COUNT] = {
     "layered_plastic", "layered_plate", "layered_metal"};
 static const char *const goal_names[ABRDF_GOAL_COUNT] = {"performance", "photoreal"};
 static const char *const step_names[ABRDF_STEP_KIND_COUNT] = {
-    "input",   "goal",      "diffuse",    "candidate", "cheapest", "fallback",
-    "surface", "roughness", "anisotropy", "exponent",  "special"};
+    "input",     "goal",       "diffuse",  "candidate", "cheapest",  "fallback", "surface",
+    "roughness", "anisotropy", "exponent", "special",   "reference", "fit",      "budget"};
 
 const char *abrdf_surface_name(abrdf_surface s)
 {
@@ -281,7 +281,8 @@ typedef struct walk {
 static abrdf_select_step step(abrdf_step_kind kind, abrdf_model model, double value,
                               double threshold, int passed)
 {
-    abrdf_select_step s = {kind, model, value, threshold, -1.0, -1.0, -1.0, passed, NULL};
+    abrdf_select_step s = {kind, model,  value, threshold,        -1.0, -1.0,
+                           -1.0, passed, NULL,  ABRDF_MODEL_NONE, NULL};
     return s;
 }
 

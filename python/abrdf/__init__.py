@@ -20,6 +20,10 @@ Functions:
                                  double scalar reference with precision="double")
     materials(), material(name)  the material table (data/materials.csv, shipped here)
     select(material, goal=...)   the paper's flowchart, with its trace
+    select(material, budget=...) the budget mode: the cheapest candidate fitted to the
+                                 photoreal choice within a Table-8 image-error class
+    fit(reference, candidate)    one model's parameters fitted to another's, with the errors
+                                 and the predicted image NMSE (abrdf_fit)
     surfaces(), goals()          the flowchart's surface classes and goals
     compare(reference, test)     NMSE (the paper's), PSNR, Table-8 class, of arrays or files
     read_image(path)             a linear float RGB image (OpenImageIO)
@@ -34,8 +38,9 @@ from __future__ import annotations
 from ._abrdf import MAX_LAYERS, Error, Params
 from ._brdf import BRDF, Model, Parameter, eval, model, models
 from ._compare import Comparison, compare, read_image
-from ._select import (Layer, Material, Selection, Step, goals, material, materials, select,
-                      surfaces)
+from ._fit import Fit, fit
+from ._select import (Layer, Material, Selection, Step, budget_nmse, goals, material, materials,
+                      select, surfaces)
 
 __version__: str = "0.2.0"
 
@@ -45,6 +50,7 @@ __all__ = [
     "BRDF",
     "Comparison",
     "Error",
+    "Fit",
     "Layer",
     "MAX_LAYERS",
     "Material",
@@ -53,7 +59,9 @@ __all__ = [
     "Params",
     "Selection",
     "Step",
+    "budget_nmse",
     "compare",
+    "fit",
     "goals",
     "material",
     "materials",

@@ -15,6 +15,7 @@ from ._brdf import BRDF
 RGB = tuple[float, float, float]
 PathLike = Union[str, "os.PathLike[str]"]
 Goal = Literal["photoreal", "performance"]
+Budget = Union[Literal["none", "slight", "noticeable"], float]
 
 
 @dataclass(frozen=True)
@@ -69,7 +70,9 @@ class Step:
     """One decision of the flowchart (abrdf_select_step): its kind ("input", "goal",
     "candidate", ...), the model it is about, the number that decided it and what that was
     compared with (inf: no limit; None: not applicable), a second criterion, the model's
-    cost, whether the comparison held, and the library's line of text."""
+    cost, whether the comparison held, and the library's line of text. In the budget mode a
+    "fit" step is one candidate: `diffuse` + `model`, value = its predicted image NMSE,
+    threshold = the budget, and `params` its fitted parameters (None elsewhere)."""
 
     kind: str
     model: str | None
@@ -80,6 +83,8 @@ class Step:
     cost: float | None
     passed: bool
     text: str
+    diffuse: str | None = None
+    params: dict[str, float | int | tuple[float, float, float]] | None = None
 
 
 @dataclass(frozen=True)
@@ -179,29 +184,59 @@ def _costs(costs: PathLike | Mapping[str, float] | None,
     return dict(costs), cost_unit or "user costs"
 
 
-def select(material: str | Material | Mapping[str, object], goal: Goal = "photoreal",
+def budget_nmse(budget: Budget) -> float:
+    """The largest image NMSE of a budget: a class of the paper's Table 8 ("none" 1e-4,
+    "slight" 2.5e-4, "noticeable" 1e-3) or a number in (0, 1]; abrdf.Error otherwise."""
+    if isinstance(budget, str):
+        return _abrdf.budget_class(budget)
+    v = float(budget)
+    if not 0.0 < v <= 1.0:
+        raise _error("budget %r is not in (0, 1]" % v)
+    return v
+
+
+def _error(message: str) -> _abrdf.Error:
+    err = _abrdf.Error(message)
+    err.status = None
+    return err
+
+
+def select(material: str | Material | Mapping[str, object], goal: Goal | None = None,
            max_rel_error: float | None = None, max_abs_error: float | None = None,
            costs: PathLike | Mapping[str, float] | None = None, cost_unit: str | None = None,
-           extra: PathLike | Sequence[PathLike] | None = None) -> Selection:
-    """The paper's flowchart (Fig. 2; abrdf_select) for a material and a goal.
+           extra: PathLike | Sequence[PathLike] | None = None,
+           budget: Budget | None = None) -> Selection:
+    """The paper's flowchart (Fig. 2; abrdf_select) for a material and a goal, or the
+    selection's budget mode (abrdf_select_budget, docs/BUDGET.md).
 
     material: a table name (abrdf.materials(extra)), a Material, or a mapping of Material's
-    fields. goal: "photoreal" or "performance". max_rel_error (percent) and max_abs_error:
-    the performance branch's tolerances (None: the library's defaults, 2 % and 0.05;
-    math.inf: no limit). costs: None for the paper's Table 4, a cost file of
-    `abrdf calibrate`, or {model: cost} in `cost_unit`. Invalid values raise abrdf.Error
-    with the library's message. The same choice as `abrdf advise` with the same inputs."""
+    fields. goal: "photoreal" (the default) or "performance". max_rel_error (percent) and
+    max_abs_error: the performance branch's tolerances (None: the library's defaults, 2 %
+    and 0.05; math.inf: no limit). costs: None for the paper's Table 4 (in the budget mode:
+    the built-in table of measured costs), a cost file of `abrdf calibrate`, or
+    {model: cost} in `cost_unit`. budget: a Table-8 class ("none", "slight", "noticeable")
+    or an NMSE in (0, 1]: every model or pair that can represent the material's class is
+    fitted to the photoreal choice and the cheapest whose predicted image NMSE is below the
+    budget wins; the trace has one "fit" step per candidate. budget excludes goal and the
+    tolerances. Invalid values raise abrdf.Error with the library's message. The same
+    choice as `abrdf advise` (`--budget`) with the same inputs."""
     if isinstance(material, str):
         mat = _lookup(material, extra)
     elif isinstance(material, Material):
         mat = material
     else:
         mat = _material_of(material)
-    rules = _abrdf.rules()
-    rel = rules["default_max_rel_pct"] if max_rel_error is None else float(max_rel_error)
-    abs_ = rules["default_max_abs"] if max_abs_error is None else float(max_abs_error)
     table, unit = _costs(costs, cost_unit)
-    d = _abrdf.select(mat._fields(), goal, rel, abs_, table, unit)
+    if budget is not None:
+        if goal is not None or max_rel_error is not None or max_abs_error is not None:
+            raise _error("budget excludes goal and the tolerances: the budget's reference is "
+                         "the photoreal choice")
+        d = _abrdf.select_budget(mat._fields(), budget_nmse(budget), table, unit)
+    else:
+        rules = _abrdf.rules()
+        rel = rules["default_max_rel_pct"] if max_rel_error is None else float(max_rel_error)
+        abs_ = rules["default_max_abs"] if max_abs_error is None else float(max_abs_error)
+        d = _abrdf.select(mat._fields(), goal or "photoreal", rel, abs_, table, unit)
     trace = tuple(Step(**s) for s in d.pop("trace"))
     dp = d.pop("diffuse_params")
     sp = d.pop("specular_params")

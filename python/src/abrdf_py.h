@@ -14,6 +14,7 @@
  *   py_eval.c     f_r over arrays: the float batch path and the double scalar reference
  *   py_select.c   the material table, cost files, the paper's flowchart with its trace
  *   py_compare.c  the paper's NMSE, PSNR and Table-8 class of two float images
+ *   py_fit.c      one model fitted to another, the selection's budget mode
  * A new C entry point (prepared evaluation, sampling, fitting) is a new py_*.c with its
  * methods, listed in py_module.c, using Params and the buffer helpers below. */
 #ifndef ABRDF_PY_H
@@ -23,6 +24,7 @@
 #include <Python.h>
 
 #include "abrdf_select.h"
+#include "select_trace.h"
 
 /* ---- errors (py_util.c) ------------------------------------------------------------ */
 /* Create abrdf.Error; returns it (a new reference) or NULL. */
@@ -68,6 +70,17 @@ extern PyMethodDef abrdf_py_models_methods[];
 extern PyMethodDef abrdf_py_eval_methods[];
 extern PyMethodDef abrdf_py_select_methods[];
 extern PyMethodDef abrdf_py_compare_methods[];
+extern PyMethodDef abrdf_py_fit_methods[];
+
+/* ---- the selection's conversions (py_select.c), shared with py_fit.c ------------------ */
+/* m from a dict of abrdf.Material's fields (absent ones keep abrdf_material_init's); m->name
+ * may point into *name_ref (borrowed: hold a reference while m is used). 0 or -1. */
+int abrdf_py_material_from(PyObject *d, abrdf_material *m, PyObject **name_ref);
+/* c from {model name: cost} in `unit`. 0 or -1. */
+int abrdf_py_costs_from(PyObject *costs, const char *unit, abrdf_costs *c);
+/* The dict abrdf._abrdf.select returns: the choice, its lobes' Params and the trace. */
+PyObject *abrdf_py_selection_dict(const abrdf_selection *s, const abrdf_params *p,
+                                  const select_trace *trace);
 
 /* ---- small conversions (py_util.c) --------------------------------------------------- */
 /* v < 0 ("not applicable" in abrdf_selection and the trace) -> None, else a float. */

@@ -9,7 +9,8 @@ static PyMethodDef methods[METHODS_MAX + 1];
 static int join_methods(void)
 {
     const PyMethodDef *parts[] = {abrdf_py_models_methods, abrdf_py_eval_methods,
-                                  abrdf_py_select_methods, abrdf_py_compare_methods};
+                                  abrdf_py_select_methods, abrdf_py_compare_methods,
+                                  abrdf_py_fit_methods};
     int n = 0;
     for (size_t p = 0; p < sizeof parts / sizeof parts[0]; ++p)
         for (const PyMethodDef *m = parts[p]; m->ml_name; ++m) {
@@ -22,8 +23,10 @@ static int join_methods(void)
 static struct PyModuleDef module = {
     PyModuleDef_HEAD_INIT,
     .m_name = "abrdf._abrdf",
-    .m_doc = "libabrdf's C API for the package abrdf (python/abrdf): the registry, parameter "
-             "blocks, evaluation over arrays, the selection flowchart and image metrics.",
+    .m_doc =
+        "libabrdf's C API for the package abrdf (python/abrdf): the registry, parameter "
+        "blocks, evaluation over arrays, the selection flowchart, fitting and the budget mode, "
+        "and image metrics.",
     .m_size = -1,
     .m_methods = methods,
 };

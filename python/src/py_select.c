@@ -245,7 +245,7 @@ static int get_layers(PyObject *d, abrdf_material *m)
 }
 
 /* m from a dict of abrdf.Material's fields; absent fields keep abrdf_material_init's. */
-static int material_from(PyObject *d, abrdf_material *m, PyObject **name_ref)
+int abrdf_py_material_from(PyObject *d, abrdf_material *m, PyObject **name_ref)
 {
     abrdf_material_init(m);
     if (known_keys(d, material_keys, "material")) return -1;
@@ -276,7 +276,7 @@ static int material_from(PyObject *d, abrdf_material *m, PyObject **name_ref)
 }
 
 /* costs: None (the paper's Table 4) or {model name: cost}, in `unit`. */
-static int costs_from(PyObject *costs, const char *unit, abrdf_costs *c)
+int abrdf_py_costs_from(PyObject *costs, const char *unit, abrdf_costs *c)
 {
     abrdf_costs_init(c, unit ? unit : "");
     PyObject *key, *value;
@@ -298,12 +298,35 @@ static int costs_from(PyObject *costs, const char *unit, abrdf_costs *c)
 
 /* ---- select ---------------------------------------------------------------------------- */
 
+/* The values of every parameter the lobes of a budget candidate read, from its fitted block
+ * (None for the flowchart's steps). */
+static PyObject *fitted_values(const abrdf_select_step *s)
+{
+    if (!s->params) return Py_NewRef(Py_None);
+    PyObject *d = PyDict_New();
+    abrdf_model lobes[2] = {s->diffuse, s->model};
+    for (int l = 0; d && l < 2; ++l) {
+        const abrdf_model_info *mi = abrdf_model_get(lobes[l]);
+        for (int k = 0; mi && k < mi->param_count; ++k) {
+            int id = mi->params[k].id;
+            const abrdf_param_info *pi = abrdf_param_get(id);
+            if (pi && abrdf_py_set(d, pi->name, abrdf_py_param_value(s->params, id))) {
+                Py_CLEAR(d);
+                break;
+            }
+        }
+    }
+    return d;
+}
+
 static PyObject *step_dict(const abrdf_select_step *s)
 {
     PyObject *d = PyDict_New();
     if (!d) return NULL;
     if (abrdf_py_set(d, "kind", PyUnicode_FromString(abrdf_step_name(s->kind))) ||
         abrdf_py_set(d, "model", model_name_or_none(s->model)) ||
+        abrdf_py_set(d, "diffuse", model_name_or_none(s->diffuse)) ||
+        abrdf_py_set(d, "params", fitted_values(s)) ||
         abrdf_py_set(d, "value", abrdf_py_opt(s->value)) ||
         abrdf_py_set(d, "threshold", abrdf_py_opt(s->threshold)) ||
         abrdf_py_set(d, "value2", abrdf_py_opt(s->value2)) ||
@@ -317,8 +340,8 @@ static PyObject *step_dict(const abrdf_select_step *s)
     return d;
 }
 
-static PyObject *selection_dict(const abrdf_selection *s, const abrdf_params *p,
-                                const select_trace *trace)
+PyObject *abrdf_py_selection_dict(const abrdf_selection *s, const abrdf_params *p,
+                                  const select_trace *trace)
 {
     PyObject *d = PyDict_New(), *steps = PyList_New(trace->count);
     if (!d || !steps) goto fail;
@@ -371,10 +394,10 @@ static PyObject *py_select(PyObject *self, PyObject *args, PyObject *kwargs)
                              goal_name);
     abrdf_material m;
     PyObject *name_ref = NULL;
-    if (material_from(mat, &m, &name_ref)) return NULL;
+    if (abrdf_py_material_from(mat, &m, &name_ref)) return NULL;
     Py_XINCREF(name_ref); /* m.name points into it */
     abrdf_costs c;
-    if (costs != Py_None && (!PyDict_Check(costs) || costs_from(costs, unit, &c))) {
+    if (costs != Py_None && (!PyDict_Check(costs) || abrdf_py_costs_from(costs, unit, &c))) {
         if (!PyErr_Occurred())
             PyErr_SetString(PyExc_TypeError, "costs: None or a dict {model: cost}");
         Py_XDECREF(name_ref);
@@ -396,7 +419,7 @@ static PyObject *py_select(PyObject *self, PyObject *args, PyObject *kwargs)
     else if (trace.lost)
         PyErr_NoMemory();
     else
-        out = selection_dict(&s, &p, &trace);
+        out = abrdf_py_selection_dict(&s, &p, &trace);
     select_trace_free(&trace);
     Py_XDECREF(name_ref);
     return out;

@@ -327,6 +327,13 @@ class CrossCheck(unittest.TestCase):
                     sys.stdout.write("\nclosure mode, %s on the sphere: NMSE %.1e\n" % (model, nmse))
                     self.assertLess(nmse, bound)
 
+    def test_budget_scene(self):
+        # Materials chosen by the budget mode (adaptive budget=, fitted parameters): the
+        # exported script carries the same choices and parameters as abrdf render.
+        nmse = render_pair("budget", "tests/data/scenes/budget.scene", 64, 48)
+        sys.stdout.write("\nbudget.scene (budget-chosen materials): NMSE %.1e\n" % nmse)
+        self.assertLess(nmse, NMSE_MAX)
+
     # A diffuse, a rough diffuse, a specular and a tangent-frame model on the mesh.
     MESH_MODELS = ("lambert", "oren_nayar", "blinn_phong", "disney_specular_aniso")
 

@@ -560,8 +560,8 @@ START_TEST(names_round_trip_and_agree_with_the_registry)
     for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) ck_assert(abrdf_model_get((abrdf_model)i) != NULL);
     ck_assert(abrdf_model_get(ABRDF_MODEL_NONE) == NULL);
     static const char *const steps[ABRDF_STEP_KIND_COUNT] = {
-        "input",   "goal",      "diffuse",    "candidate", "cheapest", "fallback",
-        "surface", "roughness", "anisotropy", "exponent",  "special"};
+        "input",     "goal",       "diffuse",  "candidate", "cheapest",  "fallback", "surface",
+        "roughness", "anisotropy", "exponent", "special",   "reference", "fit",      "budget"};
     for (int i = 0; i < ABRDF_STEP_KIND_COUNT; ++i)
         ck_assert_str_eq(abrdf_step_name((abrdf_step_kind)i), steps[i]);
     ck_assert(abrdf_step_name(ABRDF_STEP_KIND_COUNT) == NULL);

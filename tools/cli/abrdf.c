@@ -29,6 +29,8 @@ static const cli_command commands[] = {
      cmd_bench},
     {"advise", "choose the models for a material by the paper's flowchart, and say why",
      cmd_advise},
+    {"fit", "fit one model's parameters to another's; errors and the predicted image NMSE",
+     cmd_fit},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

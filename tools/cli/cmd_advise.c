@@ -5,10 +5,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "advise_budget.h"
+#include "budget_run.h"
 #include "cli.h"
 #include "cost_file.h"
 #include "data_path.h"
 #include "materials.h"
+#include "out_file.h"
 #include "select_trace.h"
 
 #define CMD "advise"
@@ -50,7 +53,9 @@ static void usage(FILE *f)
         f,
         "usage: abrdf advise [MATERIAL] [options]\n"
         "       abrdf advise --list [--json] [--materials FILE]...\n"
-        "       abrdf advise --rules [--json]\n\n"
+        "       abrdf advise --rules [--json]\n"
+        "       abrdf advise [MATERIAL] --budget none|slight|noticeable|NMSE [--json]\n"
+        "       abrdf advise [MATERIAL] --pareto [--plot FILE.svg] [--json]\n\n"
         "Chooses the diffuse and specular models for a material by the paper's flowchart\n"
         "(Zavalniuk & Romanyuk 2024, Fig. 2) and explains every decision (docs/SELECTION.md).\n\n"
         "  MATERIAL               a name from the material table (abrdf advise --list)\n"
@@ -69,19 +74,26 @@ static void usage(FILE *f)
                     abrdf_surface_name((abrdf_surface)t), model, lo, hi, n_max_for_r(lo));
     }
     fprintf(
-        f, "  --kd V|R,G,B --ks V|R,G,B --f0 V|R,G,B   colours, [0, 1]\n"
-           "  --eta E                index of refraction, [1, 4] (sets f0 = ((E-1)/(E+1))^2)\n"
-           "  --anisotropy A         [0, 1]\n"
-           "  --melanin M --redness R   hair pigment, [0, 1]\n"
-           "  --type T               general, cloth_rough, cloth_shiny, hair, layered_plastic,\n"
-           "                         layered_plate, layered_metal\n"
-           "  --materials FILE       extra material file (same format; overrides by name)\n"
-           "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table "
-           "4)\n"
-           "  --list                 list the materials\n"
-           "  --rules                the flowchart's thresholds and model choices "
-           "(abrdf_select_rules)\n"
-           "  --json                 machine-readable output\n");
+        f,
+        "  --kd V|R,G,B --ks V|R,G,B --f0 V|R,G,B   colours, [0, 1]\n"
+        "  --eta E                index of refraction, [1, 4] (sets f0 = ((E-1)/(E+1))^2)\n"
+        "  --anisotropy A         [0, 1]\n"
+        "  --melanin M --redness R   hair pigment, [0, 1]\n"
+        "  --type T               general, cloth_rough, cloth_shiny, hair, layered_plastic,\n"
+        "                         layered_plate, layered_metal\n"
+        "  --materials FILE       extra material file (same format; overrides by name)\n"
+        "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table "
+        "4;\n"
+        "                         with --budget/--pareto: the built-in table)\n"
+        "  --budget B             budget mode (docs/BUDGET.md): the cheapest candidate fitted to\n"
+        "                         the photoreal choice whose predicted image NMSE is below B, a\n"
+        "                         Table-8 class (none, slight, noticeable) or a number in (0, 1]\n"
+        "  --pareto               every candidate's cost and predicted NMSE: the front\n"
+        "  --plot FILE.svg        with --pareto: draw the cost/error plane\n"
+        "  --list                 list the materials\n"
+        "  --rules                the flowchart's thresholds and model choices "
+        "(abrdf_select_rules)\n"
+        "  --json                 machine-readable output\n");
 }
 
 /* ---- small printers ------------------------------------------------------------------- */
@@ -399,8 +411,9 @@ static void print_json(const abrdf_selection *s, const abrdf_params *p, const se
 
 int cmd_advise(int argc, char **argv)
 {
-    const char *name = NULL, *files[MAX_FILES], *costs_file = NULL;
-    int nfiles = 0, list = 0, json = 0, rules = 0;
+    const char *name = NULL, *files[MAX_FILES], *costs_file = NULL, *plot = NULL;
+    int nfiles = 0, list = 0, json = 0, rules = 0, pareto = 0, has_goal = 0;
+    double budget = -1.0;
     abrdf_goal goal = ABRDF_GOAL_PHOTOREAL;
     abrdf_tolerance tol;
     abrdf_tolerance_init(&tol);
@@ -425,6 +438,17 @@ int cmd_advise(int argc, char **argv)
         } else if (!strcmp(a, "--goal")) {
             if (!v || abrdf_goal_find(v, &goal) != ABRDF_OK)
                 return cli_fail(CMD, "--goal needs performance or photoreal, got '%s'", v ? v : "");
+            has_goal = 1;
+        } else if (!strcmp(a, "--budget")) {
+            char err[256];
+            if (!v) return cli_fail(CMD, "--budget needs none, slight, noticeable or an NMSE");
+            if (budget_parse(v, &budget, err, sizeof err))
+                return cli_fail(CMD, "--budget: %s", err);
+        } else if (!strcmp(a, "--pareto")) {
+            pareto = 1, takes = 0;
+        } else if (!strcmp(a, "--plot")) {
+            if (!v) return cli_fail(CMD, "--plot needs a file name (FILE.svg)");
+            plot = v;
         } else if (!strcmp(a, "--max-rel-error")) {
             st = limit_value(a, v, &tol.max_rel_pct);
         } else if (!strcmp(a, "--max-abs-error")) {
@@ -472,6 +496,23 @@ int cmd_advise(int argc, char **argv)
         i += takes;
     }
 
+    if (budget >= 0.0 && pareto) return cli_fail(CMD, "--budget and --pareto exclude each other");
+    if ((budget >= 0.0 || pareto) && has_goal)
+        return cli_fail(CMD,
+                        "--goal and --%s exclude each other: the budget's reference is the "
+                        "photoreal choice",
+                        pareto ? "pareto" : "budget");
+    if (plot && !pareto) return cli_fail(CMD, "--plot draws the front of --pareto");
+    if (plot) { /* the plot never replaces an input */
+        char tpath[1024], perr[1024];
+        data_path_find("materials.csv", tpath, sizeof tpath);
+        const char *out_role = "--plot file", *ins[MAX_FILES + 2] = {tpath, costs_file},
+                   *in_roles[MAX_FILES + 2] = {"material table", "--costs file"};
+        for (int i = 0; i < nfiles; ++i)
+            ins[2 + i] = files[i], in_roles[2 + i] = "--materials file";
+        if (out_files_distinct(&plot, &out_role, 1, ins, in_roles, 2 + nfiles, perr, sizeof perr))
+            return cli_fail(CMD, "%s", perr);
+    }
     if (rules) {
         print_rules(json);
         return 0;
@@ -550,6 +591,11 @@ int cmd_advise(int argc, char **argv)
             mat_table_free(&table);
             return cli_fail(CMD, "%s", err);
         }
+    }
+    if (budget >= 0.0 || pareto) {
+        rc = advise_budget(&m, e, budget, costs_file ? &costs : NULL, json, pareto, plot);
+        mat_table_free(&table);
+        return rc;
     }
     abrdf_selection sel;
     abrdf_params params;

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "bench_budget.h"
 #include "cli.h"
 #include "measure.h"
 #include "metrics.h"
@@ -70,6 +71,8 @@ static int usage(void)
            "                 performance: render time ratios and NMSE per material; then\n"
            "                 each lobe's cost in a 16-light robot render (1 thread, 256x256)\n"
            "                 beside its per-eval cost, and the BRDFs' share of render time\n"
+           "  --budget       instead: the mixed scene, photoreal vs the budget mode per\n"
+           "                 Table-8 class: time ratios, image and per-material NMSE\n"
            "  --size N       image size of the renders (default 128; --render: the scene's)\n"
            "  --threads N    render threads (default: online CPUs)\n"
            "  --reps N       timed repetitions (default 7, quick 3)\n");
@@ -472,7 +475,7 @@ static void write_plot(FILE *f, const row *rows, int count, double unit_ns)
 int cmd_bench(int argc, char **argv)
 {
     const char *cmd = "bench";
-    int json = 0, quick = 0, render = 0;
+    int json = 0, quick = 0, render = 0, budget = 0;
     const char *plot = NULL;
     long size = 0, threads = 0, reps = 0;
     for (int i = 1; i < argc; ++i) {
@@ -484,6 +487,8 @@ int cmd_bench(int argc, char **argv)
             quick = 1;
         else if (!strcmp(a, "--render"))
             render = 1;
+        else if (!strcmp(a, "--budget"))
+            budget = 1;
         else if (!strcmp(a, "--plot")) {
             if (i + 1 >= argc) return cli_fail(cmd, "--plot needs a file name");
             plot = argv[++i];
@@ -499,7 +504,7 @@ int cmd_bench(int argc, char **argv)
         } else {
             return cli_fail(cmd,
                             "unknown argument '%s'; options: --json --plot FILE --quick --render "
-                            "--size N --threads N --reps N",
+                            "--budget --size N --threads N --reps N",
                             a);
         }
     }
@@ -509,6 +514,16 @@ int cmd_bench(int argc, char **argv)
         long cpus = sysconf(_SC_NPROCESSORS_ONLN);
         threads = cpus > 0 ? (cpus < 64 ? cpus : 64) : 1;
     }
+    if (budget) /* bench_budget.c: the budget mode on the mixed scene */
+        return bench_budget_report(stdout, json,
+                                   (int)(size    ? size
+                                         : quick ? 128
+                                                 : 0),
+                                   1,
+                                   (int)(reps    ? reps
+                                         : quick ? 1
+                                                 : 3),
+                                   (int)threads);
     if (render)
         return bench_render_report(stdout, json,
                                    (int)(size    ? size

@@ -1,6 +1,7 @@
 /* cmd_export.c - `abrdf export --pov|--cycles SCENE -o OUT`: the scene for another renderer.
  * Shared here: parsing, the material table and the selection of table= and adaptive materials
- * (--materials, --adaptive --goal, as abrdf render; the trace goes into the file as comments),
+ * (--materials, --adaptive --goal|--budget, as abrdf render, so a budget's fitted
+ * parameters are what the ports receive; the trace goes into the file as comments),
  * --model/--set, render_prepare (so every exporter reads the built-in renderer's own camera
  * vectors, materials and lights), and the output, written whole or not at all (out_file.h).
  * The writers live in export_pov.c (POV-Ray SDL, docs/POVRAY.md) and export_cycles.c
@@ -9,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "budget_run.h"
 #include "cli.h"
 #include "data_path.h"
 #include "export.h"
@@ -26,10 +28,10 @@
 static int usage(void)
 {
     printf("usage: abrdf export --pov SCENE -o OUT.pov [--model NAME [--set NAME=VALUE ...]]\n"
-           "                    [--adaptive --goal G] [--materials FILE ...]\n"
+           "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
            "                    [--width W] [--height H] [--no-shadows | --native]\n"
            "       abrdf export --cycles SCENE -o OUT.py [--model NAME [--set NAME=VALUE ...]]\n"
-           "                    [--adaptive --goal G] [--materials FILE ...]\n"
+           "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
            "                    [--width W] [--height H] [--spp N] [--mode eval|closure|generic]\n"
            "                    [--osl-dir DIR]\n\n"
            "--pov writes SCENE (docs/SCENES.md) as POV-Ray 3.7 SDL that shades every object with\n"
@@ -40,8 +42,8 @@ static int usage(void)
            "table= and adaptive materials are exported as the models the selection chose, with\n"
            "its trace as comments. OUT is written whole or not at all, never over SCENE.\n\n"
            "  --model/--set      as abrdf render: every material becomes this model\n"
-           "  --adaptive --goal photoreal|performance   as abrdf render: choose models per\n"
-           "                     material (abrdf_select)\n"
+           "  --adaptive --goal G | --budget B   as abrdf render: the selection chooses every\n"
+           "                     material's models (a budget's choice with its fitted parameters)\n"
            "  --materials FILE   material-table file merged over data/materials.csv\n"
            "  --width/--height   override the scene's resolution\n"
            "  --no-shadows       (pov) emissive mode: every light in the pigment, no shadows.\n"
@@ -87,7 +89,7 @@ static void export_failed(out_file *o, const char *out, char *err, size_t err_si
 int cmd_export(int argc, char **argv)
 {
     const char *cmd = "export", *path = NULL, *out = NULL, *model_name = NULL;
-    const char *osl_dir = NULL, *mode = NULL, *goal = NULL;
+    const char *osl_dir = NULL, *mode = NULL, *goal = NULL, *budget_s = NULL;
     const char *sets[64], *mats[16];
     int nsets = 0, nmats = 0, pov = 0, cycles = 0, no_shadows = 0, native = 0, spp = 0;
     int adaptive = 0;
@@ -111,7 +113,7 @@ int cmd_export(int argc, char **argv)
             adaptive = 1;
         else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--set") ||
                  !strcmp(a, "--osl-dir") || !strcmp(a, "--mode") || !strcmp(a, "--goal") ||
-                 !strcmp(a, "--materials")) {
+                 !strcmp(a, "--budget") || !strcmp(a, "--materials")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
             if (!strcmp(a, "-o"))
@@ -127,7 +129,14 @@ int cmd_export(int argc, char **argv)
                 osl_dir = val;
             else if (!strcmp(a, "--mode"))
                 mode = val;
-            else if (nsets == 64)
+            else if (!strcmp(a, "--goal"))
+                goal = val;
+            else if (!strcmp(a, "--budget"))
+                budget_s = val;
+            else if (!strcmp(a, "--materials")) {
+                if (nmats == 16) return cli_fail(cmd, "too many --materials files (16 at most)");
+                mats[nmats++] = val;
+            } else if (nsets == 64)
                 return cli_fail(cmd, "too many --set options (64 at most)");
             else
                 sets[nsets++] = val;
@@ -163,9 +172,18 @@ int cmd_export(int argc, char **argv)
     if (mode && strcmp(mode, "eval") && strcmp(mode, "closure") && strcmp(mode, "generic"))
         return cli_fail(cmd, "--mode is eval, closure or generic, not '%s'", mode);
     if (adaptive && model_name) return cli_fail(cmd, "--adaptive and --model exclude each other");
-    if (goal && !adaptive) return cli_fail(cmd, "--goal needs --adaptive");
-    if (adaptive && (!goal || (strcmp(goal, "photoreal") && strcmp(goal, "performance"))))
-        return cli_fail(cmd, "--adaptive needs --goal photoreal or --goal performance");
+    if ((goal || budget_s) && !adaptive)
+        return cli_fail(cmd, "--%s needs --adaptive", goal ? "goal" : "budget");
+    if (goal && budget_s) return cli_fail(cmd, "--goal and --budget exclude each other");
+    if (adaptive && !budget_s &&
+        (!goal || (strcmp(goal, "photoreal") && strcmp(goal, "performance"))))
+        return cli_fail(cmd, "--adaptive needs --goal photoreal, --goal performance or --budget B");
+    double budget = -1.0;
+    if (budget_s) {
+        char berr[256];
+        if (budget_parse(budget_s, &budget, berr, sizeof berr))
+            return cli_fail(cmd, "--budget: %s", berr);
+    }
 
     char err[1024];
     {
@@ -191,12 +209,15 @@ int cmd_export(int argc, char **argv)
     size_t notes_len = 0;
     FILE *trace = open_memstream(&notes, &notes_len);
     abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
-    if (adaptive) abrdf_goal_find(goal, &g);
     if (!trace) {
         fprintf(stderr, "abrdf export: out of memory\n");
         goto done;
     }
-    int st = scene_resolve(&s, path, mats, nmats, adaptive ? (int)g : -1, trace, err, sizeof err);
+    if (adaptive && goal) abrdf_goal_find(goal, &g);
+    /* a budget's prediction samples the image the scene file describes (its resolution, 4
+     * samples per pixel), as abrdf render's does: the same choices */
+    int st = scene_resolve_budget(&s, path, mats, nmats, adaptive && goal ? (int)g : -1, budget, 4,
+                                  trace, err, sizeof err);
     if (fclose(trace) || st) {
         fprintf(stderr, "abrdf export: %s\n", st ? err : "out of memory");
         goto done;

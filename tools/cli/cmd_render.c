@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "budget_run.h"
 #include "data_path.h"
 #include "image_io.h"
 #include "out_file.h"
@@ -18,7 +19,8 @@ static int usage(void)
 {
     printf(
         "usage: abrdf render SCENE [-o OUT.exr] [--width W] [--height H] [--spp N] [--jitter]\n"
-        "                    [--model NAME [--set NAME=VALUE ...] | --adaptive --goal G]\n"
+        "                    [--model NAME [--set NAME=VALUE ...] | --adaptive --goal G |\n"
+        "                     --adaptive --budget B]\n"
         "                    [--materials FILE ...] [--threads N] [--explain] [--stats]\n"
         "                    [--full] [--precision float|double] [--no-preview]\n"
         "                    [--estimator mis|light|brdf] [--light-samples N]\n"
@@ -34,6 +36,9 @@ static int usage(void)
         "  --model NAME      render every material with this model (shared parameters kept)\n"
         "  --set NAME=VALUE  with --model: set a parameter of every material\n"
         "  --adaptive --goal photoreal|performance   choose models per material (abrdf_select)\n"
+        "  --adaptive --budget none|slight|noticeable|NMSE   the cheapest fitted models whose\n"
+        "                    predicted image NMSE against the photoreal choice is within the\n"
+        "                    budget (abrdf_select_budget, docs/BUDGET.md)\n"
         "  --materials FILE  material-table file merged over data/materials.csv (table= entries)\n"
         "  --threads N       worker threads (and Embree's build threads); default: online CPUs\n"
         "  --explain         print the effect plan (what is simulated and why) and counters\n"
@@ -81,7 +86,8 @@ static char *preview_path(const char *out)
 
 int cmd_render(int argc, char **argv)
 {
-    const char *cmd = "render", *path = NULL, *out = NULL, *model_name = NULL, *goal = NULL;
+    const char *cmd = "render", *path = NULL, *out = NULL, *model_name = NULL, *goal = NULL,
+               *budget_s = NULL;
     const char *config = NULL, *display = NULL, *view = NULL;
     const char *sets[64], *mats[16];
     int full = 0, nsets = 0, nmats = 0, explain = 0, stats = 0, adaptive = 0, preview = 1;
@@ -107,9 +113,9 @@ int cmd_render(int argc, char **argv)
         else if (!strcmp(a, "--full"))
             full = 1;
         else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--goal") ||
-                 !strcmp(a, "--set") || !strcmp(a, "--config") || !strcmp(a, "--display") ||
-                 !strcmp(a, "--view") || !strcmp(a, "--materials") || !strcmp(a, "--precision") ||
-                 !strcmp(a, "--estimator")) {
+                 !strcmp(a, "--budget") || !strcmp(a, "--set") || !strcmp(a, "--config") ||
+                 !strcmp(a, "--display") || !strcmp(a, "--view") || !strcmp(a, "--materials") ||
+                 !strcmp(a, "--precision") || !strcmp(a, "--estimator")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
             if (!strcmp(a, "-o"))
@@ -118,6 +124,8 @@ int cmd_render(int argc, char **argv)
                 model_name = val;
             else if (!strcmp(a, "--goal"))
                 goal = val;
+            else if (!strcmp(a, "--budget"))
+                budget_s = val;
             else if (!strcmp(a, "--config"))
                 config = val;
             else if (!strcmp(a, "--display"))
@@ -181,10 +189,21 @@ int cmd_render(int argc, char **argv)
             cmd, "--spp %d is not a square (1, 4, 9, 16, ...): strata form a k x k grid", opt.spp);
     if (adaptive && model_name) return cli_fail(cmd, "--adaptive and --model exclude each other");
     if (goal && !adaptive) return cli_fail(cmd, "--goal needs --adaptive");
+    if (budget_s && !adaptive) return cli_fail(cmd, "--budget needs --adaptive");
+    if (budget_s && goal)
+        return cli_fail(cmd, "--goal and --budget exclude each other (a budget's reference is "
+                             "the photoreal choice)");
+    double budget = -1.0;
+    if (budget_s) {
+        char berr[256];
+        if (budget_parse(budget_s, &budget, berr, sizeof berr))
+            return cli_fail(cmd, "--budget: %s", berr);
+    }
     if (nsets && !model_name)
         return cli_fail(cmd, "--set needs --model (the scene file sets materials' parameters)");
-    if (adaptive && (!goal || (strcmp(goal, "photoreal") && strcmp(goal, "performance"))))
-        return cli_fail(cmd, "--adaptive needs --goal photoreal or --goal performance");
+    if (adaptive && !budget_s &&
+        (!goal || (strcmp(goal, "photoreal") && strcmp(goal, "performance"))))
+        return cli_fail(cmd, "--adaptive needs --goal photoreal, --goal performance or --budget B");
     opt.progress = isatty(2) && !explain;
     char out_default[1024];
     if (!out) {
@@ -239,9 +258,11 @@ int cmd_render(int argc, char **argv)
     out_file *files[2] = {&png_out, &exr_out}; /* committed together, the preview first */
     int nfiles = png ? 2 : 1;
     abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
-    if (adaptive) abrdf_goal_find(goal, &g);
-    if (scene_resolve(&s, path, mats, nmats, adaptive ? (int)g : -1, explain ? stdout : NULL, err,
-                      sizeof err)) {
+    if (adaptive && goal) abrdf_goal_find(goal, &g);
+    /* a budget's prediction samples the image the scene file describes (its resolution, the
+     * default 4 samples per pixel), so abrdf export makes the same choices */
+    if (scene_resolve_budget(&s, path, mats, nmats, adaptive && goal ? (int)g : -1, budget, 4,
+                             explain ? stdout : NULL, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }

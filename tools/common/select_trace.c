@@ -20,18 +20,33 @@ void select_trace_keep(void *trace, const abrdf_select_step *step)
     const char *text = step->text ? step->text : "";
     size_t len = strlen(text) + 1;
     char *copy = malloc(len);
-    if (!copy) {
+    abrdf_params *params = NULL;
+    if (step->params && (params = malloc(sizeof *params)) != NULL) {
+        /* the library's block in this program's layout */
+        abrdf_params_init(ABRDF_MODEL_NONE, params);
+        size_t n =
+            step->params->struct_size < sizeof *params ? step->params->struct_size : sizeof *params;
+        memcpy(params, step->params, n);
+        params->struct_size = sizeof *params;
+    }
+    if (!copy || (step->params && !params)) {
+        free(copy);
+        free(params);
         ++t->lost;
         return;
     }
     memcpy(copy, text, len);
     t->steps[t->count] = *step;
+    t->steps[t->count].params = params;
     t->steps[t->count++].text = copy;
 }
 
 void select_trace_free(select_trace *t)
 {
-    for (int i = 0; i < t->count; ++i) free((char *)t->steps[i].text);
+    for (int i = 0; i < t->count; ++i) {
+        free((char *)t->steps[i].text);
+        free((abrdf_params *)t->steps[i].params);
+    }
     free(t->steps);
     t->steps = NULL;
     t->count = t->cap = t->lost = 0;

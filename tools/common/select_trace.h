@@ -7,7 +7,7 @@
 #include "abrdf_select.h"
 
 typedef struct select_trace {
-    abrdf_select_step *steps; /* copies; each text is owned by the trace */
+    abrdf_select_step *steps; /* copies; each text and parameter block is owned by the trace */
     int count, cap;
     int lost; /* steps not kept for want of memory */
 } select_trace;

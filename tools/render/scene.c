@@ -13,6 +13,7 @@
 #include "in_file.h"
 #include "path_msg.h"
 #include "scene.h"
+#include "budget_run.h"
 
 #define SCENE_WORD_MAX 256 /* characters of a word: far above any valid key or value */
 #define MAX_WORDS 64
@@ -391,11 +392,23 @@ static int do_material(parser *p, word *w, int n)
     if (adaptive) w[2].used = 1, from = 3;
     if (adaptive) {
         m.kind = SCENE_MAT_ADAPTIVE;
-        const char *goal = take(w, n, from, "goal");
-        if (!goal) return fail(p, "adaptive material needs goal=photoreal or goal=performance");
-        if (strcmp(goal, "photoreal") && strcmp(goal, "performance"))
-            return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
-        strcpy(m.goal, goal);
+        const char *goal = take(w, n, from, "goal"), *budget = take(w, n, from, "budget");
+        if (goal && budget)
+            return fail(p, "give goal= or budget=, not both (a budget's reference is the "
+                           "photoreal choice)");
+        if (!goal && !budget)
+            return fail(p, "adaptive material needs goal=photoreal, goal=performance or "
+                           "budget=none|slight|noticeable|NMSE");
+        if (budget) {
+            char err[160];
+            double max_nmse;
+            if (budget_parse(budget, &max_nmse, err, sizeof err)) return fail(p, "%s", err);
+            if (copy_name(p, "budget", budget, m.budget)) return -1;
+        } else {
+            if (strcmp(goal, "photoreal") && strcmp(goal, "performance"))
+                return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
+            strcpy(m.goal, goal);
+        }
         if (model || dif || spe)
             return fail(
                 p, "an adaptive material chooses its own models; drop model=/diffuse=/specular=");
@@ -416,7 +429,8 @@ static int do_material(parser *p, word *w, int n)
         } else {
             return fail(
                 p,
-                "material '%s' needs model=, diffuse=/specular=, table= or adaptive goal=", m.name);
+                "material '%s' needs model=, diffuse=/specular=, table= or adaptive goal=|budget=",
+                m.name);
         }
     }
     if (table && copy_name(p, "table entry", table, m.table)) return -1;
@@ -451,7 +465,8 @@ static int do_material(parser *p, word *w, int n)
         int id;
         if (abrdf_param_find(w[i].key, &id) != ABRDF_OK)
             return fail(p,
-                        "unknown key '%s'; keys: model, diffuse, specular, table, goal, ka and the "
+                        "unknown key '%s'; keys: model, diffuse, specular, table, goal, budget, ka "
+                        "and the "
                         "models' parameters (abrdf models)",
                         w[i].key);
         int used = m.kind != SCENE_MAT_MODELS;

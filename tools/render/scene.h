@@ -81,7 +81,8 @@ typedef struct scene_material {
     double ka[3];                  /* ambient reflectance: ambient term = ka * scene ambient */
     int ka_given;                  /* ka given in the file (else it follows kd) */
     char table[SCENE_NAME_MAX];    /* TABLE / ADAPTIVE: material table entry ("" if none) */
-    char goal[SCENE_NAME_MAX];     /* ADAPTIVE: "photoreal" or "performance" */
+    char goal[SCENE_NAME_MAX];     /* ADAPTIVE: "photoreal" or "performance" ("" with a budget) */
+    char budget[SCENE_NAME_MAX];   /* ADAPTIVE: a budget, "slight" or an NMSE ("" with a goal) */
     int line;
 } scene_material;
 

@@ -1,5 +1,8 @@
 /* scene_select.c - material-table and adaptive scene materials -> explicit models through
- * abrdf_select (the paper's Fig. 2). The selection's trace is what --explain prints. */
+ * abrdf_select (the paper's Fig. 2) or its budget mode (abrdf_select_budget, with the
+ * scene's lights and camera as the prediction's view). The selection's trace is what
+ * --explain prints. */
+#include <math.h>
 #include <string.h>
 
 #include "scene_select.h"
@@ -7,6 +10,7 @@
 #include "data_path.h"
 #include "path_msg.h"
 #include "render.h"
+#include "budget_run.h"
 #include "select_trace.h"
 
 int scene_needs_table(const scene *s)
@@ -36,16 +40,77 @@ static void take_rgb(const scene_material *m, const char *name, const double *sr
     if (described(m, name)) memcpy(dst, src, 3 * sizeof *dst);
 }
 
-int scene_select_materials(scene *s, const char *scene_name, const mat_table *table, int force_goal,
-                           FILE *explain, char *err, size_t err_size)
+/* ka: the ambient reflectance follows kd when a lobe of `lobes` reads kd (and the file gave
+ * none). */
+static void ka_from(scene_material *sm, const abrdf_model *lobes, int count, const abrdf_params *p)
 {
+    if (sm->ka_given) return;
+    int kd_id, uses = 0;
+    abrdf_param_find("kd", &kd_id);
+    for (int l = 0; l < count; ++l) {
+        const abrdf_model_info *mi = abrdf_model_get(lobes[l]);
+        for (int k = 0; mi && k < mi->param_count; ++k) uses |= mi->params[k].id == kd_id;
+    }
+    for (int c = 0; c < 3; ++c) sm->ka[c] = uses ? p->kd[c] : 0.0;
+}
+
+void scene_budget_view(const scene *s, int spp, abrdf_view *v, abrdf_light_dir *lights)
+{
+    abrdf_view_init(v);
+    const scene_camera *c = &s->camera;
+    double d2c = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        v->view_dir[k] = c->position[k] - c->look_at[k];
+        d2c += v->view_dir[k] * v->view_dir[k];
+    }
+    memcpy(v->up, c->up, sizeof v->up);
+    /* samples across a unit sphere at the camera's target: its diameter 2 over the view's
+     * height 2 d tan(fov / 2), times the image's rows and sqrt(spp) */
+    double across = c->height * sqrt(spp > 0 ? (double)spp : 1.0) /
+                    (sqrt(d2c) * tan(0.5 * c->fov_deg * 3.14159265358979323846 / 180.0));
+    v->resolution = (int)fmin(1024.0, fmax(16.0, floor(across + 0.5)));
+    int n = 0;
+    for (int l = 0; l < s->light_count && n < SCENE_MAX_LIGHTS; ++l) {
+        const scene_light *L = &s->lights[l];
+        double d[3], d2 = 1.0;
+        if (L->kind == SCENE_LIGHT_POINT) {
+            for (int k = 0; k < 3; ++k) d[k] = L->position[k] - c->look_at[k];
+            d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            if (!(d2 > 0.0)) continue;
+        } else {
+            memcpy(d, L->direction, sizeof d);
+        }
+        memcpy(lights[n].dir, d, sizeof d);
+        for (int k = 0; k < 3; ++k) lights[n].e[k] = L->color[k] * L->intensity / d2;
+        ++n;
+    }
+    v->light_count = n;
+    v->lights = lights;
+}
+
+int scene_select_budgets(scene *s, const char *scene_name, const mat_table *table, int force_goal,
+                         double force_budget, int spp, FILE *explain, char *err, size_t err_size)
+{
+    abrdf_light_dir lights[SCENE_MAX_LIGHTS];
+    abrdf_view view;
+    scene_budget_view(s, spp, &view, lights);
     for (int i = 0; i < s->material_count; ++i) {
         scene_material *sm = &s->materials[i];
-        if (sm->kind == SCENE_MAT_MODELS && force_goal < 0) continue;
+        int forced = force_goal >= 0 || force_budget > 0.0;
+        if (sm->kind == SCENE_MAT_MODELS && !forced) continue;
         abrdf_goal goal = ABRDF_GOAL_PHOTOREAL; /* a bare table= entry renders photoreal */
-        if (force_goal >= 0)
+        double budget = -1.0;
+        if (force_budget > 0.0) {
+            budget = force_budget;
+        } else if (force_goal >= 0) {
             goal = (abrdf_goal)force_goal;
-        else if (sm->kind == SCENE_MAT_ADAPTIVE && abrdf_goal_find(sm->goal, &goal) != ABRDF_OK) {
+        } else if (sm->kind == SCENE_MAT_ADAPTIVE && sm->budget[0]) {
+            char msg[160];
+            if (budget_parse(sm->budget, &budget, msg, sizeof msg)) {
+                path_msg(err, err_size, scene_name, ":%d: %s", sm->line, msg);
+                return -1;
+            }
+        } else if (sm->kind == SCENE_MAT_ADAPTIVE && abrdf_goal_find(sm->goal, &goal) != ABRDF_OK) {
             path_msg(err, err_size, scene_name, ":%d: unknown goal '%s'", sm->line, sm->goal);
             return -1;
         }
@@ -83,49 +148,81 @@ int scene_select_materials(scene *s, const char *scene_name, const mat_table *ta
         abrdf_selection sel;
         abrdf_params chosen;
         select_trace trace = SELECT_TRACE_INIT;
-        abrdf_selection_init(&sel);
-        abrdf_params_init(ABRDF_MODEL_NONE, &chosen);
-        if (abrdf_select(&am, goal, NULL, NULL, &sel, &chosen, explain ? select_trace_keep : NULL,
-                         &trace) != ABRDF_OK) {
-            path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
-                     sel.message);
-            select_trace_free(&trace);
-            return -1;
+        budget_result br;
+        const select_trace *tr = &trace;
+        if (budget > 0.0) {
+            char msg[512];
+            if (budget_run(&am, budget, NULL, &view, &br, msg, sizeof msg)) {
+                path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
+                         msg);
+                return -1;
+            }
+            sel = br.sel;
+            chosen = br.params;
+            tr = &br.trace;
+        } else {
+            abrdf_selection_init(&sel);
+            abrdf_params_init(ABRDF_MODEL_NONE, &chosen);
+            if (abrdf_select(&am, goal, NULL, NULL, &sel, &chosen,
+                             explain ? select_trace_keep : NULL, &trace) != ABRDF_OK) {
+                path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
+                         sel.message);
+                select_trace_free(&trace);
+                return -1;
+            }
         }
         sm->kind = SCENE_MAT_MODELS;
         sm->lobe_count = 0;
         if (sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = sel.diffuse;
         sm->lobes[sm->lobe_count++] = sel.specular;
         sm->params = chosen;
-        if (!sm->ka_given) {
-            int kd_id, uses = 0;
-            abrdf_param_find("kd", &kd_id);
-            for (int l = 0; l < sm->lobe_count; ++l) {
-                const abrdf_model_info *mi = abrdf_model_get(sm->lobes[l]);
-                for (int k = 0; k < mi->param_count; ++k) uses |= mi->params[k].id == kd_id;
-            }
-            for (int c = 0; c < 3; ++c) sm->ka[c] = uses ? sm->params.kd[c] : 0.0;
+        if (budget > 0.0) {
+            /* the ambient term of the reference (the photoreal choice), so that the budget
+             * changes only the reflectance the fit approximates */
+            for (int k = 0; k < tr->count; ++k)
+                if (tr->steps[k].kind == ABRDF_STEP_REFERENCE) {
+                    abrdf_model rl[2];
+                    int rn = 0;
+                    if (tr->steps[k].diffuse != ABRDF_MODEL_NONE) rl[rn++] = tr->steps[k].diffuse;
+                    rl[rn++] = tr->steps[k].model;
+                    ka_from(sm, rl, rn, tr->steps[k].params);
+                }
+        } else {
+            ka_from(sm, sm->lobes, sm->lobe_count, &sm->params);
         }
         if (explain) {
-            fprintf(explain, "selection: material '%s' (line %d), goal %s%s%s: %s%s%s\n", sm->name,
-                    sm->line, abrdf_goal_name(goal), e ? ", table entry " : "", e ? e->name : "",
+            char b[64] = "";
+            if (budget > 0.0) snprintf(b, sizeof b, "budget NMSE < %g", budget);
+            fprintf(explain, "selection: material '%s' (line %d), %s%s%s%s: %s%s%s\n", sm->name,
+                    sm->line, budget > 0.0 ? b : "goal ", budget > 0.0 ? "" : abrdf_goal_name(goal),
+                    e ? ", table entry " : "", e ? e->name : "",
                     sel.diffuse != ABRDF_MODEL_NONE ? abrdf_model_get(sel.diffuse)->name : "",
                     sel.diffuse != ABRDF_MODEL_NONE ? " + " : "",
                     abrdf_model_get(sel.specular)->name);
-            for (int k = 0; k < trace.count; ++k)
-                fprintf(explain, "  %2d. %s\n", k + 1, trace.steps[k].text);
+            for (int k = 0; k < tr->count; ++k)
+                fprintf(explain, "  %2d. %s\n", k + 1, tr->steps[k].text);
         }
-        select_trace_free(&trace);
+        if (budget > 0.0)
+            budget_result_free(&br);
+        else
+            select_trace_free(&trace);
     }
     return 0;
 }
 
-int scene_resolve(scene *s, const char *scene_name, const char *const *files, int nfiles,
-                  int force_goal, FILE *explain, char *err, size_t err_size)
+int scene_select_materials(scene *s, const char *scene_name, const mat_table *table, int force_goal,
+                           FILE *explain, char *err, size_t err_size)
+{
+    return scene_select_budgets(s, scene_name, table, force_goal, -1.0, 4, explain, err, err_size);
+}
+
+int scene_resolve_budget(scene *s, const char *scene_name, const char *const *files, int nfiles,
+                         int force_goal, double force_budget, int spp, FILE *explain, char *err,
+                         size_t err_size)
 {
     mat_table table = {NULL, 0, 0};
     int rc = -1;
-    if (force_goal >= 0 || scene_needs_table(s)) {
+    if (force_goal >= 0 || force_budget > 0.0 || scene_needs_table(s)) {
         char tpath[4096];
         if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
             path_msg(err, err_size, tpath, ": material table not found (set ABRDF_DATA_DIR)");
@@ -135,10 +232,18 @@ int scene_resolve(scene *s, const char *scene_name, const char *const *files, in
     }
     for (int i = 0; i < nfiles; ++i)
         if (mat_table_load(&table, files[i], err, err_size)) goto done;
-    rc = scene_select_materials(s, scene_name, &table, force_goal, explain, err, err_size);
+    rc = scene_select_budgets(s, scene_name, &table, force_goal, force_budget, spp, explain, err,
+                              err_size);
 done:
     mat_table_free(&table);
     return rc;
+}
+
+int scene_resolve(scene *s, const char *scene_name, const char *const *files, int nfiles,
+                  int force_goal, FILE *explain, char *err, size_t err_size)
+{
+    return scene_resolve_budget(s, scene_name, files, nfiles, force_goal, -1.0, 4, explain, err,
+                                err_size);
 }
 
 int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets, int nsets)

@@ -5,6 +5,7 @@
 #define ABRDF_SCENE_SELECT_H
 
 #include <stdio.h>
+#include "abrdf_fit.h"
 #include "materials.h"
 #include "scene.h"
 
@@ -17,6 +18,22 @@
 int scene_select_materials(scene *s, const char *scene_name, const mat_table *table, int force_goal,
                            FILE *explain, char *err, size_t err_size);
 
+/* The same, with budget materials: `adaptive budget=B` lines (and, with force_budget > 0,
+ * every material, explicit ones included) are resolved by the selection's budget mode with
+ * that NMSE budget, predicted on scene_budget_view (spp: the render's samples per pixel); the
+ * ambient reflectance stays the reference's. force_goal and force_budget exclude each other
+ * (force_budget < 0: none). */
+int scene_select_budgets(scene *s, const char *scene_name, const mat_table *table, int force_goal,
+                         double force_budget, int spp, FILE *explain, char *err, size_t err_size);
+
+/* The prediction's view of a budget material in scene s (abrdf_view, abrdf_fit.h): the
+ * analytic sphere seen from the camera (view_dir toward it, up its up), sampled as finely as
+ * the render samples a unit sphere at the camera's target (rows * sqrt(spp) over the view's
+ * height at that distance), under the scene's lights (a point light as the directional light
+ * it casts at the camera's target; no light: the default set). lights: room for
+ * SCENE_MAX_LIGHTS entries, referenced by v. */
+void scene_budget_view(const scene *s, int spp, abrdf_view *v, abrdf_light_dir *lights);
+
 /* Does any material need the material table (or does force_goal make them adaptive)? */
 int scene_needs_table(const scene *s);
 
@@ -25,6 +42,13 @@ int scene_needs_table(const scene *s);
  * each of the nfiles --materials files merged over it. Returns 0, or -1 with the message. */
 int scene_resolve(scene *s, const char *scene_name, const char *const *files, int nfiles,
                   int force_goal, FILE *explain, char *err, size_t err_size);
+
+/* scene_resolve with budget materials (scene_select_budgets): force_budget > 0 resolves every
+ * material by the budget mode with that NMSE budget (the table is then loaded too); spp: the
+ * image's samples per pixel for the prediction's view. */
+int scene_resolve_budget(scene *s, const char *scene_name, const char *const *files, int nfiles,
+                         int force_goal, double force_budget, int spp, FILE *explain, char *err,
+                         size_t err_size);
 
 /* --model NAME [--set NAME=VALUE ...] of `abrdf render` and `abrdf export`: every material of
  * s becomes model_name (render_set_model), then each assignment is applied to every

@@ -1,0 +1,153 @@
+"""CLI tests of the selection's budget mode and the fit (run by CTest with the path of the abrdf
+binary and the scenes directory): `abrdf fit`, `abrdf advise --budget/--pareto/--plot`, scene
+files with `adaptive budget=`, `abrdf render --adaptive --budget`, and the errors (one line on
+stderr, exit status 2 for bad arguments, 1 for a bad scene)."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+import xml.etree.ElementTree as ET
+
+ABRDF = None
+SCENES = None
+
+
+def run(*args, code=0, timeout=300):
+    p = subprocess.run([ABRDF, *args], capture_output=True, text=True, timeout=timeout)
+    if p.returncode != code:
+        raise AssertionError(f"abrdf {' '.join(args)}: exit {p.returncode} (expected {code})\n"
+                             f"stdout: {p.stdout}\nstderr: {p.stderr}")
+    return p
+
+
+def one_line_error(test, p, *words):
+    lines = p.stderr.strip().splitlines()
+    test.assertEqual(len(lines), 1, p.stderr)
+    for w in words:
+        test.assertIn(w, lines[0])
+
+
+class Fit(unittest.TestCase):
+    def test_fit_json_reports_the_errors_and_stays_in_range(self):
+        d = json.loads(run("fit", "--ref", "disney_specular", "--set", "r=0.5",
+                           "--candidate", "blinn_phong", "--json").stdout)
+        self.assertEqual((d["reference"], d["candidate"]), ("disney_specular", "blinn_phong"))
+        for key in ("rel_l2", "max_rel_pct", "max_abs", "nmse_pred"):
+            self.assertGreaterEqual(d[key], 0, key)
+        self.assertTrue(1 <= d["params"]["n"] <= 1e6)
+        self.assertTrue(all(0 <= v <= 1 for v in d["params"]["ks"]))
+        self.assertGreater(d["directions"], 500)
+
+    def test_fit_material_reference(self):
+        out = run("fit", "--material", "gold", "--candidate", "f_ge").stdout
+        self.assertIn("reference   disney_diffuse+disney_specular", out)
+        self.assertRegex(out, r"image NMSE  \d")
+
+    def test_candidate_that_cannot_represent_the_class(self):
+        p = run("fit", "--material", "hair_blond", "--candidate", "lambert", code=2)
+        one_line_error(self, p, "lambert cannot represent the surface class hair", "marschner")
+
+    def test_bad_arguments(self):
+        one_line_error(self, run("fit", "--ref", "gold", "--candidate", "f2", code=2), "gold")
+        one_line_error(self, run("fit", "--ref", "disney_specular", "--candidate", "f2",
+                                 "--metric", "l1", code=2), "--metric")
+        one_line_error(self, run("fit", "--candidate", "f2", code=2), "--ref")
+        one_line_error(self, run("fit", "--ref", "disney_specular", "--set", "r=2",
+                                 "--candidate", "f2", code=2), "r")
+
+
+class Advise(unittest.TestCase):
+    def test_budget_choice_is_within_and_cheapest(self):
+        d = json.loads(run("advise", "plastic_red", "--budget", "slight", "--json").stdout)
+        self.assertEqual(d["budget"], {"max_nmse": 0.00025, "class": "slight"})
+        self.assertLess(d["error"]["nmse_pred"], 0.00025)
+        within = [c for c in d["candidates"] if c["within"]]
+        self.assertTrue(within)
+        self.assertEqual(min(c["cost"] for c in within), d["cost"]["total"])
+        self.assertEqual(d["candidates"][0]["specular"], d["reference"]["specular"])
+        self.assertEqual(d["candidates"][0]["nmse_pred"], 0)
+        steps = [s["step"] for s in d["trace"]]
+        self.assertEqual(steps[-1], "budget")
+        self.assertEqual(steps.count("fit"), len(d["candidates"]))
+
+    def test_numeric_budget_and_human_output(self):
+        out = run("advise", "gold", "--budget", "3e-4").stdout
+        self.assertIn("budget     predicted image NMSE < 0.0003\n", out)
+        self.assertIn("choice     disney_specular\n", out)
+        self.assertIn("the cheapest within NMSE < 0.0003", out)
+
+    def test_pareto_front_and_plot(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            svg = os.path.join(tmp, "front.svg")
+            d = json.loads(run("advise", "gold", "--pareto", "--plot", svg, "--json").stdout)
+            front = sorted((c for c in d["candidates"] if c["pareto"]), key=lambda c: c["cost"])
+            self.assertGreaterEqual(len(front), 1)
+            errs = [c["nmse_pred"] for c in front]
+            self.assertEqual(errs, sorted(errs, reverse=True))  # cheaper ones err more
+            # every candidate is dominated by one on the front (cheaper or equal, and no worse)
+            for c in d["candidates"]:
+                if c["cost"] is None:
+                    continue
+                self.assertTrue(any(f["cost"] <= c["cost"] and f["nmse_pred"] <= c["nmse_pred"]
+                                    for f in front), c)
+            root = ET.parse(svg).getroot()
+            self.assertTrue(root.tag.endswith("svg"))
+            self.assertGreaterEqual(len([e for e in root.iter() if e.tag.endswith("circle")]),
+                                    len(d["candidates"]) - 1)
+
+    def test_bad_budgets(self):
+        one_line_error(self, run("advise", "gold", "--budget", "slite", code=2),
+                       "unknown budget class 'slite'")
+        one_line_error(self, run("advise", "gold", "--budget", "-1e-4", code=2), "(0, 1]")
+        one_line_error(self, run("advise", "gold", "--budget", "nan", code=2), "nan")
+        one_line_error(self, run("advise", "gold", "--budget", "slight", "--goal", "performance",
+                                 code=2), "--goal")
+        one_line_error(self, run("advise", "gold", "--plot", "x.svg", code=2), "--pareto")
+
+
+class Scenes(unittest.TestCase):
+    def test_render_adaptive_budget_and_scene_budget(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            scene = os.path.join(tmp, "b.scene")
+            with open(scene, "w") as f:
+                f.write("camera position=0,0,4 look_at=0,0,0 resolution=32,32\n"
+                        "light directional direction=-1,1,1 intensity=3\n"
+                        "material m adaptive budget=noticeable table=gold\n"
+                        "sphere material=m radius=1\n")
+            out = run("render", scene, "-o", os.path.join(tmp, "a.exr"), "--no-preview",
+                      "--explain").stdout
+            self.assertIn("budget NMSE < 0.001, table entry gold: disney_specular", out)
+            out = run("render", os.path.join(SCENES, "sphere.scene"), "-o",
+                      os.path.join(tmp, "s.exr"), "--no-preview", "--width", "32", "--height", "32",
+                      "--adaptive", "--budget", "slight", "--explain").stdout
+            self.assertIn("budget NMSE < 0.00025", out)
+            self.assertTrue(os.path.getsize(os.path.join(tmp, "s.exr")) > 0)
+
+    def test_bad_scene_budget_and_flags(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            scene = os.path.join(tmp, "b.scene")
+            with open(scene, "w") as f:
+                f.write("camera position=0,0,4 look_at=0,0,0 resolution=8,8\n"
+                        "material m adaptive budget=huge table=gold\n"
+                        "sphere material=m radius=1\n")
+            p = run("render", scene, "-o", os.path.join(tmp, "a.exr"), code=1)
+            one_line_error(self, p, "b.scene:2:", "unknown budget class 'huge'")
+            with open(scene, "w") as f:
+                f.write("camera position=0,0,4 look_at=0,0,0 resolution=8,8\n"
+                        "material m adaptive budget=slight goal=photoreal table=gold\n"
+                        "sphere material=m radius=1\n")
+            one_line_error(self, run("render", scene, "-o", os.path.join(tmp, "a.exr"), code=1),
+                           "b.scene:2:", "goal= or budget=")
+        sphere = os.path.join(SCENES, "sphere.scene")
+        one_line_error(self, run("render", sphere, "-o", "x.exr", "--budget", "slight", code=2),
+                       "--budget needs --adaptive")
+        one_line_error(self, run("render", sphere, "-o", "x.exr", "--adaptive", "--budget", "-3",
+                                 code=2), "(0, 1]")
+
+
+if __name__ == "__main__":
+    ABRDF = sys.argv.pop(1)
+    SCENES = sys.argv.pop(1)
+    unittest.main(verbosity=2)

@@ -1,0 +1,261 @@
+/* test_budget.c - the selection's budget mode (abrdf_select_budget, abrdf_fit.h) by property:
+ * the reference is the flowchart's photoreal choice (whose steps come first, unchanged); the
+ * trace lists every candidate with its fitted block, predicted NMSE and cost; the winner is
+ * the cheapest within the budget (recomputed here from the trace); a looser class never
+ * costs more; the candidates follow the surface class; bad budgets are rejected. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "abrdf_fit.h"
+#include "test_util.h"
+
+#define MAX_STEPS 160
+
+typedef struct kept {
+    abrdf_step_kind kind;
+    abrdf_model model, diffuse;
+    double value, threshold, cost;
+    int passed, has_params;
+    abrdf_params params;
+} kept;
+
+typedef struct run {
+    abrdf_selection sel;
+    abrdf_params params;
+    int status, count;
+    kept steps[MAX_STEPS];
+} run;
+
+static void keep(void *user, const abrdf_select_step *s)
+{
+    run *r = user;
+    ck_assert_int_lt(r->count, MAX_STEPS);
+    kept *k = &r->steps[r->count++];
+    k->kind = s->kind;
+    k->model = s->model;
+    k->diffuse = s->diffuse;
+    k->value = s->value;
+    k->threshold = s->threshold;
+    k->cost = s->cost;
+    k->passed = s->passed;
+    k->has_params = s->params != NULL;
+    if (s->params) k->params = *s->params;
+    ck_assert_ptr_nonnull(s->text);
+}
+
+/* metric: ABRDF_FIT_AUTO is the default; the tests that need many fits use L2 (a third of
+ * the work; the selection's rules are the same). */
+static run *budget_metric(const abrdf_material *m, double max_nmse, abrdf_fit_metric metric)
+{
+    run *r = calloc(1, sizeof *r);
+    abrdf_budget b;
+    abrdf_budget_init(&b);
+    b.max_nmse = max_nmse;
+    b.metric = metric;
+    size_t ws = abrdf_fit_workspace_size(NULL, NULL);
+    void *w = malloc(ws);
+    abrdf_selection_init(&r->sel);
+    abrdf_params_init(ABRDF_MODEL_NONE, &r->params);
+    r->status = abrdf_select_budget(m, &b, NULL, &r->sel, &r->params, keep, r, w, ws);
+    free(w);
+    return r;
+}
+
+static run *budget(const abrdf_material *m, double max_nmse)
+{
+    return budget_metric(m, max_nmse, ABRDF_FIT_AUTO);
+}
+
+static abrdf_material plastic(void)
+{
+    abrdf_material m;
+    abrdf_material_init(&m);
+    m.r = 0.3;
+    m.eta = 1.5;
+    m.kd[0] = 0.5, m.kd[1] = 0.1, m.kd[2] = 0.05;
+    return m;
+}
+
+/* The winner, recomputed from the trace: the cheapest FIT step with a known cost below the
+ * budget, equal cost: the smaller NMSE. */
+static const kept *expected_winner(const run *r, double max_nmse)
+{
+    const kept *best = NULL;
+    for (int i = 0; i < r->count; ++i) {
+        const kept *k = &r->steps[i];
+        if (k->kind != ABRDF_STEP_FIT || !(k->cost >= 0.0) || !(k->value < max_nmse)) continue;
+        if (!best || k->cost < best->cost || (k->cost == best->cost && k->value < best->value))
+            best = k;
+    }
+    return best;
+}
+
+START_TEST(winner_is_cheapest_within_budget)
+{
+    abrdf_material m = plastic();
+    double max = 2.5e-4;
+    run *r = budget_metric(&m, max, ABRDF_FIT_L2);
+    ck_assert_int_eq(r->status, ABRDF_OK);
+    const kept *w = expected_winner(r, max);
+    ck_assert_ptr_nonnull(w);
+    ck_assert_int_eq(r->sel.specular, w->model);
+    ck_assert_int_eq(r->sel.diffuse, w->diffuse);
+    ck_assert_double_eq(r->sel.err_nmse, w->value);
+    ck_assert_double_lt(r->sel.err_nmse, max);
+    ck_assert_double_eq(r->sel.cost_total, w->cost);
+    ck_assert_mem_eq(r->params.kd, w->params.kd, sizeof r->params.kd);
+    /* every candidate's block is valid for its models (kept in the registry's ranges) */
+    int fits = 0;
+    for (int i = 0; i < r->count; ++i) {
+        const kept *k = &r->steps[i];
+        if (k->kind != ABRDF_STEP_FIT) continue;
+        ++fits;
+        ck_assert(k->has_params);
+        ck_assert_int_eq(abrdf_params_check(k->model, &k->params, NULL, 0), ABRDF_OK);
+        if (k->diffuse != ABRDF_MODEL_NONE)
+            ck_assert_int_eq(abrdf_params_check(k->diffuse, &k->params, NULL, 0), ABRDF_OK);
+        ck_assert_int_eq(k->passed, k->value < max && k->cost >= 0.0);
+        ck_assert_double_eq(k->threshold, max);
+    }
+    ck_assert_int_gt(fits, 20);
+    ck_assert_int_eq(r->sel.step_count, r->count);
+    free(r);
+}
+END_TEST
+
+/* The trace: the flowchart's photoreal steps as abrdf_select gives them, the reference, one
+ * fit per candidate (the reference's own first, NMSE 0), the winner last. */
+START_TEST(trace_order_and_reference)
+{
+    abrdf_material m = plastic();
+    run *r = budget_metric(&m, 1e-3, ABRDF_FIT_L2);
+    ck_assert_int_eq(r->status, ABRDF_OK);
+    abrdf_selection photo;
+    abrdf_params pp;
+    abrdf_selection_init(&photo);
+    abrdf_params_init(ABRDF_MODEL_NONE, &pp);
+    ck_assert_int_eq(abrdf_select(&m, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &photo, &pp, NULL, NULL),
+                     ABRDF_OK);
+    int i = 0;
+    for (; i < photo.step_count; ++i) ck_assert_int_lt(r->steps[i].kind, ABRDF_STEP_REFERENCE);
+    ck_assert_int_eq(r->steps[i].kind, ABRDF_STEP_REFERENCE);
+    ck_assert_int_eq(r->steps[i].model, photo.specular);
+    ck_assert_int_eq(r->steps[i].diffuse, photo.diffuse);
+    ck_assert_int_eq(r->steps[i + 1].kind, ABRDF_STEP_FIT);
+    ck_assert_int_eq(r->steps[i + 1].model, photo.specular);
+    ck_assert_double_eq(r->steps[i + 1].value, 0.0);
+    ck_assert_int_eq(r->steps[r->count - 1].kind, ABRDF_STEP_BUDGET);
+    ck_assert_str_eq(abrdf_step_name(ABRDF_STEP_FIT), "fit");
+    free(r);
+}
+END_TEST
+
+/* Every budget sees the same fits, so a looser class never costs more: the choice at "none"
+ * is the one the "noticeable" run's trace gives for 1e-4, and costs at least as much. A metal
+ * needs no diffuse lobe (the default metric, AUTO). */
+START_TEST(looser_budget_never_costs_more)
+{
+    abrdf_material m = plastic();
+    run *loose = budget_metric(&m, 1e-3, ABRDF_FIT_L2);
+    run *tight = budget_metric(&m, 1e-4, ABRDF_FIT_L2);
+    ck_assert_int_eq(loose->status, ABRDF_OK);
+    ck_assert_int_eq(tight->status, ABRDF_OK);
+    ck_assert_double_le(loose->sel.cost_total, tight->sel.cost_total);
+    const kept *w = expected_winner(loose, 1e-4);
+    ck_assert_ptr_nonnull(w);
+    ck_assert_int_eq(tight->sel.specular, w->model);
+    ck_assert_int_eq(tight->sel.diffuse, w->diffuse);
+    ck_assert_double_eq(tight->sel.err_nmse, w->value);
+    free(loose);
+    free(tight);
+    abrdf_material gold;
+    abrdf_material_init(&gold);
+    gold.r = 0.2;
+    gold.kd[0] = gold.kd[1] = gold.kd[2] = 0.0;
+    gold.f0[0] = 0.957, gold.f0[1] = 0.792, gold.f0[2] = 0.408;
+    run *r = budget(&gold, 1e-4);
+    ck_assert_int_eq(r->status, ABRDF_OK);
+    ck_assert_int_eq(r->sel.diffuse, ABRDF_MODEL_NONE);
+    ck_assert_int_eq(r->sel.specular, ABRDF_DISNEY_SPECULAR);
+    ck_assert_double_lt(r->sel.err_nmse, 1e-12);
+    free(r);
+}
+END_TEST
+
+static int has_candidate(const abrdf_material *m, abrdf_model d, abrdf_model s)
+{
+    abrdf_model cd, cs;
+    for (int i = 0; abrdf_budget_candidate(m, i, &cd, &cs) == ABRDF_OK; ++i)
+        if (cd == d && cs == s) return 1;
+    return 0;
+}
+
+START_TEST(candidates_follow_the_class)
+{
+    abrdf_material hair;
+    abrdf_material_init(&hair);
+    hair.type = ABRDF_SURFACE_HAIR;
+    hair.r = 0.3;
+    hair.eta = 1.55;
+    abrdf_model d, s;
+    ck_assert_int_eq(abrdf_budget_candidate(&hair, 0, &d, &s), ABRDF_OK);
+    ck_assert_int_eq(s, ABRDF_HUANG); /* the reference first */
+    ck_assert(has_candidate(&hair, ABRDF_MODEL_NONE, ABRDF_MARSCHNER));
+    ck_assert(has_candidate(&hair, ABRDF_MODEL_NONE, ABRDF_KAJIYA_KAY));
+    ck_assert(!has_candidate(&hair, ABRDF_LAMBERT, ABRDF_BLINN_PHONG));
+    ck_assert_int_eq(abrdf_budget_candidate(&hair, 3, &d, &s), ABRDF_E_RANGE);
+    abrdf_material m = plastic();
+    ck_assert(has_candidate(&m, ABRDF_LAMBERT, ABRDF_F2));
+    ck_assert(has_candidate(&m, ABRDF_LAMBERT, ABRDF_DISNEY_SPECULAR));
+    ck_assert(!has_candidate(&m, ABRDF_MODEL_NONE, ABRDF_F2)); /* kd > 0 keeps a diffuse lobe */
+    ck_assert(!has_candidate(&m, ABRDF_MODEL_NONE, ABRDF_MARSCHNER));
+    abrdf_material metal;
+    abrdf_material_init(&metal);
+    metal.type = ABRDF_SURFACE_LAYERED_METAL;
+    metal.r = 0.02;
+    metal.kd[0] = metal.kd[1] = metal.kd[2] = 0.0;
+    metal.layer_count = 2;
+    metal.layers[0] = (abrdf_layer){1.5, 0.0, 0.3, {0, 0, 0}, 0.03};
+    metal.layers[1] = (abrdf_layer){1.36, 2.45, 0.02, {0, 0, 0}, 0.0};
+    ck_assert(has_candidate(&metal, ABRDF_DISNEY_SPECULAR, ABRDF_DISNEY_CLEARCOAT));
+    ck_assert(has_candidate(&metal, ABRDF_MODEL_NONE, ABRDF_F_GE));
+}
+END_TEST
+
+START_TEST(bad_budget)
+{
+    abrdf_material m = plastic();
+    double bad[] = {0.0, -1e-4, NAN, 2.0, INFINITY};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        run *r = budget(&m, bad[i]);
+        ck_assert_int_eq(r->status, ABRDF_E_RANGE);
+        ck_assert_ptr_nonnull(strstr(r->sel.message, "budget NMSE"));
+        free(r);
+    }
+    double v;
+    ck_assert_int_eq(abrdf_budget_class_find("slight", &v), ABRDF_OK);
+    ck_assert_double_eq(v, 2.5e-4);
+    ck_assert_int_eq(abrdf_budget_class_find("significant", &v), ABRDF_E_RANGE);
+    abrdf_selection s;
+    abrdf_selection_init(&s);
+    char small[16];
+    ck_assert_int_eq(abrdf_select_budget(&m, NULL, NULL, &s, NULL, NULL, NULL, small, sizeof small),
+                     ABRDF_E_SIZE);
+    ck_assert_ptr_nonnull(strstr(s.message, "workspace"));
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("budget");
+    TCase *tc = tcase_create("budget");
+    tcase_set_timeout(tc, 900);
+    tcase_add_test(tc, winner_is_cheapest_within_budget);
+    tcase_add_test(tc, trace_order_and_reference);
+    tcase_add_test(tc, looser_budget_never_costs_more);
+    tcase_add_test(tc, candidates_follow_the_class);
+    tcase_add_test(tc, bad_budget);
+    suite_add_tcase(s, tc);
+    return tu_run(s);
+}

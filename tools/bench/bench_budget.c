@@ -1,0 +1,239 @@
+/* bench_budget.c - `abrdf bench --budget`: the payoff of the selection's budget mode on the
+ * mixed scene (scenes/mixed.scene: the robot beside hair, cloth, a coated metal and a layered
+ * plate, four lights). In one run it resolves the scene's materials by the flowchart's
+ * photoreal choice and by the budget mode for each Table-8 class, renders every variant
+ * (repetitions interleaved, median time), and reports per class the render time relative to
+ * photoreal, the image NMSE against the photoreal render and the NMSE of every material over
+ * its own pixels. Goal (docs/BENCHMARKS.md): --budget slight at least 5x faster than
+ * photoreal with every material's NMSE within slight. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "bench_budget.h"
+#include "budget_run.h"
+#include "cli_args.h"
+#include "data_path.h"
+#include "metrics.h"
+#include "mixed_scene.h"
+#include "render.h"
+#include "scene_select.h"
+
+enum { B_PHOTO, B_NONE, B_SLIGHT, B_NOTICEABLE, B_COUNT };
+static const char *const variant_name[B_COUNT] = {"photoreal", "budget none", "budget slight",
+                                                  "budget noticeable"};
+
+#define MAX_MATERIALS 16
+
+static double wall_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int parse_mixed(scene *s, char *err, size_t err_size)
+{
+    return scene_parse_text("mixed.scene", abrdf_mixed_scene_text, strlen(abrdf_mixed_scene_text),
+                            s, err, err_size);
+}
+
+/* The mixed scene with its materials chosen as variant v makes them; *select_s receives the
+ * selection's wall time. */
+static int variant_scene(int v, int spp, scene *s, double *select_s, char *err, size_t err_size)
+{
+    if (parse_mixed(s, err, err_size)) return -1;
+    char path[1024];
+    mat_table table = {NULL, 0, 0};
+    if (data_path_find("materials.csv", path, sizeof path)) {
+        snprintf(err, err_size, "the material table is missing (set ABRDF_DATA_DIR)");
+        scene_free(s);
+        return -1;
+    }
+    if (mat_table_load(&table, path, err, err_size)) {
+        scene_free(s);
+        return -1;
+    }
+    double t0 = wall_seconds();
+    int rc = v == B_PHOTO ? scene_select_budgets(s, "mixed.scene", &table, ABRDF_GOAL_PHOTOREAL,
+                                                 -1.0, spp, NULL, err, err_size)
+                          : scene_select_budgets(s, "mixed.scene", &table, -1,
+                                                 abrdf_select_rules_get()->nmse_class_max[v - 1],
+                                                 spp, NULL, err, err_size);
+    *select_s = wall_seconds() - t0;
+    mat_table_free(&table);
+    if (rc) scene_free(s);
+    return rc;
+}
+
+static int render_once(const scene *s, const render_options *ro, float *rgb, double *seconds,
+                       char *err, size_t err_size)
+{
+    render_scene rs;
+    if (render_prepare(s, ro, &rs, err, err_size)) return -1;
+    double t0 = wall_seconds();
+    int rc = render_image(&rs, ro, rgb, NULL);
+    *seconds = wall_seconds() - t0;
+    render_release(&rs);
+    if (rc) snprintf(err, err_size, "cannot start render threads");
+    return rc;
+}
+
+/* Pixels where material mi is the closest hit: only its ambient term is non-zero. */
+static int mask_of(int mi, const render_options *ro, float *rgb, char *err, size_t err_size)
+{
+    scene s;
+    if (parse_mixed(&s, err, err_size)) return -1;
+    for (int c = 0; c < 3; ++c) s.ambient[c] = 1;
+    s.light_count = 0;
+    for (int i = 0; i < s.material_count; ++i) {
+        scene_material *m = &s.materials[i];
+        m->kind = SCENE_MAT_MODELS;
+        m->lobe_count = 1;
+        m->lobes[0] = ABRDF_LAMBERT;
+        abrdf_params_init(ABRDF_LAMBERT, &m->params);
+        for (int c = 0; c < 3; ++c) m->params.kd[c] = 0, m->ka[c] = i == mi ? 1 : 0;
+        m->ka_given = 1;
+    }
+    render_options one = *ro;
+    one.spp = 1;
+    double sec;
+    int rc = render_once(&s, &one, rgb, &sec, err, err_size);
+    scene_free(&s);
+    return rc;
+}
+
+static double masked_nmse(const float *img, const float *ref, const float *mask, size_t pixels)
+{
+    double num = 0, den = 0;
+    for (size_t p = 0; p < pixels; ++p) {
+        if (mask && !(mask[3 * p] > 0.5f)) continue;
+        for (int c = 0; c < 3; ++c) {
+            double d = (double)img[3 * p + c] - ref[3 * p + c];
+            num += d * d;
+            den += (double)ref[3 * p + c] * ref[3 * p + c];
+        }
+    }
+    return den > 0 ? num / den : (num > 0 ? INFINITY : 0.0);
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void lobe_names(const scene_material *m, char *buf, size_t n)
+{
+    budget_pair_name(m->lobe_count == 2 ? m->lobes[0] : ABRDF_MODEL_NONE,
+                     m->lobes[m->lobe_count - 1], buf, n);
+}
+
+int bench_budget_report(FILE *out, int json, int size, int spp, int reps, int threads)
+{
+    char err[512] = "";
+    scene sv[B_COUNT];
+    double select_s[B_COUNT] = {0}, sec[B_COUNT] = {0};
+    int parsed = 0, rc = 1;
+    float *img[B_COUNT] = {NULL}, *mask = NULL;
+    double *t = NULL;
+    for (; parsed < B_COUNT; ++parsed)
+        if (variant_scene(parsed, spp, &sv[parsed], &select_s[parsed], err, sizeof err)) goto out;
+    int w = size > 0 ? size : sv[0].camera.width;
+    int h = size > 0 ? size * sv[0].camera.height / sv[0].camera.width : sv[0].camera.height;
+    size_t pixels = (size_t)w * (size_t)h;
+    int nm = sv[0].material_count < MAX_MATERIALS ? sv[0].material_count : MAX_MATERIALS;
+    mask = malloc(pixels * 3 * sizeof *mask);
+    t = malloc(sizeof(double) * (size_t)(reps * B_COUNT));
+    for (int v = 0; v < B_COUNT; ++v)
+        if (!(img[v] = malloc(pixels * 3 * sizeof *img[v]))) goto oom;
+    if (!mask || !t) goto oom;
+    render_options ro = {.width = w, .height = h, .spp = spp, .threads = threads};
+    /* repetitions interleaved so that the machine's drift affects every variant alike */
+    for (int r = -1; r < reps; ++r) /* r = -1: untimed warm-up */
+        for (int v = 0; v < B_COUNT; ++v) {
+            double s;
+            if (render_once(&sv[v], &ro, img[v], &s, err, sizeof err)) goto out;
+            if (r >= 0) t[v * reps + r] = s;
+        }
+    for (int v = 0; v < B_COUNT; ++v) {
+        qsort(t + v * reps, (size_t)reps, sizeof(double), cmp_double);
+        sec[v] = t[v * reps + reps / 2];
+    }
+    double nmse[B_COUNT][MAX_MATERIALS], whole[B_COUNT];
+    for (int v = 0; v < B_COUNT; ++v) whole[v] = masked_nmse(img[v], img[B_PHOTO], NULL, pixels);
+    for (int i = 0; i < nm; ++i) {
+        if (mask_of(i, &ro, mask, err, sizeof err)) goto out;
+        for (int v = 0; v < B_COUNT; ++v)
+            nmse[v][i] = masked_nmse(img[v], img[B_PHOTO], mask, pixels);
+    }
+    /* the goal: slight >= 5x faster with every material within slight */
+    double slight = abrdf_select_rules_get()->nmse_class_max[1];
+    int over = 0;
+    for (int i = 0; i < nm; ++i) over += !(nmse[B_SLIGHT][i] < slight);
+    double speedup = sec[B_SLIGHT] > 0 ? sec[B_PHOTO] / sec[B_SLIGHT] : 0;
+    char lb[128];
+    if (json) {
+        fprintf(out,
+                "{\"scene\": \"mixed\", \"width\": %d, \"height\": %d, \"spp\": %d, \"threads\": "
+                "%d, \"reps\": %d, \"reference\": \"photoreal\", \"variants\": [",
+                w, h, spp, threads, reps);
+        for (int v = 0; v < B_COUNT; ++v) {
+            fprintf(out,
+                    "%s\n  {\"name\": \"%s\", \"seconds\": %.6g, \"time_ratio\": %.6g, "
+                    "\"select_seconds\": %.4g, \"image_nmse\": %.6g, \"materials\": [",
+                    v ? "," : "", variant_name[v], sec[v], sec[v] / sec[B_PHOTO], select_s[v],
+                    whole[v]);
+            for (int i = 0; i < nm; ++i) {
+                lobe_names(&sv[v].materials[i], lb, sizeof lb);
+                fprintf(out, "%s{\"material\": ", i ? ", " : "");
+                cli_json_string(out, sv[v].materials[i].name);
+                fprintf(out, ", \"models\": ");
+                cli_json_string(out, lb);
+                fprintf(out, ", \"nmse\": %.6g}", isfinite(nmse[v][i]) ? nmse[v][i] : -1.0);
+            }
+            fprintf(out, "]}");
+        }
+        fprintf(out,
+                "\n], \"goal\": {\"speedup_slight\": %.6g, \"materials_over_slight\": %d, "
+                "\"met\": %s}}\n",
+                speedup, over, speedup >= 5.0 && over == 0 ? "true" : "false");
+    } else {
+        fprintf(out,
+                "Mixed scene %dx%d, %d spp, %d thread(s), median of %d renders per variant "
+                "(interleaved).\nReference: every material by the flowchart's photoreal choice; "
+                "budget: abrdf_select_budget per material,\npredicted on the scene's lights and "
+                "camera (scene_budget_view).\n\n",
+                w, h, spp, threads, reps);
+        fprintf(out, "%-18s %10s %10s %12s %-12s %10s\n", "variant", "render s", "time/photo",
+                "image NMSE", "class", "select s");
+        for (int v = 0; v < B_COUNT; ++v)
+            fprintf(out, "%-18s %10.3f %10.3f %12.3g %-12s %10.2f\n", variant_name[v], sec[v],
+                    sec[v] / sec[B_PHOTO], whole[v], v ? abrdf_nmse_class(whole[v]) : "-",
+                    select_s[v]);
+        fprintf(out, "\n%-8s %-18s %-40s %12s\n", "material", "variant", "models", "NMSE");
+        for (int i = 0; i < nm; ++i)
+            for (int v = 0; v < B_COUNT; ++v) {
+                lobe_names(&sv[v].materials[i], lb, sizeof lb);
+                fprintf(out, "%-8s %-18s %-40s %12.3g\n", sv[v].materials[i].name, variant_name[v],
+                        lb, nmse[v][i]);
+            }
+        fprintf(out,
+                "\ngoal: --budget slight >= 5x faster than photoreal with every material within "
+                "slight: %.2fx, %d material(s) over slight: %s\n",
+                speedup, over, speedup >= 5.0 && over == 0 ? "met" : "missed");
+    }
+    rc = 0;
+    goto out;
+oom:
+    snprintf(err, sizeof err, "out of memory");
+out:
+    if (rc) fprintf(stderr, "abrdf bench: %s\n", err);
+    for (int v = 0; v < parsed; ++v) scene_free(&sv[v]);
+    for (int v = 0; v < B_COUNT; ++v) free(img[v]);
+    free(mask);
+    free(t);
+    return rc;
+}

@@ -1,0 +1,47 @@
+/* budget_run.h - the selection's budget mode (abrdf_select_budget, abrdf_fit.h) as the tools
+ * run it: the budget from the command line or a scene ("slight" or a number), the workspace,
+ * the kept trace, and the fitted candidates read back from it (for --pareto, tables and the
+ * benchmarks). */
+#ifndef ABRDF_BUDGET_RUN_H
+#define ABRDF_BUDGET_RUN_H
+
+#include <stddef.h>
+#include <stdio.h>
+#include "abrdf_fit.h"
+#include "select_trace.h"
+
+/* "none", "slight", "noticeable" (the paper's Table 8) or a number in (0, 1]. Returns 0, or
+ * -1 with a one-line reason in err ("unknown class 'slite' (none, slight, noticeable or a
+ * number in (0, 1])", "-1 is not in (0, 1]"). */
+int budget_parse(const char *s, double *max_nmse, char *err, size_t err_size);
+
+typedef struct budget_result {
+    abrdf_selection sel; /* the choice (diffuse may be ABRDF_MODEL_NONE) */
+    abrdf_params params; /* its fitted block */
+    select_trace trace;  /* every step: the flowchart's, the reference, each fit, the winner */
+    double seconds;      /* wall time of abrdf_select_budget */
+} budget_result;
+
+/* Run the budget mode for m. view NULL: the default sphere; costs NULL: the built-in table.
+ * Returns 0, or -1 with the library's message in err (the result is then empty). */
+int budget_run(const abrdf_material *m, double max_nmse, const abrdf_costs *costs,
+               const abrdf_view *view, budget_result *out, char *err, size_t err_size);
+void budget_result_free(budget_result *r);
+
+/* The ABRDF_STEP_FIT steps of a result: *count candidates, their steps in trace order (the
+ * first is the reference). The pointers stay valid until budget_result_free. */
+int budget_candidates(const budget_result *r, const abrdf_select_step **out, int max);
+
+/* Indices (into cand) of the cost/error Pareto front, cheapest first: the candidates with a
+ * known cost whose predicted NMSE is below that of every cheaper one. Returns the count. */
+int budget_pareto(const abrdf_select_step *const *cand, int count, int *front);
+
+/* Every parameter the pair reads, as a JSON object {"kd": [r, g, b], "n": 80, ...} or as
+ * text "kd 0.5,0.4,0.3  n 80" (colours with equal channels as one number). */
+void budget_params_json(FILE *f, abrdf_model diffuse, abrdf_model specular, const abrdf_params *p);
+void budget_params_text(FILE *f, abrdf_model diffuse, abrdf_model specular, const abrdf_params *p);
+
+/* "lambert + disney_specular" or "kajiya_kay". */
+void budget_pair_name(abrdf_model diffuse, abrdf_model specular, char *buf, size_t size);
+
+#endif
