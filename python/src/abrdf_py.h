@@ -78,6 +78,11 @@ extern PyMethodDef abrdf_py_fit_methods[];
 int abrdf_py_material_from(PyObject *d, abrdf_material *m, PyObject **name_ref);
 /* c from {model name: cost} in `unit`. 0 or -1. */
 int abrdf_py_costs_from(PyObject *costs, const char *unit, abrdf_costs *c);
+/* m from the material dict `mat` and, unless `costs` is None, c from the costs dict in `unit`
+ * (TypeError when costs is neither). On success *name_ref is NULL or a new reference that
+ * m->name points into: Py_XDECREF it once m is no longer used. 0 or -1 (nothing held). */
+int abrdf_py_material_costs_from(PyObject *mat, PyObject *costs, const char *unit,
+                                 abrdf_material *m, abrdf_costs *c, PyObject **name_ref);
 /* The dict abrdf._abrdf.select returns: the choice, its lobes' Params and the trace. */
 PyObject *abrdf_py_selection_dict(const abrdf_selection *s, const abrdf_params *p,
                                   const select_trace *trace);

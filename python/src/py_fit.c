@@ -135,16 +135,9 @@ static PyObject *py_select_budget(PyObject *self, PyObject *args, PyObject *kwar
                                      &max_nmse, &costs, &unit))
         return NULL;
     abrdf_material m;
-    PyObject *name_ref = NULL;
-    if (abrdf_py_material_from(mat, &m, &name_ref)) return NULL;
-    Py_XINCREF(name_ref); /* m.name points into it */
     abrdf_costs c;
-    if (costs != Py_None && (!PyDict_Check(costs) || abrdf_py_costs_from(costs, unit, &c))) {
-        if (!PyErr_Occurred())
-            PyErr_SetString(PyExc_TypeError, "costs: None or a dict {model: cost}");
-        Py_XDECREF(name_ref);
-        return NULL;
-    }
+    PyObject *name_ref;
+    if (abrdf_py_material_costs_from(mat, costs, unit, &m, &c, &name_ref)) return NULL;
     budget_result r;
     char err[512];
     int rc;

@@ -296,6 +296,23 @@ int abrdf_py_costs_from(PyObject *costs, const char *unit, abrdf_costs *c)
     return 0;
 }
 
+/* The material dict and the optional costs dict of select and select_budget. */
+int abrdf_py_material_costs_from(PyObject *mat, PyObject *costs, const char *unit,
+                                 abrdf_material *m, abrdf_costs *c, PyObject **name_ref)
+{
+    *name_ref = NULL;
+    if (abrdf_py_material_from(mat, m, name_ref)) return -1;
+    Py_XINCREF(*name_ref); /* m->name points into it */
+    if (costs != Py_None && (!PyDict_Check(costs) || abrdf_py_costs_from(costs, unit, c))) {
+        if (!PyErr_Occurred())
+            PyErr_SetString(PyExc_TypeError, "costs: None or a dict {model: cost}");
+        Py_XDECREF(*name_ref);
+        *name_ref = NULL;
+        return -1;
+    }
+    return 0;
+}
+
 /* ---- select ---------------------------------------------------------------------------- */
 
 /* The values of every parameter the lobes of a budget candidate read, from its fitted block
@@ -393,16 +410,9 @@ static PyObject *py_select(PyObject *self, PyObject *args, PyObject *kwargs)
         return abrdf_py_fail(ABRDF_E_RANGE, "unknown goal '%s' (performance or photoreal)",
                              goal_name);
     abrdf_material m;
-    PyObject *name_ref = NULL;
-    if (abrdf_py_material_from(mat, &m, &name_ref)) return NULL;
-    Py_XINCREF(name_ref); /* m.name points into it */
     abrdf_costs c;
-    if (costs != Py_None && (!PyDict_Check(costs) || abrdf_py_costs_from(costs, unit, &c))) {
-        if (!PyErr_Occurred())
-            PyErr_SetString(PyExc_TypeError, "costs: None or a dict {model: cost}");
-        Py_XDECREF(name_ref);
-        return NULL;
-    }
+    PyObject *name_ref;
+    if (abrdf_py_material_costs_from(mat, costs, unit, &m, &c, &name_ref)) return NULL;
     abrdf_selection s;
     abrdf_params p;
     select_trace trace = SELECT_TRACE_INIT;
