@@ -9,6 +9,7 @@
 #include "advise_budget.h"
 #include "budget_run.h"
 #include "out_file.h"
+#include "plot_grid.h"
 #include "cli.h"
 #include "metrics.h"
 
@@ -209,20 +210,8 @@ static void write_plot(FILE *f, const char *title, const abrdf_select_step *cons
             fputc(*c, f);
     }
     fprintf(f, "</text>\n");
-    for (double e = lx0; e <= lx1; ++e) {
-        double x = PX(pow(10, e));
-        fprintf(f,
-                "<line x1=\"%.1f\" y1=\"%g\" x2=\"%.1f\" y2=\"%g\" stroke=\"#ddd\"/><text "
-                "x=\"%.1f\" y=\"%g\" text-anchor=\"middle\">1e%g</text>\n",
-                x, T, x, H - B, x, H - B + 15, e);
-    }
-    for (double e = ly0; e <= ly1; ++e) {
-        double y = PY(pow(10, e));
-        fprintf(f,
-                "<line x1=\"%g\" y1=\"%.1f\" x2=\"%g\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%g\" "
-                "y=\"%.1f\" text-anchor=\"end\">1e%g</text>\n",
-                L, y, W - Rm, y, L - 5, y + 4, e);
-    }
+    plot_grid g = {W, H, L, Rm, T, B, lx0, lx1, ly0, ly1, y0, y1};
+    plot_grid_write(f, &g);
     fprintf(f,
             "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"none\" stroke=\"black\"/>\n"
             "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">cost per evaluation (ns, the "

@@ -15,6 +15,7 @@
 #include "measure.h"
 #include "metrics.h"
 #include "out_file.h"
+#include "plot_grid.h"
 
 /* The accuracy experiments (docs/BENCHMARKS.md, "Accuracy"). */
 #define APPROX_N 100.0   /* exponent of Blinn-Phong and its Table-1 approximations */
@@ -378,20 +379,8 @@ static void write_plot(FILE *f, const row *rows, int count, double unit_ns)
             "font-family=\"sans-serif\" font-size=\"11\">\n"
             "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
             W, H);
-    for (double e = lx0; e <= lx1; ++e) {
-        double x = PX(pow(10, e));
-        fprintf(f,
-                "<line x1=\"%.1f\" y1=\"%g\" x2=\"%.1f\" y2=\"%g\" stroke=\"#ddd\"/><text "
-                "x=\"%.1f\" y=\"%g\" text-anchor=\"middle\">1e%g</text>\n",
-                x, T, x, H - B, x, H - B + 15, e);
-    }
-    for (double e = ly0; e <= ly1; ++e) {
-        double y = PY(pow(10, e));
-        fprintf(f,
-                "<line x1=\"%g\" y1=\"%.1f\" x2=\"%g\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%g\" "
-                "y=\"%.1f\" text-anchor=\"end\">1e%g</text>\n",
-                L, y, W - Rm, y, L - 5, y + 4, e);
-    }
+    plot_grid g = {W, H, L, Rm, T, B, lx0, lx1, ly0, ly1, -INFINITY, INFINITY};
+    plot_grid_write(f, &g);
     fprintf(f,
             "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"none\" stroke=\"black\"/>\n",
             L, T, W - L - Rm, H - T - B);
