@@ -12,6 +12,7 @@
 #define ABRDF_BENCH_H
 #include <stdio.h>
 #include "abrdf.h"
+#include "bench_scene.h"
 #include "scene.h"
 
 /* Returns 0, or -1 with a message in err. */
@@ -24,9 +25,6 @@ int bench_robot_parse(scene *s, char *err, size_t err_size);
 int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrdf_model specular,
                       const abrdf_params *p, float *rgb, double *seconds, char *err,
                       size_t err_size);
-
-/* Wall-clock seconds (monotonic), for render timings that span threads. */
-double bench_wall_seconds(void);
 
 /* `abrdf bench --render`: writes a table (json 0) or a JSON object (json 1) to out.
  * size: image size (0 = the scene's); reps: timed renders per variant (median). Ends with

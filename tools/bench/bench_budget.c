@@ -10,9 +10,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bench_budget.h"
+#include "bench_scene.h"
 #include "budget_run.h"
 #include "cli_args.h"
 #include "data_path.h"
@@ -26,13 +26,6 @@ static const char *const variant_name[B_COUNT] = {"photoreal", "budget none", "b
                                                   "budget noticeable"};
 
 #define MAX_MATERIALS 16
-
-static double wall_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static int parse_mixed(scene *s, char *err, size_t err_size)
 {
@@ -56,28 +49,15 @@ static int variant_scene(int v, int spp, scene *s, double *select_s, char *err, 
         scene_free(s);
         return -1;
     }
-    double t0 = wall_seconds();
+    double t0 = bench_wall_seconds();
     int rc = v == B_PHOTO ? scene_select_budgets(s, "mixed.scene", &table, ABRDF_GOAL_PHOTOREAL,
                                                  -1.0, spp, NULL, err, err_size)
                           : scene_select_budgets(s, "mixed.scene", &table, -1,
                                                  abrdf_select_rules_get()->nmse_class_max[v - 1],
                                                  spp, NULL, err, err_size);
-    *select_s = wall_seconds() - t0;
+    *select_s = bench_wall_seconds() - t0;
     mat_table_free(&table);
     if (rc) scene_free(s);
-    return rc;
-}
-
-static int render_once(const scene *s, const render_options *ro, float *rgb, double *seconds,
-                       char *err, size_t err_size)
-{
-    render_scene rs;
-    if (render_prepare(s, ro, &rs, err, err_size)) return -1;
-    double t0 = wall_seconds();
-    int rc = render_image(&rs, ro, rgb, NULL);
-    *seconds = wall_seconds() - t0;
-    render_release(&rs);
-    if (rc) snprintf(err, err_size, "cannot start render threads");
     return rc;
 }
 
@@ -99,30 +79,16 @@ static int mask_of(int mi, const render_options *ro, float *rgb, char *err, size
     }
     render_options one = *ro;
     one.spp = 1;
-    double sec;
-    int rc = render_once(&s, &one, rgb, &sec, err, err_size);
+    int rc = bench_render_timed(&s, &one, rgb, NULL, err, err_size);
     scene_free(&s);
     return rc;
 }
 
 static double masked_nmse(const float *img, const float *ref, const float *mask, size_t pixels)
 {
-    double num = 0, den = 0;
-    for (size_t p = 0; p < pixels; ++p) {
-        if (mask && !(mask[3 * p] > 0.5f)) continue;
-        for (int c = 0; c < 3; ++c) {
-            double d = (double)img[3 * p + c] - ref[3 * p + c];
-            num += d * d;
-            den += (double)ref[3 * p + c] * ref[3 * p + c];
-        }
-    }
+    double num, den;
+    bench_masked_sums(img, ref, mask, pixels, &num, &den);
     return den > 0 ? num / den : (num > 0 ? INFINITY : 0.0);
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 static void lobe_names(const scene_material *m, char *buf, size_t n)
@@ -138,7 +104,6 @@ int bench_budget_report(FILE *out, int json, int size, int spp, int reps, int th
     double select_s[B_COUNT] = {0}, sec[B_COUNT] = {0};
     int parsed = 0, rc = 1;
     float *img[B_COUNT] = {NULL}, *mask = NULL;
-    double *t = NULL;
     for (; parsed < B_COUNT; ++parsed)
         if (variant_scene(parsed, spp, &sv[parsed], &select_s[parsed], err, sizeof err)) goto out;
     int w = size > 0 ? size : sv[0].camera.width;
@@ -146,22 +111,12 @@ int bench_budget_report(FILE *out, int json, int size, int spp, int reps, int th
     size_t pixels = (size_t)w * (size_t)h;
     int nm = sv[0].material_count < MAX_MATERIALS ? sv[0].material_count : MAX_MATERIALS;
     mask = malloc(pixels * 3 * sizeof *mask);
-    t = malloc(sizeof(double) * (size_t)(reps * B_COUNT));
     for (int v = 0; v < B_COUNT; ++v)
         if (!(img[v] = malloc(pixels * 3 * sizeof *img[v]))) goto oom;
-    if (!mask || !t) goto oom;
+    if (!mask) goto oom;
     render_options ro = {.width = w, .height = h, .spp = spp, .threads = threads};
-    /* repetitions interleaved so that the machine's drift affects every variant alike */
-    for (int r = -1; r < reps; ++r) /* r = -1: untimed warm-up */
-        for (int v = 0; v < B_COUNT; ++v) {
-            double s;
-            if (render_once(&sv[v], &ro, img[v], &s, err, sizeof err)) goto out;
-            if (r >= 0) t[v * reps + r] = s;
-        }
-    for (int v = 0; v < B_COUNT; ++v) {
-        qsort(t + v * reps, (size_t)reps, sizeof(double), cmp_double);
-        sec[v] = t[v * reps + reps / 2];
-    }
+    /* the median per variant of interleaved repetitions */
+    if (bench_render_medians(sv, B_COUNT, &ro, reps, img, sec, err, sizeof err)) goto out;
     double nmse[B_COUNT][MAX_MATERIALS], whole[B_COUNT];
     for (int v = 0; v < B_COUNT; ++v) whole[v] = masked_nmse(img[v], img[B_PHOTO], NULL, pixels);
     for (int i = 0; i < nm; ++i) {
@@ -234,6 +189,5 @@ out:
     for (int v = 0; v < parsed; ++v) scene_free(&sv[v]);
     for (int v = 0; v < B_COUNT; ++v) free(img[v]);
     free(mask);
-    free(t);
     return rc;
 }

@@ -19,9 +19,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bench.h"
+#include "bench_scene.h"
 #include "cli_args.h"
 #include "render.h"
 #include "robot_scene.h"
@@ -117,15 +117,6 @@ static int make_scene(int sc, int mi, scene *s, char *err, size_t err_size)
     return 0;
 }
 
-/* Wall-clock seconds (monotonic): a render spans threads. Not bench_wall_seconds, whose file
- * calls this one (no circle between object files). */
-static double wall_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 static int render_one(const scene *s, int w, int h, int threads, int est, int ns, float *rgb,
                       double *seconds, char *err, size_t err_size)
 {
@@ -135,14 +126,7 @@ static int render_one(const scene *s, int w, int h, int threads, int est, int ns
                          .threads = threads,
                          .estimator = est,
                          .light_samples = ns};
-    render_scene rs;
-    if (render_prepare(s, &ro, &rs, err, err_size)) return -1;
-    double t0 = wall_seconds();
-    int rc = render_image(&rs, &ro, rgb, NULL);
-    if (seconds) *seconds = wall_seconds() - t0;
-    render_release(&rs);
-    if (rc) snprintf(err, err_size, "cannot start render threads");
-    return rc;
+    return bench_render_timed(s, &ro, rgb, seconds, err, err_size);
 }
 
 static double nmse(const float *img, const float *ref, size_t n)

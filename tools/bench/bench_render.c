@@ -4,39 +4,19 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "bench.h"
+#include "bench_scene.h"
 #include "cli_args.h"
 #include "metrics.h"
 #include "render.h"
 #include "robot_scene.h"
 #include "scene_select.h"
 
-double bench_wall_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 int bench_robot_parse(scene *s, char *err, size_t err_size)
 {
     return scene_parse_text("robot.scene", abrdf_robot_scene_text, strlen(abrdf_robot_scene_text),
                             s, err, err_size);
-}
-
-static int render_timed(const scene *s, const render_options *ro, float *rgb, double *seconds,
-                        char *err, size_t err_size)
-{
-    render_scene rs;
-    if (render_prepare(s, ro, &rs, err, err_size)) return -1;
-    double t0 = bench_wall_seconds();
-    int rc = render_image(&rs, ro, rgb, NULL);
-    if (seconds) *seconds = bench_wall_seconds() - t0;
-    render_release(&rs);
-    if (rc) snprintf(err, err_size, "cannot start render threads");
-    return rc;
 }
 
 int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrdf_model specular,
@@ -62,7 +42,7 @@ int bench_robot_lobes(scene *s, int size, int threads, abrdf_model diffuse, abrd
             if (lobes[l] != ABRDF_MODEL_NONE) m->lobes[m->lobe_count++] = lobes[l];
     }
     render_options ro = {.width = size, .height = size, .spp = 1, .threads = threads};
-    return render_timed(s, &ro, rgb, seconds, err, err_size);
+    return bench_render_timed(s, &ro, rgb, seconds, err, err_size);
 }
 
 /* ---- `abrdf bench --render` ----------------------------------------------------------- */
@@ -120,29 +100,16 @@ static int material_mask(int mi, int w, int h, int threads, float *rgb, char *er
         for (int c = 0; c < 3; ++c) m->params.kd[c] = 0, m->ka[c] = i == mi ? 1 : 0;
     }
     render_options ro = {.width = w, .height = h, .spp = 1, .threads = threads};
-    int rc = render_timed(&s, &ro, rgb, NULL, err, err_size);
+    int rc = bench_render_timed(&s, &ro, rgb, NULL, err, err_size);
     scene_free(&s);
     return rc;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 /* NMSE of img vs ref over the pixels where mask > 0.5 (all pixels if mask is NULL). */
 static double masked_nmse(const float *img, const float *ref, const float *mask, size_t pixels)
 {
-    double num = 0, den = 0;
-    for (size_t p = 0; p < pixels; ++p) {
-        if (mask && !(mask[3 * p] > 0.5f)) continue;
-        for (int c = 0; c < 3; ++c) {
-            double d = (double)img[3 * p + c] - ref[3 * p + c];
-            num += d * d;
-            den += (double)ref[3 * p + c] * ref[3 * p + c];
-        }
-    }
+    double num, den;
+    bench_masked_sums(img, ref, mask, pixels, &num, &den);
     return den > 0 ? num / den : NAN;
 }
 
@@ -174,25 +141,9 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads, in
     for (int v = 0; v < V_COUNT; ++v)
         if (!(img[v] = malloc(pixels * 3 * sizeof *img[v]))) goto oom;
     if (!mask) goto oom;
-    /* Interleave the variants' repetitions so that drift of the machine's load affects
-     * all of them alike; the median per variant is reported. */
-    double *t = malloc(sizeof(double) * (size_t)(reps * V_COUNT));
-    if (!t) goto oom;
+    /* the median per variant of interleaved repetitions */
     render_options ro = {.width = w, .height = h, .spp = 1, .threads = threads};
-    for (int r = -1; r < reps; ++r) /* r = -1: untimed warm-up */
-        for (int v = 0; v < V_COUNT; ++v) {
-            double s;
-            if (render_timed(&sv[v], &ro, img[v], &s, err, sizeof err)) {
-                free(t);
-                goto out;
-            }
-            if (r >= 0) t[v * reps + r] = s;
-        }
-    for (int v = 0; v < V_COUNT; ++v) {
-        qsort(t + v * reps, (size_t)reps, sizeof(double), cmp_double);
-        sec[v] = t[v * reps + reps / 2];
-    }
-    free(t);
+    if (bench_render_medians(sv, V_COUNT, &ro, reps, img, sec, err, sizeof err)) goto out;
 
     double nmse[V_COUNT][MAX_MATERIALS], whole[V_COUNT], approx[MAX_MATERIALS];
     for (int v = 0; v < V_COUNT; ++v) whole[v] = masked_nmse(img[v], img[V_DISNEY], NULL, pixels);
