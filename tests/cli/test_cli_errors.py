@@ -9,8 +9,9 @@ import json
 import os
 import re
 import subprocess
-import tempfile
 import unittest
+
+from clitest import TempDirCase, checked_stderr, read_text
 
 ABRDF = os.environ["ABRDF"]
 SCENES = os.environ["SCENES"]
@@ -20,30 +21,10 @@ SPHERE = os.path.join(SCENES, "sphere.scene")
 
 def run(*args, timeout=120):
     p = subprocess.run([ABRDF, *args], capture_output=True, timeout=timeout)
-    err = p.stderr.decode("utf-8", "replace")
-    assert "Sanitizer" not in err and "runtime error" not in err, err
-    return p.returncode, p.stdout, err
+    return p.returncode, p.stdout, checked_stderr(p)
 
 
-def read_text(path):
-    with open(path) as f:
-        return f.read()
-
-
-class Base(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def put(self, name, data):
-        path = os.path.join(self.dir, name)
-        with open(path, "wb" if isinstance(data, bytes) else "w") as f:
-            f.write(data)
-        return path
-
+class Base(TempDirCase):
     def fails(self, rc_expected, args, *needles):
         rc, out, err = run(*args)
         self.assertEqual(rc, rc_expected, (args, err))

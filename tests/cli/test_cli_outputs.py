@@ -19,9 +19,10 @@ import resource
 import signal
 import subprocess
 import sys
-import tempfile
 import threading
 import unittest
+
+from clitest import TempDirCase, checked_stderr, read_text
 
 ABRDF = os.environ["ABRDF"]
 BIN = os.environ["BIN"]
@@ -45,14 +46,7 @@ def run(*args, limit=None, stdout=None, timeout=600):
     p = subprocess.run(list(args), stdout=stdout if stdout is not None else subprocess.PIPE,
                        stderr=subprocess.PIPE, preexec_fn=limited(limit) if limit else None,
                        timeout=timeout)
-    err = p.stderr.decode("utf-8", "replace")
-    assert "Sanitizer" not in err and "runtime error" not in err, err
-    return p.returncode, err
-
-
-def read_text(path):
-    with open(path) as f:
-        return f.read()
+    return p.returncode, checked_stderr(p)
 
 
 def snapshot(directory):
@@ -66,22 +60,7 @@ def snapshot(directory):
     return out
 
 
-class Base(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def put(self, name, data):
-        with open(self.path(name), "wb" if isinstance(data, bytes) else "w") as f:
-            f.write(data)
-        return self.path(name)
-
+class Base(TempDirCase):
     def one_line(self, err, *needles):
         self.assertEqual(err.count("\n"), 1, err)
         for n in needles:

@@ -4,8 +4,9 @@ and SCENES (the scenes directory) in the environment."""
 import os
 import re
 import subprocess
-import tempfile
 import unittest
+
+from clitest import TempDirCase
 
 ABRDF = os.environ["ABRDF"]
 SCENES = os.environ["SCENES"]
@@ -24,17 +25,7 @@ def counter(out, name):
     return int(m.group(1))
 
 
-class Render(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
+class Render(TempDirCase):
     def test_writes_exr_and_png_preview(self):
         r = run(os.path.join(SCENES, "sphere.scene"), "-o", self.path("s.exr"), "--width", "32", "--height", "24",
                 preview=True)
