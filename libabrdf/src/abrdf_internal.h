@@ -9,6 +9,7 @@
 #define ABRDF_INTERNAL_H
 
 #include "abrdf.h"
+#include "abrdf_select.h"
 #include "guards.h"
 
 #define ABRDF__PI 3.14159265358979323846
@@ -37,5 +38,9 @@ double abrdf__highlight_zone_cos(double n);
  * layout (registry.c). */
 const abrdf_params *abrdf__params_view(abrdf_model model, const abrdf_params *p,
                                        abrdf_params *scratch);
+
+/* A failed selection (abrdf_select, abrdf_select_budget): out->message from the printf-style
+ * fmt; returns status (select.c). */
+int abrdf__selection_fail(abrdf_selection *out, int status, const char *fmt, ...);
 
 #endif /* ABRDF_INTERNAL_H */

@@ -325,15 +325,6 @@ static double pair_cost(const abrdf_costs *costs, const abrdf_model lobe[2])
 
 /* ---- the selection ----------------------------------------------------------------------- */
 
-static int fail(abrdf_selection *out, int st, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(out->message, sizeof out->message, fmt, ap);
-    va_end(ap);
-    return st;
-}
-
 #define SELECTION_SIZE_0_2 END_OF(abrdf_selection, message)
 
 int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
@@ -351,30 +342,32 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     abrdf_costs builtin;
     abrdf_params ref_block;
     if (!m || !work) {
-        st = fail(&sel, ABRDF_E_NULL, "abrdf_select_budget: %s is NULL",
-                  m ? "the workspace" : "the material");
+        st = abrdf__selection_fail(&sel, ABRDF_E_NULL, "abrdf_select_budget: %s is NULL",
+                                   m ? "the workspace" : "the material");
         goto done;
     }
     if (budget) {
         if (budget->struct_size < BUDGET_SIZE_0_3) {
-            st = fail(&sel, ABRDF_E_SIZE,
-                      "abrdf_budget: struct_size %zu is below its first layout: initialise it "
-                      "with abrdf_budget_init",
-                      budget->struct_size);
+            st = abrdf__selection_fail(
+                &sel, ABRDF_E_SIZE,
+                "abrdf_budget: struct_size %zu is below its first layout: initialise it "
+                "with abrdf_budget_init",
+                budget->struct_size);
             goto done;
         }
         memcpy(&b, budget, budget->struct_size < sizeof b ? budget->struct_size : sizeof b);
         b.struct_size = sizeof b;
     }
     if (!(b.max_nmse > 0.0 && b.max_nmse <= 1.0)) {
-        st = fail(&sel, ABRDF_E_RANGE, "budget NMSE %g is not in (0, 1]", b.max_nmse);
+        st = abrdf__selection_fail(&sel, ABRDF_E_RANGE, "budget NMSE %g is not in (0, 1]",
+                                   b.max_nmse);
         goto done;
     }
     if (!((int)b.metric >= 0 && b.metric < ABRDF_FIT_METRIC_COUNT) || b.resolution < 0 ||
         b.resolution > 5) {
-        st = fail(&sel, ABRDF_E_RANGE,
-                  "budget: metric %d is unknown or resolution %d is outside [0, 5]", (int)b.metric,
-                  b.resolution);
+        st = abrdf__selection_fail(
+            &sel, ABRDF_E_RANGE, "budget: metric %d is unknown or resolution %d is outside [0, 5]",
+            (int)b.metric, b.resolution);
         goto done;
     }
     if (!costs) {
@@ -389,7 +382,7 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     char msg[ABRDF_FIT_MESSAGE_MAX];
     if ((st = abrdf__brdf_make(&ref, sel.diffuse, sel.specular, &ref_block, msg, sizeof msg)) !=
         ABRDF_OK) {
-        st = fail(&sel, st, "%s", msg);
+        st = abrdf__selection_fail(&sel, st, "%s", msg);
         goto done;
     }
     class_candidates cc;
@@ -406,15 +399,16 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     abrdf__pred pr;
     if ((st = abrdf__pred_prepare(&pr, b.view, &ref, integrating, &a, msg, sizeof msg)) !=
         ABRDF_OK) {
-        st = fail(&sel, st, "%s", msg);
+        st = abrdf__selection_fail(&sel, st, "%s", msg);
         goto done;
     }
     abrdf__fit_set set;
     int tangent = abrdf__brdf_uses_tangent(&ref), fibre = abrdf__brdf_is_fibre(&ref);
     if (abrdf__fit_set_make(&set, &ref, tangent, fibre, abrdf__fit_level(b.resolution, integrating),
                             &a) != ABRDF_OK) {
-        st = fail(&sel, ABRDF_E_SIZE,
-                  "the workspace (%zu bytes) is too small: abrdf_fit_workspace_size", work_size);
+        st = abrdf__selection_fail(
+            &sel, ABRDF_E_SIZE, "the workspace (%zu bytes) is too small: abrdf_fit_workspace_size",
+            work_size);
         goto done;
     }
     char bt[64], names[96], ptext[320];
@@ -477,7 +471,7 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
                 }
             }
             if (r.message[0]) {
-                st = fail(&sel, ABRDF_E_SIZE, "%s", r.message);
+                st = abrdf__selection_fail(&sel, ABRDF_E_SIZE, "%s", r.message);
                 goto done;
             }
         }
@@ -561,8 +555,9 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     sel.cost_unit = costs->unit;
     if (params) {
         if (params->struct_size < END_OF(abrdf_params, layers)) {
-            st = fail(&sel, ABRDF_E_SIZE, "abrdf_params: struct_size %zu is below its 0.2.0 layout",
-                      params->struct_size);
+            st = abrdf__selection_fail(&sel, ABRDF_E_SIZE,
+                                       "abrdf_params: struct_size %zu is below its 0.2.0 layout",
+                                       params->struct_size);
             goto done;
         }
         size_t size = params->struct_size;

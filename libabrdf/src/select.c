@@ -260,7 +260,7 @@ static int read_in(void *full, size_t full_size, const void *src, size_t min)
 
 static int in_range(double v, double lo, double hi) { return v >= lo && v <= hi; } /* NaN: 0 */
 
-static int fail(abrdf_selection *out, int status, const char *fmt, ...)
+int abrdf__selection_fail(abrdf_selection *out, int status, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -385,41 +385,46 @@ static double clampd(double v, double lo, double hi) { return v < lo ? lo : (v >
 static int check_material(const abrdf_material *m, abrdf_selection *out)
 {
     if (!in_range((double)m->type, 0, ABRDF_SURFACE_COUNT - 1))
-        return fail(out, ABRDF_E_RANGE, "unknown surface type %d", (int)m->type);
+        return abrdf__selection_fail(out, ABRDF_E_RANGE, "unknown surface type %d", (int)m->type);
     if (!(m->n < 0.0) && !in_range(m->n, 0.0, 1e6))
-        return fail(out, ABRDF_E_RANGE, "n = %g is outside [0, 1e6] (negative = derive from r)",
-                    m->n);
+        return abrdf__selection_fail(out, ABRDF_E_RANGE,
+                                     "n = %g is outside [0, 1e6] (negative = derive from r)", m->n);
     if (!(m->r < 0.0) && !in_range(m->r, 0.0, 1.0))
-        return fail(out, ABRDF_E_RANGE, "r = %g is outside [0, 1] (negative = derive from n)",
-                    m->r);
-    if (m->n < 0.0 && m->r < 0.0) return fail(out, ABRDF_E_RANGE, "neither n nor r is given");
+        return abrdf__selection_fail(out, ABRDF_E_RANGE,
+                                     "r = %g is outside [0, 1] (negative = derive from n)", m->r);
+    if (m->n < 0.0 && m->r < 0.0)
+        return abrdf__selection_fail(out, ABRDF_E_RANGE, "neither n nor r is given");
     static const char *const rgb_names[3] = {"kd", "ks", "f0"};
     const double *rgb[3] = {m->kd, m->ks, m->f0};
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 3; ++c)
             if (!in_range(rgb[k][c], 0.0, 1.0))
-                return fail(out, ABRDF_E_RANGE, "%s[%d] = %g is outside [0, 1]", rgb_names[k], c,
-                            rgb[k][c]);
+                return abrdf__selection_fail(out, ABRDF_E_RANGE, "%s[%d] = %g is outside [0, 1]",
+                                             rgb_names[k], c, rgb[k][c]);
     if (!(m->eta <= 0.0) && !in_range(m->eta, 1.0, 4.0))
-        return fail(out, ABRDF_E_RANGE, "eta = %g is outside [1, 4] (<= 0 = use f0)", m->eta);
+        return abrdf__selection_fail(out, ABRDF_E_RANGE,
+                                     "eta = %g is outside [1, 4] (<= 0 = use f0)", m->eta);
     if (!in_range(m->anisotropy, 0.0, 1.0))
-        return fail(out, ABRDF_E_RANGE, "anisotropy = %g is outside [0, 1]", m->anisotropy);
+        return abrdf__selection_fail(out, ABRDF_E_RANGE, "anisotropy = %g is outside [0, 1]",
+                                     m->anisotropy);
     if (!in_range(m->melanin, 0.0, 1.0) || !in_range(m->redness, 0.0, 1.0))
-        return fail(out, ABRDF_E_RANGE, "melanin = %g or redness = %g is outside [0, 1]",
-                    m->melanin, m->redness);
+        return abrdf__selection_fail(out, ABRDF_E_RANGE,
+                                     "melanin = %g or redness = %g is outside [0, 1]", m->melanin,
+                                     m->redness);
     if (!in_range(m->layer_count, 0, ABRDF_MAX_LAYERS))
-        return fail(out, ABRDF_E_RANGE, "layer_count = %d is outside [0, %d]", m->layer_count,
-                    ABRDF_MAX_LAYERS);
+        return abrdf__selection_fail(out, ABRDF_E_RANGE, "layer_count = %d is outside [0, %d]",
+                                     m->layer_count, ABRDF_MAX_LAYERS);
     for (int i = 0; i < m->layer_count; ++i) {
         const abrdf_layer *l = &m->layers[i];
         int ok = in_range(l->eta, 1.0, 4.0) && in_range(l->kappa, 0.0, 10.0) &&
                  in_range(l->r, 0.0, 1.0) && in_range(l->depth, 0.0, 100.0);
         for (int c = 0; c < 3; ++c) ok = ok && in_range(l->sigma_a[c], 0.0, 1e4);
         if (!ok)
-            return fail(out, ABRDF_E_RANGE,
-                        "layer %d is outside the layer parameter ranges "
-                        "(eta [1, 4], kappa [0, 10], r [0, 1], sigma_a [0, 1e4], depth [0, 100])",
-                        i);
+            return abrdf__selection_fail(
+                out, ABRDF_E_RANGE,
+                "layer %d is outside the layer parameter ranges "
+                "(eta [1, 4], kappa [0, 10], r [0, 1], sigma_a [0, 1e4], depth [0, 100])",
+                i);
     }
     return ABRDF_OK;
 }
@@ -427,11 +432,13 @@ static int check_material(const abrdf_material *m, abrdf_selection *out)
 static int check_tolerance(const abrdf_tolerance *t, abrdf_selection *out)
 {
     if (!(t->max_rel_pct >= 0.0))
-        return fail(out, ABRDF_E_RANGE, "max relative error %g is not >= 0 (INFINITY = no limit)",
-                    t->max_rel_pct);
+        return abrdf__selection_fail(out, ABRDF_E_RANGE,
+                                     "max relative error %g is not >= 0 (INFINITY = no limit)",
+                                     t->max_rel_pct);
     if (!(t->max_abs >= 0.0))
-        return fail(out, ABRDF_E_RANGE, "max absolute error %g is not >= 0 (INFINITY = no limit)",
-                    t->max_abs);
+        return abrdf__selection_fail(out, ABRDF_E_RANGE,
+                                     "max absolute error %g is not >= 0 (INFINITY = no limit)",
+                                     t->max_abs);
     return ABRDF_OK;
 }
 
@@ -626,24 +633,25 @@ static int select_full(walk *w, const abrdf_material *m, abrdf_goal goal,
 {
     abrdf_selection *out = &w->sel;
     if (goal != ABRDF_GOAL_PERFORMANCE && goal != ABRDF_GOAL_PHOTOREAL)
-        return fail(out, ABRDF_E_RANGE, "unknown goal %d", (int)goal);
+        return abrdf__selection_fail(out, ABRDF_E_RANGE, "unknown goal %d", (int)goal);
     int st = check_material(m, out);
     if (st != ABRDF_OK) return st;
     if ((st = check_tolerance(tol, out)) != ABRDF_OK) return st;
     abrdf_costs paper;
     if (!costs) {
         if ((st = abrdf_costs_paper(&paper)) != ABRDF_OK)
-            return fail(out, st, "the paper's cost table is unavailable");
+            return abrdf__selection_fail(out, st, "the paper's cost table is unavailable");
         costs = &paper;
     }
     /* cost[] is public: a NaN or infinity written there directly would rank as nothing. */
     for (int i = 0; i < ABRDF_COSTS_CAPACITY; ++i)
         if (!isfinite(costs->cost[i])) {
             const abrdf_model_info *mi = abrdf_model_get((abrdf_model)i);
-            return fail(out, ABRDF_E_RANGE,
-                        "cost table: model id %d (%s) has cost %g; a cost is a finite number "
-                        "(< 0: unknown)",
-                        i, mi ? mi->name : "unregistered", costs->cost[i]);
+            return abrdf__selection_fail(
+                out, ABRDF_E_RANGE,
+                "cost table: model id %d (%s) has cost %g; a cost is a finite number "
+                "(< 0: unknown)",
+                i, mi ? mi->name : "unregistered", costs->cost[i]);
         }
     char unit[32];
     short_unit(costs->unit, unit, sizeof unit);
@@ -691,7 +699,7 @@ static int select_full(walk *w, const abrdf_material *m, abrdf_goal goal,
         char msg[ABRDF_SELECT_MESSAGE_MAX];
         if (chosen[i] != ABRDF_MODEL_NONE &&
             abrdf_params_check(chosen[i], params, msg, sizeof msg) != ABRDF_OK)
-            return fail(out, ABRDF_E_RANGE, "%s", msg);
+            return abrdf__selection_fail(out, ABRDF_E_RANGE, "%s", msg);
     }
     return ABRDF_OK;
 }
@@ -713,22 +721,22 @@ int abrdf_select(const abrdf_material *m, abrdf_goal goal, const abrdf_tolerance
     tolerance_defaults(&tt);
     int st;
     if (!m) {
-        st = fail(&w.sel, ABRDF_E_NULL, "no material");
+        st = abrdf__selection_fail(&w.sel, ABRDF_E_NULL, "no material");
     } else if (!read_in(&mm, sizeof mm, m, MATERIAL_SIZE_0_2)) {
-        st = fail(&w.sel, ABRDF_E_SIZE,
-                  "abrdf_material: struct_size %zu is below the %zu bytes "
-                  "of the 0.2.0 layout: initialise it with abrdf_material_init",
-                  m->struct_size, (size_t)MATERIAL_SIZE_0_2);
+        st = abrdf__selection_fail(&w.sel, ABRDF_E_SIZE,
+                                   "abrdf_material: struct_size %zu is below the %zu bytes "
+                                   "of the 0.2.0 layout: initialise it with abrdf_material_init",
+                                   m->struct_size, (size_t)MATERIAL_SIZE_0_2);
     } else if (tol && !read_in(&tt, sizeof tt, tol, TOLERANCE_SIZE_0_2)) {
-        st = fail(&w.sel, ABRDF_E_SIZE,
-                  "abrdf_tolerance: struct_size %zu is below the %zu bytes "
-                  "of the 0.2.0 layout: initialise it with abrdf_tolerance_init",
-                  tol->struct_size, (size_t)TOLERANCE_SIZE_0_2);
+        st = abrdf__selection_fail(&w.sel, ABRDF_E_SIZE,
+                                   "abrdf_tolerance: struct_size %zu is below the %zu bytes "
+                                   "of the 0.2.0 layout: initialise it with abrdf_tolerance_init",
+                                   tol->struct_size, (size_t)TOLERANCE_SIZE_0_2);
     } else if (params && !abrdf__params_view(ABRDF_MODEL_NONE, params, &pp)) {
-        st = fail(&w.sel, ABRDF_E_SIZE,
-                  "abrdf_params: struct_size %zu is below the 0.2.0 "
-                  "layout: initialise it with abrdf_params_init",
-                  params->struct_size);
+        st = abrdf__selection_fail(&w.sel, ABRDF_E_SIZE,
+                                   "abrdf_params: struct_size %zu is below the 0.2.0 "
+                                   "layout: initialise it with abrdf_params_init",
+                                   params->struct_size);
     } else {
         st = select_full(&w, &mm, goal, &tt, costs, &pp);
         if (st == ABRDF_OK && params) copy_out(params, &pp, sizeof pp);
