@@ -169,11 +169,7 @@ int bench_render_report(FILE *out, int json, int size, int reps, int threads, in
                     v ? "," : "", variant_name[v], sec[v] / sec[V_DISNEY], whole[v]);
             for (int i = 0; i < nm; ++i) {
                 lobe_names(&sv[v].materials[i], lb, sizeof lb);
-                fprintf(out, "%s{\"material\": ", i ? ", " : "");
-                cli_json_string(out, sv[v].materials[i].name);
-                fprintf(out, ", \"models\": ");
-                cli_json_string(out, lb);
-                fprintf(out, ", \"nmse\": %.6g}", isfinite(nmse[v][i]) ? nmse[v][i] : -1.0);
+                bench_material_json(out, i, sv[v].materials[i].name, lb, nmse[v][i]);
             }
             fprintf(out, "]}");
         }

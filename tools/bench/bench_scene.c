@@ -2,9 +2,12 @@
 #define _POSIX_C_SOURCE 200809L
 #include "bench_scene.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
+
+#include "cli_args.h"
 
 double bench_wall_seconds(void)
 {
@@ -71,4 +74,13 @@ void bench_masked_sums(const float *img, const float *ref, const float *mask, si
     }
     *num = n;
     *den = d;
+}
+
+void bench_material_json(FILE *out, int i, const char *name, const char *models, double nmse)
+{
+    fprintf(out, "%s{\"material\": ", i ? ", " : "");
+    cli_json_string(out, name);
+    fprintf(out, ", \"models\": ");
+    cli_json_string(out, models);
+    fprintf(out, ", \"nmse\": %.6g}", isfinite(nmse) ? nmse : -1.0);
 }

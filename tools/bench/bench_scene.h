@@ -3,6 +3,7 @@
 #ifndef ABRDF_BENCH_SCENE_H
 #define ABRDF_BENCH_SCENE_H
 #include <stddef.h>
+#include <stdio.h>
 
 #include "render.h"
 #include "scene.h"
@@ -25,5 +26,9 @@ int bench_render_medians(const scene *sv, int count, const render_options *ro, i
  * over the pixels (3 floats each) where mask > 0.5 (all pixels if mask is NULL). */
 void bench_masked_sums(const float *img, const float *ref, const float *mask, size_t pixels,
                        double *num, double *den);
+
+/* One material's JSON object {"material", "models", "nmse"} (a non-finite nmse as -1),
+ * preceded by ", " unless it is the first (i == 0) of its array. */
+void bench_material_json(FILE *out, int i, const char *name, const char *models, double nmse);
 
 #endif
