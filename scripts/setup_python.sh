@@ -25,33 +25,10 @@ then
   exit 0
 fi
 
+source scripts/venv_common.sh
 # Headers for the extension module and the venv module (Debian).
-debs=(python3-venv python3-dev)
-if command -v dpkg-query >/dev/null; then
-  missing=()
-  for p in "${debs[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  if ((${#missing[@]})); then
-    echo "setup_python: installing ${missing[*]}"
-    sudo=""
-    if [ "$(id -u)" -ne 0 ]; then
-      command -v sudo >/dev/null || { echo "setup_python: need root or sudo to install ${missing[*]}" >&2; exit 1; }
-      sudo=sudo
-    fi
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-  fi
-fi
-
-py=""
-for c in python3.11 python3; do
-  if command -v "$c" >/dev/null && "$c" -c 'import sys; sys.exit(sys.version_info[:2] != (3, 11))'; then
-    py=$c
-    break
-  fi
-done
-[ -n "$py" ] || { echo "setup_python: needs Python 3.11 (python3.11 not found)" >&2; exit 1; }
+apt_missing setup_python python3-venv python3-dev
+py=$(python311 setup_python "the Python route")
 
 [ -x "$venv/bin/python" ] || "$py" -m venv "$venv"
 echo "setup_python: installing ${pins[*]} into $venv"
