@@ -2,16 +2,7 @@
 # the tool and requires every Markdown table row of its output to appear verbatim in DOC.
 #   cmake -DTOOL=<program> -DDOC=<file.md> -P doc_tables.cmake
 #   cmake -DDOC=<file.md> -P doc_tables.cmake -- <program> [args...]
-set(cmd "")
-set(after_dashes FALSE)
-math(EXPR last "${CMAKE_ARGC} - 1")
-foreach(i RANGE ${last})
-  if(after_dashes)
-    list(APPEND cmd "${CMAKE_ARGV${i}}")
-  elseif(CMAKE_ARGV${i} STREQUAL "--")
-    set(after_dashes TRUE)
-  endif()
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/args_after_dashes.cmake")
 if(NOT cmd)
   set(cmd "${TOOL}")
 endif()

@@ -55,8 +55,8 @@ def test_surfaces_and_goals(cli):
 
 def test_stub_lists_every_function():
     # _abrdf.pyi types what the C module defines: the same public names.
-    stub = os.path.join(os.path.dirname(abrdf.__file__), "_abrdf.pyi")
-    with open(stub) as f:
+    pyi = os.path.join(os.path.dirname(abrdf.__file__), "_abrdf.pyi")
+    with open(pyi) as f:
         text = f.read()
     declared = set(re.findall(r"^(?:def|class) (\w+)", text, re.M)) | set(
         re.findall(r"^(\w+): ", text, re.M))
