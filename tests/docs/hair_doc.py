@@ -98,6 +98,15 @@ def body():
         require_number(DOC, doc, comp, grab(r"compensated, %s: total (\S+)" % key, hu, key)[1],
                        f"compensated white furnace {key}")
     surface(doc, hu_text, "huang", "16,64")
+    _, rows, _ = parse_table(lines, next(i for i, l in enumerate(lines) if l.startswith("| grids (n1, n2)")))
+    if len(rows) != len(re.findall(r"image grids ", hu)):
+        fail(f"{DOC}: the image convergence table has {len(rows)} rows, test_hair_huang prints "
+             f"{len(re.findall(r'image grids ', hu))}")
+    for grid, vs_def, vs_conv, work in rows:
+        n1, n2 = (int(v) for v in re.findall(r"\d+", grid)[:2])
+        m = grab(r"image grids %d,%d: NMSE vs 6,3 (\S+), vs 6,9 (\S+), work (\S+)" % (n1, n2), hu, grid)
+        for quoted, got in zip((vs_def, vs_conv, work), m.groups()):
+            require_number(DOC, doc, quoted, got, f"image convergence ({n1}, {n2})")
     cop = grab(r"largest relative change (\S+)", hu, "test_hair_huang")[1]
     require_number(DOC, doc, grab(r"The largest relative change is (%s)" % NUM, ft, DOC)[1], cop, "coplanar continuity", sig=3)
     require_number(DOC, doc, grab(r"The example now gives f_r = (%s)" % NUM, ft, DOC)[1],

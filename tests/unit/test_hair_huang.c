@@ -2,6 +2,7 @@
  * limit of R, quadrature convergence, white furnace vs eccentricity, stability grid. */
 #include <math.h>
 #include <stdio.h>
+#include <time.h>
 
 #include "hair.h"
 #include "hair_test_util.h"
@@ -91,6 +92,88 @@ START_TEST(quadrature_convergence)
            g[0]);
     ck_assert_msg(tu_close(a[0], b[0], 3e-2, 0), "h refinement %.6g vs %.6g", a[0], b[0]);
     ck_assert_msg(tu_close(a[0], c[0], 5e-2, 0), "VNDF grids %.6g vs %.6g", a[0], c[0]);
+}
+END_TEST
+
+/* ---- convergence on an image ---------------------------------------------------------
+ * One S value (above) does not say what a grid's error looks like in a render. This renders
+ * the default hair (the melanin of data/materials.csv's hair_brown) on a fibre cylinder:
+ * axis (and fibres) along world y, seen orthographically along -z, lit by the two directional
+ * lights of scenes/mixed.scene; along the axis nothing changes, so the image is one row of
+ * CYL_SAMPLES pixel centres across the cylinder, each
+ *     L = sum_l E_l max(0, N.L_l) f_r(L_l, V),   local frame (T = y, B = N x T, N).
+ * Per grid (n1, n2) it prints the image NMSE (Table 8's measure) against the default grids
+ * and against the n2 = 9 grid, and the work per evaluation in VNDF nodes relative to the
+ * default, n1^2 (1 + n2^2) / (6^2 (1 + 3^2)) (TT visits n1^2 nodes, TRT n2^2 more per node),
+ * beside the CPU time of the image relative to the default's (a one-off timing, not checked). */
+#define CYL_SAMPLES 64
+
+static void cylinder_image(const abrdf__huang *m, double img[CYL_SAMPLES][3])
+{
+    static const double dir[2][3] = {{-0.45, 0.75, 0.55}, {0.7, 0.25, 0.45}};
+    static const double irr[2][3] = {{2.5, 2.5, 2.5}, {0.72, 0.76, 0.8}};
+    for (int k = 0; k < CYL_SAMPLES; ++k) {
+        double x = -1.0 + (k + 0.5) * 2.0 / CYL_SAMPLES, z = sqrt(1.0 - x * x);
+        const double n[3] = {x, 0.0, z}, t[3] = {0.0, 1.0, 0.0}, b[3] = {-z, 0.0, x}; /* N x T */
+        const double wo[3] = {0.0, 0.0, z}; /* V = +z: (V.T, V.B, V.N) */
+        img[k][0] = img[k][1] = img[k][2] = 0.0;
+        for (int l = 0; l < 2; ++l) {
+            double d = sqrt(dir[l][0] * dir[l][0] + dir[l][1] * dir[l][1] + dir[l][2] * dir[l][2]);
+            double w[3] = {dir[l][0] / d, dir[l][1] / d, dir[l][2] / d};
+            double wi[3] = {w[0] * t[0] + w[1] * t[1] + w[2] * t[2],
+                            w[0] * b[0] + w[1] * b[1] + w[2] * b[2],
+                            w[0] * n[0] + w[1] * n[1] + w[2] * n[2]};
+            if (!(wi[2] > 0.0)) continue;
+            double f[3];
+            abrdf__huang_eval(m, wi, wo, f);
+            for (int c = 0; c < 3; ++c) img[k][c] += irr[l][c] * wi[2] * f[c];
+        }
+    }
+}
+
+static double image_nmse(const double ref[CYL_SAMPLES][3], const double img[CYL_SAMPLES][3])
+{
+    double num = 0.0, den = 0.0;
+    for (int k = 0; k < CYL_SAMPLES; ++k)
+        for (int c = 0; c < 3; ++c) {
+            num += (img[k][c] - ref[k][c]) * (img[k][c] - ref[k][c]);
+            den += ref[k][c] * ref[k][c];
+        }
+    return num / den;
+}
+
+/* The internal-reflection grid n2 dominates the default's error on the image; n1 = 6 is past
+ * convergence. Checked: n2 = 6 and n2 = 9 agree within Table 8's "none" (1e-4), and the
+ * entry grid n1 = 12 agrees with n1 = 6 within it; the default's distance to n2 = 9 is
+ * printed and bounded by 1e-2 (measured figures in docs/SPECIAL_HAIR.md). */
+START_TEST(image_convergence)
+{
+    static const int grid[][2] = {{6, 3}, {6, 9}, {6, 6}, {12, 3}, {5, 3}, {4, 3},
+                                  {3, 3}, {4, 6}, {3, 6}, {4, 2}};
+    enum { NG = (int)(sizeof grid / sizeof grid[0]) };
+    static double img[NG][CYL_SAMPLES][3];
+    double cpu[NG];
+    abrdf__huang m;
+    setup(&m, 0.73, 0.85);
+    for (int g = 0; g < NG; ++g) {
+        m.n1 = grid[g][0];
+        m.n2 = grid[g][1];
+        clock_t t0 = clock();
+        cylinder_image(&m, img[g]);
+        cpu[g] = (double)(clock() - t0) / CLOCKS_PER_SEC;
+    }
+    double def_work = 36.0 * 10.0;
+    for (int g = 0; g < NG; ++g) {
+        double work = grid[g][0] * grid[g][0] * (1.0 + grid[g][1] * grid[g][1]) / def_work;
+        printf("huang image grids %d,%d: NMSE vs 6,3 %.2e, vs 6,9 %.2e, work %.2f (CPU time %.2f, "
+               "one-off)\n",
+               grid[g][0], grid[g][1], image_nmse(img[0], img[g]), image_nmse(img[1], img[g]), work,
+               cpu[g] / cpu[0]);
+    }
+    ck_assert_msg(image_nmse(img[1], img[2]) < 1e-4, "n2 6 vs 9: %g", image_nmse(img[1], img[2]));
+    ck_assert_msg(image_nmse(img[0], img[3]) < 1e-4, "n1 12 vs 6: %g", image_nmse(img[0], img[3]));
+    ck_assert_msg(image_nmse(img[1], img[0]) < 1e-2, "default vs n2 9: %g",
+                  image_nmse(img[1], img[0]));
 }
 END_TEST
 
@@ -294,6 +377,7 @@ static Suite *suite(void)
     tcase_set_timeout(tc, 1200);
     tcase_add_test(tc, r_smooth_limit);
     tcase_add_test(tc, quadrature_convergence);
+    tcase_add_test(tc, image_convergence);
     tcase_add_test(tc, white_furnace_uncompensated);
     tcase_add_test(tc, white_furnace_compensated);
     tcase_add_test(tc, glass_albedo_table);
