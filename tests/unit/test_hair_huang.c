@@ -148,8 +148,8 @@ static double image_nmse(const double ref[CYL_SAMPLES][3], const double img[CYL_
  * printed and bounded by 1e-2 (measured figures in docs/SPECIAL_HAIR.md). */
 START_TEST(image_convergence)
 {
-    static const int grid[][2] = {{6, 3}, {6, 9}, {6, 6}, {12, 3}, {5, 3}, {4, 3},
-                                  {3, 3}, {4, 6}, {3, 6}, {4, 2}};
+    static const int grid[][2] = {{6, 3}, {6, 9}, {6, 6}, {12, 3}, {5, 3},
+                                  {4, 3}, {3, 3}, {4, 6}, {3, 6},  {4, 2}};
     enum { NG = (int)(sizeof grid / sizeof grid[0]) };
     static double img[NG][CYL_SAMPLES][3];
     double cpu[NG];
