@@ -9,7 +9,8 @@
 // fibre scattering function S(wi, wo) and returns f_r = S / N.wi for wi, wo above the ribbon.
 //
 //   abrdf_marschner(wi, wo, eta, melanin, redness, cuticle_tilt, aspect_ratio, r)
-//   abrdf_huang(wi, wo, eta, melanin, redness, cuticle_tilt, aspect_ratio, r)
+//   abrdf_huang(wi, wo, eta, melanin, redness, cuticle_tilt, aspect_ratio, r, entry_grid,
+//               internal_grid)
 #ifndef ABRDF_HAIR_OSL_H
 #define ABRDF_HAIR_OSL_H
 
@@ -26,9 +27,6 @@
 #define ABRDF_HAIR_DEG (ABRDF_PI / 180.0)
 // Floor of E in the compensation 1/E (below the tables' smallest entry, 0.0224).
 #define ABRDF_HAIR_E_MIN 0.02
-// Huang's quadrature: N1 x N1 entry VNDF nodes, N2 x N2 internal-reflection nodes.
-#define ABRDF_HUANG_N1 6
-#define ABRDF_HUANG_N2 3
 // |v|^2 below this: a half vector of two opposite directions (eta = 1), undefined.
 #define ABRDF_HUANG_HALF_LEN2_MIN 1e-20
 // GGX Lambda of a grazing direction (fully shadowed). The C code returns 1e300; float
@@ -478,8 +476,10 @@ float abrdf_huang_energy_scale(abrdf_huang_m m, float te[], float tie[], float m
     return 1.0 / max(e, ABRDF_HAIR_E_MIN);
 }
 
+// entry_grid x entry_grid VNDF nodes for the entry microfacet, internal_grid x internal_grid
+// for TRT's internal reflection (the library's entry_grid and internal_grid parameters).
 abrdf_huang_m abrdf_huang_setup(float eta, float melanin, float redness, float cuticle_tilt,
-                                float aspect_ratio, float r)
+                                float aspect_ratio, float r, int entry_grid, int internal_grid)
 {
     abrdf_huang_m m;
     m.eta = eta;
@@ -488,8 +488,8 @@ abrdf_huang_m abrdf_huang_setup(float eta, float melanin, float redness, float c
     m.b = min(aspect_ratio, 1.0);
     m.sigma_a = abrdf_hair_sigma_a(melanin, redness);
     m.refine = 1;
-    m.n1 = ABRDF_HUANG_N1;
-    m.n2 = ABRDF_HUANG_N2;
+    m.n1 = entry_grid;
+    m.n2 = internal_grid;
     m.compensate = 1;
     return m;
 }
@@ -716,10 +716,12 @@ color abrdf_huang_fibre(abrdf_huang_m m, vector wi_, vector wo_)
 // Huang, Hullin, Hanika 2022, far field (Eqs. 12-14) with Cycles' TRRT+ and energy
 // compensation, integrated deterministically (docs/SPECIAL_HAIR.md). f_r = S / N.wi.
 color abrdf_huang(vector wi, vector wo, float eta, float melanin, float redness,
-                  float cuticle_tilt, float aspect_ratio, float r)
+                  float cuticle_tilt, float aspect_ratio, float r, int entry_grid,
+                  int internal_grid)
 {
     if (!(wi[2] > 0.0 && wo[2] > 0.0)) return color(0);
-    abrdf_huang_m m = abrdf_huang_setup(eta, melanin, redness, cuticle_tilt, aspect_ratio, r);
+    abrdf_huang_m m = abrdf_huang_setup(eta, melanin, redness, cuticle_tilt, aspect_ratio, r,
+                                        entry_grid, internal_grid);
     color s = abrdf_huang_fibre(m, wi, wo);
     return s / wi[2]; // f_r = S / |N.wi|
 }

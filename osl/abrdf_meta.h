@@ -56,6 +56,12 @@
 #define ABRDF_P_ASPECT_RATIO_MIN 0.01
 #define ABRDF_P_ASPECT_RATIO_MAX 1.0
 #define ABRDF_P_ASPECT_RATIO_HELP "hair cross-section minor/major axis ratio"
+#define ABRDF_P_ENTRY_GRID_MIN 1
+#define ABRDF_P_ENTRY_GRID_MAX 32
+#define ABRDF_P_ENTRY_GRID_HELP "huang: entry microfacet quadrature, n x n VNDF midpoint nodes"
+#define ABRDF_P_INTERNAL_GRID_MIN 1
+#define ABRDF_P_INTERNAL_GRID_MAX 32
+#define ABRDF_P_INTERNAL_GRID_HELP "huang: TRT internal-reflection quadrature, n x n VNDF midpoint nodes"
 #define ABRDF_P_LAYER0_DEPTH_MIN 0.0
 #define ABRDF_P_LAYER0_DEPTH_MAX 100.0
 #define ABRDF_P_LAYER0_DEPTH_HELP "layer 0: thickness of the medium below"
@@ -195,6 +201,8 @@
 #define ABRDF_HUANG_CUTICLE_TILT_DEFAULT 2.0
 #define ABRDF_HUANG_ASPECT_RATIO_DEFAULT 0.85
 #define ABRDF_HUANG_R_DEFAULT 0.3
+#define ABRDF_HUANG_ENTRY_GRID_DEFAULT 6
+#define ABRDF_HUANG_INTERNAL_GRID_DEFAULT 3
 #define ABRDF_WEIDLICH_WILKIE_KD_DEFAULT 0.5
 #define ABRDF_WEIDLICH_WILKIE_LAYER_COUNT_DEFAULT 1
 #define ABRDF_WEIDLICH_WILKIE_LAYER0_ETA_DEFAULT 1.5
@@ -246,7 +254,7 @@ int abrdf_params_valid(string model, color kd, color ks, color f0, float n, floa
                        int layer_count, float layer_eta[4], float layer_kappa[4],
                        float layer_r[4], color layer_sigma_a[4], float layer_depth[4],
                        float eta, float melanin, float redness, float cuticle_tilt,
-                       float aspect_ratio)
+                       float aspect_ratio, int entry_grid, int internal_grid)
 {
     if (model == "lambert")
         return abrdf_in_range(kd, 0.0, 1.0);
@@ -353,7 +361,9 @@ int abrdf_params_valid(string model, color kd, color ks, color f0, float n, floa
                (redness >= 0.0 && redness <= 1.0) &&
                (cuticle_tilt >= -10.0 && cuticle_tilt <= 10.0) &&
                (aspect_ratio >= 0.01 && aspect_ratio <= 1.0) &&
-               (r >= 0.05 && r <= 1.0);
+               (r >= 0.05 && r <= 1.0) &&
+               (entry_grid >= 1 && entry_grid <= 32) &&
+               (internal_grid >= 1 && internal_grid <= 32);
     else if (model == "weidlich_wilkie")
         return abrdf_in_range(kd, 0.0, 1.0) &&
                (layer_count >= 0 && layer_count <= 4) &&

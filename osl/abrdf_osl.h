@@ -34,11 +34,13 @@ color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f
                  float r, float anisotropic, float sigma, float clearcoat_gloss, float k_amp,
                  int layer_count, float layer_eta[4], float layer_kappa[4], float layer_r[4],
                  color layer_sigma_a[4], float layer_depth[4], float eta, float melanin,
-                 float redness, float cuticle_tilt, float aspect_ratio)
+                 float redness, float cuticle_tilt, float aspect_ratio, int entry_grid,
+                 int internal_grid)
 {
     if (!abrdf_params_valid(model, kd, ks, f0, n, r, anisotropic, sigma, clearcoat_gloss, k_amp,
                             layer_count, layer_eta, layer_kappa, layer_r, layer_sigma_a,
-                            layer_depth, eta, melanin, redness, cuticle_tilt, aspect_ratio))
+                            layer_depth, eta, melanin, redness, cuticle_tilt, aspect_ratio,
+                            entry_grid, internal_grid))
         return color(0);
     color f = color(0);
     if (model == "lambert") f = abrdf_lambert(wi, wo, kd);
@@ -72,7 +74,8 @@ color abrdf_eval(string model, vector wi, vector wo, color kd, color ks, color f
     else if (model == "marschner")
         f = abrdf_marschner(wi, wo, eta, melanin, redness, cuticle_tilt, aspect_ratio, r);
     else if (model == "huang")
-        f = abrdf_huang(wi, wo, eta, melanin, redness, cuticle_tilt, aspect_ratio, r);
+        f = abrdf_huang(wi, wo, eta, melanin, redness, cuticle_tilt, aspect_ratio, r, entry_grid,
+                        internal_grid);
     else if (model == "weidlich_wilkie")
         f = abrdf_weidlich_wilkie(wi, wo, kd, layer_count, layer_eta, layer_kappa, layer_r,
                                   layer_sigma_a, layer_depth);

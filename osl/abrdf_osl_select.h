@@ -194,7 +194,8 @@ int abrdf_sel_params_ok(string model, float n, float r, float anisotropic)
                               ABRDF_DISNEY_CLEARCOAT_CLEARCOAT_GLOSS_DEFAULT,
                               ABRDF_NEUBELT_PETTINEO_K_AMP_DEFAULT, 2, l_eta, l_kappa, l_r,
                               l_sigma_a, l_depth, ABRDF_HUANG_ETA_DEFAULT, 0.3, 0.0,
-                              ABRDF_HUANG_CUTICLE_TILT_DEFAULT, ABRDF_HUANG_ASPECT_RATIO_DEFAULT);
+                              ABRDF_HUANG_CUTICLE_TILT_DEFAULT, ABRDF_HUANG_ASPECT_RATIO_DEFAULT,
+                              ABRDF_HUANG_ENTRY_GRID_DEFAULT, ABRDF_HUANG_INTERNAL_GRID_DEFAULT);
 }
 
 // The special model of a surface class ("" for general, "?" for an unknown class).

@@ -228,6 +228,11 @@ typedef struct abrdf_params {
     double aspect_ratio;    /* hair cross-section minor/major axis ratio, (0, 1] */
     int layer_count;        /* number of used entries of layers, [0, ABRDF_MAX_LAYERS] */
     abrdf_layer layers[ABRDF_MAX_LAYERS]; /* top (index 0) to bottom */
+    /* appended in 0.3.0 (a 0.2.0 block evaluates with their defaults): */
+    int entry_grid;    /* huang: quadrature of the entry microfacet, an n x n midpoint grid of
+                          the VNDF square, [1, 32], default 6 */
+    int internal_grid; /* huang: the same for TRT's internal reflection, [1, 32], default 3
+                          (docs/SPECIAL_HAIR.md: image error and work of each grid) */
 } abrdf_params;
 
 typedef enum abrdf_param_kind {

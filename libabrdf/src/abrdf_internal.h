@@ -32,6 +32,12 @@ void abrdf__fkub_coeffs(double n, double abd[3], double *x0);
  * zone is N.H in [abrdf__highlight_zone_cos(n), 1] (approx_error.c explains the choice). */
 double abrdf__highlight_zone_cos(double n);
 
+/* The factor by which parameters p change a model's cost from the cost table's entry (measured
+ * at the defaults): huang's work follows its VNDF nodes, n1^2 (1 + n2^2) for entry grid n1
+ * and internal grid n2 (TT visits n1^2 nodes, TRT n2^2 more per entry node), relative to the
+ * default grids; 1 for every other model (costs.c). */
+double abrdf__cost_scale(abrdf_model model, const abrdf_params *p);
+
 /* The caller's parameter block in this library's layout (abrdf.h, STABLE LAYOUTS): p itself
  * if its struct_size covers every field, else a copy in *scratch whose fields beyond the
  * caller's struct_size hold `model`'s defaults. NULL if struct_size is below the 0.2.0

@@ -263,9 +263,11 @@ static void pair_text(const abrdf_model lobe[2], char *buf, size_t size)
 /* The fitted values: kd, ks, f0 and the searched parameters the pair reads. */
 static void params_text(const abrdf__brdf *b, char *buf, size_t size)
 {
-    static const char *const names[] = {"kd",    "ks",      "f0",           "n",
-                                        "r",     "sigma",   "anisotropic",  "clearcoat_gloss",
-                                        "k_amp", "melanin", "cuticle_tilt", "layer0_r"};
+    static const char *const names[] = {
+        "kd",         "ks",           "f0",           "n",
+        "r",          "sigma",        "anisotropic",  "clearcoat_gloss",
+        "k_amp",      "melanin",      "cuticle_tilt", "layer0_r",
+        "entry_grid", "internal_grid"};
     size_t len = 0;
     buf[0] = '\0';
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
@@ -311,16 +313,32 @@ static void budget_text(double max, char *buf, size_t size)
     snprintf(buf, size, "%g", max);
 }
 
-static double pair_cost(const abrdf_costs *costs, const abrdf_model lobe[2])
+/* The cost of a pair with parameters p: each lobe's cost from the table, scaled by the work
+ * its parameters ask for (abrdf__cost_scale: huang's quadrature grids). */
+static double pair_cost(const abrdf_costs *costs, const abrdf_model lobe[2], const abrdf_params *p)
 {
     double c = 0.0;
     for (int l = 0; l < 2; ++l) {
         if (lobe[l] == NONE) continue;
         double v = abrdf_costs_get(costs, lobe[l]);
         if (!(v >= 0.0)) return -1.0;
-        c += v;
+        c += v * abrdf__cost_scale(lobe[l], p);
     }
     return c;
+}
+
+/* The reference computed with a coarser quadrature, the i-th (1, 2, ...): huang with an entry
+ * grid i nodes coarser, down to 2 x 2 (docs/SPECIAL_HAIR.md: the entry grid converges by 6,
+ * and (5, 3), (4, 3) stay within "slight" of the default on an image). Nothing is fitted: the
+ * model's parameters stay the reference's. 0 when there is no such variant. */
+static int coarser_quadrature(const abrdf__brdf *ref, int i, abrdf__brdf *out)
+{
+    if (ref->lobe[0] != NONE || ref->lobe[1] != ABRDF_HUANG) return 0;
+    int n1 = ref->p.entry_grid - i;
+    if (n1 < 2) return 0;
+    *out = *ref;
+    out->p.entry_grid = n1;
+    return 1;
 }
 
 /* ---- the selection ----------------------------------------------------------------------- */
@@ -413,7 +431,7 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     }
     char bt[64], names[96], ptext[320];
     budget_text(b.max_nmse, bt, sizeof bt);
-    double ref_cost = pair_cost(costs, ref.lobe);
+    double ref_cost = pair_cost(costs, ref.lobe, &ref.p);
     {
         abrdf_select_step s = {
             ABRDF_STEP_REFERENCE, ref.lobe[1], 0.0, b.max_nmse, -1.0, -1.0, ref_cost, 1, NULL,
@@ -433,19 +451,27 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     abrdf__brdf best;
     abrdf_fit_result best_res;
     double best_cost = INFINITY, best_nmse = INFINITY;
-    int have = 0;
+    int have = 0, variants = 0;
     for (int k = 0;; ++k) {
         abrdf_model lobe[2];
-        int g = candidate_get(&cc, k, ref.lobe[0], ref.lobe[1], no_diffuse, lobe);
-        if (g == 0) break;
-        if (g < 0) continue;
         abrdf__brdf cand;
+        int g = candidate_get(&cc, k, ref.lobe[0], ref.lobe[1], no_diffuse, lobe), variant = 0;
+        if (g == 0) { /* the class's models done: the reference's cheaper quadratures */
+            if (!coarser_quadrature(&ref, ++variants, &cand)) break;
+            lobe[0] = cand.lobe[0];
+            lobe[1] = cand.lobe[1];
+            variant = 1;
+        } else if (g < 0) {
+            continue;
+        }
         abrdf_fit_result r;
         abrdf_fit_result_init(&r);
-        cand.lobe[0] = lobe[0];
-        cand.lobe[1] = lobe[1];
-        if (k == 0) { /* the reference, as chosen */
-            cand = ref;
+        if (!variant) {
+            cand.lobe[0] = lobe[0];
+            cand.lobe[1] = lobe[1];
+        }
+        if (k == 0 || variant) { /* the reference as chosen, or at a coarser quadrature */
+            if (k == 0) cand = ref;
             abrdf__fit_errors(&set, &cand, &r);
             r.nmse_pred = abrdf__pred_nmse(&pr, &cand);
         } else {
@@ -475,7 +501,7 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
                 goto done;
             }
         }
-        double cost = pair_cost(costs, lobe);
+        double cost = pair_cost(costs, lobe, &cand.p);
         int within = r.nmse_pred < b.max_nmse, ranked = cost >= 0.0;
         pair_text(lobe, names, sizeof names);
         params_text(&cand, ptext, sizeof ptext);
@@ -549,8 +575,11 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
         for (int k = 0; k < mi->param_count; ++k)
             if (mi->params[k].id == id) sel.r = best.p.r;
     }
-    sel.cost_diffuse = best.lobe[0] == NONE ? 0.0 : abrdf_costs_get(costs, best.lobe[0]);
-    sel.cost_specular = abrdf_costs_get(costs, best.lobe[1]);
+    sel.cost_diffuse = best.lobe[0] == NONE ? 0.0
+                                            : abrdf_costs_get(costs, best.lobe[0]) *
+                                                  abrdf__cost_scale(best.lobe[0], &best.p);
+    sel.cost_specular =
+        abrdf_costs_get(costs, best.lobe[1]) * abrdf__cost_scale(best.lobe[1], &best.p);
     sel.cost_total = best_cost >= 0.0 && isfinite(best_cost) ? best_cost : -1.0;
     sel.cost_unit = costs->unit;
     if (params) {

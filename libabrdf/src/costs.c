@@ -6,6 +6,7 @@
 
 #include "abrdf_internal.h"
 #include "abrdf_select.h"
+#include "hair.h" /* the default Huang grids */
 
 /* The table's capacity is frozen; the registry must fit in it (compile-time check). */
 typedef char
@@ -33,6 +34,15 @@ int abrdf_costs_set(abrdf_costs *c, abrdf_model model, double cost)
 double abrdf_costs_get(const abrdf_costs *c, abrdf_model model)
 {
     return c && in_table(model) ? c->cost[model] : -1.0;
+}
+
+static double huang_nodes(double n1, double n2) { return n1 * n1 * (1.0 + n2 * n2); }
+
+double abrdf__cost_scale(abrdf_model model, const abrdf_params *p)
+{
+    if (model != ABRDF_HUANG || !p) return 1.0;
+    return huang_nodes(p->entry_grid, p->internal_grid) /
+           huang_nodes(ABRDF__HUANG_N1, ABRDF__HUANG_N2);
 }
 
 int abrdf_costs_paper(abrdf_costs *out)

@@ -347,8 +347,8 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
     m->b = fmin(p->aspect_ratio, 1.0);
     abrdf__hair_sigma_a(p->melanin, p->redness, m->sigma_a);
     m->refine = 1;
-    m->n1 = ABRDF__HUANG_N1;
-    m->n2 = ABRDF__HUANG_N2;
+    m->n1 = p->entry_grid;
+    m->n2 = p->internal_grid;
     m->compensate = 1;
 }
 

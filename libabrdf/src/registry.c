@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "abrdf_internal.h"
+#include "hair.h" /* the Huang quadrature defaults and bounds */
 
 /* ---- parameters -------------------------------------------------------------------- */
 
@@ -53,6 +54,10 @@ static const abrdf__param_slot params_table[] = {
     {{"layer_count", "number of layers of the stack", ABRDF_PARAM_INT, 0.0, ABRDF_MAX_LAYERS, 1.0},
      offsetof(abrdf_params, layer_count)},
     LAYER(0), LAYER(1), LAYER(2), LAYER(3),
+    {{"entry_grid", "huang: entry microfacet quadrature, n x n VNDF midpoint nodes",
+      ABRDF_PARAM_INT, 1.0, ABRDF__HUANG_GRID_MAX, 6.0}, offsetof(abrdf_params, entry_grid)},
+    {{"internal_grid", "huang: TRT internal-reflection quadrature, n x n VNDF midpoint nodes",
+      ABRDF_PARAM_INT, 1.0, ABRDF__HUANG_GRID_MAX, 3.0}, offsetof(abrdf_params, internal_grid)},
 };
 
 #define PARAM_COUNT ((int)(sizeof params_table / sizeof params_table[0]))
@@ -60,7 +65,8 @@ static const abrdf__param_slot params_table[] = {
 /* Parameter ids, for the model table below (their order in params_table). */
 enum {
     P_KD, P_KS, P_F0, P_N, P_R, P_ANISOTROPIC, P_SIGMA, P_CLEARCOAT_GLOSS, P_K_AMP, P_ETA,
-    P_MELANIN, P_REDNESS, P_CUTICLE_TILT, P_ASPECT_RATIO, P_LAYER_COUNT, P_LAYER0
+    P_MELANIN, P_REDNESS, P_CUTICLE_TILT, P_ASPECT_RATIO, P_LAYER_COUNT, P_LAYER0,
+    P_ENTRY_GRID = P_LAYER0 + 5 * ABRDF_MAX_LAYERS, P_INTERNAL_GRID
 };
 
 /* ---- models ------------------------------------------------------------------------ */
@@ -144,11 +150,13 @@ static const abrdf_model_param mp_marschner[] = {
     "Light scattering from human hair fibers, ACM TOG 22(3), 2003"
 /* Huang: Cycles' Principled Hair (Huang) defaults: r = GGX alpha 0.3 (not squared, clamped
  * to >= 0.001 as Cycles does), offset 2 deg, aspect ratio 0.85; r >= 0.05 bounds the cost
- * (the h step is 0.7 r). */
+ * (the h step is 0.7 r). The quadrature grids (entry 6, internal 3) are the defaults the
+ * model always had; coarser entry grids are its cheaper neighbours (docs/SPECIAL_HAIR.md). */
 static const abrdf_model_param mp_huang[] = {
     {P_ETA, 1.55, 1.0, 4.0}, {P_MELANIN, 0.8, 0.0, 1.0}, {P_REDNESS, 1.0, 0.0, 1.0},
     {P_CUTICLE_TILT, 2.0, -10.0, 10.0}, {P_ASPECT_RATIO, 0.85, 0.01, 1.0},
-    {P_R, 0.3, 0.05, 1.0}};
+    {P_R, 0.3, 0.05, 1.0}, {P_ENTRY_GRID, ABRDF__HUANG_N1, 1.0, ABRDF__HUANG_GRID_MAX},
+    {P_INTERNAL_GRID, ABRDF__HUANG_N2, 1.0, ABRDF__HUANG_GRID_MAX}};
 #define CIT_HUANG "W. Huang, M. B. Hullin, J. Hanika, A microfacet-based hair scattering model, " \
     "Computer Graphics Forum 41(4), 2022"
 #define HAIR_NEEDS (ABRDF_NEEDS_TANGENT | ABRDF_NEEDS_INTEGRATION | ABRDF_NEEDS_FRESNEL)

@@ -70,7 +70,8 @@ class Export(unittest.TestCase):
         self.assertEqual(m["lobes"], ["huang"])
         self.assertEqual((m["melanin"], m["eta"]), (0.3, 1.55))
         self.assertIn("float melanin[1] = {\n        0.29999999999999999};", s["osl"])
-        self.assertIn("redness[m], cuticle_tilt[m], aspect_ratio[m]);", s["osl"])
+        self.assertIn("redness[m], cuticle_tilt[m], aspect_ratio[m],\n", s["osl"])
+        self.assertIn("entry_grid[m], internal_grid[m]);", s["osl"])
 
     def test_ambient_is_ka_times_ia(self):
         s = self.scene()  # robot: ambient 0.02, ka defaults to kd

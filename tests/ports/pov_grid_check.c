@@ -41,7 +41,8 @@ static grid grid_of[ABRDF_MODEL_COUNT];
 /* The parameter sets of model_grid.pov (set 0: the model's defaults). */
 typedef struct pset {
     double kd[3], ks[3], f0[3], n, r, sigma, anisotropic, clearcoat_gloss;
-    double hair[5]; /* eta, melanin, redness, cuticle_tilt, aspect_ratio */
+    double hair[7]; /* eta, melanin, redness, cuticle_tilt, aspect_ratio, entry_grid,
+                       internal_grid (huang's quadrature: a coarser and a finer mix) */
 } pset;
 static const pset sets[3] = {
     {{0}, {0}, {0}, 0, 0, 0, 0, 0, {0}},
@@ -53,7 +54,7 @@ static const pset sets[3] = {
      0.8,
      0.8,
      0.4,
-     {1.9, 0.8, 0.5, -5, 0.8}},
+     {1.9, 0.8, 0.5, -5, 0.8, 4, 2}},
     {{0.7, 0.1, 0.4},
      {0.05, 1, 0.5},
      {0.02, 1, 0.3},
@@ -62,7 +63,7 @@ static const pset sets[3] = {
      1.5,
      1,
      0,
-     {1.2, 0.1, 0, 8, 0.75}},
+     {1.2, 0.1, 0, 8, 0.75, 3, 4}},
 };
 
 static int set_param(abrdf_params *p, const abrdf_model_info *m, const char *name, const double *v,
@@ -88,8 +89,9 @@ static int make_params(const abrdf_model_info *m, int s, abrdf_params *p)
     st = st ? st : set_param(p, m, "sigma", &q->sigma, 1);
     st = st ? st : set_param(p, m, "anisotropic", &q->anisotropic, 1);
     st = st ? st : set_param(p, m, "clearcoat_gloss", &q->clearcoat_gloss, 1);
-    static const char *hair[5] = {"eta", "melanin", "redness", "cuticle_tilt", "aspect_ratio"};
-    for (int k = 0; k < 5 && !st; ++k) st = set_param(p, m, hair[k], &q->hair[k], 1);
+    static const char *hair[7] = {"eta",          "melanin",    "redness",      "cuticle_tilt",
+                                  "aspect_ratio", "entry_grid", "internal_grid"};
+    for (int k = 0; k < 7 && !st; ++k) st = set_param(p, m, hair[k], &q->hair[k], 1);
     /* layer stacks, as model_grid.pov: {eta, kappa, r, sigma_a r, g, b, depth} */
     static const double layers[3][4][7] = {
         {{0}},

@@ -223,6 +223,55 @@ START_TEST(candidates_follow_the_class)
 }
 END_TEST
 
+/* Hair: besides the fitted models, the reference at coarser entry grids (huang's quadrature,
+ * docs/SPECIAL_HAIR.md): entry_grid 5, 4, 3, 2, every other parameter the reference's, costed
+ * by their VNDF nodes n1^2 (1 + n2^2) relative to the reference's; under "slight" the
+ * winner is one of them (the fitted fibre models are predicted "significant"). */
+START_TEST(hair_offers_coarser_quadratures)
+{
+    abrdf_material m;
+    abrdf_material_init(&m);
+    m.type = ABRDF_SURFACE_HAIR;
+    m.r = 0.3;
+    m.eta = 1.55;
+    m.melanin = 0.73;
+    double max = 2.5e-4;
+    run *r = budget_metric(&m, max, ABRDF_FIT_L2);
+    ck_assert_int_eq(r->status, ABRDF_OK);
+    const kept *ref = NULL, *grid[7] = {NULL};
+    for (int i = 0; i < r->count; ++i) {
+        const kept *k = &r->steps[i];
+        if (k->kind != ABRDF_STEP_FIT || k->model != ABRDF_HUANG) continue;
+        if (!ref) {
+            ref = k; /* the reference's own step comes first */
+            continue;
+        }
+        ck_assert_int_ge(k->params.entry_grid, 2);
+        ck_assert_int_lt(k->params.entry_grid, ref->params.entry_grid);
+        ck_assert_ptr_null(grid[k->params.entry_grid]);
+        grid[k->params.entry_grid] = k;
+        abrdf_params same = k->params;
+        same.entry_grid = ref->params.entry_grid;
+        ck_assert_mem_eq(&same, &ref->params, sizeof same);
+        double n1 = k->params.entry_grid, n2 = k->params.internal_grid;
+        ck_assert_double_eq_tol(k->cost, ref->cost * n1 * n1 * (1 + n2 * n2) / 360.0,
+                                1e-12 * ref->cost);
+    }
+    ck_assert_ptr_nonnull(ref);
+    ck_assert_int_eq(ref->params.entry_grid, 6);
+    ck_assert_int_eq(ref->params.internal_grid, 3);
+    for (int n1 = 2; n1 <= 5; ++n1) ck_assert_ptr_nonnull(grid[n1]);
+    ck_assert_double_gt(grid[2]->value, grid[5]->value); /* coarser, further */
+    const kept *w = expected_winner(r, max);
+    ck_assert_ptr_nonnull(w);
+    ck_assert_int_eq(w->model, ABRDF_HUANG);
+    ck_assert_int_lt(w->params.entry_grid, 6);
+    ck_assert_int_eq(r->params.entry_grid, w->params.entry_grid);
+    ck_assert_double_lt(r->sel.cost_total, ref->cost);
+    free(r);
+}
+END_TEST
+
 START_TEST(bad_budget)
 {
     abrdf_material m = plastic();
@@ -255,6 +304,7 @@ int main(void)
     tcase_add_test(tc, trace_order_and_reference);
     tcase_add_test(tc, looser_budget_never_costs_more);
     tcase_add_test(tc, candidates_follow_the_class);
+    tcase_add_test(tc, hair_offers_coarser_quadratures);
     tcase_add_test(tc, bad_budget);
     suite_add_tcase(s, tc);
     return tu_run(s);

@@ -94,7 +94,7 @@ static double masked_nmse(const float *img, const float *ref, const float *mask,
 static void lobe_names(const scene_material *m, char *buf, size_t n)
 {
     budget_pair_name(m->lobe_count == 2 ? m->lobes[0] : ABRDF_MODEL_NONE,
-                     m->lobes[m->lobe_count - 1], buf, n);
+                     m->lobes[m->lobe_count - 1], &m->params, buf, n);
 }
 
 int bench_budget_report(FILE *out, int json, int size, int spp, int reps, int threads)

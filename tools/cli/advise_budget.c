@@ -146,15 +146,15 @@ static void print_human(const budget_result *r, const mat_entry *e, double max_n
                e->line);
     else
         printf("material   explicit values (%s)\n", abrdf_surface_name(r->sel.type));
-    budget_pair_name(ref ? ref->diffuse : ABRDF_MODEL_NONE, ref ? ref->model : ABRDF_MODEL_NONE, nm,
-                     sizeof nm);
+    budget_pair_name(ref ? ref->diffuse : ABRDF_MODEL_NONE, ref ? ref->model : ABRDF_MODEL_NONE,
+                     ref ? ref->params : NULL, nm, sizeof nm);
     printf("reference  %s (the flowchart's photoreal choice), %.3g %s\n", nm,
            ref ? ref->cost : -1.0, unit);
     if (!pareto) {
         const char *bc = budget_class(max_nmse);
         printf("budget     predicted image NMSE < %g%s%s%s\n", max_nmse, bc ? " (" : "",
                bc ? bc : "", bc ? ")" : "");
-        budget_pair_name(r->sel.diffuse, r->sel.specular, nm, sizeof nm);
+        budget_pair_name(r->sel.diffuse, r->sel.specular, &r->params, nm, sizeof nm);
         printf("choice     %s\nparams     ", nm);
         budget_params_text(stdout, r->sel.diffuse, r->sel.specular, &r->params);
         printf("\nerror      predicted NMSE %.3g (%s); highlight %.3g%%, max abs %.3g against the "
@@ -169,7 +169,7 @@ static void print_human(const budget_result *r, const mat_entry *e, double max_n
     printf("  %-36s %10s %11s  %-12s %s\n", "model", "cost", "NMSE", "class", "fitted");
     for (int k = 0; k < (pareto ? nf : n); ++k) {
         const abrdf_select_step *c = cand[pareto ? front[k] : k];
-        budget_pair_name(c->diffuse, c->model, nm, sizeof nm);
+        budget_pair_name(c->diffuse, c->model, c->params, nm, sizeof nm);
         printf("  %-36s %10.3g %11.3g  %-12s ", nm, c->cost, c->value, abrdf_nmse_class(c->value));
         budget_params_text(stdout, c->diffuse, c->model, c->params);
         printf("\n");
@@ -239,7 +239,7 @@ static void write_plot(FILE *f, const char *title, const abrdf_select_step *cons
         int on = 0;
         for (int k = 0; k < nf; ++k) on |= front[k] == i;
         char nm[128];
-        budget_pair_name(cand[i]->diffuse, cand[i]->model, nm, sizeof nm);
+        budget_pair_name(cand[i]->diffuse, cand[i]->model, cand[i]->params, nm, sizeof nm);
         double x = PX(cand[i]->cost), y = PY(cand[i]->value);
         fprintf(f, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%d\" fill=\"%s\"/>", x, y, on ? 4 : 2,
                 i == 0 ? "#1f77b4"

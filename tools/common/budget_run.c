@@ -108,13 +108,31 @@ int budget_pareto(const abrdf_select_step *const *cand, int count, int *front)
     return k;
 }
 
-void budget_pair_name(abrdf_model diffuse, abrdf_model specular, char *buf, size_t size)
+void budget_pair_name(abrdf_model diffuse, abrdf_model specular, const abrdf_params *p, char *buf,
+                      size_t size)
 {
     const abrdf_model_info *d = abrdf_model_get(diffuse), *s = abrdf_model_get(specular);
     if (!d)
         snprintf(buf, size, "%s", s ? s->name : "none");
     else
         snprintf(buf, size, "%s + %s", d->name, s ? s->name : "none");
+    /* the whole-number parameters but a layer count are quadratures (huang's grids) */
+    const abrdf_model_info *m[2] = {d, s};
+    int any = 0;
+    for (int l = 0; l < 2 && p; ++l)
+        for (int k = 0; m[l] && k < m[l]->param_count; ++k) {
+            const abrdf_param_info *pi = abrdf_param_get(m[l]->params[k].id);
+            double v[3];
+            if (pi->kind != ABRDF_PARAM_INT || !strcmp(pi->name, "layer_count") ||
+                abrdf_param_read(p, m[l]->params[k].id, v) != 1 || v[0] == m[l]->params[k].def)
+                continue;
+            size_t len = strlen(buf);
+            snprintf(buf + len, size - len, "%s%s %g", any++ ? ", " : " (", pi->name, v[0]);
+        }
+    if (any) {
+        size_t len = strlen(buf);
+        snprintf(buf + len, size - len, ")");
+    }
 }
 
 static int pair_reads(abrdf_model d, abrdf_model s, int id)

@@ -41,7 +41,9 @@ int budget_pareto(const abrdf_select_step *const *cand, int count, int *front);
 void budget_params_json(FILE *f, abrdf_model diffuse, abrdf_model specular, const abrdf_params *p);
 void budget_params_text(FILE *f, abrdf_model diffuse, abrdf_model specular, const abrdf_params *p);
 
-/* "lambert + disney_specular" or "kajiya_kay". */
-void budget_pair_name(abrdf_model diffuse, abrdf_model specular, char *buf, size_t size);
+/* "lambert + disney_specular" or "kajiya_kay"; with p (may be NULL), a quadrature parameter
+ * of the pair away from its model's default follows: "huang (entry_grid 4)". */
+void budget_pair_name(abrdf_model diffuse, abrdf_model specular, const abrdf_params *p, char *buf,
+                      size_t size);
 
 #endif

@@ -149,6 +149,9 @@ static void write_osl(FILE *f, const render_scene *rs)
     OSL_ARRAY(f, "float", "redness", nm, fprintf(f, G, rs->materials[i_].params.redness));
     OSL_ARRAY(f, "float", "cuticle_tilt", nm, fprintf(f, G, rs->materials[i_].params.cuticle_tilt));
     OSL_ARRAY(f, "float", "aspect_ratio", nm, fprintf(f, G, rs->materials[i_].params.aspect_ratio));
+    OSL_ARRAY(f, "int", "entry_grid", nm, fprintf(f, "%d", rs->materials[i_].params.entry_grid));
+    OSL_ARRAY(f, "int", "internal_grid", nm,
+              fprintf(f, "%d", rs->materials[i_].params.internal_grid));
     /* The layer stack, flattened: entry 4 m + k is layer k of material m. */
     OSL_ARRAY(f, "int", "layer_count", nm, fprintf(f, "%d", rs->materials[i_].params.layer_count));
     OSL_ARRAY(f, "float", "layer_eta", 4 * nm,
@@ -241,12 +244,14 @@ static void write_osl(FILE *f, const render_scene *rs)
         "            color f = abrdf_eval(lobe0[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
         "                                 anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m],\n"
         "                                 layer_count[m], le, lk, lr, ls, ld, eta[m], melanin[m],\n"
-        "                                 redness[m], cuticle_tilt[m], aspect_ratio[m]);\n"
+        "                                 redness[m], cuticle_tilt[m], aspect_ratio[m],\n"
+        "                                 entry_grid[m], internal_grid[m]);\n"
         "            if (lobe_count[m] > 1)\n"
         "                f += abrdf_eval(lobe1[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
         "                                anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m],\n"
         "                                layer_count[m], le, lk, lr, ls, ld, eta[m], melanin[m],\n"
-        "                                redness[m], cuticle_tilt[m], aspect_ratio[m]);\n"
+        "                                redness[m], cuticle_tilt[m], aspect_ratio[m],\n"
+        "                                entry_grid[m], internal_grid[m]);\n"
         "            L += light_e[l] * falloff * ci * f;\n"
         "        }\n"
         "    }\n"
@@ -449,9 +454,10 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
         vec3(f, m->ambient);
         fprintf(f,
                 ",\n         \"eta\": " G ", \"melanin\": " G ", \"redness\": " G
-                ", \"cuticle_tilt\": " G ", \"aspect_ratio\": " G,
+                ", \"cuticle_tilt\": " G ", \"aspect_ratio\": " G
+                ", \"entry_grid\": %d, \"internal_grid\": %d",
                 m->params.eta, m->params.melanin, m->params.redness, m->params.cuticle_tilt,
-                m->params.aspect_ratio);
+                m->params.aspect_ratio, m->params.entry_grid, m->params.internal_grid);
         fprintf(f, ",\n         \"layer_count\": %d, \"layers\": [", m->params.layer_count);
         for (int k = 0; k < ABRDF_MAX_LAYERS; ++k) {
             const abrdf_layer *ly = &m->params.layers[k];

@@ -28,7 +28,8 @@ import gen_output  # whole or not at all, as tools/common/out_file.h
 OSL_PARAMS = ["kd", "ks", "f0", "n", "r", "anisotropic", "sigma", "clearcoat_gloss", "k_amp",
               "layer_count"]
 # The hair fibre's parameters; abrdf_eval() takes them after the layer arrays.
-OSL_HAIR_PARAMS = ["eta", "melanin", "redness", "cuticle_tilt", "aspect_ratio"]
+OSL_HAIR_PARAMS = ["eta", "melanin", "redness", "cuticle_tilt", "aspect_ratio", "entry_grid",
+                   "internal_grid"]
 OSL_LAYER_FIELDS = ["eta", "kappa", "r", "sigma_a", "depth"]
 OSL_MAX_LAYERS = 4
 LAYER_RE = re.compile(r"^layer([0-9]+)_(%s)$" % "|".join(OSL_LAYER_FIELDS))
@@ -103,7 +104,7 @@ def meta_header(models, rules):
                "float layer_depth[4],")
     out.append("                       float eta, float melanin, float redness, "
                "float cuticle_tilt,")
-    out.append("                       float aspect_ratio)")
+    out.append("                       float aspect_ratio, int entry_grid, int internal_grid)")
     out.append("{")
     first = True
     for m in closed:

@@ -175,8 +175,8 @@ static int run_material(const opts *o, const mat_entry *e, row *r)
         }
         budget_pair_name(refs.materials[0].lobe_count == 2 ? refs.materials[0].lobes[0]
                                                            : ABRDF_MODEL_NONE,
-                         refs.materials[0].lobes[refs.materials[0].lobe_count - 1], r->reference,
-                         sizeof r->reference);
+                         refs.materials[0].lobes[refs.materials[0].lobe_count - 1],
+                         &refs.materials[0].params, r->reference, sizeof r->reference);
         float *ref = render(&refs, o, k);
         abrdf_light_dir lights[SCENE_MAX_LIGHTS];
         abrdf_view view;
@@ -195,7 +195,8 @@ static int run_material(const opts *o, const mat_entry *e, row *r)
             int pick = choose(cand, n, abrdf_select_rules_get()->nmse_class_max[c]);
             done[c] = pick;
             outcome *oc = &r->o[k][c];
-            budget_pair_name(cand[pick]->diffuse, cand[pick]->model, oc->choice, sizeof oc->choice);
+            budget_pair_name(cand[pick]->diffuse, cand[pick]->model, cand[pick]->params, oc->choice,
+                             sizeof oc->choice);
             oc->pred = cand[pick]->value;
             oc->cost_ratio = cand[0]->cost > 0.0 ? cand[pick]->cost / cand[0]->cost : NAN;
             int same = -1;

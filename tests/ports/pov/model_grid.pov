@@ -27,12 +27,12 @@ global_settings { assumed_gamma 1 }
   #case (1)
     #declare Kd = <0.2, 0.5, 0.8>; #declare Ks = <0.9, 0.6, 0.3>; #declare F0 = <0.95, 0.64, 0.54>;
     #declare Nexp = 20; #declare Rough = 0.15; #declare Sigma = 0.8; #declare Aniso = 0.8; #declare Gloss = 0.4;
-    #declare Hair = array[5] {1.9, 0.8, 0.5, -5, 0.8};   // eta, melanin, redness, cuticle_tilt, aspect_ratio
+    #declare Hair = array[7] {1.9, 0.8, 0.5, -5, 0.8, 4, 2};   // eta, melanin, redness, cuticle_tilt, aspect_ratio, entry_grid, internal_grid
   #break
   #case (2)
     #declare Kd = <0.7, 0.1, 0.4>; #declare Ks = <0.05, 1, 0.5>; #declare F0 = <0.02, 1, 0.3>;
     #declare Nexp = 3000; #declare Rough = 0.05; #declare Sigma = 1.5; #declare Aniso = 1; #declare Gloss = 0;
-    #declare Hair = array[5] {1.2, 0.1, 0, 8, 0.75};
+    #declare Hair = array[7] {1.2, 0.1, 0, 8, 0.75, 3, 4};
   #break
   #else #error "model_grid.pov: ABRDF_GRID_SET must be 0, 1 or 2\n"
 #end
@@ -44,6 +44,7 @@ global_settings { assumed_gamma 1 }
   #declare D[ABRDF_SLOT_ANISOTROPIC] = Aniso; #declare D[ABRDF_SLOT_CLEARCOAT_GLOSS] = Gloss;
   #declare D[ABRDF_SLOT_ETA] = Hair[0]; #declare D[ABRDF_SLOT_MELANIN] = Hair[1]; #declare D[ABRDF_SLOT_REDNESS] = Hair[2];
   #declare D[ABRDF_SLOT_CUTICLE_TILT] = Hair[3]; #declare D[ABRDF_SLOT_ASPECT_RATIO] = Hair[4];
+  #declare D[ABRDF_SLOT_ENTRY_GRID] = Hair[5]; #declare D[ABRDF_SLOT_INTERNAL_GRID] = Hair[6];
   // layer stacks (layered models): set 1 a coat with absorption over a dielectric over a
   // rough conductor; set 2 a denser coat over a less dense layer (total internal reflection)
   #if (ABRDF_GRID_SET = 1)
