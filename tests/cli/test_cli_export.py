@@ -72,6 +72,24 @@ class Export(unittest.TestCase):
         self.assertIn("float melanin[1] = {\n        0.29999999999999999};", s["osl"])
         self.assertIn("redness[m], cuticle_tilt[m], aspect_ratio[m],\n", s["osl"])
         self.assertIn("entry_grid[m], internal_grid[m]);", s["osl"])
+        self.assertEqual((m["entry_grid"], m["internal_grid"]), (6, 3))
+
+    def test_huang_quadrature_grids_are_exported(self):
+        # huang's grids (a budget choice coarsens entry_grid) reach both ports.
+        s = self.scene("--model", "huang", "--set", "entry_grid=4", "--set", "internal_grid=2",
+                       name="sphere.scene")
+        self.assertEqual((s["materials"][0]["entry_grid"], s["materials"][0]["internal_grid"]),
+                         (4, 2))
+        self.assertIn("int entry_grid[1] = {\n        4};", s["osl"])
+        self.assertIn("int internal_grid[1] = {\n        2};", s["osl"])
+        pov = os.path.join(self.tmp.name, "scene.pov")
+        r = run("--pov", os.path.join(SCENES, "sphere.scene"), "-o", pov, "--model", "huang",
+                "--set", "entry_grid=4", "--set", "internal_grid=2")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(pov) as f:
+            text = f.read()
+        self.assertIn("[ABRDF_SLOT_ENTRY_GRID + 0] = 4;", text)
+        self.assertIn("[ABRDF_SLOT_INTERNAL_GRID + 0] = 2;", text)
 
     def test_ambient_is_ka_times_ia(self):
         s = self.scene()  # robot: ambient 0.02, ka defaults to kd
