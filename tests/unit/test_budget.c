@@ -191,13 +191,21 @@ static int has_candidate(const abrdf_material *m, abrdf_model d, abrdf_model s)
     return 0;
 }
 
+/* Huang hair of data/materials.csv's hair_brown. */
+static abrdf_material hair_brown(void)
+{
+    abrdf_material m;
+    abrdf_material_init(&m);
+    m.type = ABRDF_SURFACE_HAIR;
+    m.r = 0.3;
+    m.eta = 1.55;
+    m.melanin = 0.73;
+    return m;
+}
+
 START_TEST(candidates_follow_the_class)
 {
-    abrdf_material hair;
-    abrdf_material_init(&hair);
-    hair.type = ABRDF_SURFACE_HAIR;
-    hair.r = 0.3;
-    hair.eta = 1.55;
+    abrdf_material hair = hair_brown();
     abrdf_model d, s;
     ck_assert_int_eq(abrdf_budget_candidate(&hair, 0, &d, &s), ABRDF_OK);
     ck_assert_int_eq(s, ABRDF_HUANG); /* the reference first */
@@ -229,12 +237,7 @@ END_TEST
  * winner is one of them (the fitted fibre models are predicted "significant"). */
 START_TEST(hair_offers_coarser_quadratures)
 {
-    abrdf_material m;
-    abrdf_material_init(&m);
-    m.type = ABRDF_SURFACE_HAIR;
-    m.r = 0.3;
-    m.eta = 1.55;
-    m.melanin = 0.73;
+    abrdf_material m = hair_brown();
     double max = 2.5e-4;
     run *r = budget_metric(&m, max, ABRDF_FIT_L2);
     ck_assert_int_eq(r->status, ABRDF_OK);
