@@ -313,16 +313,23 @@ static void budget_text(double max, char *buf, size_t size)
     snprintf(buf, size, "%g", max);
 }
 
-/* The cost of a pair with parameters p: each lobe's cost from the table, scaled by the work
- * its parameters ask for (abrdf__cost_scale: huang's quadrature grids). */
+/* A lobe's cost with parameters p: the table's entry scaled by the work its parameters ask
+ * for (abrdf__cost_scale: huang's quadrature grids); -1 when the table does not know it. */
+static double lobe_cost(const abrdf_costs *costs, abrdf_model lobe, const abrdf_params *p)
+{
+    double v = abrdf_costs_get(costs, lobe);
+    return v >= 0.0 ? v * abrdf__cost_scale(lobe, p) : -1.0;
+}
+
+/* The cost of a pair: the sum of its lobes', -1 if one is unknown. */
 static double pair_cost(const abrdf_costs *costs, const abrdf_model lobe[2], const abrdf_params *p)
 {
     double c = 0.0;
     for (int l = 0; l < 2; ++l) {
         if (lobe[l] == NONE) continue;
-        double v = abrdf_costs_get(costs, lobe[l]);
-        if (!(v >= 0.0)) return -1.0;
-        c += v * abrdf__cost_scale(lobe[l], p);
+        double v = lobe_cost(costs, lobe[l], p);
+        if (v < 0.0) return -1.0;
+        c += v;
     }
     return c;
 }
@@ -455,23 +462,23 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     for (int k = 0;; ++k) {
         abrdf_model lobe[2];
         abrdf__brdf cand;
-        int g = candidate_get(&cc, k, ref.lobe[0], ref.lobe[1], no_diffuse, lobe), variant = 0;
+        int g = candidate_get(&cc, k, ref.lobe[0], ref.lobe[1], no_diffuse, lobe), fitted = 0;
         if (g == 0) { /* the class's models done: the reference's cheaper quadratures */
             if (!coarser_quadrature(&ref, ++variants, &cand)) break;
-            lobe[0] = cand.lobe[0];
-            lobe[1] = cand.lobe[1];
-            variant = 1;
         } else if (g < 0) {
             continue;
-        }
-        abrdf_fit_result r;
-        abrdf_fit_result_init(&r);
-        if (!variant) {
+        } else if (k == 0) { /* the reference, as chosen */
+            cand = ref;
+        } else {
             cand.lobe[0] = lobe[0];
             cand.lobe[1] = lobe[1];
+            fitted = 1;
         }
-        if (k == 0 || variant) { /* the reference as chosen, or at a coarser quadrature */
-            if (k == 0) cand = ref;
+        lobe[0] = cand.lobe[0];
+        lobe[1] = cand.lobe[1];
+        abrdf_fit_result r;
+        abrdf_fit_result_init(&r);
+        if (!fitted) { /* the reference, or it at a coarser quadrature: nothing to fit */
             abrdf__fit_errors(&set, &cand, &r);
             r.nmse_pred = abrdf__pred_nmse(&pr, &cand);
         } else {
@@ -575,11 +582,8 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
         for (int k = 0; k < mi->param_count; ++k)
             if (mi->params[k].id == id) sel.r = best.p.r;
     }
-    sel.cost_diffuse = best.lobe[0] == NONE ? 0.0
-                                            : abrdf_costs_get(costs, best.lobe[0]) *
-                                                  abrdf__cost_scale(best.lobe[0], &best.p);
-    sel.cost_specular =
-        abrdf_costs_get(costs, best.lobe[1]) * abrdf__cost_scale(best.lobe[1], &best.p);
+    sel.cost_diffuse = best.lobe[0] == NONE ? 0.0 : lobe_cost(costs, best.lobe[0], &best.p);
+    sel.cost_specular = lobe_cost(costs, best.lobe[1], &best.p);
     sel.cost_total = best_cost >= 0.0 && isfinite(best_cost) ? best_cost : -1.0;
     sel.cost_unit = costs->unit;
     if (params) {

@@ -55,9 +55,11 @@ static const abrdf__param_slot params_table[] = {
      offsetof(abrdf_params, layer_count)},
     LAYER(0), LAYER(1), LAYER(2), LAYER(3),
     {{"entry_grid", "huang: entry microfacet quadrature, n x n VNDF midpoint nodes",
-      ABRDF_PARAM_INT, 1.0, ABRDF__HUANG_GRID_MAX, 6.0}, offsetof(abrdf_params, entry_grid)},
+      ABRDF_PARAM_INT, 1.0, ABRDF__HUANG_GRID_MAX, ABRDF__HUANG_N1},
+     offsetof(abrdf_params, entry_grid)},
     {{"internal_grid", "huang: TRT internal-reflection quadrature, n x n VNDF midpoint nodes",
-      ABRDF_PARAM_INT, 1.0, ABRDF__HUANG_GRID_MAX, 3.0}, offsetof(abrdf_params, internal_grid)},
+      ABRDF_PARAM_INT, 1.0, ABRDF__HUANG_GRID_MAX, ABRDF__HUANG_N2},
+     offsetof(abrdf_params, internal_grid)},
 };
 
 #define PARAM_COUNT ((int)(sizeof params_table / sizeof params_table[0]))
