@@ -84,7 +84,7 @@ static const struct {
     {"light sphere center=0,2,0 radius=0\n", 3, "radius"},
     {"light rect center=0,2,0 u=1,0,0\n", 3, "v=X,Y,Z"},
     {"light rect center=0,2,0 u=1,0,0 v=1,0,1\n", 3, "orthogonal"},
-    {"light rect center=0,2,0 u=0,0,0 v=0,0,1\n", 3, "non-zero"},
+    {"light rect center=0,2,0 u=0,0,0 v=0,0,1\n", 3, "longer than 1e-9"},
     {"light rect center=0,2,0 u=1,0,0 v=0,0,1 radius=2\n", 3, "unknown key 'radius'"},
     {"light environment\n", 3, "file=PATH"},
     {"light environment file=no_such_map.exr\n", 3, "no_such_map.exr"},

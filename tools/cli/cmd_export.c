@@ -200,6 +200,11 @@ int cmd_export(int argc, char **argv)
         fprintf(stderr, "abrdf export: %s\n", err);
         return 1;
     }
+    const char *out_role = "output";
+    if (scene_outputs_distinct(&s, &out, &out_role, 1, err, sizeof err)) {
+        scene_free(&s);
+        return cli_fail(cmd, "%s", err);
+    }
     int rc = 1, prepared = 0;
     render_scene rs;
     out_file o = OUT_FILE_INIT;

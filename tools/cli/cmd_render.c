@@ -250,6 +250,12 @@ int cmd_render(int argc, char **argv)
         return 1;
     }
     clock_gettime(CLOCK_MONOTONIC, &r1);
+    const char *outs[2] = {out, png}, *out_roles[2] = {"output", "preview"};
+    if (scene_outputs_distinct(&s, outs, out_roles, 2, err, sizeof err)) {
+        scene_free(&s);
+        free(png);
+        return cli_fail(cmd, "%s", err);
+    }
     int rc = 1;
     float *rgb = NULL;
     render_scene rs;

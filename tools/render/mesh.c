@@ -3,6 +3,7 @@
  * dropped, statements it does not know are skipped - so every line it hands over is checked
  * here word by word, and a malformed file is an error naming its line instead of a silently
  * different mesh (tests/fuzz/fuzz_mesh.c). */
+#define _POSIX_C_SOURCE 200809L /* fileno, fstat */
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -10,9 +11,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
+#include "in_file.h"
 #include "mesh.h"
 #include "mesh_obj.h"
+#include "path_msg.h"
 
 typedef struct loader {
     const char *name;
@@ -67,11 +71,15 @@ static int next_word(words *w, const char **s, size_t *len)
 #define WORD_FMT "'%.*s%s'"
 #define WORD_ARG(s, len) (int)((len) > 24 ? 24 : (len)), (s), (len) > 24 ? "..." : ""
 
-/* A decimal number as tinyobjloader reads it (no hex, inf or nan), finite. */
+/* The longest number word read (longer ones are refused by name: no OBJ writer needs them). */
+#define MESH_NUMBER_MAX 255
+
+/* A decimal number as tinyobjloader reads it (no hex, inf or nan), finite; a number too small
+ * for a double is its subnormal or zero, as in the scene format. */
 static int read_number(const char *s, size_t len, double *out)
 {
-    char buf[64];
-    if (len == 0 || len >= sizeof buf) return 0;
+    char buf[MESH_NUMBER_MAX + 1];
+    if (len == 0 || len > MESH_NUMBER_MAX) return 0;
     for (size_t i = 0; i < len; ++i) {
         char c = s[i];
         if (!((c >= '0' && c <= '9') || c == '.' || c == '-' || c == '+' || c == 'e' || c == 'E'))
@@ -80,9 +88,8 @@ static int read_number(const char *s, size_t len, double *out)
     memcpy(buf, s, len);
     buf[len] = '\0';
     char *end;
-    errno = 0;
     double v = strtod(buf, &end);
-    if (*end || errno == ERANGE || !isfinite(v)) return 0;
+    if (*end || !isfinite(v)) return 0;
     *out = v;
     return 1;
 }
@@ -99,6 +106,9 @@ static int check_numbers(loader *ld, const mesh_obj_line *line, const char *what
     int n = 0;
     while (next_word(&w, &s, &len)) {
         double v;
+        if (len > MESH_NUMBER_MAX)
+            return fail(ld, line->number, "%s: a number of %zu characters (at most %d)", what, len,
+                        MESH_NUMBER_MAX);
         if (!read_number(s, len, &v))
             return fail(ld, line->number, "%s: " WORD_FMT " is not a finite decimal number", what,
                         WORD_ARG(s, len));
@@ -481,6 +491,8 @@ int mesh_load_text(const char *name, const char *text, size_t len, int max_trian
         return -1;
     }
     memcpy(out->path, ld.name, nlen + 1);
+    /* A UTF-8 byte-order mark (some editors write one) is not part of the first line. */
+    if (len >= 3 && !memcmp(text, "\xEF\xBB\xBF", 3)) text += 3, len -= 3;
     mesh_obj_sink sink = {&ld, on_vertex, on_normal, on_texcoord, on_face, on_other};
     char lib_err[256];
     int st = mesh_obj_parse(text, len, &sink, lib_err, sizeof lib_err);
@@ -517,41 +529,35 @@ int mesh_load_text(const char *name, const char *text, size_t len, int max_trian
 int mesh_load_file(const char *path, int max_triangles, mesh *out, char *err, size_t err_size)
 {
     memset(out, 0, sizeof *out);
-    FILE *f = fopen(path, "rb");
+    char msg[512];
+    FILE *f = in_file_open(path, msg, sizeof msg);
     if (!f) {
-        if (err && err_size) snprintf(err, err_size, "%s: cannot open: %s", path, strerror(errno));
+        if (err && err_size) snprintf(err, err_size, "%s", msg);
         return -2;
     }
-    char *buf = NULL;
-    size_t len = 0, cap = 0;
-    int bad = 0;
-    for (;;) {
-        if (len == cap) {
-            if (cap >= MESH_MAX_FILE) {
-                if (err && err_size)
-                    snprintf(err, err_size, "%s: larger than %zu bytes", path, MESH_MAX_FILE);
-                bad = 1;
-                break;
-            }
-            cap = cap ? 2 * cap : 1 << 20;
-            char *g = realloc(buf, cap);
-            if (!g) {
-                if (err && err_size) snprintf(err, err_size, "%s: out of memory", path);
-                bad = 1;
-                break;
-            }
-            buf = g;
-        }
-        size_t got = fread(buf + len, 1, cap - len, f);
-        len += got;
-        if (got == 0) break;
+    /* The size first: nothing is allocated for a file over the limit. */
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0) {
+        if (err && err_size) path_msg(err, err_size, path, ": %s", strerror(errno));
+        fclose(f);
+        return -2;
     }
-    if (!bad && ferror(f)) {
-        if (err && err_size) snprintf(err, err_size, "%s: read error", path);
-        bad = 1;
+    if ((unsigned long long)st.st_size > MESH_MAX_FILE) {
+        if (err && err_size)
+            path_msg(err, err_size, path, ": %lld bytes; a mesh file has at most %zu",
+                     (long long)st.st_size, MESH_MAX_FILE);
+        fclose(f);
+        return -2;
     }
+    size_t size = (size_t)st.st_size;
+    char *buf = malloc(size ? size : 1);
+    size_t len = buf ? fread(buf, 1, size, f) : 0;
+    /* a file that changes while it is read is read up to its size at the open */
+    int bad = !buf || ferror(f) || len != size;
+    if (bad && err && err_size)
+        path_msg(err, err_size, path, ": %s", !buf ? "out of memory" : "read error");
     fclose(f);
-    int st = bad ? -2 : mesh_load_text(path, buf, len, max_triangles, out, err, err_size);
+    int rc = bad ? -2 : mesh_load_text(path, buf, len, max_triangles, out, err, err_size);
     free(buf);
-    return st;
+    return rc;
 }

@@ -11,8 +11,10 @@
 #include <string.h>
 
 #include "in_file.h"
+#include "out_file.h"
 #include "path_msg.h"
 #include "scene.h"
+#include "utf8.h"
 #include "budget_run.h"
 
 #define SCENE_WORD_MAX 256 /* characters of a word: far above any valid key or value */
@@ -107,7 +109,9 @@ static int get_num(parser *p, const char *key, const char *val, double lo, doubl
                    double *out)
 {
     double v;
-    if (!parse_num(val, &v)) return fail(p, "%s needs a finite number, got '%s'", key, val);
+    if (!parse_num(val, &v))
+        return fail(p, "%s needs a finite number with |x| <= %g, got '%s'", key, SCENE_MAX_COORD,
+                    val);
     if (v < lo || v > hi || (open_lo && v == lo))
         return fail(p, "%s = %s is outside %s%g, %g]", key, val, open_lo ? "(" : "[", lo, hi);
     *out = v;
@@ -238,25 +242,48 @@ static int do_ambient(parser *p, word *w, int n)
     return get_rgb(p, "ambient", w[1].key, p->s->ambient);
 }
 
-/* The map of `light environment file=PATH`, relative to the scene file's directory. */
-static int load_envmap(parser *p, const char *file, scene_light *l)
+/* The path of a file the scene names (file=PATH): relative to the scene file's directory
+ * unless absolute; any UTF-8 text but control characters. Returns the malloc'd path, or NULL
+ * after the message. */
+static char *named_path(parser *p, const char *file)
 {
-    for (const unsigned char *c = (const unsigned char *)file; *c; ++c)
-        if (*c < 0x20 || *c > 0x7e)
-            return fail(p, "file= holds byte 0x%02x (not printable ASCII)", *c);
-    if (!*file) return fail(p, "file= is empty");
+    if (!*file) {
+        fail(p, "file= is empty");
+        return NULL;
+    }
+    for (const char *c = file; *c;) {
+        unsigned long cp;
+        int len = utf8_decode(c, &cp);
+        if (!len || cp < 0x20 || cp == 0x7f) {
+            fail(p, "file= holds byte 0x%02x: a path is UTF-8 text without control characters",
+                 (unsigned char)*c);
+            return NULL;
+        }
+        c += len;
+    }
     const char *slash = strrchr(p->name, '/');
     size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - p->name) + 1;
     size_t flen = strlen(file);
     char *path = malloc(dir + flen + 1);
-    l->env = calloc(1, sizeof *l->env);
-    if (!path || !l->env) {
-        free(path), free(l->env);
-        l->env = NULL;
-        return fail(p, "out of memory");
+    if (!path) {
+        fail(p, "out of memory");
+        return NULL;
     }
     memcpy(path, p->name, dir);
     memcpy(path + dir, file, flen + 1);
+    return path;
+}
+
+/* The map of `light environment file=PATH`. */
+static int load_envmap(parser *p, const char *file, scene_light *l)
+{
+    char *path = named_path(p, file);
+    if (!path) return -1;
+    l->env = calloc(1, sizeof *l->env);
+    if (!l->env) {
+        free(path);
+        return fail(p, "out of memory");
+    }
     char err[512];
     int st = envmap_load(path, l->env, err, (int)sizeof err);
     free(path);
@@ -313,7 +340,10 @@ static int do_light(parser *p, word *w, int n)
                 uv += l.edge_u[c] * l.edge_v[c];
         /* 1e-12 of the edges' squared lengths: far below any visible skew */
         if (!(uu > 1e-18 && vv > 1e-18))
-            return fail(p, "rect light edges u and v must be non-zero");
+            return fail(p,
+                        "rect light edges u and v must each be longer than 1e-9 (|u| = %g, "
+                        "|v| = %g)",
+                        sqrt(uu), sqrt(vv));
         if (fabs(uv) > 1e-6 * sqrt(uu * vv))
             return fail(p, "rect light edges u and v must be orthogonal (u.v = %g)", uv);
     } else if (!strcmp(w[1].key, "environment")) {
@@ -531,21 +561,12 @@ static int append(parser *p, void **arr, int *count, int *cap, const void *item,
     return 0;
 }
 
-/* The mesh file of `mesh file=PATH`, relative to the scene file's directory; read once. */
+/* The mesh file of `mesh file=PATH`; read once however many objects use it. */
 static int load_mesh(parser *p, const char *file, scene_object *o)
 {
     scene *s = p->s;
-    for (const unsigned char *c = (const unsigned char *)file; *c; ++c)
-        if (*c < 0x20 || *c > 0x7e)
-            return fail(p, "file= holds byte 0x%02x (not printable ASCII)", *c);
-    if (!*file) return fail(p, "file= is empty");
-    const char *slash = strrchr(p->name, '/');
-    size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - p->name) + 1;
-    size_t flen = strlen(file);
-    char *path = malloc(dir + flen + 1);
-    if (!path) return fail(p, "out of memory");
-    memcpy(path, p->name, dir);
-    memcpy(path + dir, file, flen + 1);
+    char *path = named_path(p, file);
+    if (!path) return -1;
     for (int i = 0; i < s->mesh_count; ++i)
         if (!strcmp(s->meshes[i]->path, path)) {
             free(path);
@@ -706,6 +727,42 @@ void scene_free(scene *s)
     }
     free(s->meshes);
     memset(s, 0, sizeof *s);
+}
+
+static void name_file(const char **paths, const char **roles, int max, int n, const char *path,
+                      const char *role)
+{
+    if (n >= max) return;
+    paths[n] = path;
+    if (roles) roles[n] = role;
+}
+
+int scene_named_files(const scene *s, const char **paths, const char **roles, int max)
+{
+    int n = 0;
+    for (int i = 0; i < s->mesh_count; ++i)
+        name_file(paths, roles, max, n++, s->meshes[i]->path, "mesh file");
+    for (int i = 0; i < s->light_count; ++i)
+        if (s->lights[i].env)
+            name_file(paths, roles, max, n++, s->lights[i].env->path, "environment map");
+    return n;
+}
+
+int scene_outputs_distinct(const scene *s, const char *const *outputs,
+                           const char *const *output_roles, int nout, char *err, size_t err_size)
+{
+    int n = scene_named_files(s, NULL, NULL, 0);
+    const char **paths = malloc((size_t)(n ? n : 1) * sizeof *paths),
+               **roles = malloc((size_t)(n ? n : 1) * sizeof *roles);
+    int rc = -1;
+    if (!paths || !roles)
+        snprintf(err, err_size, "out of memory");
+    else {
+        scene_named_files(s, paths, roles, n);
+        rc = out_files_distinct(outputs, output_roles, nout, paths, roles, n, err, err_size);
+    }
+    free(paths), free(roles);
+    return rc;
 }
 
 int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,

@@ -144,6 +144,14 @@ int scene_parse_file(const char *path, scene *out, char *err, size_t err_size);
 int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,
                      size_t err_size);
 void scene_free(scene *s);
+/* The files the scene names - its mesh files, then its environment maps, as they were read -
+ * with their roles ("mesh file", "environment map"): at most max into paths/roles (NULL
+ * roles: not wanted). Returns how many the scene names (it may be more than max). */
+int scene_named_files(const scene *s, const char **paths, const char **roles, int max);
+/* Refuse outputs that are files the scene names (out_files_distinct: links included):
+ * 0, or -1 with one line in err. */
+int scene_outputs_distinct(const scene *s, const char *const *outputs,
+                           const char *const *output_roles, int nout, char *err, size_t err_size);
 
 const char *scene_shape_name(scene_shape shape);
 const char *scene_tangent_name(scene_tangent tangent);
