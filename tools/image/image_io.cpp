@@ -31,6 +31,11 @@ namespace
 // Largest image accepted, in pixels: keeps width*height*3 floats far from size_t overflow
 // and a corrupt header from asking for an absurd allocation.
 const long long kMaxPixels = 1LL << 28;
+// Largest read, in bytes: the pixels of the channels used (RGB or grey) as 32-bit floats.
+const long long kMaxReadBytes = 1LL << 30;
+// Rows read at a time: what is allocated grows with what the file really holds, so a header
+// that declares a huge image over a few bytes fails at its first missing rows.
+const int kStripRows = 64;
 
 void set_err(char *err, int err_size, const std::string &msg)
 {
@@ -381,6 +386,57 @@ extern "C" int abrdf_image_encode_heatmap(const char *name, int width, int heigh
     return -1;
 }
 
+namespace
+{
+
+// The image's rows in strips of channels [0, colour) as floats, into malloc'd RGB (grey
+// replicated): the buffer grows strip by strip, up to width * height * 3 floats. NULL after
+// the message on a read error.
+float *read_rows(OIIO::ImageInput *in, const OIIO::ImageSpec &spec, int colour, const char *path,
+                 char *err, int err_size)
+{
+    const int w = spec.width, h = spec.height;
+    // tiles are read whole: a strip is a whole number of tile rows
+    const int rows = spec.tile_height > 0
+                         ? spec.tile_height * std::max(1, kStripRows / spec.tile_height)
+                         : kStripRows;
+    std::vector<float> part;
+    float *rgb = nullptr;
+    size_t cap = 0; // floats
+    for (int y0 = 0; y0 < h; y0 += rows) {
+        int y1 = std::min(h, y0 + rows);
+        part.resize((size_t)w * (size_t)(y1 - y0) * (size_t)colour);
+        bool ok = spec.tile_width > 0
+                      ? in->read_tiles(0, 0, spec.x, spec.x + w, spec.y + y0, spec.y + y1, spec.z,
+                                       spec.z + 1, 0, colour, OIIO::TypeDesc::FLOAT, part.data())
+                      : in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, colour,
+                                           OIIO::TypeDesc::FLOAT, part.data());
+        if (!ok) {
+            std::string e = in->geterror();
+            set_err_path(err, err_size, path, e.empty() ? "read error" : e);
+            std::free(rgb);
+            return nullptr;
+        }
+        size_t need = (size_t)w * (size_t)y1 * 3;
+        if (need > cap) {
+            size_t grown = std::min((size_t)w * (size_t)h * 3, std::max(need, 2 * cap));
+            float *g = (float *)std::realloc(rgb, grown * sizeof(float));
+            if (!g) {
+                set_err_path(err, err_size, path, "out of memory");
+                std::free(rgb);
+                return nullptr;
+            }
+            rgb = g, cap = grown;
+        }
+        float *dst = rgb + (size_t)w * (size_t)y0 * 3;
+        for (size_t p = 0; p < (size_t)w * (size_t)(y1 - y0); ++p)
+            for (int c = 0; c < 3; ++c) dst[p * 3 + c] = part[p * colour + (colour == 3 ? c : 0)];
+    }
+    return rgb;
+}
+
+} // namespace
+
 extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, int err_size)
 {
     if (!img) return -1;
@@ -397,10 +453,15 @@ extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, i
             set_err_path(err, err_size, path, std::string("cannot open: ") + std::strerror(errno));
             return -1;
         }
-        if (!S_ISREG(st.st_mode)) {
+        if (!S_ISREG(st.st_mode)) { // the words of the other readers (tools/common/in_file.c)
+            const mode_t m = st.st_mode;
             set_err_path(err, err_size, path,
-                         S_ISDIR(st.st_mode) ? "is a directory, not a file"
-                                             : "is not a regular file");
+                         S_ISDIR(m)    ? "is a directory, not a file"
+                         : S_ISFIFO(m) ? "is a FIFO, not a regular file"
+                         : S_ISCHR(m)  ? "is a character device, not a regular file"
+                         : S_ISBLK(m)  ? "is a block device, not a regular file"
+                         : S_ISSOCK(m) ? "is a socket, not a regular file"
+                                       : "is not a regular file");
             return -1;
         }
         auto in = OIIO::ImageInput::open(path);
@@ -411,28 +472,30 @@ extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, i
         }
         const OIIO::ImageSpec spec = in->spec();
         int w = spec.width, h = spec.height, nch = spec.nchannels;
-        if (w <= 0 || h <= 0 || nch <= 0 || (long long)w * h > kMaxPixels || spec.deep) {
+        if (w <= 0 || h <= 0 || nch <= 0 || (long long)w * h > kMaxPixels || spec.deep ||
+            spec.depth > 1) {
             set_err_path(err, err_size, path,
                          "unsupported image (size " + std::to_string(w) + "x" + std::to_string(h) +
                              ", " + std::to_string(nch) + " channels" +
-                             (spec.deep ? ", deep" : "") + ")");
+                             (spec.deep ? ", deep" : "") + (spec.depth > 1 ? ", a volume" : "") +
+                             ")");
             return -1;
         }
-        std::vector<float> all((size_t)w * h * nch);
-        if (!in->read_image(0, 0, 0, nch, OIIO::TypeDesc::FLOAT, all.data())) {
-            set_err_path(err, err_size, path, in->geterror());
-            return -1;
-        }
-        in->close();
-        // RGB from the first three channels; grey (and grey+alpha) is replicated.
+        // RGB from the first three channels; grey (and grey+alpha) is replicated: only those
+        // channels are read.
         int colour = (nch >= 3 && spec.alpha_channel != 1 && spec.alpha_channel != 2) ? 3 : 1;
-        float *rgb = (float *)std::malloc((size_t)w * h * 3 * sizeof(float));
-        if (!rgb) {
-            set_err_path(err, err_size, path, "out of memory");
+        long long bytes = (long long)w * h * colour * (long long)sizeof(float);
+        if (bytes > kMaxReadBytes) {
+            set_err_path(err, err_size, path,
+                         std::to_string(w) + "x" + std::to_string(h) + " pixels x " +
+                             std::to_string(colour) + " channels as 32-bit floats need " +
+                             std::to_string(bytes) + " bytes, over the image reader's limit of " +
+                             std::to_string(kMaxReadBytes) + " bytes");
             return -1;
         }
-        for (size_t p = 0; p < (size_t)w * h; ++p)
-            for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = all[p * nch + (colour == 3 ? c : 0)];
+        float *rgb = read_rows(in.get(), spec, colour, path, err, err_size);
+        if (!rgb) return -1;
+        in->close();
         // Display-referred files (tagged sRGB, or untagged integer data) are decoded to
         // scene-linear with the inverse of the built-in sRGB display transform.
         std::string cs = spec.get_string_attribute("oiio:ColorSpace");
