@@ -99,6 +99,67 @@ START_TEST(sphere_light_closed_form)
 }
 END_TEST
 
+/* Light sizes and intensities across the ranges the scene format accepts: every pixel is
+ * finite and within what the light can give. Under a sphere light on the normal the one pixel
+ * is kd L r^2 / d^2 (as above): a vanishing light gives a vanishing pixel, with every
+ * estimator (a light whose density overflows the MIS weight once made every lit pixel
+ * 3.4e38). Under any rect light the irradiance is at most pi L, so the pixel is at most kd L
+ * (twice that allows for the noise of 64 samples). */
+START_TEST(light_sizes_and_intensities_sweep)
+{
+    const double radii[] = {4.9e-324, 1e-300, 1e-160, 1e-78, 1e-20, 1e-3, 0.8, 9.9e5};
+    const double edges[] = {1.1e-9, 1e-6, 1e-2, 1.0, 1e3, 1e6};
+    const double intensities[] = {0.0, 1e-300, 1.0, 1e6};
+    int renders = 0;
+    for (size_t k = 0; k < sizeof radii / sizeof *radii + sizeof edges / sizeof *edges; ++k)
+        for (size_t j = 0; j < sizeof intensities / sizeof *intensities; ++j) {
+            int sphere = k < sizeof radii / sizeof *radii;
+            double L = intensities[j],
+                   size = sphere ? radii[k] : edges[k - sizeof radii / sizeof *radii];
+            double z = sphere ? (size > 1.0 ? 1e6 : 4.9) : 4.9, d = z - 1.0;
+            char text[512], light[160];
+            if (sphere)
+                snprintf(light, sizeof light,
+                         "light sphere center=0,0,%.17g radius=%.17g "
+                         "intensity=%.17g\n",
+                         z, size, L);
+            else
+                snprintf(light, sizeof light,
+                         "light rect center=0,0,%.17g u=%.17g,0,0 "
+                         "v=0,-%.17g,0 intensity=%.17g\n",
+                         z, size, size, L);
+            snprintf(text, sizeof text,
+                     "camera position=0,0,4 look_at=0,0,0 fov=30 resolution=1,1\n%s"
+                     "material m model=lambert kd=0.5\nsphere material=m radius=1\n",
+                     light);
+            double want = sphere ? 0.5 * L * (size / d) * (size / d) : 0.0, bound = 0.5 * L;
+            for (int e = RENDER_EST_MIS; e <= RENDER_EST_BRDF; ++e) {
+                render_options opt = {0, 0, 1, 0, 1, 0, RENDER_DOUBLE, 0, e, 64};
+                setup u;
+                setup_text(&u, "t", text, &opt);
+                render_stats st;
+                float *rgb = render(&u, &opt, &st);
+                for (int ch = 0; ch < 3; ++ch) {
+                    double v = rgb[ch];
+                    ck_assert_msg(isfinite(v) && v >= 0.0 && v <= bound * 2.0 + 1e-30,
+                                  "%sestimator %d: pixel %g (bound %g)", light, e, v, bound);
+                    /* light sampling of a narrow cone on a Lambert point is exact (cos is 1
+                     * across it); a wide cone and MIS's BRDF samples add noise */
+                    double tol = e == RENDER_EST_LIGHT && size < 0.01 * d ? 1e-3 : 0.1;
+                    if (sphere && e != RENDER_EST_BRDF)
+                        ck_assert_msg(fabs(v - want) <= tol * want + 1e-37,
+                                      "%sestimator %d: pixel %g, closed form %g", light, e, v,
+                                      want);
+                }
+                free(rgb);
+                setup_free(&u);
+                ++renders;
+            }
+        }
+    printf("light sweep: %d renders, every pixel finite and bounded\n", renders);
+}
+END_TEST
+
 /* ---- the samplers ---------------------------------------------------------------------- */
 
 /* Solid angle of triangle (a, b, c) seen from the origin (Van Oosterom and Strackee 1983). */
@@ -409,6 +470,7 @@ int main(void)
     tcase_add_test(tc, sphere_sampler_is_uniform_in_the_cone);
     tcase_add_test(tc, environment_density_and_integral);
     tcase_add_test(tc, sphere_light_closed_form);
+    tcase_add_test(tc, light_sizes_and_intensities_sweep);
     tcase_add_test(tc, estimators_converge_to_one_image);
     suite_add_tcase(s, tc);
     return tu_run(s);

@@ -68,6 +68,7 @@ static int sphere_sample(const render_light *lt, const double o[3], double u1, d
     if (!(d2 > r2)) return 0; /* inside the light: it lights nothing there */
     double d = sqrt(d2), w[3] = {dc[0] / d, dc[1] / d, dc[2] / d}, a[3], b[3];
     double om = cone_width(r2, d2), t = u1 * om; /* t = 1 - cos(theta) */
+    if (!(om > 0)) return 0; /* narrower than a double resolves: it lights nothing */
     double ct = 1.0 - t, st = sqrt(fmax(0.0, t * (2.0 - t))), phi = 2.0 * PI * u2;
     basis(w, a, b);
     double ca = cos(phi), sa = sin(phi);
@@ -86,8 +87,10 @@ static int sphere_hit(const render_light *lt, const double o[3], const double wi
     double d2 = geom_dot(dc, dc), r2 = lt->radius * lt->radius;
     double b = geom_dot(wi, dc), c = d2 - r2, disc = b * b - c;
     if (!(c > 0) || !(b > 0) || !(disc >= 0)) return 0;
+    double om = cone_width(r2, d2);
+    if (!(om > 0)) return 0;
     s->dist = c / (b + sqrt(disc)); /* the near root, without cancellation */
-    s->pdf = 1.0 / (2.0 * PI * cone_width(r2, d2));
+    s->pdf = 1.0 / (2.0 * PI * om);
     memcpy(s->le, lt->e, sizeof s->le);
     return 1;
 }
@@ -238,6 +241,15 @@ int light_hit(const render_light *lt, const double o[3], const double wi[3], lig
 
 /* ---- the estimators ------------------------------------------------------------------ */
 
+/* Veach's power heuristic (beta = 2) for a sample of density p against the other strategy's q,
+ * as 1 / (1 + (q/p)^2): a light that subtends almost nothing has a density near DBL_MAX whose
+ * square would overflow (inf / inf); the ratio only underflows, to the right weights 1 and 0. */
+static double power_heuristic(double p, double q)
+{
+    double r = q / p;
+    return 1.0 / (1.0 + r * r);
+}
+
 static uint64_t mix64(uint64_t x)
 {
     x += 0x9e3779b97f4a7c15ull;
@@ -322,10 +334,8 @@ void light_shade_sampled(const render_scene *rs, const render_options *opt, cons
                     if ((f[0] > 0 || f[1] > 0 || f[2] > 0) &&
                         !blocked(rs, l, h, o, ls.wi, ls.dist, st)) {
                         double w = 1.0;
-                        if (est == RENDER_EST_MIS) {
-                            double pb = brdf_pdf(m, frame, ls.wi, h->wo);
-                            w = ls.pdf * ls.pdf / (ls.pdf * ls.pdf + pb * pb);
-                        }
+                        if (est == RENDER_EST_MIS)
+                            w = power_heuristic(ls.pdf, brdf_pdf(m, frame, ls.wi, h->wo));
                         for (int c = 0; c < 3; ++c) acc[c] += f[c] * ci * ls.le[c] * w / ls.pdf;
                     }
                 }
@@ -346,7 +356,7 @@ void light_shade_sampled(const render_scene *rs, const render_options *opt, cons
             if (!(f[0] > 0 || f[1] > 0 || f[2] > 0) || blocked(rs, l, h, o, r.wi, ls.dist, st))
                 continue;
             double w = 1.0;
-            if (est == RENDER_EST_MIS) w = pb * pb / (pb * pb + ls.pdf * ls.pdf);
+            if (est == RENDER_EST_MIS) w = power_heuristic(pb, ls.pdf);
             for (int c = 0; c < 3; ++c) acc[c] += f[c] * ci * ls.le[c] * w / pb;
         }
         for (int c = 0; c < 3; ++c) L[c] += acc[c] / ns;
