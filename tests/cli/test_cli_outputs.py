@@ -14,9 +14,11 @@ writes it whole or not at all, never over one of its inputs, and says why when i
 - racing writers to one target end with one whole file from one of them.
 
 Run by CTest with ABRDF (the command), BIN (the build's programs), SCENES and SRC."""
+import fcntl
 import os
 import resource
 import signal
+import struct
 import subprocess
 import sys
 import threading
@@ -47,6 +49,22 @@ def run(*args, limit=None, stdout=None, timeout=600):
                        stderr=subprocess.PIPE, preexec_fn=limited(limit) if limit else None,
                        timeout=timeout)
     return p.returncode, checked_stderr(p)
+
+
+def png_size(path):
+    """(width, height) from a PNG's IHDR chunk."""
+    with open(path, "rb") as f:
+        head = f.read(24)
+    return struct.unpack(">II", head[16:24])
+
+
+def exr_size(path):
+    """(width, height) from an EXR header's dataWindow attribute."""
+    with open(path, "rb") as f:
+        head = f.read(4096)
+    at = head.index(b"dataWindow\0box2i\0") + len(b"dataWindow\0box2i\0") + 4
+    x0, y0, x1, y1 = struct.unpack("<iiii", head[at:at + 16])
+    return x1 - x0 + 1, y1 - y0 + 1
 
 
 def snapshot(directory):
@@ -121,6 +139,39 @@ class InputsAreNeverOutputs(Base):
         config = self.put("c.png", "")  # the preview of -o c.exr would replace the config
         self.refused(["render", SPHERE, "--config", config, "-o", self.path("c.exr")],
                      "--config file")
+
+    def named_files_scene(self):
+        """A scene in self.dir naming a mesh file and an environment map (made by a render)."""
+        with open(self.path("tri.obj"), "w") as f:
+            f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+        rc, err = run(ABRDF, "render", SPHERE, "-o", self.path("sky.exr"), "--width", "8",
+                      "--height", "4", "--no-preview")
+        self.assertEqual(rc, 0, err)
+        text = read_text(SPHERE) + ("light environment file=sky.exr intensity=0.5\n"
+                                    "mesh file=tri.obj material=plastic\n")
+        return self.put("named.scene", text)
+
+    def test_files_a_scene_names_are_never_outputs(self):
+        """Every kind of file a scene names (a mesh, an environment map), under each of its
+        names (itself, ./x, absolute, a symbolic link, a hard link), as every output of the
+        commands that read the scene: render -o, its preview, export --pov/--cycles -o."""
+        scene = self.named_files_scene()
+        for name, role in (("tri.obj", "mesh file"), ("sky.exr", "environment map")):
+            target = self.path(name)
+            for alias in self.aliases(target):
+                for fmt in ("--pov", "--cycles"):
+                    self.refused(["export", fmt, scene, "-o", alias], role)
+                # the render's image and preview through links of the names they must have
+                for ext, out in ((".exr", "o.exr"), (".png", "p.exr")):
+                    link = self.path(out[:-4] + ext)
+                    os.symlink(os.path.abspath(alias), link)
+                    extra = ["--no-preview"] if ext == ".exr" else []
+                    self.refused(["render", scene, "-o", self.path(out)] + SMALL + extra, role)
+                    os.unlink(link)
+            os.unlink(self.path("link"))
+            os.unlink(self.path("hard"))
+            if name.endswith(".exr"):
+                self.refused(["render", scene, "-o", target, "--no-preview"] + SMALL, role)
 
     def test_compare_diff_over_an_image(self):
         self.assertEqual(run(ABRDF, "render", SPHERE, "-o", self.path("a.exr"), *SMALL)[0], 0)
@@ -307,6 +358,39 @@ class WholeOrNothing(Base):
                 self.assertEqual(p.wait(), 0)
             self.assertIn(read_text(pov), texts.values())
         self.assertEqual(sorted(f for f in os.listdir(self.dir) if f.startswith(".")), [])
+
+    def test_image_and_preview_are_committed_under_the_directory_lock(self):
+        """The EXR and its PNG preview are renamed over their targets under an exclusive lock
+        on their directory (flock), which every abrdf command takes the same way: while
+        another holder has it, a finished render waits, both targets still absent."""
+        out, png = self.path("pair.exr"), self.path("pair.png")
+        fd = os.open(self.dir, os.O_RDONLY)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX)
+            p = subprocess.Popen([ABRDF, "render", SPHERE, "-o", out] + SMALL,
+                                 stderr=subprocess.PIPE)
+            with self.assertRaises(subprocess.TimeoutExpired):
+                p.wait(timeout=20 if SANITIZED else 5)  # the render itself takes < 1 s
+            self.assertFalse(os.path.exists(out) or os.path.exists(png))
+        finally:
+            os.close(fd)  # releases the lock
+        _, err = p.communicate(timeout=60)
+        self.assertEqual(p.returncode, 0, err)
+        self.assertEqual(exr_size(out), png_size(png))
+
+    def test_racing_renders_leave_an_image_and_preview_of_one_render(self):
+        """Renders of two sizes race to one -o: the EXR and its preview always come from the
+        same render."""
+        out, png = self.path("pair.exr"), self.path("pair.png")
+        for _ in range(8):
+            procs = [subprocess.Popen([ABRDF, "render", SPHERE, "-o", out, "--width", w,
+                                       "--height", h, "--threads", "1"],
+                                      stderr=subprocess.PIPE) for w, h in (("40", "30"),
+                                                                           ("30", "40")) * 2]
+            for p in procs:
+                _, err = p.communicate()
+                self.assertEqual(p.returncode, 0, err)
+            self.assertEqual(exr_size(out), png_size(png))
 
     def test_interrupted_render_leaves_no_temporary_file(self):
         self.put("x.exr", b"old")

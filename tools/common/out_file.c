@@ -6,6 +6,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <time.h>
@@ -244,22 +245,84 @@ int out_file_close(out_file *o, char *err, size_t err_size)
     return 0;
 }
 
-static void sync_dir(const char *path)
+/* The directory holding path, opened for reading (a descriptor, or -1). */
+static int open_dir_of(const char *path)
 {
     const char *slash = strrchr(path, '/');
     char *dir = slash ? malloc((size_t)(slash - path) + 2) : NULL;
-    if (slash && !dir) return;
+    if (slash && !dir) return -1;
     if (dir) {
         size_t n = slash == path ? 1 : (size_t)(slash - path);
         memcpy(dir, path, n);
         dir[n] = '\0';
     }
     int fd = open(dir ? dir : ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    free(dir);
+    return fd;
+}
+
+static void sync_dir(const char *path)
+{
+    int fd = open_dir_of(path);
     if (fd >= 0) {
         fsync(fd); /* durability of the rename; not every file system supports it */
         close(fd);
     }
-    free(dir);
+}
+
+typedef struct dir_lock {
+    int fd;
+    dev_t dev;
+    ino_t ino;
+} dir_lock;
+
+static int dir_lock_order(const void *a, const void *b)
+{
+    const dir_lock *x = a, *y = b;
+    if (x->dev != y->dev) return x->dev < y->dev ? -1 : 1;
+    return x->ino < y->ino ? -1 : x->ino > y->ino;
+}
+
+/* Outputs committed together are renamed under an exclusive lock (flock) on each directory
+ * they go to, taken in one order (device, inode) by every abrdf process, so that two commands
+ * writing the same outputs at once leave all of one's or all of the other's, never a mix.
+ * Returns how many locks are held (their descriptors in locks), or -1 with errno set. */
+static int lock_dirs(out_file *const *files, int n, dir_lock *locks)
+{
+    int k = 0;
+    for (int i = 0; i < n; ++i) {
+        if (!files[i]->temp) continue; /* written in place: no rename */
+        struct stat st;
+        int fd = open_dir_of(files[i]->path);
+        if (fd < 0 || fstat(fd, &st) != 0) {
+            int e = errno;
+            if (fd >= 0) close(fd);
+            for (int j = 0; j < k; ++j) close(locks[j].fd);
+            errno = e;
+            return -1;
+        }
+        int seen = 0;
+        for (int j = 0; j < k; ++j) seen |= locks[j].dev == st.st_dev && locks[j].ino == st.st_ino;
+        if (seen) {
+            close(fd);
+            continue;
+        }
+        locks[k].fd = fd, locks[k].dev = st.st_dev, locks[k].ino = st.st_ino;
+        ++k;
+    }
+    qsort(locks, (size_t)k, sizeof *locks, dir_lock_order);
+    for (int j = 0; j < k; ++j) {
+        int rc;
+        do rc = flock(locks[j].fd, LOCK_EX);
+        while (rc != 0 && errno == EINTR);
+        if (rc != 0) {
+            int e = errno;
+            for (int i = 0; i < k; ++i) close(locks[i].fd);
+            errno = e;
+            return -1;
+        }
+    }
+    return k;
 }
 
 int out_file_commit(out_file *const *files, int n, char *err, size_t err_size)
@@ -270,13 +333,22 @@ int out_file_commit(out_file *const *files, int n, char *err, size_t err_size)
             for (int j = 0; j < n; ++j) remove_temp(files[j]);
             return -1;
         }
-    for (int i = 0; i < n; ++i) {
+    dir_lock locks[LIVE_MAX];
+    int nlocks = 0;
+    if (n > 1 && n <= LIVE_MAX && (nlocks = lock_dirs(files, n, locks)) < 0) {
+        fail(files[0], err, err_size, "cannot lock its directory for the commit", errno);
+        for (int j = 0; j < n; ++j) remove_temp(files[j]);
+        return -1;
+    }
+    int rc = 0;
+    for (int i = 0; i < n && rc == 0; ++i) {
         out_file *o = files[i];
         if (o->committed) continue;
         if (rename(o->temp, o->path) != 0) {
             fail(o, err, err_size, "cannot replace it", errno);
             for (int j = i; j < n; ++j) remove_temp(files[j]);
-            return -1;
+            rc = -1;
+            break;
         }
         live_remove(o->temp);
         free(o->temp);
@@ -284,7 +356,8 @@ int out_file_commit(out_file *const *files, int n, char *err, size_t err_size)
         o->committed = 1;
         sync_dir(o->path);
     }
-    return 0;
+    for (int j = 0; j < nlocks; ++j) close(locks[j].fd); /* closing releases the lock */
+    return rc;
 }
 
 /* ---- inputs are never outputs ------------------------------------------------------------- */

@@ -8,7 +8,9 @@
  * writes them all, and commits them only when every one is complete. On any failure the
  * temporary files are removed and existing targets are left as they were; the message names
  * the target and the reason (strerror). Concurrent writers to one target each rename a whole
- * file over it, so the last one wins whole. SIGINT, SIGTERM and SIGHUP remove the temporary
+ * file over it, so the last one wins whole; outputs committed together (an image and its
+ * preview) are renamed under a lock on their directories, so that the last command wins all
+ * of them, never some. SIGINT, SIGTERM and SIGHUP remove the temporary
  * files of a process before it dies; SIGXFSZ is ignored once an output is open, so that a
  * file-size limit fails a write (EFBIG) instead of killing the process.
  *
