@@ -1,7 +1,8 @@
 """Types of the extension module abrdf._abrdf (python/src): libabrdf's C API for the package.
 
 Arrays go in and out through the buffer protocol: C-contiguous float32/float64 blocks, as
-numpy.ascontiguousarray makes them; the package (abrdf/_brdf.py, ...) shapes them.
+numpy.ascontiguousarray makes them; the package (abrdf/_brdf.py, ...) shapes them, after
+abrdf/_arrays.py has refused what is not numbers.
 """
 from typing import Any, Mapping, Sequence, TypedDict, Union
 
@@ -16,6 +17,10 @@ class Error(ValueError):
 
     status: int | None
 
+# A parameter's value: a real number (int, float, or another numbers.Real such as NumPy's
+# integer and floating scalars) or, for a colour, three. bool, complex, None, strings and
+# datetimes raise TypeError ("parameter 'r': a real number is needed, got complex"), as
+# material fields and costs do.
 ParamValue = Union[float, int, Sequence[float]]
 
 class Params:

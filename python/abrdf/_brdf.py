@@ -9,6 +9,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _abrdf
+from ._arrays import real_array
 
 ParamValue = Union[float, int, Sequence[float]]
 Precision = Literal["float", "double"]
@@ -78,7 +79,7 @@ def model(name: str) -> Model:
 
 
 def _rows(v: npt.ArrayLike, what: str) -> np.ndarray:
-    a = np.asarray(v)
+    a = real_array(v, what)
     if a.dtype not in (np.float32, np.float64):
         a = a.astype(np.float64)
     if a.ndim == 0 or a.shape[-1] != 3:
@@ -90,9 +91,10 @@ class BRDF:
     """A model with a validated parameter block.
 
     BRDF("disney_specular", r=0.3, f0=(0.9, 0.6, 0.3)) takes the model's defaults and sets
-    the given parameters (the registry's names; a colour as one number or three). Values
-    outside the model's range, and parameters the model does not read, raise abrdf.Error
-    with the library's message (abrdf_params_check)."""
+    the given parameters (the registry's names; a colour as one number or three). A value
+    is an int or a float (NumPy's integer and floating scalars too); bool, complex, None and
+    strings raise TypeError. Values outside the model's range, and parameters the model
+    does not read, raise abrdf.Error with the library's message (abrdf_params_check)."""
 
     __slots__ = ("_p",)
 
@@ -129,9 +131,11 @@ class BRDF:
         """f_r(wi, wo) per RGB channel, 1/sr, without the cosine.
 
         wi, wo: local-frame directions, arrays of shape (..., 3) broadcast against each
-        other; normalised here (zero or non-finite vectors give 0). precision "float": the
-        library's float batch path (abrdf_eval_batch), result float32; "double": the
-        double-precision scalar reference (abrdf_eval), float64. The result has the
+        other, of integers or floats (TypeError for complex, datetime, bool, string or
+        object arrays: [0, None, 1] is not [0, 0, 1]); normalised here (zero or non-finite
+        vectors give 0). precision "float": the library's float batch path
+        (abrdf_eval_batch), result float32; "double": the double-precision scalar reference
+        (abrdf_eval), float64. The result has the
         broadcast shape (..., 3). The C loop runs without the GIL."""
         a, b = np.broadcast_arrays(_rows(wi, "wi"), _rows(wo, "wo"))
         shape = a.shape

@@ -10,6 +10,7 @@ from importlib import resources
 from typing import Literal, Mapping, Sequence, Union
 
 from . import _abrdf
+from ._arrays import real_number
 from ._brdf import BRDF
 
 RGB = tuple[float, float, float]
@@ -189,7 +190,7 @@ def budget_nmse(budget: Budget) -> float:
     "slight" 2.5e-4, "noticeable" 1e-3) or a number in (0, 1]; abrdf.Error otherwise."""
     if isinstance(budget, str):
         return _abrdf.budget_class(budget)
-    v = float(budget)
+    v = real_number(budget, "budget")
     if not 0.0 < v <= 1.0:
         raise _error("budget %r is not in (0, 1]" % v)
     return v
@@ -234,8 +235,10 @@ def select(material: str | Material | Mapping[str, object], goal: Goal | None = 
         d = _abrdf.select_budget(mat._fields(), budget_nmse(budget), table, unit)
     else:
         rules = _abrdf.rules()
-        rel = rules["default_max_rel_pct"] if max_rel_error is None else float(max_rel_error)
-        abs_ = rules["default_max_abs"] if max_abs_error is None else float(max_abs_error)
+        rel = (rules["default_max_rel_pct"] if max_rel_error is None
+               else real_number(max_rel_error, "max_rel_error"))
+        abs_ = (rules["default_max_abs"] if max_abs_error is None
+                else real_number(max_abs_error, "max_abs_error"))
         d = _abrdf.select(mat._fields(), goal or "photoreal", rel, abs_, table, unit)
     trace = tuple(Step(**s) for s in d.pop("trace"))
     dp = d.pop("diffuse_params")

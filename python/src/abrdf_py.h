@@ -95,5 +95,10 @@ PyObject *abrdf_py_rgb(const double v[3]);
 /* Set d[key] = value and drop the reference to value; returns -1 if value is NULL or the
  * insertion fails. */
 int abrdf_py_set(PyObject *d, const char *key, PyObject *value);
+/* A number given by the caller into *out: an int or a float, or another numbers.Real
+ * (NumPy's integer and floating scalars). bool, complex, None, strings and datetimes are
+ * refused with TypeError "WHAT: a real number is needed, got TYPE" rather than cast (a cast
+ * would drop an imaginary part). 0 or -1. */
+int abrdf_py_real_number(PyObject *v, const char *what, double *out);
 
 #endif

@@ -40,22 +40,25 @@ static void param_names(const abrdf_model_info *m, char *buf, size_t size)
 /* One value of `info`'s kind from a Python object into v[0..2]; returns the count or -1. */
 static int read_value(const abrdf_param_info *info, PyObject *value, double v[3])
 {
-    if (info->kind == ABRDF_PARAM_RGB && PySequence_Check(value) && !PyUnicode_Check(value)) {
+    char what[96];
+    snprintf(what, sizeof what, "parameter '%s'", info->name);
+    /* Strings and bytes are sequences too, but never a colour. */
+    if (info->kind == ABRDF_PARAM_RGB && PySequence_Check(value) && !PyUnicode_Check(value) &&
+        !PyBytes_Check(value) && !PyByteArray_Check(value)) {
         if (PySequence_Size(value) != 3) {
-            abrdf_py_fail(ABRDF_E_RANGE, "parameter '%s': a colour needs 3 values (R, G, B)",
-                          info->name);
+            if (!PyErr_Occurred())
+                abrdf_py_fail(ABRDF_E_RANGE, "%s: a colour needs 3 values (R, G, B)", what);
             return -1;
         }
         for (int c = 0; c < 3; ++c) {
             PyObject *item = PySequence_GetItem(value, c);
-            v[c] = item ? PyFloat_AsDouble(item) : -1.0;
+            int rc = item ? abrdf_py_real_number(item, what, &v[c]) : -1;
             Py_XDECREF(item);
-            if (PyErr_Occurred()) return -1;
+            if (rc) return -1;
         }
         return 3;
     }
-    v[0] = PyFloat_AsDouble(value);
-    if (PyErr_Occurred()) return -1;
+    if (abrdf_py_real_number(value, what, &v[0])) return -1;
     if (info->kind == ABRDF_PARAM_INT && !(floor(v[0]) == v[0])) {
         abrdf_py_fail(ABRDF_E_RANGE, "parameter '%s' is an integer, got %g", info->name, v[0]);
         return -1;

@@ -164,18 +164,16 @@ static int get_number(PyObject *d, const char *key, double none, double *out)
         *out = none;
         return 0;
     }
-    double x = PyFloat_AsDouble(v);
-    if (x == -1.0 && PyErr_Occurred()) return -1;
-    *out = x;
-    return 0;
+    return abrdf_py_real_number(v, key, out);
 }
 
 static int get_rgb(PyObject *d, const char *key, double out[3])
 {
     PyObject *v = PyDict_GetItemString(d, key);
     if (!v) return 0;
-    if (PyFloat_Check(v) || PyLong_Check(v)) {
-        out[0] = out[1] = out[2] = PyFloat_AsDouble(v);
+    if (!PySequence_Check(v) || PyUnicode_Check(v) || PyBytes_Check(v) || PyByteArray_Check(v)) {
+        if (abrdf_py_real_number(v, key, &out[0])) return -1;
+        out[1] = out[2] = out[0];
         return 0;
     }
     PyObject *seq = PySequence_Fast(v, "a colour is a number or 3 numbers");
@@ -185,10 +183,8 @@ static int get_rgb(PyObject *d, const char *key, double out[3])
         PyErr_Format(PyExc_ValueError, "%s: a colour needs 3 numbers (R, G, B)", key);
         rc = -1;
     }
-    for (int c = 0; !rc && c < 3; ++c) {
-        out[c] = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(seq, c));
-        if (out[c] == -1.0 && PyErr_Occurred()) rc = -1;
-    }
+    for (int c = 0; !rc && c < 3; ++c)
+        rc = abrdf_py_real_number(PySequence_Fast_GET_ITEM(seq, c), key, &out[c]);
     Py_DECREF(seq);
     return rc;
 }
@@ -285,8 +281,8 @@ int abrdf_py_costs_from(PyObject *costs, const char *unit, abrdf_costs *c)
         const char *name = PyUnicode_AsUTF8(key);
         abrdf_model model;
         if (!name || abrdf_py_model_find(name, &model)) return -1;
-        double v = PyFloat_AsDouble(value);
-        if (v == -1.0 && PyErr_Occurred()) return -1;
+        double v;
+        if (abrdf_py_real_number(value, name, &v)) return -1;
         int st = abrdf_costs_set(c, model, v);
         if (st != ABRDF_OK) {
             abrdf_py_fail(st, "costs: %s = %g: %s", name, v, abrdf_strerror(st));

@@ -48,3 +48,26 @@ int abrdf_py_set(PyObject *d, const char *key, PyObject *value)
     Py_DECREF(value);
     return rc;
 }
+
+int abrdf_py_real_number(PyObject *v, const char *what, double *out)
+{
+    int real = !PyBool_Check(v) && (PyFloat_Check(v) || PyLong_Check(v));
+    if (!real && !PyBool_Check(v)) {
+        PyObject *numbers = PyImport_ImportModule("numbers");
+        PyObject *type = numbers ? PyObject_GetAttrString(numbers, "Real") : NULL;
+        Py_XDECREF(numbers);
+        real = type ? PyObject_IsInstance(v, type) : -1;
+        Py_XDECREF(type);
+        if (real < 0) return -1;
+    }
+    if (real) {
+        *out = PyFloat_AsDouble(v);
+        if (!(*out == -1.0 && PyErr_Occurred())) return 0;
+        /* numpy.timedelta64 is registered as a Real but has no float value. */
+        if (!PyErr_ExceptionMatches(PyExc_TypeError)) return -1;
+        PyErr_Clear();
+    }
+    PyErr_Format(PyExc_TypeError, "%s: a real number is needed, got %.100s", what,
+                 Py_TYPE(v)->tp_name);
+    return -1;
+}
