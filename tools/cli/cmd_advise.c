@@ -98,13 +98,7 @@ static void usage(FILE *f)
 
 /* ---- small printers ------------------------------------------------------------------- */
 
-static void json_num(double v)
-{
-    if (isfinite(v))
-        printf("%.10g", v);
-    else
-        printf("null");
-}
+static void json_num(double v) { cli_json_number(stdout, v); }
 
 /* -1 marks "not applicable" in abrdf_selection; JSON says null. */
 static void json_opt(double v)

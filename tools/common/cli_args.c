@@ -179,6 +179,14 @@ int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const cha
     return 0;
 }
 
+void cli_json_number(FILE *f, double v)
+{
+    if (isfinite(v))
+        fprintf(f, "%.10g", v);
+    else
+        fputs("null", f);
+}
+
 void cli_json_string(FILE *f, const char *s)
 {
     fputc('"', f);

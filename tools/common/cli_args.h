@@ -31,6 +31,8 @@ int cli_edit_distance(const char *a, const char *b);
 int cli_is_near(const char *typed, const char *name);
 /* Write s as a JSON string literal; bytes that are not UTF-8 become U+FFFD (JSON is UTF-8). */
 void cli_json_string(FILE *f, const char *s);
+/* Write v as a JSON number ("%.10g"), or null when it is not finite (JSON has no inf/nan). */
+void cli_json_number(FILE *f, double v);
 /* True if argv[i] is "-h" or "--help". */
 int cli_is_help(const char *arg);
 
