@@ -5,6 +5,8 @@
 #include <string.h>
 
 #include "geom.h"
+#include "materials.h"
+#include "scene_select.h"
 #include "test_util.h"
 
 static const char *HEAD = "camera position=0,0,5 look_at=0,0,0\n"
@@ -292,6 +294,87 @@ START_TEST(tangent_rules)
 }
 END_TEST
 
+/* ---- parameters of table materials -------------------------------------------------- */
+
+/* A value of parameter pi that differs from `was`, inside its range (whole for integers). */
+static double other_value(const abrdf_param_info *pi, double was)
+{
+    double v = pi->min + 0.37 * (pi->max - pi->min);
+    if (pi->max > 1e3) v = pi->min + 0.5 * (was - pi->min) + 0.25; /* exponents, grids */
+    if (pi->kind == ABRDF_PARAM_INT) v = floor(v) == floor(was) ? floor(v) + 1 : floor(v);
+    if (v > pi->max) v = pi->min;
+    return v;
+}
+
+/* Parse "material m table=ENTRY [extra]" and resolve it with the photoreal selection;
+ * 0, or -1 with err. */
+static int resolve_table(const mat_table *t, const char *entry, const char *extra, scene *s,
+                         char *err, size_t size)
+{
+    char text[512];
+    snprintf(text, sizeof text,
+             "camera position=0,0,5 look_at=0,0,0\nmaterial m table=%s %s\n"
+             "sphere material=m radius=1\n",
+             entry, extra);
+    if (scene_parse_text("t.scene", text, strlen(text), s, err, size)) return -1;
+    if (scene_select_materials(s, "t.scene", t, -1, NULL, err, size)) {
+        scene_free(s);
+        return -1;
+    }
+    return 0;
+}
+
+/* Every parameter of the models a table entry chooses, set on the scene line, is the value
+ * the resolved material renders with (a hair entry's internal_grid=9 used to be dropped);
+ * a parameter the chosen models do not read is refused, naming them. */
+START_TEST(table_material_parameters_take_effect)
+{
+    mat_table t = {NULL, 0, 0};
+    char err[1024];
+    ck_assert_msg(mat_table_load(&t, ABRDF_TEST_DATA_DIR "/materials.csv", err, sizeof err) == 0,
+                  "%s", err);
+    int checked = 0;
+    for (int e = 0; e < t.count; ++e) {
+        scene plain;
+        ck_assert_msg(resolve_table(&t, t.items[e].name, "", &plain, err, sizeof err) == 0, "%s",
+                      err);
+        const scene_material *pm = &plain.materials[0];
+        for (int id = 0; id < abrdf_param_count(); ++id) {
+            int read = 0;
+            for (int l = 0; l < pm->lobe_count; ++l) {
+                const abrdf_model_info *mi = abrdf_model_get(pm->lobes[l]);
+                for (int k = 0; k < mi->param_count; ++k) read |= mi->params[k].id == id;
+            }
+            const abrdf_param_info *pi = abrdf_param_get(id);
+            double was[3], got[3];
+            if (!read || abrdf_param_read(&pm->params, id, was) < 1) continue;
+            double v = other_value(pi, was[0]);
+            char extra[96];
+            snprintf(extra, sizeof extra, "%s=%.17g", pi->name, v);
+            scene s;
+            if (resolve_table(&t, t.items[e].name, extra, &s, err, sizeof err)) {
+                ck_abort_msg("%s %s: %s", t.items[e].name, extra, err);
+                continue;
+            }
+            abrdf_param_read(&s.materials[0].params, id, got);
+            /* description keys (r, kd, ...) reach the models through the selection, which may
+             * derive them (n from r); every other parameter is the file's value */
+            ck_assert_msg(got[0] == v ||
+                              memcmp(&s.materials[0].params, &pm->params, sizeof pm->params) != 0,
+                          "%s %s: ignored (resolved %g)", t.items[e].name, extra, got[0]);
+            scene_free(&s);
+            ++checked;
+        }
+        scene_free(&plain);
+    }
+    scene s;
+    ck_assert_int_eq(resolve_table(&t, "gold", "internal_grid=9", &s, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "internal_grid is not read by the chosen models") != NULL, "%s", err);
+    mat_table_free(&t);
+    printf("table materials: %d parameters set on a table= line, each used\n", checked);
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("scene");
@@ -300,6 +383,7 @@ static Suite *suite(void)
     tcase_add_loop_test(tp, errors_name_file_line_and_problem, 0,
                         (int)(sizeof bad / sizeof bad[0]));
     tcase_add_test(tp, whole_file_errors);
+    tcase_add_test(tp, table_material_parameters_take_effect);
     suite_add_tcase(s, tp);
     TCase *tg = tcase_create("geometry");
     tcase_add_test(tg, sphere_closed_form);

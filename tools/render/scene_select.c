@@ -20,6 +20,15 @@ int scene_needs_table(const scene *s)
     return 0;
 }
 
+/* Does the model read parameter id? */
+static int model_reads(abrdf_model model, int id)
+{
+    const abrdf_model_info *mi = abrdf_model_get(model);
+    for (int k = 0; mi && k < mi->param_count; ++k)
+        if (mi->params[k].id == id) return 1;
+    return 0;
+}
+
 /* Is parameter `name` given in the file, or read by one of the material's lobes (then its
  * value, default or not, describes the material)? */
 static int described(const scene_material *m, const char *name)
@@ -27,11 +36,8 @@ static int described(const scene_material *m, const char *name)
     int id;
     if (abrdf_param_find(name, &id) != ABRDF_OK) return 0;
     if (id < 64 && (m->params_set >> id) & 1u) return 1;
-    for (int l = 0; l < m->lobe_count; ++l) {
-        const abrdf_model_info *mi = abrdf_model_get(m->lobes[l]);
-        for (int k = 0; k < mi->param_count; ++k)
-            if (mi->params[k].id == id) return 1;
-    }
+    for (int l = 0; l < m->lobe_count; ++l)
+        if (model_reads(m->lobes[l], id)) return 1;
     return 0;
 }
 
@@ -47,11 +53,48 @@ static void ka_from(scene_material *sm, const abrdf_model *lobes, int count, con
     if (sm->ka_given) return;
     int kd_id, uses = 0;
     abrdf_param_find("kd", &kd_id);
-    for (int l = 0; l < count; ++l) {
-        const abrdf_model_info *mi = abrdf_model_get(lobes[l]);
-        for (int k = 0; mi && k < mi->param_count; ++k) uses |= mi->params[k].id == kd_id;
-    }
+    for (int l = 0; l < count; ++l) uses |= model_reads(lobes[l], kd_id);
     for (int c = 0; c < 3; ++c) sm->ka[c] = uses ? p->kd[c] : 0.0;
+}
+
+/* The parameters that describe the material to the selection (abrdf_material's fields). */
+static int describes(const char *name)
+{
+    static const char *const keys[] = {"r",  "n",           "kd",      "ks",
+                                       "f0", "anisotropic", "melanin", "redness"};
+    for (size_t k = 0; k < sizeof keys / sizeof *keys; ++k)
+        if (!strcmp(name, keys[k])) return 1;
+    return 0;
+}
+
+/* Every other parameter the file gives takes effect on the chosen models: in their block
+ * where one of them reads it; where none does, a table or adaptive material refuses it
+ * (strict), while an explicit material whose models a forced selection replaced keeps only
+ * what the new models read. 0, or -1 with the reason in msg. */
+static int file_params(const scene_material *sm, abrdf_params *chosen, int strict, char *msg,
+                       size_t msg_size)
+{
+    for (int id = 0; id < 64 && id < abrdf_param_count(); ++id) {
+        if (!((sm->params_set >> id) & 1u)) continue;
+        const abrdf_param_info *pi = abrdf_param_get(id);
+        if (describes(pi->name)) continue; /* taken into the selection's material */
+        int read = 0;
+        for (int l = 0; l < sm->lobe_count; ++l) read |= model_reads(sm->lobes[l], id);
+        if (read) {
+            double v[3];
+            int n = abrdf_param_read(&sm->params, id, v);
+            if (n > 0) abrdf_param_set(chosen, id, v, n);
+        } else if (strict) {
+            snprintf(msg, msg_size,
+                     "%s is not read by the chosen model%s %s%s%s; give it with a model that "
+                     "reads it (model=...)",
+                     pi->name, sm->lobe_count > 1 ? "s" : "", abrdf_model_get(sm->lobes[0])->name,
+                     sm->lobe_count > 1 ? " + " : "",
+                     sm->lobe_count > 1 ? abrdf_model_get(sm->lobes[1])->name : "");
+            return -1;
+        }
+    }
+    return 0;
 }
 
 void scene_budget_view(const scene *s, int spp, abrdf_view *v, abrdf_light_dir *lights)
@@ -145,6 +188,8 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
         take_rgb(sm, "ks", p->ks, am.ks);
         if (described(sm, "f0")) memcpy(am.f0, p->f0, sizeof am.f0), am.eta = -1.0;
         if (described(sm, "anisotropic")) am.anisotropy = p->anisotropic;
+        if (described(sm, "melanin")) am.melanin = p->melanin;
+        if (described(sm, "redness")) am.redness = p->redness;
         abrdf_selection sel;
         abrdf_params chosen;
         select_trace trace = SELECT_TRACE_INIT;
@@ -171,10 +216,20 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
                 return -1;
             }
         }
+        int explicit_models = sm->kind == SCENE_MAT_MODELS;
         sm->kind = SCENE_MAT_MODELS;
         sm->lobe_count = 0;
         if (sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = sel.diffuse;
         sm->lobes[sm->lobe_count++] = sel.specular;
+        char msg[512];
+        if (file_params(sm, &chosen, !explicit_models, msg, sizeof msg)) {
+            path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name, msg);
+            if (budget > 0.0)
+                budget_result_free(&br);
+            else
+                select_trace_free(&trace);
+            return -1;
+        }
         sm->params = chosen;
         if (budget > 0.0) {
             /* the ambient term of the reference (the photoreal choice), so that the budget
