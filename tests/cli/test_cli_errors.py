@@ -8,6 +8,8 @@ Run by CTest with ABRDF (the command), SCENES and SRC (the source tree) in the e
 import json
 import os
 import re
+import resource
+import struct
 import subprocess
 import unittest
 
@@ -215,6 +217,120 @@ class NothingMeasuredIsAnError(Base):
         self.assertEqual(rc, 1, err)
         self.assertEqual(out, b"")
         self.assertIn("every reference image is black", err)
+
+
+def exr_header_only(width, height, channels):
+    """A scanline EXR that declares width x height x channels (half, ZIP) and holds its header
+    and line-offset table only: no pixels (a 4.6 KB file for 8192 x 8192)."""
+    def attr(name, kind, data):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(data)) + data
+    names = sorted("C%02d" % i for i in range(channels))
+    chlist = b"".join(n.encode() + b"\0" + struct.pack("<iB3xii", 1, 0, 1, 1) for n in names)
+    box = struct.pack("<iiii", 0, 0, width - 1, height - 1)
+    head = (struct.pack("<ii", 20000630, 2) + attr("channels", "chlist", chlist + b"\0")
+            + attr("compression", "compression", b"\x03") + attr("dataWindow", "box2i", box)
+            + attr("displayWindow", "box2i", box) + attr("lineOrder", "lineOrder", b"\0")
+            + attr("pixelAspectRatio", "float", struct.pack("<f", 1))
+            + attr("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0))
+            + attr("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+    blocks = (height + 15) // 16  # ZIP: 16 lines a block
+    table = b"".join(struct.pack("<Q", len(head) + 8 * blocks + 100 * i) for i in range(blocks))
+    return head + table
+
+
+def run_measured(*args, timeout=120):
+    """run(), with the peak resident memory of the command in bytes."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    rc, out, err = run(*args, timeout=timeout)
+    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    return rc, err, 1024 * peak if peak > before else 0
+
+
+class FilesASceneNames(Base):
+    """Meshes and environment maps are inputs like the scene: regular files only, refused at
+    once; headers cannot ask for memory they do not hold; UTF-8 paths."""
+
+    def scene(self, line, name="s.scene"):
+        return self.put(name, read_text(SPHERE) + line + "\n")
+
+    def render(self, scene, *extra):
+        return run("render", scene, "-o", self.path("x.exr"), "--width", "8", "--height", "8",
+                   "--no-preview", *extra)
+
+    def test_mesh_and_map_that_are_not_regular_files(self):
+        fifo = self.path("fifo")
+        os.mkfifo(fifo)
+        os.mkdir(self.path("dir"))
+        for target, kind in ((fifo, "is a FIFO, not a regular file"),
+                             (self.path("dir"), "is a directory, not a file"),
+                             ("/dev/zero", "is a character device, not a regular file")):
+            for line in ("mesh file=%s material=plastic" % target,
+                         "light environment file=%s" % target):
+                scene = self.scene(line)
+                for args in (["render", scene, "-o", self.path("x.exr")],
+                             ["export", "--cycles", scene, "--mode", "closure", "-o",
+                              self.path("x.py")]):
+                    rc, _, err = run(*args, timeout=30)  # a blocked open would time out
+                    self.assertEqual(rc, 1, (args, err))
+                    self.assertIn(kind, err)
+                    self.assertEqual(err.count("\n"), 1, err)
+        self.assertFalse(os.path.exists(self.path("x.exr")) or os.path.exists(self.path("x.py")))
+
+    def test_an_image_header_cannot_ask_for_memory(self):
+        """8192 x 8192 x 12 channels over 4.6 KB: only the 3 channels used are read, in strips,
+        so the read fails at the first missing rows (it allocated 3.3 GB before); a header over
+        the reader's 1 GiB limit is refused before any read."""
+        self.put("big.exr", exr_header_only(8192, 8192, 12))
+        self.put("huge.exr", exr_header_only(16384, 16384, 3))
+        scene = self.scene("light environment file=big.exr")
+        for args in (["compare", self.path("big.exr"), self.path("big.exr")],
+                     ["render", scene, "-o", self.path("x.exr"), "--no-preview"]):
+            rc, err, peak = run_measured(*args)
+            self.assertNotEqual(rc, 0, err)
+            self.assertIn("big.exr", err)
+            self.assertEqual(err.count("\n"), 1, err)
+            self.assertLess(peak, 1 << 30, "%s: peak memory %d bytes" % (args[0], peak))
+        self.fails(2, ["compare", self.path("huge.exr"), self.path("huge.exr")],
+                   "huge.exr: 16384x16384 pixels x 3 channels as 32-bit floats need 3221225472 "
+                   "bytes, over the image reader's limit of 1073741824 bytes")
+
+    def test_utf8_paths_and_obj_details(self):
+        obj = "v 0 0 0\nv 1 0 0\nv 0 1e-310 1\nf 1 2 3\n"
+        self.put("t\u00e9.obj", "\ufeff" + obj)  # a byte-order mark, a subnormal
+        scene = self.scene("mesh file=t\u00e9.obj material=plastic")
+        rc, _, err = self.render(scene)
+        self.assertEqual(rc, 0, err)
+        rc, out, err = run("export", "--cycles", scene, "-o", self.path("x.py"))
+        self.assertEqual(rc, 0, err)
+        self.assertIn("t\\u00e9.obj", read_text(self.path("x.py")))  # an ASCII literal of the name
+        self.put("long.obj", "v 0 0 0." + "0" * 300 + "\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+        self.fails(1, ["render", self.scene("mesh file=long.obj material=plastic"), "-o",
+                       self.path("x.exr")], "long.obj:1: v: a number of 302 characters "
+                   "(at most 255)")
+        bad = self.put("bad.scene", (read_text(SPHERE) + "mesh file=t\xe9.obj material=plastic\n")
+                       .encode("latin-1"))
+        self.fails(1, ["render", bad, "-o", self.path("x.exr")], "bad.scene:9: file= holds byte "
+                   "0xe9: a path is UTF-8 text without control characters")
+
+    def test_messages_state_the_rule(self):
+        self.fails(1, ["render", self.scene("light point position=2e6,0,0"), "-o",
+                       self.path("x.exr")], "position needs X,Y,Z (three finite numbers, |x| <= 1e+06)")
+        self.fails(1, ["render", self.scene("light sphere center=0,0,3 radius=2e6"), "-o",
+                       self.path("x.exr")], "radius needs a finite number with |x| <= 1e+06, got '2e6'")
+        self.fails(1, ["render", self.scene("light rect center=0,3,0 u=1e-12,0,0 v=0,0,1"),
+                       "-o", self.path("x.exr")], "rect light edges u and v must each be longer "
+                   "than 1e-9")
+        rc, out, err = run("sample", "lambert", "--wo", "1e308,0,1e308", "-n", "2")
+        self.assertEqual(rc, 0, err)
+        rc, out, err = run("eval", "lambert", "--wi", "1e308,0,1e308", "--wo", "0,0,1e-300")
+        self.assertIn(b"f_r = 0.3183098862", out)
+        for args in (["eval", "lambert", "--wi", "0,0,1", "--wo", "0,0,1", "--wi", "1,0,1"],
+                     ["render", SPHERE, "-o", "a.exr", "-o", "b.exr"],
+                     ["advise", "gold", "--goal", "photoreal", "--goal", "performance"]):
+            self.fails(2, args, "is given twice (only --set and --materials repeat")
+        rc, _, err = run("eval", "lambert", "--wi", "0,0,1", "--wo", "0,0,1", "--set", "kd=0.5",
+                         "--set", "kd=0.4")
+        self.assertEqual(rc, 0, err)
 
 
 if __name__ == "__main__":

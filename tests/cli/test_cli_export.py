@@ -139,6 +139,9 @@ class Export(unittest.TestCase):
             r = run(*args)
             self.assertEqual(r.returncode, 1, r.stderr)
             self.assertIn(text, r.stderr)
+            # the problem is the scene's: the message names it, not the output
+            self.assertIn("abrdf export: %s: " % path, r.stderr)
+            self.assertNotIn(self.out, r.stderr)
             self.assertFalse(os.path.exists(self.out))
         env = os.path.join(self.tmp.name, "env.exr")
         r = subprocess.run([ABRDF, "render", os.path.join(SCENES, "sphere.scene"), "-o", env,

@@ -292,7 +292,7 @@ class WholeOrNothing(Base):
                 (["-o", self.path("x.png"), "--no-preview"], "scene-linear"),
                 (["-o", self.path("x.png")], "leaves no name for the .png preview"),
                 (["-o", self.path("x.sgi")], "cannot encode in memory")):
-            a = ["render", SPHERE, "-o", out] + SMALL + args
+            a = ["render", SPHERE] + ([] if "-o" in args else ["-o", out]) + SMALL + args
             rc, err = run(ABRDF, *a)
             self.assertEqual(rc, 2, (a, err))
             self.one_line(err, needle)

@@ -60,7 +60,16 @@ static int dispatch(int argc, char **argv)
         return 0;
     }
     for (size_t i = 0; i < COMMAND_COUNT; ++i)
-        if (!strcmp(argv[1], commands[i].name)) return commands[i].run(argc - 1, argv + 1);
+        if (!strcmp(argv[1], commands[i].name)) {
+            static const char *const repeatable[] = {"--set", "--materials", NULL};
+            const char *twice = cli_repeated_option(argc - 1, argv + 1, repeatable);
+            if (twice)
+                return cli_fail(argv[1],
+                                "%s is given twice (only --set and --materials repeat; the "
+                                "last would silently win)",
+                                twice);
+            return commands[i].run(argc - 1, argv + 1);
+        }
     char names[512] = "", near[256] = "";
     for (size_t i = 0; i < COMMAND_COUNT; ++i) {
         size_t len = strlen(commands[i].name) + 3;

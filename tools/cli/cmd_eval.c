@@ -34,7 +34,7 @@ int cmd_eval(int argc, char **argv)
                  !strcmp(a, "--tangent")) {
             if (!has_val) return cli_fail(cmd, "%s needs a vector X,Y,Z", a);
             double *dst = a[2] == 'w' ? (a[3] == 'i' ? wi : wo) : (a[2] == 'n' ? n : t);
-            if (!cli_parse_vec3(argv[++i], dst))
+            if (!cli_parse_dir3(argv[++i], dst))
                 return cli_fail(cmd, "%s: '%s' is not a vector X,Y,Z of finite numbers", a,
                                 argv[i]);
             if (dst == wi) have_wi = 1;

@@ -12,6 +12,7 @@
 
 #include "budget_run.h"
 #include "cli.h"
+#include "path_msg.h"
 #include "data_path.h"
 #include "export.h"
 #include "export_pov.h"
@@ -78,12 +79,16 @@ static const char *osl_dir_default(void)
 
 /* An exporter failed: a failed write is reported with its reason (out_file_close's), any
  * other problem with the exporter's message. */
-static void export_failed(out_file *o, const char *out, char *err, size_t err_size)
+/* A writer failed: a failed write names the output (out_file), anything else is about what
+ * the scene asks for and names the scene. */
+static void export_failed(out_file *o, const char *scene_path, char *err, size_t err_size)
 {
+    char shown[256];
     if (o->error && out_file_close(o, err, err_size))
         fprintf(stderr, "abrdf export: %s\n", err);
     else
-        fprintf(stderr, "abrdf export: %s: %s\n", out, err);
+        fprintf(stderr, "abrdf export: %s: %s\n",
+                path_short(shown, sizeof shown, scene_path, sizeof shown - 1), err);
 }
 
 int cmd_export(int argc, char **argv)
@@ -246,14 +251,14 @@ int cmd_export(int argc, char **argv)
         export_pov_options eo = {eval_lit && rs.light_count == 1, eval_lit && rs.light_count > 1,
                                  native, path, note};
         if (export_pov_write(&rs, &eo, o.f, err, sizeof err)) {
-            export_failed(&o, out, err, sizeof err);
+            export_failed(&o, path, err, sizeof err);
             goto done;
         }
     } else {
         export_options eo = {path, osl_dir ? osl_dir : osl_dir_default(), spp ? spp : 4,
                              mode ? mode : "eval", note};
         if (export_cycles(o.f, &rs, &eo, err, sizeof err)) {
-            export_failed(&o, out, err, sizeof err);
+            export_failed(&o, path, err, sizeof err);
             goto done;
         }
     }

@@ -55,7 +55,7 @@ int cmd_sample(int argc, char **argv)
         } else if (!strcmp(a, "--wo") || !strcmp(a, "--normal") || !strcmp(a, "--tangent")) {
             if (!has_val) return cli_fail(cmd, "%s needs a vector X,Y,Z", a);
             double *dst = a[2] == 'w' ? wo : (a[2] == 'n' ? n : t);
-            if (!cli_parse_vec3(argv[++i], dst))
+            if (!cli_parse_dir3(argv[++i], dst))
                 return cli_fail(cmd, "%s: '%s' is not a vector X,Y,Z of finite numbers", a,
                                 argv[i]);
             have_wo |= dst == wo;

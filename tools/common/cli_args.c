@@ -77,6 +77,33 @@ int cli_parse_vec3(const char *s, double v[3])
     return 1;
 }
 
+int cli_parse_dir3(const char *s, double v[3])
+{
+    if (!cli_parse_vec3(s, v)) return 0;
+    double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+    if (m > 0)
+        for (int c = 0; c < 3; ++c) v[c] /= m;
+    return 1;
+}
+
+static int is_option_word(const char *w)
+{
+    return (w[0] == '-' && w[1] == '-' && w[2]) || !strcmp(w, "-o") || !strcmp(w, "-n");
+}
+
+const char *cli_repeated_option(int argc, char **argv, const char *const *repeatable)
+{
+    for (int i = 1; i < argc; ++i) {
+        if (!is_option_word(argv[i])) continue;
+        int listed = 0;
+        for (const char *const *r = repeatable; r && *r; ++r) listed |= !strcmp(*r, argv[i]);
+        if (listed) continue;
+        for (int j = 1; j < i; ++j)
+            if (!strcmp(argv[j], argv[i])) return argv[i];
+    }
+    return NULL;
+}
+
 int cli_edit_distance(const char *a, const char *b)
 {
     size_t la = strlen(a), lb = strlen(b);

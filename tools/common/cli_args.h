@@ -21,6 +21,13 @@ int cli_parse_double(const char *s, double *out);
 int cli_parse_int(const char *s, long lo, long hi, long *out);
 /* "X,Y,Z" -> v; finite components. */
 int cli_parse_vec3(const char *s, double v[3]);
+/* cli_parse_vec3 for a direction: the vector is scaled by 1 / its largest |component| (the
+ * direction is the same; 1e308,0,1e308 no longer overflows its length). 0,0,0 stays 0,0,0. */
+int cli_parse_dir3(const char *s, double v[3]);
+/* An option given twice would silently take its last value: the first option word of argv
+ * (from 1; "--NAME", "-o", "-n") that repeats an earlier one and is not in `repeatable`
+ * (NULL-terminated: "--set", "--materials"), or NULL. */
+const char *cli_repeated_option(int argc, char **argv, const char *const *repeatable);
 /* Model by name; on failure prints the valid names (or the nearest ones) and returns 2. */
 int cli_model(const char *cmd, const char *name, abrdf_model *out);
 /* Apply "NAME=VALUE" or "NAME=R,G,B" to params for model; errors name the valid params. */
