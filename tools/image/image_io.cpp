@@ -6,6 +6,7 @@
 #include "image_io.h"
 
 #include <OpenColorIO/OpenColorIO.h>
+#include <OpenEXR/openexr.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -13,6 +14,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <memory>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -400,17 +402,20 @@ float *read_rows(OIIO::ImageInput *in, const OIIO::ImageSpec &spec, int colour, 
     const int rows = spec.tile_height > 0
                          ? spec.tile_height * std::max(1, kStripRows / spec.tile_height)
                          : kStripRows;
-    std::vector<float> part;
+    // not value-initialised: a strip is written by the read before it is used
+    std::unique_ptr<float[]> part;
+    size_t part_size = 0;
     float *rgb = nullptr;
     size_t cap = 0; // floats
     for (int y0 = 0; y0 < h; y0 += rows) {
         int y1 = std::min(h, y0 + rows);
-        part.resize((size_t)w * (size_t)(y1 - y0) * (size_t)colour);
+        size_t need_part = (size_t)w * (size_t)(y1 - y0) * (size_t)colour;
+        if (need_part > part_size) part.reset(new float[need_part]), part_size = need_part;
         bool ok = spec.tile_width > 0
                       ? in->read_tiles(0, 0, spec.x, spec.x + w, spec.y + y0, spec.y + y1, spec.z,
-                                       spec.z + 1, 0, colour, OIIO::TypeDesc::FLOAT, part.data())
+                                       spec.z + 1, 0, colour, OIIO::TypeDesc::FLOAT, part.get())
                       : in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, colour,
-                                           OIIO::TypeDesc::FLOAT, part.data());
+                                           OIIO::TypeDesc::FLOAT, part.get());
         if (!ok) {
             std::string e = in->geterror();
             set_err_path(err, err_size, path, e.empty() ? "read error" : e);
@@ -433,6 +438,69 @@ float *read_rows(OIIO::ImageInput *in, const OIIO::ImageSpec &spec, int colour, 
             for (int c = 0; c < 3; ++c) dst[p * 3 + c] = part[p * colour + (colour == 3 ? c : 0)];
     }
     return rgb;
+}
+
+// OpenEXR's core (C) reader: the header alone, before OpenImageIO's reader (OpenEXR's C++
+// library), which sizes its buffers by what a header declares (an attribute's length, the
+// offset table of every block) before it finds that the file does not hold them.
+thread_local std::string exr_core_message;
+void exr_keep_message(exr_const_context_t, exr_result_t, const char *msg)
+{
+    if (exr_core_message.empty() && msg) exr_core_message = msg;
+}
+
+bool has_exr_magic(const char *path)
+{
+    unsigned char magic[4] = {0, 0, 0, 0};
+    FILE *f = std::fopen(path, "rb");
+    size_t got = f ? std::fread(magic, 1, 4, f) : 0;
+    if (f) std::fclose(f);
+    return got == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01;
+}
+
+// An EXR's header against its file: the header must read without an error in OpenEXR's core
+// reader (every attribute within the file), and every block it declares has an 8-byte entry in the
+// offset table after it, so a header that declares more blocks than the file could hold (a
+// mutated tile size or data window) is refused before any reader sizes a table after it.
+// Also the reader's pixel limit. "" if the header is plausible or the file is no EXR, else
+// the reason.
+std::string exr_header_problem(const char *path, off_t file_size)
+{
+    if (!has_exr_magic(path)) return "";
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = exr_keep_message;
+    exr_context_t ctx = nullptr;
+    exr_core_message.clear();
+    // the core reader passes over some broken attributes, which the C++ reader would size
+    if (exr_start_read(&ctx, path, &init) != EXR_ERR_SUCCESS || !exr_core_message.empty()) {
+        exr_finish(&ctx);
+        std::string why = exr_core_message.empty() ? "not a readable EXR header"
+                                                   : "EXR header: " + exr_core_message;
+        exr_core_message.clear();
+        return why;
+    }
+    std::string why;
+    int parts = 0;
+    long long blocks = 0;
+    exr_get_count(ctx, &parts);
+    for (int p = 0; p < parts && why.empty(); ++p) {
+        int32_t n = 0;
+        exr_attr_box2i_t dw;
+        if (exr_get_data_window(ctx, p, &dw) == EXR_ERR_SUCCESS) {
+            long long w = (long long)dw.max.x - dw.min.x + 1,
+                      h = (long long)dw.max.y - dw.min.y + 1;
+            if (w * h > kMaxPixels)
+                why = "unsupported image (size " + std::to_string(w) + "x" + std::to_string(h) +
+                      ", over " + std::to_string(kMaxPixels) + " pixels)";
+        }
+        if (exr_get_chunk_count(ctx, p, &n) == EXR_ERR_SUCCESS) blocks += n;
+    }
+    exr_finish(&ctx);
+    if (why.empty() && 8 * blocks > (long long)file_size)
+        why = "its header declares " + std::to_string(blocks) + " blocks of pixels, whose offset " +
+              "table alone needs " + std::to_string(8 * blocks) + " bytes; the file has " +
+              std::to_string((long long)file_size) + " (truncated or corrupt)";
+    return why;
 }
 
 } // namespace
@@ -462,6 +530,11 @@ extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, i
                          : S_ISBLK(m)  ? "is a block device, not a regular file"
                          : S_ISSOCK(m) ? "is a socket, not a regular file"
                                        : "is not a regular file");
+            return -1;
+        }
+        std::string bad = exr_header_problem(path, st.st_size);
+        if (!bad.empty()) {
+            set_err_path(err, err_size, path, bad);
             return -1;
         }
         auto in = OIIO::ImageInput::open(path);
