@@ -9,6 +9,7 @@ import json
 import os
 import re
 import resource
+import socket
 import struct
 import subprocess
 import unittest
@@ -328,9 +329,32 @@ class FilesASceneNames(Base):
                      ["render", SPHERE, "-o", "a.exr", "-o", "b.exr"],
                      ["advise", "gold", "--goal", "photoreal", "--goal", "performance"]):
             self.fails(2, args, "is given twice (only --set and --materials repeat")
-        rc, _, err = run("eval", "lambert", "--wi", "0,0,1", "--wo", "0,0,1", "--set", "kd=0.5",
-                         "--set", "kd=0.4")
+        self.fails(2, ["eval", "lambert", "--wi", "0,0,1", "--wo", "0,0,1", "--set", "kd=0.5",
+                       "--set", "kd=0.4"], "kd=0.4 is given twice")
+        rc, _, err = run("eval", "lambert_fresnel", "--wi", "0,0,1", "--wo", "0,0,1", "--set",
+                         "kd=0.5", "--set", "f0=0.4")
         self.assertEqual(rc, 0, err)
+
+    def test_sockets_controls_and_truncated_pixels(self):
+        sock = socket.socket(socket.AF_UNIX)
+        sock.bind(self.path("sock"))
+        try:
+            for line in ("mesh file=sock material=plastic", "light environment file=sock"):
+                self.fails(1, ["render", self.scene(line), "-o", self.path("x.exr")],
+                           "is a socket, not a regular file")
+        finally:
+            sock.close()
+        self.fails(1, ["render", self.scene("mesh file=a\u0085.obj material=plastic"), "-o",
+                       self.path("x.exr")], "a path is UTF-8 text without control characters")
+        # a TIFF cut in its pixels: the reader fills what it could not read and says so only
+        # in its error state
+        rc, _, err = run("render", SPHERE, "-o", self.path("full.tif"), "--width", "16",
+                         "--height", "16", "--no-preview")
+        self.assertEqual(rc, 0, err)  # a TIFF is written (libtiff's Exif directory is not)
+        with open(self.path("full.tif"), "rb") as f:
+            data = f.read()
+        self.put("cut.tif", data[:len(data) // 2])
+        self.fails(2, ["compare", self.path("full.tif"), self.path("cut.tif")], "cut.tif: ")
 
 
 if __name__ == "__main__":

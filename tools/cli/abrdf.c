@@ -65,8 +65,8 @@ static int dispatch(int argc, char **argv)
             const char *twice = cli_repeated_option(argc - 1, argv + 1, repeatable);
             if (twice)
                 return cli_fail(argv[1],
-                                "%s is given twice (only --set and --materials repeat; the "
-                                "last would silently win)",
+                                "%s is given twice (only --set and --materials repeat, --set "
+                                "once per name; the last would silently win)",
                                 twice);
             return commands[i].run(argc - 1, argv + 1);
         }

@@ -91,10 +91,24 @@ static int is_option_word(const char *w)
     return (w[0] == '-' && w[1] == '-' && w[2]) || !strcmp(w, "-o") || !strcmp(w, "-n");
 }
 
+/* The NAME of --set NAME=VALUE at argv[i], or NULL. */
+static const char *set_name(int argc, char **argv, int i, size_t *len)
+{
+    if (strcmp(argv[i], "--set") || i + 1 >= argc) return NULL;
+    *len = strcspn(argv[i + 1], "=");
+    return argv[i + 1];
+}
+
 const char *cli_repeated_option(int argc, char **argv, const char *const *repeatable)
 {
     for (int i = 1; i < argc; ++i) {
         if (!is_option_word(argv[i])) continue;
+        size_t len, len_j;
+        const char *name = set_name(argc, argv, i, &len), *name_j;
+        for (int j = 1; name && j < i; ++j)
+            if ((name_j = set_name(argc, argv, j, &len_j)) && len_j == len &&
+                !strncmp(name, name_j, len))
+                return argv[i + 1];
         int listed = 0;
         for (const char *const *r = repeatable; r && *r; ++r) listed |= !strcmp(*r, argv[i]);
         if (listed) continue;

@@ -26,7 +26,8 @@ int cli_parse_vec3(const char *s, double v[3]);
 int cli_parse_dir3(const char *s, double v[3]);
 /* An option given twice would silently take its last value: the first option word of argv
  * (from 1; "--NAME", "-o", "-n") that repeats an earlier one and is not in `repeatable`
- * (NULL-terminated: "--set", "--materials"), or NULL. */
+ * (NULL-terminated: "--set", "--materials"), or the value of a --set NAME=VALUE whose NAME
+ * an earlier --set gave; else NULL. */
 const char *cli_repeated_option(int argc, char **argv, const char *const *repeatable);
 /* Model by name; on failure prints the valid names (or the nearest ones) and returns 2. */
 int cli_model(const char *cmd, const char *name, abrdf_model *out);

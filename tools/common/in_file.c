@@ -26,7 +26,12 @@ static int open_regular(const char *path, char *err, size_t err_size)
     do fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     while (fd < 0 && errno == EINTR);
     if (fd < 0) {
-        path_msg(err, err_size, path, ": cannot open: %s", strerror(errno));
+        int e = errno;
+        struct stat st; /* a socket cannot be opened at all (ENXIO): name what it is */
+        if (stat(path, &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
+            path_msg(err, err_size, path, ": %s", kind(st.st_mode));
+        else
+            path_msg(err, err_size, path, ": cannot open: %s", strerror(e));
         return -1;
     }
     struct stat st;

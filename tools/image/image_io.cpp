@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <new>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -214,6 +215,9 @@ int encode(const char *name, int width, int height, int nch, const float *data, 
     OIIO::ImageSpec spec(width, height, nch, type);
     spec.attribute("oiio:ColorSpace", colorspace);
     spec.attribute("Software", "abrdf");
+    // libtiff cannot write the Exif directory through an in-memory proxy (OpenImageIO 2.4:
+    // "failed TIFFWriteCustomDirectory() of the Exif data"); abrdf writes no Exif data.
+    spec.attribute("tiff:write_exif", 0);
     if (!io->set_ioproxy(&vec) || !io->open(name, spec) ||
         !io->write_image(OIIO::TypeDesc::FLOAT, data) || !io->close() || io->has_error()) {
         set_err_path(err, err_size, name, io->geterror());
@@ -416,7 +420,9 @@ float *read_rows(OIIO::ImageInput *in, const OIIO::ImageSpec &spec, int colour, 
                                        spec.z + 1, 0, colour, OIIO::TypeDesc::FLOAT, part.get())
                       : in->read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, colour,
                                            OIIO::TypeDesc::FLOAT, part.get());
-        if (!ok) {
+        // a reader may fill what it could not read and say so only in its error state
+        // (a truncated TIFF strip)
+        if (!ok || in->has_error()) {
             std::string e = in->geterror();
             set_err_path(err, err_size, path, e.empty() ? "read error" : e);
             std::free(rgb);
@@ -592,6 +598,8 @@ extern "C" int abrdf_image_read(const char *path, abrdf_image *img, char *err, i
         img->channels = nch;
         img->pixels = rgb;
         return 0;
+    } catch (const std::bad_alloc &) {
+        set_err_path(err, err_size, path, "out of memory");
     } catch (const std::exception &e) {
         set_err_path(err, err_size, path, e.what());
     } catch (...) {

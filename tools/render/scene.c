@@ -12,6 +12,7 @@
 
 #include "in_file.h"
 #include "out_file.h"
+#include "param_effect.h"
 #include "path_msg.h"
 #include "scene.h"
 #include "utf8.h"
@@ -254,7 +255,7 @@ static char *named_path(parser *p, const char *file)
     for (const char *c = file; *c;) {
         unsigned long cp;
         int len = utf8_decode(c, &cp);
-        if (!len || cp < 0x20 || cp == 0x7f) {
+        if (!len || cp < 0x20 || (cp >= 0x7f && cp < 0xa0)) { /* C0, DEL and C1 controls */
             fail(p, "file= holds byte 0x%02x: a path is UTF-8 text without control characters",
                  (unsigned char)*c);
             return NULL;
@@ -395,6 +396,22 @@ static int model_uses(abrdf_model m, int param)
     return 0;
 }
 
+/* A parameter of the line that changes nothing in the material's reflectance (a layer past
+ * layer_count, a term the value of another switches off) is an error: it would silently do
+ * nothing. 0, or -1 after the message. */
+static int without_effect(parser *p, const scene_material *m)
+{
+    for (int id = 0; id < 64 && id < abrdf_param_count(); ++id) {
+        if (!((m->params_set >> id) & 1u)) continue;
+        if (!param_matters(m->lobes, m->lobe_count, &m->params, id))
+            return fail(p,
+                        "material '%s': %s changes nothing in its reflectance here (at these "
+                        "values of the others, e.g. a layer past layer_count); drop it",
+                        m->name, abrdf_param_get(id)->name);
+    }
+    return 0;
+}
+
 static int copy_name(parser *p, const char *what, const char *src, char dst[SCENE_NAME_MAX])
 {
     size_t len = strlen(src);
@@ -522,6 +539,7 @@ static int do_material(parser *p, word *w, int n)
         int kd_id;
         kd_used |= abrdf_param_find("kd", &kd_id) == ABRDF_OK && model_uses(m.lobes[l], kd_id);
     }
+    if (m.kind == SCENE_MAT_MODELS && without_effect(p, &m)) return -1;
     /* Default ambient reflectance: the diffuse albedo where the material has one. */
     m.ka_given = ka_set;
     if (!ka_set && (kd_used || m.kind != SCENE_MAT_MODELS)) memcpy(m.ka, m.params.kd, sizeof m.ka);

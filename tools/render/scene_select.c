@@ -11,6 +11,7 @@
 #include "path_msg.h"
 #include "render.h"
 #include "budget_run.h"
+#include "param_effect.h"
 #include "select_trace.h"
 
 int scene_needs_table(const scene *s)
@@ -67,6 +68,69 @@ static int describes(const char *name)
     return 0;
 }
 
+/* The material the selection sees: the table entry's (or the defaults), with the values the
+ * file gives (or, for an explicit material, its lobes' values) over it. */
+static void describe(const scene_material *sm, const abrdf_params *p, abrdf_material *am)
+{
+    if (described(sm, "r")) am->r = p->r;
+    if (described(sm, "n")) am->n = p->n;
+    take_rgb(sm, "kd", p->kd, am->kd);
+    take_rgb(sm, "ks", p->ks, am->ks);
+    if (described(sm, "f0")) memcpy(am->f0, p->f0, sizeof am->f0), am->eta = -1.0;
+    if (described(sm, "anisotropic")) am->anisotropy = p->anisotropic;
+    if (described(sm, "melanin")) am->melanin = p->melanin;
+    if (described(sm, "redness")) am->redness = p->redness;
+}
+
+/* The models and block abrdf_select chooses for the material sm describes with block p over
+ * the entry (NULL: the defaults); 0, or -1 if it refuses. */
+static int select_for(const scene_material *sm, const abrdf_material *entry, const abrdf_params *p,
+                      abrdf_goal goal, abrdf_model lobes[2], int *count, abrdf_params *chosen)
+{
+    abrdf_material am;
+    abrdf_material_init(&am);
+    if (entry) am = *entry;
+    describe(sm, p, &am);
+    abrdf_selection sel;
+    abrdf_selection_init(&sel);
+    abrdf_params_init(ABRDF_MODEL_NONE, chosen);
+    if (abrdf_select(&am, goal, NULL, NULL, &sel, chosen, NULL, NULL) != ABRDF_OK) return -1;
+    *count = 0;
+    if (sel.diffuse != ABRDF_MODEL_NONE) lobes[(*count)++] = sel.diffuse;
+    lobes[(*count)++] = sel.specular;
+    return 0;
+}
+
+/* Each selection input the file gives (r, kd, ...) must change the reflectance the selection
+ * chooses (for a budget, its reference: the photoreal choice): the material is selected with
+ * the value and with another value, and the two reflectances compared (param_effect.h).
+ * 0, or -1 with the reason in msg. */
+static int selection_inputs(const scene_material *sm, const abrdf_material *entry, abrdf_goal goal,
+                            char *msg, size_t msg_size)
+{
+    abrdf_model la[2], lb[2];
+    abrdf_params pa, pb, nudged;
+    int na, nb;
+    if (select_for(sm, entry, &sm->params, goal, la, &na, &pa)) return 0; /* reported elsewhere */
+    for (int id = 0; id < 64 && id < abrdf_param_count(); ++id) {
+        const abrdf_param_info *pi = abrdf_param_get(id);
+        if (!((sm->params_set >> id) & 1u) || !describes(pi->name)) continue;
+        int matters = 0;
+        for (int dir = 1; dir >= -1 && !matters; dir -= 2)
+            matters = !param_nudge(&sm->params, id, dir, &nudged) &&
+                      (select_for(sm, entry, &nudged, goal, lb, &nb, &pb) || /* it changes that */
+                       lobes_differ(la, na, &pa, lb, nb, &pb));
+        if (!matters) {
+            snprintf(msg, msg_size,
+                     "%s changes nothing in what the selection chooses for it (%s%s%s); drop it",
+                     pi->name, na > 1 ? abrdf_model_get(la[0])->name : "", na > 1 ? " + " : "",
+                     abrdf_model_get(la[na - 1])->name);
+            return -1;
+        }
+    }
+    return 0;
+}
+
 /* Every other parameter the file gives takes effect on the chosen models: in their block
  * where one of them reads it; where none does, a table or adaptive material refuses it
  * (strict), while an explicit material whose models a forced selection replaced keeps only
@@ -84,6 +148,13 @@ static int file_params(const scene_material *sm, abrdf_params *chosen, int stric
             double v[3];
             int n = abrdf_param_read(&sm->params, id, v);
             if (n > 0) abrdf_param_set(chosen, id, v, n);
+            if (strict && !param_matters(sm->lobes, sm->lobe_count, chosen, id)) {
+                snprintf(msg, msg_size,
+                         "%s changes nothing in the reflectance of the chosen model%s here (e.g. "
+                         "a layer past layer_count); drop it",
+                         pi->name, sm->lobe_count > 1 ? "s" : "");
+                return -1;
+            }
         } else if (strict) {
             snprintf(msg, msg_size,
                      "%s is not read by the chosen model%s %s%s%s; give it with a model that "
@@ -175,28 +246,25 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
             }
             am = e->m;
         }
-        /* The file's values (or, for an explicit material, its lobes' values) describe it. */
-        const abrdf_params *p = &sm->params;
-        if (described(sm, "r")) am.r = p->r;
-        if (described(sm, "n")) am.n = p->n;
         if (!e && !described(sm, "r") && !described(sm, "n")) {
             path_msg(err, err_size, scene_name,
                      ":%d: adaptive material '%s' needs table=ENTRY, r= or n=", sm->line, sm->name);
             return -1;
         }
-        take_rgb(sm, "kd", p->kd, am.kd);
-        take_rgb(sm, "ks", p->ks, am.ks);
-        if (described(sm, "f0")) memcpy(am.f0, p->f0, sizeof am.f0), am.eta = -1.0;
-        if (described(sm, "anisotropic")) am.anisotropy = p->anisotropic;
-        if (described(sm, "melanin")) am.melanin = p->melanin;
-        if (described(sm, "redness")) am.redness = p->redness;
+        describe(sm, &sm->params, &am);
+        char msg[512];
+        if (sm->kind != SCENE_MAT_MODELS &&
+            selection_inputs(sm, e ? &e->m : NULL, budget > 0.0 ? ABRDF_GOAL_PHOTOREAL : goal, msg,
+                             sizeof msg)) {
+            path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name, msg);
+            return -1;
+        }
         abrdf_selection sel;
         abrdf_params chosen;
         select_trace trace = SELECT_TRACE_INIT;
         budget_result br;
         const select_trace *tr = &trace;
         if (budget > 0.0) {
-            char msg[512];
             if (budget_run(&am, budget, NULL, &view, &br, msg, sizeof msg)) {
                 path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
                          msg);
@@ -221,7 +289,6 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
         sm->lobe_count = 0;
         if (sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = sel.diffuse;
         sm->lobes[sm->lobe_count++] = sel.specular;
-        char msg[512];
         if (file_params(sm, &chosen, !explicit_models, msg, sizeof msg)) {
             path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name, msg);
             if (budget > 0.0)
