@@ -15,54 +15,47 @@
 #include "kernel.h"
 #include "k_terms.h"
 
-#if ABRDF__KERNEL_FLOAT ? !defined(ABRDF_K_DIFFUSE_H_F) : !defined(ABRDF_K_DIFFUSE_H_D)
-#if ABRDF__KERNEL_FLOAT
-#define ABRDF_K_DIFFUSE_H_F
-#else
-#define ABRDF_K_DIFFUSE_H_D
-#endif
+#ifndef ABRDF_K_DIFFUSE_H
+#define ABRDF_K_DIFFUSE_H
 
-static inline void ABRDF__FN(k_lambert)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline void k_lambert(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
     (void)g;
     for (int c = 0; c < 3; ++c) f[c] = p->kd[c] * ABRDF__K(ABRDF__INV_PI); /* Eq. 1 */
 }
 
-static inline void ABRDF__FN(k_lambert_fresnel)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                                ABRDF__REAL f[3])
+static inline void k_lambert_fresnel(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
     for (int c = 0; c < 3; ++c)
         f[c] = p->kd[c] * ABRDF__K(ABRDF__INV_PI) *
-               (ABRDF__K(1) - ABRDF__FN(f_schlick)(p->f0[c], g->cd)); /* Eq. 2 */
+               (ABRDF__K(1) - f_schlick(p->f0[c], g->cd)); /* Eq. 2 */
 }
 
-static inline void ABRDF__FN(k_disney_diffuse)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                               ABRDF__REAL f[3])
+static inline void k_disney_diffuse(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__REAL fd90 = ABRDF__K(0.5) + ABRDF__K(2) * p->r * g->cd * g->cd;
-    ABRDF__REAL mi = ABRDF__K(1) - g->ci, mo = ABRDF__K(1) - g->co;
-    ABRDF__REAL mi5 = mi * mi * mi * mi * mi, mo5 = mo * mo * mo * mo * mo;
-    ABRDF__REAL s = (ABRDF__K(1) + (fd90 - ABRDF__K(1)) * mi5) *
+    abrdf__real fd90 = ABRDF__K(0.5) + ABRDF__K(2) * p->r * g->cd * g->cd;
+    abrdf__real mi = ABRDF__K(1) - g->ci, mo = ABRDF__K(1) - g->co;
+    abrdf__real mi5 = mi * mi * mi * mi * mi, mo5 = mo * mo * mo * mo * mo;
+    abrdf__real s = (ABRDF__K(1) + (fd90 - ABRDF__K(1)) * mi5) *
                     (ABRDF__K(1) + (fd90 - ABRDF__K(1)) * mo5); /* Eq. 3 */
-    for (int c = 0; c < 3; ++c) f[c] = p->kd[c] * ABRDF__K(ABRDF__INV_PI) * ABRDF__FN(pos)(s);
+    for (int c = 0; c < 3; ++c) f[c] = p->kd[c] * ABRDF__K(ABRDF__INV_PI) * pos(s);
 }
 
 /* Oren-Nayar's A and B from the slope deviation sigma, in double. */
-static inline void ABRDF__FN(k_oren_nayar_setup)(ABRDF__KP *k, const abrdf_params *p)
+static inline void k_oren_nayar_setup(abrdf__kp *k, const abrdf_params *p)
 {
-    ABRDF__FN(kp_base)(k, p);
+    kp_base(k, p);
     double s2 = p->sigma * p->sigma;
-    k->on_a = (ABRDF__REAL)(1.0 - 0.5 * s2 / (s2 + 0.33));
-    k->on_b = (ABRDF__REAL)(0.45 * s2 / (s2 + 0.09));
+    k->on_a = (abrdf__real)(1.0 - 0.5 * s2 / (s2 + 0.33));
+    k->on_b = (abrdf__real)(0.45 * s2 / (s2 + 0.09));
 }
 
-static inline void ABRDF__FN(k_oren_nayar)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                           ABRDF__REAL f[3])
+static inline void k_oren_nayar(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__REAL s = g->ix * g->ox + g->iy * g->oy + g->iz * g->oz - g->ci * g->co;
-    ABRDF__REAL t = g->ci > g->co ? g->ci : g->co;
-    ABRDF__REAL term = p->on_a + p->on_b * ABRDF__FN(safe_div)(ABRDF__FN(pos)(s), t);
+    abrdf__real s = g->ix * g->ox + g->iy * g->oy + g->iz * g->oz - g->ci * g->co;
+    abrdf__real t = g->ci > g->co ? g->ci : g->co;
+    abrdf__real term = p->on_a + p->on_b * safe_div(pos(s), t);
     for (int c = 0; c < 3; ++c) f[c] = p->kd[c] * ABRDF__K(ABRDF__INV_PI) * term;
 }
 
-#endif /* per-precision guard */
+#endif /* ABRDF_K_DIFFUSE_H */

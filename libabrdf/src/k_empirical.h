@@ -22,83 +22,106 @@
 #include "kernel.h"
 #include "k_terms.h"
 
-#if ABRDF__KERNEL_FLOAT ? !defined(ABRDF_K_EMPIRICAL_H_F) : !defined(ABRDF_K_EMPIRICAL_H_D)
-#if ABRDF__KERNEL_FLOAT
-#define ABRDF_K_EMPIRICAL_H_F
-#else
-#define ABRDF_K_EMPIRICAL_H_D
-#endif
+#ifndef ABRDF_K_EMPIRICAL_H
+#define ABRDF_K_EMPIRICAL_H
 
-static inline ABRDF__REAL ABRDF__FN(k_phong_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline abrdf__real k_phong_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return ABRDF__FN(pow_pos)(g->rv, p->n);
+    return pow_pos(g->rv, p->n);
 }
-ABRDF__LOBE_KERNEL(k_phong)
+static inline void k_phong(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    lobe_out(p, k_phong_lobe(p, g), f);
+}
 
-static inline ABRDF__REAL ABRDF__FN(k_blinn_phong_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline abrdf__real k_blinn_phong_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return ABRDF__FN(pow_pos)(g->ch, p->n); /* Eq. 4 */
+    return pow_pos(g->ch, p->n); /* Eq. 4 */
 }
-ABRDF__LOBE_KERNEL(k_blinn_phong)
+static inline void k_blinn_phong(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    lobe_out(p, k_blinn_phong_lobe(p, g), f);
+}
 
-static inline ABRDF__REAL ABRDF__FN(k_f2_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline abrdf__real k_f2_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return ABRDF__FN(lobe_fm)(p->n, g->ch, 1);
+    return lobe_fm(p->n, g->ch, 1);
 }
-ABRDF__LOBE_KERNEL(k_f2)
-static inline ABRDF__REAL ABRDF__FN(k_f4_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline void k_f2(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    return ABRDF__FN(lobe_fm)(p->n, g->ch, 2);
+    lobe_out(p, k_f2_lobe(p, g), f);
 }
-ABRDF__LOBE_KERNEL(k_f4)
-static inline ABRDF__REAL ABRDF__FN(k_f8_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline abrdf__real k_f4_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return ABRDF__FN(lobe_fm)(p->n, g->ch, 3);
+    return lobe_fm(p->n, g->ch, 2);
 }
-ABRDF__LOBE_KERNEL(k_f8)
-static inline ABRDF__REAL ABRDF__FN(k_f16_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline void k_f4(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    return ABRDF__FN(lobe_fm)(p->n, g->ch, 4);
+    lobe_out(p, k_f4_lobe(p, g), f);
 }
-ABRDF__LOBE_KERNEL(k_f16)
+static inline abrdf__real k_f8_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    return lobe_fm(p->n, g->ch, 3);
+}
+static inline void k_f8(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    lobe_out(p, k_f8_lobe(p, g), f);
+}
+static inline abrdf__real k_f16_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    return lobe_fm(p->n, g->ch, 4);
+}
+static inline void k_f16(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    lobe_out(p, k_f16_lobe(p, g), f);
+}
 
-static inline ABRDF__REAL ABRDF__FN(k_fs_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline abrdf__real k_fs_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    ABRDF__REAL c = ABRDF__FN(pos)(g->ch);
+    abrdf__real c = pos(g->ch);
     /* n(1 - c) + c >= min(1, n) c-independent lower bound; 0 only at n = 0, c = 0. */
-    return ABRDF__FN(safe_div)(c, p->n - p->n * c + c);
+    return safe_div(c, p->n - p->n * c + c);
 }
-ABRDF__LOBE_KERNEL(k_fs)
-
-static inline ABRDF__REAL ABRDF__FN(k_fkv_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline void k_fs(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__REAL c = ABRDF__FN(pos)(g->ch);
-    ABRDF__REAL a = ABRDF__K(0.786) * p->n;
-    return ABRDF__FN(pos)(a * c * c + (ABRDF__K(1) - a) * c);
+    lobe_out(p, k_fs_lobe(p, g), f);
 }
-ABRDF__LOBE_KERNEL(k_fkv)
+
+static inline abrdf__real k_fkv_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    abrdf__real c = pos(g->ch);
+    abrdf__real a = ABRDF__K(0.786) * p->n;
+    return pos(a * c * c + (ABRDF__K(1) - a) * c);
+}
+static inline void k_fkv(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    lobe_out(p, k_fkv_lobe(p, g), f);
+}
 
 /* The fitted cubic for this n (fkub_table.c) and the start of its zone. */
-static inline void ABRDF__FN(k_fkub_setup)(ABRDF__KP *k, const abrdf_params *p)
+static inline void k_fkub_setup(abrdf__kp *k, const abrdf_params *p)
 {
-    ABRDF__FN(kp_base)(k, p);
+    kp_base(k, p);
     double abd[3], x0;
     abrdf__fkub_coeffs(p->n, abd, &x0);
-    for (int c = 0; c < 3; ++c) k->fkub[c] = (ABRDF__REAL)abd[c];
-    k->fkub_x0 = (ABRDF__REAL)x0;
+    for (int c = 0; c < 3; ++c) k->fkub[c] = (abrdf__real)abd[c];
+    k->fkub_x0 = (abrdf__real)x0;
 }
 
-static inline ABRDF__REAL ABRDF__FN(k_fkub_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline abrdf__real k_fkub_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    ABRDF__REAL c = ABRDF__FN(pos)(g->ch);
-    ABRDF__REAL t = ABRDF__K(1) - c; /* the cubic written about c = 1 (fkub_table.c) */
-    ABRDF__REAL v = ABRDF__K(1) + t * (p->fkub[0] + t * (p->fkub[1] + t * p->fkub[2]));
+    abrdf__real c = pos(g->ch);
+    abrdf__real t = ABRDF__K(1) - c; /* the cubic written about c = 1 (fkub_table.c) */
+    abrdf__real v = ABRDF__K(1) + t * (p->fkub[0] + t * (p->fkub[1] + t * p->fkub[2]));
     /* zero below the zone, then clamp to [0, 1]: the same values as clamping inside the
      * zone (NaN -> 0), written as selects with a zero arm, which vectorise to compare+and */
     v = c >= p->fkub_x0 ? v : ABRDF__K(0);
     v = v > ABRDF__K(0) ? v : ABRDF__K(0);
     return v < ABRDF__K(1) ? v : ABRDF__K(1);
 }
-ABRDF__LOBE_KERNEL(k_fkub)
+static inline void k_fkub(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    lobe_out(p, k_fkub_lobe(p, g), f);
+}
 
-#endif /* per-precision guard */
+#endif /* ABRDF_K_EMPIRICAL_H */

@@ -24,95 +24,102 @@
 #include "kernel.h"
 #include "k_terms.h"
 
-#if ABRDF__KERNEL_FLOAT ? !defined(ABRDF_K_ENERGY_H_F) : !defined(ABRDF_K_ENERGY_H_D)
-#if ABRDF__KERNEL_FLOAT
-#define ABRDF_K_ENERGY_H_F
-#else
-#define ABRDF_K_ENERGY_H_D
-#endif
+#ifndef ABRDF_K_ENERGY_H
+#define ABRDF_K_ENERGY_H
 
-static inline void ABRDF__FN(k_f_phe_setup)(ABRDF__KP *k, const abrdf_params *p)
+static inline void k_f_phe_setup(abrdf__kp *k, const abrdf_params *p)
 {
-    ABRDF__FN(kp_base)(k, p);
-    k->norm = ABRDF__FN(norm_phe)(k->n);
+    kp_base(k, p);
+    k->norm = norm_phe(k->n);
 }
 
-static inline ABRDF__REAL ABRDF__FN(k_f_phe_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline abrdf__real k_f_phe_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return p->norm * ABRDF__FN(pow_pos)(g->rv, p->n);
+    return p->norm * pow_pos(g->rv, p->n);
 }
-ABRDF__LOBE_KERNEL(k_f_phe)
-
-static inline void ABRDF__FN(k_f_be_setup)(ABRDF__KP *k, const abrdf_params *p)
+static inline void k_f_phe(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__FN(kp_base)(k, p);
-    k->norm = ABRDF__FN(norm_be)(k->n);
+    lobe_out(p, k_f_phe_lobe(p, g), f);
 }
 
-static inline ABRDF__REAL ABRDF__FN(k_f_be_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline void k_f_be_setup(abrdf__kp *k, const abrdf_params *p)
 {
-    return p->norm * ABRDF__FN(pow_pos)(g->ch, p->n);
-}
-ABRDF__LOBE_KERNEL(k_f_be)
-
-static inline void ABRDF__FN(k_f_2e_setup)(ABRDF__KP *k, const abrdf_params *p)
-{
-    ABRDF__FN(kp_base)(k, p);
-    k->norm = ABRDF__FN(norm_2e)(k->n);
+    kp_base(k, p);
+    k->norm = norm_be(k->n);
 }
 
-static inline ABRDF__REAL ABRDF__FN(k_f_2e_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline abrdf__real k_f_be_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return p->norm * ABRDF__FN(lobe_fm)(p->n, g->rv, 1);
+    return p->norm * pow_pos(g->ch, p->n);
 }
-ABRDF__LOBE_KERNEL(k_f_2e)
-
-static inline void ABRDF__FN(k_f_16e_setup)(ABRDF__KP *k, const abrdf_params *p)
+static inline void k_f_be(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__FN(kp_base)(k, p);
-    k->norm = ABRDF__FN(norm_16e)(k->n);
+    lobe_out(p, k_f_be_lobe(p, g), f);
 }
 
-static inline ABRDF__REAL ABRDF__FN(k_f_16e_lobe)(const ABRDF__KP *p, const ABRDF__GEO *g)
+static inline void k_f_2e_setup(abrdf__kp *k, const abrdf_params *p)
 {
-    return p->norm * ABRDF__FN(lobe_fm)(p->n, g->rv, 4);
-}
-ABRDF__LOBE_KERNEL(k_f_16e)
-
-static inline void ABRDF__FN(k_f_ge_setup)(ABRDF__KP *k, const abrdf_params *p)
-{
-    ABRDF__FN(kp_base)(k, p);
-    k->norm = ABRDF__FN(norm_ge)(k->n);
+    kp_base(k, p);
+    k->norm = norm_2e(k->n);
 }
 
-static inline void ABRDF__FN(k_f_ge)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline abrdf__real k_f_2e_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    ABRDF__REAL lobe = p->norm * ABRDF__FN(pow_pos)(g->ch, p->n) / (g->ci > g->co ? g->ci : g->co);
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * ABRDF__FN(f_schlick)(p->f0[c], g->cd) * lobe;
+    return p->norm * lobe_fm(p->n, g->rv, 1);
+}
+static inline void k_f_2e(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    lobe_out(p, k_f_2e_lobe(p, g), f);
+}
+
+static inline void k_f_16e_setup(abrdf__kp *k, const abrdf_params *p)
+{
+    kp_base(k, p);
+    k->norm = norm_16e(k->n);
+}
+
+static inline abrdf__real k_f_16e_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    return p->norm * lobe_fm(p->n, g->rv, 4);
+}
+static inline void k_f_16e(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    lobe_out(p, k_f_16e_lobe(p, g), f);
+}
+
+static inline void k_f_ge_setup(abrdf__kp *k, const abrdf_params *p)
+{
+    kp_base(k, p);
+    k->norm = norm_ge(k->n);
+}
+
+static inline void k_f_ge(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    abrdf__real lobe = p->norm * pow_pos(g->ch, p->n) / (g->ci > g->co ? g->ci : g->co);
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * lobe;
 }
 
 /* D F / (4 cos_i cos_o) with G = 1 and clamped cosines. */
-static inline void ABRDF__FN(ct_no_g)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL d,
-                                      ABRDF__REAL f[3])
+static inline void ct_no_g(const abrdf__kp *p, const abrdf__geo *g, abrdf__real d, abrdf__real f[3])
 {
-    const ABRDF__REAL cmin = ABRDF__K(ABRDF__COS_MIN_NO_G);
-    ABRDF__REAL ci = g->ci > cmin ? g->ci : cmin;
-    ABRDF__REAL co = g->co > cmin ? g->co : cmin;
-    ABRDF__REAL v = d / (ABRDF__K(4) * ci * co); /* Eq. 5 with G = 1 */
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * ABRDF__FN(f_schlick)(p->f0[c], g->cd) * v;
+    const abrdf__real cmin = ABRDF__K(ABRDF__COS_MIN_NO_G);
+    abrdf__real ci = g->ci > cmin ? g->ci : cmin;
+    abrdf__real co = g->co > cmin ? g->co : cmin;
+    abrdf__real v = d / (ABRDF__K(4) * ci * co); /* Eq. 5 with G = 1 */
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * v;
 }
 
-static inline void ABRDF__FN(k_f_ctphe)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline void k_f_ctphe(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__FN(ct_no_g)(p, g, p->norm * ABRDF__FN(pow_pos)(g->ch, p->n), f);
+    ct_no_g(p, g, p->norm * pow_pos(g->ch, p->n), f);
 }
-static inline void ABRDF__FN(k_f_ct2e)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline void k_f_ct2e(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__FN(ct_no_g)(p, g, p->norm * ABRDF__FN(lobe_fm)(p->n, g->ch, 1), f);
+    ct_no_g(p, g, p->norm * lobe_fm(p->n, g->ch, 1), f);
 }
-static inline void ABRDF__FN(k_f_ct16e)(const ABRDF__KP *p, const ABRDF__GEO *g, ABRDF__REAL f[3])
+static inline void k_f_ct16e(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__FN(ct_no_g)(p, g, p->norm * ABRDF__FN(lobe_fm)(p->n, g->ch, 4), f);
+    ct_no_g(p, g, p->norm * lobe_fm(p->n, g->ch, 4), f);
 }
 
-#endif /* per-precision guard */
+#endif /* ABRDF_K_ENERGY_H */

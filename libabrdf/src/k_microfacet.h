@@ -18,72 +18,63 @@
 #include "kernel.h"
 #include "k_terms.h"
 
-#if ABRDF__KERNEL_FLOAT ? !defined(ABRDF_K_MICROFACET_H_F) : !defined(ABRDF_K_MICROFACET_H_D)
-#if ABRDF__KERNEL_FLOAT
-#define ABRDF_K_MICROFACET_H_F
-#else
-#define ABRDF_K_MICROFACET_H_D
-#endif
+#ifndef ABRDF_K_MICROFACET_H
+#define ABRDF_K_MICROFACET_H
 
 /* The setup of cook_torrance and disney_specular: alpha_g = r^2, floored. */
-static inline void ABRDF__FN(k_microfacet_setup)(ABRDF__KP *k, const abrdf_params *p)
+static inline void k_microfacet_setup(abrdf__kp *k, const abrdf_params *p)
 {
-    ABRDF__FN(kp_base)(k, p);
-    k->ag = ABRDF__FN(kp_alpha)(p->r * p->r);
+    kp_base(k, p);
+    k->ag = kp_alpha(p->r * p->r);
 }
 
-static inline void ABRDF__FN(k_cook_torrance)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                              ABRDF__REAL f[3])
+static inline void k_cook_torrance(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__REAL dg = ABRDF__FN(d_beckmann)(g->ch, g->sh2, p->ag) * ABRDF__FN(g_cook_torrance)(g);
-    ABRDF__REAL v = ABRDF__FN(safe_div)(dg, ABRDF__K(4) * g->ci * g->co); /* Eq. 5 */
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * ABRDF__FN(f_schlick)(p->f0[c], g->cd) * v;
+    abrdf__real dg = d_beckmann(g->ch, g->sh2, p->ag) * g_cook_torrance(g);
+    abrdf__real v = safe_div(dg, ABRDF__K(4) * g->ci * g->co); /* Eq. 5 */
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * v;
 }
 
-static inline void ABRDF__FN(k_disney_specular)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                                ABRDF__REAL f[3])
+static inline void k_disney_specular(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__REAL dv = ABRDF__FN(d_ggx)(g->ch, g->sh2, p->ag) *
-                     ABRDF__FN(v1_smith_ggx)(g->ci, p->ag) *
-                     ABRDF__FN(v1_smith_ggx)(g->co, p->ag); /* Eq. 5 with Eqs. 6 and 9 */
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * ABRDF__FN(f_schlick)(p->f0[c], g->cd) * dv;
+    abrdf__real dv = d_ggx(g->ch, g->sh2, p->ag) * v1_smith_ggx(g->ci, p->ag) *
+                     v1_smith_ggx(g->co, p->ag); /* Eq. 5 with Eqs. 6 and 9 */
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * dv;
 }
 
 /* alpha_x = r^2 / aspect, alpha_y = r^2 aspect (Eq. 7), each floored. */
-static inline void ABRDF__FN(k_disney_specular_aniso_setup)(ABRDF__KP *k, const abrdf_params *p)
+static inline void k_disney_specular_aniso_setup(abrdf__kp *k, const abrdf_params *p)
 {
-    ABRDF__FN(kp_base)(k, p);
+    kp_base(k, p);
     double ag = p->r * p->r;
     double aspect = sqrt(1.0 - 0.9 * p->anisotropic);
-    k->ax = ABRDF__FN(kp_alpha)(ag / aspect);
-    k->ay = ABRDF__FN(kp_alpha)(ag * aspect);
+    k->ax = kp_alpha(ag / aspect);
+    k->ay = kp_alpha(ag * aspect);
 }
 
-static inline void ABRDF__FN(k_disney_specular_aniso)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                                      ABRDF__REAL f[3])
+static inline void k_disney_specular_aniso(const abrdf__kp *p, const abrdf__geo *g,
+                                           abrdf__real f[3])
 {
     /* Eq. 5 with Eqs. 7 and 9 */
-    ABRDF__REAL dv = ABRDF__FN(d_ggx_aniso)(g->hx, g->hy, g->hz, p->ax, p->ay) *
-                     ABRDF__FN(v1_smith_ggx_aniso)(g->ix, g->iy, g->ci, p->ax, p->ay) *
-                     ABRDF__FN(v1_smith_ggx_aniso)(g->ox, g->oy, g->co, p->ax, p->ay);
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * ABRDF__FN(f_schlick)(p->f0[c], g->cd) * dv;
+    abrdf__real dv = d_ggx_aniso(g->hx, g->hy, g->hz, p->ax, p->ay) *
+                     v1_smith_ggx_aniso(g->ix, g->iy, g->ci, p->ax, p->ay) *
+                     v1_smith_ggx_aniso(g->ox, g->oy, g->co, p->ax, p->ay);
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * dv;
 }
 
 /* GTR1 alpha = mix(0.1, 0.001, clearcoat_gloss). */
-static inline void ABRDF__FN(k_disney_clearcoat_setup)(ABRDF__KP *k, const abrdf_params *p)
+static inline void k_disney_clearcoat_setup(abrdf__kp *k, const abrdf_params *p)
 {
-    ABRDF__FN(kp_base)(k, p);
-    k->cc_alpha = (ABRDF__REAL)(0.1 + (0.001 - 0.1) * p->clearcoat_gloss);
+    kp_base(k, p);
+    k->cc_alpha = (abrdf__real)(0.1 + (0.001 - 0.1) * p->clearcoat_gloss);
 }
 
-static inline void ABRDF__FN(k_disney_clearcoat)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                                 ABRDF__REAL f[3])
+static inline void k_disney_clearcoat(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__REAL dv = ABRDF__FN(d_gtr1)(g->ch, g->sh2, p->cc_alpha) *
-                     ABRDF__FN(v1_smith_ggx)(g->ci, ABRDF__K(0.25)) *
-                     ABRDF__FN(v1_smith_ggx)(g->co, ABRDF__K(0.25));
-    ABRDF__REAL v = ABRDF__K(0.25) * ABRDF__FN(f_schlick)(ABRDF__K(0.04), g->cd) * dv;
+    abrdf__real dv = d_gtr1(g->ch, g->sh2, p->cc_alpha) * v1_smith_ggx(g->ci, ABRDF__K(0.25)) *
+                     v1_smith_ggx(g->co, ABRDF__K(0.25));
+    abrdf__real v = ABRDF__K(0.25) * f_schlick(ABRDF__K(0.04), g->cd) * dv;
     for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * v;
 }
 
-#endif /* per-precision guard */
+#endif /* ABRDF_K_MICROFACET_H */
