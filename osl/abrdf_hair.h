@@ -1,4 +1,4 @@
-// abrdf_hair.h - the OSL twins of the hair fibre models, 1:1 with libabrdf/src/hair.h,
+// abrdf_hair.h - the OSL twins of the hair fibre models, 1:1 with libabrdf/src/hair/hair.h,
 // hair_common.c, hair_marschner.c and hair_huang.c: the same names, the same parameters in
 // the registry's order, the same guards, thresholds, node counts and loop structure, in
 // float. Included by abrdf_osl.h. The conventions, formulas and every deliberate choice are in
@@ -17,7 +17,7 @@
 #include "abrdf_osl_guards.h"
 #include "abrdf_hair_tables.h"
 
-// ---- named thresholds (libabrdf/src/hair.h, same values, same reasons) -------------------
+// ---- named thresholds (libabrdf/src/hair/hair.h, same values, same reasons) -------------------
 // Floor of cos(theta_d) (Marschner) and cos(theta) (Huang): both vanish only along the fibre.
 #define ABRDF_HAIR_COS_MIN 1e-6
 // |dPhi/dh| below this is a stationary point of the azimuthal map: a root there is clamped.

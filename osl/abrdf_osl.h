@@ -1,5 +1,5 @@
 // abrdf_osl.h - the OSL port of libabrdf's closed-form models, 1:1 with the C kernels
-// (libabrdf/src/k_*.h): the same names abrdf_<model>, the same parameters in the same
+// (libabrdf/src/kernels/k_*.h): the same names abrdf_<model>, the same parameters in the same
 // order, the same guards and thresholds. Formulas and sources: docs/MODELS.md of the C
 // library; each function names its equation.
 //

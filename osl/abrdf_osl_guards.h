@@ -4,7 +4,7 @@
 #ifndef ABRDF_OSL_GUARDS_H
 #define ABRDF_OSL_GUARDS_H
 
-// ---- named thresholds (libabrdf/src/abrdf_internal.h, same values, same reasons) ----------
+// ---- named thresholds (libabrdf/src/base/abrdf_internal.h, same values, same reasons) ----------
 // Smallest microfacet roughness alpha_g: the GGX peak 1/(pi alpha_g^2) stays finite in float.
 #define ABRDF_ALPHA_G_MIN 1e-6
 // |wi + wo|^2 below this: the half vector is undefined (wi ~ -wo, both grazing, f = 0).

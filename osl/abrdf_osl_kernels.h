@@ -1,6 +1,6 @@
 // abrdf_osl_kernels.h - the closed-form and layered models of the OSL port, 1:1 with the C
-// kernels (libabrdf/src/k_*.h, layered_*.c): the local-frame geometry, frames, the split terms
-// and one function abrdf_<model>(wi, wo, ...) per model. Included by abrdf_osl.h.
+// kernels (libabrdf/src/kernels/k_*.h, libabrdf/src/layered/layered_*.c): the local-frame
+// geometry, frames, the split terms and one function abrdf_<model>(wi, wo, ...) per model. Included by abrdf_osl.h.
 #ifndef ABRDF_OSL_KERNELS_H
 #define ABRDF_OSL_KERNELS_H
 

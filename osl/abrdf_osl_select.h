@@ -1,9 +1,9 @@
 // abrdf_osl_select.h - the model-selection flowchart of Zavalniuk & Romanyuk 2024 (Fig. 2) in
-// OSL: the same decisions as libabrdf's abrdf_select (libabrdf/src/select.c) and
+// OSL: the same decisions as libabrdf's abrdf_select (libabrdf/src/selection/select.c) and
 // `abrdf advise` (docs/SELECTION.md). Every threshold, model choice and candidate cost comes
 // from abrdf_meta.h (ABRDF_SELECT_*, generated from `abrdf advise --rules --json` and
 // `abrdf models --json`); the error analysis of the Table-1 approximations is
-// libabrdf/src/approx_error.c in float, on the Table-1 lobes written in t = 1 - c.
+// libabrdf/src/selection/approx_error.c in float, on the Table-1 lobes written in t = 1 - c.
 // Included by abrdf_osl.h after the models.
 //
 //   int abrdf_select(goal, surface, n, r, anisotropic, max_rel_pct, max_abs,
@@ -164,7 +164,7 @@ int abrdf_approx_error(string model, float n, output float rel_pct, output float
     return 1;
 }
 
-// The converters of libabrdf/src/api.c (Walter et al. 2007's n <-> alpha_g, alpha_g = r^2).
+// The converters of libabrdf/src/core/api.c (Walter et al. 2007's n <-> alpha_g, alpha_g = r^2).
 float abrdf_sel_alpha_g_to_n(float alpha_g)
 {
     float a = max(alpha_g, ABRDF_ALPHA_G_MIN);

@@ -149,7 +149,7 @@ static inline int abrdf_tolerance_init(abrdf_tolerance *t)
     return abrdf_tolerance_init_sized(t, sizeof(abrdf_tolerance));
 }
 
-/* ---- the flowchart's rules: one table (libabrdf/src/select.c) ------------------------- */
+/* ---- the flowchart's rules: one table (libabrdf/src/selection/select.c) ---------------- */
 /* Every threshold, constant and model choice of the flowchart. The CLI prints it
  * (abrdf advise --rules --json); the OSL and POV-Ray ports are generated from that. */
 typedef struct abrdf_select_rules {

@@ -234,11 +234,11 @@ class FullDisk(Base):
         gen = os.path.join(SRC, "tools", "gen")
         lib = os.path.join(SRC, "libabrdf", "src")
         self.fails_whole([sys.executable, os.path.join(gen, "gen_pov_hair_tables.py"),
-                          os.path.join(lib, "hair_tables.c"), self.path("h.inc")],
+                          os.path.join(lib, "hair", "hair_tables.c"), self.path("h.inc")],
                          self.path("h.inc"), limit=1000)
         self.fails_whole([sys.executable, os.path.join(gen, "gen_pov_belcour.py"),
-                          os.path.join(lib, "belcour_tables.h"),
-                          os.path.join(lib, "belcour_tables.c"), self.path("b.inc")],
+                          os.path.join(lib, "layered", "belcour_tables.h"),
+                          os.path.join(lib, "layered", "belcour_tables.c"), self.path("b.inc")],
                          self.path("b.inc"), limit=1000)
 
     def test_standard_output_on_dev_full(self):

@@ -7,7 +7,9 @@
      through what it includes (so none depends on its includer);
   4. one name per file across the tree (except the names a tool requires: CMakeLists.txt,
      and __init__.py, which Python and Blender require of a package);
-  5. tests link targets: no CMakeLists.txt under tests/ names a source file outside tests/.
+  5. tests link targets: no CMakeLists.txt under tests/ names a source file outside tests/;
+  6. the library's folders (libabrdf/src/*/, one concern each) are layered: no two of them
+     include or call each other in a circle.
 
 usage: check_structure.py SOURCE_DIR OBJECT_FILE...
 """
@@ -97,6 +99,7 @@ def tracked():
 
 
 files = tracked()
+by_name = {os.path.basename(f): f for f in files}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 include_graph = {}
 for f in files:
@@ -106,6 +109,8 @@ for f in files:
         d = os.path.dirname(f)
         for inc in INCLUDE.findall(text):
             target = os.path.normpath(os.path.join(d, inc))
+            if target not in files:  # found on an include path: names are unique (rule 4)
+                target = by_name.get(inc)
             if target in files:
                 include_graph.setdefault(f, set()).add(target)
 for comp in cycles(include_graph):
@@ -170,6 +175,32 @@ for f in files:
             for call in TARGET_CALL.finditer(fh.read()):
                 for m in SOURCE_REF.finditer(call.group(1)):
                     problems.append("%s compiles another target's source %s" % (f, m.group(0)))
+
+# ---- 6. the library's folders are layered -----------------------------------------------
+LIB = "libabrdf/src/"
+
+
+def lib_folder(path):
+    """libabrdf/src/core/api.c -> libabrdf/src/core/; None outside the library's folders."""
+    if path and path.startswith(LIB) and path.count("/") == 3:
+        return LIB + path.split("/")[2] + "/"
+    return None
+
+
+folder_graph, folder_why = {}, {}
+edges = [(a, b) for a, bs in include_graph.items() for b in bs]
+edges += [(by_name.get(a), by_name.get(b)) for a, bs in graph.items() for b in bs]
+for a, b in edges:
+    fa, fb = lib_folder(a), lib_folder(b)
+    if fa and fb and fa != fb:
+        folder_graph.setdefault(fa, set()).add(fb)
+        folder_why.setdefault((fa, fb), "%s -> %s" % (a, b))
+for comp in cycles(folder_graph):
+    ties = ["%s -> %s (%s)" % (k[0], k[1], v) for k, v in sorted(folder_why.items())
+            if k[0] in comp and k[1] in comp]
+    problems.append("the library's folders use each other in a circle: " + "; ".join(ties))
+if len(folder_graph) < 2:
+    problems.append("no folders found under %s: the layering check would prove nothing" % LIB)
 
 for p in problems:
     print("check_structure: " + p)

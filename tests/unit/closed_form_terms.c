@@ -2,8 +2,8 @@
  * Table-5 normalisations) in the double instantiation, against hand formulas and against
  * their defining property: every distribution D integrates to 1 over the projected
  * hemisphere of half vectors, int D(h) cos(theta_h) dw_h = 1 (MODELS.md B5.2). Part of the
- * test_closed_form suite. The kernel headers are included in double (kernel.h: the naming
- * rule gives the _d names below). */
+ * test_closed_form suite. The kernel headers are included in double (ABRDF__KERNEL_FLOAT
+ * not defined), so the plain names below are the double kernels (kernel.h, naming rule). */
 #include "kernel.h"
 #include "k_empirical.h"
 #include "k_energy.h"
@@ -18,15 +18,15 @@ TCase *closed_form_terms_tcase(void);
 
 START_TEST(guards)
 {
-    ck_assert(pos_d(-1.0) == 0.0 && pos_d(NAN) == 0.0 && pos_d(2.0) == 2.0);
-    ck_assert(safe_sqrt_d(-1e-30) == 0.0 && safe_sqrt_d(4.0) == 2.0);
-    ck_assert(safe_div_d(1.0, 0.0) == 0.0 && safe_div_d(1.0, 4.0) == 0.25);
-    ck_assert(pow_pos_d(-0.5, 2.0) == 0.0 && pow_pos_d(-0.5, 0.5) == 0.0);
-    ck_assert(pow2k_d(-3.0, 1) == 0.0 && pow2k_d(0.5, 4) == pow(0.5, 16.0));
-    ck_assert(clampr_d(2.0, -1.0, 1.0) == 1.0 && clampr_d(-2.0, -1.0, 1.0) == -1.0);
+    ck_assert(pos(-1.0) == 0.0 && pos(NAN) == 0.0 && pos(2.0) == 2.0);
+    ck_assert(safe_sqrt(-1e-30) == 0.0 && safe_sqrt(4.0) == 2.0);
+    ck_assert(safe_div(1.0, 0.0) == 0.0 && safe_div(1.0, 4.0) == 0.25);
+    ck_assert(pow_pos(-0.5, 2.0) == 0.0 && pow_pos(-0.5, 0.5) == 0.0);
+    ck_assert(pow2k(-3.0, 1) == 0.0 && pow2k(0.5, 4) == pow(0.5, 16.0));
+    ck_assert(clampr(2.0, -1.0, 1.0) == 1.0 && clampr(-2.0, -1.0, 1.0) == -1.0);
     /* the Table-1 base is clamped before squaring: no spurious lobe at n = 64, c = 0.5 */
-    ck_assert(lobe_fm_d(64.0, 0.5, 1) == 0.0);
-    ck_assert(tu_close(lobe_fm_d(2.0, 0.3, 1), 0.09, 1e-15, 0.0)); /* n = m: c^m */
+    ck_assert(lobe_fm(64.0, 0.5, 1) == 0.0);
+    ck_assert(tu_close(lobe_fm(2.0, 0.3, 1), 0.09, 1e-15, 0.0)); /* n = m: c^m */
 }
 END_TEST
 
@@ -35,11 +35,11 @@ START_TEST(schlick_fresnel)
     static const double f0s[] = {0.0, 0.04, 0.5, 1.0};
     for (int k = 0; k < 4; ++k) {
         double f0 = f0s[k];
-        ck_assert(f_schlick_d(f0, 1.0) == f0);                      /* normal incidence */
-        ck_assert(tu_close(f_schlick_d(f0, 0.0), 1.0, 1e-15, 0.0)); /* grazing */
-        ck_assert(tu_close(f_schlick_d(f0, 0.5), f0 + (1.0 - f0) / 32.0, 1e-15, 0.0));
-        ck_assert(f_schlick_d(f0, 1.5) == f0); /* cos_d clamped */
-        ck_assert(tu_close(f_schlick_d(f0, -0.5), 1.0, 1e-15, 0.0));
+        ck_assert(f_schlick(f0, 1.0) == f0);                      /* normal incidence */
+        ck_assert(tu_close(f_schlick(f0, 0.0), 1.0, 1e-15, 0.0)); /* grazing */
+        ck_assert(tu_close(f_schlick(f0, 0.5), f0 + (1.0 - f0) / 32.0, 1e-15, 0.0));
+        ck_assert(f_schlick(f0, 1.5) == f0); /* cos_d clamped */
+        ck_assert(tu_close(f_schlick(f0, -0.5), 1.0, 1e-15, 0.0));
     }
 }
 END_TEST
@@ -78,25 +78,25 @@ START_TEST(distributions_normalised)
     static const double as[] = {0.01, 0.05, 0.3, 1.0};
     for (int k = 0; k < 4; ++k) {
         double a = as[k];
-        double g = ndf_integral(d_ggx_d, a), b = ndf_integral(d_beckmann_d, a);
+        double g = ndf_integral(d_ggx, a), b = ndf_integral(d_beckmann, a);
         ck_assert_msg(fabs(g - 1.0) < 1e-9, "GGX alpha %g integrates to %.12f", a, g);
         ck_assert_msg(fabs(b - 1.0) < 1e-9, "Beckmann alpha %g integrates to %.12f", a, b);
     }
     static const double cc[] = {0.001, 0.0505, 0.1, 0.5, 0.9};
     for (int k = 0; k < 5; ++k) {
-        double v = ndf_integral(d_gtr1_d, cc[k]);
+        double v = ndf_integral(d_gtr1, cc[k]);
         ck_assert_msg(fabs(v - 1.0) < 1e-9, "GTR1 alpha %g integrates to %.12f", cc[k], v);
     }
-    ck_assert(tu_close(d_gtr1_d(0.7, 0.51, 1.0), 1.0 / PI_, 1e-15, 0.0)); /* alpha = 1 limit */
+    ck_assert(tu_close(d_gtr1(0.7, 0.51, 1.0), 1.0 / PI_, 1e-15, 0.0)); /* alpha = 1 limit */
     /* hand values (Eq. 6, Beckmann, GTR1) at theta_h = 20 deg */
     double t = 20.0 * PI_ / 180.0, c = cos(t), s2 = sin(t) * sin(t), a = 0.3, a2 = a * a;
     ck_assert(
-        tu_close(d_ggx_d(c, s2, a), a2 / (PI_ * pow(1.0 + (a2 - 1.0) * c * c, 2.0)), 1e-13, 0.0));
-    ck_assert(tu_close(d_beckmann_d(c, s2, a),
-                       exp(-tan(t) * tan(t) / a2) / (PI_ * a2 * pow(c, 4.0)), 1e-13, 0.0));
-    ck_assert(tu_close(d_gtr1_d(c, s2, a),
-                       (a2 - 1.0) / (PI_ * log(a2) * (1.0 + (a2 - 1.0) * c * c)), 1e-13, 0.0));
-    ck_assert(d_beckmann_d(0.0, 1.0, 0.3) == 0.0 && d_beckmann_d(-0.5, 0.75, 0.3) == 0.0);
+        tu_close(d_ggx(c, s2, a), a2 / (PI_ * pow(1.0 + (a2 - 1.0) * c * c, 2.0)), 1e-13, 0.0));
+    ck_assert(tu_close(d_beckmann(c, s2, a), exp(-tan(t) * tan(t) / a2) / (PI_ * a2 * pow(c, 4.0)),
+                       1e-13, 0.0));
+    ck_assert(tu_close(d_gtr1(c, s2, a), (a2 - 1.0) / (PI_ * log(a2) * (1.0 + (a2 - 1.0) * c * c)),
+                       1e-13, 0.0));
+    ck_assert(d_beckmann(0.0, 1.0, 0.3) == 0.0 && d_beckmann(-0.5, 0.75, 0.3) == 0.0);
 }
 END_TEST
 
@@ -106,9 +106,8 @@ START_TEST(anisotropic_ggx)
     double h[3] = {0.3, -0.2, 0.0};
     h[2] = sqrt(1.0 - h[0] * h[0] - h[1] * h[1]);
     double sh2 = h[0] * h[0] + h[1] * h[1];
-    ck_assert(
-        tu_close(d_ggx_aniso_d(h[0], h[1], h[2], 0.2, 0.2), d_ggx_d(h[2], sh2, 0.2), 1e-13, 0.0));
-    ck_assert(tu_close(v1_smith_ggx_aniso_d(h[0], h[1], h[2], 0.2, 0.2), v1_smith_ggx_d(h[2], 0.2),
+    ck_assert(tu_close(d_ggx_aniso(h[0], h[1], h[2], 0.2, 0.2), d_ggx(h[2], sh2, 0.2), 1e-13, 0.0));
+    ck_assert(tu_close(v1_smith_ggx_aniso(h[0], h[1], h[2], 0.2, 0.2), v1_smith_ggx(h[2], 0.2),
                        1e-13, 0.0));
     /* ax != ay: int D cos dw = 1 by a product rule (GL in theta on graded panels x
      * trapezoid in phi, spectrally accurate for this smooth periodic integrand) */
@@ -122,7 +121,7 @@ START_TEST(anisotropic_ggx)
                 double p = 2.0 * PI_ * (q + 0.5) / nphi;
                 double x = sin(t) * cos(p), y = sin(t) * sin(p), z = cos(t);
                 sum += 0.5 * (hi - lo) * glw[j] * (2.0 * PI_ / nphi) *
-                       d_ggx_aniso_d(x, y, z, ax, ay) * z * sin(t);
+                       d_ggx_aniso(x, y, z, ax, ay) * z * sin(t);
             }
         }
         lo = hi;
@@ -138,23 +137,23 @@ START_TEST(smith_and_cook_torrance_g)
         for (int j = 0; j < 4; ++j) {
             double a = as[i], c = cs[j], tan2 = (1.0 - c * c) / (c * c);
             double g1 = 2.0 / (1.0 + sqrt(1.0 + a * a * tan2)); /* Eq. 9 */
-            ck_assert(tu_close(g1_smith_ggx_d(c, a), g1, 1e-13, 0.0));
-            ck_assert(tu_close(v1_smith_ggx_d(c, a), g1 / (2.0 * c), 1e-13, 0.0)); /* G1/(2 cos) */
+            ck_assert(tu_close(g1_smith_ggx(c, a), g1, 1e-13, 0.0));
+            ck_assert(tu_close(v1_smith_ggx(c, a), g1 / (2.0 * c), 1e-13, 0.0)); /* G1/(2 cos) */
         }
-    ck_assert(g1_smith_ggx_d(0.0, 0.3) == 0.0 && g1_smith_ggx_d(-0.2, 0.3) == 0.0);
-    ck_assert(tu_close(v1_smith_ggx_d(0.0, 0.3), 1.0 / 0.3, 1e-15, 0.0)); /* bounded at grazing */
+    ck_assert(g1_smith_ggx(0.0, 0.3) == 0.0 && g1_smith_ggx(-0.2, 0.3) == 0.0);
+    ck_assert(tu_close(v1_smith_ggx(0.0, 0.3), 1.0 / 0.3, 1e-15, 0.0)); /* bounded at grazing */
     /* Cook-Torrance V-cavity G = min(1, 2 NH NV / VH, 2 NH NL / VH) */
-    abrdf__geo_d g;
+    abrdf__geo g;
     double wi[3] = {0.6, 0.0, 0.8}, wo[3] = {-0.28, 0.0, 0.96};
-    geo_make_d(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
+    geo_make(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
     double vh = wo[0] * g.hx + wo[1] * g.hy + wo[2] * g.hz;
     double e = fmin(1.0, fmin(2 * g.ch * 0.96 / vh, 2 * g.ch * 0.8 / vh));
-    ck_assert(tu_close(g_cook_torrance_d(&g), e, 1e-14, 0.0));
+    ck_assert(tu_close(g_cook_torrance(&g), e, 1e-14, 0.0));
     double gi[3] = {0.9998, 0.0, 0.02}; /* grazing light: the NL branch wins */
     double n = sqrt(gi[0] * gi[0] + gi[2] * gi[2]);
-    geo_make_d(&g, gi[0] / n, 0.0, gi[2] / n, -0.5, 0.0, sqrt(0.75));
+    geo_make(&g, gi[0] / n, 0.0, gi[2] / n, -0.5, 0.0, sqrt(0.75));
     vh = -0.5 * g.hx + sqrt(0.75) * g.hz;
-    ck_assert(tu_close(g_cook_torrance_d(&g), 2 * g.ch * (gi[2] / n) / vh, 1e-13, 0.0));
+    ck_assert(tu_close(g_cook_torrance(&g), 2 * g.ch * (gi[2] / n) / vh, 1e-13, 0.0));
 }
 END_TEST
 
@@ -163,32 +162,32 @@ START_TEST(table5_normalisations)
     static const double ns[] = {0.0, 1.0, 10.0, 1000.0};
     for (int k = 0; k < 4; ++k) {
         double n = ns[k];
-        ck_assert(tu_close(norm_phe_d(n), (n + 2) / (2 * PI_), 1e-15, 0.0));
-        ck_assert(tu_close(norm_be_d(n), (n + 2) * (n + 4) / (8 * PI_ * (pow(2, -n / 2) + n)),
-                           1e-15, 0.0));
-        ck_assert(tu_close(norm_16e_d(n), (1.063 * n + 1) / (2 * PI_), 1e-15, 0.0));
-        ck_assert(tu_close(norm_ge_d(n), (n + 2) / (4 * PI_ * (2 - pow(2, -n / 2))), 1e-15, 0.0));
-        if (n > 0) ck_assert(tu_close(norm_2e_d(n), 0.111 / n + 0.238 * (0.481 + n), 1e-15, 0.0));
+        ck_assert(tu_close(norm_phe(n), (n + 2) / (2 * PI_), 1e-15, 0.0));
+        ck_assert(
+            tu_close(norm_be(n), (n + 2) * (n + 4) / (8 * PI_ * (pow(2, -n / 2) + n)), 1e-15, 0.0));
+        ck_assert(tu_close(norm_16e(n), (1.063 * n + 1) / (2 * PI_), 1e-15, 0.0));
+        ck_assert(tu_close(norm_ge(n), (n + 2) / (4 * PI_ * (2 - pow(2, -n / 2))), 1e-15, 0.0));
+        if (n > 0) ck_assert(tu_close(norm_2e(n), 0.111 / n + 0.238 * (0.481 + n), 1e-15, 0.0));
     }
     /* n = 0: f_phe and f_be become Lambert's 1/pi */
-    ck_assert(tu_close(norm_phe_d(0.0), 1.0 / PI_, 1e-15, 0.0));
-    ck_assert(tu_close(norm_be_d(0.0), 1.0 / PI_, 1e-15, 0.0));
+    ck_assert(tu_close(norm_phe(0.0), 1.0 / PI_, 1e-15, 0.0));
+    ck_assert(tu_close(norm_be(0.0), 1.0 / PI_, 1e-15, 0.0));
 }
 END_TEST
 
 START_TEST(geometry)
 {
-    abrdf__geo_d g;
+    abrdf__geo g;
     double wi[3] = {0.6, 0.0, 0.8}, wo[3] = {0.0, 0.6, 0.8};
-    geo_make_d(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
+    geo_make(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
     double s = sqrt(0.36 + 0.36 + 2.56);
     ck_assert(tu_close(g.hx, 0.6 / s, 1e-15, 0.0) && tu_close(g.hz, 1.6 / s, 1e-15, 0.0));
     ck_assert(
         tu_close(g.cd, wi[0] * g.hx + wi[1] * g.hy + wi[2] * g.hz, 1e-15, 0.0)); /* |L+V|/2 = L.H */
     ck_assert(tu_close(g.sh2, 1.0 - g.ch * g.ch, 1e-15, 0.0));
     ck_assert(tu_close(g.rv, 2 * 0.8 * 0.8 - (0.6 * 0.0 + 0.0 * 0.6 + 0.8 * 0.8), 1e-15, 0.0));
-    geo_make_d(&g, 0.6, 0.0, 0.8, -0.6, 0.0, -0.8); /* wi = -wo: H undefined, rejected */
-    ck_assert(g.cd == 0.0 && !geo_front_d(&g));
+    geo_make(&g, 0.6, 0.0, 0.8, -0.6, 0.0, -0.8); /* wi = -wo: H undefined, rejected */
+    ck_assert(g.cd == 0.0 && !geo_front(&g));
 }
 END_TEST
 

@@ -1,6 +1,6 @@
 /* fit_fkub.c - fits the cubic approximation fkub of Blinn-Phong (the paper's Table 1,
  * A c^3 + B c^2 + C c) per exponent n by constrained linear least squares, and writes the
- * table libabrdf/src/fkub_table.c. Re-running it reproduces that file byte for byte.
+ * table libabrdf/src/kernels/fkub_table.c. Re-running it reproduces that file byte for byte.
  *
  *   fit_fkub [out.c]          (default: stdout)
  *

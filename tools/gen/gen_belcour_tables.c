@@ -1,5 +1,5 @@
 /* gen_belcour_tables.c - computes the precomputed tables of Belcour's layered model from
- * first principles and writes libabrdf/src/belcour_tables.c. Re-running it reproduces that
+ * first principles and writes libabrdf/src/layered/belcour_tables.c. Re-running it reproduces that
  * file byte for byte (a test does).
  *
  *   gen_belcour_tables [--order N] [out.c]     write the tables (default order 32, stdout)
@@ -9,7 +9,7 @@
  *
  * L. Belcour, "Efficient rendering of layered materials using an atomic decomposition with
  * statistical operators", ACM TOG 37(4), 2018, Sec. 5 and its supplemental code; MODELS.md
- * B8.2. The axes are in libabrdf/src/belcour_tables.h.
+ * B8.2. The axes are in libabrdf/src/layered/belcour_tables.h.
  *
  * FGD(cos, alpha, eta, kappa) = int F(wi.h) D(h) G(wi, wo) / (4 cos_i cos_o) cos_o dwo,
  *   the directional albedo of a GGX reflection (separable Smith G, exact Fresnel of the

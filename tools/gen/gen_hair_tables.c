@@ -1,4 +1,4 @@
-/* gen_hair_tables.c - generates libabrdf/src/hair_tables.c, the energy compensation tables
+/* gen_hair_tables.c - generates libabrdf/src/hair/hair_tables.c, the energy compensation tables
  * of the Huang hair model: the single-scattering albedo E(alpha, mu, eta) of a rough GGX
  * dielectric interface, reflection plus transmission, for light from outside (eta > 1) and
  * from inside (1/eta). It is the quantity of Blender Cycles' ggx_glass_E / ggx_glass_inv_E

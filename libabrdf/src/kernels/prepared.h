@@ -16,7 +16,7 @@
 #include "hair.h"
 #include "layered.h"
 
-/* The kernels' parameters, one field list for both precisions (kernel.h: ABRDF__KP). */
+/* The kernels' parameters, one field list for both precisions (kernel.h: abrdf__kp). */
 #define ABRDF__KP_FIELDS(REAL)                                                                     \
     REAL kd[3], ks[3], f0[3]; /* kp_base */                                                        \
     REAL n;                   /* exponent (kp_base) */                                             \

@@ -1,7 +1,7 @@
 /* guards.h - every threshold of the evaluation code, each with the reason for its value, and
  * the guards of the double-only models (hair, layered). The closed-form kernels use the
- * same thresholds through their own per-precision guards (kernel.h: pos, safe_sqrt,
- * safe_div, clampr, finite_or_zero). */
+ * same thresholds through their own guards, in the kernels' precision (kernel.h: pos,
+ * safe_sqrt, safe_div, clampr, finite_or_zero). */
 #ifndef ABRDF_GUARDS_H
 #define ABRDF_GUARDS_H
 #include <math.h>

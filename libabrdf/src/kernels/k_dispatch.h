@@ -10,13 +10,13 @@
 #ifndef ABRDF_K_DISPATCH_H
 #define ABRDF_K_DISPATCH_H
 /* X(id, setup, kernel, form) for every model evaluated in closed form. The setup fills
- * ABRDF__KP from abrdf_params once per call; the kernel gives f_r for one direction pair.
+ * abrdf__kp from abrdf_params once per call; the kernel gives f_r for one direction pair.
  * form RGB: the kernel writes the three channels; form LOBE: the model is ks times one
- * scalar lobe, kernel_lobe (k_terms.h, ABRDF__LOBE_KERNEL), and ks is in [0, 1] (registry),
- * so the float batch loops guard the lobe once and scale it per channel (eval_float.c). Both are
+ * scalar lobe, kernel_lobe (k_terms.h, lobe_out), and ks is in [0, 1] (registry), so the
+ * float batch loops guard the lobe once and scale it per channel (eval_float.c). Both are
  * defined in the family header named above them, except kp_base (kernel.h), the setup of
- * the models with nothing to precompute. The names are stems: ABRDF__FN adds the precision
- * suffix (kernel.h, naming rule). */
+ * the models with nothing to precompute. The names are the functions' own, in either
+ * precision (kernel.h, naming rule). */
 #define ABRDF__KERNEL_MODELS(X)                                                                    \
     /* k_diffuse.h */                                                                              \
     X(ABRDF_LAMBERT, kp_base, k_lambert, RGB)                                                      \

@@ -114,7 +114,7 @@ void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double
     const abrdf__lobe_kind mirror = ABRDF__LOBE_MIRROR, half = ABRDF__LOBE_HALF;
     mx->count = 0;
     for (int c = 0; c < 3; ++c) mx->wo[c] = wo[c];
-    ABRDF__KP k;
+    abrdf__kp k;
     switch (model) {
     case ABRDF_LAMBERT:
     case ABRDF_LAMBERT_FRESNEL:
@@ -141,19 +141,19 @@ void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double
     case ABRDF_FKV: add_dist(mx, half, 1.0, ABRDF__DIST_LINEAR, 0.0, 0, 0.786 * p->n); break;
     /* microfacet */
     case ABRDF_COOK_TORRANCE:
-        ABRDF__FN(k_microfacet_setup)(&k, p);
+        k_microfacet_setup(&k, p);
         add_dist(mx, half, 1.0, ABRDF__DIST_BECKMANN, 0.0, 0, k.ag);
         break;
     case ABRDF_DISNEY_SPECULAR:
-        ABRDF__FN(k_microfacet_setup)(&k, p);
+        k_microfacet_setup(&k, p);
         add_vndf(mx, 1.0, k.ag, k.ag);
         break;
     case ABRDF_DISNEY_SPECULAR_ANISO:
-        ABRDF__FN(k_disney_specular_aniso_setup)(&k, p);
+        k_disney_specular_aniso_setup(&k, p);
         add_vndf(mx, 1.0, k.ax, k.ay);
         break;
     case ABRDF_DISNEY_CLEARCOAT:
-        ABRDF__FN(k_disney_clearcoat_setup)(&k, p);
+        k_disney_clearcoat_setup(&k, p);
         add_dist(mx, half, 1.0, ABRDF__DIST_GTR1, 0.0, 0, k.cc_alpha);
         break;
     /* cloth */
@@ -161,7 +161,7 @@ void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double
         /* cosine for the diffuse term, uniform for the sheen, whose f cos is nearly flat
          * over the hemisphere: measured better than the velvet D cos (docs/SAMPLING.md).
          * The sheen's albedo with F = 1 is 0.15-0.6 (0.3 typical) over r, k_amp, theta_o. */
-        double f = ABRDF__FN(f_schlick)(mean3(p->f0), wo[2]);
+        double f = f_schlick(mean3(p->f0), wo[2]);
         add(mx, ABRDF__LOBE_COSINE, mean3(p->kd) * (1.0 - f));
         add(mx, ABRDF__LOBE_UNIFORM, mean3(p->ks) * f * 0.3);
         break;

@@ -28,48 +28,41 @@
 #include "kernel.h"
 #include "k_terms.h"
 
-#if ABRDF__KERNEL_FLOAT ? !defined(ABRDF_K_CLOTH_H_F) : !defined(ABRDF_K_CLOTH_H_D)
-#if ABRDF__KERNEL_FLOAT
-#define ABRDF_K_CLOTH_H_F
-#else
-#define ABRDF_K_CLOTH_H_D
-#endif
+#ifndef ABRDF_K_CLOTH_H
+#define ABRDF_K_CLOTH_H
 
 /* alpha_g = r^2 and the velvet normalisation 1/(pi (1 + k_amp alpha_g^2)) (Ashikhmin-
  * Premoze), the latter from alpha_g as the kernel holds it. */
-static inline void ABRDF__FN(k_neubelt_pettineo_setup)(ABRDF__KP *k, const abrdf_params *p)
+static inline void k_neubelt_pettineo_setup(abrdf__kp *k, const abrdf_params *p)
 {
-    ABRDF__FN(kp_base)(k, p);
-    k->ag = ABRDF__FN(kp_alpha)(p->r * p->r);
-    k->k_amp = (ABRDF__REAL)p->k_amp;
+    kp_base(k, p);
+    k->ag = kp_alpha(p->r * p->r);
+    k->k_amp = (abrdf__real)p->k_amp;
     double a = (double)k->ag;
-    k->norm = (ABRDF__REAL)(1.0 / (ABRDF__PI * (1.0 + p->k_amp * a * a)));
+    k->norm = (abrdf__real)(1.0 / (ABRDF__PI * (1.0 + p->k_amp * a * a)));
 }
 
-static inline void ABRDF__FN(k_neubelt_pettineo)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                                 ABRDF__REAL f[3])
+static inline void k_neubelt_pettineo(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__REAL dv = ABRDF__FN(d_velvet)(g->ch, g->sh2, p->ag, p->k_amp, p->norm) *
-                     ABRDF__FN(v_neubelt)(g->ci, g->co);
+    abrdf__real dv = d_velvet(g->ch, g->sh2, p->ag, p->k_amp, p->norm) * v_neubelt(g->ci, g->co);
     for (int c = 0; c < 3; ++c) {
-        ABRDF__REAL F = ABRDF__FN(f_schlick)(p->f0[c], g->cd);
+        abrdf__real F = f_schlick(p->f0[c], g->cd);
         f[c] =
             (ABRDF__K(1) - F) * p->kd[c] * ABRDF__K(ABRDF__INV_PI) + p->ks[c] * F * dv; /* Eq. 10 */
     }
 }
 
-static inline void ABRDF__FN(k_kajiya_kay)(const ABRDF__KP *p, const ABRDF__GEO *g,
-                                           ABRDF__REAL f[3])
+static inline void k_kajiya_kay(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ABRDF__REAL tl = ABRDF__FN(clampr)(g->ix, ABRDF__K(-1), ABRDF__K(1));
-    ABRDF__REAL tv = ABRDF__FN(clampr)(g->ox, ABRDF__K(-1), ABRDF__K(1));
+    abrdf__real tl = clampr(g->ix, ABRDF__K(-1), ABRDF__K(1));
+    abrdf__real tv = clampr(g->ox, ABRDF__K(-1), ABRDF__K(1));
     /* sin(T, w) = |T x w| = sqrt(w_y^2 + w_z^2) for T = +x: unlike sqrt(1 - (T.w)^2) it does
      * not cancel when w is close to the fibre (float lost 1% of sin there). */
-    const ABRDF__REAL zero = ABRDF__K(0), one = ABRDF__K(1);
-    ABRDF__REAL sl = ABRDF__FN(clampr)(sqrt(g->iy * g->iy + g->iz * g->iz), zero, one);
-    ABRDF__REAL sv = ABRDF__FN(clampr)(sqrt(g->oy * g->oy + g->oz * g->oz), zero, one);
-    ABRDF__REAL spec = ABRDF__FN(pow_pos)(sl * sv - tl * tv, p->n); /* cosine to the mirror cone */
+    const abrdf__real zero = ABRDF__K(0), one = ABRDF__K(1);
+    abrdf__real sl = clampr(sqrt(g->iy * g->iy + g->iz * g->iz), zero, one);
+    abrdf__real sv = clampr(sqrt(g->oy * g->oy + g->oz * g->oz), zero, one);
+    abrdf__real spec = pow_pos(sl * sv - tl * tv, p->n); /* cosine to the mirror cone */
     for (int c = 0; c < 3; ++c) f[c] = p->kd[c] * sl + p->ks[c] * spec; /* Eq. 11 */
 }
 
-#endif /* per-precision guard */
+#endif /* ABRDF_K_CLOTH_H */

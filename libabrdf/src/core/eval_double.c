@@ -4,7 +4,7 @@
 #include "prepared.h"
 
 #define ABRDF__SETUP_CASE(ID, SETUP, KERNEL, FORM)                                                 \
-    case ID: ABRDF__FN(SETUP)(&pr->kd, &pr->params); break;
+    case ID: SETUP(&pr->kd, &pr->params); break;
 
 void abrdf__prep_setup_d(abrdf__prep *pr)
 {
@@ -15,7 +15,7 @@ void abrdf__prep_setup_d(abrdf__prep *pr)
 }
 
 #define ABRDF__EVAL_CASE(ID, SETUP, KERNEL, FORM)                                                  \
-    case ID: ABRDF__FN(KERNEL)(&pr->kd, &g, v); break;
+    case ID: KERNEL(&pr->kd, &g, v); break;
 
 void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const double wo[3],
                             double f[3])
@@ -24,9 +24,9 @@ void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const dou
     if (abrdf__is_double_only(pr->model)) {
         abrdf__eval_special_prepared(pr, wi, wo, v);
     } else {
-        ABRDF__GEO g;
-        ABRDF__FN(geo_make)(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
-        if (ABRDF__FN(geo_front)(&g)) {
+        abrdf__geo g;
+        geo_make(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
+        if (geo_front(&g)) {
             switch (pr->model) {
                 ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
             default: break;
@@ -35,5 +35,5 @@ void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const dou
     }
     /* A result that is not a finite non-negative number is a bug, but it must never reach
      * the caller (abrdf.h promise). */
-    for (int c = 0; c < 3; ++c) f[c] = ABRDF__FN(finite_or_zero)(v[c]);
+    for (int c = 0; c < 3; ++c) f[c] = finite_or_zero(v[c]);
 }

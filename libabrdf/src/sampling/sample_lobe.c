@@ -112,8 +112,8 @@ static double vndf_pdf(double ax, double ay, const double wo[3], const double wi
 {
     double v[3] = {wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]};
     if (!(dot3(v, v) > ABRDF__HALF_LEN2_MIN) || !normalise(v) || !(v[2] > 0.0)) return 0.0;
-    double d = ABRDF__FN(d_ggx_aniso)(v[0], v[1], v[2], ax, ay);
-    return 0.5 * d * ABRDF__FN(v1_smith_ggx_aniso)(wo[0], wo[1], wo[2], ax, ay);
+    double d = d_ggx_aniso(v[0], v[1], v[2], ax, ay);
+    return 0.5 * d * v1_smith_ggx_aniso(wo[0], wo[1], wo[2], ax, ay);
 }
 
 /* ---- fibre lobes (Kajiya-Kay), angles about T = +x ------------------------------------ */

@@ -81,7 +81,7 @@ const char *abrdf__isa_name(int level)
 #define ABRDF__STORE_RGB(KERNEL, J, FR, FG, FB)                                                    \
     do {                                                                                           \
         float v[3];                                                                                \
-        ABRDF__FN(KERNEL)(k, &g, v);                                                               \
+        KERNEL(k, &g, v);                                                                          \
         float front = abrdf__front(g.ci, g.co);                                                    \
         (FR)[J] = abrdf__keep(front, v[0]);                                                        \
         (FG)[J] = abrdf__keep(front, v[1]);                                                        \
@@ -89,25 +89,27 @@ const char *abrdf__isa_name(int level)
     } while (0)
 #define ABRDF__STORE_LOBE(KERNEL, J, FR, FG, FB)                                                   \
     do {                                                                                           \
-        float w = abrdf__keep(abrdf__front(g.ci, g.co), ABRDF__FN(KERNEL##_lobe)(k, &g));          \
+        float w = abrdf__keep(abrdf__front(g.ci, g.co), KERNEL##_lobe(k, &g));                     \
         (FR)[J] = k->ks[0] * w;                                                                    \
         (FG)[J] = k->ks[1] * w;                                                                    \
         (FB)[J] = k->ks[2] * w;                                                                    \
     } while (0)
 #define ABRDF__BATCH_ARGS                                                                          \
-    const ABRDF__KP *restrict k, size_t n, const float *restrict ix, const float *restrict iy,     \
+    const abrdf__kp *restrict k, size_t n, const float *restrict ix, const float *restrict iy,     \
         const float *restrict iz, const float *restrict ox, const float *restrict oy,              \
         const float *restrict oz, float *restrict fr, float *restrict fg, float *restrict fb
 
-/* ABRDF__BATCH_LOOP_ISA(k_f8, LOBE, 1) defines batch_k_f8_f_1, the loop of kernel k_f8_f at
- * level 1. */
+/* THE GENERATED NAMES. ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, L) defines batch_<KERNEL>_<L>, the
+ * batch loop of kernel KERNEL at instruction-set level L, for every model of
+ * ABRDF__KERNEL_MODELS and every level of ABRDF__ISA_LEVELS: batch_k_f8_2 is k_f8's loop at
+ * level 2, batch_k_lambert_0 is k_lambert's at level 0 (the only level off x86). They are the
+ * only generated function names of the library; ABRDF__BATCH_CASE_ISA calls them. */
 #define ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, L)                                                     \
-    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void ABRDF__CAT(ABRDF__FN(batch_##KERNEL),          \
-                                                               L)(ABRDF__BATCH_ARGS)               \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void batch_##KERNEL##_##L(ABRDF__BATCH_ARGS)        \
     {                                                                                              \
         for (size_t i = 0; i < n; ++i) {                                                           \
-            ABRDF__GEO g;                                                                          \
-            ABRDF__FN(geo_make)(&g, ix[i], iy[i], iz[i], ox[i], oy[i], oz[i]);                     \
+            abrdf__geo g;                                                                          \
+            geo_make(&g, ix[i], iy[i], iz[i], ox[i], oy[i], oz[i]);                                \
             ABRDF__STORE_##FORM(KERNEL, i, fr, fg, fb);                                            \
         }                                                                                          \
     }
@@ -121,7 +123,7 @@ const char *abrdf__isa_name(int level)
 ABRDF__KERNEL_MODELS(ABRDF__BATCH_LOOP)
 
 #define ABRDF__SETUP_CASE(ID, SETUP, KERNEL, FORM)                                                 \
-    case ID: ABRDF__FN(SETUP)(&pr->kf, &pr->params); break;
+    case ID: SETUP(&pr->kf, &pr->params); break;
 
 void abrdf__prep_setup_f(abrdf__prep *pr)
 {
@@ -153,9 +155,8 @@ static void abrdf__batch_special(const abrdf__prep *pr, const abrdf_batch *b)
 
 #define ABRDF__BATCH_CASE_ISA(ID, KERNEL, L)                                                       \
     case ID:                                                                                       \
-        ABRDF__CAT(ABRDF__FN(batch_##KERNEL), L)                                                   \
-        (&pr->kf, n, b->wi_x, b->wi_y, b->wi_z, b->wo_x, b->wo_y, b->wo_z, b->f_r, b->f_g,         \
-         b->f_b);                                                                                  \
+        batch_##KERNEL##_##L(&pr->kf, n, b->wi_x, b->wi_y, b->wi_z, b->wo_x, b->wo_y, b->wo_z,     \
+                             b->f_r, b->f_g, b->f_b);                                              \
         return 0;
 #define ABRDF__BATCH_CASE_0(ID, SETUP, KERNEL, FORM) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 0)
 #define ABRDF__BATCH_CASE_1(ID, SETUP, KERNEL, FORM) ABRDF__BATCH_CASE_ISA(ID, KERNEL, 1)

@@ -1,0 +1,80 @@
+/* k_microfacet.h - the microfacet models, setup beside kernel (both precisions via
+ * kernel.h), composed of the D, G and F of k_terms.h in the Walter et al. 2007
+ * normalisation f = F D G / (4 cos_i cos_o) (Eq. 5), G taken as the visibility
+ * V = G / (4 cos_i cos_o) so no cosine is divided by at grazing.
+ *
+ * Cook-Torrance (Eq. 5): R. L. Cook, K. E. Torrance, "A reflectance model for computer
+ *   graphics", ACM TOG 1(1), 1982, with the normalised Beckmann D (P. Beckmann,
+ *   A. Spizzichino 1963) and the V-cavity G = min(1, 2 NH NV / VH, 2 NH NL / VH). The 1982
+ *   paper's pi in the denominator and unnormalised D combine to 4x this form (MODELS.md B5.1).
+ * Disney specular (Eqs. 5, 6, 8, 9): B. Burley, "Physically-Based Shading at Disney",
+ *   SIGGRAPH 2012 course notes: GGX D (B. Walter et al., "Microfacet models for refraction
+ *   through rough surfaces", EGSR 2007) with alpha_g = r^2, Schlick F, separable Smith G
+ *   with the same alpha_g as D (the post-2017 reference code; MODELS.md B5.4).
+ * Anisotropic (Eq. 7): aspect = sqrt(1 - 0.9 anisotropic), alpha_x = r^2 / aspect,
+ *   alpha_y = r^2 aspect (Burley 2012), both >= ABRDF__ALPHA_G_MIN.
+ * Disney clearcoat: Burley 2012, 0.25 ks F(0.04) D_GTR1(alpha) G(0.25) / (4 cos_i cos_o),
+ *   alpha = mix(0.1, 0.001, clearcoat_gloss), alpha not squared. ks is the clearcoat amount. */
+#include "kernel.h"
+#include "k_terms.h"
+
+#ifndef ABRDF_K_MICROFACET_H
+#define ABRDF_K_MICROFACET_H
+
+/* The setup of cook_torrance and disney_specular: alpha_g = r^2, floored. */
+static inline void k_microfacet_setup(abrdf__kp *k, const abrdf_params *p)
+{
+    kp_base(k, p);
+    k->ag = kp_alpha(p->r * p->r);
+}
+
+static inline void k_cook_torrance(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    abrdf__real dg = d_beckmann(g->ch, g->sh2, p->ag) * g_cook_torrance(g);
+    abrdf__real v = safe_div(dg, ABRDF__K(4) * g->ci * g->co); /* Eq. 5 */
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * v;
+}
+
+static inline void k_disney_specular(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    abrdf__real dv = d_ggx(g->ch, g->sh2, p->ag) * v1_smith_ggx(g->ci, p->ag) *
+                     v1_smith_ggx(g->co, p->ag); /* Eq. 5 with Eqs. 6 and 9 */
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * dv;
+}
+
+/* alpha_x = r^2 / aspect, alpha_y = r^2 aspect (Eq. 7), each floored. */
+static inline void k_disney_specular_aniso_setup(abrdf__kp *k, const abrdf_params *p)
+{
+    kp_base(k, p);
+    double ag = p->r * p->r;
+    double aspect = sqrt(1.0 - 0.9 * p->anisotropic);
+    k->ax = kp_alpha(ag / aspect);
+    k->ay = kp_alpha(ag * aspect);
+}
+
+static inline void k_disney_specular_aniso(const abrdf__kp *p, const abrdf__geo *g,
+                                           abrdf__real f[3])
+{
+    /* Eq. 5 with Eqs. 7 and 9 */
+    abrdf__real dv = d_ggx_aniso(g->hx, g->hy, g->hz, p->ax, p->ay) *
+                     v1_smith_ggx_aniso(g->ix, g->iy, g->ci, p->ax, p->ay) *
+                     v1_smith_ggx_aniso(g->ox, g->oy, g->co, p->ax, p->ay);
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * dv;
+}
+
+/* GTR1 alpha = mix(0.1, 0.001, clearcoat_gloss). */
+static inline void k_disney_clearcoat_setup(abrdf__kp *k, const abrdf_params *p)
+{
+    kp_base(k, p);
+    k->cc_alpha = (abrdf__real)(0.1 + (0.001 - 0.1) * p->clearcoat_gloss);
+}
+
+static inline void k_disney_clearcoat(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    abrdf__real dv = d_gtr1(g->ch, g->sh2, p->cc_alpha) * v1_smith_ggx(g->ci, ABRDF__K(0.25)) *
+                     v1_smith_ggx(g->co, ABRDF__K(0.25));
+    abrdf__real v = ABRDF__K(0.25) * f_schlick(ABRDF__K(0.04), g->cd) * dv;
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * v;
+}
+
+#endif /* ABRDF_K_MICROFACET_H */
