@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "render.h"
+#include "scene_select.h"
 #include "test_util.h"
 
 static const double PI = 3.14159265358979323846;
@@ -267,7 +268,7 @@ START_TEST(fast_path_within_nmse_1e8_of_double)
             char err[512];
             ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
             const abrdf_model_info *m = mi < 0 ? NULL : abrdf_model_get((abrdf_model)mi);
-            if (m) ck_assert_msg(render_set_model(&s, m->id, err, sizeof err) == 0, "%s", err);
+            if (m) ck_assert_msg(scene_replace_models(&s, m->id, err, sizeof err) == 0, "%s", err);
             int size = m && (m->needs & ABRDF_NEEDS_INTEGRATION) ? 12 : 40;
             double e = nmse_fast_vs_double(&s, size);
             worst = e > worst ? e : worst;

@@ -12,6 +12,7 @@
 
 #include "budget_run.h"
 #include "cli.h"
+#include "scene_choice.h"
 #include "path_msg.h"
 #include "data_path.h"
 #include "export.h"
@@ -93,11 +94,9 @@ static void export_failed(out_file *o, const char *scene_path, char *err, size_t
 
 int cmd_export(int argc, char **argv)
 {
-    const char *cmd = "export", *path = NULL, *out = NULL, *model_name = NULL;
-    const char *osl_dir = NULL, *mode = NULL, *goal = NULL, *budget_s = NULL;
-    const char *sets[64], *mats[16];
-    int nsets = 0, nmats = 0, pov = 0, cycles = 0, no_shadows = 0, native = 0, spp = 0;
-    int adaptive = 0;
+    const char *cmd = "export", *path = NULL, *out = NULL, *osl_dir = NULL, *mode = NULL;
+    scene_choice choice = SCENE_CHOICE_INIT;
+    int pov = 0, cycles = 0, no_shadows = 0, native = 0, spp = 0;
     render_options opt;
     memset(&opt, 0, sizeof opt);
     opt.spp = 1;
@@ -106,7 +105,10 @@ int cmd_export(int argc, char **argv)
         const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
         long v;
         if (cli_is_help(a)) return usage();
-        if (!strcmp(a, "--pov"))
+        int took = scene_choice_option(&choice, cmd, argc, argv, &i);
+        if (took) {
+            if (took < 0) return CLI_EXIT_USAGE;
+        } else if (!strcmp(a, "--pov"))
             pov = 1;
         else if (!strcmp(a, "--cycles"))
             cycles = 1;
@@ -114,37 +116,15 @@ int cmd_export(int argc, char **argv)
             no_shadows = 1;
         else if (!strcmp(a, "--native"))
             native = 1;
-        else if (!strcmp(a, "--adaptive"))
-            adaptive = 1;
-        else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--set") ||
-                 !strcmp(a, "--osl-dir") || !strcmp(a, "--mode") || !strcmp(a, "--goal") ||
-                 !strcmp(a, "--budget") || !strcmp(a, "--materials")) {
+        else if (!strcmp(a, "-o") || !strcmp(a, "--osl-dir") || !strcmp(a, "--mode")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
             if (!strcmp(a, "-o"))
                 out = val;
-            else if (!strcmp(a, "--model"))
-                model_name = val;
-            else if (!strcmp(a, "--goal"))
-                goal = val;
-            else if (!strcmp(a, "--materials")) {
-                if (nmats == 16) return cli_fail(cmd, "too many --materials files (16 at most)");
-                mats[nmats++] = val;
-            } else if (!strcmp(a, "--osl-dir"))
+            else if (!strcmp(a, "--osl-dir"))
                 osl_dir = val;
-            else if (!strcmp(a, "--mode"))
-                mode = val;
-            else if (!strcmp(a, "--goal"))
-                goal = val;
-            else if (!strcmp(a, "--budget"))
-                budget_s = val;
-            else if (!strcmp(a, "--materials")) {
-                if (nmats == 16) return cli_fail(cmd, "too many --materials files (16 at most)");
-                mats[nmats++] = val;
-            } else if (nsets == 64)
-                return cli_fail(cmd, "too many --set options (64 at most)");
             else
-                sets[nsets++] = val;
+                mode = val;
         } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp")) {
             long hi = !strcmp(a, "--spp") ? 65536 : SCENE_MAX_RESOLUTION;
             if (!cli_parse_int(val, 1, hi, &v))
@@ -167,7 +147,6 @@ int cmd_export(int argc, char **argv)
     if (pov + cycles != 1) return cli_fail(cmd, "choose one format: --pov or --cycles");
     if (!path) return cli_fail(cmd, "missing SCENE (abrdf export --help)");
     if (!out) return cli_fail(cmd, "missing -o OUT");
-    if (nsets && !model_name) return cli_fail(cmd, "--set needs --model");
     if (pov && (spp || mode || osl_dir))
         return cli_fail(cmd, "--spp, --mode and --osl-dir are options of --cycles");
     if (cycles && (native || no_shadows))
@@ -176,19 +155,7 @@ int cmd_export(int argc, char **argv)
         return cli_fail(cmd, "--native uses POV-Ray's lights (with shadows); drop --no-shadows");
     if (mode && strcmp(mode, "eval") && strcmp(mode, "closure") && strcmp(mode, "generic"))
         return cli_fail(cmd, "--mode is eval, closure or generic, not '%s'", mode);
-    if (adaptive && model_name) return cli_fail(cmd, "--adaptive and --model exclude each other");
-    if ((goal || budget_s) && !adaptive)
-        return cli_fail(cmd, "--%s needs --adaptive", goal ? "goal" : "budget");
-    if (goal && budget_s) return cli_fail(cmd, "--goal and --budget exclude each other");
-    if (adaptive && !budget_s &&
-        (!goal || (strcmp(goal, "photoreal") && strcmp(goal, "performance"))))
-        return cli_fail(cmd, "--adaptive needs --goal photoreal, --goal performance or --budget B");
-    double budget = -1.0;
-    if (budget_s) {
-        char berr[256];
-        if (budget_parse(budget_s, &budget, berr, sizeof berr))
-            return cli_fail(cmd, "--budget: %s", berr);
-    }
+    if (scene_choice_check(&choice, cmd)) return CLI_EXIT_USAGE;
 
     char err[1024];
     {
@@ -196,8 +163,10 @@ int cmd_export(int argc, char **argv)
         data_path_find("materials.csv", tpath, sizeof tpath);
         const char *out_role = "output", *ins[18] = {path, tpath},
                    *in_roles[18] = {"scene", "material table"};
-        for (int i = 0; i < nmats; ++i) ins[2 + i] = mats[i], in_roles[2 + i] = "--materials file";
-        if (out_files_distinct(&out, &out_role, 1, ins, in_roles, 2 + nmats, err, sizeof err))
+        for (int i = 0; i < choice.nmats; ++i)
+            ins[2 + i] = choice.mats[i], in_roles[2 + i] = "--materials file";
+        if (out_files_distinct(&out, &out_role, 1, ins, in_roles, 2 + choice.nmats, err,
+                               sizeof err))
             return cli_fail(cmd, "%s", err);
     }
     scene s;
@@ -218,22 +187,19 @@ int cmd_export(int argc, char **argv)
     char *notes = NULL;
     size_t notes_len = 0;
     FILE *trace = open_memstream(&notes, &notes_len);
-    abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
     if (!trace) {
         fprintf(stderr, "abrdf export: out of memory\n");
         goto done;
     }
-    if (adaptive && goal) abrdf_goal_find(goal, &g);
     /* a budget's prediction samples the image the scene file describes (its resolution, 4
      * samples per pixel), as abrdf render's does: the same choices */
-    int st = scene_resolve_budget(&s, path, mats, nmats, adaptive && goal ? (int)g : -1, budget, 4,
-                                  trace, err, sizeof err);
-    if (fclose(trace) || st) {
-        fprintf(stderr, "abrdf export: %s\n", st ? err : "out of memory");
+    int applied = scene_choice_apply(&choice, cmd, &s, path, 4, trace);
+    if (fclose(trace)) {
+        fprintf(stderr, "abrdf export: out of memory\n");
         goto done;
     }
-    if (model_name && (st = scene_set_model(cmd, &s, model_name, sets, nsets))) {
-        rc = st;
+    if (applied) {
+        rc = applied;
         goto done;
     }
     if (render_prepare(&s, &opt, &rs, err, sizeof err)) {

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "scene_choice.h"
 #include "budget_run.h"
 #include "data_path.h"
 #include "image_io.h"
@@ -86,11 +87,10 @@ static char *preview_path(const char *out)
 
 int cmd_render(int argc, char **argv)
 {
-    const char *cmd = "render", *path = NULL, *out = NULL, *model_name = NULL, *goal = NULL,
-               *budget_s = NULL;
+    const char *cmd = "render", *path = NULL, *out = NULL;
     const char *config = NULL, *display = NULL, *view = NULL;
-    const char *sets[64], *mats[16];
-    int full = 0, nsets = 0, nmats = 0, explain = 0, stats = 0, adaptive = 0, preview = 1;
+    scene_choice choice = SCENE_CHOICE_INIT;
+    int full = 0, explain = 0, stats = 0, preview = 1;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     render_options opt = {
         0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0, RENDER_FLOAT, 0, RENDER_EST_MIS,
@@ -100,32 +100,25 @@ int cmd_render(int argc, char **argv)
         const char *val = i + 1 < argc ? argv[i + 1] : NULL;
         long v;
         if (cli_is_help(a)) return usage();
-        if (!strcmp(a, "--explain"))
+        int took = scene_choice_option(&choice, cmd, argc, argv, &i);
+        if (took) {
+            if (took < 0) return CLI_EXIT_USAGE;
+        } else if (!strcmp(a, "--explain"))
             explain = 1;
         else if (!strcmp(a, "--stats"))
             stats = 1;
         else if (!strcmp(a, "--jitter"))
             opt.jitter = 1;
-        else if (!strcmp(a, "--adaptive"))
-            adaptive = 1;
         else if (!strcmp(a, "--no-preview"))
             preview = 0;
         else if (!strcmp(a, "--full"))
             full = 1;
-        else if (!strcmp(a, "-o") || !strcmp(a, "--model") || !strcmp(a, "--goal") ||
-                 !strcmp(a, "--budget") || !strcmp(a, "--set") || !strcmp(a, "--config") ||
-                 !strcmp(a, "--display") || !strcmp(a, "--view") || !strcmp(a, "--materials") ||
-                 !strcmp(a, "--precision") || !strcmp(a, "--estimator")) {
+        else if (!strcmp(a, "-o") || !strcmp(a, "--config") || !strcmp(a, "--display") ||
+                 !strcmp(a, "--view") || !strcmp(a, "--precision") || !strcmp(a, "--estimator")) {
             if (!val) return cli_fail(cmd, "%s needs a value", a);
             ++i;
             if (!strcmp(a, "-o"))
                 out = val;
-            else if (!strcmp(a, "--model"))
-                model_name = val;
-            else if (!strcmp(a, "--goal"))
-                goal = val;
-            else if (!strcmp(a, "--budget"))
-                budget_s = val;
             else if (!strcmp(a, "--config"))
                 config = val;
             else if (!strcmp(a, "--display"))
@@ -148,13 +141,7 @@ int cmd_render(int argc, char **argv)
                     opt.estimator = RENDER_EST_BRDF;
                 else
                     return cli_fail(cmd, "--estimator must be mis, light or brdf, not '%s'", val);
-            } else if (!strcmp(a, "--materials")) {
-                if (nmats == 16) return cli_fail(cmd, "too many --materials files (16 at most)");
-                mats[nmats++] = val;
-            } else if (nsets == 64)
-                return cli_fail(cmd, "too many --set options (64 at most)");
-            else
-                sets[nsets++] = val;
+            }
         } else if (!strcmp(a, "--light-samples")) {
             if (!cli_parse_int(val, 1, 4096, &v))
                 return cli_fail(cmd, "%s needs a whole number in [1, 4096]", a);
@@ -187,23 +174,7 @@ int cmd_render(int argc, char **argv)
     if (k * k != opt.spp)
         return cli_fail(
             cmd, "--spp %d is not a square (1, 4, 9, 16, ...): strata form a k x k grid", opt.spp);
-    if (adaptive && model_name) return cli_fail(cmd, "--adaptive and --model exclude each other");
-    if (goal && !adaptive) return cli_fail(cmd, "--goal needs --adaptive");
-    if (budget_s && !adaptive) return cli_fail(cmd, "--budget needs --adaptive");
-    if (budget_s && goal)
-        return cli_fail(cmd, "--goal and --budget exclude each other (a budget's reference is "
-                             "the photoreal choice)");
-    double budget = -1.0;
-    if (budget_s) {
-        char berr[256];
-        if (budget_parse(budget_s, &budget, berr, sizeof berr))
-            return cli_fail(cmd, "--budget: %s", berr);
-    }
-    if (nsets && !model_name)
-        return cli_fail(cmd, "--set needs --model (the scene file sets materials' parameters)");
-    if (adaptive && !budget_s &&
-        (!goal || (strcmp(goal, "photoreal") && strcmp(goal, "performance"))))
-        return cli_fail(cmd, "--adaptive needs --goal photoreal, --goal performance or --budget B");
+    if (scene_choice_check(&choice, cmd)) return CLI_EXIT_USAGE;
     opt.progress = isatty(2) && !explain;
     char out_default[1024];
     if (!out) {
@@ -229,8 +200,10 @@ int cmd_render(int argc, char **argv)
         const char *outs[2] = {out, png}, *out_roles[2] = {"output", "preview"};
         const char *ins[19] = {path, config, tpath},
                    *in_roles[19] = {"scene", "--config file", "material table"};
-        for (int i = 0; i < nmats; ++i) ins[3 + i] = mats[i], in_roles[3 + i] = "--materials file";
-        if (out_files_distinct(outs, out_roles, 2, ins, in_roles, 3 + nmats, err, sizeof err)) {
+        for (int i = 0; i < choice.nmats; ++i)
+            ins[3 + i] = choice.mats[i], in_roles[3 + i] = "--materials file";
+        if (out_files_distinct(outs, out_roles, 2, ins, in_roles, 3 + choice.nmats, err,
+                               sizeof err)) {
             free(png);
             return cli_fail(cmd, "%s", err);
         }
@@ -263,21 +236,12 @@ int cmd_render(int argc, char **argv)
     out_file exr_out = OUT_FILE_INIT, png_out = OUT_FILE_INIT;
     out_file *files[2] = {&png_out, &exr_out}; /* committed together, the preview first */
     int nfiles = png ? 2 : 1;
-    abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
-    if (adaptive && goal) abrdf_goal_find(goal, &g);
     /* a budget's prediction samples the image the scene file describes (its resolution, the
      * default 4 samples per pixel), so abrdf export makes the same choices */
-    if (scene_resolve_budget(&s, path, mats, nmats, adaptive && goal ? (int)g : -1, budget, 4,
-                             explain ? stdout : NULL, err, sizeof err)) {
-        fprintf(stderr, "abrdf render: %s\n", err);
+    int applied = scene_choice_apply(&choice, cmd, &s, path, 4, explain ? stdout : NULL);
+    if (applied) {
+        rc = applied;
         goto done;
-    }
-    if (model_name) {
-        int st = scene_set_model(cmd, &s, model_name, sets, nsets);
-        if (st) {
-            rc = st;
-            goto done;
-        }
     }
     if (render_prepare(&s, &opt, &rs, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);

@@ -142,41 +142,6 @@ int render_plan_ignore(render_scene *rs)
     return 0;
 }
 
-int render_set_model(scene *s, abrdf_model model, char *err, size_t err_size)
-{
-    const abrdf_model_info *mi = abrdf_model_get(model);
-    if (!mi) {
-        snprintf(err, err_size, "unknown model id %d", (int)model);
-        return -1;
-    }
-    for (int i = 0; i < s->material_count; ++i) {
-        scene_material *m = &s->materials[i];
-        abrdf_params p;
-        abrdf_params_init(model, &p);
-        for (int k = 0; k < mi->param_count; ++k) {
-            int id = mi->params[k].id, shared = 0;
-            for (int l = 0; l < m->lobe_count; ++l) {
-                const abrdf_model_info *old = abrdf_model_get(m->lobes[l]);
-                for (int q = 0; q < old->param_count; ++q) shared |= old->params[q].id == id;
-            }
-            double v[3];
-            int cnt;
-            if (shared && (cnt = abrdf_param_read(&m->params, id, v)) > 0)
-                abrdf_param_set(&p, id, v, cnt); /* out of the new model's range: keep default */
-        }
-        char msg[256];
-        if (abrdf_params_check(model, &p, msg, sizeof msg) != ABRDF_OK) {
-            snprintf(err, err_size, "material '%s' as %s: %s", m->name, mi->name, msg);
-            return -1;
-        }
-        m->kind = SCENE_MAT_MODELS;
-        m->lobe_count = 1;
-        m->lobes[0] = model;
-        m->params = p;
-    }
-    return 0;
-}
-
 /* ---- shading ----------------------------------------------------------------------- */
 
 const char *render_precision_name(int precision)

@@ -21,7 +21,6 @@
  *   render_shade_hits   the radiance of a batch of camera-ray hits (direct light, both precisions)
  *   render_precision_name  "double" / "float" for --explain
  *   render_stats_print  print the work counters
- *   render_set_model    replace every material's models by one model (CLI --model)
  *   render_plan_ignore  do every effect everywhere (to measure the plan against)
  *   render_release      free what render_prepare allocated
  */
@@ -168,8 +167,5 @@ void render_shade_hits(const render_scene *rs, const render_options *opt, const 
                        int count, double (*L)[3], render_shade_scratch *sc, render_stats *st);
 const char *render_precision_name(int precision);
 void render_stats_print(const render_stats *st, FILE *f);
-/* Every material becomes the single model `model`, keeping parameter values it shares
- * with the old models (kd, ks, f0, r, n, ...). Returns 0 or -1 with a message. */
-int render_set_model(scene *s, abrdf_model model, char *err, size_t err_size);
 
 #endif

@@ -361,19 +361,48 @@ done:
     return rc;
 }
 
-int scene_resolve(scene *s, const char *scene_name, const char *const *files, int nfiles,
-                  int force_goal, FILE *explain, char *err, size_t err_size)
+int scene_replace_models(scene *s, abrdf_model model, char *err, size_t err_size)
 {
-    return scene_resolve_budget(s, scene_name, files, nfiles, force_goal, -1.0, 4, explain, err,
-                                err_size);
+    const abrdf_model_info *mi = abrdf_model_get(model);
+    if (!mi) {
+        snprintf(err, err_size, "unknown model id %d", (int)model);
+        return -1;
+    }
+    for (int i = 0; i < s->material_count; ++i) {
+        scene_material *m = &s->materials[i];
+        abrdf_params p;
+        abrdf_params_init(model, &p);
+        for (int k = 0; k < mi->param_count; ++k) {
+            int id = mi->params[k].id, shared = 0;
+            for (int l = 0; l < m->lobe_count; ++l) {
+                const abrdf_model_info *old = abrdf_model_get(m->lobes[l]);
+                for (int q = 0; q < old->param_count; ++q) shared |= old->params[q].id == id;
+            }
+            double v[3];
+            int cnt;
+            if (shared && (cnt = abrdf_param_read(&m->params, id, v)) > 0)
+                abrdf_param_set(&p, id, v, cnt); /* out of the new model's range: keep default */
+        }
+        char msg[256];
+        if (abrdf_params_check(model, &p, msg, sizeof msg) != ABRDF_OK) {
+            snprintf(err, err_size, "material '%s' as %s: %s", m->name, mi->name, msg);
+            return -1;
+        }
+        m->kind = SCENE_MAT_MODELS;
+        m->lobe_count = 1;
+        m->lobes[0] = model;
+        m->params = p;
+    }
+    return 0;
 }
 
-int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets, int nsets)
+int scene_set_model(const char *cmd, scene *s, const char *model_name, const char *const *sets,
+                    int nsets)
 {
     abrdf_model m;
     char err[512];
     if (cli_model(cmd, model_name, &m)) return CLI_EXIT_USAGE;
-    if (render_set_model(s, m, err, sizeof err)) {
+    if (scene_replace_models(s, m, err, sizeof err)) {
         fprintf(stderr, "abrdf %s: %s\n", cmd, err);
         return 1;
     }

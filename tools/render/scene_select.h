@@ -37,24 +37,24 @@ void scene_budget_view(const scene *s, int spp, abrdf_view *v, abrdf_light_dir *
 /* Does any material need the material table (or does force_goal make them adaptive)? */
 int scene_needs_table(const scene *s);
 
-/* scene_select_materials with the material table loaded as `abrdf render` and `abrdf export`
- * do: data/materials.csv (data_path.h) if a material names an entry or force_goal >= 0, then
- * each of the nfiles --materials files merged over it. Returns 0, or -1 with the message. */
-int scene_resolve(scene *s, const char *scene_name, const char *const *files, int nfiles,
-                  int force_goal, FILE *explain, char *err, size_t err_size);
-
-/* scene_resolve with budget materials (scene_select_budgets): force_budget > 0 resolves every
- * material by the budget mode with that NMSE budget (the table is then loaded too); spp: the
- * image's samples per pixel for the prediction's view. */
+/* scene_select_budgets with the material table loaded as `abrdf render` and `abrdf export`
+ * do: data/materials.csv (data_path.h) if a material names an entry, force_goal >= 0 or
+ * force_budget > 0, then each of the nfiles --materials files merged over it. force_budget > 0
+ * resolves every material by the budget mode with that NMSE budget; spp: the image's samples
+ * per pixel for the prediction's view. Returns 0, or -1 with the message. */
 int scene_resolve_budget(scene *s, const char *scene_name, const char *const *files, int nfiles,
                          int force_goal, double force_budget, int spp, FILE *explain, char *err,
                          size_t err_size);
 
+/* Every material becomes the single model `model`, keeping parameter values it shares
+ * with the old models (kd, ks, f0, r, n, ...). Returns 0 or -1 with a message. */
+int scene_replace_models(scene *s, abrdf_model model, char *err, size_t err_size);
+
 /* --model NAME [--set NAME=VALUE ...] of `abrdf render` and `abrdf export`: every material of
- * s becomes model_name (render_set_model), then each assignment is applied to every
+ * s becomes model_name (scene_replace_models), then each assignment is applied to every
  * material. Returns 0; CLI_EXIT_USAGE for an unknown model or a bad assignment; 1 if the
  * scene cannot take the model. Messages go to stderr as "abrdf CMD: ...". */
-int scene_set_model(const char *cmd, scene *s, const char *model_name, const char **sets,
+int scene_set_model(const char *cmd, scene *s, const char *model_name, const char *const *sets,
                     int nsets);
 
 #endif

@@ -1,0 +1,79 @@
+/* scene_choice.c - the options render and export share (scene_choice.h). */
+#include <string.h>
+
+#include "budget_run.h"
+#include "cli_args.h"
+#include "scene_choice.h"
+#include "scene_select.h"
+
+int scene_choice_option(scene_choice *c, const char *cmd, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i];
+    if (!strcmp(a, "--adaptive")) {
+        c->adaptive = 1;
+        return 1;
+    }
+    const char **slot = !strcmp(a, "--model")    ? &c->model_name
+                        : !strcmp(a, "--goal")   ? &c->goal
+                        : !strcmp(a, "--budget") ? &c->budget_s
+                                                 : NULL;
+    int set = !strcmp(a, "--set"), mats = !strcmp(a, "--materials");
+    if (!slot && !set && !mats) return 0;
+    if (*i + 1 >= argc) {
+        cli_fail(cmd, "%s needs a value", a);
+        return -1;
+    }
+    const char *val = argv[++*i];
+    if (slot) {
+        *slot = val;
+    } else if (set) {
+        if (c->nsets == SCENE_CHOICE_MAX_SETS) {
+            cli_fail(cmd, "too many --set options (%d at most)", SCENE_CHOICE_MAX_SETS);
+            return -1;
+        }
+        c->sets[c->nsets++] = val;
+    } else {
+        if (c->nmats == SCENE_CHOICE_MAX_FILES) {
+            cli_fail(cmd, "too many --materials files (%d at most)", SCENE_CHOICE_MAX_FILES);
+            return -1;
+        }
+        c->mats[c->nmats++] = val;
+    }
+    return 1;
+}
+
+int scene_choice_check(scene_choice *c, const char *cmd)
+{
+    if (c->adaptive && c->model_name)
+        return cli_fail(cmd, "--adaptive and --model exclude each other");
+    if (c->goal && !c->adaptive) return cli_fail(cmd, "--goal needs --adaptive");
+    if (c->budget_s && !c->adaptive) return cli_fail(cmd, "--budget needs --adaptive");
+    if (c->budget_s && c->goal)
+        return cli_fail(cmd, "--goal and --budget exclude each other (a budget's reference is "
+                             "the photoreal choice)");
+    if (c->budget_s) {
+        char berr[256];
+        if (budget_parse(c->budget_s, &c->budget, berr, sizeof berr))
+            return cli_fail(cmd, "--budget: %s", berr);
+    }
+    if (c->nsets && !c->model_name)
+        return cli_fail(cmd, "--set needs --model (the scene file sets materials' parameters)");
+    if (c->adaptive && !c->budget_s &&
+        (!c->goal || (strcmp(c->goal, "photoreal") && strcmp(c->goal, "performance"))))
+        return cli_fail(cmd, "--adaptive needs --goal photoreal, --goal performance or --budget B");
+    return 0;
+}
+
+int scene_choice_apply(const scene_choice *c, const char *cmd, scene *s, const char *scene_path,
+                       int spp, FILE *explain)
+{
+    char err[1024];
+    abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
+    if (c->adaptive && c->goal) abrdf_goal_find(c->goal, &g);
+    if (scene_resolve_budget(s, scene_path, c->mats, c->nmats, c->adaptive && c->goal ? (int)g : -1,
+                             c->budget_s ? c->budget : -1.0, spp, explain, err, sizeof err)) {
+        fprintf(stderr, "abrdf %s: %s\n", cmd, err);
+        return 1;
+    }
+    return c->model_name ? scene_set_model(cmd, s, c->model_name, c->sets, c->nsets) : 0;
+}

@@ -1,0 +1,53 @@
+/* scene_choice.h - the options `abrdf render` and `abrdf export` share: how the scene's
+ * materials are chosen and the material tables they are chosen from, parsed and checked in
+ * one place and applied to a parsed scene in one call.
+ *
+ *   --model NAME [--set NAME=VALUE ...]          every material becomes one model
+ *   --adaptive --goal photoreal|performance       every material chosen by abrdf_select
+ *   --adaptive --budget none|slight|noticeable|NMSE   ... by the budget mode
+ *   --materials FILE ...                          tables merged over data/materials.csv
+ *
+ *   scene_choice_option   take one of these options from argv (with its value)
+ *   scene_choice_check    the rules between them, once every option is read
+ *   scene_choice_apply    resolve a parsed scene's materials as they ask
+ */
+#ifndef ABRDF_SCENE_CHOICE_H
+#define ABRDF_SCENE_CHOICE_H
+
+#include <stdio.h>
+
+#include "scene.h"
+
+#define SCENE_CHOICE_MAX_SETS 64
+#define SCENE_CHOICE_MAX_FILES 16
+
+typedef struct scene_choice {
+    int adaptive;           /* --adaptive */
+    const char *model_name; /* --model, or NULL */
+    const char *goal;       /* --goal, or NULL */
+    const char *budget_s;   /* --budget as given, or NULL */
+    double budget;          /* the NMSE budget_s names (after scene_choice_check) */
+    const char *sets[SCENE_CHOICE_MAX_SETS]; /* --set NAME=VALUE, in order */
+    int nsets;
+    const char *mats[SCENE_CHOICE_MAX_FILES]; /* --materials FILE, in order */
+    int nmats;
+} scene_choice;
+
+#define SCENE_CHOICE_INIT                                                                          \
+    {                                                                                              \
+        0, NULL, NULL, NULL, 0.0, {NULL}, 0, {NULL}, 0                                             \
+    }
+
+/* If argv[*i] is one of the options above, take it and its value (advancing *i): 1; 0 if it is
+ * not one of them; -1 after the message on a missing value or too many (exit CLI_EXIT_USAGE). */
+int scene_choice_option(scene_choice *c, const char *cmd, int argc, char **argv, int *i);
+/* The rules between the options (--adaptive with --goal or --budget, --set with --model, ...)
+ * and the budget's value: 0, or CLI_EXIT_USAGE after the message. */
+int scene_choice_check(scene_choice *c, const char *cmd);
+/* Resolve s's table and adaptive materials (all of them with --adaptive), the budget's
+ * prediction sampled at spp per pixel, then --model/--set: 0, or the command's exit status
+ * after the message ("abrdf CMD: ..."). explain: the selection's traces, or NULL. */
+int scene_choice_apply(const scene_choice *c, const char *cmd, scene *s, const char *scene_path,
+                       int spp, FILE *explain);
+
+#endif
