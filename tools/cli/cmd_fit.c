@@ -138,19 +138,12 @@ static int parse_pair(const char *opt, const char *s, abrdf_model out[2])
     return 0;
 }
 
-static int reads(abrdf_model m, int id)
-{
-    const abrdf_model_info *mi = abrdf_model_get(m);
-    for (int k = 0; mi && k < mi->param_count; ++k)
-        if (mi->params[k].id == id) return 1;
-    return 0;
-}
-
 /* Whether a lobe of the pair reads the parameter `name`. */
 static int pair_reads(const abrdf_model pair[2], const char *name)
 {
     int id;
-    return abrdf_param_find(name, &id) == ABRDF_OK && (reads(pair[0], id) || reads(pair[1], id));
+    return abrdf_param_find(name, &id) == ABRDF_OK &&
+           (cli_model_reads(pair[0], id) || cli_model_reads(pair[1], id));
 }
 
 static const char *name_of(abrdf_model m)
@@ -189,8 +182,8 @@ static int set_pair(const abrdf_model pair[2], abrdf_params *p, const char *assi
     int id;
     snprintf(name, sizeof name, "%.*s", (int)(n < sizeof name ? n : sizeof name - 1), assign);
     abrdf_model m = pair[1];
-    if (pair[0] != NONE && abrdf_param_find(name, &id) == ABRDF_OK && !reads(pair[1], id) &&
-        reads(pair[0], id))
+    if (pair[0] != NONE && abrdf_param_find(name, &id) == ABRDF_OK &&
+        !cli_model_reads(pair[1], id) && cli_model_reads(pair[0], id))
         m = pair[0];
     return cli_set_param(CMD, m, p, assign);
 }
@@ -204,7 +197,7 @@ static void diffuse_defaults(const abrdf_model pair[2], abrdf_params *p)
     for (int k = 0; mi && k < mi->param_count; ++k) {
         double v[3];
         int id = mi->params[k].id, n;
-        if (!reads(pair[1], id) && (n = abrdf_param_read(&d, id, v)) > 0)
+        if (!cli_model_reads(pair[1], id) && (n = abrdf_param_read(&d, id, v)) > 0)
             abrdf_param_set(p, id, v, n);
     }
 }
@@ -372,7 +365,7 @@ static void print_params(const abrdf_model cand[2], const abrdf_params *p, int j
     int count = abrdf_param_count(), first = 1;
     if (json) printf("{");
     for (int id = 0; id < count; ++id) {
-        if (!reads(cand[0], id) && !reads(cand[1], id)) continue;
+        if (!cli_model_reads(cand[0], id) && !cli_model_reads(cand[1], id)) continue;
         const abrdf_param_info *pi = abrdf_param_get(id);
         double v[3];
         int n = abrdf_param_read(p, id, v);

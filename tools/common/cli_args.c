@@ -77,6 +77,14 @@ int cli_parse_vec3(const char *s, double v[3])
     return 1;
 }
 
+int cli_model_reads(abrdf_model model, int id)
+{
+    const abrdf_model_info *mi = abrdf_model_get(model);
+    for (int k = 0; mi && k < mi->param_count; ++k)
+        if (mi->params[k].id == id) return 1;
+    return 0;
+}
+
 int cli_parse_dir3(const char *s, double v[3])
 {
     if (!cli_parse_vec3(s, v)) return 0;

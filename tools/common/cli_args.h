@@ -31,6 +31,8 @@ int cli_parse_dir3(const char *s, double v[3]);
 const char *cli_repeated_option(int argc, char **argv, const char *const *repeatable);
 /* Model by name; on failure prints the valid names (or the nearest ones) and returns 2. */
 int cli_model(const char *cmd, const char *name, abrdf_model *out);
+/* Does the model read parameter id (is it among the registry's parameters of the model)? */
+int cli_model_reads(abrdf_model model, int id);
 /* Apply "NAME=VALUE" or "NAME=R,G,B" to params for model; errors name the valid params. */
 int cli_set_param(const char *cmd, abrdf_model model, abrdf_params *p, const char *assign);
 /* Levenshtein distance, for "did you mean" suggestions. */

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_args.h"
 #include "in_file.h"
 #include "out_file.h"
 #include "param_effect.h"
@@ -388,14 +389,6 @@ static int set_model(parser *p, const char *key, const char *val, abrdf_model *o
     return fail(p, "%s: unknown model '%s' (abrdf models lists them)", key, val);
 }
 
-static int model_uses(abrdf_model m, int param)
-{
-    const abrdf_model_info *mi = abrdf_model_get(m);
-    for (int i = 0; mi && i < mi->param_count; ++i)
-        if (mi->params[i].id == param) return 1;
-    return 0;
-}
-
 /* A parameter of the line that changes nothing in the material's reflectance (a layer past
  * layer_count, a term the value of another switches off) is an error: it would silently do
  * nothing. 0, or -1 after the message. */
@@ -491,7 +484,7 @@ static int do_material(parser *p, word *w, int n)
             for (int i = 0; i < mi->param_count; ++i) {
                 int id = mi->params[i].id;
                 double v[3];
-                if (model_uses(m.lobes[0], id)) continue;
+                if (cli_model_reads(m.lobes[0], id)) continue;
                 int cnt = abrdf_param_read(&second, id, v);
                 if (cnt > 0) abrdf_param_set(&m.params, id, v, cnt);
             }
@@ -517,7 +510,7 @@ static int do_material(parser *p, word *w, int n)
                         "models' parameters (abrdf models)",
                         w[i].key);
         int used = m.kind != SCENE_MAT_MODELS;
-        for (int l = 0; l < m.lobe_count; ++l) used |= model_uses(m.lobes[l], id);
+        for (int l = 0; l < m.lobe_count; ++l) used |= cli_model_reads(m.lobes[l], id);
         if (!used)
             return fail(p, "parameter '%s' is not used by the material's model(s)", w[i].key);
         const abrdf_param_info *pi = abrdf_param_get(id);
@@ -537,7 +530,7 @@ static int do_material(parser *p, word *w, int n)
         if (abrdf_params_check(m.lobes[l], &m.params, msg, sizeof msg) != ABRDF_OK)
             return fail(p, "material '%s': %s", m.name, msg);
         int kd_id;
-        kd_used |= abrdf_param_find("kd", &kd_id) == ABRDF_OK && model_uses(m.lobes[l], kd_id);
+        kd_used |= abrdf_param_find("kd", &kd_id) == ABRDF_OK && cli_model_reads(m.lobes[l], kd_id);
     }
     if (m.kind == SCENE_MAT_MODELS && without_effect(p, &m)) return -1;
     /* Default ambient reflectance: the diffuse albedo where the material has one. */

@@ -21,15 +21,6 @@ int scene_needs_table(const scene *s)
     return 0;
 }
 
-/* Does the model read parameter id? */
-static int model_reads(abrdf_model model, int id)
-{
-    const abrdf_model_info *mi = abrdf_model_get(model);
-    for (int k = 0; mi && k < mi->param_count; ++k)
-        if (mi->params[k].id == id) return 1;
-    return 0;
-}
-
 /* Is parameter `name` given in the file, or read by one of the material's lobes (then its
  * value, default or not, describes the material)? */
 static int described(const scene_material *m, const char *name)
@@ -38,7 +29,7 @@ static int described(const scene_material *m, const char *name)
     if (abrdf_param_find(name, &id) != ABRDF_OK) return 0;
     if (id < 64 && (m->params_set >> id) & 1u) return 1;
     for (int l = 0; l < m->lobe_count; ++l)
-        if (model_reads(m->lobes[l], id)) return 1;
+        if (cli_model_reads(m->lobes[l], id)) return 1;
     return 0;
 }
 
@@ -54,7 +45,7 @@ static void ka_from(scene_material *sm, const abrdf_model *lobes, int count, con
     if (sm->ka_given) return;
     int kd_id, uses = 0;
     abrdf_param_find("kd", &kd_id);
-    for (int l = 0; l < count; ++l) uses |= model_reads(lobes[l], kd_id);
+    for (int l = 0; l < count; ++l) uses |= cli_model_reads(lobes[l], kd_id);
     for (int c = 0; c < 3; ++c) sm->ka[c] = uses ? p->kd[c] : 0.0;
 }
 
@@ -143,7 +134,7 @@ static int file_params(const scene_material *sm, abrdf_params *chosen, int stric
         const abrdf_param_info *pi = abrdf_param_get(id);
         if (describes(pi->name)) continue; /* taken into the selection's material */
         int read = 0;
-        for (int l = 0; l < sm->lobe_count; ++l) read |= model_reads(sm->lobes[l], id);
+        for (int l = 0; l < sm->lobe_count; ++l) read |= cli_model_reads(sm->lobes[l], id);
         if (read) {
             double v[3];
             int n = abrdf_param_read(&sm->params, id, v);
@@ -374,10 +365,7 @@ int scene_replace_models(scene *s, abrdf_model model, char *err, size_t err_size
         abrdf_params_init(model, &p);
         for (int k = 0; k < mi->param_count; ++k) {
             int id = mi->params[k].id, shared = 0;
-            for (int l = 0; l < m->lobe_count; ++l) {
-                const abrdf_model_info *old = abrdf_model_get(m->lobes[l]);
-                for (int q = 0; q < old->param_count; ++q) shared |= old->params[q].id == id;
-            }
+            for (int l = 0; l < m->lobe_count; ++l) shared |= cli_model_reads(m->lobes[l], id);
             double v[3];
             int cnt;
             if (shared && (cnt = abrdf_param_read(&m->params, id, v)) > 0)
