@@ -137,22 +137,18 @@ static int candidate_get(const class_candidates *c, int k, abrdf_model d, abrdf_
     return 0;
 }
 
-/* The flowchart's reference for m and the flags that refine its class. */
-static int reference_of(const abrdf_material *m, abrdf_selection *sel, abrdf_params *block,
-                        class_candidates *cc, int *no_diffuse)
+/* The candidates of m's surface class, refined by the flowchart's reference `ref` (its
+ * roughness: smooth or not), and whether m has no diffuse term. */
+static void class_of(const abrdf_material *m, const abrdf_selection *ref, class_candidates *cc,
+                     int *no_diffuse)
 {
-    abrdf_selection_init(sel);
-    abrdf_params_init(ABRDF_MODEL_NONE, block);
-    int st = abrdf_select(m, ABRDF_GOAL_PHOTOREAL, NULL, NULL, sel, block, NULL, NULL);
-    if (st != ABRDF_OK) return st;
     abrdf_material mm;
     abrdf_material_init(&mm);
     memcpy((char *)&mm + sizeof(size_t), (const char *)m + sizeof(size_t),
            (m->struct_size < sizeof mm ? m->struct_size : sizeof mm) - sizeof(size_t));
     const abrdf_select_rules *rules = abrdf_select_rules_get();
-    *cc = candidates_of(mm.type, sel->r <= rules->smooth_r_max, mm.anisotropy > rules->aniso_min);
+    *cc = candidates_of(mm.type, ref->r <= rules->smooth_r_max, mm.anisotropy > rules->aniso_min);
     *no_diffuse = !(mm.kd[0] > 0.0 || mm.kd[1] > 0.0 || mm.kd[2] > 0.0);
-    return ABRDF_OK;
 }
 
 int abrdf_budget_candidate(const abrdf_material *m, int index, abrdf_model *diffuse,
@@ -162,9 +158,13 @@ int abrdf_budget_candidate(const abrdf_material *m, int index, abrdf_model *diff
     if (index < 0) return ABRDF_E_RANGE;
     abrdf_selection sel;
     abrdf_params block;
-    class_candidates cc;
-    int no_diffuse, st = reference_of(m, &sel, &block, &cc, &no_diffuse);
+    abrdf_selection_init(&sel);
+    abrdf_params_init(ABRDF_MODEL_NONE, &block);
+    int st = abrdf_select(m, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &sel, &block, NULL, NULL);
     if (st != ABRDF_OK) return st;
+    class_candidates cc;
+    int no_diffuse;
+    class_of(m, &sel, &cc, &no_diffuse);
     for (int k = 0, seen = 0;; ++k) {
         abrdf_model lobe[2];
         int g = candidate_get(&cc, k, sel.diffuse, sel.specular, no_diffuse, lobe);
@@ -412,11 +412,7 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     }
     class_candidates cc;
     int no_diffuse;
-    {
-        abrdf_selection s2;
-        abrdf_params b2;
-        if ((st = reference_of(m, &s2, &b2, &cc, &no_diffuse)) != ABRDF_OK) goto done;
-    }
+    class_of(m, &sel, &cc, &no_diffuse);
 
     int integrating = (abrdf__brdf_needs(&ref) & ABRDF_NEEDS_INTEGRATION) != 0;
     abrdf__arena a;
