@@ -317,7 +317,8 @@ static int resolve_table(const mat_table *t, const char *entry, const char *extr
              "sphere material=m radius=1\n",
              entry, extra);
     if (scene_parse_text("t.scene", text, strlen(text), s, err, size)) return -1;
-    if (scene_select_materials(s, "t.scene", t, -1, NULL, err, size)) {
+    scene_selection how = SCENE_SELECTION_INIT;
+    if (scene_select(s, "t.scene", &how, t, NULL, err, size)) {
         scene_free(s);
         return -1;
     }

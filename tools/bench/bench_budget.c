@@ -50,11 +50,14 @@ static int variant_scene(int v, int spp, scene *s, double *select_s, char *err, 
         return -1;
     }
     double t0 = bench_wall_seconds();
-    int rc = v == B_PHOTO ? scene_select_budgets(s, "mixed.scene", &table, ABRDF_GOAL_PHOTOREAL,
-                                                 -1.0, spp, NULL, err, err_size)
-                          : scene_select_budgets(s, "mixed.scene", &table, -1,
-                                                 abrdf_select_rules_get()->nmse_class_max[v - 1],
-                                                 spp, NULL, err, err_size);
+    scene_selection how = SCENE_SELECTION_INIT;
+    how.forced = 1;
+    how.spp = spp;
+    if (v != B_PHOTO) {
+        how.all.by_budget = 1;
+        how.all.max_nmse = abrdf_select_rules_get()->nmse_class_max[v - 1];
+    }
+    int rc = scene_select(s, "mixed.scene", &how, &table, NULL, err, err_size);
     *select_s = bench_wall_seconds() - t0;
     mat_table_free(&table);
     if (rc) scene_free(s);

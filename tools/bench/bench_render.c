@@ -73,8 +73,10 @@ static int variant_scene(int v, scene *s, char *err, size_t err_size)
         }
         return 0;
     }
-    int goal = v == V_PHOTOREAL ? ABRDF_GOAL_PHOTOREAL : ABRDF_GOAL_PERFORMANCE;
-    if (scene_select_materials(s, "robot.scene", NULL, goal, NULL, err, err_size)) {
+    scene_selection how = SCENE_SELECTION_INIT;
+    how.forced = 1;
+    how.all.goal = v == V_PHOTOREAL ? ABRDF_GOAL_PHOTOREAL : ABRDF_GOAL_PERFORMANCE;
+    if (scene_select(s, "robot.scene", &how, NULL, NULL, err, err_size)) {
         scene_free(s);
         return -1;
     }

@@ -95,7 +95,8 @@ static void export_failed(out_file *o, const char *scene_path, char *err, size_t
 int cmd_export(int argc, char **argv)
 {
     const char *cmd = "export", *path = NULL, *out = NULL, *osl_dir = NULL, *mode = NULL;
-    scene_choice choice = SCENE_CHOICE_INIT;
+    scene_choice choice;
+    scene_choice_init(&choice);
     int pov = 0, cycles = 0, no_shadows = 0, native = 0, spp = 0;
     render_options opt;
     memset(&opt, 0, sizeof opt);
@@ -163,9 +164,9 @@ int cmd_export(int argc, char **argv)
         data_path_find("materials.csv", tpath, sizeof tpath);
         const char *out_role = "output", *ins[18] = {path, tpath},
                    *in_roles[18] = {"scene", "material table"};
-        for (int i = 0; i < choice.nmats; ++i)
+        for (int i = 0; i < choice.how.table_count; ++i)
             ins[2 + i] = choice.mats[i], in_roles[2 + i] = "--materials file";
-        if (out_files_distinct(&out, &out_role, 1, ins, in_roles, 2 + choice.nmats, err,
+        if (out_files_distinct(&out, &out_role, 1, ins, in_roles, 2 + choice.how.table_count, err,
                                sizeof err))
             return cli_fail(cmd, "%s", err);
     }

@@ -89,7 +89,8 @@ int cmd_render(int argc, char **argv)
 {
     const char *cmd = "render", *path = NULL, *out = NULL;
     const char *config = NULL, *display = NULL, *view = NULL;
-    scene_choice choice = SCENE_CHOICE_INIT;
+    scene_choice choice;
+    scene_choice_init(&choice);
     int full = 0, explain = 0, stats = 0, preview = 1;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     render_options opt = {
@@ -200,9 +201,9 @@ int cmd_render(int argc, char **argv)
         const char *outs[2] = {out, png}, *out_roles[2] = {"output", "preview"};
         const char *ins[19] = {path, config, tpath},
                    *in_roles[19] = {"scene", "--config file", "material table"};
-        for (int i = 0; i < choice.nmats; ++i)
+        for (int i = 0; i < choice.how.table_count; ++i)
             ins[3 + i] = choice.mats[i], in_roles[3 + i] = "--materials file";
-        if (out_files_distinct(outs, out_roles, 2, ins, in_roles, 3 + choice.nmats, err,
+        if (out_files_distinct(outs, out_roles, 2, ins, in_roles, 3 + choice.how.table_count, err,
                                sizeof err)) {
             free(png);
             return cli_fail(cmd, "%s", err);

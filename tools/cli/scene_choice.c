@@ -6,16 +6,23 @@
 #include "scene_choice.h"
 #include "scene_select.h"
 
+void scene_choice_init(scene_choice *c)
+{
+    memset(c, 0, sizeof *c);
+    c->how = (scene_selection)SCENE_SELECTION_INIT;
+    c->how.tables = c->mats;
+}
+
 int scene_choice_option(scene_choice *c, const char *cmd, int argc, char **argv, int *i)
 {
     const char *a = argv[*i];
     if (!strcmp(a, "--adaptive")) {
-        c->adaptive = 1;
+        c->how.forced = 1;
         return 1;
     }
     const char **slot = !strcmp(a, "--model")    ? &c->model_name
                         : !strcmp(a, "--goal")   ? &c->goal
-                        : !strcmp(a, "--budget") ? &c->budget_s
+                        : !strcmp(a, "--budget") ? &c->budget
                                                  : NULL;
     int set = !strcmp(a, "--set"), mats = !strcmp(a, "--materials");
     if (!slot && !set && !mats) return 0;
@@ -33,45 +40,45 @@ int scene_choice_option(scene_choice *c, const char *cmd, int argc, char **argv,
         }
         c->sets[c->nsets++] = val;
     } else {
-        if (c->nmats == SCENE_CHOICE_MAX_FILES) {
+        if (c->how.table_count == SCENE_CHOICE_MAX_FILES) {
             cli_fail(cmd, "too many --materials files (%d at most)", SCENE_CHOICE_MAX_FILES);
             return -1;
         }
-        c->mats[c->nmats++] = val;
+        c->mats[c->how.table_count++] = val;
     }
     return 1;
 }
 
 int scene_choice_check(scene_choice *c, const char *cmd)
 {
-    if (c->adaptive && c->model_name)
+    int adaptive = c->how.forced;
+    select_request *rq = &c->how.all;
+    if (adaptive && c->model_name)
         return cli_fail(cmd, "--adaptive and --model exclude each other");
-    if (c->goal && !c->adaptive) return cli_fail(cmd, "--goal needs --adaptive");
-    if (c->budget_s && !c->adaptive) return cli_fail(cmd, "--budget needs --adaptive");
-    if (c->budget_s && c->goal)
+    if (c->goal && !adaptive) return cli_fail(cmd, "--goal needs --adaptive");
+    if (c->budget && !adaptive) return cli_fail(cmd, "--budget needs --adaptive");
+    if (c->budget && c->goal)
         return cli_fail(cmd, "--goal and --budget exclude each other (a budget's reference is "
                              "the photoreal choice)");
-    if (c->budget_s) {
+    if (c->budget) {
         char berr[256];
-        if (budget_parse(c->budget_s, &c->budget, berr, sizeof berr))
+        rq->by_budget = 1;
+        if (budget_parse(c->budget, &rq->max_nmse, berr, sizeof berr))
             return cli_fail(cmd, "--budget: %s", berr);
     }
     if (c->nsets && !c->model_name)
         return cli_fail(cmd, "--set needs --model (the scene file sets materials' parameters)");
-    if (c->adaptive && !c->budget_s &&
-        (!c->goal || (strcmp(c->goal, "photoreal") && strcmp(c->goal, "performance"))))
+    if (adaptive && !c->budget && (!c->goal || abrdf_goal_find(c->goal, &rq->goal) != ABRDF_OK))
         return cli_fail(cmd, "--adaptive needs --goal photoreal, --goal performance or --budget B");
     return 0;
 }
 
-int scene_choice_apply(const scene_choice *c, const char *cmd, scene *s, const char *scene_path,
-                       int spp, FILE *explain)
+int scene_choice_apply(scene_choice *c, const char *cmd, scene *s, const char *scene_path, int spp,
+                       FILE *explain)
 {
     char err[1024];
-    abrdf_goal g = ABRDF_GOAL_PHOTOREAL;
-    if (c->adaptive && c->goal) abrdf_goal_find(c->goal, &g);
-    if (scene_resolve_budget(s, scene_path, c->mats, c->nmats, c->adaptive && c->goal ? (int)g : -1,
-                             c->budget_s ? c->budget : -1.0, spp, explain, err, sizeof err)) {
+    c->how.spp = spp;
+    if (scene_resolve(s, scene_path, &c->how, explain, err, sizeof err)) {
         fprintf(stderr, "abrdf %s: %s\n", cmd, err);
         return 1;
     }

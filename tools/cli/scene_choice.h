@@ -16,38 +16,35 @@
 
 #include <stdio.h>
 
-#include "scene.h"
+#include "scene_select.h"
 
 #define SCENE_CHOICE_MAX_SETS 64
 #define SCENE_CHOICE_MAX_FILES 16
 
 typedef struct scene_choice {
-    int adaptive;           /* --adaptive */
+    scene_selection how;    /* --adaptive: how.forced, with --goal|--budget in how.all (after
+                               scene_choice_check); --materials: how.tables */
     const char *model_name; /* --model, or NULL */
-    const char *goal;       /* --goal, or NULL */
-    const char *budget_s;   /* --budget as given, or NULL */
-    double budget;          /* the NMSE budget_s names (after scene_choice_check) */
+    const char *goal;       /* --goal as given, or NULL */
+    const char *budget;     /* --budget as given, or NULL */
     const char *sets[SCENE_CHOICE_MAX_SETS]; /* --set NAME=VALUE, in order */
     int nsets;
-    const char *mats[SCENE_CHOICE_MAX_FILES]; /* --materials FILE, in order */
-    int nmats;
+    const char *mats[SCENE_CHOICE_MAX_FILES]; /* --materials FILE, in order (how.tables) */
 } scene_choice;
 
-#define SCENE_CHOICE_INIT                                                                          \
-    {                                                                                              \
-        0, NULL, NULL, NULL, 0.0, {NULL}, 0, {NULL}, 0                                             \
-    }
+/* No option taken yet. */
+void scene_choice_init(scene_choice *c);
 
 /* If argv[*i] is one of the options above, take it and its value (advancing *i): 1; 0 if it is
  * not one of them; -1 after the message on a missing value or too many (exit CLI_EXIT_USAGE). */
 int scene_choice_option(scene_choice *c, const char *cmd, int argc, char **argv, int *i);
-/* The rules between the options (--adaptive with --goal or --budget, --set with --model, ...)
- * and the budget's value: 0, or CLI_EXIT_USAGE after the message. */
+/* The rules between the options (--adaptive with --goal or --budget, --set with --model, ...);
+ * the goal or budget parsed into c->how.all: 0, or CLI_EXIT_USAGE after the message. */
 int scene_choice_check(scene_choice *c, const char *cmd);
-/* Resolve s's table and adaptive materials (all of them with --adaptive), the budget's
- * prediction sampled at spp per pixel, then --model/--set: 0, or the command's exit status
- * after the message ("abrdf CMD: ..."). explain: the selection's traces, or NULL. */
-int scene_choice_apply(const scene_choice *c, const char *cmd, scene *s, const char *scene_path,
-                       int spp, FILE *explain);
+/* Resolve s's table and adaptive materials (all of them with --adaptive; scene_resolve), the
+ * budget's prediction sampled at spp per pixel, then --model/--set: 0, or the command's exit
+ * status after the message ("abrdf CMD: ..."). explain: the selection's traces, or NULL. */
+int scene_choice_apply(scene_choice *c, const char *cmd, scene *s, const char *scene_path, int spp,
+                       FILE *explain);
 
 #endif

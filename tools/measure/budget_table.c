@@ -169,7 +169,8 @@ static int run_material(const opts *o, const mat_entry *e, row *r)
         }
         mat_table one = {(mat_entry *)e, 1, 1};
         char err[512];
-        if (scene_select_materials(&refs, scene_file[k], &one, -1, NULL, err, sizeof err)) {
+        scene_selection how = SCENE_SELECTION_INIT;
+        if (scene_select(&refs, scene_file[k], &how, &one, NULL, err, sizeof err)) {
             fprintf(stderr, "budget_table: %s: %s\n", e->name, err);
             return -1;
         }

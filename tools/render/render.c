@@ -51,7 +51,7 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         if (m->kind == SCENE_MAT_TABLE || m->kind == SCENE_MAT_ADAPTIVE) {
             snprintf(err, err_size,
                      "material '%s' (line %d) is %s and not resolved to models "
-                     "(scene_select_materials)",
+                     "(scene_select)",
                      m->name, m->line,
                      m->kind == SCENE_MAT_TABLE ? "a material-table entry" : "adaptive");
             return -1;

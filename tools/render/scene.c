@@ -441,13 +441,11 @@ static int do_material(parser *p, word *w, int n)
                            "budget=none|slight|noticeable|NMSE");
         if (budget) {
             char err[160];
-            double max_nmse;
-            if (budget_parse(budget, &max_nmse, err, sizeof err)) return fail(p, "%s", err);
-            if (copy_name(p, "budget", budget, m.budget)) return -1;
-        } else {
-            if (strcmp(goal, "photoreal") && strcmp(goal, "performance"))
-                return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
-            strcpy(m.goal, goal);
+            m.request.by_budget = 1;
+            if (budget_parse(budget, &m.request.max_nmse, err, sizeof err))
+                return fail(p, "%s", err);
+        } else if (abrdf_goal_find(goal, &m.request.goal) != ABRDF_OK) {
+            return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
         }
         if (model || dif || spe)
             return fail(

@@ -15,7 +15,7 @@
 #define ABRDF_SCENE_H
 
 #include <stddef.h>
-#include "abrdf.h"
+#include "abrdf_select.h"
 #include "envmap.h"
 #include "mesh.h"
 
@@ -62,6 +62,15 @@ typedef struct scene_light {
     int line;                    /* line of the definition, for messages */
 } scene_light;
 
+/* What the selection is asked for: the paper's flowchart for a goal, or its budget mode
+ * (abrdf_select_budget: the cheapest candidate whose predicted image NMSE is below max_nmse;
+ * its reference is the photoreal choice). */
+typedef struct select_request {
+    int by_budget;   /* 0: the flowchart for `goal`; 1: the budget mode */
+    abrdf_goal goal; /* without a budget */
+    double max_nmse; /* with a budget: in (0, 1] */
+} select_request;
+
 /* How a material chooses its models. */
 typedef enum scene_material_kind {
     SCENE_MAT_MODELS = 0, /* explicit: one model, or a diffuse + specular pair */
@@ -81,8 +90,7 @@ typedef struct scene_material {
     double ka[3];                  /* ambient reflectance: ambient term = ka * scene ambient */
     int ka_given;                  /* ka given in the file (else it follows kd) */
     char table[SCENE_NAME_MAX];    /* TABLE / ADAPTIVE: material table entry ("" if none) */
-    char goal[SCENE_NAME_MAX];     /* ADAPTIVE: "photoreal" or "performance" ("" with a budget) */
-    char budget[SCENE_NAME_MAX];   /* ADAPTIVE: a budget, "slight" or an NMSE ("" with a goal) */
+    select_request request;        /* ADAPTIVE: its goal= or budget=, parsed */
     int line;
 } scene_material;
 

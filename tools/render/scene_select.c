@@ -193,149 +193,148 @@ void scene_budget_view(const scene *s, int spp, abrdf_view *v, abrdf_light_dir *
     v->lights = lights;
 }
 
-int scene_select_budgets(scene *s, const char *scene_name, const mat_table *table, int force_goal,
-                         double force_budget, int spp, FILE *explain, char *err, size_t err_size)
+/* The table entry sm names (NULL if it names none): 0, or -1 with the message, naming the
+ * nearest entries, when the table has no such entry. */
+static int entry_of(const scene_material *sm, const mat_table *table, const char *scene_name,
+                    const mat_entry **out, char *err, size_t err_size)
 {
-    abrdf_light_dir lights[SCENE_MAX_LIGHTS];
-    abrdf_view view;
-    scene_budget_view(s, spp, &view, lights);
-    for (int i = 0; i < s->material_count; ++i) {
-        scene_material *sm = &s->materials[i];
-        int forced = force_goal >= 0 || force_budget > 0.0;
-        if (sm->kind == SCENE_MAT_MODELS && !forced) continue;
-        abrdf_goal goal = ABRDF_GOAL_PHOTOREAL; /* a bare table= entry renders photoreal */
-        double budget = -1.0;
-        if (force_budget > 0.0) {
-            budget = force_budget;
-        } else if (force_goal >= 0) {
-            goal = (abrdf_goal)force_goal;
-        } else if (sm->kind == SCENE_MAT_ADAPTIVE && sm->budget[0]) {
-            char msg[160];
-            if (budget_parse(sm->budget, &budget, msg, sizeof msg)) {
-                path_msg(err, err_size, scene_name, ":%d: %s", sm->line, msg);
-                return -1;
-            }
-        } else if (sm->kind == SCENE_MAT_ADAPTIVE && abrdf_goal_find(sm->goal, &goal) != ABRDF_OK) {
-            path_msg(err, err_size, scene_name, ":%d: unknown goal '%s'", sm->line, sm->goal);
-            return -1;
-        }
-        abrdf_material am;
-        abrdf_material_init(&am);
-        const mat_entry *e = NULL;
-        if (sm->table[0]) {
-            e = table ? mat_table_find(table, sm->table) : NULL;
-            if (!e) {
-                const char *near[4];
-                int k = table ? mat_table_nearest(table, sm->table, near, 4) : 0;
-                char hint[256] = "";
-                for (int j = 0; j < k; ++j) strcat(strcat(hint, j ? ", " : ""), near[j]);
-                path_msg(err, err_size, scene_name,
-                         ":%d: material '%s': no entry '%s' in the material table%s%s%s", sm->line,
-                         sm->name, sm->table, k ? "; did you mean: " : "", hint,
-                         k ? "?" : " (abrdf advise --list)");
-                return -1;
-            }
-            am = e->m;
-        }
-        if (!e && !described(sm, "r") && !described(sm, "n")) {
-            path_msg(err, err_size, scene_name,
-                     ":%d: adaptive material '%s' needs table=ENTRY, r= or n=", sm->line, sm->name);
-            return -1;
-        }
-        describe(sm, &sm->params, &am);
-        char msg[512];
-        if (sm->kind != SCENE_MAT_MODELS &&
-            selection_inputs(sm, e ? &e->m : NULL, budget > 0.0 ? ABRDF_GOAL_PHOTOREAL : goal, msg,
-                             sizeof msg)) {
-            path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name, msg);
-            return -1;
-        }
-        abrdf_selection sel;
-        abrdf_params chosen;
-        select_trace trace = SELECT_TRACE_INIT;
-        budget_result br;
-        const select_trace *tr = &trace;
-        if (budget > 0.0) {
-            if (budget_run(&am, budget, NULL, &view, &br, msg, sizeof msg)) {
-                path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
-                         msg);
-                return -1;
-            }
-            sel = br.sel;
-            chosen = br.params;
-            tr = &br.trace;
-        } else {
-            abrdf_selection_init(&sel);
-            abrdf_params_init(ABRDF_MODEL_NONE, &chosen);
-            if (abrdf_select(&am, goal, NULL, NULL, &sel, &chosen,
-                             explain ? select_trace_keep : NULL, &trace) != ABRDF_OK) {
-                path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name,
-                         sel.message);
-                select_trace_free(&trace);
-                return -1;
-            }
-        }
-        int explicit_models = sm->kind == SCENE_MAT_MODELS;
-        sm->kind = SCENE_MAT_MODELS;
-        sm->lobe_count = 0;
-        if (sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = sel.diffuse;
-        sm->lobes[sm->lobe_count++] = sel.specular;
-        if (file_params(sm, &chosen, !explicit_models, msg, sizeof msg)) {
-            path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name, msg);
-            if (budget > 0.0)
-                budget_result_free(&br);
-            else
-                select_trace_free(&trace);
-            return -1;
-        }
-        sm->params = chosen;
-        if (budget > 0.0) {
-            /* the ambient term of the reference (the photoreal choice), so that the budget
-             * changes only the reflectance the fit approximates */
-            for (int k = 0; k < tr->count; ++k)
-                if (tr->steps[k].kind == ABRDF_STEP_REFERENCE) {
-                    abrdf_model rl[2];
-                    int rn = 0;
-                    if (tr->steps[k].diffuse != ABRDF_MODEL_NONE) rl[rn++] = tr->steps[k].diffuse;
-                    rl[rn++] = tr->steps[k].model;
-                    ka_from(sm, rl, rn, tr->steps[k].params);
-                }
-        } else {
-            ka_from(sm, sm->lobes, sm->lobe_count, &sm->params);
-        }
-        if (explain) {
-            char b[64] = "";
-            if (budget > 0.0) snprintf(b, sizeof b, "budget NMSE < %g", budget);
-            fprintf(explain, "selection: material '%s' (line %d), %s%s%s%s: %s%s%s\n", sm->name,
-                    sm->line, budget > 0.0 ? b : "goal ", budget > 0.0 ? "" : abrdf_goal_name(goal),
-                    e ? ", table entry " : "", e ? e->name : "",
-                    sel.diffuse != ABRDF_MODEL_NONE ? abrdf_model_get(sel.diffuse)->name : "",
-                    sel.diffuse != ABRDF_MODEL_NONE ? " + " : "",
-                    abrdf_model_get(sel.specular)->name);
-            for (int k = 0; k < tr->count; ++k)
-                fprintf(explain, "  %2d. %s\n", k + 1, tr->steps[k].text);
-        }
-        if (budget > 0.0)
-            budget_result_free(&br);
-        else
-            select_trace_free(&trace);
+    *out = NULL;
+    if (!sm->table[0]) return 0;
+    *out = table ? mat_table_find(table, sm->table) : NULL;
+    if (*out) return 0;
+    const char *near[4];
+    int k = table ? mat_table_nearest(table, sm->table, near, 4) : 0;
+    char hint[256] = "";
+    for (int j = 0; j < k; ++j) strcat(strcat(hint, j ? ", " : ""), near[j]);
+    path_msg(err, err_size, scene_name,
+             ":%d: material '%s': no entry '%s' in the material table%s%s%s", sm->line, sm->name,
+             sm->table, k ? "; did you mean: " : "", hint, k ? "?" : " (abrdf advise --list)");
+    return -1;
+}
+
+/* What the selection chooses for am as rq asks: the flowchart's choice for a goal (its trace
+ * kept with keep_trace), the budget mode's, predicted on view, for a budget (its trace always:
+ * the reference's step is in it). 0, or -1 with the reason in msg; out is freed by
+ * budget_result_free either way. */
+static int choose(const abrdf_material *am, const select_request *rq, const abrdf_view *view,
+                  int keep_trace, budget_result *out, char *msg, size_t msg_size)
+{
+    if (rq->by_budget) return budget_run(am, rq->max_nmse, NULL, view, out, msg, msg_size);
+    memset(out, 0, sizeof *out);
+    out->trace = (select_trace)SELECT_TRACE_INIT;
+    abrdf_selection_init(&out->sel);
+    abrdf_params_init(ABRDF_MODEL_NONE, &out->params);
+    if (abrdf_select(am, rq->goal, NULL, NULL, &out->sel, &out->params,
+                     keep_trace ? select_trace_keep : NULL, &out->trace) != ABRDF_OK) {
+        snprintf(msg, msg_size, "%s", out->sel.message);
+        return -1;
     }
     return 0;
 }
 
-int scene_select_materials(scene *s, const char *scene_name, const mat_table *table, int force_goal,
-                           FILE *explain, char *err, size_t err_size)
+/* sm's ambient reflectance after the choice c: a budget's is the reference's (the photoreal
+ * choice), so that the budget changes only the reflectance the fit approximates. */
+static void ambient_of(scene_material *sm, const select_request *rq, const budget_result *c)
 {
-    return scene_select_budgets(s, scene_name, table, force_goal, -1.0, 4, explain, err, err_size);
+    if (!rq->by_budget) {
+        ka_from(sm, sm->lobes, sm->lobe_count, &sm->params);
+        return;
+    }
+    for (int k = 0; k < c->trace.count; ++k) {
+        const abrdf_select_step *st = &c->trace.steps[k];
+        if (st->kind != ABRDF_STEP_REFERENCE) continue;
+        abrdf_model rl[2];
+        int rn = 0;
+        if (st->diffuse != ABRDF_MODEL_NONE) rl[rn++] = st->diffuse;
+        rl[rn++] = st->model;
+        ka_from(sm, rl, rn, st->params);
+    }
 }
 
-int scene_resolve_budget(scene *s, const char *scene_name, const char *const *files, int nfiles,
-                         int force_goal, double force_budget, int spp, FILE *explain, char *err,
-                         size_t err_size)
+static void explain_choice(FILE *f, const scene_material *sm, const select_request *rq,
+                           const mat_entry *e, const budget_result *c)
+{
+    char asked[64];
+    if (rq->by_budget)
+        snprintf(asked, sizeof asked, "budget NMSE < %g", rq->max_nmse);
+    else
+        snprintf(asked, sizeof asked, "goal %s", abrdf_goal_name(rq->goal));
+    abrdf_model d = c->sel.diffuse;
+    fprintf(f, "selection: material '%s' (line %d), %s%s%s: %s%s%s\n", sm->name, sm->line, asked,
+            e ? ", table entry " : "", e ? e->name : "",
+            d != ABRDF_MODEL_NONE ? abrdf_model_get(d)->name : "",
+            d != ABRDF_MODEL_NONE ? " + " : "", abrdf_model_get(c->sel.specular)->name);
+    for (int k = 0; k < c->trace.count; ++k)
+        fprintf(f, "  %2d. %s\n", k + 1, c->trace.steps[k].text);
+}
+
+/* Material sm as rq asks (scene_select): 0, or -1 with the message in err. */
+static int select_material(scene_material *sm, const char *scene_name, const select_request *rq,
+                           const mat_table *table, const abrdf_view *view, FILE *explain, char *err,
+                           size_t err_size)
+{
+    const mat_entry *e;
+    if (entry_of(sm, table, scene_name, &e, err, err_size)) return -1;
+    if (!e && !described(sm, "r") && !described(sm, "n")) {
+        path_msg(err, err_size, scene_name,
+                 ":%d: adaptive material '%s' needs table=ENTRY, r= or n=", sm->line, sm->name);
+        return -1;
+    }
+    abrdf_material am;
+    abrdf_material_init(&am);
+    if (e) am = e->m;
+    describe(sm, &sm->params, &am);
+    char msg[512];
+    int explicit_models = sm->kind == SCENE_MAT_MODELS;
+    if (!explicit_models &&
+        selection_inputs(sm, e ? &e->m : NULL, rq->by_budget ? ABRDF_GOAL_PHOTOREAL : rq->goal, msg,
+                         sizeof msg))
+        goto fail;
+    budget_result c;
+    if (choose(&am, rq, view, explain != NULL, &c, msg, sizeof msg)) goto fail;
+    sm->kind = SCENE_MAT_MODELS;
+    sm->lobe_count = 0;
+    if (c.sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = c.sel.diffuse;
+    sm->lobes[sm->lobe_count++] = c.sel.specular;
+    if (file_params(sm, &c.params, !explicit_models, msg, sizeof msg)) {
+        budget_result_free(&c);
+        goto fail;
+    }
+    sm->params = c.params;
+    ambient_of(sm, rq, &c);
+    if (explain) explain_choice(explain, sm, rq, e, &c);
+    budget_result_free(&c);
+    return 0;
+fail:
+    path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name, msg);
+    return -1;
+}
+
+int scene_select(scene *s, const char *scene_name, const scene_selection *how,
+                 const mat_table *table, FILE *explain, char *err, size_t err_size)
+{
+    abrdf_light_dir lights[SCENE_MAX_LIGHTS];
+    abrdf_view view;
+    scene_budget_view(s, how->spp, &view, lights);
+    const select_request photoreal = {0, ABRDF_GOAL_PHOTOREAL, 0.0};
+    for (int i = 0; i < s->material_count; ++i) {
+        scene_material *sm = &s->materials[i];
+        const select_request *rq = how->forced                      ? &how->all
+                                   : sm->kind == SCENE_MAT_ADAPTIVE ? &sm->request
+                                   : sm->kind == SCENE_MAT_TABLE    ? &photoreal /* a bare table= */
+                                                                    : NULL;
+        if (rq && select_material(sm, scene_name, rq, table, &view, explain, err, err_size))
+            return -1;
+    }
+    return 0;
+}
+
+int scene_resolve(scene *s, const char *scene_name, const scene_selection *how, FILE *explain,
+                  char *err, size_t err_size)
 {
     mat_table table = {NULL, 0, 0};
     int rc = -1;
-    if (force_goal >= 0 || force_budget > 0.0 || scene_needs_table(s)) {
+    if (how->forced || scene_needs_table(s)) {
         char tpath[4096];
         if (data_path_find("materials.csv", tpath, sizeof tpath) != 0) {
             path_msg(err, err_size, tpath, ": material table not found (set ABRDF_DATA_DIR)");
@@ -343,10 +342,9 @@ int scene_resolve_budget(scene *s, const char *scene_name, const char *const *fi
         }
         if (mat_table_load(&table, tpath, err, err_size)) goto done;
     }
-    for (int i = 0; i < nfiles; ++i)
-        if (mat_table_load(&table, files[i], err, err_size)) goto done;
-    rc = scene_select_budgets(s, scene_name, &table, force_goal, force_budget, spp, explain, err,
-                              err_size);
+    for (int i = 0; i < how->table_count; ++i)
+        if (mat_table_load(&table, how->tables[i], err, err_size)) goto done;
+    rc = scene_select(s, scene_name, how, &table, explain, err, err_size);
 done:
     mat_table_free(&table);
     return rc;

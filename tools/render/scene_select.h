@@ -9,22 +9,33 @@
 #include "materials.h"
 #include "scene.h"
 
-/* Every SCENE_MAT_TABLE / SCENE_MAT_ADAPTIVE material of s becomes SCENE_MAT_MODELS with the
- * selection's diffuse + specular models and parameters. force_goal >= 0 (an abrdf_goal)
- * makes every material adaptive with that goal, explicit ones included (their parameters
- * describe the material). `table` may be NULL if no material names an entry. If explain is
+/* How a scene's materials are chosen, from the command line to the selection in one piece:
+ * forced, every material (explicit ones included: their parameters describe the material)
+ * is chosen by `all`; otherwise each table= material by the photoreal flowchart and each
+ * adaptive one by its own goal= or budget=. */
+typedef struct scene_selection {
+    int forced;                /* every material by `all` (--adaptive) */
+    select_request all;        /* with forced */
+    const char *const *tables; /* material-table files merged over data/materials.csv */
+    int table_count;
+    int spp; /* the image's samples per pixel: the budget's view */
+} scene_selection;
+
+/* A selection that forces nothing, reads no extra table, and predicts at 4 samples/pixel. */
+#define SCENE_SELECTION_INIT                                                                       \
+    {                                                                                              \
+        0, {0, ABRDF_GOAL_PHOTOREAL, 0.0}, NULL, 0, 4                                              \
+    }
+
+/* Every SCENE_MAT_TABLE / SCENE_MAT_ADAPTIVE material of s (every material, forced) becomes
+ * SCENE_MAT_MODELS with the selection's diffuse + specular models and parameters: the
+ * flowchart's (abrdf_select) for a goal, the budget mode's (abrdf_select_budget, predicted on
+ * scene_budget_view; the ambient reflectance stays the reference's) for a budget. `table`
+ * (how->tables are not read here) may be NULL if no material names an entry. If explain is
  * not NULL, each choice is printed with the selection's trace. Returns 0, or -1 with
  * "SCENE:LINE: problem" in err. */
-int scene_select_materials(scene *s, const char *scene_name, const mat_table *table, int force_goal,
-                           FILE *explain, char *err, size_t err_size);
-
-/* The same, with budget materials: `adaptive budget=B` lines (and, with force_budget > 0,
- * every material, explicit ones included) are resolved by the selection's budget mode with
- * that NMSE budget, predicted on scene_budget_view (spp: the render's samples per pixel); the
- * ambient reflectance stays the reference's. force_goal and force_budget exclude each other
- * (force_budget < 0: none). */
-int scene_select_budgets(scene *s, const char *scene_name, const mat_table *table, int force_goal,
-                         double force_budget, int spp, FILE *explain, char *err, size_t err_size);
+int scene_select(scene *s, const char *scene_name, const scene_selection *how,
+                 const mat_table *table, FILE *explain, char *err, size_t err_size);
 
 /* The prediction's view of a budget material in scene s (abrdf_view, abrdf_fit.h): the
  * analytic sphere seen from the camera (view_dir toward it, up its up), sampled as finely as
@@ -34,17 +45,14 @@ int scene_select_budgets(scene *s, const char *scene_name, const mat_table *tabl
  * SCENE_MAX_LIGHTS entries, referenced by v. */
 void scene_budget_view(const scene *s, int spp, abrdf_view *v, abrdf_light_dir *lights);
 
-/* Does any material need the material table (or does force_goal make them adaptive)? */
+/* Does any material name an entry of the material table? */
 int scene_needs_table(const scene *s);
 
-/* scene_select_budgets with the material table loaded as `abrdf render` and `abrdf export`
- * do: data/materials.csv (data_path.h) if a material names an entry, force_goal >= 0 or
- * force_budget > 0, then each of the nfiles --materials files merged over it. force_budget > 0
- * resolves every material by the budget mode with that NMSE budget; spp: the image's samples
- * per pixel for the prediction's view. Returns 0, or -1 with the message. */
-int scene_resolve_budget(scene *s, const char *scene_name, const char *const *files, int nfiles,
-                         int force_goal, double force_budget, int spp, FILE *explain, char *err,
-                         size_t err_size);
+/* scene_select with the material table loaded as `abrdf render` and `abrdf export` do:
+ * data/materials.csv (data_path.h) if a material names an entry or the selection is forced,
+ * then each of how->tables merged over it. Returns 0, or -1 with the message. */
+int scene_resolve(scene *s, const char *scene_name, const scene_selection *how, FILE *explain,
+                  char *err, size_t err_size);
 
 /* Every material becomes the single model `model`, keeping parameter values it shares
  * with the old models (kd, ks, f0, r, n, ...). Returns 0 or -1 with a message. */
