@@ -11,6 +11,7 @@ debs=(build-essential g++ cmake pkg-config check python3 povray
       libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
       python3-openimageio python3-numpy   # independent image checks in tests
       python3-dev   # the Python module (python/src), which the sanitizer build compiles
+      libsleef-dev   # tools/bench/vmath_choice: SLEEF timed against the library's own vector math
       libembree-dev        # ray queries of the built-in renderer (tools/render/accel.c)
       libtinyobjloader-dev # OBJ meshes (tools/render/mesh_obj.cpp)
       clang-format  # the C style, checked by the test check_format

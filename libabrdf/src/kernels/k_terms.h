@@ -54,7 +54,7 @@ static inline abrdf__real d_beckmann(abrdf__real ch, abrdf__real sh2, abrdf__rea
 {
     if (!(ch > ABRDF__K(0))) return ABRDF__K(0);
     abrdf__real c2 = ch * ch;
-    return safe_div(exp(-sh2 / (c2 * ag * ag)), ABRDF__K(ABRDF__PI) * ag * ag * c2 * c2);
+    return safe_div(exp_r(-sh2 / (c2 * ag * ag)), ABRDF__K(ABRDF__PI) * ag * ag * c2 * c2);
 }
 
 /* Disney clearcoat GTR1 (Burley 2012, App. B); alpha not squared. */
@@ -71,9 +71,13 @@ static inline abrdf__real d_gtr1(abrdf__real ch, abrdf__real sh2, abrdf__real al
 static inline abrdf__real d_velvet(abrdf__real ch, abrdf__real sh2, abrdf__real alpha,
                                    abrdf__real k_amp, abrdf__real norm)
 {
-    abrdf__real g = ABRDF__K(0);
-    if (sh2 > ABRDF__K(ABRDF__VELVET_SIN2_MIN) && ch > ABRDF__K(0))
-        g = exp(-(ch * ch) / (sh2 * alpha * alpha)) / (sh2 * sh2);
+    /* no branch, so that batch loops vectorise: the term is computed with a sin^2 that is
+     * never below the cut (1 where it is) and then selected; the same values as testing first */
+    int on = sh2 > ABRDF__K(ABRDF__VELVET_SIN2_MIN);
+    abrdf__real s = on ? sh2 : ABRDF__K(1);
+    abrdf__real g = exp_r(-(ch * ch) / (s * alpha * alpha)) / (s * s);
+    g = on ? g : ABRDF__K(0);
+    g = ch > ABRDF__K(0) ? g : ABRDF__K(0);
     return norm * (ABRDF__K(1) + k_amp * g); /* Eq. 10 (D) */
 }
 

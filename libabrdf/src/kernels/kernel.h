@@ -25,6 +25,8 @@
  *   abrdf__real, ABRDF__K(x)  the real type and the constant x in it
  *   guards                    clampr, pos, safe_sqrt, safe_div, clampg, pow_pos, pow2k,
  *                             finite_or_zero: the kernels' only guarded sqrt, division, pow
+ *   exp_r                     e^x (with pow_pos, the only transcendentals a batch loop calls:
+ *                             float ones from fmath.h, which vectorise)
  *   abrdf__kp, kp_base        the prepared parameters and the conversion every setup starts
  *                             with (Cycles' "setup" step; each model's setup is beside its
  *                             kernel, k_dispatch.h lists them)
@@ -36,6 +38,7 @@
 #include <tgmath.h>
 
 #include "abrdf_internal.h"
+#include "fmath.h"
 #include "prepared.h"
 
 /* The precision of this translation unit's kernels, fixed by its first include of kernel.h
@@ -87,8 +90,25 @@ static inline abrdf__real clampg(abrdf__real x, abrdf__real lo, abrdf__real hi)
 #endif
 }
 /* pow with the base clamped to >= 0: C's pow(negative, non-integer) is NaN, and an even
- * power of a negative base would give a spurious lobe (MODELS.md B0). */
-static inline abrdf__real pow_pos(abrdf__real x, abrdf__real e) { return pow(pos(x), e); }
+ * power of a negative base would give a spurious lobe (MODELS.md B0). e >= 0. In float, the
+ * vectorisable polynomial form (fmath.h); in double, the C library's pow (the reference). */
+static inline abrdf__real pow_pos(abrdf__real x, abrdf__real e)
+{
+#if ABRDF__KERNEL_IS_FLOAT
+    return abrdf__powf_pos(x, e);
+#else
+    return pow(pos(x), e);
+#endif
+}
+/* e^x: in float the vectorisable form (fmath.h), in double the C library's. */
+static inline abrdf__real exp_r(abrdf__real x)
+{
+#if ABRDF__KERNEL_IS_FLOAT
+    return abrdf__expf(x);
+#else
+    return exp(x);
+#endif
+}
 /* x^(2^k) by k squarings of max(0, x): the Table-1 forms (MODELS.md B3). */
 static inline abrdf__real pow2k(abrdf__real x, int k)
 {
