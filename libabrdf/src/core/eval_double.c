@@ -14,8 +14,15 @@ void abrdf__prep_setup_d(abrdf__prep *pr)
     }
 }
 
+/* One case per model, each making the geometry itself: with geo_make inlined into the case,
+ * the compiler drops what that model's kernel does not read (a Lambert term needs only the
+ * two cosines, not the half vector's square root and division), so a per-sample call costs
+ * what its model reads. */
 #define ABRDF__EVAL_CASE(ID, SETUP, KERNEL, FORM)                                                  \
-    case ID: KERNEL(&pr->kd, &g, v); break;
+    case ID:                                                                                       \
+        geo_make(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);                                    \
+        if (geo_front(&g)) KERNEL(&pr->kd, &g, v);                                                 \
+        break;
 
 void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const double wo[3],
                             double f[3])
@@ -25,12 +32,9 @@ void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const dou
         abrdf__eval_special_prepared(pr, wi, wo, v);
     } else {
         abrdf__geo g;
-        geo_make(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);
-        if (geo_front(&g)) {
-            switch (pr->model) {
-                ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
-            default: break;
-            }
+        switch (pr->model) {
+            ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
+        default: break;
         }
     }
     /* A result that is not a finite non-negative number is a bug, but it must never reach

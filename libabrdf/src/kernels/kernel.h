@@ -160,8 +160,16 @@ typedef struct abrdf__geo {
     abrdf__real rv;         /* R.wo, R the mirror of wi: cos(gamma) of Phong */
 } abrdf__geo;
 
-static inline void geo_make(abrdf__geo *g, abrdf__real ix, abrdf__real iy, abrdf__real iz,
-                            abrdf__real ox, abrdf__real oy, abrdf__real oz)
+/* Always inlined, so that each caller keeps only the fields its kernel reads (the scalar
+ * path makes the geometry once per model case: eval_double.c). */
+#if defined(__GNUC__)
+#define ABRDF__ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define ABRDF__ALWAYS_INLINE
+#endif
+static inline ABRDF__ALWAYS_INLINE void geo_make(abrdf__geo *g, abrdf__real ix, abrdf__real iy,
+                                                 abrdf__real iz, abrdf__real ox, abrdf__real oy,
+                                                 abrdf__real oz)
 {
     g->ix = ix;
     g->iy = iy;
