@@ -28,14 +28,12 @@ void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const dou
                             double f[3])
 {
     double v[3] = {0.0, 0.0, 0.0};
-    if (abrdf__is_double_only(pr->model)) {
+    abrdf__geo g;
+    switch (pr->model) {
+        ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
+    default: /* the double-only models (hair, layered): special.c */
         abrdf__eval_special_prepared(pr, wi, wo, v);
-    } else {
-        abrdf__geo g;
-        switch (pr->model) {
-            ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
-        default: break;
-        }
+        break;
     }
     /* A result that is not a finite non-negative number is a bug, but it must never reach
      * the caller (abrdf.h promise). */
