@@ -3,16 +3,6 @@
 
 int abrdf__normalise3(const double v[3], double out[3])
 {
-    /* The common case, a direction of about unit length (what a renderer passes): one square
-     * root and one division, where the general path below divides six times (the divisions
-     * were two thirds of a per-sample Lambert call). Squares of components in that range can
-     * neither overflow nor underflow; NaN and Inf fail the test. */
-    double d = abrdf__dot3(v, v);
-    if (d >= 0.25 && d <= 4.0) {
-        double inv = 1.0 / sqrt(d);
-        for (int c = 0; c < 3; ++c) out[c] = v[c] * inv;
-        return 1;
-    }
     out[0] = out[1] = out[2] = 0.0;
     if (!abrdf__finite3(v)) return 0;
     /* Scale first so that squaring cannot overflow or underflow. */

@@ -123,8 +123,10 @@ static int eval_prep(const abrdf__prep *pr, const abrdf_frame *frame, const doub
                      const double wo[3], double f[3])
 {
     double i[3], o[3], li[3], lo[3];
-    if (!abrdf__normalise3(wi, i) || !abrdf__normalise3(wo, o))
-        return ABRDF_OK; /* degenerate: f = 0 */
+    int ok = abrdf__is_double_only(pr->model)
+                 ? abrdf__normalise3(wi, i) && abrdf__normalise3(wo, o)
+                 : abrdf__normalise3_unit(wi, i) && abrdf__normalise3_unit(wo, o);
+    if (!ok) return ABRDF_OK; /* degenerate: f = 0 */
     if (frame) {
         if (!abrdf__finite3(frame->n) || !abrdf__finite3(frame->t) || !abrdf__finite3(frame->b))
             return ABRDF_OK;
