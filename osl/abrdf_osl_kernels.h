@@ -562,7 +562,7 @@ color abrdf_weidlich_wilkie(vector wi, vector wo, color kd, int layer_count,
 // Belcour 2018, Eq. 16: f = sum_k e_k D_GGX(H; alpha_k) G(L, V; alpha_k) / (4 cos_i cos_o),
 // e_k and alpha_k from one pass top -> bottom over the stack at the cosine of the mean
 // direction (adding-doubling of energies, variances and Jacobians). The same choices as
-// the C code (docs/SPECIAL_CLOTH_LAYERED.md): cos = |H.L|, separable Smith G, a conductor
+// the C code (docs/MODELS.md, "Belcour 2018"): cos = |H.L|, separable Smith G, a conductor
 // or a failed refraction of the mean ends the stack, TIR with the index of the interface
 // above. The FGD and TIR tables are the library's (abrdf_belcour_tables.h, generated).
 

@@ -335,7 +335,7 @@ static double pair_cost(const abrdf_costs *costs, const abrdf_model lobe[2], con
 }
 
 /* The reference computed with a coarser quadrature, the i-th (1, 2, ...): huang with an entry
- * grid i nodes coarser, down to 2 x 2 (docs/SPECIAL_HAIR.md: the entry grid converges by 6,
+ * grid i nodes coarser, down to 2 x 2 (docs/MODELS.md: the entry grid converges by 6,
  * and (5, 3), (4, 3) stay within "slight" of the default on an image). Nothing is fitted: the
  * model's parameters stay the reference's. 0 when there is no such variant. */
 static int coarser_quadrature(const abrdf__brdf *ref, int i, abrdf__brdf *out)
