@@ -132,24 +132,28 @@ def check_page(path):
             old_pages.add(lineno)
     for lineno, line in enumerate(lines, 1):
         if lineno not in old_pages:
-            text = re.sub(r"\]\([^)]*\)", "]", line)  # a link's target is checked below
-            check_names(rel, lineno, text + " " + "".join(lines[lineno:lineno + 1]).strip(), True, len(text))
+            prose = re.sub(r"\]\([^)]*\)", "]", line)  # a link's target is checked below
+            check_names(rel, lineno, prose + " " + "".join(lines[lineno:lineno + 1]).strip(), True, len(prose))
+    text = [""] * len(lines)  # outside code, for the links (whose text may span lines)
     for lineno, line in outside_code(lines):
-        for m in re.finditer(r"!?\[[^\]]*\]\(([^)\s]+)\)", line):
-            target = m[1]
-            if re.match(r"[a-z]+:", target):
-                continue
-            file, _, anchor = target.partition("#")
-            CHECKED[0] += 1
-            dest = os.path.normpath(os.path.join(os.path.dirname(path), file)) if file else path
-            if not os.path.exists(dest):
-                fail(f"{rel}:{lineno}: link to {file}, which does not exist")
-                continue
-            if anchor:
-                heads = page(dest) if dest.endswith(".md") else None
-                if heads is None or anchor not in {a for _, a in heads}:
-                    fail(f"{rel}:{lineno}: link to {target}: {os.path.relpath(dest, src)} has no heading "
-                         f"with the anchor #{anchor}")
+        text[lineno - 1] = line
+    text = "\n".join(text)
+    for m in re.finditer(r"!?\[[^\]]*\]\(([^)\s]+)\)", text):
+        lineno = text.count("\n", 0, m.start()) + 1
+        target = m[1]
+        if re.match(r"[a-z]+:", target):
+            continue
+        file, _, anchor = target.partition("#")
+        CHECKED[0] += 1
+        dest = os.path.normpath(os.path.join(os.path.dirname(path), file)) if file else path
+        if not os.path.exists(dest):
+            fail(f"{rel}:{lineno}: link to {file}, which does not exist")
+            continue
+        if anchor:
+            heads = page(dest) if dest.endswith(".md") else None
+            if heads is None or anchor not in {a for _, a in heads}:
+                fail(f"{rel}:{lineno}: link to {target}: {os.path.relpath(dest, src)} has no heading "
+                     f"with the anchor #{anchor}")
 
 
 def check_sources():
@@ -170,7 +174,7 @@ def check_sources():
         for m in re.finditer(r"docs/[A-Z][A-Z0-9_]*\.md", text):
             # the name and what follows it, comment markers and line breaks dropped (a quoted
             # section may continue on the next line of a comment)
-            after = re.sub(r"\s*(//|#|\*)\s*|\s+", " ", text[m.start():m.start() + 300])
+            after = re.sub(r"\s*(//|#|\*)\s*|\s+", " ", text[m.start():m.start() + 300]).replace('\\"', '"')
             check_names(rel, text.count("\n", 0, m.start()) + 1, after, False)
 
 

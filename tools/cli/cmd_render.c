@@ -39,7 +39,7 @@ static int usage(void)
         "  --adaptive --goal photoreal|performance   choose models per material (abrdf_select)\n"
         "  --adaptive --budget none|slight|noticeable|NMSE   the cheapest fitted models whose\n"
         "                    predicted image NMSE against the photoreal choice is within the\n"
-        "                    budget (abrdf_select_budget, docs/BUDGET.md)\n"
+        "                    budget (abrdf_select_budget, docs/SELECTION.md, \"The budget mode\")\n"
         "  --materials FILE  material-table file merged over data/materials.csv (table= entries)\n"
         "  --threads N       worker threads (and Embree's build threads); default: online CPUs\n"
         "  --explain         print the effect plan (what is simulated and why) and counters\n"

@@ -4,7 +4,7 @@
  * cheapest candidate within the budget wins. The budget is a Table-8 class of the paper
  * (none < 1e-4, slight < 2.5e-4, noticeable < 1e-3; abrdf_select_rules) or a number.
  *
- * The candidates per surface class are one table (below; docs/BUDGET.md prints it): pairs of
+ * The candidates per surface class are one table (below; docs/SELECTION.md prints it): pairs of
  * a diffuse and a specular lobe where the class is a diffuse base under a specular lobe,
  * whole models (hair, cloth, layered) where the class has them, and the reference itself
  * with its own parameters (error 0), so a budget can always be met. */
