@@ -97,9 +97,9 @@ void abrdf_frame_make(vector N, vector T, output vector T_out, output vector B_o
     B_out = cross(n, T_out);
 }
 
-// The scene format's tangent field rules (docs/SCENES.md) in the host's object space:
-// "u" around the object's y axis, "v" along it, "radial" away from it, "axis" the fixed
-// object-space direction `axis`; any other rule returns `fallback` (e.g. dPdu).
+// The scene format's tangent field rules (docs/RENDERER.md, "Tangent field") in the host's
+// object space: "u" around the object's y axis, "v" along it, "radial" away from it, "axis"
+// the fixed object-space direction `axis`; any other rule returns `fallback` (e.g. dPdu).
 vector abrdf_tangent_field(string rule, vector axis, point Pw, vector fallback)
 {
     point p = transform("common", "object", Pw);

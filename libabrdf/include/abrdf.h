@@ -403,8 +403,9 @@ ABRDF_API double abrdf_pov_roughness_to_n(double rough); /* n = 1/rough; rough =
 /* ---- sampling ----------------------------------------------------------------------- *
  * What a path tracer needs beside evaluation (pbrt-v4's Sample_f/PDF, Mitsuba's
  * sample/pdf): for the viewer direction wo, a light direction wi drawn with a density close
- * to f_r(wi, wo) |N.wi|, its density and the weight f_r |N.wi| / pdf. docs/SAMPLING.md
- * lists the sampler of every model with its citation (abrdf_model_sampler names it).
+ * to f_r(wi, wo) |N.wi|, its density and the weight f_r |N.wi| / pdf. docs/RENDERER.md,
+ * "Importance sampling", lists the sampler of every model with its citation
+ * (abrdf_model_sampler names it).
  *   - pdf is per unit solid angle (1/sr), over the whole sphere of directions: a sampler
  *     may return wi below the surface (N.wi <= 0), where f_r = 0, so its weight is 0. Such
  *     samples are part of the distribution (count them, do not redraw).

@@ -175,7 +175,7 @@ def check_sources():
             # the name and what follows it, comment markers and line breaks dropped (a quoted
             # section may continue on the next line of a comment)
             after = re.sub(r"\s*(//|#|\*)\s*|\s+", " ", text[m.start():m.start() + 300]).replace('\\"', '"')
-            check_names(rel, text.count("\n", 0, m.start()) + 1, after, False)
+            check_names(rel, text.count("\n", 0, m.start()) + 1, after, False, 1)
 
 
 def main():
