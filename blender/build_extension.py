@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Build the Blender extension package (a .zip for Blender 4.2+, docs/BLENDER.md):
+"""Build the Blender extension package (a .zip for Blender 4.2+, docs/OSL.md, "The Blender extension"):
 
   blender_manifest.toml     blender/'s, plus `platforms` and `wheels` for the bundled wheel
   __init__.py, abrdf_ext_*.py   the add-on (blender/)

@@ -22,7 +22,8 @@ int main(void)
     printf("abrdf %s: disney_specular f_r = %.6f %.6f %.6f\n", abrdf_version(), f[0], f[1], f[2]);
 
     /* Importance sampling: light directions for the view direction wo, with pdf and weight
-     * f_r cos / pdf; their mean weight estimates the directional albedo (docs/SAMPLING.md). */
+     * f_r cos / pdf; their mean weight estimates the directional albedo (docs/RENDERER.md,
+     * "Importance sampling"). */
     abrdf_sample_result r;
     abrdf_sample_result_init(&r);
     double albedo = 0.0;

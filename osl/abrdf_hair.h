@@ -2,7 +2,8 @@
 // hair_common.c, hair_marschner.c and hair_huang.c: the same names, the same parameters in
 // the registry's order, the same guards, thresholds, node counts and loop structure, in
 // float. Included by abrdf_osl.h. The conventions, formulas and every deliberate choice are in
-// docs/SPECIAL_HAIR.md; only what the float transliteration changes is explained here.
+// docs/MODELS.md, "Hair models"; only what the float transliteration changes is explained
+// here.
 //
 // FIBRE ON A SURFACE: the fibre runs along the local +x axis (the frame's tangent T), the
 // surface normal N = +z is the normal of the ribbon carrying it. Each model computes the
@@ -714,7 +715,7 @@ color abrdf_huang_fibre(abrdf_huang_m m, vector wi_, vector wo_)
 }
 
 // Huang, Hullin, Hanika 2022, far field (Eqs. 12-14) with Cycles' TRRT+ and energy
-// compensation, integrated deterministically (docs/SPECIAL_HAIR.md). f_r = S / N.wi.
+// compensation, integrated deterministically (docs/MODELS.md, "Hair models"). f_r = S / N.wi.
 color abrdf_huang(vector wi, vector wo, float eta, float melanin, float redness,
                   float cuticle_tilt, float aspect_ratio, float r, int entry_grid,
                   int internal_grid)

@@ -97,9 +97,9 @@ void abrdf_frame_make(vector N, vector T, output vector T_out, output vector B_o
     B_out = cross(n, T_out);
 }
 
-// The scene format's tangent field rules (docs/SCENES.md) in the host's object space:
-// "u" around the object's y axis, "v" along it, "radial" away from it, "axis" the fixed
-// object-space direction `axis`; any other rule returns `fallback` (e.g. dPdu).
+// The scene format's tangent field rules (docs/RENDERER.md, "Tangent field") in the host's
+// object space: "u" around the object's y axis, "v" along it, "radial" away from it, "axis"
+// the fixed object-space direction `axis`; any other rule returns `fallback` (e.g. dPdu).
 vector abrdf_tangent_field(string rule, vector axis, point Pw, vector fallback)
 {
     point p = transform("common", "object", Pw);
@@ -562,7 +562,7 @@ color abrdf_weidlich_wilkie(vector wi, vector wo, color kd, int layer_count,
 // Belcour 2018, Eq. 16: f = sum_k e_k D_GGX(H; alpha_k) G(L, V; alpha_k) / (4 cos_i cos_o),
 // e_k and alpha_k from one pass top -> bottom over the stack at the cosine of the mean
 // direction (adding-doubling of energies, variances and Jacobians). The same choices as
-// the C code (docs/SPECIAL_CLOTH_LAYERED.md): cos = |H.L|, separable Smith G, a conductor
+// the C code (docs/MODELS.md, "Belcour 2018"): cos = |H.L|, separable Smith G, a conductor
 // or a failed refraction of the mean ends the stack, TIR with the index of the interface
 // above. The FGD and TIR tables are the library's (abrdf_belcour_tables.h, generated).
 

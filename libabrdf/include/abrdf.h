@@ -180,7 +180,7 @@ typedef enum abrdf_model {
  * pbrt-v4's convention (a lossless fibre has integral S dwi = 1 over the sphere), the
  * models return f_r = S / |N.wi| for wi, wo above the ribbon, 0 otherwise, so that
  * f_r * N.wi = S. Absorption comes from melanin/redness (Cycles' mapping). Hair f_r is not
- * reciprocal; docs/SPECIAL_HAIR.md gives the measured asymmetry. */
+ * reciprocal; docs/MODELS.md, "Hair models", gives the measured asymmetry. */
 
 /* What a model needs from the caller or the renderer (bit flags of abrdf_model_info.needs). */
 #define ABRDF_NEEDS_TANGENT 0x01u     /* uses T and B (anisotropy, fibres) */
@@ -232,7 +232,8 @@ typedef struct abrdf_params {
     int entry_grid;    /* huang: quadrature of the entry microfacet, an n x n midpoint grid of
                           the VNDF square, [1, 32], default 6 */
     int internal_grid; /* huang: the same for TRT's internal reflection, [1, 32], default 3
-                          (docs/SPECIAL_HAIR.md: image error and work of each grid) */
+                          (docs/MODELS.md, "Convergence on an image": image error and
+                          work of each grid) */
 } abrdf_params;
 
 typedef enum abrdf_param_kind {
@@ -391,7 +392,7 @@ ABRDF_API int abrdf_shade(abrdf_model diffuse, abrdf_model specular, const abrdf
                           const abrdf_frame *frame, const double wi[3], const double wo[3],
                           const double light[3], const double ambient[3], double out[3]);
 
-/* ---- roughness converters (documented with their error in docs/CONVERTERS.md) -------- */
+/* ---- roughness converters (their errors: docs/MODELS.md, "Roughness converters") ----- */
 ABRDF_API double abrdf_r_to_alpha_g(double r);           /* alpha_g = r^2 */
 ABRDF_API double abrdf_alpha_g_to_r(double alpha_g);     /* r = sqrt(alpha_g) */
 ABRDF_API double abrdf_alpha_g_to_n(double alpha_g);     /* Blinn-Phong n = 2/alpha_g^2 - 2 */
@@ -402,8 +403,9 @@ ABRDF_API double abrdf_pov_roughness_to_n(double rough); /* n = 1/rough; rough =
 /* ---- sampling ----------------------------------------------------------------------- *
  * What a path tracer needs beside evaluation (pbrt-v4's Sample_f/PDF, Mitsuba's
  * sample/pdf): for the viewer direction wo, a light direction wi drawn with a density close
- * to f_r(wi, wo) |N.wi|, its density and the weight f_r |N.wi| / pdf. docs/SAMPLING.md
- * lists the sampler of every model with its citation (abrdf_model_sampler names it).
+ * to f_r(wi, wo) |N.wi|, its density and the weight f_r |N.wi| / pdf. docs/RENDERER.md,
+ * "Importance sampling", lists the sampler of every model with its citation
+ * (abrdf_model_sampler names it).
  *   - pdf is per unit solid angle (1/sr), over the whole sphere of directions: a sampler
  *     may return wi below the surface (N.wi <= 0), where f_r = 0, so its weight is 0. Such
  *     samples are part of the distribution (count them, do not redraw).

@@ -8,8 +8,8 @@
  * measure). abrdf_select_budget then chooses, for a material, the cheapest candidate whose
  * predicted image error is within a budget given as a Table-8 class or a number, with the
  * photoreal choice of the paper's flowchart (abrdf_select) as the reference.
- * docs/BUDGET.md documents the objective, the optimiser, the prediction and their
- * validation on rendered images.
+ * docs/SELECTION.md, "The budget mode", documents the objective, the optimiser, the
+ * prediction and their validation on rendered images.
  *
  * A "BRDF" below is what the selection hands out and abrdf_shade evaluates: one or two lobes
  * (diffuse, specular; either may be ABRDF_MODEL_NONE, not both) summed, sharing one
@@ -32,7 +32,8 @@
  *   sigma, ...), which a coarse scan and golden-section search (one parameter) or bounded
  *   Nelder-Mead (several) explore from the converters' starting points. Every parameter
  *   stays inside the candidate's registry range. Deterministic; bounded work (a closed-form
- *   pair takes a few milliseconds, docs/BUDGET.md gives the hair and layered timings).
+ *   pair takes a few milliseconds; docs/SELECTION.md, "1. The fit", gives the hair and
+ *   layered timings).
  *
  * THE PREDICTION: both BRDFs render a small image without ray tracing and the image NMSE
  *   (the paper's measure, MODELS.md B9) is the prediction. The image is an abrdf_view: by
@@ -109,8 +110,8 @@ typedef struct abrdf_view {
 } abrdf_view;
 
 /* The default sphere: view along +z, axis +y, 128 samples across, the default lights
- * (docs/BUDGET.md: the key light of scenes/sphere.scene, from (-1, 1, 1) with irradiance 3,
- * and a fill light from (1, 0.3, 0.5) with irradiance 1). */
+ * (docs/SELECTION.md, "2. The prediction": the key light of scenes/sphere.scene, from
+ * (-1, 1, 1) with irradiance 3, and a fill light from (1, 0.3, 0.5) with irradiance 1). */
 ABRDF_API int abrdf_view_init_sized(abrdf_view *v, size_t struct_size);
 static inline int abrdf_view_init(abrdf_view *v) { return abrdf_view_init_sized(v, sizeof *v); }
 
@@ -153,7 +154,7 @@ typedef struct abrdf_fit_result {
     size_t struct_size;      /* bytes of this struct as the caller compiled it; set by _init */
     double rel_l2;           /* sqrt(sum q (f - f_ref)^2 cos^2 / sum q f_ref^2 cos^2), >= 0 */
     double max_rel_pct;      /* max |f - f_ref| / f_ref * 100 over the reference's highlight
-                                zone (Table 2's measure; docs/BUDGET.md), >= 0 */
+                                zone (Table 2's measure; docs/SELECTION.md), >= 0 */
     double max_abs;          /* max |f - f_ref| cos over the set, divided by the largest
                                 f_ref cos (Table 3's measure for a lobe of peak 1), >= 0 */
     double nmse_pred;        /* predicted image NMSE against the reference; < 0 = not asked */
@@ -179,11 +180,11 @@ ABRDF_API size_t abrdf_fit_workspace_size(const abrdf_fit_options *opt, const ab
  * ref_specular with ref_params). cand_params (initialised by abrdf_params_init) receives the
  * fitted block: the parameters the candidate reads that the reference also reads start from
  * the reference's values (clamped into the candidate's range), the rest from the candidate's
- * defaults, then the fit sets kd, ks, f0 and the searched parameters (docs/BUDGET.md lists
- * them per model). work: abrdf_fit_workspace_size(opt, opt->view) bytes, aligned for double.
- * Returns ABRDF_OK, or ABRDF_E_NULL / ABRDF_E_MODEL / ABRDF_E_RANGE / ABRDF_E_SIZE with
- * res->message naming the problem (a candidate with no lobe, invalid reference parameters,
- * a workspace too small). */
+ * defaults, then the fit sets kd, ks, f0 and the searched parameters (docs/SELECTION.md,
+ * "1. The fit", lists them per model). work: abrdf_fit_workspace_size(opt, opt->view) bytes,
+ * aligned for double. Returns ABRDF_OK, or ABRDF_E_NULL / ABRDF_E_MODEL / ABRDF_E_RANGE /
+ * ABRDF_E_SIZE with res->message naming the problem (a candidate with no lobe, invalid
+ * reference parameters, a workspace too small). */
 ABRDF_API int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular,
                         const abrdf_params *ref_params, abrdf_model cand_diffuse,
                         abrdf_model cand_specular, abrdf_params *cand_params,
@@ -224,7 +225,8 @@ static inline int abrdf_budget_init(abrdf_budget *b)
 
 /* Candidate `index` the budget mode fits for material m: index 0 is the reference (the
  * flowchart's photoreal choice), then every model or pair that can represent m's surface class
- * (docs/BUDGET.md). A lone model comes as (*diffuse = ABRDF_MODEL_NONE, *specular = model).
+ * (docs/SELECTION.md, "3. The selection within a budget"). A lone model comes as
+ * (*diffuse = ABRDF_MODEL_NONE, *specular = model).
  * Returns ABRDF_OK, ABRDF_E_RANGE past the last candidate, or an error of abrdf_select for an
  * invalid material. */
 ABRDF_API int abrdf_budget_candidate(const abrdf_material *m, int index, abrdf_model *diffuse,
@@ -233,7 +235,8 @@ ABRDF_API int abrdf_budget_candidate(const abrdf_material *m, int index, abrdf_m
 /* The error-budget mode of the selection. The reference is the photoreal choice of the
  * paper's flowchart for material m (abrdf_select, goal photoreal, whose trace steps come
  * first). The candidates are every model or diffuse + specular pair that can represent the
- * material's surface class (docs/BUDGET.md lists them; the reference itself is one, with
+ * material's surface class (docs/SELECTION.md, "3. The selection within a budget", lists
+ * them; the reference itself is one, with
  * its own parameters and error 0): each is fitted (abrdf_fit) and its image error predicted
  * (abrdf_predict_nmse) against the reference, and its cost read from costs (NULL = the
  * built-in table, abrdf_costs_builtin). The cheapest candidate whose predicted NMSE is
@@ -253,7 +256,8 @@ ABRDF_API int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *b
 
 /* The built-in cost table of every model: ns per evaluation on the float batch path as
  * `abrdf calibrate` measured it on the reference machine named in the unit string
- * (docs/BUDGET.md); abrdf calibrate measures the host. */
+ * (docs/SELECTION.md, "3. The selection within a budget"); abrdf calibrate measures the
+ * host. */
 ABRDF_API int abrdf_costs_builtin(abrdf_costs *out);
 
 #ifdef __cplusplus

@@ -1,4 +1,5 @@
-"""One model fitted to another (abrdf_fit, docs/BUDGET.md): fit() and its result, Fit."""
+"""One model fitted to another (abrdf_fit, docs/SELECTION.md, "The budget mode"): fit() and its
+result, Fit."""
 from __future__ import annotations
 
 from dataclasses import dataclass

@@ -35,9 +35,9 @@ class Layer:
 @dataclass(frozen=True)
 class Material:
     """A material as the flowchart reads it (abrdf_material; a row of data/materials.csv,
-    docs/MATERIALS.md). None leaves a field at the library's default (abrdf_material_init:
-    n and r unset, one derived from the other; kd 0.8, ks 1, f0 0.04, eta unset, melanin
-    0.3). source, file and line say where a table entry comes from."""
+    docs/SELECTION.md, "The material table"). None leaves a field at the library's default
+    (abrdf_material_init: n and r unset, one derived from the other; kd 0.8, ks 1, f0 0.04, eta
+    unset, melanin 0.3). source, file and line say where a table entry comes from."""
 
     name: str | None = None
     type: str = "general"
@@ -208,7 +208,7 @@ def select(material: str | Material | Mapping[str, object], goal: Goal | None = 
            extra: PathLike | Sequence[PathLike] | None = None,
            budget: Budget | None = None) -> Selection:
     """The paper's flowchart (Fig. 2; abrdf_select) for a material and a goal, or the
-    selection's budget mode (abrdf_select_budget, docs/BUDGET.md).
+    selection's budget mode (abrdf_select_budget, docs/SELECTION.md, "The budget mode").
 
     material: a table name (abrdf.materials(extra)), a Material, or a mapping of Material's
     fields. goal: "photoreal" (the default) or "performance". max_rel_error (percent) and

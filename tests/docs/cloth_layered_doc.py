@@ -1,5 +1,6 @@
-"""cloth_layered_doc.py BIN SRC - docs/SPECIAL_CLOTH_LAYERED.md quotes what its programs print
-now (BIN holds measure_cloth_layered, gen_belcour_tables, test_cloth, test_layered):
+"""cloth_layered_doc.py BIN SRC - docs/MODELS.md, "Cloth and layered models", quotes what its
+programs print now (BIN holds measure_cloth_layered, gen_belcour_tables, test_cloth,
+test_layered):
   - each model's defaults table: albedo 0 / 45 / 80 deg (order 256) and reciprocity error;
   - the Weidlich-Wilkie white-furnace table, each row run with the `--set`s its label names;
   - every figure triple "a / b / c" followed by a `measure_cloth_layered ...` command;
@@ -11,10 +12,12 @@ import os
 import re
 import shlex
 
-from doc_check import NUM, DocError, fail, guarded, line_of, main_args, parse_table, read, require_number, run
+from doc_check import (NUM, DocError, fail, guarded, line_of, main_args, parse_table, read, require_number, run,
+                       section)
 
 bin_dir, src = main_args("BIN SRC", 2)
-DOC = "docs/SPECIAL_CLOTH_LAYERED.md"
+DOC = "docs/MODELS.md"
+SECTION = "Cloth and layered models"
 os.environ["CK_FORK"] = "no"
 
 
@@ -35,12 +38,12 @@ def model_sections(doc):
     """{code name: section text}: the top table maps each model's title to its name."""
     lines = doc.splitlines()
     _, rows, _ = parse_table(lines, next(i for i, l in enumerate(lines) if l.startswith("| model | name |")))
-    heads = [i for i, l in enumerate(lines) if l.startswith("## ")]
+    heads = [i for i, l in enumerate(lines) if l.startswith("### ")]
     out = {}
     for title, name, *_ in rows:
-        i = next((h for h in heads if lines[h][3:].startswith(title)), None)
+        i = next((h for h in heads if lines[h][4:].startswith(title)), None)
         if i is None:
-            raise DocError(f"{DOC}: no section '## {title} ...'")
+            raise DocError(f"{DOC}: no section '### {title} ...'")
         end = next((h for h in heads if h > i), len(lines))
         out[name.strip("`")] = "\n".join(lines[i:end])
     return out
@@ -138,7 +141,7 @@ def unit_suites(doc):
 
 
 def body():
-    doc = read(os.path.join(src, DOC))
+    doc = section(read(os.path.join(src, DOC)), SECTION)
     defaults_tables(doc, model_sections(doc))
     furnace_table(doc)
     commands_in_text(doc)

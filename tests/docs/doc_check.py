@@ -58,6 +58,25 @@ def run(cmd, cwd=None):
     return _RUNS[key]
 
 
+def section(doc, title):
+    """The document with only the section whose heading starts with `title` left (to the next
+    heading of its level or above); the other lines are blanked, so line numbers stay the
+    page's. A page quotes several programs, one section each."""
+    lines, keep, level, fence, found = doc.splitlines(), [], None, False, False
+    for line in lines:
+        if line.lstrip().startswith("```"):
+            fence = not fence
+        m = None if fence else re.match(r"(#+) (.*)", line)
+        if m and level and len(m[1]) <= level:
+            level = None
+        if m and level is None and m[2].startswith(title) and not found:
+            level, found = len(m[1]), True
+        keep.append(level is not None)
+    if not found:
+        raise DocError(f"no section '{title}'")
+    return "\n".join(l if k else "" for l, k in zip(lines, keep)) + "\n"
+
+
 def line_of(doc, text):
     i = doc.find(text)
     return doc.count("\n", 0, i) + 1 if i >= 0 else 0

@@ -1,5 +1,5 @@
-"""hair_doc.py BIN SRC - docs/SPECIAL_HAIR.md quotes what its programs print now (BIN holds
-test_hair_marschner, test_hair_huang, test_invariants, measure_hair, gen_hair_tables): the
+"""hair_doc.py BIN SRC - docs/MODELS.md, "Hair models", quotes what its programs print now
+(BIN holds test_hair_marschner, test_hair_huang, test_invariants, measure_hair, gen_hair_tables): the
 fibre albedos, lobes and reciprocity, Huang's convergence, white furnace and R limit, the
 surface albedos, the continuity and stability figures, the table convergence. The costs are
 one-off timings, marked so on the page."""
@@ -7,9 +7,11 @@ import os
 import re
 
 from doc_check import NUM, DocError, fail, guarded, main_args, parse_table, read, require_number, run
+from doc_check import section as page_section
 
 bin_dir, src = main_args("BIN SRC", 2)
-DOC = "docs/SPECIAL_HAIR.md"
+DOC = "docs/MODELS.md"
+SECTION = "Hair models"
 os.environ["CK_FORK"] = "no"
 
 
@@ -47,10 +49,10 @@ def surface(doc, text, model, grid):
 
 
 def body():
-    doc = read(os.path.join(src, DOC))
+    doc = page_section(read(os.path.join(src, DOC)), SECTION)
     flat = lambda t: re.sub(r"\s+", " ", t)
-    mar_text = section(doc, "## `marschner`", "## `huang`")
-    hu_text = section(doc, "## `huang`", "## Stability grid")
+    mar_text = section(doc, "\n### `marschner`", "\n### `huang`")
+    hu_text = section(doc, "\n### `huang`", "\n### Stability grid")
     mar = prog("test_hair_marschner")
     hu = prog("test_hair_huang")
     inv = prog("test_invariants")

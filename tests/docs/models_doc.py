@@ -6,7 +6,8 @@ digit)."""
 import os
 import re
 
-from doc_check import NUM, DocError, fail, guarded, line_of, main_args, parse_table, read, require_number, run
+from doc_check import (NUM, DocError, fail, guarded, line_of, main_args, parse_table, read, require_number, run,
+                       section)
 
 invariants, stability, src = main_args("TEST_INVARIANTS TEST_STABILITY SRC", 3)
 DOC = "docs/MODELS.md"
@@ -37,8 +38,9 @@ def suite_output():
 
 
 def sections(doc):
-    """`#### models — ...` sections: [(model names, first line, text)]."""
-    lines, out = doc.splitlines(), []
+    """`#### models — ...` sections of "The models": [(model names, first line, text)] (the
+    special-surface sections further down have #### headings of their own)."""
+    lines, out = section(doc, "The models").splitlines(), []
     heads = [i for i, l in enumerate(lines) if l.startswith("#### ")]
     for k, i in enumerate(heads):
         end = heads[k + 1] if k + 1 < len(heads) else next(
@@ -118,7 +120,7 @@ def prose(doc, recip, frame):
             fail(f"{DOC}:{line_of(doc, m[0])}: {model}'s reciprocity asymmetry is {recip.get(model)}, not 0")
     for model in general_models(doc):
         if frame.get(model) != "0":
-            fail(f"{DOC}: 'Measured: 0 difference for every model of this page', but frame invariance "
+            fail(f"{DOC}: 'Measured: 0 difference for every model of The models', but frame invariance "
                  f"of {model} is {frame.get(model)}")
 
 

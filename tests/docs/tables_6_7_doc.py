@@ -1,5 +1,5 @@
-"""tables_6_7_doc.py ABRDF SRC - docs/TABLES_6_7.md quotes what `abrdf tables 6|7` print now:
-the two outputs (every line), the sensitivity table (each column re-run with the options its
+"""tables_6_7_doc.py ABRDF SRC - docs/TABLES.md, "Tables 6 and 7", quotes what `abrdf tables 6|7`
+print now: the two outputs (every line), the sensitivity table (each column re-run with the options its
 header names, `abrdf tables 6 --csv [options]`), and the figures the discussion takes from
 them (published/computed ratios, the plateaus at n = 1000, the cells in the same class)."""
 import csv
@@ -9,10 +9,11 @@ import re
 import statistics
 
 from doc_check import (DocError, fail, guarded, line_of, main_args, parse_table, quoted, read, require_lines,
-                       require_number, round_sig, run)
+                       require_number, round_sig, run, section)
 
 abrdf, src = main_args("ABRDF SRC", 2)
-DOC = "docs/TABLES_6_7.md"
+DOC = "docs/TABLES.md"
+SECTION = "Tables 6 and 7"
 
 def csv_table(table, options=()):
     """{alpha_g label: computed row}, {alpha_g label: published row}, model names."""
@@ -80,7 +81,7 @@ def discussion(doc, t6, t7):
 
 
 def body():
-    doc = read(os.path.join(src, DOC))
+    doc = section(read(os.path.join(src, DOC)), SECTION)
     for t in ("6", "7"):
         require_lines(DOC, doc, run([abrdf, "tables", t]), f"`abrdf tables {t}`")
     sensitivity(doc)

@@ -1,4 +1,5 @@
-"""tables_doc.py ABRDF SRC - docs/TABLES.md quotes what its programs print now:
+"""tables_doc.py ABRDF SRC - docs/TABLES.md, its section on Tables 2, 3 and 4, quotes what its
+programs print now:
 `abrdf tables 2` and `abrdf tables 3` (every line), `tools/measure/zone_candidates.py` (every
 line), and `abrdf tables 4 --costs costs.txt` run on the cost file the page quotes (every
 line: the cost file itself is a one-off calibration, the table computed from it is not)."""
@@ -7,14 +8,15 @@ import re
 import sys
 import tempfile
 
-from doc_check import NUM, DocError, guarded, main_args, read, require_lines, require_number, run
+from doc_check import NUM, DocError, guarded, main_args, read, require_lines, require_number, run, section
 
 abrdf, src = main_args("ABRDF SRC", 2)
 DOC = "docs/TABLES.md"
+SECTION = "The paper's Tables 2, 3 and 4"
 
 
 def body():
-    doc = read(os.path.join(src, DOC))
+    doc = section(read(os.path.join(src, DOC)), SECTION)
     for t in ("2", "3"):
         require_lines(DOC, doc, run([abrdf, "tables", t]), f"`abrdf tables {t}`")
     zone = os.path.join(src, "tools", "measure", "zone_candidates.py")

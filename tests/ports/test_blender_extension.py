@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The Blender extension (blender/, docs/BLENDER.md) in Blender's `bpy` module, headless:
+"""The Blender extension (blender/, docs/OSL.md, "The Blender extension") in Blender's
+`bpy` module, headless:
 
 1. the built .zip installs (Install from Disk's operator) into a scratch user directory and
    enables; its bundled abrdf package is the one the add-on imports;

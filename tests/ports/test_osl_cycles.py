@@ -53,7 +53,8 @@ VARIANTS = [("marschner", ("melanin=0",)),
             ("huang", ("melanin=0",)),
             ("huang", ("melanin=0.3", "redness=0.2", "aspect_ratio=0.4", "cuticle_tilt=-6",
                        "r=0.15", "eta=1.8")),
-            # the quadrature grids the budget mode coarsens (docs/SPECIAL_HAIR.md)
+            # the quadrature grids the budget mode coarsens (docs/MODELS.md, "Convergence on an
+            # image")
             ("huang", ("melanin=0.3", "entry_grid=4", "internal_grid=2"))]
 
 # Scenes at a small resolution: the check is per pixel, so size buys nothing but time.

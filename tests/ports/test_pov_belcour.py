@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """POV-Ray's abrdf_belcour (povray_macros/abrdf_belcour.inc) against `abrdf slice belcour`
-on layer stacks built from the hard cases of the stability grid
-(docs/SPECIAL_CLOTH_LAYERED.md): every depth 1-4, eta in {0.25, 0.7, 1, 1.5, 4}, kappa in
+on layer stacks built from the hard cases of the stability grid (docs/MODELS.md, "Hard
+cases"): every depth 1-4, eta in {0.25, 0.7, 1, 1.5, 4}, kappa in
 {0, 1e-3, 10}, r in {0, 1e-3, 0.5, 1}, sigma_a in {0, 1, 1e4} per channel, depth in {0,
 1e-3, 100}. Each stack is compared on one slice of the plane of incidence (theta_o from -90
 to 90 degrees, so grazing, normal, mirror and back-scattering directions; theta_i varies

@@ -232,9 +232,9 @@ START_TEST(candidates_follow_the_class)
 END_TEST
 
 /* Hair: besides the fitted models, the reference at coarser entry grids (huang's quadrature,
- * docs/SPECIAL_HAIR.md): entry_grid 5, 4, 3, 2, every other parameter the reference's, costed
- * by their VNDF nodes n1^2 (1 + n2^2) relative to the reference's; under "slight" the
- * winner is one of them (the fitted fibre models are predicted "significant"). */
+ * docs/MODELS.md, "Convergence on an image"): entry_grid 5, 4, 3, 2, every other parameter the
+ * reference's, costed by their VNDF nodes n1^2 (1 + n2^2) relative to the reference's; under
+ * "slight" the winner is one of them (the fitted fibre models are predicted "significant"). */
 START_TEST(hair_offers_coarser_quadratures)
 {
     abrdf_material m = hair_brown();

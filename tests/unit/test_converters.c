@@ -1,4 +1,5 @@
-/* test_converters.c - the roughness converters: documented values (docs/CONVERTERS.md),
+/* test_converters.c - the roughness converters: documented values (docs/MODELS.md,
+ * "Roughness converters"),
  * round trips, the peak match of the Blinn-Phong NDF, clamping of bad input. */
 #include <float.h>
 #include <math.h>
@@ -43,7 +44,8 @@ START_TEST(round_trips)
 END_TEST
 
 /* The mapping n = 2/alpha_g^2 - 2 makes the normalised Blinn-Phong NDF (n + 2)/(2 pi) peak
- * exactly as high as GGX and Beckmann, 1/(pi alpha_g^2) (docs/CONVERTERS.md "peak ratio"). */
+ * exactly as high as GGX and Beckmann, 1/(pi alpha_g^2) (the "peak ratio" column of
+ * docs/MODELS.md, "Roughness converters"). */
 START_TEST(blinn_phong_peak_matches)
 {
     for (double a = 1e-3; a <= 1.0; a *= 1.1) {

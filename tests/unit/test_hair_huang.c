@@ -76,7 +76,7 @@ START_TEST(quadrature_convergence)
     m.n2 = 2 * ABRDF__HUANG_N2;
     abrdf__huang_fibre(&m, wi, wo, 15u, c);
     printf("huang convergence: S %.6g, Simpson x2 %.6g, VNDF grids x2 %.6g\n", a[0], b[0], c[0]);
-    /* Further refinements, printed for docs/SPECIAL_HAIR.md. */
+    /* Further refinements, printed for docs/MODELS.md, "Convergence". */
     double d[3], e[3], g[3];
     m.n1 = ABRDF__HUANG_N1;
     m.n2 = ABRDF__HUANG_N2;
@@ -145,7 +145,8 @@ static double image_nmse(const double ref[CYL_SAMPLES][3], const double img[CYL_
 /* The internal-reflection grid n2 dominates the default's error on the image; n1 = 6 is past
  * convergence. Checked: n2 = 6 and n2 = 9 agree within Table 8's "none" (1e-4), and the
  * entry grid n1 = 12 agrees with n1 = 6 within it; the default's distance to n2 = 9 is
- * printed and bounded by 1e-2 (measured figures in docs/SPECIAL_HAIR.md). */
+ * printed and bounded by 1e-2 (measured figures in docs/MODELS.md, "Convergence on an
+ * image"). */
 START_TEST(image_convergence)
 {
     static const int grid[][2] = {{6, 3}, {6, 9}, {6, 6}, {12, 3}, {5, 3},
@@ -180,7 +181,7 @@ END_TEST
 /* White furnace, melanin 0, WITHOUT energy compensation: R + TT + TRT (the paper's
  * Eqs. 12-14) stay below 1 and lose more energy as the section gets more eccentric; TRRT+
  * takes up part of it; the total stays <= 1 + 2% (quadrature) at every aspect ratio and at
- * theta_o = 0, 45, 80 deg for the default fibre. Printed for docs/SPECIAL_HAIR.md. */
+ * theta_o = 0, 45, 80 deg for the default fibre. Printed for docs/MODELS.md, "White furnace". */
 START_TEST(white_furnace_uncompensated)
 {
     const double asp[] = {1.0, 0.85, 0.5, 0.2};

@@ -150,7 +150,8 @@ END_TEST
 
 /* White furnace (melanin 0, round fibre): the fibre albedo lies in [0.80, 1.05]; the
  * practical model has no TRRT+ lobes and the 1/cos^2(theta_d) factor makes it exceed 1 by
- * up to ~3% near 60 deg (docs/SPECIAL_HAIR.md). Quadrature 80 x 160 vs 160 x 320: 1%. */
+ * up to ~3% near 60 deg (docs/MODELS.md, "Hair models"). Quadrature 80 x 160 vs 160 x 320:
+ * 1%. */
 START_TEST(white_furnace)
 {
     abrdf__marschner m;
@@ -164,7 +165,7 @@ START_TEST(white_furnace)
         ck_assert_msg(tu_close(a, a2, 1e-2, 0), "quadrature N vs 2N: %.5f %.5f", a, a2);
         ck_assert_msg(a2 >= 0.80 && a2 <= 1.05, "albedo %.5f at %g deg", a2, deg[k]);
     }
-    /* The lobes of the theta_o = 0 albedo (docs/SPECIAL_HAIR.md). */
+    /* The lobes of the theta_o = 0 albedo (docs/MODELS.md, "Hair models"). */
     double r = fibre_albedo(&m, 0.0, 1u, 80, 160), tt = fibre_albedo(&m, 0.0, 2u, 80, 160),
            trt = fibre_albedo(&m, 0.0, 4u, 80, 160);
     printf("marschner white furnace theta_o= 0 by lobe: R %.4f, TT %.4f, TRT %.4f\n", r, tt, trt);

@@ -529,7 +529,8 @@ START_TEST(frame_invariance)
                  * 1e-16 rotation can move a node across a kink of the integrand: the result
                  * is then invariant only to its quadrature accuracy, taken as 1e-3.
                  * Measured on this grid (every pair, no floor): marschner 2.2e-10, huang
-                 * <= 3.4e-7 (docs/SPECIAL_HAIR.md lists the points where it still steps). */
+                 * <= 3.4e-7 (docs/MODELS.md, "Continuity in the directions", lists the
+                 * points where it still steps). */
                 for (int c = 0; c < 3; ++c) {
                     double d = fabs(a[c] - b[c]) / fmax(fmax(fabs(a[c]), fabs(b[c])), 1e-300);
                     if (fabs(a[c] - b[c]) > 1e-7 * peak && d > worst) worst = d;

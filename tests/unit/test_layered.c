@@ -273,7 +273,7 @@ START_TEST(belcour_one_interface_is_fgd_lobe)
 END_TEST
 
 /* The interpolated FGD table against direct quadrature at off-node points. The tolerance,
- * 0.01 absolute, is the table's stated accuracy (docs/SPECIAL_CLOTH_LAYERED.md). */
+ * 0.01 absolute, is the table's stated accuracy (docs/MODELS.md, "Belcour 2018"). */
 START_TEST(belcour_fgd_table_accuracy)
 {
     unsigned s = 77u;

@@ -1,5 +1,5 @@
-"""cycles_scene.py - render a scene file (docs/SCENES.md) with Blender Cycles through bpy,
-for the renderer speed comparison of docs/BENCHMARKS.md (tools/bench/renderers.sh).
+"""cycles_scene.py - render a scene file (docs/RENDERER.md, "Scene format") with Blender Cycles
+through bpy, for the renderer speed comparison of docs/BENCHMARKS.md (tools/bench/renderers.sh).
 
     python cycles_scene.py SCENE [--samples 1] [--threads 2] [--reps 3] [--out OUT.png]
 

@@ -16,7 +16,8 @@ static const cli_command commands[] = {
      "write a scene for another renderer (--pov: POV-Ray 3.7 SDL; --cycles: Blender/Cycles with "
      "OSL)",
      cmd_export},
-    {"render", "render a scene (docs/SCENES.md) to EXR + PNG preview with the built-in ray tracer",
+    {"render",
+     "render a scene (docs/RENDERER.md) to EXR + PNG preview with the built-in ray tracer",
      cmd_render},
     {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
     {"compare", "NMSE (the paper's metric), PSNR, max error and Table-8 class of two images",

@@ -1,7 +1,8 @@
 /* advise_budget.c - `abrdf advise MATERIAL --budget CLASS|NMSE` and `--pareto [--plot FILE]`:
- * the selection's budget mode (abrdf_select_budget, docs/BUDGET.md) for one material: the
- * cheapest fitted candidate whose predicted image NMSE is within the budget, every candidate
- * with its fitted parameters, predicted NMSE and cost, and the cost/error front. */
+ * the selection's budget mode (abrdf_select_budget, docs/SELECTION.md, "The budget mode") for
+ * one material: the cheapest fitted candidate whose predicted image NMSE is within the budget,
+ * every candidate with its fitted parameters, predicted NMSE and cost, and the cost/error
+ * front. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -74,26 +74,26 @@ static void usage(FILE *f)
                     abrdf_surface_name((abrdf_surface)t), model, lo, hi, n_max_for_r(lo));
     }
     fprintf(
-        f,
-        "  --kd V|R,G,B --ks V|R,G,B --f0 V|R,G,B   colours, [0, 1]\n"
-        "  --eta E                index of refraction, [1, 4] (sets f0 = ((E-1)/(E+1))^2)\n"
-        "  --anisotropy A         [0, 1]\n"
-        "  --melanin M --redness R   hair pigment, [0, 1]\n"
-        "  --type T               general, cloth_rough, cloth_shiny, hair, layered_plastic,\n"
-        "                         layered_plate, layered_metal\n"
-        "  --materials FILE       extra material file (same format; overrides by name)\n"
-        "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table "
-        "4;\n"
-        "                         with --budget/--pareto: the built-in table)\n"
-        "  --budget B             budget mode (docs/BUDGET.md): the cheapest candidate fitted to\n"
-        "                         the photoreal choice whose predicted image NMSE is below B, a\n"
-        "                         Table-8 class (none, slight, noticeable) or a number in (0, 1]\n"
-        "  --pareto               every candidate's cost and predicted NMSE: the front\n"
-        "  --plot FILE.svg        with --pareto: draw the cost/error plane\n"
-        "  --list                 list the materials\n"
-        "  --rules                the flowchart's thresholds and model choices "
-        "(abrdf_select_rules)\n"
-        "  --json                 machine-readable output\n");
+        f, "  --kd V|R,G,B --ks V|R,G,B --f0 V|R,G,B   colours, [0, 1]\n"
+           "  --eta E                index of refraction, [1, 4] (sets f0 = ((E-1)/(E+1))^2)\n"
+           "  --anisotropy A         [0, 1]\n"
+           "  --melanin M --redness R   hair pigment, [0, 1]\n"
+           "  --type T               general, cloth_rough, cloth_shiny, hair, layered_plastic,\n"
+           "                         layered_plate, layered_metal\n"
+           "  --materials FILE       extra material file (same format; overrides by name)\n"
+           "  --costs FILE           costs measured by abrdf calibrate (default: the paper's Table "
+           "4;\n"
+           "                         with --budget/--pareto: the built-in table)\n"
+           "  --budget B             budget mode (docs/SELECTION.md, \"The budget mode\"): the\n"
+           "                         cheapest fitted candidate whose predicted image NMSE against\n"
+           "                         the photoreal choice is below B, a Table-8 class (none,\n"
+           "                         slight, noticeable) or a number in (0, 1]\n"
+           "  --pareto               every candidate's cost and predicted NMSE: the front\n"
+           "  --plot FILE.svg        with --pareto: draw the cost/error plane\n"
+           "  --list                 list the materials\n"
+           "  --rules                the flowchart's thresholds and model choices "
+           "(abrdf_select_rules)\n"
+           "  --json                 machine-readable output\n");
 }
 
 /* ---- small printers ------------------------------------------------------------------- */

@@ -1,7 +1,8 @@
 /* cmd_fit.c - `abrdf fit`: one model (or diffuse + specular pair) fitted to another with
- * abrdf_fit (abrdf_fit.h, docs/BUDGET.md): the fitted parameters, the errors against the
- * reference (relative L2, highlight, absolute), the predicted image NMSE, and whether the
- * budget mode offers the candidate for the reference's surface class (abrdf_budget_candidate).
+ * abrdf_fit (abrdf_fit.h, docs/SELECTION.md, "1. The fit"): the fitted parameters, the errors
+ * against the reference (relative L2, highlight, absolute), the predicted image NMSE, and
+ * whether the budget mode offers the candidate for the reference's surface class
+ * (abrdf_budget_candidate).
  * It fits whatever abrdf_fit fits; a refusal is the library's, with its reason. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -25,10 +26,10 @@ static int usage(void)
     printf("usage: abrdf fit (--ref MODEL[+MODEL] [--set NAME=VALUE ...] | --material NAME)\n"
            "                 --candidate MODEL[+MODEL] [--metric l2|log|cbrt|auto]\n"
            "                 [--resolution 0..5] [--materials FILE] [--json]\n\n"
-           "Fits the candidate's parameters to the reference (abrdf_fit, docs/BUDGET.md):\n"
-           "cosine-weighted least squares over a direction set covering the hemisphere, the\n"
-           "weights (kd, ks, ks*f0) solved in closed form for every trial of the other\n"
-           "parameters. Prints the fitted parameters, the relative L2 error of f cos, the\n"
+           "Fits the candidate's parameters to the reference (abrdf_fit, docs/SELECTION.md,\n"
+           "\"1. The fit\"): cosine-weighted least squares over a direction set covering the\n"
+           "hemisphere, the weights (kd, ks, ks*f0) solved in closed form for every trial of the\n"
+           "other parameters. Prints the fitted parameters, the relative L2 error of f cos, the\n"
            "highlight zone's largest relative error (Table 2's measure), the largest absolute\n"
            "error (Table 3's) and the image NMSE predicted on an analytic sphere.\n"
            "  --ref M[+M]        the reference: one model, or diffuse+specular (shared block)\n"

@@ -122,8 +122,8 @@ int cmd_models(int argc, char **argv)
                 "what it needs (tangent, Fresnel, layers, integration) and its parameters with\n"
                 "default and range. --json adds the citation, reciprocity, energy conservation,\n"
                 "the paper's Table-4 cycle count and the importance sampler (abrdf sample;\n"
-                "docs/SAMPLING.md): its name, method, citation, whether it mixes lobes and\n"
-                "whether it can draw directions below the surface.\n");
+                "docs/RENDERER.md, \"Importance sampling\"): its name, method, citation, whether\n"
+                "it mixes lobes and whether it can draw directions below the surface.\n");
             return 0;
         }
         if (!strcmp(argv[i], "--json"))

@@ -13,9 +13,9 @@ static int usage(void)
 {
     printf("usage: abrdf sample MODEL --wo X,Y,Z [-n N] [--normal X,Y,Z] [--tangent X,Y,Z]\n"
            "                    [--set NAME=VALUE ...] [--seed S] [--json]\n\n"
-           "Draws N (default 1, at most %ld) light directions wi for the view direction wo\n"
-           "with the model's importance sampler (abrdf models --json names it; see\n"
-           "docs/SAMPLING.md) and prints each with its pdf (per steradian) and its weight\n"
+           "Draws N (default 1, at most %ld) light directions wi for the view direction wo with\n"
+           "the model's importance sampler (abrdf models --json names it; see docs/RENDERER.md,\n"
+           "\"Importance sampling\") and prints each with its pdf (per steradian) and its weight\n"
            "f_r * max(0, N.wi) / pdf (RGB). A sample below the surface has weight 0 and is\n"
            "printed like the others. wo must point above the surface; vectors need not be\n"
            "unit length. The normal defaults to 0,0,1, the tangent to an axis orthogonal to\n"

@@ -29,7 +29,7 @@ static int usage(void)
            "  --costs FILE   Table 4: ns/eval from a cost file (abrdf calibrate -o FILE)\n"
            "                 instead of measuring now\n"
            "  --reps N       Table 4: repetitions when measuring now (default 3, quick)\n"
-           "Tables 6-7 (rendered; docs/TABLES_6_7.md):\n"
+           "Tables 6-7 (rendered; docs/TABLES.md, \"Tables 6 and 7\"):\n"
            "  --width W --height H   image size (default 128 x 128)\n"
            "  --spp N        samples per pixel, a square (default 1: pixel centres)\n"
            "  --threads N    render threads (default: online CPUs)\n"

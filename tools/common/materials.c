@@ -1,4 +1,5 @@
-/* materials.c - loader of the material table (materials.h; format in docs/MATERIALS.md). */
+/* materials.c - loader of the material table (materials.h; format in docs/SELECTION.md, "The
+ * material table"). */
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -230,8 +231,10 @@ static int check_header(ctx *c, char *line)
     int nf = split(line, f);
     for (int i = 0; i < mat_column_count; ++i)
         if (i >= nf || strcmp(f[i], mat_columns[i]))
-            return fail(c, "header: column %d is '%s', expected '%s' (docs/MATERIALS.md)", i + 1,
-                        i < nf ? shown(c, f[i]) : "", mat_columns[i]);
+            return fail(c,
+                        "header: column %d is '%s', expected '%s' (docs/SELECTION.md, \"The "
+                        "material table\")",
+                        i + 1, i < nf ? shown(c, f[i]) : "", mat_columns[i]);
     return 0;
 }
 

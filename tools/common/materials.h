@@ -1,4 +1,5 @@
-/* materials.h - the material table (data/materials.csv, docs/MATERIALS.md): loading with
+/* materials.h - the material table (data/materials.csv, docs/SELECTION.md, "The material
+ * table"): loading with
  * "file:line: problem" errors, merging user files over it by name, lookup and suggestions. */
 #ifndef ABRDF_MATERIALS_H
 #define ABRDF_MATERIALS_H

@@ -3,7 +3,7 @@
  * table (or --only a,b,...), the predicted NMSE of the L2 fit and of the AUTO fit on the
  * default sphere, and whether a candidate the L2 fit puts at 4 x 1e-3 or beyond comes into a
  * Table-8 class with AUTO - why the budget mode refits every candidate with every metric
- * rather than the promising ones only (docs/BUDGET.md).
+ * rather than the promising ones only (docs/SELECTION.md, "3. The selection within a budget").
  *
  *   auto_reach [--only NAME,...] [--skip-hair]
  */

@@ -1,20 +1,21 @@
-/* budget_table.c - the budget mode proved on rendered images (docs/BUDGET.md, the budget
- * columns of docs/MATERIALS.md). For every material of data/materials.csv (or --only a,b,...)
- * and each scene (scenes/sphere.scene and scenes/robot.scene, every material of the scene
- * replaced by the material), it renders the flowchart's photoreal choice (the reference) and,
- * for each Table-8 class (none, slight, noticeable), the budget's choice with its fitted
- * parameters, predicted on the scene's own view (scene_budget_view), and compares: the
- * measured NMSE must be within the class and the prediction within a factor of 3 of it.
+/* budget_table.c - the budget mode proved on rendered images (docs/SELECTION.md, "4. Proved on
+ * the image", and its table "The budget mode on every material"). For every material of
+ * data/materials.csv (or --only a,b,...) and each scene (scenes/sphere.scene and
+ * scenes/robot.scene, every material of the scene replaced by the material), it renders the
+ * flowchart's photoreal choice (the reference) and, for each Table-8 class (none, slight,
+ * noticeable), the budget's choice with its fitted parameters, predicted on the scene's own
+ * view (scene_budget_view), and compares: the measured NMSE must be within the class and the
+ * prediction within a factor of 3 of it.
  *
  *   budget_table [--only NAME,...] [--scenes DIR] [--sphere-size N] [--robot-size N]
  *                [--spp K] [--threads T] [--doc | --summary] [--check]
  *
  * Prints one Markdown row per material and a summary; --doc prints the table of
- * docs/MATERIALS.md, whose cells read "choice xR: P / S, T": the budget's choice, its
- * evaluation cost relative to the reference's (the built-in cost table), the predicted NMSE
- * and the NMSE measured on the sphere and on the robot. --check exits 1 unless >= 95 % of the
- * (material, class, scene) cases are within their class and >= 90 % predicted within a
- * factor of 3. */
+ * docs/SELECTION.md, "The budget mode on every material", whose cells read "choice xR: P / S,
+ * T": the budget's choice, its evaluation cost relative to the reference's (the built-in cost
+ * table), the predicted NMSE and the NMSE measured on the sphere and on the robot. --check
+ * exits 1 unless >= 95 % of the (material, class, scene) cases are within their class and >=
+ * 90 % predicted within a factor of 3. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>

@@ -1,6 +1,7 @@
-/* converter_error.c - measures the error of the roughness converters (docs/CONVERTERS.md).
+/* converter_error.c - measures the error of the roughness converters (docs/MODELS.md,
+ * "Roughness converters").
  *
- *   converter_error            prints the Markdown tables of docs/CONVERTERS.md
+ *   converter_error            prints the Markdown tables of docs/MODELS.md
  *
  * 1. alpha_g -> Blinn-Phong exponent n = abrdf_alpha_g_to_n(alpha_g). The normalised
  *    Blinn-Phong NDF D_bp = (n + 2)/(2 pi) cos^n(theta_h) is compared with GGX and Beckmann D

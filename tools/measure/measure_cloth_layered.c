@@ -1,6 +1,6 @@
-/* measure_cloth_layered.c - the numbers of docs/SPECIAL_CLOTH_LAYERED.md for one model:
- * directional albedo at 0, 45 and 80 degrees (quadrature orders N and 2N), the largest
- * reciprocity error over random direction pairs, and the cost of one abrdf_eval in ns.
+/* measure_cloth_layered.c - the numbers of docs/MODELS.md, "Cloth and layered models", for
+ * one model: directional albedo at 0, 45 and 80 degrees (quadrature orders N and 2N), the
+ * largest reciprocity error over random direction pairs, and the cost of one abrdf_eval in ns.
  *
  *   measure_cloth_layered MODEL [--order N] [--evals N] [--set NAME=VALUE ...]
  *

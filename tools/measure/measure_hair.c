@@ -1,4 +1,5 @@
-/* measure_hair.c - the surface albedos and costs of docs/SPECIAL_HAIR.md for one hair model:
+/* measure_hair.c - the surface albedos and costs of docs/MODELS.md, "Hair models", for one
+ * hair model:
  *
  *   measure_hair MODEL [--grid NT,NP] [--evals N] [--set NAME=VALUE ...]
  *

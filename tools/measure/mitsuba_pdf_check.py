@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """mitsuba_pdf_check.py - the GGX (visible normals) and Beckmann (D cos) densities of
 `abrdf sample` against Mitsuba 3's MicrofacetDistribution, an independent implementation
-(docs/SAMPLING.md quotes the result; a one-off check, not a test: Mitsuba is not a
+(docs/RENDERER.md, "Importance sampling",
+quotes the result; a one-off check, not a test: Mitsuba is not a
 dependency of the project).
 
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba

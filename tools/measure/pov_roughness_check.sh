@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # pov_roughness_check.sh - renders POV-Ray's native `specular ... roughness` highlight and
 # compares it with abrdf's Blinn-Phong lobe at n = 1/roughness (abrdf_pov_roughness_to_n).
-# Prints the Markdown table quoted in docs/CONVERTERS.md.
+# Prints the Markdown table quoted in docs/MODELS.md, "n and POV-Ray `roughness`".
 #   tools/measure/pov_roughness_check.sh [path/to/abrdf]     (needs povray and oiiotool)
 # Scene: a unit sphere seen head-on by an orthographic camera (one pixel: N = V = +z), lit by
 # a parallel light at theta_i from the normal; only the specular term is on.

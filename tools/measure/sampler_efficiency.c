@@ -1,7 +1,8 @@
-/* sampler_efficiency.c - how well each model's sampler fits its f_r cos (docs/SAMPLING.md):
- * per model (its default parameters) and view angle, the share of samples below the
- * surface, the relative second moment E[w^2]/E[w]^2 of the weight w = f cos / pdf (1 for a
- * sampler proportional to f cos) and the variance of the albedo estimate by cosine-weighted
+/* sampler_efficiency.c - how well each model's sampler fits its f_r cos (docs/RENDERER.md,
+ * "Importance sampling"): per model (its default parameters) and view angle, the share of
+ * samples below the surface, the relative second moment E[w^2]/E[w]^2 of the weight w = f cos
+ * / pdf (1 for a sampler proportional to f cos) and the variance of the albedo estimate by
+ * cosine-weighted
  * sampling divided by the model's own sampler's (how many times fewer samples the sampler
  * needs for the same noise). Green channel; fixed seeds, so the output repeats.
  *

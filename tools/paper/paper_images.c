@@ -2,7 +2,8 @@
  * experiment): the robot rendered with the Disney GGX specular (the reference) at each
  * alpha_g, each candidate lobe rendered at each exponent n; per alpha_g the minimum over n of
  * NMSE(candidate vs reference) (tools/image/metrics.h) and its argmin n, printed beside the
- * published values (data/paper_tables.csv). Set-up and discussion: docs/TABLES_6_7.md. */
+ * published values (data/paper_tables.csv). Set-up and discussion: docs/TABLES.md, "Tables 6
+ * and 7". */
 #define _POSIX_C_SOURCE 200809L
 #include "paper_images.h"
 

@@ -1,7 +1,8 @@
 /* paper_images.h - the image experiment of Zavalniuk & Romanyuk 2024 (Tables 6 and 7):
  * render the robot with the Disney GGX specular at every alpha_g of the paper (the
  * reference), render each candidate lobe at every exponent n of the paper, and report per
- * alpha_g the minimum NMSE over n and its argmin. Set-up and discussion: docs/TABLES_6_7.md.
+ * alpha_g the minimum NMSE over n and its argmin. Set-up and discussion: docs/TABLES.md,
+ * "Tables 6 and 7".
  *
  *   paper_images_defaults   the documented default set-up
  *   paper_images_compute    run the experiment for Table 6 or 7 into a result

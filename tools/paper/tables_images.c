@@ -89,7 +89,8 @@ int tables_images(const table_gen *self, const tables_opts *o, const paper_data 
         printf("Lambert kd = %g + specular", io->kd);
     else
         printf("specular only");
-    printf("; F0 = %g%s; n over the paper's %d values %g..%g; %d renders (docs/TABLES_6_7.md).\n\n",
+    printf("; F0 = %g%s; n over the paper's %d values %g..%g; %d renders (docs/TABLES.md, "
+           "\"Tables 6 and 7\").\n\n",
            io->f0, table == 6 ? " (these lobes have no Fresnel factor: ks = F0)" : "",
            PAPER_IMAGES_EXPONENTS, paper_images_exponents[0],
            paper_images_exponents[PAPER_IMAGES_EXPONENTS - 1], res.renders);

@@ -2,11 +2,11 @@
  * radiance, read with OpenImageIO, and the 2-D piecewise-constant distribution that
  * importance-samples it by luminance (docs/RENDERER.md, "Area and environment lights").
  *
- * Mapping (world y up, docs/SCENES.md): a unit direction d has polar angle theta = acos(d.y)
- * from +y and azimuth phi = atan2(d.x, -d.z) in (-pi, pi]; it looks up the image at
- * u = 0.5 + phi / (2 pi) (column, left to right), v = theta / pi (row, top to bottom). So
- * the top row is the zenith, the centre column looks along -z, and the map's pixels are
- * constant over their (u, v) cells (nearest lookup).
+ * Mapping (world y up, docs/RENDERER.md, "World, camera, lights"): a unit direction d has
+ * polar angle theta = acos(d.y) from +y and azimuth phi = atan2(d.x, -d.z) in (-pi, pi]; it
+ * looks up the image at u = 0.5 + phi / (2 pi) (column, left to right), v = theta / pi (row,
+ * top to bottom). So the top row is the zenith, the centre column looks along -z, and the
+ * map's pixels are constant over their (u, v) cells (nearest lookup).
  *
  * Sampling: cell (i, j) is chosen with probability proportional to its luminance times
  * sin(theta_j) at the row's centre (the solid angle a cell covers), a point uniform in the

@@ -1,7 +1,8 @@
-/* mesh.h - triangle meshes of the scene format (`mesh file=...`, docs/SCENES.md): a
- * Wavefront OBJ file read by tinyobjloader (mesh_obj.h), every line checked, polygons split
- * into triangles, and the vertex normals smooth shading interpolates. Object space; float,
- * as the file's precision and the hosts' (POV-Ray and Cycles store meshes in float).
+/* mesh.h - triangle meshes of the scene format (`mesh file=...`, docs/RENDERER.md, "Triangle
+ * meshes"): a Wavefront OBJ file read by tinyobjloader (mesh_obj.h), every line checked,
+ * polygons split into triangles, and the vertex normals smooth shading interpolates. Object
+ * space; float, as the file's precision and the hosts' (POV-Ray and Cycles store meshes in
+ * float).
  *
  * Normals: the file's `vn` (normalised) where it gives them, per face corner. Otherwise the
  * normal of a vertex is the sum of the unit normals of the triangles around it weighted by

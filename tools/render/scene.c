@@ -1,8 +1,8 @@
-/* scene.c - parser of the scene format (docs/SCENES.md): one directive per line, then
- * KEY=VALUE words. Lines may have any length (a long comment is a comment); a word may not
- * exceed SCENE_WORD_MAX, so every message quotes words whole. Every problem is reported as
- * "FILE:LINE: problem"; malformed input of any kind (binary, huge numbers, long words) gives
- * an error, never a crash (tests/fuzz/fuzz_scene.c). */
+/* scene.c - parser of the scene format (docs/RENDERER.md, "Scene format"): one directive per
+ * line, then KEY=VALUE words. Lines may have any length (a long comment is a comment); a word
+ * may not exceed SCENE_WORD_MAX, so every message quotes words whole. Every problem is
+ * reported as "FILE:LINE: problem"; malformed input of any kind (binary, huge numbers, long
+ * words) gives an error, never a crash (tests/fuzz/fuzz_scene.c). */
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>

@@ -1,7 +1,7 @@
-/* scene.h - the parsed scene: the one description that the built-in renderer and the
- * exporters (POV-Ray SDL, Cycles bpy) all read. The text format is defined in
- * docs/SCENES.md; this header holds only what the file says, with units, and no derived
- * data (matrices, bounds and the effect plan belong to the renderer, render.h).
+/* scene.h - the parsed scene: the one description that the built-in renderer and the exporters
+ * (POV-Ray SDL, Cycles bpy) all read. The text format is defined in docs/RENDERER.md, "Scene
+ * format"; this header holds only what the file says, with units, and no derived data
+ * (matrices, bounds and the effect plan belong to the renderer, render.h).
  *
  * World space is right-handed, y up. Angles in degrees. Colours are linear RGB.
  *

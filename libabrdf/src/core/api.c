@@ -224,7 +224,7 @@ int abrdf_shade(abrdf_model diffuse, abrdf_model specular, const abrdf_params *p
     return ABRDF_OK;
 }
 
-/* ---- converters (docs/CONVERTERS.md gives their errors) ------------------------------ */
+/* ---- converters (docs/MODELS.md, "Roughness converters", gives their errors) --------- */
 
 static double clamp01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; }
 

@@ -153,7 +153,8 @@ static const abrdf_model_param mp_marschner[] = {
 /* Huang: Cycles' Principled Hair (Huang) defaults: r = GGX alpha 0.3 (not squared, clamped
  * to >= 0.001 as Cycles does), offset 2 deg, aspect ratio 0.85; r >= 0.05 bounds the cost
  * (the h step is 0.7 r). The quadrature grids (entry 6, internal 3) are the defaults the
- * model always had; coarser entry grids are its cheaper neighbours (docs/SPECIAL_HAIR.md). */
+ * model always had; coarser entry grids are its cheaper neighbours (docs/MODELS.md,
+ * "Convergence on an image"). */
 static const abrdf_model_param mp_huang[] = {
     {P_ETA, 1.55, 1.0, 4.0}, {P_MELANIN, 0.8, 0.0, 1.0}, {P_REDNESS, 1.0, 0.0, 1.0},
     {P_CUTICLE_TILT, 2.0, -10.0, 10.0}, {P_ASPECT_RATIO, 0.85, 0.01, 1.0},

@@ -83,14 +83,15 @@ void abrdf__marschner_eval(const abrdf__marschner *m, const double wi[3], const 
 
 /* Default quadrature (the defaults of the entry_grid and internal_grid parameters): the
  * entry microfacet normal on an N1 x N1 midpoint grid of the VNDF square, the
- * internal-reflection normal (TRT) on N2 x N2 per entry node (docs/SPECIAL_HAIR.md gives
- * their convergence, at one direction pair and on an image). */
+ * internal-reflection normal (TRT) on N2 x N2 per entry node (docs/MODELS.md, "Convergence"
+ * and "Convergence on an image", gives their convergence, at one direction pair and on an
+ * image). */
 #define ABRDF__HUANG_N1 6
 #define ABRDF__HUANG_N2 3
 /* Largest VNDF grid abrdf__huang_fibre takes: n1, n2 <= ABRDF__HUANG_GRID_MAX = 32 (the
  * range of the entry_grid and internal_grid parameters), so the convergence study
- * (docs/SPECIAL_HAIR.md, 4x the default grids) fits; the node tables of two grids then take
- * 32 KiB of stack. */
+ * (docs/MODELS.md, "Convergence", 4x the default grids) fits; the node tables of two grids
+ * then take 32 KiB of stack. */
 #define ABRDF__HUANG_GRID_MAX 32
 #define ABRDF__HUANG_NODES_MAX (ABRDF__HUANG_GRID_MAX * ABRDF__HUANG_GRID_MAX)
 

@@ -15,7 +15,8 @@
  * The structure, frame and h-interval logic follow Blender Cycles
  * src/kernel/closure/bsdf_principled_hair_huang.h (MODELS.md B7.3), in double.
  *
- * What differs from Cycles (docs/SPECIAL_HAIR.md has the measurements):
+ * What differs from Cycles (docs/MODELS.md, "Where abrdf differs from Cycles", has the
+ * measurements):
  *  - DETERMINISTIC integration. Cycles draws one GGX visible-normal (VNDF) sample per h node
  *    for the entry microfacet and one for the internal reflection. Here the VNDF sampling
  *    map is integrated by an n1 x n1 (entry) and n2 x n2 (internal reflection) midpoint

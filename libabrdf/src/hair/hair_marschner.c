@@ -18,7 +18,7 @@
  * Fresnel reflectance with eta' for the perpendicular and eta'' for the parallel
  * polarisation, averaged.
  *
- * Choices (MODELS.md B7.1; each is stated in docs/SPECIAL_HAIR.md):
+ * Choices (MODELS.md B7.1; each is stated in docs/MODELS.md, "Hair models"):
  *  - Phi is the EXACT map above, not the paper's cubic approximation; its roots are found by
  *    bisection on the intervals where Phi is monotone (split at the TRT caustic h_c).
  *  - Absorption T = exp(-2 sigma_a cos(gamma_t) / cos(theta_t)), sin(theta_t) =

@@ -20,7 +20,7 @@
  *     (averaged energies), alpha_k = a(s_Ti0 + J0i (s_T0i + s_R12 + Rr (s_R12 + s_Ri0)))
  * Per medium (depth d > 0 below a dielectric interface): T = exp(-sigma_a d / cos), R = 0,
  *   no scattering (the ABI has no sigma_s), so the variances are unchanged.
- * Choices (documented in docs/SPECIAL_CLOTH_LAYERED.md):
+ * Choices (documented in docs/MODELS.md, "Belcour 2018"):
  *   - cos = |H.L| as in the evaluation of the Photon-v2 port (sampling there uses N.V);
  *     because H.L = H.V the model is then reciprocal.
  *   - G is the separable Smith G of Eq. 9; the FGD table is computed with the same G, so a

@@ -24,7 +24,7 @@
  * H, L' + V' stays parallel to H, so a glossy base keeps its half-vector lobe (no solid-
  * angle gain). The model is not energy-conserving: at grazing incidence the coat's lobe and
  * the transmitted base overlap (albedo up to 1.15 over a white Lambert base, measured in
- * docs/SPECIAL_CLOTH_LAYERED.md); elsewhere it loses the inter-reflected light. */
+ * docs/MODELS.md, "Weidlich-Wilkie"); elsewhere it loses the inter-reflected light. */
 #include <math.h>
 
 #include "layered.h"

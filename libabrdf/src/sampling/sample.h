@@ -3,12 +3,12 @@
  * (N = +z, T = +x, B = +y; wo toward the viewer, wi toward the light, as in abrdf.h).
  *
  * A model's sampler is a MIXTURE of components, each with a selection probability that may
- * depend on wo (never on wi). abrdf_sample picks a component with u1 (then reuses u1,
- * rescaled to [0, 1), as pbrt-v4 does), draws wi from it, and returns the pdf of the whole
- * mixture at wi, sum_k P_k pdf_k(wi), so the weight f cos / pdf is exact whichever
- * component drew the sample (Veach 1997, Sec. 9.2.4: one-sample MIS, balance heuristic).
- * Every component is a density over the whole sphere that integrates to 1; directions
- * below the surface are returned with weight 0 (f_r = 0 there). docs/SAMPLING.md lists the
+ * depend on wo (never on wi). abrdf_sample picks a component with u1 (then reuses u1, rescaled
+ * to [0, 1), as pbrt-v4 does), draws wi from it, and returns the pdf of the whole mixture at
+ * wi, sum_k P_k pdf_k(wi), so the weight f cos / pdf is exact whichever component drew the
+ * sample (Veach 1997, Sec. 9.2.4: one-sample MIS, balance heuristic). Every component is a
+ * density over the whole sphere that integrates to 1; directions below the surface are
+ * returned with weight 0 (f_r = 0 there). docs/RENDERER.md, "Importance sampling" lists the
  * components per model, with the citations. */
 #ifndef ABRDF_SAMPLE_H
 #define ABRDF_SAMPLE_H

@@ -1,6 +1,6 @@
 /* sample_mix.c - the sampler of every model: which components it mixes (sample_lobe.c),
- * with which probabilities, and the table abrdf_model_sampler hands out. docs/SAMPLING.md
- * explains each choice.
+ * with which probabilities, and the table abrdf_model_sampler hands out.
+ * docs/RENDERER.md, "Importance sampling" explains each choice.
  *
  * Selection probabilities estimate each component's share of the albedo for this wo from
  * what the parameters say (colour means, Fresnel at N.wo, the layers' transmission); they
@@ -125,7 +125,7 @@ void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double
     case ABRDF_F_PHE: add_dist(mx, mirror, 1.0, ABRDF__DIST_POW, p->n, 0, 0.0); break;
     case ABRDF_F_2E: add_dist(mx, mirror, 1.0, ABRDF__DIST_FM, p->n, 2, 0.0); break;
     case ABRDF_F_16E: add_dist(mx, mirror, 1.0, ABRDF__DIST_FM, p->n, 16, 0.0); break;
-    /* lobes on N.H: the half vector from the lobe (fkub: Blinn-Phong's, docs/SAMPLING.md) */
+    /* lobes on N.H: the half vector from the lobe (fkub: Blinn-Phong's, docs/RENDERER.md) */
     case ABRDF_BLINN_PHONG:
     case ABRDF_F_BE:
     case ABRDF_F_GE:
@@ -158,9 +158,10 @@ void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double
         break;
     /* cloth */
     case ABRDF_NEUBELT_PETTINEO: {
-        /* cosine for the diffuse term, uniform for the sheen, whose f cos is nearly flat
-         * over the hemisphere: measured better than the velvet D cos (docs/SAMPLING.md).
-         * The sheen's albedo with F = 1 is 0.15-0.6 (0.3 typical) over r, k_amp, theta_o. */
+        /* cosine for the diffuse term, uniform for the sheen, whose f cos is nearly flat over
+         * the hemisphere: measured better than the velvet D cos (docs/RENDERER.md, "Importance
+         * sampling"). The sheen's albedo with F = 1 is 0.15-0.6 (0.3 typical) over r, k_amp,
+         * theta_o. */
         double f = f_schlick(mean3(p->f0), wo[2]);
         add(mx, ABRDF__LOBE_COSINE, mean3(p->kd) * (1.0 - f));
         add(mx, ABRDF__LOBE_UNIFORM, mean3(p->ks) * f * 0.3);

@@ -4,7 +4,7 @@
  * cheapest candidate within the budget wins. The budget is a Table-8 class of the paper
  * (none < 1e-4, slight < 2.5e-4, noticeable < 1e-3; abrdf_select_rules) or a number.
  *
- * The candidates per surface class are one table (below; docs/BUDGET.md prints it): pairs of
+ * The candidates per surface class are one table (below; docs/SELECTION.md prints it): pairs of
  * a diffuse and a specular lobe where the class is a diffuse base under a specular lobe,
  * whole models (hair, cloth, layered) where the class has them, and the reference itself
  * with its own parameters (error 0), so a budget can always be met. */
@@ -335,7 +335,7 @@ static double pair_cost(const abrdf_costs *costs, const abrdf_model lobe[2], con
 }
 
 /* The reference computed with a coarser quadrature, the i-th (1, 2, ...): huang with an entry
- * grid i nodes coarser, down to 2 x 2 (docs/SPECIAL_HAIR.md: the entry grid converges by 6,
+ * grid i nodes coarser, down to 2 x 2 (docs/MODELS.md: the entry grid converges by 6,
  * and (5, 3), (4, 3) stay within "slight" of the default on an image). Nothing is fitted: the
  * model's parameters stay the reference's. 0 when there is no such variant. */
 static int coarser_quadrature(const abrdf__brdf *ref, int i, abrdf__brdf *out)

@@ -48,7 +48,7 @@
 #include "fit_internal.h"
 #include "vec.h"
 
-/* ---- what is fitted, per model (docs/BUDGET.md) --------------------------------------- */
+/* ---- what is fitted, per model (docs/SELECTION.md, "1. The fit") --------------------- */
 
 typedef struct fit_param {
     const char *name; /* registry name of a searched parameter */

@@ -12,11 +12,12 @@
  * the tangent T running around the sphere's axis `up` (the scene format's `u` rule). A
  * highlight narrower than the sample spacing is missed as a renderer with that sampling rate
  * usually misses it, so the prediction is for images sampled at that rate: the tools pass the
- * rate of the scene they render (docs/BUDGET.md). Whether one sample of a grid happens to
- * fall on such a highlight is luck, and a hit changes the NMSE (the highlight's energy joins
- * the reference's): the sphere is therefore rendered on ABRDF__PRED_SHIFTS grids, shifted by
- * half a spacing, and the prediction is the largest of their NMSEs - the one a render that
- * misses (or hits) the highlight would show, whichever is worse.
+ * rate of the scene they render (docs/SELECTION.md, "2. The prediction"). Whether one sample
+ * of a grid happens to fall on such a highlight is luck, and a hit changes the NMSE (the
+ * highlight's energy joins the reference's): the sphere is therefore rendered on
+ * ABRDF__PRED_SHIFTS grids, shifted by half a spacing, and the prediction is the largest of
+ * their NMSEs - the one a render that misses (or hits) the highlight would show, whichever is
+ * worse.
  *
  * The ambient term a renderer adds (ka Ia) is the same for both BRDFs and is left out: it
  * would only add to the reference's energy, so leaving it out errs on the high side. */
