@@ -6,12 +6,12 @@
 #include <string.h>
 
 #include "advise_budget.h"
-#include "budget_run.h"
 #include "cli.h"
 #include "cost_file.h"
 #include "data_path.h"
 #include "materials.h"
 #include "out_file.h"
+#include "scene_choice.h"
 #include "select_trace.h"
 
 #define CMD "advise"
@@ -401,212 +401,281 @@ static void print_json(const abrdf_selection *s, const abrdf_params *p, const se
     printf("\n]}\n");
 }
 
-/* ---- the command ---------------------------------------------------------------------- */
+/* ---- the command line ------------------------------------------------------------------ */
 
-int cmd_advise(int argc, char **argv)
+/* Values given on the command line, applied over the table's material (or the defaults). */
+typedef struct advise_overrides {
+    double n, r, kd[3], ks[3], f0[3], eta, aniso, mel, red;
+    int has_n, has_r, has_kd, has_ks, has_f0, has_eta, has_aniso, has_mel, has_red, has_type;
+    abrdf_surface type;
+} advise_overrides;
+
+/* What the command line asks for. */
+typedef struct advise_args {
+    int help; /* --help given: print the usage and stop */
+    const char *name, *files[MAX_FILES], *costs_file, *plot;
+    int nfiles, list, json, rules, pareto, has_goal;
+    select_request rq;   /* --goal, or --budget (rq.by_budget) */
+    abrdf_tolerance tol; /* --max-rel-error, --max-abs-error */
+    advise_overrides o;
+} advise_args;
+
+/* A material value at `a` (--n, --kd, --type, ...) with its value v: 1 if it is one (*st: 0,
+ * or the exit status after the message), 0 if not. */
+static int take_override(advise_overrides *o, const char *a, const char *v, int *st)
 {
-    const char *name = NULL, *files[MAX_FILES], *costs_file = NULL, *plot = NULL;
-    int nfiles = 0, list = 0, json = 0, rules = 0, pareto = 0, has_goal = 0;
-    double budget = -1.0;
-    abrdf_goal goal = ABRDF_GOAL_PHOTOREAL;
-    abrdf_tolerance tol;
-    abrdf_tolerance_init(&tol);
-    /* Overrides, applied after the table lookup. */
-    double n = 0, r = 0, kd[3], ks[3], f0[3], eta = 0, aniso = 0, mel = 0, red = 0;
-    int has_n = 0, has_r = 0, has_kd = 0, has_ks = 0, has_f0 = 0, has_eta = 0, has_aniso = 0,
-        has_mel = 0, has_red = 0, has_type = 0;
-    abrdf_surface type = ABRDF_SURFACE_GENERAL;
+    const struct {
+        const char *name;
+        double lo, hi, *slot;
+        int *has;
+    } ranges[] = {{"--n", 0.0, 1e6, &o->n, &o->has_n},
+                  {"--r", 0.0, 1.0, &o->r, &o->has_r},
+                  {"--eta", 1.0, 4.0, &o->eta, &o->has_eta},
+                  {"--anisotropy", 0.0, 1.0, &o->aniso, &o->has_aniso},
+                  {"--melanin", 0.0, 1.0, &o->mel, &o->has_mel},
+                  {"--redness", 0.0, 1.0, &o->red, &o->has_red}};
+    const struct {
+        const char *name;
+        double *slot;
+        int *has;
+    } colors[] = {
+        {"--kd", o->kd, &o->has_kd}, {"--ks", o->ks, &o->has_ks}, {"--f0", o->f0, &o->has_f0}};
+    for (size_t k = 0; k < sizeof ranges / sizeof ranges[0]; ++k)
+        if (!strcmp(a, ranges[k].name)) {
+            *st = range_value(a, v, ranges[k].lo, ranges[k].hi, ranges[k].slot);
+            *ranges[k].has = 1;
+            return 1;
+        }
+    for (size_t k = 0; k < sizeof colors / sizeof colors[0]; ++k)
+        if (!strcmp(a, colors[k].name)) {
+            *st = color_value(a, v, colors[k].slot);
+            *colors[k].has = 1;
+            return 1;
+        }
+    if (strcmp(a, "--type")) return 0;
+    *st = 0;
+    if (!v || abrdf_surface_find(v, &o->type) != ABRDF_OK)
+        *st = cli_fail(CMD,
+                       "--type needs one of general, cloth_rough, cloth_shiny, hair, "
+                       "layered_plastic, layered_plate, layered_metal; got '%s'",
+                       v ? v : "");
+    o->has_type = 1;
+    return 1;
+}
 
+/* One argument at `a` (v: the next one, or NULL); *takes: whether it took v. 0, or the exit
+ * status after the message. */
+static int take_option(advise_args *aa, const char *a, const char *v, int *takes)
+{
+    int st = 0;
+    int *flag = !strcmp(a, "--list")     ? &aa->list
+                : !strcmp(a, "--rules")  ? &aa->rules
+                : !strcmp(a, "--json")   ? &aa->json
+                : !strcmp(a, "--pareto") ? &aa->pareto
+                                         : NULL;
+    *takes = !flag;
+    if (flag) {
+        *flag = 1;
+        return 0;
+    }
+    if (take_override(&aa->o, a, v, &st)) return st;
+    if (!strcmp(a, "--goal")) {
+        if (!v || abrdf_goal_find(v, &aa->rq.goal) != ABRDF_OK)
+            return cli_fail(CMD, "--goal needs performance or photoreal, got '%s'", v ? v : "");
+        aa->has_goal = 1;
+    } else if (!strcmp(a, "--budget")) {
+        if (!v) return cli_fail(CMD, "--budget needs none, slight, noticeable or an NMSE");
+        return select_request_budget(&aa->rq, CMD, v);
+    } else if (!strcmp(a, "--plot")) {
+        if (!v) return cli_fail(CMD, "--plot needs a file name (FILE.svg)");
+        aa->plot = v;
+    } else if (!strcmp(a, "--max-rel-error")) {
+        st = limit_value(a, v, &aa->tol.max_rel_pct);
+    } else if (!strcmp(a, "--max-abs-error")) {
+        st = limit_value(a, v, &aa->tol.max_abs);
+    } else if (!strcmp(a, "--materials")) {
+        if (!v) return cli_fail(CMD, "--materials needs a file");
+        if (aa->nfiles == MAX_FILES)
+            return cli_fail(CMD, "at most %d --materials files", MAX_FILES);
+        aa->files[aa->nfiles++] = v;
+    } else if (!strcmp(a, "--costs")) {
+        if (!v) return cli_fail(CMD, "--costs needs a file (abrdf calibrate writes one)");
+        aa->costs_file = v;
+    } else if (a[0] == '-' && a[1] == '-') {
+        return cli_fail(CMD, "unknown option '%s' (abrdf advise --help)", a);
+    } else {
+        if (aa->name) return cli_fail(CMD, "one material at a time ('%s' and '%s')", aa->name, a);
+        aa->name = a, *takes = 0;
+    }
+    return st;
+}
+
+/* The command line into aa, the rules between the options checked: 0 (aa->help: print the
+ * usage), or the exit status after the message. */
+static int advise_args_parse(int argc, char **argv, advise_args *aa)
+{
+    memset(aa, 0, sizeof *aa);
+    aa->rq = (select_request){0, ABRDF_GOAL_PHOTOREAL, 0.0};
+    abrdf_tolerance_init(&aa->tol);
+    aa->o.type = ABRDF_SURFACE_GENERAL;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int st = 0, takes = 1;
         if (cli_is_help(a)) {
-            usage(stdout);
+            aa->help = 1;
             return 0;
-        } else if (!strcmp(a, "--list")) {
-            list = 1, takes = 0;
-        } else if (!strcmp(a, "--rules")) {
-            rules = 1, takes = 0;
-        } else if (!strcmp(a, "--json")) {
-            json = 1, takes = 0;
-        } else if (!strcmp(a, "--goal")) {
-            if (!v || abrdf_goal_find(v, &goal) != ABRDF_OK)
-                return cli_fail(CMD, "--goal needs performance or photoreal, got '%s'", v ? v : "");
-            has_goal = 1;
-        } else if (!strcmp(a, "--budget")) {
-            char err[256];
-            if (!v) return cli_fail(CMD, "--budget needs none, slight, noticeable or an NMSE");
-            if (budget_parse(v, &budget, err, sizeof err))
-                return cli_fail(CMD, "--budget: %s", err);
-        } else if (!strcmp(a, "--pareto")) {
-            pareto = 1, takes = 0;
-        } else if (!strcmp(a, "--plot")) {
-            if (!v) return cli_fail(CMD, "--plot needs a file name (FILE.svg)");
-            plot = v;
-        } else if (!strcmp(a, "--max-rel-error")) {
-            st = limit_value(a, v, &tol.max_rel_pct);
-        } else if (!strcmp(a, "--max-abs-error")) {
-            st = limit_value(a, v, &tol.max_abs);
-        } else if (!strcmp(a, "--n")) {
-            st = range_value(a, v, 0.0, 1e6, &n), has_n = 1;
-        } else if (!strcmp(a, "--r")) {
-            st = range_value(a, v, 0.0, 1.0, &r), has_r = 1;
-        } else if (!strcmp(a, "--kd")) {
-            st = color_value(a, v, kd), has_kd = 1;
-        } else if (!strcmp(a, "--ks")) {
-            st = color_value(a, v, ks), has_ks = 1;
-        } else if (!strcmp(a, "--f0")) {
-            st = color_value(a, v, f0), has_f0 = 1;
-        } else if (!strcmp(a, "--eta")) {
-            st = range_value(a, v, 1.0, 4.0, &eta), has_eta = 1;
-        } else if (!strcmp(a, "--anisotropy")) {
-            st = range_value(a, v, 0.0, 1.0, &aniso), has_aniso = 1;
-        } else if (!strcmp(a, "--melanin")) {
-            st = range_value(a, v, 0.0, 1.0, &mel), has_mel = 1;
-        } else if (!strcmp(a, "--redness")) {
-            st = range_value(a, v, 0.0, 1.0, &red), has_red = 1;
-        } else if (!strcmp(a, "--type")) {
-            if (!v || abrdf_surface_find(v, &type) != ABRDF_OK)
-                return cli_fail(CMD,
-                                "--type needs one of general, cloth_rough, cloth_shiny, hair, "
-                                "layered_plastic, layered_plate, layered_metal; got '%s'",
-                                v ? v : "");
-            has_type = 1;
-        } else if (!strcmp(a, "--materials")) {
-            if (!v) return cli_fail(CMD, "--materials needs a file");
-            if (nfiles == MAX_FILES)
-                return cli_fail(CMD, "at most %d --materials files", MAX_FILES);
-            files[nfiles++] = v;
-        } else if (!strcmp(a, "--costs")) {
-            if (!v) return cli_fail(CMD, "--costs needs a file (abrdf calibrate writes one)");
-            costs_file = v;
-        } else if (a[0] == '-' && a[1] == '-') {
-            return cli_fail(CMD, "unknown option '%s' (abrdf advise --help)", a);
-        } else {
-            if (name) return cli_fail(CMD, "one material at a time ('%s' and '%s')", name, a);
-            name = a, takes = 0;
         }
+        int takes, st = take_option(aa, a, v, &takes);
         if (st) return st;
         i += takes;
     }
-
-    if (budget >= 0.0 && pareto) return cli_fail(CMD, "--budget and --pareto exclude each other");
-    if ((budget >= 0.0 || pareto) && has_goal)
+    const select_request *rq = &aa->rq;
+    if (rq->by_budget && aa->pareto)
+        return cli_fail(CMD, "--budget and --pareto exclude each other");
+    if ((rq->by_budget || aa->pareto) && aa->has_goal)
         return cli_fail(CMD,
                         "--goal and --%s exclude each other: the budget's reference is the "
                         "photoreal choice",
-                        pareto ? "pareto" : "budget");
-    if (plot && !pareto) return cli_fail(CMD, "--plot draws the front of --pareto");
-    if (plot) { /* the plot never replaces an input */
+                        aa->pareto ? "pareto" : "budget");
+    if (aa->plot && !aa->pareto) return cli_fail(CMD, "--plot draws the front of --pareto");
+    if (aa->plot) { /* the plot never replaces an input */
         char tpath[1024], perr[1024];
         data_path_find("materials.csv", tpath, sizeof tpath);
-        const char *out_role = "--plot file", *ins[MAX_FILES + 2] = {tpath, costs_file},
+        const char *out_role = "--plot file", *ins[MAX_FILES + 2] = {tpath, aa->costs_file},
                    *in_roles[MAX_FILES + 2] = {"material table", "--costs file"};
-        for (int i = 0; i < nfiles; ++i)
-            ins[2 + i] = files[i], in_roles[2 + i] = "--materials file";
-        if (out_files_distinct(&plot, &out_role, 1, ins, in_roles, 2 + nfiles, perr, sizeof perr))
+        for (int i = 0; i < aa->nfiles; ++i)
+            ins[2 + i] = aa->files[i], in_roles[2 + i] = "--materials file";
+        if (out_files_distinct(&aa->plot, &out_role, 1, ins, in_roles, 2 + aa->nfiles, perr,
+                               sizeof perr))
             return cli_fail(CMD, "%s", perr);
     }
-    if (rules) {
-        print_rules(json);
-        return 0;
-    }
-    mat_table table = {NULL, 0, 0};
-    int rc = load_tables(&table, files, nfiles);
-    if (rc) {
-        mat_table_free(&table);
-        return rc;
-    }
-    if (list) {
-        list_materials(&table, json);
-        mat_table_free(&table);
-        return 0;
-    }
+    return 0;
+}
 
-    abrdf_material m;
-    const mat_entry *e = NULL;
-    if (name) {
-        e = mat_table_find(&table, name);
-        if (!e) {
-            const char *near[5];
-            int k = mat_table_nearest(&table, name, near, 5);
-            char hint[256] = "";
-            for (int i = 0; i < k; ++i) strcat(strcat(hint, i ? ", " : ""), near[i]);
-            rc = k ? cli_fail(CMD, "unknown material '%s'; did you mean: %s? (abrdf advise --list)",
-                              name, hint)
-                   : cli_fail(CMD,
-                              "unknown material '%s'; abrdf advise --list shows the %d known ones",
-                              name, table.count);
-            mat_table_free(&table);
-            return rc;
-        }
-        m = e->m;
-    } else {
-        abrdf_material_init(&m);
-        if (!has_n && !has_r) {
-            mat_table_free(&table);
+/* ---- the material --------------------------------------------------------------------- */
+
+/* Table entry `name` into *m (*e: the entry), or with no name the defaults; "unknown
+ * material" names the nearest. 0, or the exit status after the message. */
+static int material_find(const mat_table *table, const advise_args *aa, abrdf_material *m,
+                         const mat_entry **e)
+{
+    *e = NULL;
+    if (!aa->name) {
+        abrdf_material_init(m);
+        if (!aa->o.has_n && !aa->o.has_r)
             return cli_fail(CMD,
                             "give a MATERIAL name or at least --n or --r (abrdf advise --help)");
-        }
+        return 0;
     }
-    if (has_n) m.n = n;
-    if (has_r) m.r = r;
-    if (has_kd) memcpy(m.kd, kd, sizeof kd);
-    if (has_ks) memcpy(m.ks, ks, sizeof ks);
-    if (has_f0) memcpy(m.f0, f0, sizeof f0), m.eta = -1.0;
-    if (has_eta) m.eta = eta;
-    if (has_aniso) m.anisotropy = aniso;
-    if (has_mel) m.melanin = mel;
-    if (has_red) m.redness = red;
-    if (has_type) m.type = type;
+    *e = mat_table_find(table, aa->name);
+    if (!*e) {
+        const char *near[5];
+        int k = mat_table_nearest(table, aa->name, near, 5);
+        char hint[256] = "";
+        for (int i = 0; i < k; ++i) strcat(strcat(hint, i ? ", " : ""), near[i]);
+        return k ? cli_fail(CMD, "unknown material '%s'; did you mean: %s? (abrdf advise --list)",
+                            aa->name, hint)
+                 : cli_fail(CMD,
+                            "unknown material '%s'; abrdf advise --list shows the %d known ones",
+                            aa->name, table->count);
+    }
+    *m = (*e)->m;
+    return 0;
+}
 
-    /* A photoreal special model with a narrower r range: the option that left it says so. */
+/* The command line's values over m; a photoreal special model with a narrower r range than
+ * --r or --n gives is refused by the option that left it. 0, or the exit status after the
+ * message. */
+static int overrides_apply(const advise_overrides *o, abrdf_goal goal, abrdf_material *m)
+{
+    if (o->has_n) m->n = o->n;
+    if (o->has_r) m->r = o->r;
+    if (o->has_kd) memcpy(m->kd, o->kd, sizeof o->kd);
+    if (o->has_ks) memcpy(m->ks, o->ks, sizeof o->ks);
+    if (o->has_f0) memcpy(m->f0, o->f0, sizeof o->f0), m->eta = -1.0;
+    if (o->has_eta) m->eta = o->eta;
+    if (o->has_aniso) m->anisotropy = o->aniso;
+    if (o->has_mel) m->melanin = o->mel;
+    if (o->has_red) m->redness = o->red;
+    if (o->has_type) m->type = o->type;
     const char *special;
     double rlo, rhi;
-    if (goal == ABRDF_GOAL_PHOTOREAL && special_r_range(m.type, &special, &rlo, &rhi) &&
-        (has_r || (has_n && !(m.r >= 0.0)))) {
-        double r_eff = has_r ? r : abrdf_alpha_g_to_r(abrdf_n_to_alpha_g(n));
-        if (!(r_eff >= rlo && r_eff <= rhi)) {
-            mat_table_free(&table);
-            if (has_r)
-                return cli_fail(CMD, "--r %g is outside [%g, %g]: photoreal %s uses %s", r, rlo,
-                                rhi, abrdf_surface_name(m.type), special);
-            return cli_fail(CMD,
-                            "--n %g gives r = %.9g, outside [%g, %g]: photoreal %s uses %s; "
-                            "give n <= %.0f",
-                            n, r_eff, rlo, rhi, abrdf_surface_name(m.type), special,
-                            n_max_for_r(rlo));
-        }
-    }
-    abrdf_costs costs;
-    if (costs_file) {
-        char err[512];
-        if (costs_load(costs_file, &costs, NULL, err, sizeof err)) {
-            mat_table_free(&table);
-            return cli_fail(CMD, "%s", err);
-        }
-    }
-    if (budget >= 0.0 || pareto) {
-        rc = advise_budget(&m, e, budget, costs_file ? &costs : NULL, json, pareto, plot);
-        mat_table_free(&table);
-        return rc;
-    }
+    if (!(goal == ABRDF_GOAL_PHOTOREAL && special_r_range(m->type, &special, &rlo, &rhi) &&
+          (o->has_r || (o->has_n && !(m->r >= 0.0)))))
+        return 0;
+    double r_eff = o->has_r ? o->r : abrdf_alpha_g_to_r(abrdf_n_to_alpha_g(o->n));
+    if (r_eff >= rlo && r_eff <= rhi) return 0;
+    if (o->has_r)
+        return cli_fail(CMD, "--r %g is outside [%g, %g]: photoreal %s uses %s", o->r, rlo, rhi,
+                        abrdf_surface_name(m->type), special);
+    return cli_fail(CMD,
+                    "--n %g gives r = %.9g, outside [%g, %g]: photoreal %s uses %s; "
+                    "give n <= %.0f",
+                    o->n, r_eff, rlo, rhi, abrdf_surface_name(m->type), special, n_max_for_r(rlo));
+}
+
+/* ---- the command ---------------------------------------------------------------------- */
+
+/* The flowchart's choice for m, printed with its trace. Returns the exit status. */
+static int advise_flowchart(const advise_args *aa, const abrdf_material *m, const mat_entry *e,
+                            const abrdf_costs *costs)
+{
+    int rc = 0;
     abrdf_selection sel;
     abrdf_params params;
     select_trace trace = SELECT_TRACE_INIT;
     abrdf_selection_init(&sel);
     abrdf_params_init(ABRDF_MODEL_NONE, &params);
-    if (abrdf_select(&m, goal, &tol, costs_file ? &costs : NULL, &sel, &params, select_trace_keep,
-                     &trace) != ABRDF_OK) {
+    if (abrdf_select(m, aa->rq.goal, &aa->tol, costs, &sel, &params, select_trace_keep, &trace) !=
+        ABRDF_OK) {
         rc = cli_fail(CMD, "%s", sel.message);
     } else if (trace.lost) {
         rc = cli_fail(CMD, "out of memory");
-    } else if (json) {
-        print_json(&sel, &params, &trace, e, &tol);
+    } else if (aa->json) {
+        print_json(&sel, &params, &trace, e, &aa->tol);
     } else {
         print_human(&sel, &params, &trace, e);
     }
     select_trace_free(&trace);
+    return rc;
+}
+
+/* The material's choice (the flowchart's, or the budget's, or the --pareto front) from the
+ * loaded tables. Returns the exit status. */
+static int advise_material(const advise_args *aa, const mat_table *table)
+{
+    abrdf_material m;
+    const mat_entry *e;
+    int rc = material_find(table, aa, &m, &e);
+    if (!rc) rc = overrides_apply(&aa->o, aa->rq.goal, &m);
+    if (rc) return rc;
+    abrdf_costs costs;
+    if (aa->costs_file) {
+        char err[512];
+        if (costs_load(aa->costs_file, &costs, NULL, err, sizeof err))
+            return cli_fail(CMD, "%s", err);
+    }
+    const abrdf_costs *c = aa->costs_file ? &costs : NULL;
+    if (aa->rq.by_budget || aa->pareto)
+        return advise_budget(&m, e, aa->rq.max_nmse, c, aa->json, aa->pareto, aa->plot);
+    return advise_flowchart(aa, &m, e, c);
+}
+
+int cmd_advise(int argc, char **argv)
+{
+    advise_args aa;
+    int rc = advise_args_parse(argc, argv, &aa);
+    if (aa.help) usage(stdout);
+    if (rc || aa.help) return rc;
+    if (aa.rules) {
+        print_rules(aa.json);
+        return 0;
+    }
+    mat_table table = {NULL, 0, 0};
+    rc = load_tables(&table, aa.files, aa.nfiles);
+    if (!rc && aa.list)
+        list_materials(&table, aa.json);
+    else if (!rc)
+        rc = advise_material(&aa, &table);
     mat_table_free(&table);
     return rc;
 }

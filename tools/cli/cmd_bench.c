@@ -461,91 +461,66 @@ static void write_plot(FILE *f, const row *rows, int count, double unit_ns)
 
 /* ---- the command ------------------------------------------------------------------------ */
 
-int cmd_bench(int argc, char **argv)
+#define CMD "bench"
+
+/* What the command line asks for. */
+typedef struct bench_args {
+    int help; /* --help given: print the usage and stop */
+    int json, quick, render, budget;
+    const char *plot;         /* --plot FILE, or NULL */
+    long size, threads, reps; /* 0: the defaults (threads: online CPUs, after parsing) */
+} bench_args;
+
+/* The command line into ba: 0 (ba->help: print the usage), or the exit status after the
+ * message. */
+static int bench_args_parse(int argc, char **argv, bench_args *ba)
 {
-    const char *cmd = "bench";
-    int json = 0, quick = 0, render = 0, budget = 0;
-    const char *plot = NULL;
-    long size = 0, threads = 0, reps = 0;
+    memset(ba, 0, sizeof *ba);
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i];
-        if (cli_is_help(a)) return usage();
+        if (cli_is_help(a)) {
+            ba->help = 1;
+            return 0;
+        }
         if (!strcmp(a, "--json"))
-            json = 1;
+            ba->json = 1;
         else if (!strcmp(a, "--quick"))
-            quick = 1;
+            ba->quick = 1;
         else if (!strcmp(a, "--render"))
-            render = 1;
+            ba->render = 1;
         else if (!strcmp(a, "--budget"))
-            budget = 1;
+            ba->budget = 1;
         else if (!strcmp(a, "--plot")) {
-            if (i + 1 >= argc) return cli_fail(cmd, "--plot needs a file name");
-            plot = argv[++i];
+            if (i + 1 >= argc) return cli_fail(CMD, "--plot needs a file name");
+            ba->plot = argv[++i];
         } else if (!strcmp(a, "--size")) {
-            if (i + 1 >= argc || !cli_parse_int(argv[++i], 8, 8192, &size))
-                return cli_fail(cmd, "--size needs a whole number in [8, 8192]");
+            if (i + 1 >= argc || !cli_parse_int(argv[++i], 8, 8192, &ba->size))
+                return cli_fail(CMD, "--size needs a whole number in [8, 8192]");
         } else if (!strcmp(a, "--threads")) {
-            if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, 256, &threads))
-                return cli_fail(cmd, "--threads needs a whole number in [1, 256]");
+            if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, 256, &ba->threads))
+                return cli_fail(CMD, "--threads needs a whole number in [1, 256]");
         } else if (!strcmp(a, "--reps")) {
-            if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, 1000, &reps))
-                return cli_fail(cmd, "--reps needs a whole number in [1, 1000]");
+            if (i + 1 >= argc || !cli_parse_int(argv[++i], 1, 1000, &ba->reps))
+                return cli_fail(CMD, "--reps needs a whole number in [1, 1000]");
         } else {
-            return cli_fail(cmd,
+            return cli_fail(CMD,
                             "unknown argument '%s'; options: --json --plot FILE --quick --render "
                             "--budget --size N --threads N --reps N",
                             a);
         }
     }
-    if (render && plot)
-        return cli_fail(cmd, "--plot draws the model benchmark; it does not go with --render");
-    if (threads == 0) {
+    if (ba->render && ba->plot)
+        return cli_fail(CMD, "--plot draws the model benchmark; it does not go with --render");
+    if (ba->threads == 0) {
         long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-        threads = cpus > 0 ? (cpus < 64 ? cpus : 64) : 1;
+        ba->threads = cpus > 0 ? (cpus < 64 ? cpus : 64) : 1;
     }
-    if (budget) /* bench_budget.c: the budget mode on the mixed scene */
-        return bench_budget_report(stdout, json,
-                                   (int)(size    ? size
-                                         : quick ? 128
-                                                 : 0),
-                                   1,
-                                   (int)(reps    ? reps
-                                         : quick ? 1
-                                                 : 3),
-                                   (int)threads);
-    if (render)
-        return bench_render_report(stdout, json,
-                                   (int)(size    ? size
-                                         : quick ? 64
-                                                 : 0),
-                                   (int)(reps    ? reps
-                                         : quick ? 1
-                                                 : 5),
-                                   (int)threads, quick ? 24 : 256, quick);
-    if (!size) size = quick ? 48 : 128;
+    return 0;
+}
 
-    /* The plot exists (as a temporary file) before the measurement: a directory that is
-     * missing or read-only fails now. */
-    char err[1024] = "";
-    out_file plot_out = OUT_FILE_INIT;
-    out_file *const plot_files[1] = {&plot_out};
-    if (plot && out_file_open(&plot_out, plot, err, sizeof err)) {
-        fprintf(stderr, "abrdf bench: %s\n", err);
-        return 1;
-    }
-    measure_opts mo;
-    measure_defaults(&mo, quick);
-    if (quick) mo.pairs = 1024, mo.integrating_pairs = 16;
-    if (reps) mo.reps = (int)reps;
-    measure_set *set = measure_set_new(mo.pairs);
-    row *rows = calloc((size_t)abrdf_model_count(), sizeof *rows);
-    if (!set || !rows) {
-        measure_set_free(set);
-        free(rows);
-        out_file_discard(&plot_out);
-        fprintf(stderr, "abrdf bench: out of memory\n");
-        return 1;
-    }
+/* A row per registered model, its reference and sweep set (the measurements NaN): the count. */
+static int rows_fill(row *rows, int quick)
+{
     int count = 0;
     for (int i = 0; i < abrdf_model_count(); ++i) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)i);
@@ -556,56 +531,92 @@ int cmd_bench(int argc, char **argv)
         r->nmse = r->best_n = r->t2_rel = r->t3_abs = NAN;
         sweep(r, quick);
     }
+    return count;
+}
+
+/* Every model's costs into rows, ns per evaluation; *unit_ns: the median unit, *drift: the
+ * units' spread relative to it. 0, or -1 out of memory. */
+static int time_models(row *rows, int count, measure_set *set, const measure_opts *mo,
+                       double *unit_ns, double *drift)
+{
     /* Cost: the unit is timed again just before each model, and each model's ns are
      * divided by that neighbouring unit, so that a change of the machine's load or clock
      * during the run cancels in the ratios. Stored below as ns in units of the median unit. */
     fprintf(stderr, "abrdf bench: timing");
-    measure_unit_ns(set, &mo); /* warm-up: clock frequency, page faults, caches */
+    measure_unit_ns(set, mo); /* warm-up: clock frequency, page faults, caches */
     double *units = malloc(sizeof(double) * (size_t)count);
-    if (!units) {
+    if (!units) return -1;
+    for (int i = 0; i < count; ++i) {
+        row *r = &rows[i];
+        fprintf(stderr, " %s", r->m->name);
+        double u = units[i] = measure_unit_ns(set, mo);
+        abrdf_params p;
+        abrdf_params_init(r->m->id, &p);
+        r->f_def = measure_model_params_ns(set, r->m->id, &p, 0, mo) / u;
+        r->d_def = measure_model_params_ns(set, r->m->id, &p, 1, mo) / u;
+        r->p_def = measure_model_params_ns(set, r->m->id, &p, 2, mo) / u;
+        for (int k = 0; k < r->nvals; ++k) {
+            set_vary(&p, r->vary, r->vals[k]);
+            r->f_ns[k] = measure_model_params_ns(set, r->m->id, &p, 0, mo) / u;
+            r->d_ns[k] = measure_model_params_ns(set, r->m->id, &p, 1, mo) / u;
+        }
+    }
+    double umin = INFINITY, umax = 0;
+    for (int i = 0; i < count; ++i) umin = fmin(umin, units[i]), umax = fmax(umax, units[i]);
+    qsort(units, (size_t)count, sizeof(double), cmp_double);
+    double u = units[count / 2];
+    *unit_ns = u;
+    *drift = (umax - umin) / u;
+    free(units);
+    for (int i = 0; i < count; ++i) { /* back to ns of the median unit */
+        row *r = &rows[i];
+        r->f_def *= u, r->d_def *= u, r->p_def *= u;
+        for (int k = 0; k < r->nvals; ++k) r->f_ns[k] *= u, r->d_ns[k] *= u;
+    }
+    return 0;
+}
+
+/* The model benchmark: costs, then accuracy on robot renders; the table or JSON, and the
+ * plot. Returns the exit status. */
+static int bench_models(const bench_args *ba)
+{
+    long size = ba->size ? ba->size : ba->quick ? 48 : 128;
+    /* The plot exists (as a temporary file) before the measurement: a directory that is
+     * missing or read-only fails now. */
+    char err[1024] = "";
+    out_file plot_out = OUT_FILE_INIT;
+    out_file *const plot_files[1] = {&plot_out};
+    if (ba->plot && out_file_open(&plot_out, ba->plot, err, sizeof err)) {
+        fprintf(stderr, "abrdf bench: %s\n", err);
+        return 1;
+    }
+    measure_opts mo;
+    measure_defaults(&mo, ba->quick);
+    if (ba->quick) mo.pairs = 1024, mo.integrating_pairs = 16;
+    if (ba->reps) mo.reps = (int)ba->reps;
+    measure_set *set = measure_set_new(mo.pairs);
+    row *rows = calloc((size_t)abrdf_model_count(), sizeof *rows);
+    int count = set && rows ? rows_fill(rows, ba->quick) : 0;
+    double unit_ns = 0.0, drift = 0.0;
+    if (!set || !rows || time_models(rows, count, set, &mo, &unit_ns, &drift)) {
         measure_set_free(set);
         free(rows);
         out_file_discard(&plot_out);
         fprintf(stderr, "abrdf bench: out of memory\n");
         return 1;
     }
-    for (int i = 0; i < count; ++i) {
-        row *r = &rows[i];
-        fprintf(stderr, " %s", r->m->name);
-        double u = units[i] = measure_unit_ns(set, &mo);
-        abrdf_params p;
-        abrdf_params_init(r->m->id, &p);
-        r->f_def = measure_model_params_ns(set, r->m->id, &p, 0, &mo) / u;
-        r->d_def = measure_model_params_ns(set, r->m->id, &p, 1, &mo) / u;
-        r->p_def = measure_model_params_ns(set, r->m->id, &p, 2, &mo) / u;
-        for (int k = 0; k < r->nvals; ++k) {
-            set_vary(&p, r->vary, r->vals[k]);
-            r->f_ns[k] = measure_model_params_ns(set, r->m->id, &p, 0, &mo) / u;
-            r->d_ns[k] = measure_model_params_ns(set, r->m->id, &p, 1, &mo) / u;
-        }
-    }
     measure_set_free(set);
-    double umin = INFINITY, umax = 0;
-    for (int i = 0; i < count; ++i) umin = fmin(umin, units[i]), umax = fmax(umax, units[i]);
-    qsort(units, (size_t)count, sizeof(double), cmp_double);
-    double unit_ns = units[count / 2], drift = (umax - umin) / unit_ns;
-    free(units);
-    for (int i = 0; i < count; ++i) { /* back to ns of the median unit */
-        row *r = &rows[i];
-        r->f_def *= unit_ns, r->d_def *= unit_ns, r->p_def *= unit_ns;
-        for (int k = 0; k < r->nvals; ++k) r->f_ns[k] *= unit_ns, r->d_ns[k] *= unit_ns;
-    }
     fprintf(stderr, "\nabrdf bench: robot renders\n");
     int rc = 0;
-    if (accuracy(rows, count, (int)size, (int)threads, quick, err, sizeof err)) {
+    if (accuracy(rows, count, (int)size, (int)ba->threads, ba->quick, err, sizeof err)) {
         fprintf(stderr, "abrdf bench: %s\n", err);
         rc = 1;
     } else {
-        if (json)
+        if (ba->json)
             print_json(stdout, rows, count, unit_ns, drift, &mo, (int)size);
         else
             print_table(stdout, rows, count, unit_ns, drift, &mo, (int)size);
-        if (plot) {
+        if (ba->plot) {
             write_plot(plot_out.f, rows, count, unit_ns);
             if (out_file_close(&plot_out, err, sizeof err) ||
                 out_file_commit(plot_files, 1, err, sizeof err)) {
@@ -617,4 +628,33 @@ int cmd_bench(int argc, char **argv)
     out_file_discard(&plot_out);
     free(rows);
     return rc;
+}
+
+int cmd_bench(int argc, char **argv)
+{
+    bench_args ba;
+    int rc = bench_args_parse(argc, argv, &ba);
+    if (rc || ba.help) return ba.help ? usage() : rc;
+    int quick = ba.quick;
+    long size = ba.size, reps = ba.reps;
+    if (ba.budget) /* bench_budget.c: the budget mode on the mixed scene */
+        return bench_budget_report(stdout, ba.json,
+                                   (int)(size    ? size
+                                         : quick ? 128
+                                                 : 0),
+                                   1,
+                                   (int)(reps    ? reps
+                                         : quick ? 1
+                                                 : 3),
+                                   (int)ba.threads);
+    if (ba.render)
+        return bench_render_report(stdout, ba.json,
+                                   (int)(size    ? size
+                                         : quick ? 64
+                                                 : 0),
+                                   (int)(reps    ? reps
+                                         : quick ? 1
+                                                 : 5),
+                                   (int)ba.threads, quick ? 24 : 256, quick);
+    return bench_models(&ba);
 }

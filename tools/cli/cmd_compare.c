@@ -68,6 +68,58 @@ static int write_diff(const char *cmd, const char *path, const abrdf_image *a, c
     return 0;
 }
 
+/* The comparison as JSON: the images, every metric, the class and the verdict. */
+static void print_json(const char *const files[2], const abrdf_image *ref, const abrdf_metrics *m,
+                       double threshold, int pass)
+{
+    const char *cls = m->nmse_defined ? abrdf_nmse_class(m->nmse) : "undefined";
+    printf("{\n  \"reference\": ");
+    cli_json_string(stdout, files[0]);
+    printf(",\n  \"test\": ");
+    cli_json_string(stdout, files[1]);
+    printf(",\n  \"width\": %d,\n  \"height\": %d,\n  \"channels\": %d,\n", ref->width, ref->height,
+           ref->channels);
+    json_number(stdout, "nmse", m->nmse_defined ? m->nmse : NAN);
+    json_number(stdout, "sse", m->sse);
+    json_number(stdout, "reference_energy", m->ref_energy);
+    json_number(stdout, "mse", m->mse);
+    json_number(stdout, "peak", m->peak);
+    json_number(stdout, "psnr", m->psnr);
+    json_number(stdout, "max_abs_error", m->max_abs);
+    printf("  \"max_pixel\": [%d, %d],\n  \"max_channel\": \"%c\",\n", m->max_x, m->max_y,
+           "RGB"[m->max_c]);
+    printf("  \"class\": \"%s\",\n", cls);
+    json_number(stdout, "threshold", threshold);
+    printf("  \"pass\": %s\n}\n", pass ? "true" : "false");
+}
+
+/* The comparison for people: NMSE with its Table-8 class, PSNR, the largest error, the
+ * verdict. */
+static void print_human(const char *const files[2], const abrdf_image *ref, const abrdf_metrics *m,
+                        const char *diff, double threshold, int pass)
+{
+    printf("reference  %s (%dx%d, %d channels)\n", files[0], ref->width, ref->height,
+           ref->channels);
+    printf("test       %s\n", files[1]);
+    if (m->nmse_defined)
+        printf("NMSE       %.6e  (%s, Table 8)\n", m->nmse, abrdf_nmse_class_description(m->nmse));
+    else
+        printf("NMSE       undefined: the reference %s is all black (sum of squares 0)\n",
+               files[0]);
+    if (isfinite(m->psnr))
+        printf("PSNR       %.3f dB (peak %g)\n", m->psnr, m->peak);
+    else
+        printf("PSNR       %s\n", m->psnr > 0 ? "inf (identical)" : "-inf (no positive value)");
+    printf("max error  %.6e at pixel (%d, %d) channel %c\n", m->max_abs, m->max_x, m->max_y,
+           "RGB"[m->max_c]);
+    if (diff) printf("diff map   %s (0 .. %.6e)\n", diff, m->max_abs);
+    if (!m->nmse_defined)
+        printf("result     UNDEFINED\n");
+    else
+        printf("result     %s (NMSE %s %g)\n", pass ? "PASS" : "FAIL",
+               pass ? "<" : ">=", threshold);
+}
+
 int cmd_compare(int argc, char **argv)
 {
     const char *cmd = "compare";
@@ -136,49 +188,10 @@ int cmd_compare(int argc, char **argv)
     if (diff && (rc = write_diff(cmd, diff, &ref, &test, m.max_abs))) goto done;
 
     int pass = m.nmse_defined && m.nmse < threshold;
-    const char *cls = m.nmse_defined ? abrdf_nmse_class(m.nmse) : "undefined";
-    if (json) {
-        printf("{\n  \"reference\": ");
-        cli_json_string(stdout, files[0]);
-        printf(",\n  \"test\": ");
-        cli_json_string(stdout, files[1]);
-        printf(",\n  \"width\": %d,\n  \"height\": %d,\n  \"channels\": %d,\n", ref.width,
-               ref.height, ref.channels);
-        json_number(stdout, "nmse", m.nmse_defined ? m.nmse : NAN);
-        json_number(stdout, "sse", m.sse);
-        json_number(stdout, "reference_energy", m.ref_energy);
-        json_number(stdout, "mse", m.mse);
-        json_number(stdout, "peak", m.peak);
-        json_number(stdout, "psnr", m.psnr);
-        json_number(stdout, "max_abs_error", m.max_abs);
-        printf("  \"max_pixel\": [%d, %d],\n  \"max_channel\": \"%c\",\n", m.max_x, m.max_y,
-               "RGB"[m.max_c]);
-        printf("  \"class\": \"%s\",\n", cls);
-        json_number(stdout, "threshold", threshold);
-        printf("  \"pass\": %s\n}\n", pass ? "true" : "false");
-    } else {
-        printf("reference  %s (%dx%d, %d channels)\n", files[0], ref.width, ref.height,
-               ref.channels);
-        printf("test       %s\n", files[1]);
-        if (m.nmse_defined)
-            printf("NMSE       %.6e  (%s, Table 8)\n", m.nmse,
-                   abrdf_nmse_class_description(m.nmse));
-        else
-            printf("NMSE       undefined: the reference %s is all black (sum of squares 0)\n",
-                   files[0]);
-        if (isfinite(m.psnr))
-            printf("PSNR       %.3f dB (peak %g)\n", m.psnr, m.peak);
-        else
-            printf("PSNR       %s\n", m.psnr > 0 ? "inf (identical)" : "-inf (no positive value)");
-        printf("max error  %.6e at pixel (%d, %d) channel %c\n", m.max_abs, m.max_x, m.max_y,
-               "RGB"[m.max_c]);
-        if (diff) printf("diff map   %s (0 .. %.6e)\n", diff, m.max_abs);
-        if (!m.nmse_defined)
-            printf("result     UNDEFINED\n");
-        else
-            printf("result     %s (NMSE %s %g)\n", pass ? "PASS" : "FAIL",
-                   pass ? "<" : ">=", threshold);
-    }
+    if (json)
+        print_json(files, &ref, &m, threshold, pass);
+    else
+        print_human(files, &ref, &m, diff, threshold, pass);
     if (!m.nmse_defined) {
         fprintf(stderr, "abrdf compare: NMSE is undefined because the reference %s is all black\n",
                 files[0]);

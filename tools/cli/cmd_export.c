@@ -79,8 +79,6 @@ static const char *osl_dir_default(void)
     return ABRDF_INSTALL_OSL_DIR;
 }
 
-/* An exporter failed: a failed write is reported with its reason (out_file_close's), any
- * other problem with the exporter's message. */
 /* A writer failed: a failed write names the output (out_file), anything else is about what
  * the scene asks for and names the scene. */
 static void export_failed(out_file *o, const char *scene_path, char *err, size_t err_size)
@@ -93,99 +91,148 @@ static void export_failed(out_file *o, const char *scene_path, char *err, size_t
                 path_short(shown, sizeof shown, scene_path, sizeof shown - 1), err);
 }
 
-int cmd_export(int argc, char **argv)
-{
-    const char *cmd = "export", *path = NULL, *out = NULL, *osl_dir = NULL, *mode = NULL;
-    scene_choice choice;
-    scene_choice_init(&choice);
-    int pov = 0, cycles = 0, no_shadows = 0, native = 0, spp = 0;
-    render_options opt;
-    memset(&opt, 0, sizeof opt);
-    opt.spp = 1;
-    opt.threads = 1;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
-        long v;
-        if (cli_is_help(a)) return usage();
-        int took = scene_choice_option(&choice, cmd, argc, argv, &i);
-        if (took) {
-            if (took < 0) return CLI_EXIT_USAGE;
-        } else if (!strcmp(a, "--pov"))
-            pov = 1;
-        else if (!strcmp(a, "--cycles"))
-            cycles = 1;
-        else if (!strcmp(a, "--no-shadows"))
-            no_shadows = 1;
-        else if (!strcmp(a, "--native"))
-            native = 1;
-        else if (!strcmp(a, "-o") || !strcmp(a, "--osl-dir") || !strcmp(a, "--mode")) {
-            if (!val) return cli_fail(cmd, "%s needs a value", a);
-            ++i;
-            if (!strcmp(a, "-o"))
-                out = val;
-            else if (!strcmp(a, "--osl-dir"))
-                osl_dir = val;
-            else
-                mode = val;
-        } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp")) {
-            long hi = !strcmp(a, "--spp") ? 65536 : SCENE_MAX_RESOLUTION;
-            if (!cli_parse_int(val, 1, hi, &v))
-                return cli_fail(cmd, "%s needs a whole number in [1, %ld]", a, hi);
-            ++i;
-            if (!strcmp(a, "--width"))
-                opt.width = (int)v;
-            else if (!strcmp(a, "--height"))
-                opt.height = (int)v;
-            else
-                spp = (int)v;
-        } else if (a[0] == '-') {
-            return cli_fail(cmd, "unknown option '%s' (abrdf export --help)", a);
-        } else if (!path) {
-            path = a;
-        } else {
-            return cli_fail(cmd, "more than one SCENE ('%s' and '%s')", path, a);
-        }
-    }
-    if (pov + cycles != 1) return cli_fail(cmd, "choose one format: --pov or --cycles");
-    if (!path) return cli_fail(cmd, "missing SCENE (abrdf export --help)");
-    if (!out) return cli_fail(cmd, "missing -o OUT");
-    if (pov && (spp || mode || osl_dir))
-        return cli_fail(cmd, "--spp, --mode and --osl-dir are options of --cycles");
-    if (cycles && (native || no_shadows))
-        return cli_fail(cmd, "--native and --no-shadows are options of --pov");
-    if (native && no_shadows)
-        return cli_fail(cmd, "--native uses POV-Ray's lights (with shadows); drop --no-shadows");
-    if (mode && strcmp(mode, "eval") && strcmp(mode, "closure") && strcmp(mode, "generic"))
-        return cli_fail(cmd, "--mode is eval, closure or generic, not '%s'", mode);
-    if (scene_choice_check(&choice, cmd)) return CLI_EXIT_USAGE;
+#define CMD "export"
 
+/* What the command line asks for. */
+typedef struct export_args {
+    int help;                            /* --help given: print the usage and stop */
+    const char *path, *out;              /* the scene, the output */
+    const char *osl_dir, *mode;          /* --cycles: NULL for the defaults */
+    scene_choice choice;                 /* --model, --adaptive, --materials, ... */
+    int pov, cycles, no_shadows, native; /* the format and --pov's lighting */
+    int spp;                             /* --cycles: 0 for the default */
+    render_options opt;                  /* --width, --height */
+} export_args;
+
+/* One option at argv[*i] (its value taken, *i advanced): 0, or the exit status after the
+ * message. */
+static int take_option(export_args *ea, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    const struct {
+        const char *name;
+        int *slot;
+    } flags[] = {{"--pov", &ea->pov},
+                 {"--cycles", &ea->cycles},
+                 {"--no-shadows", &ea->no_shadows},
+                 {"--native", &ea->native}};
+    const struct {
+        const char *name, **slot;
+    } strings[] = {{"-o", &ea->out}, {"--osl-dir", &ea->osl_dir}, {"--mode", &ea->mode}};
+    const struct {
+        const char *name;
+        long max;
+        int *slot;
+    } numbers[] = {{"--width", SCENE_MAX_RESOLUTION, &ea->opt.width},
+                   {"--height", SCENE_MAX_RESOLUTION, &ea->opt.height},
+                   {"--spp", 65536, &ea->spp}};
+    for (size_t k = 0; k < sizeof flags / sizeof flags[0]; ++k)
+        if (!strcmp(a, flags[k].name)) {
+            *flags[k].slot = 1;
+            return 0;
+        }
+    for (size_t k = 0; k < sizeof strings / sizeof strings[0]; ++k)
+        if (!strcmp(a, strings[k].name)) {
+            if (!val) return cli_fail(CMD, "%s needs a value", a);
+            ++*i;
+            *strings[k].slot = val;
+            return 0;
+        }
+    for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; ++k)
+        if (!strcmp(a, numbers[k].name)) {
+            long v;
+            if (!cli_parse_int(val, 1, numbers[k].max, &v))
+                return cli_fail(CMD, "%s needs a whole number in [1, %ld]", a, numbers[k].max);
+            ++*i;
+            *numbers[k].slot = (int)v;
+            return 0;
+        }
+    if (a[0] == '-') return cli_fail(CMD, "unknown option '%s' (abrdf export --help)", a);
+    if (ea->path) return cli_fail(CMD, "more than one SCENE ('%s' and '%s')", ea->path, a);
+    ea->path = a;
+    return 0;
+}
+
+/* The command line into ea, the rules between the options checked: 0 (ea->help: print the
+ * usage), or the exit status after the message. */
+static int export_args_parse(int argc, char **argv, export_args *ea)
+{
+    memset(ea, 0, sizeof *ea);
+    scene_choice_init(&ea->choice);
+    ea->opt.spp = 1;
+    ea->opt.threads = 1;
+    for (int i = 1; i < argc; ++i) {
+        if (cli_is_help(argv[i])) {
+            ea->help = 1;
+            return 0;
+        }
+        int took = scene_choice_option(&ea->choice, CMD, argc, argv, &i);
+        if (took < 0) return CLI_EXIT_USAGE;
+        int rc = took ? 0 : take_option(ea, argc, argv, &i);
+        if (rc) return rc;
+    }
+    if (ea->pov + ea->cycles != 1) return cli_fail(CMD, "choose one format: --pov or --cycles");
+    if (!ea->path) return cli_fail(CMD, "missing SCENE (abrdf export --help)");
+    if (!ea->out) return cli_fail(CMD, "missing -o OUT");
+    if (ea->pov && (ea->spp || ea->mode || ea->osl_dir))
+        return cli_fail(CMD, "--spp, --mode and --osl-dir are options of --cycles");
+    if (ea->cycles && (ea->native || ea->no_shadows))
+        return cli_fail(CMD, "--native and --no-shadows are options of --pov");
+    if (ea->native && ea->no_shadows)
+        return cli_fail(CMD, "--native uses POV-Ray's lights (with shadows); drop --no-shadows");
+    if (ea->mode && strcmp(ea->mode, "eval") && strcmp(ea->mode, "closure") &&
+        strcmp(ea->mode, "generic"))
+        return cli_fail(CMD, "--mode is eval, closure or generic, not '%s'", ea->mode);
+    if (scene_choice_check(&ea->choice, CMD)) return CLI_EXIT_USAGE;
+    return 0;
+}
+
+/* The output is never one of the inputs: 0, or the exit status after the message. */
+static int output_refuse(const export_args *ea)
+{
+    char err[1024], tpath[1024];
+    data_path_find("materials.csv", tpath, sizeof tpath);
+    const char *out_role = "output", *ins[18] = {ea->path, tpath},
+               *in_roles[18] = {"scene", "material table"};
+    for (int i = 0; i < ea->choice.how.table_count; ++i)
+        ins[2 + i] = ea->choice.mats[i], in_roles[2 + i] = "--materials file";
+    if (out_files_distinct(&ea->out, &out_role, 1, ins, in_roles, 2 + ea->choice.how.table_count,
+                           err, sizeof err))
+        return cli_fail(CMD, "%s", err);
+    return 0;
+}
+
+/* The prepared scene in the chosen format into the open output o; note: the selection's
+ * trace for the file's comments, or NULL. 0, or 1 after the message. */
+static int export_write(const export_args *ea, const render_scene *rs, out_file *o,
+                        const char *note)
+{
     char err[1024];
-    {
-        char tpath[1024];
-        data_path_find("materials.csv", tpath, sizeof tpath);
-        const char *out_role = "output", *ins[18] = {path, tpath},
-                   *in_roles[18] = {"scene", "material table"};
-        for (int i = 0; i < choice.how.table_count; ++i)
-            ins[2 + i] = choice.mats[i], in_roles[2 + i] = "--materials file";
-        if (out_files_distinct(&out, &out_role, 1, ins, in_roles, 2 + choice.how.table_count, err,
-                               sizeof err))
-            return cli_fail(cmd, "%s", err);
+    int failed;
+    if (ea->pov) {
+        int eval_lit =
+            !ea->native && !ea->no_shadows; /* function pigments under POV-Ray's lights */
+        export_pov_options eo = {eval_lit && rs->light_count == 1, eval_lit && rs->light_count > 1,
+                                 ea->native, ea->path, note};
+        failed = export_pov_write(rs, &eo, o->f, err, sizeof err);
+    } else {
+        export_options eo = {ea->path, ea->osl_dir ? ea->osl_dir : osl_dir_default(),
+                             ea->spp ? ea->spp : 4, ea->mode ? ea->mode : "eval", note};
+        failed = export_cycles(o->f, rs, &eo, err, sizeof err);
     }
-    scene s;
-    if (scene_parse_file(path, &s, err, sizeof err)) {
-        fprintf(stderr, "abrdf export: %s\n", err);
-        return 1;
-    }
-    const char *out_role = "output";
-    if (scene_outputs_distinct(&s, &out, &out_role, 1, err, sizeof err)) {
-        scene_free(&s);
-        return cli_fail(cmd, "%s", err);
-    }
+    if (failed) export_failed(o, ea->path, err, sizeof err);
+    return failed ? 1 : 0;
+}
+
+/* The parsed scene s, its materials chosen (the trace kept for the file's comments), written
+ * whole or not at all. 0, or the exit status after the message. */
+static int export_scene(export_args *ea, scene *s)
+{
+    char err[1024];
     int rc = 1, prepared = 0;
     render_scene rs;
     out_file o = OUT_FILE_INIT;
     out_file *const files[1] = {&o};
-    /* The selection's trace, kept for the file's comments. */
     char *notes = NULL;
     size_t notes_len = 0;
     FILE *trace = open_memstream(&notes, &notes_len);
@@ -195,7 +242,7 @@ int cmd_export(int argc, char **argv)
     }
     /* a budget's prediction samples the image the scene file describes (its resolution, 4
      * samples per pixel), as abrdf render's does: the same choices */
-    int applied = scene_choice_apply(&choice, cmd, &s, path, 4, trace);
+    int applied = scene_choice_apply(&ea->choice, CMD, s, ea->path, 4, trace);
     if (fclose(trace)) {
         fprintf(stderr, "abrdf export: out of memory\n");
         goto done;
@@ -204,32 +251,16 @@ int cmd_export(int argc, char **argv)
         rc = applied;
         goto done;
     }
-    if (render_prepare(&s, &opt, &rs, err, sizeof err)) {
+    if (render_prepare(s, &ea->opt, &rs, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;
     }
     prepared = 1;
-    if (out_file_open(&o, out, err, sizeof err)) {
+    if (out_file_open(&o, ea->out, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;
     }
-    const char *note = notes_len ? notes : NULL;
-    if (pov) {
-        int eval_lit = !native && !no_shadows; /* function pigments under POV-Ray's lights */
-        export_pov_options eo = {eval_lit && rs.light_count == 1, eval_lit && rs.light_count > 1,
-                                 native, path, note};
-        if (export_pov_write(&rs, &eo, o.f, err, sizeof err)) {
-            export_failed(&o, path, err, sizeof err);
-            goto done;
-        }
-    } else {
-        export_options eo = {path, osl_dir ? osl_dir : osl_dir_default(), spp ? spp : 4,
-                             mode ? mode : "eval", note};
-        if (export_cycles(o.f, &rs, &eo, err, sizeof err)) {
-            export_failed(&o, path, err, sizeof err);
-            goto done;
-        }
-    }
+    if (export_write(ea, &rs, &o, notes_len ? notes : NULL)) goto done;
     if (out_file_close(&o, err, sizeof err) || out_file_commit(files, 1, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;
@@ -239,6 +270,26 @@ done:
     out_file_discard(&o); /* committed: nothing left; else OUT stays as it was */
     free(notes);
     if (prepared) render_release(&rs);
+    return rc;
+}
+
+int cmd_export(int argc, char **argv)
+{
+    export_args ea;
+    int rc = export_args_parse(argc, argv, &ea);
+    if (rc || ea.help) return ea.help ? usage() : rc;
+    if ((rc = output_refuse(&ea))) return rc;
+    char err[1024];
+    scene s;
+    if (scene_parse_file(ea.path, &s, err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s\n", err);
+        return 1;
+    }
+    const char *out_role = "output";
+    if (scene_outputs_distinct(&s, &ea.out, &out_role, 1, err, sizeof err))
+        rc = cli_fail(CMD, "%s", err);
+    else
+        rc = export_scene(&ea, &s);
     scene_free(&s);
     return rc;
 }

@@ -85,248 +85,308 @@ static char *preview_path(const char *out)
     return p;
 }
 
-int cmd_render(int argc, char **argv)
+#define CMD "render"
+
+/* What the command line asks for. */
+typedef struct render_args {
+    int help;                            /* --help given: print the usage and stop */
+    const char *path, *out;              /* the scene, the linear image (NULL: from the scene) */
+    const char *config, *display, *view; /* the preview's OpenColorIO transform */
+    scene_choice choice;                 /* --model, --adaptive, --materials, ... */
+    int full, explain, stats, preview;
+    render_options opt;
+} render_args;
+
+/* --precision and --estimator: a name from a list. 0, or the exit status after the message. */
+static int take_named(render_args *ra, const char *a, const char *val)
 {
-    const char *cmd = "render", *path = NULL, *out = NULL;
-    const char *config = NULL, *display = NULL, *view = NULL;
-    scene_choice choice;
-    scene_choice_init(&choice);
-    int full = 0, explain = 0, stats = 0, preview = 1;
+    if (!strcmp(a, "--precision")) {
+        if (!strcmp(val, "float"))
+            ra->opt.precision = RENDER_FLOAT;
+        else if (!strcmp(val, "double"))
+            ra->opt.precision = RENDER_DOUBLE;
+        else
+            return cli_fail(CMD, "--precision must be float or double, not '%s'", val);
+    } else {
+        if (!strcmp(val, "mis"))
+            ra->opt.estimator = RENDER_EST_MIS;
+        else if (!strcmp(val, "light"))
+            ra->opt.estimator = RENDER_EST_LIGHT;
+        else if (!strcmp(val, "brdf"))
+            ra->opt.estimator = RENDER_EST_BRDF;
+        else
+            return cli_fail(CMD, "--estimator must be mis, light or brdf, not '%s'", val);
+    }
+    return 0;
+}
+
+/* One option at argv[*i] (its value taken, *i advanced): 0, or the exit status after the
+ * message. */
+static int take_option(render_args *ra, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    const struct {
+        const char *name;
+        int *slot, value;
+    } flags[] = {{"--explain", &ra->explain, 1},
+                 {"--stats", &ra->stats, 1},
+                 {"--jitter", &ra->opt.jitter, 1},
+                 {"--no-preview", &ra->preview, 0},
+                 {"--full", &ra->full, 1}};
+    const struct {
+        const char *name, **slot; /* NULL: a name from a list (take_named) */
+    } strings[] = {{"-o", &ra->out},      {"--config", &ra->config}, {"--display", &ra->display},
+                   {"--view", &ra->view}, {"--precision", NULL},     {"--estimator", NULL}};
+    const struct {
+        const char *name;
+        long max;
+        int *slot;
+    } numbers[] = {{"--light-samples", 4096, &ra->opt.light_samples},
+                   {"--width", SCENE_MAX_RESOLUTION, &ra->opt.width},
+                   {"--height", SCENE_MAX_RESOLUTION, &ra->opt.height},
+                   {"--spp", 4096, &ra->opt.spp},
+                   {"--threads", 64, &ra->opt.threads}};
+    for (size_t k = 0; k < sizeof flags / sizeof flags[0]; ++k)
+        if (!strcmp(a, flags[k].name)) {
+            *flags[k].slot = flags[k].value;
+            return 0;
+        }
+    for (size_t k = 0; k < sizeof strings / sizeof strings[0]; ++k)
+        if (!strcmp(a, strings[k].name)) {
+            if (!val) return cli_fail(CMD, "%s needs a value", a);
+            ++*i;
+            if (!strings[k].slot) return take_named(ra, a, val);
+            *strings[k].slot = val;
+            return 0;
+        }
+    for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; ++k)
+        if (!strcmp(a, numbers[k].name)) {
+            long v;
+            if (!cli_parse_int(val, 1, numbers[k].max, &v))
+                return cli_fail(CMD, "%s needs a whole number in [1, %ld]", a, numbers[k].max);
+            ++*i;
+            *numbers[k].slot = (int)v;
+            return 0;
+        }
+    if (a[0] == '-' && a[1]) return cli_fail(CMD, "unknown option '%s' (abrdf render --help)", a);
+    if (ra->path) return cli_fail(CMD, "unexpected argument '%s' (one scene only)", a);
+    ra->path = a;
+    return 0;
+}
+
+/* The command line into ra, the rules between the options checked: 0 (ra->help: print the
+ * usage), or the exit status after the message. */
+static int render_args_parse(int argc, char **argv, render_args *ra)
+{
+    memset(ra, 0, sizeof *ra);
+    scene_choice_init(&ra->choice);
+    ra->preview = 1;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    render_options opt = {
+    ra->opt = (render_options){
         0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0, RENDER_FLOAT, 0, RENDER_EST_MIS,
         1};
     for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        const char *val = i + 1 < argc ? argv[i + 1] : NULL;
-        long v;
-        if (cli_is_help(a)) return usage();
-        int took = scene_choice_option(&choice, cmd, argc, argv, &i);
-        if (took) {
-            if (took < 0) return CLI_EXIT_USAGE;
-        } else if (!strcmp(a, "--explain"))
-            explain = 1;
-        else if (!strcmp(a, "--stats"))
-            stats = 1;
-        else if (!strcmp(a, "--jitter"))
-            opt.jitter = 1;
-        else if (!strcmp(a, "--no-preview"))
-            preview = 0;
-        else if (!strcmp(a, "--full"))
-            full = 1;
-        else if (!strcmp(a, "-o") || !strcmp(a, "--config") || !strcmp(a, "--display") ||
-                 !strcmp(a, "--view") || !strcmp(a, "--precision") || !strcmp(a, "--estimator")) {
-            if (!val) return cli_fail(cmd, "%s needs a value", a);
-            ++i;
-            if (!strcmp(a, "-o"))
-                out = val;
-            else if (!strcmp(a, "--config"))
-                config = val;
-            else if (!strcmp(a, "--display"))
-                display = val;
-            else if (!strcmp(a, "--view"))
-                view = val;
-            else if (!strcmp(a, "--precision")) {
-                if (!strcmp(val, "float"))
-                    opt.precision = RENDER_FLOAT;
-                else if (!strcmp(val, "double"))
-                    opt.precision = RENDER_DOUBLE;
-                else
-                    return cli_fail(cmd, "--precision must be float or double, not '%s'", val);
-            } else if (!strcmp(a, "--estimator")) {
-                if (!strcmp(val, "mis"))
-                    opt.estimator = RENDER_EST_MIS;
-                else if (!strcmp(val, "light"))
-                    opt.estimator = RENDER_EST_LIGHT;
-                else if (!strcmp(val, "brdf"))
-                    opt.estimator = RENDER_EST_BRDF;
-                else
-                    return cli_fail(cmd, "--estimator must be mis, light or brdf, not '%s'", val);
-            }
-        } else if (!strcmp(a, "--light-samples")) {
-            if (!cli_parse_int(val, 1, 4096, &v))
-                return cli_fail(cmd, "%s needs a whole number in [1, 4096]", a);
-            ++i;
-            opt.light_samples = (int)v;
-        } else if (!strcmp(a, "--width") || !strcmp(a, "--height") || !strcmp(a, "--spp") ||
-                   !strcmp(a, "--threads")) {
-            long hi = a[2] == 's' ? 4096 : a[2] == 't' ? 64 : SCENE_MAX_RESOLUTION;
-            if (!cli_parse_int(val, 1, hi, &v))
-                return cli_fail(cmd, "%s needs a whole number in [1, %ld]", a, hi);
-            ++i;
-            if (a[2] == 'w')
-                opt.width = (int)v;
-            else if (a[2] == 'h')
-                opt.height = (int)v;
-            else if (a[2] == 't')
-                opt.threads = (int)v;
-            else
-                opt.spp = (int)v;
-        } else if (a[0] == '-' && a[1]) {
-            return cli_fail(cmd, "unknown option '%s' (abrdf render --help)", a);
-        } else if (!path) {
-            path = a;
-        } else {
-            return cli_fail(cmd, "unexpected argument '%s' (one scene only)", a);
+        if (cli_is_help(argv[i])) {
+            ra->help = 1;
+            return 0;
+        }
+        int took = scene_choice_option(&ra->choice, CMD, argc, argv, &i);
+        if (took < 0) return CLI_EXIT_USAGE;
+        int rc = took ? 0 : take_option(ra, argc, argv, &i);
+        if (rc) return rc;
+    }
+    if (!ra->path) return cli_fail(CMD, "missing SCENE (abrdf render --help)");
+    long k = lround(sqrt((double)ra->opt.spp));
+    if (k * k != ra->opt.spp)
+        return cli_fail(CMD,
+                        "--spp %d is not a square (1, 4, 9, 16, ...): strata form a k x k grid",
+                        ra->opt.spp);
+    if (scene_choice_check(&ra->choice, CMD)) return CLI_EXIT_USAGE;
+    ra->opt.progress = isatty(2) && !ra->explain;
+    return 0;
+}
+
+/* Everything that can be refused is refused before the work: outputs that are inputs
+ * (first: nothing is read before), the output names and formats, the preview transform.
+ * 0, or the exit status after the message. */
+static int outputs_refuse(const render_args *ra, const char *png)
+{
+    char err[1024];
+    if (png && !strcmp(png, ra->out))
+        return cli_fail(CMD, "output %s leaves no name for the .png preview (--no-preview)",
+                        ra->out);
+    char tpath[1024];
+    data_path_find("materials.csv", tpath, sizeof tpath);
+    const char *outs[2] = {ra->out, png}, *out_roles[2] = {"output", "preview"};
+    const char *ins[19] = {ra->path, ra->config, tpath},
+               *in_roles[19] = {"scene", "--config file", "material table"};
+    for (int i = 0; i < ra->choice.how.table_count; ++i)
+        ins[3 + i] = ra->choice.mats[i], in_roles[3 + i] = "--materials file";
+    if (out_files_distinct(outs, out_roles, 2, ins, in_roles, 3 + ra->choice.how.table_count, err,
+                           sizeof err))
+        return cli_fail(CMD, "%s", err);
+    if (abrdf_image_check_output(ra->out, 1, err, sizeof err) ||
+        (png && abrdf_image_check_preview(ra->config, ra->display, ra->view, err, sizeof err)))
+        return cli_fail(CMD, "%s", err);
+    return 0;
+}
+
+/* Wall seconds from a to b. */
+static double seconds(struct timespec a, struct timespec b)
+{
+    return (double)(b.tv_sec - a.tv_sec) + 1e-9 * (double)(b.tv_nsec - a.tv_nsec);
+}
+
+/* The render's times on stderr, so stdout stays identical between runs: t[0..2] read, parsed
+ * and prepared the scene, t[3..4] the render; cpu its CPU seconds. */
+static void print_times(const render_args *ra, const render_scene *rs, const struct timespec t[5],
+                        double cpu)
+{
+    /* CPU time (all threads) is robust on a shared machine; wall time shows the threads. */
+    fprintf(stderr,
+            "abrdf render: %dx%d, %d spp, %d threads, %s shading%s: %.3f s wall, %.3f s CPU "
+            "(ray tracing only)\n",
+            rs->width, rs->height, ra->opt.spp, ra->opt.threads,
+            render_precision_name(ra->opt.precision), ra->full ? ", --full" : "",
+            seconds(t[3], t[4]), cpu);
+    fprintf(stderr,
+            "abrdf render: scene read in %.3f s, prepared in %.3f s wall (materials, Embree "
+            "scene, effect plan); Embree holds %zu bytes\n",
+            seconds(t[0], t[1]), seconds(t[1], t[2]), accel_bytes(rs->accel));
+}
+
+/* The preview (png, if any) and the linear image encoded into their open output files, then
+ * committed together, the preview first: 0, or 1 after the message. */
+static int write_outputs(const render_args *ra, const render_scene *rs, const float *rgb,
+                         const char *png, out_file *png_out, out_file *exr_out)
+{
+    char err[1024];
+    abrdf_bytes bytes;
+    if (png) {
+        if (abrdf_image_encode_preview(png, rs->width, rs->height, rgb, ra->config, ra->display,
+                                       ra->view, &bytes, err, sizeof err)) {
+            fprintf(stderr, "abrdf render: %s\n", err);
+            return 1;
+        }
+        out_file_write(png_out, bytes.data, bytes.size);
+        abrdf_bytes_free(&bytes);
+        if (out_file_close(png_out, err, sizeof err)) {
+            fprintf(stderr, "abrdf render: %s\n", err);
+            return 1;
         }
     }
-    if (!path) return cli_fail(cmd, "missing SCENE (abrdf render --help)");
-    long k = lround(sqrt((double)opt.spp));
-    if (k * k != opt.spp)
-        return cli_fail(
-            cmd, "--spp %d is not a square (1, 4, 9, 16, ...): strata form a k x k grid", opt.spp);
-    if (scene_choice_check(&choice, cmd)) return CLI_EXIT_USAGE;
-    opt.progress = isatty(2) && !explain;
-    char out_default[1024];
-    if (!out) {
-        if (default_output(path, out_default, sizeof out_default))
-            return cli_fail(cmd, "no output name from scene %s: give -o OUT.exr", path);
-        out = out_default;
-    }
-
-    /* Everything that can be refused is refused before the work: outputs that are inputs
-     * (first: nothing is read before), the output names and formats, the preview transform. */
-    char err[1024], *png = NULL;
-    if (preview && !(png = preview_path(out))) {
-        fprintf(stderr, "abrdf render: out of memory\n");
-        return 1;
-    }
-    if (png && !strcmp(png, out)) {
-        free(png);
-        return cli_fail(cmd, "output %s leaves no name for the .png preview (--no-preview)", out);
-    }
-    {
-        char tpath[1024];
-        data_path_find("materials.csv", tpath, sizeof tpath);
-        const char *outs[2] = {out, png}, *out_roles[2] = {"output", "preview"};
-        const char *ins[19] = {path, config, tpath},
-                   *in_roles[19] = {"scene", "--config file", "material table"};
-        for (int i = 0; i < choice.how.table_count; ++i)
-            ins[3 + i] = choice.mats[i], in_roles[3 + i] = "--materials file";
-        if (out_files_distinct(outs, out_roles, 2, ins, in_roles, 3 + choice.how.table_count, err,
-                               sizeof err)) {
-            free(png);
-            return cli_fail(cmd, "%s", err);
-        }
-    }
-    if (abrdf_image_check_output(out, 1, err, sizeof err) ||
-        (png && abrdf_image_check_preview(config, display, view, err, sizeof err))) {
-        free(png);
-        return cli_fail(cmd, "%s", err);
-    }
-
-    scene s;
-    struct timespec r0, r1, r2;
-    clock_gettime(CLOCK_MONOTONIC, &r0);
-    if (scene_parse_file(path, &s, err, sizeof err)) {
+    if (abrdf_image_encode_linear(ra->out, rs->width, rs->height, rgb, &bytes, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
-        free(png);
         return 1;
     }
-    clock_gettime(CLOCK_MONOTONIC, &r1);
-    const char *outs[2] = {out, png}, *out_roles[2] = {"output", "preview"};
-    if (scene_outputs_distinct(&s, outs, out_roles, 2, err, sizeof err)) {
-        scene_free(&s);
-        free(png);
-        return cli_fail(cmd, "%s", err);
+    out_file_write(exr_out, bytes.data, bytes.size);
+    abrdf_bytes_free(&bytes);
+    out_file *files[2] = {png_out, exr_out};
+    if (out_file_close(exr_out, err, sizeof err) ||
+        out_file_commit(files + (png ? 0 : 1), png ? 2 : 1, err, sizeof err)) {
+        fprintf(stderr, "abrdf render: %s\n", err);
+        return 1;
     }
-    int rc = 1;
+    return 0;
+}
+
+/* The parsed scene s, its materials chosen, rendered into the outputs; t[0..1] timed its
+ * reading. 0, or the exit status after the message. */
+static int render_to_files(render_args *ra, scene *s, const char *png, struct timespec t[5])
+{
+    char err[1024];
+    int rc = 1, prepared = 0;
     float *rgb = NULL;
     render_scene rs;
-    int prepared = 0;
     out_file exr_out = OUT_FILE_INIT, png_out = OUT_FILE_INIT;
-    out_file *files[2] = {&png_out, &exr_out}; /* committed together, the preview first */
-    int nfiles = png ? 2 : 1;
     /* a budget's prediction samples the image the scene file describes (its resolution, the
      * default 4 samples per pixel), so abrdf export makes the same choices */
-    int applied = scene_choice_apply(&choice, cmd, &s, path, 4, explain ? stdout : NULL);
+    int applied = scene_choice_apply(&ra->choice, CMD, s, ra->path, 4, ra->explain ? stdout : NULL);
     if (applied) {
         rc = applied;
         goto done;
     }
-    if (render_prepare(&s, &opt, &rs, err, sizeof err)) {
+    if (render_prepare(s, &ra->opt, &rs, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
-    clock_gettime(CLOCK_MONOTONIC, &r2);
+    clock_gettime(CLOCK_MONOTONIC, &t[2]);
     prepared = 1;
-    if (full && render_plan_ignore(&rs)) {
+    if (ra->full && render_plan_ignore(&rs)) {
         fprintf(stderr, "abrdf render: out of memory\n");
         goto done;
     }
     /* The outputs exist (as temporary files) before the render: a directory that is missing
      * or cannot be written fails now, not after the work. */
-    if (out_file_open(&exr_out, out, err, sizeof err) ||
+    if (out_file_open(&exr_out, ra->out, err, sizeof err) ||
         (png && out_file_open(&png_out, png, err, sizeof err))) {
         fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
-    if (explain) render_explain(&rs, &opt, stdout);
+    if (ra->explain) render_explain(&rs, &ra->opt, stdout);
     rgb = malloc((size_t)rs.width * (size_t)rs.height * 3 * sizeof *rgb);
     if (!rgb) {
         fprintf(stderr, "abrdf render: out of memory for %dx%d\n", rs.width, rs.height);
         goto done;
     }
     render_stats st;
-    struct timespec t0, t1;
     clock_t c0 = clock();
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    if (render_image(&rs, &opt, rgb, &st)) {
-        fprintf(stderr, "abrdf render: --spp %d is not a square\n", opt.spp);
+    clock_gettime(CLOCK_MONOTONIC, &t[3]);
+    if (render_image(&rs, &ra->opt, rgb, &st)) {
+        fprintf(stderr, "abrdf render: --spp %d is not a square\n", ra->opt.spp);
         goto done;
     }
-    clock_gettime(CLOCK_MONOTONIC, &t1);
+    clock_gettime(CLOCK_MONOTONIC, &t[4]);
     double cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
-    if (explain || stats) {
+    if (ra->explain || ra->stats) {
         render_stats_print(&st, stdout);
-        /* Wall time on stderr: stdout stays identical between runs. */
         fflush(stdout);
-        /* CPU time (all threads) is robust on a shared machine; wall time shows the threads. */
-        fprintf(stderr,
-                "abrdf render: %dx%d, %d spp, %d threads, %s shading%s: %.3f s wall, %.3f s CPU "
-                "(ray tracing only)\n",
-                rs.width, rs.height, opt.spp, opt.threads, render_precision_name(opt.precision),
-                full ? ", --full" : "",
-                (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec), cpu);
-        fprintf(stderr,
-                "abrdf render: scene read in %.3f s, prepared in %.3f s wall (materials, Embree "
-                "scene, effect plan); Embree holds %zu bytes\n",
-                (double)(r1.tv_sec - r0.tv_sec) + 1e-9 * (double)(r1.tv_nsec - r0.tv_nsec),
-                (double)(r2.tv_sec - r1.tv_sec) + 1e-9 * (double)(r2.tv_nsec - r1.tv_nsec),
-                accel_bytes(rs.accel));
+        print_times(ra, &rs, t, cpu);
     }
-    abrdf_bytes bytes;
-    if (png) {
-        if (abrdf_image_encode_preview(png, rs.width, rs.height, rgb, config, display, view, &bytes,
-                                       err, sizeof err)) {
-            fprintf(stderr, "abrdf render: %s\n", err);
-            goto done;
-        }
-        out_file_write(&png_out, bytes.data, bytes.size);
-        abrdf_bytes_free(&bytes);
-        if (out_file_close(&png_out, err, sizeof err)) {
-            fprintf(stderr, "abrdf render: %s\n", err);
-            goto done;
-        }
-    }
-    if (abrdf_image_encode_linear(out, rs.width, rs.height, rgb, &bytes, err, sizeof err)) {
-        fprintf(stderr, "abrdf render: %s\n", err);
-        goto done;
-    }
-    out_file_write(&exr_out, bytes.data, bytes.size);
-    abrdf_bytes_free(&bytes);
-    if (out_file_close(&exr_out, err, sizeof err) ||
-        out_file_commit(files + (png ? 0 : 1), nfiles, err, sizeof err)) {
-        fprintf(stderr, "abrdf render: %s\n", err);
-        goto done;
-    }
-    rc = 0;
+    rc = write_outputs(ra, &rs, rgb, png, &png_out, &exr_out);
 done:
     out_file_discard(&exr_out); /* committed: nothing left; else the targets stay as they were */
     out_file_discard(&png_out);
     if (prepared) render_release(&rs);
-    free(png);
     free(rgb);
+    return rc;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    render_args ra;
+    int rc = render_args_parse(argc, argv, &ra);
+    if (rc || ra.help) return ra.help ? usage() : rc;
+    char out_default[1024];
+    if (!ra.out) {
+        if (default_output(ra.path, out_default, sizeof out_default))
+            return cli_fail(CMD, "no output name from scene %s: give -o OUT.exr", ra.path);
+        ra.out = out_default;
+    }
+    char err[1024], *png = NULL;
+    if (ra.preview && !(png = preview_path(ra.out))) {
+        fprintf(stderr, "abrdf render: out of memory\n");
+        return 1;
+    }
+    if ((rc = outputs_refuse(&ra, png))) {
+        free(png);
+        return rc;
+    }
+    scene s;
+    struct timespec t[5];
+    clock_gettime(CLOCK_MONOTONIC, &t[0]);
+    if (scene_parse_file(ra.path, &s, err, sizeof err)) {
+        fprintf(stderr, "abrdf render: %s\n", err);
+        free(png);
+        return 1;
+    }
+    clock_gettime(CLOCK_MONOTONIC, &t[1]);
+    const char *outs[2] = {ra.out, png}, *out_roles[2] = {"output", "preview"};
+    if (scene_outputs_distinct(&s, outs, out_roles, 2, err, sizeof err))
+        rc = cli_fail(CMD, "%s", err);
+    else
+        rc = render_to_files(&ra, &s, png, t);
     scene_free(&s);
+    free(png);
     return rc;
 }

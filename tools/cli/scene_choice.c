@@ -49,6 +49,15 @@ int scene_choice_option(scene_choice *c, const char *cmd, int argc, char **argv,
     return 1;
 }
 
+int select_request_budget(select_request *rq, const char *cmd, const char *text)
+{
+    char err[256];
+    if (budget_parse(text, &rq->max_nmse, err, sizeof err))
+        return cli_fail(cmd, "--budget: %s", err);
+    rq->by_budget = 1;
+    return 0;
+}
+
 int scene_choice_check(scene_choice *c, const char *cmd)
 {
     int adaptive = c->how.forced;
@@ -60,12 +69,7 @@ int scene_choice_check(scene_choice *c, const char *cmd)
     if (c->budget && c->goal)
         return cli_fail(cmd, "--goal and --budget exclude each other (a budget's reference is "
                              "the photoreal choice)");
-    if (c->budget) {
-        char berr[256];
-        rq->by_budget = 1;
-        if (budget_parse(c->budget, &rq->max_nmse, berr, sizeof berr))
-            return cli_fail(cmd, "--budget: %s", berr);
-    }
+    if (c->budget && select_request_budget(rq, cmd, c->budget)) return CLI_EXIT_USAGE;
     if (c->nsets && !c->model_name)
         return cli_fail(cmd, "--set needs --model (the scene file sets materials' parameters)");
     if (adaptive && !c->budget && (!c->goal || abrdf_goal_find(c->goal, &rq->goal) != ABRDF_OK))

@@ -10,6 +10,7 @@
  *   scene_choice_option   take one of these options from argv (with its value)
  *   scene_choice_check    the rules between them, once every option is read
  *   scene_choice_apply    resolve a parsed scene's materials as they ask
+ *   select_request_budget a --budget value into a select_request (abrdf advise's too)
  */
 #ifndef ABRDF_SCENE_CHOICE_H
 #define ABRDF_SCENE_CHOICE_H
@@ -41,6 +42,9 @@ int scene_choice_option(scene_choice *c, const char *cmd, int argc, char **argv,
 /* The rules between the options (--adaptive with --goal or --budget, --set with --model, ...);
  * the goal or budget parsed into c->how.all: 0, or CLI_EXIT_USAGE after the message. */
 int scene_choice_check(scene_choice *c, const char *cmd);
+/* rq asks for the budget `text` (--budget's value: a Table-8 class or an NMSE, budget_parse);
+ * abrdf advise's --budget too: 0, or CLI_EXIT_USAGE after "abrdf CMD: --budget: ...". */
+int select_request_budget(select_request *rq, const char *cmd, const char *text);
 /* Resolve s's table and adaptive materials (all of them with --adaptive; scene_resolve), the
  * budget's prediction sampled at spp per pixel, then --model/--set: 0, or the command's exit
  * status after the message ("abrdf CMD: ..."). explain: the selection's traces, or NULL. */

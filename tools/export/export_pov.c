@@ -254,8 +254,10 @@ static void pov_passes(FILE *f, const render_scene *rs, double extent)
                "#end\n");
 }
 
-int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE *f, char *err,
-                     size_t err_size)
+/* What POV-Ray cannot render as the built-in renderer does, or options that do not fit the
+ * scene: 0, or -1 with the reason in err. */
+static int pov_refuse(const render_scene *rs, const export_pov_options *opt, char *err,
+                      size_t err_size)
 {
     const scene *s = rs->src;
     for (int l = 0; l < s->light_count; ++l)
@@ -288,7 +290,13 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
                      "1/d^2 of a point light; export without --native");
             return -1;
         }
-    double extent = rs->eps / 1e-9; /* render.c: eps = 1e-9 * scene size */
+    return 0;
+}
+
+/* The file's opening comments (how to render it, the shading, the notes), the settings,
+ * includes and the camera. */
+static void pov_head(FILE *f, const render_scene *rs, const export_pov_options *opt)
+{
     fputs("// ", f);
     pov_comment(f, opt->source);
     fputs(" - exported by `abrdf export --pov` (docs/POVRAY.md).\n", f);
@@ -330,7 +338,13 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
     fprintf(f, "\n  up ");
     vec(f, rs->up, 2);
     fprintf(f, " }\n\n");
+}
 
+/* The lights' table the pigments read, and POV-Ray's light_source (lit, native) or the
+ * passes. */
+static void pov_lights(FILE *f, const render_scene *rs, const export_pov_options *opt)
+{
+    double extent = rs->eps / 1e-9; /* render.c: eps = 1e-9 * scene size */
     fprintf(f, "#declare Abrdf_Lights = array[%d][7] {\n",
             rs->light_count > 0 ? rs->light_count : 1);
     for (int l = 0; l < rs->light_count; ++l) {
@@ -344,47 +358,59 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
     for (int l = 0; (opt->lit || opt->native) && l < rs->light_count; ++l)
         light_source(f, &rs->lights[l], opt->native, extent);
     if (opt->passes) pov_passes(f, rs, extent);
+}
+
+/* Object i: its transform, then its shape with the native finish or the function pigment
+ * (a mesh by pov_mesh_object). */
+static void pov_object(FILE *f, const render_scene *rs, int i, const export_pov_options *opt)
+{
+    static const char *shapes[] = {"sphere", "cylinder", "capsule", "box", "mesh"};
+    const scene_object *o = &rs->src->objects[i];
+    const geom_object *g = &rs->objects[i];
+    const render_material *m = &rs->materials[o->material];
+    fprintf(f, "// %s, scene line %d\n#declare Abrdf_M = array[12] {", shapes[o->shape], o->line);
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c)
+            fprintf(f, "%.17g%s", r == 2 ? -g->xf.m[r][c] : g->xf.m[r][c],
+                    r == 2 && c == 3 ? "" : ", ");
+    fprintf(f, "}\n");
+    if (o->shape == SCENE_MESH) {
+        pov_mesh_object(f, o, m, opt);
+        return;
+    }
+    double dims[3] = {o->radius, o->height, 0};
+    if (o->shape == SCENE_BOX) memcpy(dims, o->size, sizeof dims);
+    fprintf(f, "object { Abrdf_Shape(\"%s\", <%.17g, %.17g, %.17g>)\n", shapes[o->shape], dims[0],
+            dims[1], dims[2]);
+    if (opt->native) {
+        fprintf(f, "  Abrdf_Native_Texture(Abrdf_Mat_%d, <%.17g, %.17g, %.17g>)\n", o->material,
+                m->use_ambient ? m->ambient[0] : 0.0, m->use_ambient ? m->ambient[1] : 0.0,
+                m->use_ambient ? m->ambient[2] : 0.0);
+        fprintf(f, "  Abrdf_Xform_Matrix(Abrdf_M) }\n");
+        return;
+    }
+    fprintf(f, "  Abrdf_Shaded_Texture(Abrdf_Mat_%d, \"%s\", <%.17g, %.17g, %.17g>, Abrdf_M,\n",
+            o->material, shapes[o->shape], dims[0], dims[1], dims[2]);
+    double a[3] = {0, 0, 0};
+    if (m->use_ambient) memcpy(a, m->ambient, sizeof a);
+    eval_args(f, o, a, opt);
+    fprintf(f, "  Abrdf_Xform_Matrix(Abrdf_M) }\n");
+}
+
+int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE *f, char *err,
+                     size_t err_size)
+{
+    const scene *s = rs->src;
+    if (pov_refuse(rs, opt, err, err_size)) return -1;
+    pov_head(f, rs, opt);
+    pov_lights(f, rs, opt);
     fprintf(f, "\n");
     for (int i = 0; i < rs->material_count; ++i)
         if (rs->materials[i].used &&
             material(f, i, &s->materials[i], &rs->materials[i], err, err_size))
             return -1;
     fprintf(f, "\n");
-
     pov_meshes(f, s, !opt->native);
-    static const char *shapes[] = {"sphere", "cylinder", "capsule", "box", "mesh"};
-    for (int i = 0; i < rs->object_count; ++i) {
-        const scene_object *o = &s->objects[i];
-        const geom_object *g = &rs->objects[i];
-        const render_material *m = &rs->materials[o->material];
-        fprintf(f, "// %s, scene line %d\n#declare Abrdf_M = array[12] {", shapes[o->shape],
-                o->line);
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 4; ++c)
-                fprintf(f, "%.17g%s", r == 2 ? -g->xf.m[r][c] : g->xf.m[r][c],
-                        r == 2 && c == 3 ? "" : ", ");
-        fprintf(f, "}\n");
-        if (o->shape == SCENE_MESH) {
-            pov_mesh_object(f, o, m, opt);
-            continue;
-        }
-        double dims[3] = {o->radius, o->height, 0};
-        if (o->shape == SCENE_BOX) memcpy(dims, o->size, sizeof dims);
-        fprintf(f, "object { Abrdf_Shape(\"%s\", <%.17g, %.17g, %.17g>)\n", shapes[o->shape],
-                dims[0], dims[1], dims[2]);
-        if (opt->native) {
-            fprintf(f, "  Abrdf_Native_Texture(Abrdf_Mat_%d, <%.17g, %.17g, %.17g>)\n", o->material,
-                    m->use_ambient ? m->ambient[0] : 0.0, m->use_ambient ? m->ambient[1] : 0.0,
-                    m->use_ambient ? m->ambient[2] : 0.0);
-            fprintf(f, "  Abrdf_Xform_Matrix(Abrdf_M) }\n");
-            continue;
-        }
-        fprintf(f, "  Abrdf_Shaded_Texture(Abrdf_Mat_%d, \"%s\", <%.17g, %.17g, %.17g>, Abrdf_M,\n",
-                o->material, shapes[o->shape], dims[0], dims[1], dims[2]);
-        double a[3] = {0, 0, 0};
-        if (m->use_ambient) memcpy(a, m->ambient, sizeof a);
-        eval_args(f, o, a, opt);
-        fprintf(f, "  Abrdf_Xform_Matrix(Abrdf_M) }\n");
-    }
+    for (int i = 0; i < rs->object_count; ++i) pov_object(f, rs, i, opt);
     return ferror(f) ? (snprintf(err, err_size, "write error"), -1) : 0;
 }

@@ -414,6 +414,123 @@ static int copy_name(parser *p, const char *what, const char *src, char dst[SCEN
     return 0;
 }
 
+/* How the material chooses its models (adaptive with goal= or budget=, table=, or model= /
+ * diffuse= / specular=) into m; *from: the first word after them. 0, or -1 after the
+ * message. */
+static int material_kind(parser *p, word *w, int n, scene_material *m, int *from)
+{
+    *from = 2;
+    const char *model = take(w, n, *from, "model"), *dif = take(w, n, *from, "diffuse"),
+               *spe = take(w, n, *from, "specular"), *table = take(w, n, *from, "table");
+    int adaptive = n > 2 && !w[2].val && !strcmp(w[2].key, "adaptive");
+    if (adaptive) w[2].used = 1, *from = 3;
+    if (adaptive) {
+        m->kind = SCENE_MAT_ADAPTIVE;
+        const char *goal = take(w, n, *from, "goal"), *budget = take(w, n, *from, "budget");
+        if (goal && budget)
+            return fail(p, "give goal= or budget=, not both (a budget's reference is the "
+                           "photoreal choice)");
+        if (!goal && !budget)
+            return fail(p, "adaptive material needs goal=photoreal, goal=performance or "
+                           "budget=none|slight|noticeable|NMSE");
+        if (budget) {
+            char err[160];
+            m->request.by_budget = 1;
+            if (budget_parse(budget, &m->request.max_nmse, err, sizeof err))
+                return fail(p, "%s", err);
+        } else if (abrdf_goal_find(goal, &m->request.goal) != ABRDF_OK) {
+            return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
+        }
+        if (model || dif || spe)
+            return fail(
+                p, "an adaptive material chooses its own models; drop model=/diffuse=/specular=");
+    } else if (table) {
+        m->kind = SCENE_MAT_TABLE;
+        if (model || dif || spe)
+            return fail(p, "table= names a complete material; drop model=/diffuse=/specular=");
+    } else {
+        m->kind = SCENE_MAT_MODELS;
+        if (model && (dif || spe))
+            return fail(p, "give either model= or diffuse=/specular=, not both");
+        if (model) {
+            if (set_model(p, "model", model, &m->lobes[0])) return -1;
+            m->lobe_count = 1;
+        } else if (dif || spe) {
+            if (dif && set_model(p, "diffuse", dif, &m->lobes[m->lobe_count++])) return -1;
+            if (spe && set_model(p, "specular", spe, &m->lobes[m->lobe_count++])) return -1;
+        } else {
+            return fail(
+                p,
+                "material '%s' needs model=, diffuse=/specular=, table= or adaptive goal=|budget=",
+                m->name);
+        }
+    }
+    if (table && copy_name(p, "table entry", table, m->table)) return -1;
+    return 0;
+}
+
+/* The parameters' defaults: the first lobe's, then the second lobe's for what only it uses
+ * (Lambert's for a material the selection fills in). */
+static void material_defaults(scene_material *m)
+{
+    if (m->kind != SCENE_MAT_MODELS) {
+        abrdf_params_init(ABRDF_LAMBERT, &m->params);
+        return;
+    }
+    abrdf_params_init(m->lobes[0], &m->params);
+    if (m->lobe_count != 2) return;
+    abrdf_params second;
+    abrdf_params_init(m->lobes[1], &second);
+    const abrdf_model_info *mi = abrdf_model_get(m->lobes[1]);
+    for (int i = 0; i < mi->param_count; ++i) {
+        int id = mi->params[i].id;
+        double v[3];
+        if (cli_model_reads(m->lobes[0], id)) continue;
+        int cnt = abrdf_param_read(&second, id, v);
+        if (cnt > 0) abrdf_param_set(&m->params, id, v, cnt);
+    }
+}
+
+/* The line's KEY=VALUE words from `from` on: ka, and the parameters the material's models
+ * read; *ka_set: whether ka was given. 0, or -1 after the message. */
+static int material_params(parser *p, word *w, int n, int from, scene_material *m, int *ka_set)
+{
+    *ka_set = 0;
+    for (int i = from; i < n; ++i) {
+        if (w[i].used) continue;
+        if (!w[i].val) return fail(p, "unexpected word '%s' (expected KEY=VALUE)", w[i].key);
+        w[i].used = 1;
+        if (!strcmp(w[i].key, "ka")) {
+            if (get_rgb(p, "ka", w[i].val, m->ka)) return -1;
+            *ka_set = 1;
+            continue;
+        }
+        int id;
+        if (abrdf_param_find(w[i].key, &id) != ABRDF_OK)
+            return fail(p,
+                        "unknown key '%s'; keys: model, diffuse, specular, table, goal, budget, ka "
+                        "and the "
+                        "models' parameters (abrdf models)",
+                        w[i].key);
+        int used = m->kind != SCENE_MAT_MODELS;
+        for (int l = 0; l < m->lobe_count; ++l) used |= cli_model_reads(m->lobes[l], id);
+        if (!used)
+            return fail(p, "parameter '%s' is not used by the material's model(s)", w[i].key);
+        const abrdf_param_info *pi = abrdf_param_get(id);
+        double v[3];
+        int cnt = parse_list(w[i].val, v, 3);
+        if (cnt != 1 && !(cnt == 3 && pi->kind == ABRDF_PARAM_RGB))
+            return fail(p, "%s needs %s, got '%s'", w[i].key,
+                        pi->kind == ABRDF_PARAM_RGB ? "one number or R,G,B" : "one number",
+                        w[i].val);
+        if (abrdf_param_set(&m->params, id, v, cnt) != ABRDF_OK)
+            return fail(p, "%s = %s is outside [%g, %g]%s", w[i].key, w[i].val, pi->min, pi->max,
+                        pi->kind == ABRDF_PARAM_INT ? " or not a whole number" : "");
+        if (id < 64) m->params_set |= 1ull << id;
+    }
+    return 0;
+}
+
 static int do_material(parser *p, word *w, int n)
 {
     scene *s = p->s;
@@ -425,104 +542,10 @@ static int do_material(parser *p, word *w, int n)
     m.line = p->line;
     if (copy_name(p, "material name", w[1].key, m.name)) return -1;
     if (find_material(s, m.name) >= 0) return fail(p, "material '%s' is defined twice", m.name);
-    int from = 2;
-    const char *model = take(w, n, from, "model"), *dif = take(w, n, from, "diffuse"),
-               *spe = take(w, n, from, "specular"), *table = take(w, n, from, "table");
-    int adaptive = n > 2 && !w[2].val && !strcmp(w[2].key, "adaptive");
-    if (adaptive) w[2].used = 1, from = 3;
-    if (adaptive) {
-        m.kind = SCENE_MAT_ADAPTIVE;
-        const char *goal = take(w, n, from, "goal"), *budget = take(w, n, from, "budget");
-        if (goal && budget)
-            return fail(p, "give goal= or budget=, not both (a budget's reference is the "
-                           "photoreal choice)");
-        if (!goal && !budget)
-            return fail(p, "adaptive material needs goal=photoreal, goal=performance or "
-                           "budget=none|slight|noticeable|NMSE");
-        if (budget) {
-            char err[160];
-            m.request.by_budget = 1;
-            if (budget_parse(budget, &m.request.max_nmse, err, sizeof err))
-                return fail(p, "%s", err);
-        } else if (abrdf_goal_find(goal, &m.request.goal) != ABRDF_OK) {
-            return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
-        }
-        if (model || dif || spe)
-            return fail(
-                p, "an adaptive material chooses its own models; drop model=/diffuse=/specular=");
-    } else if (table) {
-        m.kind = SCENE_MAT_TABLE;
-        if (model || dif || spe)
-            return fail(p, "table= names a complete material; drop model=/diffuse=/specular=");
-    } else {
-        m.kind = SCENE_MAT_MODELS;
-        if (model && (dif || spe))
-            return fail(p, "give either model= or diffuse=/specular=, not both");
-        if (model) {
-            if (set_model(p, "model", model, &m.lobes[0])) return -1;
-            m.lobe_count = 1;
-        } else if (dif || spe) {
-            if (dif && set_model(p, "diffuse", dif, &m.lobes[m.lobe_count++])) return -1;
-            if (spe && set_model(p, "specular", spe, &m.lobes[m.lobe_count++])) return -1;
-        } else {
-            return fail(
-                p,
-                "material '%s' needs model=, diffuse=/specular=, table= or adaptive goal=|budget=",
-                m.name);
-        }
-    }
-    if (table && copy_name(p, "table entry", table, m.table)) return -1;
-    /* Defaults: the first lobe's, then the second lobe's for what only it uses. */
-    if (m.kind == SCENE_MAT_MODELS) {
-        abrdf_params_init(m.lobes[0], &m.params);
-        if (m.lobe_count == 2) {
-            abrdf_params second;
-            abrdf_params_init(m.lobes[1], &second);
-            const abrdf_model_info *mi = abrdf_model_get(m.lobes[1]);
-            for (int i = 0; i < mi->param_count; ++i) {
-                int id = mi->params[i].id;
-                double v[3];
-                if (cli_model_reads(m.lobes[0], id)) continue;
-                int cnt = abrdf_param_read(&second, id, v);
-                if (cnt > 0) abrdf_param_set(&m.params, id, v, cnt);
-            }
-        }
-    } else {
-        abrdf_params_init(ABRDF_LAMBERT, &m.params);
-    }
-    int ka_set = 0, kd_used = 0;
-    for (int i = from; i < n; ++i) {
-        if (w[i].used) continue;
-        if (!w[i].val) return fail(p, "unexpected word '%s' (expected KEY=VALUE)", w[i].key);
-        w[i].used = 1;
-        if (!strcmp(w[i].key, "ka")) {
-            if (get_rgb(p, "ka", w[i].val, m.ka)) return -1;
-            ka_set = 1;
-            continue;
-        }
-        int id;
-        if (abrdf_param_find(w[i].key, &id) != ABRDF_OK)
-            return fail(p,
-                        "unknown key '%s'; keys: model, diffuse, specular, table, goal, budget, ka "
-                        "and the "
-                        "models' parameters (abrdf models)",
-                        w[i].key);
-        int used = m.kind != SCENE_MAT_MODELS;
-        for (int l = 0; l < m.lobe_count; ++l) used |= cli_model_reads(m.lobes[l], id);
-        if (!used)
-            return fail(p, "parameter '%s' is not used by the material's model(s)", w[i].key);
-        const abrdf_param_info *pi = abrdf_param_get(id);
-        double v[3];
-        int cnt = parse_list(w[i].val, v, 3);
-        if (cnt != 1 && !(cnt == 3 && pi->kind == ABRDF_PARAM_RGB))
-            return fail(p, "%s needs %s, got '%s'", w[i].key,
-                        pi->kind == ABRDF_PARAM_RGB ? "one number or R,G,B" : "one number",
-                        w[i].val);
-        if (abrdf_param_set(&m.params, id, v, cnt) != ABRDF_OK)
-            return fail(p, "%s = %s is outside [%g, %g]%s", w[i].key, w[i].val, pi->min, pi->max,
-                        pi->kind == ABRDF_PARAM_INT ? " or not a whole number" : "");
-        if (id < 64) m.params_set |= 1ull << id;
-    }
+    int from, ka_set, kd_used = 0;
+    if (material_kind(p, w, n, &m, &from)) return -1;
+    material_defaults(&m);
+    if (material_params(p, w, n, from, &m, &ka_set)) return -1;
     for (int l = 0; l < m.lobe_count; ++l) {
         char msg[256];
         if (abrdf_params_check(m.lobes[l], &m.params, msg, sizeof msg) != ABRDF_OK)

@@ -436,12 +436,146 @@ static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
     return 0.25 * fresnel(dot(wi, wh), m->eta, NULL) * sum; /* Eq. 12 */
 }
 
+/* What lobes_residual's terms share: the fibre, the directions and per-evaluation constants. */
+typedef struct residual_ctx {
+    const abrdf__huang *m;
+    v3 wi, wo;
+    double b, inv_eta, a2, e2; /* e2 = 1 - b^2 */
+    double st, ct;             /* sin and cos of the cuticle tilt; the exit's: -st, ct */
+    energy_axes ax_out;        /* the energy table's axes leaving the fibre */
+    unsigned lobes;
+} residual_ctx;
+
+/* A Simpson node on the fibre's cross-section: the entry mesonormals at gamma gmi. */
+typedef struct ring_node {
+    double gmi;
+    v3 wmi, wmi_;
+    double cos_mi1, proj, scale1; /* wi's cosine, projected width (TRRT+), entry energy scale */
+    double weight;                /* Simpson weight */
+} ring_node;
+
+/* A path entering the fibre through the microfacet wh1 and crossing it to the mesonormal
+ * pair at gmt. */
+typedef struct entry_path {
+    v3 wt, wmt, wmt_; /* refracted direction, exit mesonormals */
+    double gmt, phi_t;
+    double t1, scale2, g1o, cos_mo1, cos_mi2;
+    double at[3]; /* absorption along the chord */
+    double wgt;   /* Simpson weight times the entry node's */
+} entry_path;
+
+/* The path through the entry microfacet wh1: 1, or 0 when light does not enter there. */
+static int entry_path_make(const residual_ctx *c, const ring_node *r, v3 wh1, double w1,
+                           entry_path *e)
+{
+    const abrdf__huang *m = c->m;
+    const double b = c->b;
+    v3 wi = c->wi;
+    double cos_hi1 = dot(wi, wh1);
+    if (!(cos_hi1 > 0.0)) return 0;
+    double cos_t1;
+    e->t1 = 1.0 - fresnel(cos_hi1, m->eta, &cos_t1);
+    v3 wt = e->wt = refract_dir(wi, wh1, cos_t1, c->inv_eta);
+    e->phi_t = dir_phi(wt);
+    e->gmt = 2.0 * to_phi(e->phi_t, b) - r->gmi;
+    sphg_pair(-c->st, c->ct, e->gmt, b, &e->wmt, &e->wmt_);
+    e->cos_mo1 = dot(neg(wt), r->wmi), e->cos_mi2 = dot(neg(wt), e->wmt);
+    /* wi sees wh1 (cos_hi1 > 0) and, on [g0, g0 + gr], both mesonormals: that range
+     * is built from them, so testing wi.wmi_ > 0 again only let a 1e-16 rounding drop
+     * the end nodes, where it is 0 (S jumped). The refracted ray is tested here. */
+    if (!(dot(neg(wt), wh1) > 0.0 && dot(neg(wt), r->wmi) > 0.0 && dot(neg(wt), r->wmi_) > 0.0))
+        return 0;
+    e->g1o = ggx_go(c->a2, r->cos_mi1, e->cos_mo1);
+    e->scale2 = energy_scale_at(m, &c->ax_out, e->cos_mi2);
+    double ct_t = fmax(cos_theta(wt), ABRDF__HAIR_COS_MIN);
+    double chord = len(add(to_point(r->gmi, b), neg(to_point(e->gmt + ABRDF__PI, b))));
+    for (int k = 0; k < 3; ++k)
+        e->at[k] = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_t * chord) : 1.0;
+    e->wgt = r->weight * w1;
+    return 1;
+}
+
+/* TT: exit through the microfacet with generalised half vector wh2 (Eq. 13). */
+static void tt_add(const residual_ctx *c, const ring_node *r, const entry_path *e, double s_tt[3])
+{
+    const double a2 = c->a2, inv_eta = c->inv_eta;
+    v3 wt = e->wt, wo = c->wo;
+    /* exit possible only if wo is within the critical cone */
+    if (!(dot(wo, wt) >= inv_eta - ABRDF__HUANG_CRITICAL_TOL)) return;
+    v3 wh2 = add(neg(wt), scl(wo, inv_eta));
+    double l2 = dot(wh2, wh2);
+    if (!(l2 > ABRDF__HUANG_HALF_LEN2_MIN)) return;
+    double rn = 1.0 / sqrt(l2);
+    wh2 = scl(wh2, rn);
+    double cos_mh2 = dot(e->wmt, wh2);
+    if (!(cos_mh2 >= 0.0)) return;
+    double cos_hi2 = dot(neg(wt), wh2), cos_ho2 = dot(neg(wo), wh2);
+    double t2 = (1.0 - fresnel(cos_hi2, inv_eta, NULL)) * e->scale2;
+    double v = e->wgt * e->t1 * r->scale1 * t2 * ggx_d(a2, cos_mh2) * e->g1o *
+               ggx_g(a2, e->cos_mi2, dot(neg(wo), e->wmt)) / e->cos_mo1 * r->cos_mi1 * cos_hi2 *
+               cos_ho2 * rn * rn * arc_length(c->e2, e->gmt);
+    if (isfinite(v))
+        for (int k = 0; k < 3; ++k) s_tt[k] += v * e->at[k]; /* Eq. 13 */
+}
+
+/* TRT through the internal microfacet wh2, exit at wh3 (Eq. 14), and TRRT+ where the path
+ * stays inside; wgt2: the node's weight. */
+static void trt_add(const residual_ctx *c, const ring_node *r, const entry_path *e, v3 wh2,
+                    double wgt2, double s_trt[3], double s_trrt[3])
+{
+    const abrdf__huang *m = c->m;
+    const double a2 = c->a2, b = c->b, inv_eta = c->inv_eta;
+    v3 wt = e->wt, wo = c->wo;
+    double cos_hi2 = dot(neg(wt), wh2);
+    if (!(cos_hi2 > 0.0)) return;
+    double r2f = fresnel(cos_hi2, inv_eta, NULL), r2 = r2f * e->scale2;
+    v3 wtr = neg(reflect_dir(wt, wh2));
+    double rr[3];
+    for (int k = 0; k < 3; ++k) rr[k] = wgt2 * r->proj * trrt(e->t1, r2f, e->at[k]);
+    /* total internal reflection */
+    if (dot(neg(wtr), wo) < inv_eta - ABRDF__HUANG_CRITICAL_TOL) {
+        for (int k = 0; k < 3; ++k) s_trrt[k] += rr[k];
+        return;
+    }
+    if (!visible2(neg(wt), neg(wtr), e->wmt, wh2) || !visible2(neg(wt), neg(wtr), e->wmt_, wh2))
+        return;
+    double phi_tr = dir_phi(wtr);
+    double gmtr = r->gmi - 2.0 * (to_phi(e->phi_t, b) - to_phi(phi_tr, b)) + ABRDF__PI;
+    v3 wmtr, wmtr_;
+    sphg_pair(-c->st, c->ct, gmtr, b, &wmtr, &wmtr_);
+    v3 wh3 = add(wtr, scl(wo, inv_eta));
+    double l3 = dot(wh3, wh3);
+    if (!(l3 > ABRDF__HUANG_HALF_LEN2_MIN)) return;
+    double rn3 = 1.0 / sqrt(l3);
+    wh3 = scl(wh3, rn3);
+    double cos_mh3 = dot(wmtr, wh3);
+    if (cos_mh3 < 0.0 || !visible2(wtr, neg(wo), wmtr, wh3) ||
+        !visible2(wtr, neg(wo), wmtr_, wh3)) {
+        for (int k = 0; k < 3; ++k) s_trrt[k] += rr[k];
+        return;
+    }
+    double cos_hi3 = dot(wh3, wtr), cos_ho3 = dot(wh3, neg(wo));
+    double cos_mi3 = dot(wmtr, wtr), cos_mo2 = dot(e->wmt, neg(wtr));
+    double t3 = (1.0 - fresnel(cos_hi3, inv_eta, NULL)) * energy_scale_at(m, &c->ax_out, cos_mi3);
+    double ct_tr = fmax(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
+    double chord2 = len(add(to_point(gmtr, b), neg(to_point(e->gmt, b))));
+    double v = wgt2 * e->t1 * r->scale1 * r2 * t3 * ggx_d(a2, cos_mh3) * e->g1o *
+               ggx_go(a2, e->cos_mi2, cos_mo2) * ggx_g(a2, cos_mi3, dot(wmtr, neg(wo))) /
+               (e->cos_mo1 * cos_mo2) * r->cos_mi1 * e->cos_mi2 * cos_hi3 * cos_ho3 * rn3 * rn3 *
+               arc_length(c->e2, gmtr);
+    if (isfinite(v) && (c->lobes & 4u))
+        for (int k = 0; k < 3; ++k) {
+            double atr = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_tr * chord2) : 1.0;
+            s_trt[k] += v * e->at[k] * atr; /* Eq. 14 */
+        }
+    for (int k = 0; k < 3; ++k) s_trrt[k] += rr[k];
+}
+
 /* TT + TRT + TRRT+ (RGB): Simpson over h, nested midpoint rules over the VNDF squares. */
 static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr, double sp_i,
                            double cp_i, unsigned lobes, double out[3])
 {
     const double b = m->b, eta = m->eta, inv_eta = 1.0 / eta, al = m->alpha;
-    const double a2 = al * al, e2 = 1.0 - b * b;
     const int n1 = m->n1, n2 = m->n2;
     const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
     double s_tt[3] = {0, 0, 0}, s_trt[3] = {0, 0, 0}, s_trrt[3] = {0, 0, 0};
@@ -451,135 +585,56 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
     double node1[ABRDF__HUANG_NODES_MAX][2], node2[ABRDF__HUANG_NODES_MAX][2];
     vndf_nodes(n1, node1);
     vndf_nodes(n2, node2);
-    energy_axes ax_in = energy_axes_of(m, eta), ax_out = energy_axes_of(m, inv_eta);
-    const double st = sin(m->tilt), ct = cos(m->tilt); /* sin(-tilt) = -st */
+    energy_axes ax_in = energy_axes_of(m, eta);
+    residual_ctx c = {.m = m,
+                      .wi = wi,
+                      .wo = wo,
+                      .b = b,
+                      .inv_eta = inv_eta,
+                      .a2 = al * al,
+                      .e2 = 1.0 - b * b,
+                      .st = sin(m->tilt),
+                      .ct = cos(m->tilt),
+                      .ax_out = energy_axes_of(m, inv_eta),
+                      .lobes = lobes};
     int n = simpson_intervals(0.8 * al, m->refine);
     double res = gr / n;
     for (int i = 0; i <= n; ++i) {
-        double gmi = g0 + i * res;
-        v3 wmi, wmi_;
-        sphg_pair(st, ct, gmi, b, &wmi, &wmi_);
+        ring_node r;
+        r.gmi = g0 + i * res;
+        sphg_pair(c.st, c.ct, r.gmi, b, &r.wmi, &r.wmi_);
         /* The range is built so that wi sees every tilted mesonormal on it: cos_mi1 >= 0,
          * and 0 at the ends when the tilt hides the silhouette. Skipping cos_mi1 <= 0 let a
          * 1e-16 rounding drop an end node, whose TRRT+ (weighted by proj, not cos_mi1) is
          * not 0: S jumped. The VNDF map is continuous through cos_mi1 = 0. */
-        double cos_mi1 = fmax(dot(wi, wmi), 0.0);
-        double weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
+        r.cos_mi1 = fmax(dot(wi, r.wmi), 0.0);
+        r.weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         /* Projected width of this surface element seen from wi, |dh/dgamma| cos(theta_i):
          * the light TRRT+ receives here (R, TT, TRT carry it through cos_mi1). */
-        double proj = fabs(cp_i * cos(gmi) + b * sp_i * sin(gmi)) * cos_theta(wi);
-        double scale1 = energy_scale_at(m, &ax_in, cos_mi1); /* depends on the entry node only */
+        r.proj = fabs(cp_i * cos(r.gmi) + b * sp_i * sin(r.gmi)) * cos_theta(wi);
+        r.scale1 = energy_scale_at(m, &ax_in, r.cos_mi1); /* depends on the entry node only */
         vndf_frame f1;
-        vndf_frame_make(al, wi, wmi, &f1);
+        vndf_frame_make(al, wi, r.wmi, &f1);
         for (int j1 = 0; j1 < n1 * n1; ++j1) {
-            v3 wh1 = vndf_frame_node(&f1, node1[j1][0], node1[j1][1]);
-            double cos_hi1 = dot(wi, wh1);
-            if (!(cos_hi1 > 0.0)) continue;
-            double cos_t1;
-            double t1 = 1.0 - fresnel(cos_hi1, eta, &cos_t1);
-            v3 wt = refract_dir(wi, wh1, cos_t1, inv_eta);
-            double phi_t = dir_phi(wt);
-            double gmt = 2.0 * to_phi(phi_t, b) - gmi;
-            v3 wmt, wmt_;
-            sphg_pair(-st, ct, gmt, b, &wmt, &wmt_);
-            double cos_mo1 = dot(neg(wt), wmi), cos_mi2 = dot(neg(wt), wmt);
-            /* wi sees wh1 (cos_hi1 > 0) and, on [g0, g0 + gr], both mesonormals: that range
-             * is built from them, so testing wi.wmi_ > 0 again only let a 1e-16 rounding drop
-             * the end nodes, where it is 0 (S jumped). The refracted ray is tested here. */
-            if (!(dot(neg(wt), wh1) > 0.0 && dot(neg(wt), wmi) > 0.0 && dot(neg(wt), wmi_) > 0.0))
+            entry_path e;
+            if (!entry_path_make(&c, &r, vndf_frame_node(&f1, node1[j1][0], node1[j1][1]), w1, &e))
                 continue;
-            double g1o = ggx_go(a2, cos_mi1, cos_mo1);
-            double scale2 = energy_scale_at(m, &ax_out, cos_mi2);
-            double ct_t = fmax(cos_theta(wt), ABRDF__HAIR_COS_MIN);
-            double chord = len(add(to_point(gmi, b), neg(to_point(gmt + ABRDF__PI, b))));
-            double at[3];
-            for (int c = 0; c < 3; ++c)
-                at[c] = m->sigma_a[c] > 0.0 ? exp(-m->sigma_a[c] / ct_t * chord) : 1.0;
-            double wgt = weight * w1;
-
-            /* TT: exit through the microfacet with generalised half vector wh2 (Eq. 13) */
-            /* exit possible only if wo is within the critical cone */
-            if ((lobes & 2u) && dot(wo, wt) >= inv_eta - ABRDF__HUANG_CRITICAL_TOL) {
-                v3 wh2 = add(neg(wt), scl(wo, inv_eta));
-                double l2 = dot(wh2, wh2);
-                if (l2 > ABRDF__HUANG_HALF_LEN2_MIN) {
-                    double rn = 1.0 / sqrt(l2);
-                    wh2 = scl(wh2, rn);
-                    double cos_mh2 = dot(wmt, wh2);
-                    if (cos_mh2 >= 0.0) {
-                        double cos_hi2 = dot(neg(wt), wh2), cos_ho2 = dot(neg(wo), wh2);
-                        double t2 = (1.0 - fresnel(cos_hi2, inv_eta, NULL)) * scale2;
-                        double v = wgt * t1 * scale1 * t2 * ggx_d(a2, cos_mh2) * g1o *
-                                   ggx_g(a2, cos_mi2, dot(neg(wo), wmt)) / cos_mo1 * cos_mi1 *
-                                   cos_hi2 * cos_ho2 * rn * rn * arc_length(e2, gmt);
-                        if (isfinite(v))
-                            for (int c = 0; c < 3; ++c) s_tt[c] += v * at[c]; /* Eq. 13 */
-                    }
-                }
-            }
-            if (!(lobes & 12u) || !(cos_mi2 > 0.0)) continue;
-
-            /* TRT: internal reflection at wh2 (n2 x n2 VNDF nodes), exit at wh3 (Eq. 14) */
+            if (lobes & 2u) tt_add(&c, &r, &e, s_tt);
+            if (!(lobes & 12u) || !(e.cos_mi2 > 0.0)) continue;
+            /* TRT and TRRT+: internal reflection at wh2 (n2 x n2 VNDF nodes) */
             vndf_frame f2;
-            vndf_frame_make(al, neg(wt), wmt, &f2);
-            for (int j2 = 0; j2 < n2 * n2; ++j2) {
-                v3 wh2 = vndf_frame_node(&f2, node2[j2][0], node2[j2][1]);
-                double cos_hi2 = dot(neg(wt), wh2);
-                if (!(cos_hi2 > 0.0)) continue;
-                double r2f = fresnel(cos_hi2, inv_eta, NULL), r2 = r2f * scale2;
-                double wgt2 = wgt * w2;
-                v3 wtr = neg(reflect_dir(wt, wh2));
-                double rr[3];
-                for (int c = 0; c < 3; ++c) rr[c] = wgt2 * proj * trrt(t1, r2f, at[c]);
-                /* total internal reflection */
-                if (dot(neg(wtr), wo) < inv_eta - ABRDF__HUANG_CRITICAL_TOL) {
-                    for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
-                    continue;
-                }
-                if (!visible2(neg(wt), neg(wtr), wmt, wh2) ||
-                    !visible2(neg(wt), neg(wtr), wmt_, wh2))
-                    continue;
-                double phi_tr = dir_phi(wtr);
-                double gmtr = gmi - 2.0 * (to_phi(phi_t, b) - to_phi(phi_tr, b)) + ABRDF__PI;
-                v3 wmtr, wmtr_;
-                sphg_pair(-st, ct, gmtr, b, &wmtr, &wmtr_);
-                v3 wh3 = add(wtr, scl(wo, inv_eta));
-                double l3 = dot(wh3, wh3);
-                if (!(l3 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
-                double rn3 = 1.0 / sqrt(l3);
-                wh3 = scl(wh3, rn3);
-                double cos_mh3 = dot(wmtr, wh3);
-                if (cos_mh3 < 0.0 || !visible2(wtr, neg(wo), wmtr, wh3) ||
-                    !visible2(wtr, neg(wo), wmtr_, wh3)) {
-                    for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
-                    continue;
-                }
-                double cos_hi3 = dot(wh3, wtr), cos_ho3 = dot(wh3, neg(wo));
-                double cos_mi3 = dot(wmtr, wtr), cos_mo2 = dot(wmt, neg(wtr));
-                double t3 =
-                    (1.0 - fresnel(cos_hi3, inv_eta, NULL)) * energy_scale_at(m, &ax_out, cos_mi3);
-                double ct_tr = fmax(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
-                double chord2 = len(add(to_point(gmtr, b), neg(to_point(gmt, b))));
-                double v = wgt2 * t1 * scale1 * r2 * t3 * ggx_d(a2, cos_mh3) * g1o *
-                           ggx_go(a2, cos_mi2, cos_mo2) * ggx_g(a2, cos_mi3, dot(wmtr, neg(wo))) /
-                           (cos_mo1 * cos_mo2) * cos_mi1 * cos_mi2 * cos_hi3 * cos_ho3 * rn3 * rn3 *
-                           arc_length(e2, gmtr);
-                if (isfinite(v) && (lobes & 4u))
-                    for (int c = 0; c < 3; ++c) {
-                        double atr =
-                            m->sigma_a[c] > 0.0 ? exp(-m->sigma_a[c] / ct_tr * chord2) : 1.0;
-                        s_trt[c] += v * at[c] * atr; /* Eq. 14 */
-                    }
-                for (int c = 0; c < 3; ++c) s_trrt[c] += rr[c];
-            }
+            vndf_frame_make(al, neg(e.wt), e.wmt, &f2);
+            for (int j2 = 0; j2 < n2 * n2; ++j2)
+                trt_add(&c, &r, &e, vndf_frame_node(&f2, node2[j2][0], node2[j2][1]), e.wgt * w2,
+                        s_trt, s_trrt);
         }
     }
     double mlong =
         longitudinal_m(sin_theta(wi), cos_theta(wi), sin_theta(wo), cos_theta(wo), 4.0 * al);
     double k = 2.0 / 3.0 * res;
-    for (int c = 0; c < 3; ++c) {
-        double trrt_term = (lobes & 8u) ? s_trrt[c] * mlong / (2.0 * ABRDF__PI) : 0.0;
-        out[c] = ((s_tt[c] + s_trt[c]) * inv_eta * inv_eta + trrt_term) * k;
+    for (int i = 0; i < 3; ++i) {
+        double trrt_term = (lobes & 8u) ? s_trrt[i] * mlong / (2.0 * ABRDF__PI) : 0.0;
+        out[i] = ((s_tt[i] + s_trt[i]) * inv_eta * inv_eta + trrt_term) * k;
     }
 }
 

@@ -260,6 +260,19 @@ static void pair_text(const abrdf_model lobe[2], char *buf, size_t size)
         snprintf(buf, size, "%s + %s", mname(lobe[0]), mname(lobe[1]));
 }
 
+/* Whether a lobe of the pair reads parameter `name`. */
+static int pair_reads(const abrdf_model lobe[2], const char *name)
+{
+    int id;
+    if (abrdf_param_find(name, &id) != ABRDF_OK) return 0;
+    for (int l = 0; l < 2; ++l) {
+        const abrdf_model_info *mi = abrdf_model_get(lobe[l]);
+        for (int k = 0; mi && k < mi->param_count; ++k)
+            if (mi->params[k].id == id) return 1;
+    }
+    return 0;
+}
+
 /* The fitted values: kd, ks, f0 and the searched parameters the pair reads. */
 static void params_text(const abrdf__brdf *b, char *buf, size_t size)
 {
@@ -273,13 +286,7 @@ static void params_text(const abrdf__brdf *b, char *buf, size_t size)
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
         int id;
         double v[3];
-        if (abrdf_param_find(names[i], &id) != ABRDF_OK) continue;
-        int reads = 0;
-        for (int l = 0; l < 2; ++l) {
-            const abrdf_model_info *mi = abrdf_model_get(b->lobe[l]);
-            for (int k = 0; mi && k < mi->param_count; ++k) reads |= mi->params[k].id == id;
-        }
-        if (!reads) continue;
+        if (abrdf_param_find(names[i], &id) != ABRDF_OK || !pair_reads(b->lobe, names[i])) continue;
         int n = abrdf_param_read(&b->p, id, v);
         int w;
         if (n == 3 && !(v[0] == v[1] && v[1] == v[2]))
@@ -352,6 +359,284 @@ static int coarser_quadrature(const abrdf__brdf *ref, int i, abrdf__brdf *out)
 
 #define SELECTION_SIZE_0_2 END_OF(abrdf_selection, message)
 
+/* What one abrdf_select_budget call shares between its steps: the budget, the costs, the
+ * trace, the reference, its candidates and what they are fitted and predicted with. */
+typedef struct budget_state {
+    abrdf_budget b;
+    const abrdf_costs *costs;
+    abrdf_costs builtin; /* the costs when the caller gives none */
+    bwalk w;
+    abrdf__brdf ref;
+    double ref_cost;
+    class_candidates cc;
+    int no_diffuse;
+    abrdf__arena a;
+    abrdf__pred pr;
+    abrdf__fit_set set;
+    char bt[64];   /* the budget as text (budget_text) */
+    char unit[32]; /* the costs' unit, its first word */
+} budget_state;
+
+/* The cheapest candidate within the budget so far. */
+typedef struct budget_best {
+    abrdf__brdf brdf;
+    abrdf_fit_result res;
+    double cost, nmse;
+    int have;
+} budget_best;
+
+/* The caller's budget (NULL: the defaults) in this library's layout, checked: ABRDF_OK, or the
+ * status with its message in sel. */
+static int budget_read(const abrdf_budget *budget, abrdf_budget *b, abrdf_selection *sel)
+{
+    budget_defaults(b);
+    if (budget) {
+        if (budget->struct_size < BUDGET_SIZE_0_3)
+            return abrdf__selection_fail(
+                sel, ABRDF_E_SIZE,
+                "abrdf_budget: struct_size %zu is below its first layout: initialise it "
+                "with abrdf_budget_init",
+                budget->struct_size);
+        memcpy(b, budget, budget->struct_size < sizeof *b ? budget->struct_size : sizeof *b);
+        b->struct_size = sizeof *b;
+    }
+    if (!(b->max_nmse > 0.0 && b->max_nmse <= 1.0))
+        return abrdf__selection_fail(sel, ABRDF_E_RANGE, "budget NMSE %g is not in (0, 1]",
+                                     b->max_nmse);
+    if (!((int)b->metric >= 0 && b->metric < ABRDF_FIT_METRIC_COUNT) || b->resolution < 0 ||
+        b->resolution > 5)
+        return abrdf__selection_fail(
+            sel, ABRDF_E_RANGE, "budget: metric %d is unknown or resolution %d is outside [0, 5]",
+            (int)b->metric, b->resolution);
+    return ABRDF_OK;
+}
+
+/* The reference (the flowchart's photoreal choice, its steps traced first), its class's
+ * candidates, its predicted image and the fit's direction set, in the workspace: ABRDF_OK, or
+ * the status with its message in sel. */
+static int reference_prepare(budget_state *bs, const abrdf_material *m, abrdf_selection *sel,
+                             void *work, size_t work_size)
+{
+    abrdf_params ref_block;
+    abrdf_params_init(ABRDF_MODEL_NONE, &ref_block);
+    int st =
+        abrdf_select(m, ABRDF_GOAL_PHOTOREAL, NULL, bs->costs, sel, &ref_block, forward, &bs->w);
+    if (st != ABRDF_OK) return st;
+    char msg[ABRDF_FIT_MESSAGE_MAX];
+    if ((st = abrdf__brdf_make(&bs->ref, sel->diffuse, sel->specular, &ref_block, msg,
+                               sizeof msg)) != ABRDF_OK)
+        return abrdf__selection_fail(sel, st, "%s", msg);
+    class_of(m, sel, &bs->cc, &bs->no_diffuse);
+    int integrating = (abrdf__brdf_needs(&bs->ref) & ABRDF_NEEDS_INTEGRATION) != 0;
+    abrdf__arena_init(&bs->a, work, work_size);
+    if ((st = abrdf__pred_prepare(&bs->pr, bs->b.view, &bs->ref, integrating, &bs->a, msg,
+                                  sizeof msg)) != ABRDF_OK)
+        return abrdf__selection_fail(sel, st, "%s", msg);
+    int tangent = abrdf__brdf_uses_tangent(&bs->ref), fibre = abrdf__brdf_is_fibre(&bs->ref);
+    if (abrdf__fit_set_make(&bs->set, &bs->ref, tangent, fibre,
+                            abrdf__fit_level(bs->b.resolution, integrating), &bs->a) != ABRDF_OK)
+        return abrdf__selection_fail(
+            sel, ABRDF_E_SIZE, "the workspace (%zu bytes) is too small: abrdf_fit_workspace_size",
+            work_size);
+    return ABRDF_OK;
+}
+
+/* The budget's first step: the bound, the reference, where the error is predicted and how
+ * the candidates are fitted. */
+static void trace_reference(budget_state *bs)
+{
+    char names[96];
+    abrdf_select_step s = {ABRDF_STEP_REFERENCE,
+                           bs->ref.lobe[1],
+                           0.0,
+                           bs->b.max_nmse,
+                           -1.0,
+                           -1.0,
+                           bs->ref_cost,
+                           1,
+                           NULL,
+                           bs->ref.lobe[0],
+                           &bs->ref.p};
+    pair_text(bs->ref.lobe, names, sizeof names);
+    emit(&bs->w, s,
+         "budget: image NMSE < %s against the reference %s (the photoreal choice), "
+         "predicted on %s; fits by the %s metric on %d direction pairs",
+         bs->bt, names,
+         bs->pr.samples && bs->b.view && bs->b.view->term_count ? "the caller's image"
+                                                                : "an analytic sphere",
+         abrdf_fit_metric_name(bs->b.metric), bs->set.n);
+}
+
+/* Fit cand (its lobes set) to the reference by the budget's metric, or with ABRDF_FIT_AUTO by
+ * every metric, the best predicted kept; r receives the result: ABRDF_OK, or the status with
+ * its message in sel. */
+static int candidate_fit(budget_state *bs, abrdf__brdf *cand, abrdf_fit_result *r,
+                         abrdf_selection *sel)
+{
+    abrdf__fit_start(&bs->ref, cand);
+    abrdf__brdf start = *cand;
+    abrdf_fit_metric first = bs->b.metric == ABRDF_FIT_AUTO ? ABRDF_FIT_L2 : bs->b.metric;
+    abrdf__fit_run(&bs->set, &bs->ref, cand, first, 1, &bs->pr, r, &bs->a);
+    /* Bieron & Peers 2020: the other metrics' fits too, the best predicted kept. Every
+     * candidate: no threshold on the L2 fit's prediction separates the ones the other
+     * metrics bring into a class (tools/measure/auto_reach.c: from 3.3e3 to 5.4e-4) */
+    if (bs->b.metric == ABRDF_FIT_AUTO && !r->message[0]) {
+        for (int q = ABRDF_FIT_L2 + 1; q < ABRDF_FIT_AUTO; ++q) {
+            abrdf__brdf c2 = start;
+            abrdf_fit_result r2;
+            abrdf_fit_result_init(&r2);
+            abrdf__fit_run(&bs->set, &bs->ref, &c2, (abrdf_fit_metric)q, 1, &bs->pr, &r2, &bs->a);
+            r->evals += r2.evals;
+            if (!r2.message[0] && r2.nmse_pred < r->nmse_pred) {
+                r2.evals = r->evals;
+                *r = r2;
+                *cand = c2;
+            }
+        }
+    }
+    if (r->message[0]) return abrdf__selection_fail(sel, ABRDF_E_SIZE, "%s", r->message);
+    return ABRDF_OK;
+}
+
+/* One candidate's step: its fitted parameters, predicted error, cost and verdict. */
+static void trace_candidate(budget_state *bs, int is_ref, const abrdf__brdf *cand,
+                            const abrdf_fit_result *r, double cost)
+{
+    char names[96], ptext[320], cs[48];
+    int within = r->nmse_pred < bs->b.max_nmse, ranked = cost >= 0.0;
+    pair_text(cand->lobe, names, sizeof names);
+    params_text(cand, ptext, sizeof ptext);
+    if (ranked)
+        snprintf(cs, sizeof cs, "%.3g %s", cost, bs->unit);
+    else
+        snprintf(cs, sizeof cs, "cost unknown");
+    abrdf_select_step s = {ABRDF_STEP_FIT, cand->lobe[1], r->nmse_pred, bs->b.max_nmse,
+                           r->rel_l2,      -1.0,          cost,         within && ranked,
+                           NULL,           cand->lobe[0], &cand->p};
+    emit(&bs->w, s, "%s%s: %s; NMSE %.3g %s %g (%s), rel L2 %.3g, highlight %.3g%%, %s: %s", names,
+         is_ref ? " (reference)" : "", ptext[0] ? ptext : "no parameters", r->nmse_pred,
+         within ? "<" : ">=", bs->b.max_nmse, class_word(r->nmse_pred), r->rel_l2, r->max_rel_pct,
+         cs,
+         !within  ? "over the budget"
+         : ranked ? "within the budget"
+                  : "within, but cannot be ranked");
+}
+
+/* Every candidate in turn (the reference as chosen, the class's models fitted, then the
+ * reference's cheaper quadratures), measured and traced; the cheapest within the budget in
+ * best: ABRDF_OK, or the status with its message in sel. */
+static int candidates_run(budget_state *bs, budget_best *best, abrdf_selection *sel)
+{
+    best->cost = INFINITY;
+    best->nmse = INFINITY;
+    best->have = 0;
+    int variants = 0;
+    for (int k = 0;; ++k) {
+        abrdf_model lobe[2];
+        abrdf__brdf cand;
+        int g = candidate_get(&bs->cc, k, bs->ref.lobe[0], bs->ref.lobe[1], bs->no_diffuse, lobe);
+        int fitted = 0;
+        if (g == 0) { /* the class's models done: the reference's cheaper quadratures */
+            if (!coarser_quadrature(&bs->ref, ++variants, &cand)) break;
+        } else if (g < 0) {
+            continue;
+        } else if (k == 0) { /* the reference, as chosen */
+            cand = bs->ref;
+        } else {
+            cand.lobe[0] = lobe[0];
+            cand.lobe[1] = lobe[1];
+            fitted = 1;
+        }
+        abrdf_fit_result r;
+        abrdf_fit_result_init(&r);
+        if (!fitted) { /* the reference, or it at a coarser quadrature: nothing to fit */
+            abrdf__fit_errors(&bs->set, &cand, &r);
+            r.nmse_pred = abrdf__pred_nmse(&bs->pr, &cand);
+        } else {
+            int st = candidate_fit(bs, &cand, &r, sel);
+            if (st != ABRDF_OK) return st;
+        }
+        double cost = pair_cost(bs->costs, cand.lobe, &cand.p);
+        trace_candidate(bs, k == 0, &cand, &r, cost);
+        if (r.nmse_pred < bs->b.max_nmse && cost >= 0.0 &&
+            (cost < best->cost || (cost == best->cost && r.nmse_pred < best->nmse))) {
+            best->brdf = cand;
+            best->res = r;
+            best->cost = cost;
+            best->nmse = r.nmse_pred;
+            best->have = 1;
+        }
+    }
+    if (!best->have) { /* costs unknown for every candidate within the budget: the reference */
+        best->brdf = bs->ref;
+        abrdf_fit_result_init(&best->res);
+        abrdf__fit_errors(&bs->set, &best->brdf, &best->res);
+        best->res.nmse_pred = 0.0;
+        best->cost = bs->ref_cost;
+    }
+    return ABRDF_OK;
+}
+
+/* The budget's last step: the choice and why. */
+static void trace_choice(budget_state *bs, const budget_best *best)
+{
+    char names[96];
+    pair_text(best->brdf.lobe, names, sizeof names);
+    abrdf_select_step s = {ABRDF_STEP_BUDGET,
+                           best->brdf.lobe[1],
+                           best->res.nmse_pred,
+                           bs->b.max_nmse,
+                           -1.0,
+                           -1.0,
+                           best->cost,
+                           1,
+                           NULL,
+                           best->brdf.lobe[0],
+                           &best->brdf.p};
+    if (best->have)
+        emit(&bs->w, s,
+             "%s: the cheapest within NMSE < %s: %.3g %s (the reference costs %.3g), "
+             "predicted NMSE %.3g (%s)",
+             names, bs->bt, best->cost, bs->unit, bs->ref_cost, best->res.nmse_pred,
+             class_word(best->res.nmse_pred));
+    else
+        emit(&bs->w, s, "%s: no candidate within the budget has a known cost: the reference",
+             names);
+}
+
+/* The choice into the selection: its models, predicted errors, n and r where its lobes read
+ * them, and costs. */
+static void selection_fill(abrdf_selection *sel, const budget_best *best, const abrdf_costs *costs)
+{
+    const abrdf__brdf *b = &best->brdf;
+    sel->diffuse = b->lobe[0];
+    sel->specular = b->lobe[1];
+    sel->err_nmse = best->res.nmse_pred;
+    sel->err_rel_pct = best->res.max_rel_pct;
+    sel->err_abs = best->res.max_abs;
+    if (pair_reads(b->lobe, "n")) sel->n = b->p.n;
+    if (pair_reads(b->lobe, "r")) sel->r = b->p.r;
+    sel->cost_diffuse = b->lobe[0] == NONE ? 0.0 : lobe_cost(costs, b->lobe[0], &b->p);
+    sel->cost_specular = lobe_cost(costs, b->lobe[1], &b->p);
+    sel->cost_total = best->cost >= 0.0 && isfinite(best->cost) ? best->cost : -1.0;
+    sel->cost_unit = costs->unit;
+}
+
+/* The choice's parameter block into the caller's, in its layout: ABRDF_OK, or the status with
+ * its message in sel. */
+static int params_copy(abrdf_params *params, const abrdf__brdf *best, abrdf_selection *sel)
+{
+    if (params->struct_size < END_OF(abrdf_params, layers))
+        return abrdf__selection_fail(sel, ABRDF_E_SIZE,
+                                     "abrdf_params: struct_size %zu is below its 0.2.0 layout",
+                                     params->struct_size);
+    abrdf_params p = best->p;
+    size_t size = params->struct_size;
+    p.struct_size = size;
+    memcpy(params, &p, size < sizeof p ? size : sizeof p);
+    return ABRDF_OK;
+}
+
 int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
                         const abrdf_costs *costs, abrdf_selection *out, abrdf_params *params,
                         abrdf_select_trace_fn trace, void *trace_user, void *work, size_t work_size)
@@ -361,240 +646,32 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     abrdf_selection sel;
     abrdf_selection_init(&sel);
     int st = ABRDF_OK;
-    abrdf_budget b;
-    budget_defaults(&b);
-    bwalk w = {trace, trace_user, 0};
-    abrdf_costs builtin;
-    abrdf_params ref_block;
+    budget_state bs;
+    bs.w = (bwalk){trace, trace_user, 0};
+    budget_best best;
     if (!m || !work) {
         st = abrdf__selection_fail(&sel, ABRDF_E_NULL, "abrdf_select_budget: %s is NULL",
                                    m ? "the workspace" : "the material");
         goto done;
     }
-    if (budget) {
-        if (budget->struct_size < BUDGET_SIZE_0_3) {
-            st = abrdf__selection_fail(
-                &sel, ABRDF_E_SIZE,
-                "abrdf_budget: struct_size %zu is below its first layout: initialise it "
-                "with abrdf_budget_init",
-                budget->struct_size);
-            goto done;
-        }
-        memcpy(&b, budget, budget->struct_size < sizeof b ? budget->struct_size : sizeof b);
-        b.struct_size = sizeof b;
-    }
-    if (!(b.max_nmse > 0.0 && b.max_nmse <= 1.0)) {
-        st = abrdf__selection_fail(&sel, ABRDF_E_RANGE, "budget NMSE %g is not in (0, 1]",
-                                   b.max_nmse);
-        goto done;
-    }
-    if (!((int)b.metric >= 0 && b.metric < ABRDF_FIT_METRIC_COUNT) || b.resolution < 0 ||
-        b.resolution > 5) {
-        st = abrdf__selection_fail(
-            &sel, ABRDF_E_RANGE, "budget: metric %d is unknown or resolution %d is outside [0, 5]",
-            (int)b.metric, b.resolution);
-        goto done;
-    }
+    if ((st = budget_read(budget, &bs.b, &sel)) != ABRDF_OK) goto done;
+    bs.costs = costs;
     if (!costs) {
-        abrdf_costs_builtin(&builtin);
-        costs = &builtin;
+        abrdf_costs_builtin(&bs.builtin);
+        bs.costs = &bs.builtin;
     }
-    /* the reference: the flowchart's photoreal choice, its steps first */
-    abrdf_params_init(ABRDF_MODEL_NONE, &ref_block);
-    st = abrdf_select(m, ABRDF_GOAL_PHOTOREAL, NULL, costs, &sel, &ref_block, forward, &w);
-    if (st != ABRDF_OK) goto done;
-    abrdf__brdf ref;
-    char msg[ABRDF_FIT_MESSAGE_MAX];
-    if ((st = abrdf__brdf_make(&ref, sel.diffuse, sel.specular, &ref_block, msg, sizeof msg)) !=
-        ABRDF_OK) {
-        st = abrdf__selection_fail(&sel, st, "%s", msg);
-        goto done;
-    }
-    class_candidates cc;
-    int no_diffuse;
-    class_of(m, &sel, &cc, &no_diffuse);
-
-    int integrating = (abrdf__brdf_needs(&ref) & ABRDF_NEEDS_INTEGRATION) != 0;
-    abrdf__arena a;
-    abrdf__arena_init(&a, work, work_size);
-    abrdf__pred pr;
-    if ((st = abrdf__pred_prepare(&pr, b.view, &ref, integrating, &a, msg, sizeof msg)) !=
-        ABRDF_OK) {
-        st = abrdf__selection_fail(&sel, st, "%s", msg);
-        goto done;
-    }
-    abrdf__fit_set set;
-    int tangent = abrdf__brdf_uses_tangent(&ref), fibre = abrdf__brdf_is_fibre(&ref);
-    if (abrdf__fit_set_make(&set, &ref, tangent, fibre, abrdf__fit_level(b.resolution, integrating),
-                            &a) != ABRDF_OK) {
-        st = abrdf__selection_fail(
-            &sel, ABRDF_E_SIZE, "the workspace (%zu bytes) is too small: abrdf_fit_workspace_size",
-            work_size);
-        goto done;
-    }
-    char bt[64], names[96], ptext[320];
-    budget_text(b.max_nmse, bt, sizeof bt);
-    double ref_cost = pair_cost(costs, ref.lobe, &ref.p);
-    {
-        abrdf_select_step s = {
-            ABRDF_STEP_REFERENCE, ref.lobe[1], 0.0, b.max_nmse, -1.0, -1.0, ref_cost, 1, NULL,
-            ref.lobe[0],          &ref.p};
-        pair_text(ref.lobe, names, sizeof names);
-        emit(&w, s,
-             "budget: image NMSE < %s against the reference %s (the photoreal choice), "
-             "predicted on %s; fits by the %s metric on %d direction pairs",
-             bt, names,
-             pr.samples && b.view && b.view->term_count ? "the caller's image"
-                                                        : "an analytic sphere",
-             abrdf_fit_metric_name(b.metric), set.n);
-    }
-    char unit[32] = "units";
-    if (costs->unit) sscanf(costs->unit, "%31s", unit);
-
-    abrdf__brdf best;
-    abrdf_fit_result best_res;
-    double best_cost = INFINITY, best_nmse = INFINITY;
-    int have = 0, variants = 0;
-    for (int k = 0;; ++k) {
-        abrdf_model lobe[2];
-        abrdf__brdf cand;
-        int g = candidate_get(&cc, k, ref.lobe[0], ref.lobe[1], no_diffuse, lobe), fitted = 0;
-        if (g == 0) { /* the class's models done: the reference's cheaper quadratures */
-            if (!coarser_quadrature(&ref, ++variants, &cand)) break;
-        } else if (g < 0) {
-            continue;
-        } else if (k == 0) { /* the reference, as chosen */
-            cand = ref;
-        } else {
-            cand.lobe[0] = lobe[0];
-            cand.lobe[1] = lobe[1];
-            fitted = 1;
-        }
-        lobe[0] = cand.lobe[0];
-        lobe[1] = cand.lobe[1];
-        abrdf_fit_result r;
-        abrdf_fit_result_init(&r);
-        if (!fitted) { /* the reference, or it at a coarser quadrature: nothing to fit */
-            abrdf__fit_errors(&set, &cand, &r);
-            r.nmse_pred = abrdf__pred_nmse(&pr, &cand);
-        } else {
-            abrdf__fit_start(&ref, &cand);
-            abrdf__brdf start = cand;
-            abrdf__fit_run(&set, &ref, &cand, b.metric == ABRDF_FIT_AUTO ? ABRDF_FIT_L2 : b.metric,
-                           1, &pr, &r, &a);
-            /* Bieron & Peers 2020: the other metrics' fits too, the best predicted kept. Every
-             * candidate: no threshold on the L2 fit's prediction separates the ones the other
-             * metrics bring into a class (tools/measure/auto_reach.c: from 3.3e3 to 5.4e-4) */
-            if (b.metric == ABRDF_FIT_AUTO && !r.message[0]) {
-                for (int q = ABRDF_FIT_L2 + 1; q < ABRDF_FIT_AUTO; ++q) {
-                    abrdf__brdf c2 = start;
-                    abrdf_fit_result r2;
-                    abrdf_fit_result_init(&r2);
-                    abrdf__fit_run(&set, &ref, &c2, (abrdf_fit_metric)q, 1, &pr, &r2, &a);
-                    r.evals += r2.evals;
-                    if (!r2.message[0] && r2.nmse_pred < r.nmse_pred) {
-                        r2.evals = r.evals;
-                        r = r2;
-                        cand = c2;
-                    }
-                }
-            }
-            if (r.message[0]) {
-                st = abrdf__selection_fail(&sel, ABRDF_E_SIZE, "%s", r.message);
-                goto done;
-            }
-        }
-        double cost = pair_cost(costs, lobe, &cand.p);
-        int within = r.nmse_pred < b.max_nmse, ranked = cost >= 0.0;
-        pair_text(lobe, names, sizeof names);
-        params_text(&cand, ptext, sizeof ptext);
-        char cs[48];
-        if (ranked)
-            snprintf(cs, sizeof cs, "%.3g %s", cost, unit);
-        else
-            snprintf(cs, sizeof cs, "cost unknown");
-        abrdf_select_step s = {ABRDF_STEP_FIT, lobe[1], r.nmse_pred, b.max_nmse,
-                               r.rel_l2,       -1.0,    cost,        within && ranked,
-                               NULL,           lobe[0], &cand.p};
-        emit(&w, s, "%s%s: %s; NMSE %.3g %s %g (%s), rel L2 %.3g, highlight %.3g%%, %s: %s", names,
-             k == 0 ? " (reference)" : "", ptext[0] ? ptext : "no parameters", r.nmse_pred,
-             within ? "<" : ">=", b.max_nmse, class_word(r.nmse_pred), r.rel_l2, r.max_rel_pct, cs,
-             !within  ? "over the budget"
-             : ranked ? "within the budget"
-                      : "within, but cannot be ranked");
-        if (within && ranked &&
-            (cost < best_cost || (cost == best_cost && r.nmse_pred < best_nmse))) {
-            best = cand;
-            best_res = r;
-            best_cost = cost;
-            best_nmse = r.nmse_pred;
-            have = 1;
-        }
-    }
-    if (!have) { /* costs unknown for every candidate within the budget: the reference */
-        best = ref;
-        abrdf_fit_result_init(&best_res);
-        abrdf__fit_errors(&set, &best, &best_res);
-        best_res.nmse_pred = 0.0;
-        best_cost = ref_cost;
-    }
-    pair_text(best.lobe, names, sizeof names);
-    {
-        abrdf_select_step s = {ABRDF_STEP_BUDGET,
-                               best.lobe[1],
-                               best_res.nmse_pred,
-                               b.max_nmse,
-                               -1.0,
-                               -1.0,
-                               best_cost,
-                               1,
-                               NULL,
-                               best.lobe[0],
-                               &best.p};
-        if (have)
-            emit(&w, s,
-                 "%s: the cheapest within NMSE < %s: %.3g %s (the reference costs %.3g), "
-                 "predicted NMSE %.3g (%s)",
-                 names, bt, best_cost, unit, ref_cost, best_res.nmse_pred,
-                 class_word(best_res.nmse_pred));
-        else
-            emit(&w, s, "%s: no candidate within the budget has a known cost: the reference",
-                 names);
-    }
-    sel.diffuse = best.lobe[0];
-    sel.specular = best.lobe[1];
-    sel.err_nmse = best_res.nmse_pred;
-    sel.err_rel_pct = best_res.max_rel_pct;
-    sel.err_abs = best_res.max_abs;
-    for (int l = 0; l < 2; ++l) {
-        if (best.lobe[l] == NONE) continue;
-        int id;
-        abrdf_param_find("n", &id);
-        const abrdf_model_info *mi = abrdf_model_get(best.lobe[l]);
-        for (int k = 0; k < mi->param_count; ++k) {
-            if (mi->params[k].id == id) sel.n = best.p.n;
-        }
-        abrdf_param_find("r", &id);
-        for (int k = 0; k < mi->param_count; ++k)
-            if (mi->params[k].id == id) sel.r = best.p.r;
-    }
-    sel.cost_diffuse = best.lobe[0] == NONE ? 0.0 : lobe_cost(costs, best.lobe[0], &best.p);
-    sel.cost_specular = lobe_cost(costs, best.lobe[1], &best.p);
-    sel.cost_total = best_cost >= 0.0 && isfinite(best_cost) ? best_cost : -1.0;
-    sel.cost_unit = costs->unit;
-    if (params) {
-        if (params->struct_size < END_OF(abrdf_params, layers)) {
-            st = abrdf__selection_fail(&sel, ABRDF_E_SIZE,
-                                       "abrdf_params: struct_size %zu is below its 0.2.0 layout",
-                                       params->struct_size);
-            goto done;
-        }
-        size_t size = params->struct_size;
-        best.p.struct_size = size;
-        memcpy(params, &best.p, size < sizeof best.p ? size : sizeof best.p);
-    }
+    if ((st = reference_prepare(&bs, m, &sel, work, work_size)) != ABRDF_OK) goto done;
+    budget_text(bs.b.max_nmse, bs.bt, sizeof bs.bt);
+    bs.ref_cost = pair_cost(bs.costs, bs.ref.lobe, &bs.ref.p);
+    trace_reference(&bs);
+    strcpy(bs.unit, "units");
+    if (bs.costs->unit) sscanf(bs.costs->unit, "%31s", bs.unit);
+    if ((st = candidates_run(&bs, &best, &sel)) != ABRDF_OK) goto done;
+    trace_choice(&bs, &best);
+    selection_fill(&sel, &best, bs.costs);
+    if (params) st = params_copy(params, &best.brdf, &sel);
 done:
-    sel.step_count = w.steps;
+    sel.step_count = bs.w.steps;
     {
         size_t size = out->struct_size;
         sel.struct_size = size;
