@@ -108,45 +108,21 @@ typedef struct export_args {
  * message. */
 static int take_option(export_args *ea, int argc, char **argv, int *i)
 {
-    const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
-    const struct {
-        const char *name;
-        int *slot;
-    } flags[] = {{"--pov", &ea->pov},
-                 {"--cycles", &ea->cycles},
-                 {"--no-shadows", &ea->no_shadows},
-                 {"--native", &ea->native}};
-    const struct {
-        const char *name, **slot;
-    } strings[] = {{"-o", &ea->out}, {"--osl-dir", &ea->osl_dir}, {"--mode", &ea->mode}};
-    const struct {
-        const char *name;
-        long max;
-        int *slot;
-    } numbers[] = {{"--width", SCENE_MAX_RESOLUTION, &ea->opt.width},
-                   {"--height", SCENE_MAX_RESOLUTION, &ea->opt.height},
-                   {"--spp", 65536, &ea->spp}};
-    for (size_t k = 0; k < sizeof flags / sizeof flags[0]; ++k)
-        if (!strcmp(a, flags[k].name)) {
-            *flags[k].slot = 1;
-            return 0;
-        }
-    for (size_t k = 0; k < sizeof strings / sizeof strings[0]; ++k)
-        if (!strcmp(a, strings[k].name)) {
-            if (!val) return cli_fail(CMD, "%s needs a value", a);
-            ++*i;
-            *strings[k].slot = val;
-            return 0;
-        }
-    for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; ++k)
-        if (!strcmp(a, numbers[k].name)) {
-            long v;
-            if (!cli_parse_int(val, 1, numbers[k].max, &v))
-                return cli_fail(CMD, "%s needs a whole number in [1, %ld]", a, numbers[k].max);
-            ++*i;
-            *numbers[k].slot = (int)v;
-            return 0;
-        }
+    const char *a = argv[*i];
+    const cli_flag flags[] = {{"--pov", &ea->pov, 1},
+                              {"--cycles", &ea->cycles, 1},
+                              {"--no-shadows", &ea->no_shadows, 1},
+                              {"--native", &ea->native, 1}};
+    const cli_string strings[] = {
+        {"-o", &ea->out}, {"--osl-dir", &ea->osl_dir}, {"--mode", &ea->mode}};
+    const cli_number numbers[] = {{"--width", SCENE_MAX_RESOLUTION, &ea->opt.width},
+                                  {"--height", SCENE_MAX_RESOLUTION, &ea->opt.height},
+                                  {"--spp", 65536, &ea->spp}};
+    const cli_options table = {flags,   sizeof flags / sizeof *flags,
+                               strings, sizeof strings / sizeof *strings,
+                               numbers, sizeof numbers / sizeof *numbers};
+    int took = cli_option_take(CMD, &table, argc, argv, i);
+    if (took) return took == 1 ? 0 : took;
     if (a[0] == '-') return cli_fail(CMD, "unknown option '%s' (abrdf export --help)", a);
     if (ea->path) return cli_fail(CMD, "more than one SCENE ('%s' and '%s')", ea->path, a);
     ea->path = a;

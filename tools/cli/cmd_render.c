@@ -125,49 +125,30 @@ static int take_named(render_args *ra, const char *a, const char *val)
 static int take_option(render_args *ra, int argc, char **argv, int *i)
 {
     const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
-    const struct {
-        const char *name;
-        int *slot, value;
-    } flags[] = {{"--explain", &ra->explain, 1},
-                 {"--stats", &ra->stats, 1},
-                 {"--jitter", &ra->opt.jitter, 1},
-                 {"--no-preview", &ra->preview, 0},
-                 {"--full", &ra->full, 1}};
-    const struct {
-        const char *name, **slot; /* NULL: a name from a list (take_named) */
-    } strings[] = {{"-o", &ra->out},      {"--config", &ra->config}, {"--display", &ra->display},
-                   {"--view", &ra->view}, {"--precision", NULL},     {"--estimator", NULL}};
-    const struct {
-        const char *name;
-        long max;
-        int *slot;
-    } numbers[] = {{"--light-samples", 4096, &ra->opt.light_samples},
-                   {"--width", SCENE_MAX_RESOLUTION, &ra->opt.width},
-                   {"--height", SCENE_MAX_RESOLUTION, &ra->opt.height},
-                   {"--spp", 4096, &ra->opt.spp},
-                   {"--threads", 64, &ra->opt.threads}};
-    for (size_t k = 0; k < sizeof flags / sizeof flags[0]; ++k)
-        if (!strcmp(a, flags[k].name)) {
-            *flags[k].slot = flags[k].value;
-            return 0;
-        }
-    for (size_t k = 0; k < sizeof strings / sizeof strings[0]; ++k)
-        if (!strcmp(a, strings[k].name)) {
-            if (!val) return cli_fail(CMD, "%s needs a value", a);
-            ++*i;
-            if (!strings[k].slot) return take_named(ra, a, val);
-            *strings[k].slot = val;
-            return 0;
-        }
-    for (size_t k = 0; k < sizeof numbers / sizeof numbers[0]; ++k)
-        if (!strcmp(a, numbers[k].name)) {
-            long v;
-            if (!cli_parse_int(val, 1, numbers[k].max, &v))
-                return cli_fail(CMD, "%s needs a whole number in [1, %ld]", a, numbers[k].max);
-            ++*i;
-            *numbers[k].slot = (int)v;
-            return 0;
-        }
+    if (!strcmp(a, "--precision") || !strcmp(a, "--estimator")) {
+        if (!val) return cli_fail(CMD, "%s needs a value", a);
+        ++*i;
+        return take_named(ra, a, val);
+    }
+    const cli_flag flags[] = {{"--explain", &ra->explain, 1},
+                              {"--stats", &ra->stats, 1},
+                              {"--jitter", &ra->opt.jitter, 1},
+                              {"--no-preview", &ra->preview, 0},
+                              {"--full", &ra->full, 1}};
+    const cli_string strings[] = {{"-o", &ra->out},
+                                  {"--config", &ra->config},
+                                  {"--display", &ra->display},
+                                  {"--view", &ra->view}};
+    const cli_number numbers[] = {{"--light-samples", 4096, &ra->opt.light_samples},
+                                  {"--width", SCENE_MAX_RESOLUTION, &ra->opt.width},
+                                  {"--height", SCENE_MAX_RESOLUTION, &ra->opt.height},
+                                  {"--spp", 4096, &ra->opt.spp},
+                                  {"--threads", 64, &ra->opt.threads}};
+    const cli_options table = {flags,   sizeof flags / sizeof *flags,
+                               strings, sizeof strings / sizeof *strings,
+                               numbers, sizeof numbers / sizeof *numbers};
+    int took = cli_option_take(CMD, &table, argc, argv, i);
+    if (took) return took == 1 ? 0 : took;
     if (a[0] == '-' && a[1]) return cli_fail(CMD, "unknown option '%s' (abrdf render --help)", a);
     if (ra->path) return cli_fail(CMD, "unexpected argument '%s' (one scene only)", a);
     ra->path = a;

@@ -36,6 +36,33 @@ int cli_fail(const char *cmd, const char *fmt, ...)
 
 int cli_is_help(const char *arg) { return !strcmp(arg, "-h") || !strcmp(arg, "--help"); }
 
+int cli_option_take(const char *cmd, const cli_options *o, int argc, char **argv, int *i)
+{
+    const char *a = argv[*i], *val = *i + 1 < argc ? argv[*i + 1] : NULL;
+    for (size_t k = 0; k < o->nflags; ++k)
+        if (!strcmp(a, o->flags[k].name)) {
+            *o->flags[k].slot = o->flags[k].value;
+            return 1;
+        }
+    for (size_t k = 0; k < o->nstrings; ++k)
+        if (!strcmp(a, o->strings[k].name)) {
+            if (!val) return cli_fail(cmd, "%s needs a value", a);
+            ++*i;
+            *o->strings[k].slot = val;
+            return 1;
+        }
+    for (size_t k = 0; k < o->nnumbers; ++k)
+        if (!strcmp(a, o->numbers[k].name)) {
+            long v;
+            if (!cli_parse_int(val, 1, o->numbers[k].max, &v))
+                return cli_fail(cmd, "%s needs a whole number in [1, %ld]", a, o->numbers[k].max);
+            ++*i;
+            *o->numbers[k].slot = (int)v;
+            return 1;
+        }
+    return 0;
+}
+
 int cli_parse_double(const char *s, double *out)
 {
     if (!s || !*s) return 0;

@@ -46,4 +46,32 @@ void cli_json_number(FILE *f, double v);
 /* True if argv[i] is "-h" or "--help". */
 int cli_is_help(const char *arg);
 
+/* A command's options as tables: a flag sets *slot = value; a string option takes the next
+ * word; a number option takes a whole number in [1, max]. */
+typedef struct cli_flag {
+    const char *name;
+    int *slot, value;
+} cli_flag;
+typedef struct cli_string {
+    const char *name, **slot;
+} cli_string;
+typedef struct cli_number {
+    const char *name;
+    long max;
+    int *slot;
+} cli_number;
+typedef struct cli_options {
+    const cli_flag *flags;
+    size_t nflags;
+    const cli_string *strings;
+    size_t nstrings;
+    const cli_number *numbers;
+    size_t nnumbers;
+} cli_options;
+
+/* If argv[*i] is one of o's options, take it and its value (advancing *i): 1; 0 if it is not
+ * one of them; CLI_EXIT_USAGE after the message ("abrdf CMD: --spp needs a whole number in
+ * [1, 4096]") for a missing or bad value. */
+int cli_option_take(const char *cmd, const cli_options *o, int argc, char **argv, int *i);
+
 #endif
