@@ -33,8 +33,8 @@ def slug(text):
     return re.sub(r"[^\w\- ]", "", text).replace(" ", "-")
 
 
-def outside_code(lines):
-    """(line number, line) of the lines outside fenced code blocks, code spans blanked."""
+def outside_fences(lines):
+    """(line number, line) of the lines outside fenced code blocks."""
     fence = None
     for i, line in enumerate(lines, 1):
         s = line.lstrip()
@@ -45,21 +45,19 @@ def outside_code(lines):
         if s.startswith("```") or s.startswith("~~~"):
             fence = s[:3]
             continue
+        yield i, line
+
+
+def outside_code(lines):
+    """(line number, line) of the lines outside fenced code blocks, code spans blanked."""
+    for i, line in outside_fences(lines):
         yield i, re.sub(r"`[^`]*`", lambda m: " " * len(m[0]), line)
 
 
 def headings(text):
     """[(heading text, anchor)] of a page, in order."""
-    out, seen, fence = [], {}, None
-    for line in text.splitlines():
-        s = line.lstrip()
-        if fence:
-            if s.startswith(fence):
-                fence = None
-            continue
-        if s.startswith("```") or s.startswith("~~~"):
-            fence = s[:3]
-            continue
+    out, seen = [], {}
+    for _, line in outside_fences(text.splitlines()):
         m = re.match(r"(#{1,6}) +(.*?) *#*$", line)
         if m:
             base = slug(m[2])
