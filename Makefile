@@ -1,11 +1,12 @@
 # abrdf - the two commands of the README's quick start, and their parts.
 #   make run    install what is missing, build, run the main job on the built-in defaults
 #   make test   install what is missing, build, run the whole test suite (normal + ASan/UBSan)
+#   make tables rewrite the generated files (tables, the ports' copies, the teapot mesh)
 BUILD      ?= build
 BUILD_ASAN ?= build-asan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: all setup setup-ports build build-asan run test clean
+.PHONY: all setup setup-ports build build-asan run test tables clean
 
 all: build
 
@@ -34,6 +35,10 @@ run: build
 test: setup-ports build build-asan
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	cd $(BUILD_ASAN) && ctest --output-on-failure -j $(JOBS)
+
+# Rewrite every generated file of the tree (README, "Generated files").
+tables: build
+	python3 tools/gen/gen_tables.py $(BUILD)/bin
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN)

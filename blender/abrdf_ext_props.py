@@ -1,6 +1,6 @@
 """The abrdf material's settings, Material.abrdf, built from the library's registry (the
 bundled abrdf package): the models by their stable names, every parameter with the range of
-the OSL shaders' metadata (the widest range over the models, as tools/gen/gen_osl_meta.py
+the OSL shaders' metadata (the widest range over the models, as tools/gen/osl_headers.py
 writes osl/abrdf_meta.h) and the library's default, the adaptive mode's inputs, and the
 selection panel's inputs and last result. Every change is written into the material's
 Script node (abrdf_ext_material.push)."""

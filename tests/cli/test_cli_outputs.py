@@ -228,18 +228,47 @@ class FullDisk(Base):
                          self.path("fkub.c"), limit=1000)
         self.fails_whole([os.path.join(BIN, "gen_belcour_tables"), "--order", "2",
                           self.path("belcour.c")], self.path("belcour.c"), limit=1000)
-        if not SANITIZED:  # minutes under the sanitizers (hair_tables_reproduce skips it too)
+        if not SANITIZED:  # minutes under the sanitizers (generated_files_current skips it too)
             self.fails_whole([os.path.join(BIN, "gen_hair_tables"), self.path("hair.c")],
                              self.path("hair.c"), limit=1000)
-        gen = os.path.join(SRC, "tools", "gen")
-        lib = os.path.join(SRC, "libabrdf", "src")
-        self.fails_whole([sys.executable, os.path.join(gen, "gen_pov_hair_tables.py"),
-                          os.path.join(lib, "hair", "hair_tables.c"), self.path("h.inc")],
-                         self.path("h.inc"), limit=1000)
-        self.fails_whole([sys.executable, os.path.join(gen, "gen_pov_belcour.py"),
-                          os.path.join(lib, "layered", "belcour_tables.h"),
-                          os.path.join(lib, "layered", "belcour_tables.c"), self.path("b.inc")],
-                         self.path("b.inc"), limit=1000)
+            self.gen_tables_whole()
+
+    def gen_tables_whole(self):
+        """tools/gen/gen_tables.py writes its eleven files whole or not at all: with a 1000-byte
+        file limit it fails on the first table, one line naming it, and the tree it was to
+        write under (--out) keeps every old file and gains none."""
+        rels = ["libabrdf/src/kernels/fkub_table.c", "libabrdf/src/hair/hair_tables.c",
+                "libabrdf/src/layered/belcour_tables.c", "scenes/teapot.obj",
+                "povray_macros/abrdf_params.inc", "povray_macros/abrdf_belcour_tables.inc",
+                "povray_macros/abrdf_huang_tables.inc", "osl/abrdf_meta.h", "osl/abrdf_fkub.h",
+                "osl/abrdf_belcour_tables.h", "osl/abrdf_hair_tables.h"]
+        tree = self.path("tree")
+        for rel in rels:
+            os.makedirs(os.path.dirname(os.path.join(tree, rel)), exist_ok=True)
+            with open(os.path.join(tree, rel), "w") as f:
+                f.write("the old content\n")
+
+        def files():
+            return sorted(os.path.relpath(os.path.join(d, n), tree)
+                          for d, _, names in os.walk(tree) for n in names)
+
+        before = files()
+        gen = os.path.join(SRC, "tools", "gen", "gen_tables.py")
+        rc, err = run(sys.executable, "-B", gen, BIN, "--out", tree, limit=1000)
+        self.assertEqual(rc, 1, err)
+        self.assertEqual(err.count("\n"), 1, err)
+        self.assertIn("File too large", err)
+        self.assertTrue(any(os.path.basename(r) in err for r in rels), err)
+        self.assertEqual(files(), before, "files appeared or vanished")
+        for rel in rels:
+            with open(os.path.join(tree, rel)) as f:
+                self.assertEqual(f.read(), "the old content\n", rel)
+        # and without the limit it writes them all, as the tree has them
+        rc, err = run(sys.executable, "-B", gen, BIN, "--out", tree)
+        self.assertEqual(rc, 0, err)
+        for rel in rels:
+            with open(os.path.join(tree, rel)) as f, open(os.path.join(SRC, rel)) as g:
+                self.assertEqual(f.read(), g.read(), rel)
 
     def test_standard_output_on_dev_full(self):
         """Every command that prints: a failed write to stdout is an error, with its reason."""

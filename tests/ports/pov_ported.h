@@ -1,6 +1,6 @@
 /* pov_ported.h - whether the POV-Ray port has a model: povray_macros/abrdf_models.inc, or the
  * model's own include abrdf_<model>.inc (loaded on first use), defines its function
- * abrdf_<model> (the rule tools/gen/gen_pov_params.py uses). Shared by the cross-check tools,
+ * abrdf_<model> (the rule tools/gen/pov_includes.py uses). Shared by the cross-check tools,
  * which list the other models as "no POV-Ray twin" instead of rendering. */
 #ifndef ABRDF_POV_PORTED_H
 #define ABRDF_POV_PORTED_H

@@ -1,6 +1,7 @@
 /* gen_teapot.c - the Utah teapot as a triangle mesh (Wavefront OBJ), tessellated from Martin
  * Newell's bicubic Bezier patches (1975). Writes scenes/teapot.obj; re-running it with the
- * same arguments reproduces that file byte for byte (CTest teapot_obj_reproducible).
+ * same arguments reproduces that file byte for byte (tools/gen/gen_tables.py runs it; CTest
+ * generated_files_current).
  *
  *   gen_teapot [--segments N] [-o OUT.obj]     (default: 8 segments, stdout)
  *
