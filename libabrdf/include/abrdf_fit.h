@@ -240,7 +240,9 @@ ABRDF_API int abrdf_budget_candidate(const abrdf_material *m, int index, abrdf_m
  * its own parameters and error 0): each is fitted (abrdf_fit) and its image error predicted
  * (abrdf_predict_nmse) against the reference, and its cost read from costs (NULL = the
  * built-in table, abrdf_costs_builtin). The cheapest candidate whose predicted NMSE is
- * below the budget wins (equal cost: the smaller NMSE); costs unknown for a candidate's
+ * below the budget wins, costs within 15 % of that cheapest one counting as equal (of those,
+ * the smallest predicted NMSE wins: a calibration cannot tell smaller differences apart,
+ * docs/SELECTION.md); costs unknown for a candidate's
  * model exclude it. out receives the choice (goal photoreal, err_nmse the predicted NMSE,
  * err_rel_pct and err_abs the fit's highlight and absolute errors against the reference),
  * params its fitted block. The trace reports, after the flowchart's steps, one

@@ -218,7 +218,8 @@ def select(material: str | Material | Mapping[str, object], goal: Goal | None = 
     {model: cost} in `cost_unit`. budget: a Table-8 class ("none", "slight", "noticeable")
     or an NMSE in (0, 1]: every model or pair that can represent the material's class is
     fitted to the photoreal choice and the cheapest whose predicted image NMSE is below the
-    budget wins; the trace has one "fit" step per candidate. budget excludes goal and the
+    budget wins (costs within 15 % of it count as equal: of those, the smallest predicted
+    NMSE); the trace has one "fit" step per candidate. budget excludes goal and the
     tolerances. Invalid values raise abrdf.Error with the library's message. The same
     choice as `abrdf advise` (`--budget`) with the same inputs."""
     if isinstance(material, str):

@@ -78,16 +78,23 @@ def test_budget_is_advise_budget(cli, name, budget):
     assert [s.kind for s in sel.trace] == [s["step"] for s in want["trace"]]
 
 
+# Costs within 15 % of the cheapest are not told apart (budget.c, COST_TIE; docs/SELECTION.md):
+# of those, the lowest predicted NMSE wins.
+COST_TIE = 0.15
+
+
 def test_budget_choice_is_the_cheapest_within_the_budget():
     sel = abrdf.select("wool", budget="slight")
     fits = [s for s in sel.trace if s.kind == "fit"]
     assert len(fits) > 2 and all(s.params for s in fits)
     assert all(s.threshold == abrdf.budget_nmse("slight") for s in fits)
     within = [s for s in fits if s.value < s.threshold and s.cost is not None]
-    best = min(s.cost for s in within)
-    assert sel.cost_total == best and sel.error_nmse < 2.5e-4
-    won = [s for s in within if s.cost == best and s.model == sel.specular
-           and s.diffuse == sel.diffuse]
+    cheapest = min(s.cost for s in within)
+    tied = [s for s in within if s.cost <= cheapest * (1 + COST_TIE)]
+    best = min(tied, key=lambda s: (s.value, s.cost))
+    assert sel.cost_total == best.cost and sel.error_nmse < 2.5e-4
+    assert sel.error_nmse == best.value
+    won = [s for s in tied if s is best and s.model == sel.specular and s.diffuse == sel.diffuse]
     assert won
     chosen = dict(sel.specular_brdf.params, **(sel.diffuse_brdf.params if sel.diffuse_brdf
                                                else {}))

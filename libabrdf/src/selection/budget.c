@@ -522,58 +522,99 @@ static void trace_candidate(budget_state *bs, int is_ref, const abrdf__brdf *can
                   : "within, but cannot be ranked");
 }
 
+/* Costs closer than this fraction of the cheapest are not told apart: between calibration
+ * runs on one machine the ratio of two models' costs moves by up to +-15 % (eight runs of
+ * `abrdf calibrate`, docs/SELECTION.md), so a saving below it is not one. Of the candidates
+ * within the budget that cost at most (1 + COST_TIE) x the cheapest, the lowest predicted
+ * NMSE wins. */
+#define COST_TIE 0.15
+#define MAX_CANDIDATES 192
+
+/* Candidate k (variant: how many coarser quadratures were asked for before it): 1 with
+ * cand set and *fitted telling whether it needs fitting, 0 past the last, -1 to skip. */
+static int candidate_at(const budget_state *bs, int k, int *variants, abrdf__brdf *cand,
+                        int *fitted)
+{
+    abrdf_model lobe[2];
+    int g = candidate_get(&bs->cc, k, bs->ref.lobe[0], bs->ref.lobe[1], bs->no_diffuse, lobe);
+    *fitted = 0;
+    if (g == 0) /* the class's models done: the reference's cheaper quadratures */
+        return coarser_quadrature(&bs->ref, ++*variants, cand) ? 1 : 0;
+    if (g < 0) return -1;
+    if (k == 0) { /* the reference, as chosen */
+        *cand = bs->ref;
+        return 1;
+    }
+    cand->lobe[0] = lobe[0];
+    cand->lobe[1] = lobe[1];
+    *fitted = 1;
+    return 1;
+}
+
+/* Candidate cand measured: fitted if it needs to be, its errors and predicted NMSE in r. */
+static int candidate_measure(budget_state *bs, abrdf__brdf *cand, int fitted, abrdf_fit_result *r,
+                             abrdf_selection *sel)
+{
+    abrdf_fit_result_init(r);
+    if (fitted) return candidate_fit(bs, cand, r, sel);
+    /* the reference, or it at a coarser quadrature: nothing to fit */
+    abrdf__fit_errors(&bs->set, cand, r);
+    r->nmse_pred = abrdf__pred_nmse(&bs->pr, cand);
+    return ABRDF_OK;
+}
+
+/* What the first pass keeps of each candidate: where it is, and its verdict. */
+typedef struct candidate_mark {
+    int k, variants, within;
+    double cost, nmse;
+} candidate_mark;
+
 /* Every candidate in turn (the reference as chosen, the class's models fitted, then the
- * reference's cheaper quadratures), measured and traced; the cheapest within the budget in
- * best: ABRDF_OK, or the status with its message in sel. */
+ * reference's cheaper quadratures), measured and traced; then the cheapest within the budget,
+ * costs within COST_TIE counted equal, measured again into best: ABRDF_OK, or the status with
+ * its message in sel. */
 static int candidates_run(budget_state *bs, budget_best *best, abrdf_selection *sel)
 {
-    best->cost = INFINITY;
-    best->nmse = INFINITY;
-    best->have = 0;
-    int variants = 0;
-    for (int k = 0;; ++k) {
-        abrdf_model lobe[2];
+    candidate_mark mark[MAX_CANDIDATES];
+    int n = 0, variants = 0, st;
+    double cheapest = INFINITY;
+    for (int k = 0; n < MAX_CANDIDATES; ++k) {
         abrdf__brdf cand;
-        int g = candidate_get(&bs->cc, k, bs->ref.lobe[0], bs->ref.lobe[1], bs->no_diffuse, lobe);
-        int fitted = 0;
-        if (g == 0) { /* the class's models done: the reference's cheaper quadratures */
-            if (!coarser_quadrature(&bs->ref, ++variants, &cand)) break;
-        } else if (g < 0) {
-            continue;
-        } else if (k == 0) { /* the reference, as chosen */
-            cand = bs->ref;
-        } else {
-            cand.lobe[0] = lobe[0];
-            cand.lobe[1] = lobe[1];
-            fitted = 1;
-        }
+        int fitted, at = variants;
+        int g = candidate_at(bs, k, &variants, &cand, &fitted);
+        if (g == 0) break;
+        if (g < 0) continue;
         abrdf_fit_result r;
-        abrdf_fit_result_init(&r);
-        if (!fitted) { /* the reference, or it at a coarser quadrature: nothing to fit */
-            abrdf__fit_errors(&bs->set, &cand, &r);
-            r.nmse_pred = abrdf__pred_nmse(&bs->pr, &cand);
-        } else {
-            int st = candidate_fit(bs, &cand, &r, sel);
-            if (st != ABRDF_OK) return st;
-        }
+        if ((st = candidate_measure(bs, &cand, fitted, &r, sel)) != ABRDF_OK) return st;
         double cost = pair_cost(bs->costs, cand.lobe, &cand.p);
         trace_candidate(bs, k == 0, &cand, &r, cost);
-        if (r.nmse_pred < bs->b.max_nmse && cost >= 0.0 &&
-            (cost < best->cost || (cost == best->cost && r.nmse_pred < best->nmse))) {
-            best->brdf = cand;
-            best->res = r;
-            best->cost = cost;
-            best->nmse = r.nmse_pred;
-            best->have = 1;
-        }
+        mark[n] =
+            (candidate_mark){k, at, r.nmse_pred < bs->b.max_nmse && cost >= 0.0, cost, r.nmse_pred};
+        if (mark[n].within && cost < cheapest) cheapest = cost;
+        ++n;
     }
-    if (!best->have) { /* costs unknown for every candidate within the budget: the reference */
+    const candidate_mark *win = NULL;
+    for (int i = 0; i < n; ++i) {
+        const candidate_mark *c = &mark[i];
+        if (!c->within || c->cost > cheapest * (1.0 + COST_TIE)) continue;
+        if (!win || c->nmse < win->nmse || (c->nmse == win->nmse && c->cost < win->cost)) win = c;
+    }
+    best->have = win != NULL;
+    if (!win) { /* costs unknown for every candidate within the budget: the reference */
         best->brdf = bs->ref;
         abrdf_fit_result_init(&best->res);
         abrdf__fit_errors(&bs->set, &best->brdf, &best->res);
         best->res.nmse_pred = 0.0;
         best->cost = bs->ref_cost;
+        best->nmse = 0.0;
+        return ABRDF_OK;
     }
+    /* the winner again (fits are deterministic), without a second trace step */
+    int fitted, variants_at = win->variants;
+    candidate_at(bs, win->k, &variants_at, &best->brdf, &fitted);
+    if ((st = candidate_measure(bs, &best->brdf, fitted, &best->res, sel)) != ABRDF_OK) return st;
+    best->cost = win->cost;
+    best->nmse = best->res.nmse_pred;
     return ABRDF_OK;
 }
 
@@ -595,10 +636,11 @@ static void trace_choice(budget_state *bs, const budget_best *best)
                            &best->brdf.p};
     if (best->have)
         emit(&bs->w, s,
-             "%s: the cheapest within NMSE < %s: %.3g %s (the reference costs %.3g), "
+             "%s: the cheapest within NMSE < %s (costs within %.0f %% of it counted equal, "
+             "the lowest predicted NMSE of those): %.3g %s (the reference costs %.3g), "
              "predicted NMSE %.3g (%s)",
-             names, bs->bt, best->cost, bs->unit, bs->ref_cost, best->res.nmse_pred,
-             class_word(best->res.nmse_pred));
+             names, bs->bt, 100.0 * COST_TIE, best->cost, bs->unit, bs->ref_cost,
+             best->res.nmse_pred, class_word(best->res.nmse_pred));
     else
         emit(&bs->w, s, "%s: no candidate within the budget has a known cost: the reference",
              names);

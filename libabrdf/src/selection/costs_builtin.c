@@ -14,45 +14,46 @@ typedef struct builtin_cost {
     double ns;         /* ns per evaluation */
 } builtin_cost;
 
-/* abrdf calibrate, AMD EPYC (x86_64, 2 logical cpus), 2026-11-25 */
+/* abrdf calibrate, Intel Xeon (x86_64, 2 logical cpus, AVX-512), 2026-11-28: the median of
+ * eight runs of 7 repetitions each (single runs differ from it by up to 2x on this shared machine) */
 static const builtin_cost table[] = {
-    {"lambert", 1.017},
-    {"lambert_fresnel", 2.76},
-    {"disney_diffuse", 2.431},
-    {"oren_nayar", 1.617},
-    {"phong", 14.04},
-    {"blinn_phong", 19.4},
-    {"f2", 1.904},
-    {"f4", 1.982},
-    {"f8", 2.068},
-    {"f16", 2.218},
-    {"fs", 2.838},
-    {"fkv", 2.473},
-    {"fkub", 4.016},
-    {"f_phe", 14.16},
-    {"f_be", 19.83},
-    {"f_2e", 1.289},
-    {"f_16e", 1.497},
-    {"f_ge", 22.03},
-    {"f_ctphe", 23.62},
-    {"f_ct2e", 3.622},
-    {"f_ct16e", 4.118},
-    {"cook_torrance", 22.91},
-    {"disney_specular", 4.121},
-    {"disney_specular_aniso", 4.619},
-    {"disney_clearcoat", 3.647},
-    {"neubelt_pettineo", 22.64},
-    {"kajiya_kay", 15.8},
-    {"marschner", 3783},
-    {"huang", 7.75e+05},
-    {"weidlich_wilkie", 101.1},
-    {"belcour", 398.9},
+    {"lambert", 0.8934},
+    {"lambert_fresnel", 0.8692},
+    {"disney_diffuse", 0.8472},
+    {"oren_nayar", 1.308},
+    {"phong", 1.823},
+    {"blinn_phong", 2.287},
+    {"f2", 0.9725},
+    {"f4", 1.067},
+    {"f8", 1.003},
+    {"f16", 1.141},
+    {"fs", 0.8296},
+    {"fkv", 0.7973},
+    {"fkub", 0.9733},
+    {"f_phe", 1.756},
+    {"f_be", 2.495},
+    {"f_2e", 1.266},
+    {"f_16e", 1.343},
+    {"f_ge", 4.342},
+    {"f_ctphe", 3.06},
+    {"f_ct2e", 1.185},
+    {"f_ct16e", 1.84},
+    {"cook_torrance", 3.506},
+    {"disney_specular", 1.888},
+    {"disney_specular_aniso", 2.247},
+    {"disney_clearcoat", 1.72},
+    {"neubelt_pettineo", 3.002},
+    {"kajiya_kay", 2.701},
+    {"marschner", 2336},
+    {"huang", 7.352e+05},
+    {"weidlich_wilkie", 92.92},
+    {"belcour", 410.8},
 };
 
 int abrdf_costs_builtin(abrdf_costs *out)
 {
     if (!out) return ABRDF_E_NULL;
-    abrdf_costs_init(out, "ns/eval (built-in: abrdf calibrate on an AMD EPYC, x86_64)");
+    abrdf_costs_init(out, "ns/eval (built-in: abrdf calibrate on an Intel Xeon, x86_64)");
     for (size_t i = 0; i < sizeof table / sizeof table[0]; ++i) {
         abrdf_model m;
         if (abrdf_model_find(table[i].model, &m) == ABRDF_OK) abrdf_costs_set(out, m, table[i].ns);
