@@ -89,6 +89,15 @@ class CostTable(unittest.TestCase):
             self.assertIn("| fs | 2 | 1 | 1 | 15 | 15 | 1.88 | 20.000 | 4.00 | 2.00 |", out)
             self.assertIn("| f4 | 2 | 3 | 0 | 11 | 11 | 1.38 | — | — | — |", out)
             self.assertIn("equals the published cycles", out)
+            self.assertIn("cycles (here): none, the cost file gives no clock", out)
+            self.assertNotIn("| cycles (here) |", out)
+            # a clock line: the cycles column is ns x GHz
+            with open(path, "w") as f:
+                f.write("# clock: 2.00 GHz, by hand\npowf_blinn_phong 10\nf2 5\nfs 20\n")
+            out = run("tables", "4", "--costs", path).stdout
+            self.assertIn("cycles (here) = ns x the clock the cost file gives, 2.00 GHz.", out)
+            self.assertIn("| f2 | 2 | 2 | 0 | 8 | 8 | 1.00 | 5.000 | 10.0 | 1.00 | 0.50 |", out)
+            self.assertIn("| fs | 2 | 1 | 1 | 15 | 15 | 1.88 | 20.000 | 40.0 | 4.00 | 2.00 |", out)
 
 
 class Calibrate(unittest.TestCase):
@@ -99,7 +108,7 @@ class Calibrate(unittest.TestCase):
             with open(path) as f:
                 text = f.read()
             header = [l for l in text.splitlines() if l.startswith("#")]
-            for key in ("# machine:", "# date:", "# command: abrdf calibrate -o"):
+            for key in ("# machine:", "# date:", "# command: abrdf calibrate -o", "# clock:"):
                 self.assertTrue(any(l.startswith(key) for l in header), key)
             costs = {}
             for line in text.splitlines():

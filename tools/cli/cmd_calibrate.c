@@ -14,7 +14,9 @@ static int usage(void)
            "Measures the cost of every registered model on this machine: nanoseconds per\n"
            "evaluation on the float batch path (abrdf_eval_batch), N random front-facing\n"
            "direction pairs in structure-of-arrays form, warm cache, median of the repetitions.\n"
-           "A bare powf Blinn-Phong loop is measured in the same run as the unit of the ratios.\n"
+           "A bare powf Blinn-Phong loop is measured in the same run as the unit of the ratios,\n"
+           "and the core's clock (the cycle counter where the kernel exposes it, else a chain\n"
+           "of dependent additions), which states each cost in cycles too.\n"
            "Writes the cost file to FILE (default: standard output), whole or not at all; its\n"
            "format is described in the file's header.\n"
            "  --reps N    timed repetitions (default 7)\n"
@@ -88,7 +90,9 @@ int cmd_calibrate(int argc, char **argv)
         out_file_discard(&o);
         return 1;
     }
-    costs_write(out, &costs, unit_ns, command, how);
+    clock_rate clock;
+    clock_rate_measure(&clock);
+    costs_write(out, &costs, unit_ns, command, how, &clock);
     if (out_path) {
         rc = out_file_close(&o, err, sizeof err) || out_file_commit(files, 1, err, sizeof err);
         out_file_discard(&o);

@@ -113,8 +113,28 @@ void costs_machine(char *buf, size_t size)
     snprintf(buf, size, "%s (%s, %ld logical cpus)", model, arch, sysconf(_SC_NPROCESSORS_ONLN));
 }
 
+double costs_load_clock(const char *path)
+{
+    char err[64];
+    FILE *f = in_file_open(path, err, sizeof err);
+    if (!f) return -1.0;
+    char *line = NULL;
+    size_t cap = 0;
+    double ghz = -1.0;
+    while (in_file_line(f, &line, &cap) >= 0) {
+        double v;
+        if (sscanf(line, "# clock: %lf GHz", &v) == 1 && v > 0.0 && v < 1e3) {
+            ghz = v;
+            break;
+        }
+    }
+    free(line);
+    fclose(f);
+    return ghz;
+}
+
 void costs_write(FILE *f, const abrdf_costs *c, double unit_ns, const char *command,
-                 const char *how)
+                 const char *how, const clock_rate *clock)
 {
     char machine[384], date[64];
     costs_machine(machine, sizeof machine);
@@ -125,13 +145,20 @@ void costs_write(FILE *f, const abrdf_costs *c, double unit_ns, const char *comm
             "# machine: %s\n# date: %s\n# command: %s\n# method: %s\n"
             "# format: NAME NS_PER_EVAL; %s is the unit of the ratios in the comments\n",
             abrdf_version(), machine, date, command, how, COSTS_UNIT_NAME);
+    if (clock) {
+        char text[256];
+        clock_rate_text(clock, text, sizeof text);
+        fprintf(f, "# clock: %s; cycles = ns x GHz\n", text);
+    }
     fprintf(f, "%-24s %10.4f  # 1.00 x unit: powf(N.H, n) with H normalised, no guards\n",
             COSTS_UNIT_NAME, unit_ns);
     for (int i = 0; i < ABRDF_MODEL_COUNT; ++i) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)i);
         double cost = abrdf_costs_get(c, (abrdf_model)i);
         if (!m || cost < 0.0) continue;
-        fprintf(f, "%-24s %10.4f  # %.2f x unit\n", m->name, cost,
+        fprintf(f, "%-24s %10.4f  # %.2f x unit", m->name, cost,
                 unit_ns > 0.0 ? cost / unit_ns : 0.0);
+        if (clock) fprintf(f, ", %.3g cycles", cost * clock->ghz);
+        fputc('\n', f);
     }
 }

@@ -2,7 +2,8 @@
  * loaded into an abrdf_costs for the selection (abrdf advise --costs FILE) and Table 4.
  *
  * FORMAT (text, one entry per line):
- *   # comment lines: machine, date and command that produced the file
+ *   # comment lines: machine, date and command that produced the file; "# clock: G GHz, how"
+ *     gives the core's clock measured with the costs (clock_rate.h), the unit of "cycles"
  *   NAME NS_PER_EVAL   [# optional trailing comment]
  * NAME is a registered model name (abrdf models) or COSTS_UNIT_NAME, the bare powf
  * Blinn-Phong loop that serves as the unit of the ratios. NS_PER_EVAL is a positive number:
@@ -13,6 +14,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include "abrdf_select.h"
+#include "clock_rate.h"
 
 #define COSTS_UNIT_NAME "powf_blinn_phong"
 #define COSTS_UNIT "ns/eval (measured, abrdf calibrate)"
@@ -25,10 +27,15 @@ int costs_load(const char *path, abrdf_costs *out, double *unit_ns, char *err, s
 int costs_read(FILE *f, const char *name, abrdf_costs *out, double *unit_ns, char *err,
                size_t err_size);
 
-/* Write a cost file: header comments (machine, date, command and `how`), the unit line,
- * then one line per model with cost >= 0 and its ratio to the unit as a comment. */
+/* The clock of a cost file's "# clock: G GHz" line: G, or -1 when the file has none (or
+ * cannot be read: costs_load reports that). */
+double costs_load_clock(const char *path);
+
+/* Write a cost file: header comments (machine, date, command, `how` and, when clock is not
+ * NULL, the clock), the unit line, then one line per model with cost >= 0 and, as a comment,
+ * its ratio to the unit and (with a clock) its cycles per evaluation. */
 void costs_write(FILE *f, const abrdf_costs *c, double unit_ns, const char *command,
-                 const char *how);
+                 const char *how, const clock_rate *clock);
 
 /* "cpu model (arch, cores)" of this machine, for headers. */
 void costs_machine(char *buf, size_t size);
