@@ -21,6 +21,14 @@ int main(void)
     abrdf_eval_prepared(&mat, &frame, wi, wo, f);
     printf("abrdf %s: disney_specular f_r = %.6f %.6f %.6f\n", abrdf_version(), f[0], f[1], f[2]);
 
+    /* A renderer's per-sample call: directions that are already unit vectors in the local
+     * frame (N = +z) need no frame and no normalisation (abrdf_eval_prepared_unit). */
+    const double li[3] = {0.287347885566345, 0.0, 0.957826285221151},       /* wi, normalised */
+        lo[3] = {-0.195180014589707, 0.097590007294853, 0.975900072948533}; /* wo */
+    double fu[3];
+    abrdf_eval_prepared_unit(&mat, li, lo, fu);
+    printf("the same from unit local directions: %.6f %.6f %.6f\n", fu[0], fu[1], fu[2]);
+
     /* Importance sampling: light directions for the view direction wo, with pdf and weight
      * f_r cos / pdf; their mean weight estimates the directional albedo (docs/RENDERER.md,
      * "Importance sampling"). */

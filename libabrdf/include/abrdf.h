@@ -80,6 +80,8 @@
  *   abrdf_prepared_model     the model of a prepared object (ABRDF_MODEL_NONE if not prepared)
  *   abrdf_prepared_params    the validated parameters a prepared object holds
  *   abrdf_eval_prepared      abrdf_eval of a prepared model (double, scalar)
+ *   abrdf_eval_prepared_unit the same for unit local-frame directions: a renderer's
+ *                            per-sample call, with nothing to normalise
  *   abrdf_eval_prepared_batch  abrdf_eval_batch of a prepared model (float, structure of arrays)
  *   abrdf_shade              the paper's pixel intensity I = ka Ia + Il cos (f_d + f_s)
  *   abrdf_sample             importance sampling: a direction wi for wo, its pdf and the
@@ -379,6 +381,18 @@ ABRDF_API const abrdf_params *abrdf_prepared_params(const abrdf_prepared *prepar
  * directions with frame = NULL (normalised here; degenerate vectors give f = 0). */
 ABRDF_API int abrdf_eval_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame,
                                   const double wi[3], const double wo[3], double f[3]);
+/* abrdf_eval_prepared with frame = NULL for directions that are already unit vectors in the
+ * local frame (N = +z, T = +x), as a renderer holds them at a shading point: a closed-form
+ * model uses them as given when their squared lengths are within 1e-14 of 1 (vectors
+ * normalised in double precision), skipping the normalisation that is most of
+ * abrdf_eval_prepared's cost; any other vector (one normalised in float, say) and every
+ * direction of the hair and layered models is normalised as abrdf_eval_prepared does. So
+ * the result is abrdf_eval_prepared's up to rounding (relative differences of a few 1e-16
+ * times the model's exponent n where it has one; hair and layered models: bit for bit).
+ * Same status codes (ABRDF_E_NULL, ABRDF_E_MODEL with f = 0). Added after 0.2.0
+ * (CHANGELOG). */
+ABRDF_API int abrdf_eval_prepared_unit(const abrdf_prepared *prepared, const double wi[3],
+                                       const double wo[3], double f[3]);
 /* abrdf_eval_batch of the prepared model. The loops run the best instruction set this CPU
  * supports (AVX2 + FMA, AVX-512 on x86-64), chosen per call from the CPU alone; results
  * agree with the double path within the batch path's float tolerance (docs/MODELS.md). */

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import functools
+import operator
 from dataclasses import dataclass
 from typing import Literal, Sequence, Union
 
@@ -127,7 +128,7 @@ class BRDF:
             "%s=%r" % kv for kv in self.params.items()))
 
     def eval(self, wi: npt.ArrayLike, wo: npt.ArrayLike,
-             precision: Precision = "float") -> np.ndarray:
+             precision: Precision = "float", threads: int = 0) -> np.ndarray:
         """f_r(wi, wo) per RGB channel, 1/sr, without the cosine.
 
         wi, wo: local-frame directions, arrays of shape (..., 3) broadcast against each
@@ -136,7 +137,17 @@ class BRDF:
         vectors give 0). precision "float": the library's float batch path
         (abrdf_eval_batch), result float32; "double": the double-precision scalar reference
         (abrdf_eval), float64. The result has the
-        broadcast shape (..., 3). The C loop runs without the GIL."""
+        broadcast shape (..., 3). The C loop runs without the GIL; on the float path a large
+        array is split over the machine's cores (threads=0: one thread per core, each with at
+        least 32768 pairs; threads=N: N threads, at most 64), the same result as one
+        thread."""
+        try:
+            t = -1 if isinstance(threads, bool) else operator.index(threads)
+        except TypeError:
+            t = -1
+        if not 0 <= t <= 64:
+            raise ValueError("threads: an int in [0, 64] (0 = one per core), got %r" % (threads,))
+        threads = t
         a, b = np.broadcast_arrays(_rows(wi, "wi"), _rows(wo, "wo"))
         shape = a.shape
         if precision == "double":
@@ -148,17 +159,17 @@ class BRDF:
             a = np.ascontiguousarray(a.reshape(-1, 3))
             b = np.ascontiguousarray(b.reshape(-1, 3))
             out = np.empty(a.shape, np.float32)
-            _abrdf.eval_float(self._p, a, b, out)
+            _abrdf.eval_float(self._p, a, b, out, threads)
         else:
             raise ValueError("precision: 'float' or 'double', got %r" % (precision,))
         return out.reshape(shape)
 
 
 def eval(model: str | BRDF, wi: npt.ArrayLike, wo: npt.ArrayLike,
-         precision: Precision = "float", **params: ParamValue) -> np.ndarray:
+         precision: Precision = "float", threads: int = 0, **params: ParamValue) -> np.ndarray:
     """f_r of `model` (a name, with its parameters as keywords, or a BRDF) for arrays of
-    direction pairs: BRDF(model, **params).eval(wi, wo, precision)."""
+    direction pairs: BRDF(model, **params).eval(wi, wo, precision, threads)."""
     b = model if isinstance(model, BRDF) else BRDF(model, **params)
     if isinstance(model, BRDF) and params:
         raise TypeError("eval: parameters are given to BRDF(...), not with a BRDF")
-    return b.eval(wi, wo, precision)
+    return b.eval(wi, wo, precision, threads)

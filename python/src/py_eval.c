@@ -1,7 +1,9 @@
 /* py_eval.c - f_r over arrays of direction pairs, the GIL released while the library works:
- *   eval_float   the float batch path (abrdf_eval_batch): rows of (N, 3) directions are
- *                normalised and laid out as the batch's structure of arrays, CHUNK at a time
- *                on the stack, and the results written back as rows;
+ *   eval_float   the float batch path (abrdf_prepare once, abrdf_eval_prepared_batch): rows
+ *                of (N, 3) directions are laid out as the batch's structure of arrays and
+ *                normalised in vector registers, CHUNK at a time on the stack, and the results
+ *                written back as rows; large arrays are split over the machine's cores, one
+ *                thread per range of rows (the library itself has no threads);
  *   eval_double  the double-precision scalar reference (abrdf_eval with the local frame), one
  *                pair at a time.
  *   _time_eval_batch  the C batch path alone on the same directions, timed here, so that the
@@ -11,8 +13,11 @@
 #include "abrdf_py.h" /* first: Python.h sets the feature macros */
 
 #include <math.h>
+#include <pthread.h>
+#include <sched.h>
 #include <stdlib.h>
 #include <time.h>
+#include <unistd.h>
 
 /* Pairs per call of abrdf_eval_batch: 9 arrays of CHUNK floats on the stack (9 KiB), long
  * enough for the batch loop to run at its vector speed. */
@@ -35,30 +40,68 @@ static void row(const void *buf, abrdf_py_real kind, Py_ssize_t k, double v[3])
 #define LEN2_MIN 1e-290
 #define LEN2_MAX 1e290
 
-/* Rows [start, start + n) normalised into x, y, z (the batch wants unit length). A row within
- * UNIT_TOL of unit length squared is unit to float precision (a float's rounding is 6e-8) and
- * is only converted: directions that are already unit skip the square root and division. */
-#define UNIT_TOL 1e-7
-static void load(const void *buf, abrdf_py_real kind, Py_ssize_t start, int n, float *x, float *y,
-                 float *z)
+/* One row normalised in double, whatever its length: the exact path, for the rows the float
+ * pass cannot take (zero, tiny, huge or non-finite). Zero or non-finite rows give 0. */
+static void load_row_exact(const void *buf, abrdf_py_real kind, Py_ssize_t k, float *x, float *y,
+                           float *z)
 {
+    double v[3];
+    row(buf, kind, k, v);
+    double len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (!(len2 >= LEN2_MIN && len2 <= LEN2_MAX)) { /* rare: tiny, huge, zero or NaN */
+        double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+        *x = *y = *z = 0.0f;
+        if (!(m > 0.0) || !isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2])) return;
+        v[0] /= m, v[1] /= m, v[2] /= m;
+        len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    }
+    double inv = 1.0 / sqrt(len2);
+    *x = (float)(v[0] * inv), *y = (float)(v[1] * inv), *z = (float)(v[2] * inv);
+}
+
+/* Float squared lengths the pass below normalises; outside them (or NaN) the row takes the
+ * exact path. A squared length within UNIT_TOL of 1 is unit to float precision (a float's
+ * rounding is 6e-8): such a row is only converted, not scaled. */
+#define LEN2F_MIN 1e-30f
+#define LEN2F_MAX 1e30f
+#define UNIT_TOL 1.2e-7f
+
+/* The row loops run in vector registers: this file is built with -O3 -fno-math-errno
+ * -fno-trapping-math (sqrtf an instruction, a division in a select allowed), and, where GCC
+ * builds for x86-64 with glibc, each loop function is compiled for AVX-512, AVX2 and the
+ * baseline, the best the CPU has chosen by glibc's ifunc when the module loads (the library,
+ * which must link anywhere, dispatches its batch loops itself instead). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__)
+#define ROW_LOOPS __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define ROW_LOOPS
+#endif
+
+/* Rows [start, start + n) laid out in x, y, z and normalised. The loops have no calls and no
+ * branches; rows outside [LEN2F_MIN, LEN2F_MAX] are redone exactly. */
+ROW_LOOPS static void load(const void *buf, abrdf_py_real kind, Py_ssize_t start, int n, float *x,
+                           float *y, float *z)
+{
+    if (kind == ABRDF_PY_F32) {
+        const float *p = (const float *)buf + 3 * start;
+        for (int k = 0; k < n; ++k) x[k] = p[3 * k], y[k] = p[3 * k + 1], z[k] = p[3 * k + 2];
+    } else {
+        const double *p = (const double *)buf + 3 * start;
+        for (int k = 0; k < n; ++k)
+            x[k] = (float)p[3 * k], y[k] = (float)p[3 * k + 1], z[k] = (float)p[3 * k + 2];
+    }
+    int rare = 0;
     for (int k = 0; k < n; ++k) {
-        double v[3];
-        row(buf, kind, start + k, v);
-        double len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-        if (fabs(len2 - 1.0) <= UNIT_TOL) {
-            x[k] = (float)v[0], y[k] = (float)v[1], z[k] = (float)v[2];
-            continue;
-        }
-        if (!(len2 >= LEN2_MIN && len2 <= LEN2_MAX)) { /* rare: tiny, huge, zero or NaN */
-            double m = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
-            x[k] = y[k] = z[k] = 0.0f;
-            if (!(m > 0.0) || !isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2])) continue;
-            v[0] /= m, v[1] /= m, v[2] /= m;
-            len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-        }
-        double inv = 1.0 / sqrt(len2);
-        x[k] = (float)(v[0] * inv), y[k] = (float)(v[1] * inv), z[k] = (float)(v[2] * inv);
+        float len2 = x[k] * x[k] + y[k] * y[k] + z[k] * z[k];
+        float inv = fabsf(len2 - 1.0f) <= UNIT_TOL ? 1.0f : 1.0f / sqrtf(len2);
+        rare |= !(len2 >= LEN2F_MIN && len2 <= LEN2F_MAX);
+        x[k] *= inv, y[k] *= inv, z[k] *= inv;
+    }
+    if (!rare) return;
+    for (int k = 0; k < n; ++k) {
+        float len2 = x[k] * x[k] + y[k] * y[k] + z[k] * z[k];
+        if (!(fabsf(len2 - 1.0f) <= 16.0f * UNIT_TOL)) /* not a row the pass normalised */
+            load_row_exact(buf, kind, start + k, x + k, y + k, z + k);
     }
 }
 
@@ -106,30 +149,110 @@ static void release(eval_args *a)
     PyBuffer_Release(&a->out);
 }
 
+/* Rows per thread below which another thread does not pay for itself (starting one costs
+ * about what 10^4 pairs of the cheapest model do). */
+#define ROWS_PER_THREAD 32768
+#define MAX_THREADS 64
+
+/* One thread's share of eval_float: rows [start, end). */
+typedef struct eval_range {
+    const abrdf_prepared *prep;
+    const eval_args *a;
+    Py_ssize_t start, end;
+    int status;
+} eval_range;
+
+/* f_r of n pairs back as rows of out. */
+ROW_LOOPS static void store(float *restrict o, const float *restrict fr, const float *restrict fg,
+                            const float *restrict fb, int n)
+{
+    for (int k = 0; k < n; ++k) o[3 * k] = fr[k], o[3 * k + 1] = fg[k], o[3 * k + 2] = fb[k];
+}
+
+static void *eval_rows(void *arg)
+{
+    eval_range *r = arg;
+    const eval_args *a = r->a;
+    float ix[CHUNK], iy[CHUNK], iz[CHUNK], ox[CHUNK], oy[CHUNK], oz[CHUNK];
+    float fr[CHUNK], fg[CHUNK], fb[CHUNK];
+    float *out = a->out.buf;
+    r->status = ABRDF_OK;
+    for (Py_ssize_t start = r->start; start < r->end && r->status == ABRDF_OK; start += CHUNK) {
+        int n = r->end - start < CHUNK ? (int)(r->end - start) : CHUNK;
+        load(a->wi.buf, a->wi_kind, start, n, ix, iy, iz);
+        load(a->wo.buf, a->wo_kind, start, n, ox, oy, oz);
+        abrdf_batch b = {(size_t)n, ix, iy, iz, ox, oy, oz, fr, fg, fb};
+        r->status = abrdf_eval_prepared_batch(r->prep, &b);
+        if (r->status != ABRDF_OK) break; /* the caller raises; out is discarded */
+        store(out + 3 * start, fr, fg, fb, n);
+    }
+    return NULL;
+}
+
+/* The cores this thread may run on (its affinity mask: taskset, cgroup cpusets), else the
+ * online ones. */
+static long usable_cores(void)
+{
+#ifdef __linux__
+    cpu_set_t set;
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
+#endif
+    return sysconf(_SC_NPROCESSORS_ONLN);
+}
+
+/* How many threads for `rows` pairs: `asked` if > 0 (at most MAX_THREADS, checked by the
+ * caller), else one per usable core, as long as each gets ROWS_PER_THREAD rows. */
+static int thread_count(Py_ssize_t rows, int asked)
+{
+    long cores = usable_cores();
+    long t = asked > 0 ? asked : (cores > 0 ? cores : 1);
+    if (asked <= 0 && rows / ROWS_PER_THREAD < t) t = (long)(rows / ROWS_PER_THREAD);
+    if (t > rows) t = (long)rows;
+    if (t > MAX_THREADS) t = MAX_THREADS;
+    return t < 1 ? 1 : (int)t;
+}
+
 static PyObject *py_eval_float(PyObject *self, PyObject *args)
 {
     (void)self;
+    PyObject *p, *wi, *wo, *out;
+    int threads = 0;
+    if (!PyArg_ParseTuple(args, "OOOO|i", &p, &wi, &wo, &out, &threads)) return NULL;
+    if (threads < 0 || threads > MAX_THREADS)
+        return PyErr_Format(PyExc_ValueError, "threads must be in [0, %d], got %d", MAX_THREADS,
+                            threads);
+    PyObject *four = Py_BuildValue("(OOOO)", p, wi, wo, out);
+    if (!four) return NULL;
     eval_args a;
-    if (get_args(args, "eval_float", ABRDF_PY_F32, &a)) return NULL;
-    int st = ABRDF_OK;
-    float *out = a.out.buf;
-    Py_BEGIN_ALLOW_THREADS;
-    float ix[CHUNK], iy[CHUNK], iz[CHUNK], ox[CHUNK], oy[CHUNK], oz[CHUNK];
-    float fr[CHUNK], fg[CHUNK], fb[CHUNK];
-    for (Py_ssize_t start = 0; start < a.rows && st == ABRDF_OK; start += CHUNK) {
-        int n = a.rows - start < CHUNK ? (int)(a.rows - start) : CHUNK;
-        load(a.wi.buf, a.wi_kind, start, n, ix, iy, iz);
-        load(a.wo.buf, a.wo_kind, start, n, ox, oy, oz);
-        abrdf_batch b = {(size_t)n, ix, iy, iz, ox, oy, oz, fr, fg, fb};
-        st = abrdf_eval_batch(a.params->model, &a.params->params, &b);
-        for (int k = 0; k < n; ++k) {
-            float *o = out + 3 * (start + k);
-            o[0] = fr[k], o[1] = fg[k], o[2] = fb[k];
-        }
+    int bad = get_args(four, "eval_float", ABRDF_PY_F32, &a);
+    Py_DECREF(four);
+    if (bad) return NULL;
+    abrdf_prepared prep;
+    int st = abrdf_prepare(a.params->model, &a.params->params, &prep);
+    if (st != ABRDF_OK) {
+        release(&a);
+        return abrdf_py_fail(st, "abrdf_prepare: %s", abrdf_strerror(st));
     }
+    int t = thread_count(a.rows, threads);
+    eval_range range[MAX_THREADS];
+    pthread_t tid[MAX_THREADS];
+    int started[MAX_THREADS] = {0};
+    Py_BEGIN_ALLOW_THREADS;
+    for (int i = 0; i < t; ++i) {
+        range[i] = (eval_range){&prep, &a, a.rows * i / t, a.rows * (i + 1) / t, ABRDF_OK};
+        /* the calling thread takes the last range, and any a thread could not be started for */
+        if (i + 1 < t) started[i] = pthread_create(&tid[i], NULL, eval_rows, &range[i]) == 0;
+    }
+    for (int i = 0; i < t; ++i)
+        if (!started[i]) eval_rows(&range[i]);
+    for (int i = 0; i < t; ++i)
+        if (started[i]) pthread_join(tid[i], NULL);
     Py_END_ALLOW_THREADS;
     release(&a);
-    if (st != ABRDF_OK) return abrdf_py_fail(st, "abrdf_eval_batch: %s", abrdf_strerror(st));
+    for (int i = 0; i < t; ++i)
+        if (range[i].status != ABRDF_OK) st = range[i].status;
+    if (st != ABRDF_OK)
+        return abrdf_py_fail(st, "abrdf_eval_prepared_batch: %s", abrdf_strerror(st));
     Py_RETURN_NONE;
 }
 
@@ -212,9 +335,12 @@ static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
 
 PyMethodDef abrdf_py_eval_methods[] = {
     {"eval_float", py_eval_float, METH_VARARGS,
-     "eval_float(params, wi, wo, out) -> None: f_r of every row pair by the float batch path "
-     "(abrdf_eval_batch) into out; wi, wo: C-contiguous (N, 3) float32 or float64 local-frame "
-     "directions (normalised here); out: writable (N, 3) float32. Releases the GIL."},
+     "eval_float(params, wi, wo, out, threads=0) -> None: f_r of every row pair by the float "
+     "batch path (abrdf_eval_prepared_batch) into out; wi, wo: C-contiguous (N, 3) float32 or "
+     "float64 local-frame directions (normalised here); out: writable (N, 3) float32; threads: "
+     "0 = one per usable core for large arrays (32768 rows or more per thread), else that "
+     "many (at most 64). "
+     "Releases the GIL."},
     {"eval_double", py_eval_double, METH_VARARGS,
      "eval_double(params, wi, wo, out) -> None: the same by the double-precision scalar "
      "reference (abrdf_eval, local frame); out: writable (N, 3) float64. Releases the GIL."},

@@ -85,6 +85,32 @@ def test_directions_are_normalised_and_degenerate_ones_give_zero():
         assert np.all(out == 0), (precision, out)
 
 
+def test_threads_give_the_same_result_as_one():
+    """A large array split over threads (automatic, or a count that does not divide it) gives
+    the result of one thread bit for bit, odd rows (scaled, zero, non-finite, float32) included;
+    a bad count is refused."""
+    n = 3 * 32768 + 17
+    wi, wo = directions(n, 5), directions(n, 6)
+    wi[::997] *= 1e25  # beyond the float pass: redone exactly
+    wi[1::1009] *= 3.0
+    wo[::1013] = 0.0
+    wo[5::1019] = np.nan
+    b = abrdf.BRDF("disney_specular", r=0.3)
+    one = b.eval(wi, wo, threads=1)
+    for t in (0, 2, 3, 7):
+        np.testing.assert_array_equal(b.eval(wi, wo, threads=t), one)
+    np.testing.assert_array_equal(b.eval(wi.astype(np.float32), wo.astype(np.float32), threads=3),
+                                  b.eval(wi.astype(np.float32), wo.astype(np.float32), threads=1))
+    assert np.all(one[::1013] == 0) and np.all(one[5::1019] == 0)
+    # the scaled rows give what their unit rows give
+    unit = wi[::997] / np.linalg.norm(wi[::997], axis=1, keepdims=True)
+    np.testing.assert_allclose(one[::997], b.eval(unit, wo[::997]), rtol=1e-6)
+    np.testing.assert_array_equal(b.eval(wi[:9], wo[:9], threads=np.int64(4)), one[:9])
+    for bad in (-1, 65, 2**40, 1.5, True, "2"):
+        with pytest.raises(ValueError):
+            b.eval(wi[:4], wo[:4], threads=bad)
+
+
 def test_errors_carry_the_librarys_message():
     with pytest.raises(abrdf.Error) as e:
         abrdf.BRDF("f_2e", n=0.5)  # inside n's own range, outside f_2e's

@@ -92,6 +92,83 @@ END_TEST
 
 /* ---- the expensive references keep their values ---------------------------------------- */
 
+/* abrdf_eval_prepared_unit against abrdf_eval_prepared for model m with parameters p on
+ * wi, wo: within rel (hair and layered models: the same bits). Counts same-bit results. */
+static void unit_vs_prepared(abrdf_model m, const abrdf_params *p, const double wi[3],
+                             const double wo[3], double rel, long *compared, long *exact)
+{
+    abrdf_prepared prep;
+    ck_assert_int_eq(abrdf_prepare(m, p, &prep), ABRDF_OK);
+    double want[3], got[3];
+    ck_assert_int_eq(abrdf_eval_prepared(&prep, NULL, wi, wo, want), ABRDF_OK);
+    ck_assert_int_eq(abrdf_eval_prepared_unit(&prep, wi, wo, got), ABRDF_OK);
+    int special = m == ABRDF_MARSCHNER || m == ABRDF_HUANG || m == ABRDF_WEIDLICH_WILKIE ||
+                  m == ABRDF_BELCOUR; /* always the checked path */
+    for (int c = 0; c < 3; ++c) {
+        ck_assert(isfinite(got[c]) && got[c] >= 0.0);
+        if (special)
+            ck_assert_msg(got[c] == want[c], "%s: %.17g vs %.17g", abrdf_model_get(m)->name, got[c],
+                          want[c]);
+        else
+            ck_assert_msg(fabs(got[c] - want[c]) <= rel * fabs(want[c]) + 1e-300,
+                          "%s: %.17g vs %.17g", abrdf_model_get(m)->name, got[c], want[c]);
+        *exact += got[c] == want[c];
+        ++*compared;
+    }
+}
+
+/* abrdf_eval_prepared_unit: every model on unit directions (above, below, grazing), on
+ * vectors normalised in float (taken to the checked path), a non-unit, a tiny and a
+ * non-finite one: abrdf_eval_prepared's value up to rounding; the exponent models at n = 1e4
+ * too; the status codes. */
+START_TEST(unit_entry_is_the_prepared_value)
+{
+    const double dirs[][3] = {{0.3, -0.2, 0.93},     {-0.5, 0.4, 0.3}, {0.0, 0.0, 1.0},
+                              {0.99, 0.0, 0.01},     {0.2, 0.3, -0.9}, {2.0, 1.0, 3.0},
+                              {1e-200, 0.0, 1e-200}, {NAN, 0.0, 1.0}};
+    const int nd = (int)(sizeof dirs / sizeof dirs[0]);
+    double v[8][3];
+    for (int i = 0; i < nd; ++i) { /* unit in double, except the last three */
+        double l =
+            sqrt(dirs[i][0] * dirs[i][0] + dirs[i][1] * dirs[i][1] + dirs[i][2] * dirs[i][2]);
+        for (int c = 0; c < 3; ++c) v[i][c] = i < nd - 3 ? dirs[i][c] / l : dirs[i][c];
+    }
+    for (int c = 0; c < 3; ++c) v[3][c] *= 1.0 + 4e-7; /* as a float normalisation leaves it */
+    long compared = 0, exact = 0;
+    for (int mi = 0; mi < abrdf_model_count(); ++mi) {
+        abrdf_model m = (abrdf_model)mi;
+        abrdf_params p;
+        abrdf_params_init(m, &p);
+        for (int i = 0; i < nd; ++i)
+            for (int o = 0; o < nd; ++o)
+                unit_vs_prepared(m, &p, v[i], v[o], 1e-12, &compared, &exact);
+    }
+    const abrdf_model sharp[] = {ABRDF_PHONG, ABRDF_BLINN_PHONG, ABRDF_F_2E, ABRDF_F_GE};
+    for (int k = 0; k < 4; ++k) {
+        abrdf_params p;
+        abrdf_params_init(sharp[k], &p);
+        p.n = 1e4;
+        for (int i = 0; i < 3; ++i) /* near the mirror direction, where cos^n is large */
+            unit_vs_prepared(sharp[k], &p, v[i], (double[3]){-v[i][0], -v[i][1], v[i][2]}, 1e-11,
+                             &compared, &exact);
+    }
+    ck_assert_int_gt(exact, compared / 2); /* most are the same bits */
+    abrdf_prepared none;
+    memset(&none, 0, sizeof none);
+    double u[3] = {0, 0, 1}, f[3] = {1, 1, 1};
+    ck_assert_int_eq(abrdf_eval_prepared_unit(&none, u, u, f), ABRDF_E_MODEL);
+    ck_assert(f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0);
+    abrdf_prepared prep;
+    abrdf_params p;
+    abrdf_params_init(ABRDF_LAMBERT, &p);
+    ck_assert_int_eq(abrdf_prepare(ABRDF_LAMBERT, &p, &prep), ABRDF_OK);
+    f[0] = 1.0;
+    ck_assert_int_eq(abrdf_eval_prepared_unit(&prep, NULL, u, f), ABRDF_E_NULL);
+    ck_assert(f[0] == 0.0);
+    ck_assert_int_eq(abrdf_eval_prepared_unit(&prep, u, u, NULL), ABRDF_E_NULL);
+}
+END_TEST
+
 START_TEST(special_models_keep_their_values)
 {
     FILE *in = fopen(ABRDF_TEST_SPECIAL_REFERENCE, "r");
@@ -166,6 +243,7 @@ static Suite *suite(void)
     tcase_add_test(tc, layout_is_frozen);
     tcase_add_test(tc, owns_a_copy_of_its_parameters);
     tcase_add_test(tc, not_prepared_evaluates_to_zero);
+    tcase_add_test(tc, unit_entry_is_the_prepared_value);
     tcase_add_test(tc, special_models_keep_their_values);
     suite_add_tcase(s, tc);
     return s;

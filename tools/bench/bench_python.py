@@ -4,9 +4,11 @@
 In one process, interleaved round by round (the median of ROUNDS rounds is reported):
   C batch    abrdf_eval_batch alone on structure-of-arrays copies of the directions, timed
              inside the extension module (abrdf._abrdf._time_eval_batch);
-  binding    abrdf.BRDF.eval(wi, wo): NumPy in, NumPy out (shape checks, broadcasting,
-             conversion to C-contiguous rows, the GIL released around the C loop, which
-             normalises the rows and lays them out in chunks for abrdf_eval_batch);
+  binding    abrdf.BRDF.eval(wi, wo, threads=1): NumPy in, NumPy out (shape checks,
+             broadcasting, conversion to C-contiguous rows, the GIL released around the C loop,
+             which lays the rows out in chunks and normalises them for
+             abrdf_eval_prepared_batch); one thread, as the C column (the binding's threads for
+             large arrays: tools/bench/peer_mitsuba.py);
   raw        abrdf._abrdf.eval_float on ready float32 rows and a preallocated output: the C
              binding without the package's Python layer.
 Per call: one direction pair (the binding's fixed cost). Per element: N pairs, float64 rows
@@ -66,9 +68,9 @@ def main():
             res["py1"].append(per_call(lambda: b.eval(wi1[0], wo1[0]), a.calls))
             res["raw1"].append(per_call(lambda: _abrdf.eval_float(p, wi1, wo1, one32), a.calls))
             res["cn"].append(_abrdf._time_eval_batch(p, wi32, wo32, out32, 5) * 1e9 / a.n)
-            res["py64"].append(per_call(lambda: b.eval(wi, wo), 5) / a.n)
-            res["py32"].append(per_call(lambda: b.eval(wi32, wo32), 5) / a.n)
-            res["rawn"].append(per_call(lambda: _abrdf.eval_float(p, wi32, wo32, out32), 5) / a.n)
+            res["py64"].append(per_call(lambda: b.eval(wi, wo, threads=1), 5) / a.n)
+            res["py32"].append(per_call(lambda: b.eval(wi32, wo32, threads=1), 5) / a.n)
+            res["rawn"].append(per_call(lambda: _abrdf.eval_float(p, wi32, wo32, out32, 1), 5) / a.n)
         med = {k: statistics.median(v) for k, v in res.items()}
         spread = {k: (max(v) - min(v)) / statistics.median(v) for k, v in res.items()}
         rows.append((name, med, spread))

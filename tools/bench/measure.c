@@ -111,19 +111,30 @@ static int run_model(void *ctx, const abrdf_batch *b)
 }
 
 /* The double scalar path prepared once (abrdf_prepare), one abrdf_eval_prepared call (local
- * frame) per pair: what a renderer pays per sample. */
-static int run_model_prepared(void *ctx, const abrdf_batch *b)
+ * frame) per pair, or (unit) one abrdf_eval_prepared_unit call on the same directions, which
+ * are unit vectors already: what a renderer pays per sample. */
+static int run_prepared(const model_ctx *c, const abrdf_batch *b, int unit)
 {
-    const model_ctx *c = ctx;
     abrdf_prepared prep;
     if (abrdf_prepare(c->model, &c->params, &prep) != ABRDF_OK) return -1;
     double f[3], acc = 0.0;
     for (size_t i = 0; i < b->count; ++i) {
-        abrdf_eval_prepared(&prep, NULL, c->dir + 6 * i, c->dir + 6 * i + 3, f);
+        const double *wi = c->dir + 6 * i, *wo = wi + 3;
+        if (unit)
+            abrdf_eval_prepared_unit(&prep, wi, wo, f);
+        else
+            abrdf_eval_prepared(&prep, NULL, wi, wo, f);
         acc += f[0];
     }
     measure_sink = (float)acc;
     return 0;
+}
+
+static int run_model_prepared(void *ctx, const abrdf_batch *b) { return run_prepared(ctx, b, 0); }
+
+static int run_model_prepared_unit(void *ctx, const abrdf_batch *b)
+{
+    return run_prepared(ctx, b, 1);
 }
 
 /* The double scalar reference path, one abrdf_eval call (local frame) per pair. */
@@ -200,9 +211,10 @@ double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_pa
     size_t pairs = s->pairs;
     if ((m->needs & ABRDF_NEEDS_INTEGRATION) && pairs > o->integrating_pairs)
         pairs = o->integrating_pairs;
-    batch_fn fn = double_path == 2 ? run_model_prepared
-                  : double_path    ? run_model_double
-                                   : run_model;
+    batch_fn fn = double_path == 3   ? run_model_prepared_unit
+                  : double_path == 2 ? run_model_prepared
+                  : double_path      ? run_model_double
+                                     : run_model;
     return time_batches(s, pairs, fn, &ctx, o);
 }
 

@@ -26,7 +26,8 @@ void measure_set_free(measure_set *s);
 double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o);
 /* The same for parameters p, on the float batch path (double_path 0), the double scalar
  * reference path abrdf_eval in the local frame (double_path 1, one call per pair), or the
- * same prepared once per batch (double_path 2, abrdf_eval_prepared per pair). */
+ * same prepared once per batch (double_path 2, abrdf_eval_prepared per pair; double_path 3,
+ * abrdf_eval_prepared_unit per pair). */
 double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
                                int double_path, const measure_opts *o);
 /* Median ns/eval of the unit: a bare loop H = normalise(wi + wo), powf(H.z, n), n = 100. */

@@ -151,6 +151,33 @@ int abrdf_eval_prepared(const abrdf_prepared *prepared, const abrdf_frame *frame
     return eval_prep(pr, frame, wi, wo, f);
 }
 
+/* Squared lengths abrdf_eval_prepared_unit takes as unit (abrdf.h): a vector normalised in
+ * double is within a few 1e-16; one normalised in float (1e-7 off) is normalised here. */
+#define UNIT_LEN2_TOL 1e-14
+
+int abrdf_eval_prepared_unit(const abrdf_prepared *prepared, const double wi[3], const double wo[3],
+                             double f[3])
+{
+    if (!f) return ABRDF_E_NULL;
+    if (!prepared || !wi || !wo) {
+        f[0] = f[1] = f[2] = 0.0;
+        return ABRDF_E_NULL;
+    }
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
+    if (!pr) {
+        f[0] = f[1] = f[2] = 0.0;
+        return ABRDF_E_MODEL;
+    }
+    /* NaN and infinities fail the comparisons and take the checked path */
+    if (fabs(abrdf__dot3(wi, wi) - 1.0) <= UNIT_LEN2_TOL &&
+        fabs(abrdf__dot3(wo, wo) - 1.0) <= UNIT_LEN2_TOL && !abrdf__is_double_only(pr->model)) {
+        abrdf__eval_prepared_d(pr, wi, wo, f);
+        return ABRDF_OK;
+    }
+    f[0] = f[1] = f[2] = 0.0;
+    return eval_prep(pr, NULL, wi, wo, f);
+}
+
 int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame *frame,
                const double wi[3], const double wo[3], double f[3])
 {
