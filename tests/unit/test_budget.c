@@ -47,8 +47,9 @@ static void keep(void *user, const abrdf_select_step *s)
 }
 
 /* metric: ABRDF_FIT_AUTO is the default; the tests that need many fits use L2 (a third of
- * the work; the selection's rules are the same). */
-static run *budget_metric(const abrdf_material *m, double max_nmse, abrdf_fit_metric metric)
+ * the work; the selection's rules are the same). costs: NULL for the built-in table. */
+static run *budget_run(const abrdf_material *m, double max_nmse, abrdf_fit_metric metric,
+                       const abrdf_costs *costs)
 {
     run *r = calloc(1, sizeof *r);
     abrdf_budget b;
@@ -59,9 +60,14 @@ static run *budget_metric(const abrdf_material *m, double max_nmse, abrdf_fit_me
     void *w = malloc(ws);
     abrdf_selection_init(&r->sel);
     abrdf_params_init(ABRDF_MODEL_NONE, &r->params);
-    r->status = abrdf_select_budget(m, &b, NULL, &r->sel, &r->params, keep, r, w, ws);
+    r->status = abrdf_select_budget(m, &b, costs, &r->sel, &r->params, keep, r, w, ws);
     free(w);
     return r;
+}
+
+static run *budget_metric(const abrdf_material *m, double max_nmse, abrdf_fit_metric metric)
+{
+    return budget_run(m, max_nmse, metric, NULL);
 }
 
 static run *budget(const abrdf_material *m, double max_nmse)
@@ -293,22 +299,6 @@ END_TEST
 /* The tie rule on a cost table of its own: with every model at one cost the reference itself
  * (NMSE 0) wins; with the pairs on a cheaper diffuse lobe 12 % cheaper than the reference it
  * still does (a saving below COST_TIE is not one); at 20 % cheaper such a pair wins. */
-static run *budget_costs(const abrdf_material *m, double max_nmse, const abrdf_costs *c)
-{
-    run *r = calloc(1, sizeof *r);
-    abrdf_budget b;
-    abrdf_budget_init(&b);
-    b.max_nmse = max_nmse;
-    b.metric = ABRDF_FIT_L2;
-    size_t ws = abrdf_fit_workspace_size(NULL, NULL);
-    void *w = malloc(ws);
-    abrdf_selection_init(&r->sel);
-    abrdf_params_init(ABRDF_MODEL_NONE, &r->params);
-    r->status = abrdf_select_budget(m, &b, c, &r->sel, &r->params, keep, r, w, ws);
-    free(w);
-    return r;
-}
-
 START_TEST(costs_within_the_tie_are_one_cost)
 {
     abrdf_material m = plastic();
@@ -316,7 +306,7 @@ START_TEST(costs_within_the_tie_are_one_cost)
     abrdf_costs c;
     abrdf_costs_init(&c, "ns/eval (test)");
     for (int i = 0; i < abrdf_model_count(); ++i) abrdf_costs_set(&c, (abrdf_model)i, 1.0);
-    run *r = budget_costs(&m, max, &c);
+    run *r = budget_run(&m, max, ABRDF_FIT_L2, &c);
     ck_assert_int_eq(r->status, ABRDF_OK);
     ck_assert_int_eq(r->sel.diffuse, ABRDF_DISNEY_DIFFUSE); /* the flowchart's photoreal pair */
     ck_assert_int_eq(r->sel.specular, ABRDF_DISNEY_SPECULAR);
@@ -325,13 +315,13 @@ START_TEST(costs_within_the_tie_are_one_cost)
     /* lambert at 0.76: the reference pair costs 2, lambert + a specular lobe 1.76 (2 is
      * within 15 % above 1.76) */
     abrdf_costs_set(&c, ABRDF_LAMBERT, 0.76);
-    r = budget_costs(&m, max, &c);
+    r = budget_run(&m, max, ABRDF_FIT_L2, &c);
     ck_assert_int_eq(r->sel.diffuse, ABRDF_DISNEY_DIFFUSE);
     ck_assert_double_eq(r->sel.err_nmse, 0.0);
     free(r);
     /* lambert at 0.6: the pairs with it cost 1.6, 20 % below 2; one of them within the budget */
     abrdf_costs_set(&c, ABRDF_LAMBERT, 0.6);
-    r = budget_costs(&m, max, &c);
+    r = budget_run(&m, max, ABRDF_FIT_L2, &c);
     ck_assert_int_eq(r->status, ABRDF_OK);
     ck_assert_int_eq(r->sel.diffuse, ABRDF_LAMBERT);
     ck_assert_double_eq(r->sel.cost_total, 1.6);

@@ -35,24 +35,13 @@ static double thread_ns(void)
 /* 8 x ITERS dependent single-cycle operations on x. */
 static uint64_t chain(uint64_t x)
 {
-    for (uint64_t i = 0; i < ITERS; ++i) {
-        x += i;
-        KEEP(x);
-        x ^= i;
-        KEEP(x);
-        x += i;
-        KEEP(x);
-        x ^= i;
-        KEEP(x);
-        x += i;
-        KEEP(x);
-        x ^= i;
-        KEEP(x);
-        x += i;
-        KEEP(x);
-        x ^= i;
-        KEEP(x);
-    }
+    for (uint64_t i = 0; i < ITERS; ++i)
+        for (int j = 0; j < 4; ++j) { /* unrolled by the compiler; KEEP orders every step */
+            x += i;
+            KEEP(x);
+            x ^= i;
+            KEEP(x);
+        }
     return x;
 }
 
@@ -73,19 +62,18 @@ static int counter_open(void)
     a.disabled = 1;
     a.exclude_kernel = 1;
     a.exclude_hv = 1;
+    /* with the times enabled and running: a counter multiplexed with others (running <
+     * enabled) undercounts, and is not used */
+    a.read_format = PERF_FORMAT_TOTAL_TIME_ENABLED | PERF_FORMAT_TOTAL_TIME_RUNNING;
     return (int)syscall(SYS_perf_event_open, &a, 0, -1, -1, 0);
 }
 #endif
 
-void clock_rate_measure(clock_rate *out)
+/* RUNS measurements into ghz, counted by the cycle counter fd (>= 0) or by the chain's own
+ * length (fd < 0): 1, or 0 when a counter reading was not whole (the caller falls back). */
+static int measure_runs(int fd, double ghz[RUNS])
 {
-    double ghz[RUNS];
     volatile uint64_t sink = 0;
-    int fd = -1;
-#ifdef __linux__
-    fd = counter_open();
-#endif
-    out->method = fd >= 0 ? CLOCK_COUNTER : CLOCK_CHAIN;
     sink += chain(sink); /* warm up: the core at its working clock */
     for (int r = 0; r < RUNS; ++r) {
         uint64_t cycles = 8u * (uint64_t)ITERS;
@@ -101,14 +89,31 @@ void clock_rate_measure(clock_rate *out)
 #ifdef __linux__
         if (fd >= 0) {
             ioctl(fd, PERF_EVENT_IOC_DISABLE, 0);
-            uint64_t n = 0;
-            if (read(fd, &n, sizeof n) == (ssize_t)sizeof n && n > 0)
-                cycles = n;
-            else
-                out->method = CLOCK_CHAIN;
+            uint64_t v[3] = {0, 0, 0}; /* count, time enabled, time running */
+            if (read(fd, v, sizeof v) != (ssize_t)sizeof v || v[0] == 0 || v[1] == 0 ||
+                v[2] != v[1])
+                return 0;
+            cycles = v[0];
         }
+#else
+        (void)fd;
 #endif
         ghz[r] = t1 > t0 ? (double)cycles / (t1 - t0) : 0.0;
+    }
+    return 1;
+}
+
+void clock_rate_measure(clock_rate *out)
+{
+    double ghz[RUNS];
+    int fd = -1;
+#ifdef __linux__
+    fd = counter_open();
+#endif
+    out->method = CLOCK_COUNTER;
+    if (fd < 0 || !measure_runs(fd, ghz)) { /* every run by one method */
+        out->method = CLOCK_CHAIN;
+        measure_runs(-1, ghz);
     }
 #ifdef __linux__
     if (fd >= 0) close(fd);

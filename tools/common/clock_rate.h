@@ -17,7 +17,8 @@ typedef struct clock_rate {
     clock_method method; /* how it was measured */
 } clock_rate;
 
-/* Measure (about 0.3 s of CPU). */
+/* Measure (about 0.1 s of CPU). Without GCC or Clang the chain is plain C, which an
+ * optimiser may shorten: the clock is then overstated. */
 void clock_rate_measure(clock_rate *out);
 /* One phrase: "3.10 GHz, the CPU's cycle counter" or "... a chain of dependent additions
  * (the cycle counter is not readable here)". */

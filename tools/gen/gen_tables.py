@@ -65,10 +65,8 @@ def run_c_generators(bin_dir, scratch):
     """Run the C generators side by side, each writing into scratch; {tree path: text}."""
     procs = []
     for rel, prog, args in C_GENERATORS:
-        exe = os.path.join(bin_dir, prog)
-        if not os.access(exe, os.X_OK):
-            fail(f"{exe}: no such program (build first: make build)", 2)
         out = os.path.join(scratch, os.path.basename(rel))
+        exe = os.path.join(bin_dir, prog)
         # restore_signals=False: a file size limit (SIGXFSZ, which Python ignores) makes a
         # write fail with its reason instead of killing the generator
         procs.append((rel, prog, out, subprocess.Popen(
@@ -91,10 +89,24 @@ def run_c_generators(bin_dir, scratch):
 
 def abrdf_json(bin_dir, *args):
     exe = os.path.join(bin_dir, "abrdf")
-    p = subprocess.run([exe] + list(args), capture_output=True, text=True)
+    try:
+        p = subprocess.run([exe] + list(args), capture_output=True, text=True)
+    except OSError as e:
+        fail(f"{exe}: {e.strerror or e}")
     if p.returncode != 0:
         fail(f"{exe} {' '.join(args)} failed ({p.returncode}): {p.stderr.strip()}")
-    return json.loads(p.stdout)
+    try:
+        return json.loads(p.stdout)
+    except json.JSONDecodeError as e:
+        fail(f"{exe} {' '.join(args)} printed no JSON ({e})")
+
+
+def check_programs(bin_dir):
+    """Every program the run needs, before any starts."""
+    for prog in [g[1] for g in C_GENERATORS] + ["abrdf"]:
+        exe = os.path.join(bin_dir, prog)
+        if not (os.path.isfile(exe) and os.access(exe, os.X_OK)):
+            fail(f"{exe}: no such program (build first: make build)", 2)
 
 
 def generate(bin_dir):
@@ -164,6 +176,7 @@ def main(argv):
         fail("--check compares with the source tree; it takes no --out", 2)
     if not os.path.isdir(out):
         fail(f"{out}: no such directory", 2)
+    check_programs(args[0])
     files = generate(args[0])
     if mode == "check":
         return check(files)

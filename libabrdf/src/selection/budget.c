@@ -578,12 +578,15 @@ static int candidates_run(budget_state *bs, budget_best *best, abrdf_selection *
     candidate_mark mark[MAX_CANDIDATES];
     int n = 0, variants = 0, st;
     double cheapest = INFINITY;
-    for (int k = 0; n < MAX_CANDIDATES; ++k) {
+    for (int k = 0;; ++k) {
         abrdf__brdf cand;
         int fitted, at = variants;
         int g = candidate_at(bs, k, &variants, &cand, &fitted);
         if (g == 0) break;
         if (g < 0) continue;
+        if (n == MAX_CANDIDATES) /* the tables above give at most ~120: a table grew too far */
+            return abrdf__selection_fail(
+                sel, ABRDF_E_SIZE, "abrdf_select_budget: more than %d candidates", MAX_CANDIDATES);
         abrdf_fit_result r;
         if ((st = candidate_measure(bs, &cand, fitted, &r, sel)) != ABRDF_OK) return st;
         double cost = pair_cost(bs->costs, cand.lobe, &cand.p);
