@@ -74,8 +74,15 @@ measure_set *measure_set_new(size_t pairs)
         hemisphere(&seed, &b[3 * pairs + i], &b[4 * pairs + i], &b[5 * pairs + i]);
     }
     memset(b + 6 * pairs, 0, 3 * pairs * sizeof(float));
+    /* the double paths' directions: the same, normalised again in double (unit to a few
+     * 1e-16, as a renderer working in double holds them: abrdf_eval_prepared_unit) */
     for (size_t i = 0; i < pairs; ++i)
-        for (int c = 0; c < 6; ++c) s->dir[6 * i + (size_t)c] = b[(size_t)c * pairs + i];
+        for (int w = 0; w < 2; ++w) {
+            double *d = s->dir + 6 * i + 3 * (size_t)w;
+            for (int c = 0; c < 3; ++c) d[c] = b[(size_t)(3 * w + c) * pairs + i];
+            double inv = 1.0 / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            for (int c = 0; c < 3; ++c) d[c] *= inv;
+        }
     return s;
 }
 
