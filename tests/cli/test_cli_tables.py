@@ -77,12 +77,17 @@ class CostTable(unittest.TestCase):
         self.assertEqual(float(by["powf_blinn_phong"]["vs_powf_blinn_phong"]), 1.0)
         self.assertEqual(by["blinn_phong"]["paper_cycles"], "")
 
+    @staticmethod
+    def table4_of(directory, text):
+        """`abrdf tables 4 --costs costs.txt` on a cost file holding `text`."""
+        path = os.path.join(directory, "costs.txt")
+        with open(path, "w") as f:
+            f.write(text)
+        return run("tables", "4", "--costs", path).stdout
+
     def test_table4_markdown_from_cost_file(self):
         with tempfile.TemporaryDirectory() as d:
-            path = os.path.join(d, "costs.txt")
-            with open(path, "w") as f:
-                f.write("# hand-written cost file\npowf_blinn_phong 10\nf2 5 # half\nfs 20\n")
-            out = run("tables", "4", "--costs", path).stdout
+            out = self.table4_of(d, "# hand-written cost file\npowf_blinn_phong 10\nf2 5 # half\nfs 20\n")
             self.assertIn("## Table 4", out)
             self.assertIn("cost file costs.txt", out)
             self.assertIn("| f2 | 2 | 2 | 0 | 8 | 8 | 1.00 | 5.000 | 1.00 | 0.50 |", out)
@@ -92,9 +97,7 @@ class CostTable(unittest.TestCase):
             self.assertIn("cycles (here): none, the cost file gives no clock", out)
             self.assertNotIn("| cycles (here) |", out)
             # a clock line: the cycles column is ns x GHz
-            with open(path, "w") as f:
-                f.write("# clock: 2.00 GHz, by hand\npowf_blinn_phong 10\nf2 5\nfs 20\n")
-            out = run("tables", "4", "--costs", path).stdout
+            out = self.table4_of(d, "# clock: 2.00 GHz, by hand\npowf_blinn_phong 10\nf2 5\nfs 20\n")
             self.assertIn("cycles (here) = ns x the clock the cost file gives, 2.00 GHz.", out)
             self.assertIn("| f2 | 2 | 2 | 0 | 8 | 8 | 1.00 | 5.000 | 10.0 | 1.00 | 0.50 |", out)
             self.assertIn("| fs | 2 | 1 | 1 | 15 | 15 | 1.88 | 20.000 | 40.0 | 4.00 | 2.00 |", out)
