@@ -353,6 +353,95 @@ START_TEST(coplanar_continuity)
 }
 END_TEST
 
+/* A direction from a linear congruential sequence: theta in [0, 180), phi in [0, 360) deg. */
+static void lcg_dir(unsigned long long *seed, double w[3])
+{
+    double u[2];
+    for (int k = 0; k < 2; ++k) {
+        *seed = *seed * 6364136223846793005ULL + 1442695040888963407ULL;
+        u[k] = (double)(*seed >> 11) / 9007199254740992.0;
+    }
+    tu_dir(180.0 * u[0], 360.0 * u[1], w);
+}
+
+/* A run of lights sharing one view (abrdf__huang_fibre_run, and the batch path that hands
+ * runs of equal wo to it) gives each light what a call of its own gives: lobe by lobe in
+ * double, and through abrdf_eval_prepared_batch against abrdf_eval_prepared in float, with
+ * lights below the ribbon, lights the tilt hides and a degenerate vector inside the runs, and
+ * runs longer than ABRDF__HUANG_RUN_MAX (split). */
+START_TEST(light_runs_match_single_calls)
+{
+    abrdf_params p;
+    abrdf_params_init(ABRDF_HUANG, &p);
+    p.cuticle_tilt = 8.0; /* hides some grazing lights */
+    p.melanin = 0.4;
+    abrdf__huang m;
+    abrdf__huang_setup(&p, &m);
+    unsigned long long seed = 7;
+    double worst = 0.0;
+    for (int v = 0; v < 6; ++v) {
+        double wo[3], wi[ABRDF__HUANG_RUN_MAX][3], s_run[ABRDF__HUANG_RUN_MAX][3];
+        lcg_dir(&seed, wo);
+        wo[2] = fabs(wo[2]) + 0.05;
+        for (int l = 0; l < ABRDF__HUANG_RUN_MAX; ++l) {
+            lcg_dir(&seed, wi[l]);
+            if (l == 2) wi[l][2] = -fabs(wi[l][2]);                          /* below the ribbon */
+            if (l == 5) wi[l][0] = 0.999, wi[l][1] = 0.0, wi[l][2] = 0.0447; /* grazing, along T */
+        }
+        for (unsigned lobes = 1; lobes < 16; lobes = lobes * 2 + 1)
+            for (int n = 1; n <= ABRDF__HUANG_RUN_MAX; n += 3) {
+                abrdf__huang_fibre_run(&m, n, (const double(*)[3])wi, wo, lobes, s_run);
+                for (int l = 0; l < n; ++l) {
+                    double s1[3];
+                    abrdf__huang_fibre(&m, wi[l], wo, lobes, s1);
+                    for (int c = 0; c < 3; ++c) {
+                        double d = fabs(s_run[l][c] - s1[c]) / fmax(fabs(s1[c]), 1e-300);
+                        worst = fmax(worst, s1[c] == 0.0 ? (s_run[l][c] != 0.0) : d);
+                    }
+                }
+            }
+    }
+    printf("huang light runs vs single calls: largest relative difference %.3g\n", worst);
+    ck_assert_msg(worst <= 1e-12, "a run differs from single calls by %.3g", worst);
+
+    /* the batch path: 3 views x 11 lights each (a run of 8 and one of 3), one degenerate */
+    abrdf_prepared pr;
+    ck_assert_int_eq(abrdf_prepare(ABRDF_HUANG, &p, &pr), ABRDF_OK);
+    enum { V = 3, L = 11, N = V * L };
+    float in[6][N], out[3][N];
+    for (int v = 0; v < V; ++v) {
+        double wo[3];
+        lcg_dir(&seed, wo);
+        wo[2] = fabs(wo[2]) + 0.05;
+        for (int l = 0; l < L; ++l) {
+            double wi[3];
+            lcg_dir(&seed, wi);
+            if (l % 4 == 3) wi[2] = -wi[2];
+            for (int k = 0; k < 3; ++k)
+                in[k][v * L + l] = (float)wi[k], in[3 + k][v * L + l] = (float)wo[k];
+        }
+    }
+    in[0][5] = in[1][5] = in[2][5] = 0.0f; /* a zero light vector inside the first run */
+    abrdf_batch b = {N, in[0], in[1], in[2], in[3], in[4], in[5], out[0], out[1], out[2]};
+    ck_assert_int_eq(abrdf_eval_prepared_batch(&pr, &b), ABRDF_OK);
+    double bworst = 0.0;
+    for (int i = 0; i < N; ++i) {
+        double wi[3] = {in[0][i], in[1][i], in[2][i]}, wo[3] = {in[3][i], in[4][i], in[5][i]};
+        double f[3] = {0, 0, 0};
+        if (i != 5) ck_assert_int_eq(abrdf_eval_prepared(&pr, NULL, wi, wo, f), ABRDF_OK);
+        for (int c = 0; c < 3; ++c) {
+            ck_assert_msg(isfinite(out[c][i]) && out[c][i] >= 0.0f, "pair %d: %g", i, out[c][i]);
+            if (f[c] == 0.0)
+                ck_assert_msg(out[c][i] == 0.0f, "pair %d: %g where 0", i, out[c][i]);
+            else
+                bworst = fmax(bworst, fabs(out[c][i] - f[c]) / f[c]);
+        }
+    }
+    printf("huang batch runs vs abrdf_eval_prepared: largest relative difference %.3g\n", bworst);
+    ck_assert_msg(bworst <= 1e-6, "the batch differs from per-pair calls by %.3g", bworst);
+}
+END_TEST
+
 /* Absorption darkens: melanin 0.8 scatters less than melanin 0 (TT and TRT carry it). */
 START_TEST(absorption_darkens)
 {
@@ -385,6 +474,7 @@ static Suite *suite(void)
     tcase_add_test(tc, stability_grid);
     tcase_add_test(tc, absorption_darkens);
     tcase_add_test(tc, coplanar_continuity);
+    tcase_add_test(tc, light_runs_match_single_calls);
     suite_add_tcase(s, tc);
     return s;
 }

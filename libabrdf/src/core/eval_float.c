@@ -139,8 +139,45 @@ void abrdf__prep_setup_f(abrdf__prep *pr)
  * like the closed-form loops, never Inf (abrdf__eval_prepared_d's result is finite, >= 0). */
 static float abrdf__to_float(double v) { return v <= FLT_MAX ? (float)v : 0.0f; }
 
+/* abrdf__eval_prepared_d's last line of defence, for the values that bypass it: a finite
+ * number >= 0, else 0 (NaN fails both compares). */
+static double abrdf__nonneg(double v) { return v >= 0.0 && v <= DBL_MAX ? v : 0.0; }
+
+/* huang: a run of consecutive pairs with the same wo (the lights of one shading point, as a
+ * renderer hands them over) is one call, which builds the view's paths once. */
+static void abrdf__batch_huang(const abrdf__prep *pr, const abrdf_batch *b)
+{
+    size_t i = 0;
+    while (i < b->count) {
+        double wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]}, uo[3];
+        double ui[ABRDF__HUANG_RUN_MAX][3], f[ABRDF__HUANG_RUN_MAX][3];
+        size_t end = i + 1;
+        while (end < b->count && end - i < ABRDF__HUANG_RUN_MAX && b->wo_x[end] == b->wo_x[i] &&
+               b->wo_y[end] == b->wo_y[i] && b->wo_z[end] == b->wo_z[i])
+            ++end;
+        int n = (int)(end - i), ok = abrdf__normalise3(wo, uo), live[ABRDF__HUANG_RUN_MAX];
+        for (int l = 0; l < n; ++l) {
+            double wi[3] = {b->wi_x[i + l], b->wi_y[i + l], b->wi_z[i + l]};
+            live[l] = abrdf__normalise3(wi, ui[l]);
+            if (!live[l]) ui[l][0] = ui[l][1] = 0.0, ui[l][2] = -1.0; /* gives 0 */
+        }
+        if (ok) abrdf__huang_eval_run(&pr->special.huang, n, (const double(*)[3])ui, uo, f);
+        for (int l = 0; l < n; ++l) {
+            int good = ok && live[l];
+            b->f_r[i + l] = good ? abrdf__to_float(abrdf__nonneg(f[l][0])) : 0.0f;
+            b->f_g[i + l] = good ? abrdf__to_float(abrdf__nonneg(f[l][1])) : 0.0f;
+            b->f_b[i + l] = good ? abrdf__to_float(abrdf__nonneg(f[l][2])) : 0.0f;
+        }
+        i = end;
+    }
+}
+
 static void abrdf__batch_special(const abrdf__prep *pr, const abrdf_batch *b)
 {
+    if (pr->model == ABRDF_HUANG) {
+        abrdf__batch_huang(pr, b);
+        return;
+    }
     for (size_t i = 0; i < b->count; ++i) {
         double wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
         double wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};

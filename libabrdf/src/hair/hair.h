@@ -118,11 +118,23 @@ extern const double abrdf__hair_glass_inv_e[ABRDF__HAIR_E_N * ABRDF__HAIR_E_N * 
 /* The albedo the tables hold, by an n x n midpoint rule over the GGX VNDF square. */
 double abrdf__ggx_glass_albedo(double alpha, double mu, double eta, int n);
 
+/* Lights per run: abrdf__huang_fibre_run and abrdf__huang_eval_run take up to this many
+ * lights of one view (a shading point's lights; the batch path hands them over as runs). */
+#define ABRDF__HUANG_RUN_MAX 8
+
 void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m);
 /* Fibre function S (hair.h convention); lobes: R (1), TT (2), TRT (4), TRRT+ (8). */
 void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double wo[3],
                         unsigned lobes, double s[3]);
-/* f_r for the surface from the model's setup (the dispatch entry, special.c). */
+/* S for count (1 to ABRDF__HUANG_RUN_MAX) lights wi[l] seen from one view wo: the same
+ * values as count calls of abrdf__huang_fibre (up to rounding), with the view's paths built
+ * once (hair_huang.c, "the view's paths, then each light's exit"). */
+void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi)[3],
+                            const double wo[3], unsigned lobes, double (*s)[3]);
+/* f_r for the surface from the model's setup (the dispatch entry, special.c), one pair or a
+ * run of count lights of one view. */
 void abrdf__huang_eval(const abrdf__huang *m, const double wi[3], const double wo[3], double f[3]);
+void abrdf__huang_eval_run(const abrdf__huang *m, int count, const double (*wi)[3],
+                           const double wo[3], double (*f)[3]);
 
 #endif /* ABRDF_HAIR_H */

@@ -66,7 +66,6 @@ static double cos_theta(v3 w) { return sqrt(w.x * w.x + w.z * w.z); }
 static double dir_phi(v3 w) { return atan2(w.x, w.z); }
 
 /* Azimuth on the ellipse x = sin(gamma), z = b cos(gamma) <-> direction of its normal. */
-static double to_phi(double gamma, double b) { return atan2(b * sin(gamma), cos(gamma)); }
 static double to_gamma(double phi, double b) { return atan2(sin(phi), b * cos(phi)); }
 
 /* Offset h (in units of the projected radius) of the ray from wi through the surface point
@@ -83,14 +82,45 @@ static double h_to_gamma(double h_div_r, double b, v3 wi)
     return atan2(wi.z, -b * wi.x) - acos(abrdf__clamp(-h_div_r, -1.0, 1.0));
 }
 
-static v3 to_point(double gamma, double b) { return mk(sin(gamma), 0.0, b * cos(gamma)); }
+/* An angle by its sine and cosine: the paths through the fibre turn by angles whose sine
+ * and cosine are algebra in the directions, so they need no trigonometric calls. */
+typedef struct sc {
+    double s, c;
+} sc;
+
+static sc sc_of(double a)
+{
+    sc r = {sin(a), cos(a)};
+    return r;
+}
+
+/* to_phi(dir_phi(w), b) = atan2(b w.x, w.z): the ellipse parameter of the normal that faces
+ * w's azimuth, by its sine and cosine (0 for a direction along the fibre, as atan2(0, 0)). */
+static sc sc_to_phi(v3 w, double b)
+{
+    double x = b * w.x, z = w.z, r = sqrt(x * x + z * z);
+    sc a = {0.0, 1.0};
+    if (r > 0.0) a.s = x / r, a.c = z / r;
+    return a;
+}
+
+/* 2a - g: where a path that leaves the surface point g at the normal azimuth a meets it
+ * again (the chord's other end). */
+static sc sc_twice_minus(sc a, sc g)
+{
+    double c2 = a.c * a.c - a.s * a.s, s2 = 2.0 * a.s * a.c;
+    sc r = {s2 * g.c - c2 * g.s, c2 * g.c + s2 * g.s};
+    return r;
+}
+
+static v3 to_point(sc g, double b) { return mk(g.s, 0.0, b * g.c); }
 
 /* Unit (meso)normal at ellipse parameter gamma, tilted by theta along the fibre (st = sin
  * theta, ct = cos theta), and, if flat is not NULL, the untilted one: both from one sine and
  * cosine of gamma. */
-static void sphg_pair(double st, double ct, double gamma, double b, v3 *tilted, v3 *flat)
+static void sphg_pair(double st, double ct, sc gamma, double b, v3 *tilted, v3 *flat)
 {
-    double sg = sin(gamma), cg = cos(gamma);
+    double sg = gamma.s, cg = gamma.c;
     double sp = sg, cp = cg;
     if (b != 1.0 && fabs(cg) >= ABRDF__HUANG_ELLIPSE_COS_MIN) {
         double tp = b * sg / cg;
@@ -102,10 +132,9 @@ static void sphg_pair(double st, double ct, double gamma, double b, v3 *tilted, 
 }
 
 /* Relative arc length of the ellipse at gamma (e2 = 1 - b^2). */
-static double arc_length(double e2, double gamma)
+static double arc_length(double e2, sc gamma)
 {
-    double s = sin(gamma);
-    return abrdf__safe_sqrt(1.0 - e2 * s * s);
+    return abrdf__safe_sqrt(1.0 - e2 * gamma.s * gamma.s);
 }
 
 /* ---- GGX pieces (alpha2 = alpha^2), height-correlated Smith ----------------------- */
@@ -144,34 +173,37 @@ static double ggx_go(double alpha2, double ci, double co)
  * stretched view direction. A quadrature over many nodes of one pair builds it once. */
 typedef struct vndf_frame {
     double alpha;
-    v3 s, t, wm;   /* orthonormal basis around wm */
-    v3 vh, t1, t2; /* stretched wi and the basis around it */
-    double sh;     /* 0.5 (1 + vh.z) */
+    v3 wm;         /* the mean normal */
+    v3 vh, t1, t2; /* stretched wi and the basis around it, in the basis s, t, wm */
+    v3 q1, q2, q3; /* alpha (s t1.x + t t1.y), the same for t2 and vh: the map's */
+    double sh;     /* 0.5 (1 + vh.z)                             linear part */
 } vndf_frame;
 
 static void vndf_frame_make(double alpha, v3 wi, v3 wm, vndf_frame *f);
-static v3 vndf_frame_node(const vndf_frame *f, double p1, double p2);
+static v3 vndf_frame_node(const vndf_frame *f, const double p[3]);
 
-/* The disc point of node (u1, u2), r = sqrt(u1) at angle 2 pi u2: what vndf_map_node takes.
- * A quadrature evaluates it once per node (vndf_nodes), not once per use. */
-static void vndf_disc(double u1, double u2, double p[2])
+/* The disc point of node (u1, u2), r = sqrt(u1) at angle 2 pi u2, and sqrt(1 - p1^2): what
+ * vndf_frame_node takes. A quadrature evaluates it once per node (vndf_nodes), not once per
+ * use. */
+static void vndf_disc(double u1, double u2, double p[3])
 {
     double r = sqrt(u1), ph = 2.0 * ABRDF__PI * u2;
     p[0] = r * cos(ph);
     p[1] = r * sin(ph);
+    p[2] = abrdf__safe_sqrt(1.0 - p[0] * p[0]);
 }
 
 static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
 {
-    double p[2];
+    double p[3];
     vndf_frame f;
     vndf_disc(u1, u2, p);
     vndf_frame_make(alpha, wi, wm, &f);
-    return vndf_frame_node(&f, p[0], p[1]);
+    return vndf_frame_node(&f, p);
 }
 
 /* The disc points of the n x n midpoint grid, node j at ((j / n + 0.5) / n, (j % n + 0.5) / n). */
-static void vndf_nodes(int n, double (*p)[2])
+static void vndf_nodes(int n, double (*p)[3])
 {
     for (int j = 0; j < n * n; ++j) vndf_disc((j / n + 0.5) / n, (j % n + 0.5) / n, p[j]);
 }
@@ -191,20 +223,30 @@ static void vndf_frame_make(double alpha, v3 wi, v3 wm, vndf_frame *f)
     double lensq = vh.x * vh.x + vh.y * vh.y;
     v3 t1 = lensq > 0.0 ? scl(mk(-vh.y, vh.x, 0.0), 1.0 / sqrt(lensq)) : mk(1, 0, 0);
     f->alpha = alpha;
-    f->s = s, f->t = t, f->wm = wm;
+    f->wm = wm;
     f->vh = vh, f->t1 = t1, f->t2 = cross(vh, t1);
     f->sh = 0.5 * (1.0 + vh.z);
+    /* the normal in the basis, (alpha nh.x, alpha nh.y, nh.z), then to the world: the x and y
+     * parts are linear in the node's p1, p2, p3 */
+    v3 as = scl(s, alpha), at = scl(t, alpha);
+    f->q1 = add(scl(as, f->t1.x), scl(at, f->t1.y));
+    f->q2 = add(scl(as, f->t2.x), scl(at, f->t2.y));
+    f->q3 = add(scl(as, vh.x), scl(at, vh.y));
 }
 
-static v3 vndf_frame_node(const vndf_frame *f, double p1, double p2)
+/* The microfacet normal of the disc point p (vndf_disc), Heitz's map: the point is warped
+ * onto the projected hemisphere of the stretched view vh, lifted, unstretched. */
+static v3 vndf_frame_node(const vndf_frame *f, const double p[3])
 {
-    const double alpha = f->alpha, sh = f->sh;
-    p2 = (1.0 - sh) * abrdf__safe_sqrt(1.0 - p1 * p1) + sh * p2;
+    const double alpha = f->alpha, sh = f->sh, p1 = p[0];
+    double p2 = (1.0 - sh) * p[2] + sh * p[1];
     double p3 = abrdf__safe_sqrt(1.0 - p1 * p1 - p2 * p2);
-    v3 nh = add(add(scl(f->t1, p1), scl(f->t2, p2)), scl(f->vh, p3));
-    v3 ne = mk(alpha * nh.x, alpha * nh.y, fmax(0.0, nh.z));
-    ne = scl(ne, 1.0 / len(ne));
-    return add(add(scl(f->s, ne.x), scl(f->t, ne.y)), scl(f->wm, ne.z));
+    double nx = f->t1.x * p1 + f->t2.x * p2 + f->vh.x * p3;
+    double ny = f->t1.y * p1 + f->t2.y * p2 + f->vh.y * p3;
+    double nz = fmax(0.0, f->t2.z * p2 + f->vh.z * p3); /* t1.z = 0 */
+    double inv = 1.0 / sqrt(alpha * alpha * (nx * nx + ny * ny) + nz * nz);
+    v3 w = add(add(scl(f->q1, p1), scl(f->q2, p2)), add(scl(f->q3, p3), scl(f->wm, nz)));
+    return scl(w, inv);
 }
 
 /* Fresnel for unpolarised light at cosine c (sign ignored) and relative index eta; the
@@ -257,11 +299,17 @@ static double longitudinal_m(double si, double ci, double so, double co, double 
     return exp(-bsin) * bessel_i0(a) / (sinh(1.0 / v) * 2.0 * v);
 }
 
-/* Cycles' TRRT+ estimate: the geometric series of further internal bounces. */
-static double trrt(double t1, double r2, double a)
+/* Cycles' TRRT+ estimate, the geometric series of further internal bounces
+ * t1 r2^2 tavg a^3 / (1 - a (1 - tavg)), for the three channels' absorptions a[k], times w:
+ * one division for the three (each denominator is >= tavg >= 1e-5). */
+static void trrt3(double w, double t1, double r2, const double a[3], double out[3])
 {
-    double tavg = fmax(1.0 - r2, ABRDF__HUANG_TAVG_MIN);
-    return t1 * r2 * r2 * tavg * a * a * a / (1.0 - a * (1.0 - tavg));
+    double tavg = fmax(1.0 - r2, ABRDF__HUANG_TAVG_MIN), k = w * t1 * r2 * r2 * tavg;
+    double d0 = 1.0 - a[0] * (1.0 - tavg), d1 = 1.0 - a[1] * (1.0 - tavg);
+    double d2 = 1.0 - a[2] * (1.0 - tavg), inv = k / (d0 * d1 * d2);
+    out[0] = a[0] * a[0] * a[0] * (d1 * d2) * inv;
+    out[1] = a[1] * a[1] * a[1] * (d0 * d2) * inv;
+    out[2] = a[2] * a[2] * a[2] * (d0 * d1) * inv;
 }
 
 /* ---- energy compensation (Cycles' ggx_glass_E tables, regenerated) ------------------ */
@@ -374,10 +422,11 @@ static double simpson_r(const abrdf__huang *m, v3 wi, v3 wo, v3 wh, double lo, d
     for (int i = 0; i <= n; ++i) {
         double gm = lo + i * res;
         v3 wm;
-        sphg_pair(st, ct, gm, b, &wm, NULL);
+        sc g = sc_of(gm);
+        sphg_pair(st, ct, g, b, &wm, NULL);
         double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         double c = dot(wm, wh);
-        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc_length(e2, gm) *
+        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc_length(e2, g) *
                energy_scale_at(m, &ax, dot(wm, wi));
     }
     return sum * 2.0 / 3.0 * res;
@@ -436,19 +485,60 @@ static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
     return 0.25 * fresnel(dot(wi, wh), m->eta, NULL) * sum; /* Eq. 12 */
 }
 
-/* What lobes_residual's terms share: the fibre, the directions and per-evaluation constants. */
+/* ---- TT, TRT, TRRT+: the view's paths, then each light's exit --------------------------
+ *
+ * In Cycles' convention the viewer is "wi" and the light "wo". Everything up to the last
+ * interface depends on the viewer only: the visible range, the entry mesonormals, the entry
+ * microfacets and their refracted rays, the chords and their absorption, TRT's internal
+ * reflection. The light enters at the exit alone (the half vector through which it leaves,
+ * its Fresnel, D and masking, the total internal reflection test) and in TRRT+'s
+ * longitudinal M. So the paths of one view are built once and every light of a run
+ * (abrdf__huang_fibre_run: the lights of one shading point) takes only its exits. */
+
+/* Unpolarised dielectric Fresnel reflectance at cosine c (sign ignored) for relative index
+ * eta (eta2 = eta^2), with one square root: t = eta cos(theta_t) = sqrt(eta^2 - sin^2),
+ * R_s = ((c - t)/(c + t))^2, R_p = ((eta^2 c - t)/(eta^2 c + t))^2. Total internal
+ * reflection gives 1. *cos_t (if not NULL) gets -t / eta, the refracted cosine. */
+static double fresnel1(double c, double eta, double eta2, double *cos_t)
+{
+    c = fmin(fabs(c), 1.0);
+    double q = eta2 - (1.0 - c * c);
+    if (q <= 0.0) {
+        if (cos_t) *cos_t = 0.0;
+        return 1.0;
+    }
+    double t = sqrt(q);
+    if (cos_t) *cos_t = -t / eta;
+    double ds = c + t, dp = eta2 * c + t;
+    if (!(ds > 0.0) || !(dp > 0.0)) return 1.0;
+    double ns = (c - t) * dp, np = (eta2 * c - t) * ds, d = ds * dp; /* R_s + R_p over one d^2 */
+    return 0.5 * (ns * ns + np * np) / (d * d);
+}
+
+/* The lights of a run, in the fibre frame, with what their exits reuse. */
+typedef struct light_run {
+    int n;
+    v3 wo[ABRDF__HUANG_RUN_MAX];  /* light directions (Cycles' "wo") */
+    v3 wos[ABRDF__HUANG_RUN_MAX]; /* wo / eta: the light's part of the exit half vectors */
+} light_run;
+
+/* What the terms share: the fibre, the view, the run's lights, per-evaluation constants,
+ * and each light's sums. */
 typedef struct residual_ctx {
     const abrdf__huang *m;
-    v3 wi, wo;
-    double b, inv_eta, a2, e2; /* e2 = 1 - b^2 */
-    double st, ct;             /* sin and cos of the cuticle tilt; the exit's: -st, ct */
-    energy_axes ax_out;        /* the energy table's axes leaving the fibre */
+    v3 wi;
+    const light_run *lr;
+    double b, inv_eta, inv_eta2, a2, e2; /* e2 = 1 - b^2 */
+    double st, ct;                       /* sin and cos of the cuticle tilt; the exit's: -st, ct */
+    energy_axes ax_out;                  /* the energy table's axes leaving the fibre */
     unsigned lobes;
+    double s_tt[ABRDF__HUANG_RUN_MAX][3], s_trt[ABRDF__HUANG_RUN_MAX][3];
+    double s_trrt[ABRDF__HUANG_RUN_MAX][3];
 } residual_ctx;
 
 /* A Simpson node on the fibre's cross-section: the entry mesonormals at gamma gmi. */
 typedef struct ring_node {
-    double gmi;
+    sc gmi; /* the entry point's ellipse parameter */
     v3 wmi, wmi_;
     double cos_mi1, proj, scale1; /* wi's cosine, projected width (TRRT+), entry energy scale */
     double weight;                /* Simpson weight */
@@ -458,10 +548,12 @@ typedef struct ring_node {
  * pair at gmt. */
 typedef struct entry_path {
     v3 wt, wmt, wmt_; /* refracted direction, exit mesonormals */
-    double gmt, phi_t;
+    sc gmt;           /* the exit point's ellipse parameter */
     double t1, scale2, g1o, cos_mo1, cos_mi2;
-    double at[3]; /* absorption along the chord */
-    double wgt;   /* Simpson weight times the entry node's */
+    double lam2;   /* Smith Lambda of the exit mesonormal seen from inside */
+    double tt_pre; /* TT's factors that do not depend on the light */
+    double at[3];  /* absorption along the chord */
+    double wgt;    /* Simpson weight times the entry node's */
 } entry_path;
 
 /* The path through the entry microfacet wh1: 1, or 0 when light does not enter there. */
@@ -474,10 +566,9 @@ static int entry_path_make(const residual_ctx *c, const ring_node *r, v3 wh1, do
     double cos_hi1 = dot(wi, wh1);
     if (!(cos_hi1 > 0.0)) return 0;
     double cos_t1;
-    e->t1 = 1.0 - fresnel(cos_hi1, m->eta, &cos_t1);
+    e->t1 = 1.0 - fresnel1(cos_hi1, m->eta, m->eta * m->eta, &cos_t1);
     v3 wt = e->wt = refract_dir(wi, wh1, cos_t1, c->inv_eta);
-    e->phi_t = dir_phi(wt);
-    e->gmt = 2.0 * to_phi(e->phi_t, b) - r->gmi;
+    e->gmt = sc_twice_minus(sc_to_phi(wt, b), r->gmi); /* 2 to_phi(phi_t) - gamma_mi */
     sphg_pair(-c->st, c->ct, e->gmt, b, &e->wmt, &e->wmt_);
     e->cos_mo1 = dot(neg(wt), r->wmi), e->cos_mi2 = dot(neg(wt), e->wmt);
     /* wi sees wh1 (cos_hi1 > 0) and, on [g0, g0 + gr], both mesonormals: that range
@@ -487,110 +578,136 @@ static int entry_path_make(const residual_ctx *c, const ring_node *r, v3 wh1, do
         return 0;
     e->g1o = ggx_go(c->a2, r->cos_mi1, e->cos_mo1);
     e->scale2 = energy_scale_at(m, &c->ax_out, e->cos_mi2);
+    e->lam2 = ggx_lambda(c->a2, e->cos_mi2);
     double ct_t = fmax(cos_theta(wt), ABRDF__HAIR_COS_MIN);
-    double chord = len(add(to_point(r->gmi, b), neg(to_point(e->gmt + ABRDF__PI, b))));
+    double chord = len(add(to_point(r->gmi, b), to_point(e->gmt, b))); /* exit at gmt + pi */
     for (int k = 0; k < 3; ++k)
         e->at[k] = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_t * chord) : 1.0;
     e->wgt = r->weight * w1;
+    e->tt_pre = e->wgt * e->t1 * r->scale1 * e->scale2 * e->g1o / e->cos_mo1 * r->cos_mi1 *
+                arc_length(c->e2, e->gmt);
     return 1;
 }
 
-/* TT: exit through the microfacet with generalised half vector wh2 (Eq. 13). */
-static void tt_add(const residual_ctx *c, const ring_node *r, const entry_path *e, double s_tt[3])
+/* TT: each light exits through the microfacet with generalised half vector wh2 (Eq. 13). */
+static void tt_add(residual_ctx *c, const entry_path *e)
 {
     const double a2 = c->a2, inv_eta = c->inv_eta;
-    v3 wt = e->wt, wo = c->wo;
-    /* exit possible only if wo is within the critical cone */
-    if (!(dot(wo, wt) >= inv_eta - ABRDF__HUANG_CRITICAL_TOL)) return;
-    v3 wh2 = add(neg(wt), scl(wo, inv_eta));
-    double l2 = dot(wh2, wh2);
-    if (!(l2 > ABRDF__HUANG_HALF_LEN2_MIN)) return;
-    double rn = 1.0 / sqrt(l2);
-    wh2 = scl(wh2, rn);
-    double cos_mh2 = dot(e->wmt, wh2);
-    if (!(cos_mh2 >= 0.0)) return;
-    double cos_hi2 = dot(neg(wt), wh2), cos_ho2 = dot(neg(wo), wh2);
-    double t2 = (1.0 - fresnel(cos_hi2, inv_eta, NULL)) * e->scale2;
-    double v = e->wgt * e->t1 * r->scale1 * t2 * ggx_d(a2, cos_mh2) * e->g1o *
-               ggx_g(a2, e->cos_mi2, dot(neg(wo), e->wmt)) / e->cos_mo1 * r->cos_mi1 * cos_hi2 *
-               cos_ho2 * rn * rn * arc_length(c->e2, e->gmt);
-    if (isfinite(v))
-        for (int k = 0; k < 3; ++k) s_tt[k] += v * e->at[k]; /* Eq. 13 */
+    v3 wt = e->wt;
+    for (int l = 0; l < c->lr->n; ++l) {
+        v3 wo = c->lr->wo[l];
+        /* exit possible only if wo is within the critical cone */
+        if (!(dot(wo, wt) >= inv_eta - ABRDF__HUANG_CRITICAL_TOL)) continue;
+        v3 wh2 = add(neg(wt), c->lr->wos[l]);
+        double l2 = dot(wh2, wh2);
+        if (!(l2 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
+        double rn = 1.0 / sqrt(l2);
+        wh2 = scl(wh2, rn);
+        double cos_mh2 = dot(e->wmt, wh2);
+        if (!(cos_mh2 >= 0.0)) continue;
+        double cos_hi2 = dot(neg(wt), wh2), cos_ho2 = dot(neg(wo), wh2);
+        double t2 = 1.0 - fresnel1(cos_hi2, inv_eta, c->inv_eta2, NULL);
+        double g = 1.0 / (1.0 + e->lam2 + ggx_lambda(a2, dot(neg(wo), e->wmt)));
+        double v = e->tt_pre * t2 * ggx_d(a2, cos_mh2) * g * cos_hi2 * cos_ho2 * rn * rn;
+        if (isfinite(v))
+            for (int k = 0; k < 3; ++k) c->s_tt[l][k] += v * e->at[k]; /* Eq. 13 */
+    }
 }
 
-/* TRT through the internal microfacet wh2, exit at wh3 (Eq. 14), and TRRT+ where the path
- * stays inside; wgt2: the node's weight. */
-static void trt_add(const residual_ctx *c, const ring_node *r, const entry_path *e, v3 wh2,
-                    double wgt2, double s_trt[3], double s_trrt[3])
+/* TRT through the internal microfacet wh2, each light's exit at wh3 (Eq. 14), and TRRT+
+ * where the path stays inside; wgt2: the node's weight. */
+static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3 wh2, double wgt2)
 {
     const abrdf__huang *m = c->m;
     const double a2 = c->a2, b = c->b, inv_eta = c->inv_eta;
-    v3 wt = e->wt, wo = c->wo;
+    v3 wt = e->wt;
     double cos_hi2 = dot(neg(wt), wh2);
     if (!(cos_hi2 > 0.0)) return;
-    double r2f = fresnel(cos_hi2, inv_eta, NULL), r2 = r2f * e->scale2;
+    double r2f = fresnel1(cos_hi2, inv_eta, c->inv_eta2, NULL), r2 = r2f * e->scale2;
     v3 wtr = neg(reflect_dir(wt, wh2));
     double rr[3];
-    for (int k = 0; k < 3; ++k) rr[k] = wgt2 * r->proj * trrt(e->t1, r2f, e->at[k]);
-    /* total internal reflection */
-    if (dot(neg(wtr), wo) < inv_eta - ABRDF__HUANG_CRITICAL_TOL) {
-        for (int k = 0; k < 3; ++k) s_trrt[k] += rr[k];
-        return;
+    trrt3(wgt2 * r->proj, e->t1, r2f, e->at, rr);
+    /* Total internal reflection toward a light keeps the path inside (TRRT+); the rest of
+     * the exit is built only if some light of the run leaves here. */
+    int leaves[ABRDF__HUANG_RUN_MAX], any = 0;
+    for (int l = 0; l < c->lr->n; ++l) {
+        leaves[l] = !(dot(neg(wtr), c->lr->wo[l]) < inv_eta - ABRDF__HUANG_CRITICAL_TOL);
+        any |= leaves[l];
+        if (!leaves[l])
+            for (int k = 0; k < 3; ++k) c->s_trrt[l][k] += rr[k];
     }
+    if (!any) return;
     if (!visible2(neg(wt), neg(wtr), e->wmt, wh2) || !visible2(neg(wt), neg(wtr), e->wmt_, wh2))
         return;
-    double phi_tr = dir_phi(wtr);
-    double gmtr = r->gmi - 2.0 * (to_phi(e->phi_t, b) - to_phi(phi_tr, b)) + ABRDF__PI;
+    /* The view's part of the exit: the exit mesonormals, the second chord, and the factors
+     * of Eq. 14 that do not see the light. */
+    /* gamma_mi - 2 (to_phi(phi_t) - to_phi(phi_tr)) + pi = (2 to_phi(phi_tr) - gmt) + pi */
+    sc gmtr = sc_twice_minus(sc_to_phi(wtr, b), e->gmt);
+    gmtr.s = -gmtr.s, gmtr.c = -gmtr.c;
     v3 wmtr, wmtr_;
     sphg_pair(-c->st, c->ct, gmtr, b, &wmtr, &wmtr_);
-    v3 wh3 = add(wtr, scl(wo, inv_eta));
-    double l3 = dot(wh3, wh3);
-    if (!(l3 > ABRDF__HUANG_HALF_LEN2_MIN)) return;
-    double rn3 = 1.0 / sqrt(l3);
-    wh3 = scl(wh3, rn3);
-    double cos_mh3 = dot(wmtr, wh3);
-    if (cos_mh3 < 0.0 || !visible2(wtr, neg(wo), wmtr, wh3) ||
-        !visible2(wtr, neg(wo), wmtr_, wh3)) {
-        for (int k = 0; k < 3; ++k) s_trrt[k] += rr[k];
-        return;
-    }
-    double cos_hi3 = dot(wh3, wtr), cos_ho3 = dot(wh3, neg(wo));
     double cos_mi3 = dot(wmtr, wtr), cos_mo2 = dot(e->wmt, neg(wtr));
-    double t3 = (1.0 - fresnel(cos_hi3, inv_eta, NULL)) * energy_scale_at(m, &c->ax_out, cos_mi3);
-    double ct_tr = fmax(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
-    double chord2 = len(add(to_point(gmtr, b), neg(to_point(e->gmt, b))));
-    double v = wgt2 * e->t1 * r->scale1 * r2 * t3 * ggx_d(a2, cos_mh3) * e->g1o *
-               ggx_go(a2, e->cos_mi2, cos_mo2) * ggx_g(a2, cos_mi3, dot(wmtr, neg(wo))) /
-               (e->cos_mo1 * cos_mo2) * r->cos_mi1 * e->cos_mi2 * cos_hi3 * cos_ho3 * rn3 * rn3 *
-               arc_length(c->e2, gmtr);
-    if (isfinite(v) && (c->lobes & 4u))
-        for (int k = 0; k < 3; ++k) {
-            double atr = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_tr * chord2) : 1.0;
-            s_trt[k] += v * e->at[k] * atr; /* Eq. 14 */
+    int exit_seen = cos_mi3 > 0.0 && dot(wtr, wmtr_) > 0.0 && (c->lobes & 4u);
+    double pre = 0.0, lam3 = 0.0, att[3] = {0, 0, 0};
+    int pre_made = 0;
+    for (int l = 0; l < c->lr->n; ++l) {
+        if (!leaves[l]) continue;
+        v3 wo = c->lr->wo[l];
+        v3 wh3 = add(wtr, c->lr->wos[l]);
+        double l3 = dot(wh3, wh3);
+        if (!(l3 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
+        for (int k = 0; k < 3; ++k) c->s_trrt[l][k] += rr[k];
+        if (!exit_seen) continue;
+        double rn3 = 1.0 / sqrt(l3);
+        wh3 = scl(wh3, rn3);
+        double cos_mh3 = dot(wmtr, wh3), cos_hi3 = dot(wh3, wtr), cos_ho3 = dot(wh3, neg(wo));
+        double cos_om3 = dot(wmtr, neg(wo));
+        /* visible2(wtr, -wo, wmtr, wh3) and the same for wmtr_; wtr's half is exit_seen */
+        if (cos_mh3 < 0.0 || !(cos_hi3 > 0.0) || !(cos_ho3 > 0.0) || !(cos_om3 > 0.0) ||
+            !(dot(neg(wo), wmtr_) > 0.0))
+            continue;
+        if (!pre_made) { /* once per node, for the first light that exits */
+            double ct_tr = fmax(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
+            double chord2 = len(add(to_point(gmtr, b), neg(to_point(e->gmt, b))));
+            lam3 = ggx_lambda(a2, cos_mi3);
+            pre = wgt2 * e->t1 * r->scale1 * r2 * energy_scale_at(m, &c->ax_out, cos_mi3) * e->g1o *
+                  ggx_go(a2, e->cos_mi2, cos_mo2) / (e->cos_mo1 * cos_mo2) * r->cos_mi1 *
+                  e->cos_mi2 * arc_length(c->e2, gmtr);
+            for (int k = 0; k < 3; ++k) {
+                double atr = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_tr * chord2) : 1.0;
+                att[k] = e->at[k] * atr;
+            }
+            pre_made = 1;
         }
-    for (int k = 0; k < 3; ++k) s_trrt[k] += rr[k];
+        double t3 = 1.0 - fresnel1(cos_hi3, inv_eta, c->inv_eta2, NULL);
+        double g = 1.0 / (1.0 + lam3 + ggx_lambda(a2, cos_om3));
+        double v = pre * t3 * ggx_d(a2, cos_mh3) * g * cos_hi3 * cos_ho3 * rn3 * rn3;
+        if (isfinite(v))
+            for (int k = 0; k < 3; ++k) c->s_trt[l][k] += v * att[k]; /* Eq. 14 */
+    }
 }
 
-/* TT + TRT + TRRT+ (RGB): Simpson over h, nested midpoint rules over the VNDF squares. */
-static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr, double sp_i,
-                           double cp_i, unsigned lobes, double out[3])
+/* TT + TRT + TRRT+ (RGB) of every light of the run: Simpson over h, nested midpoint rules
+ * over the VNDF squares; out[l] for light l. */
+static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, double g0, double gr,
+                           double sp_i, double cp_i, unsigned lobes, double (*out)[3])
 {
     const double b = m->b, eta = m->eta, inv_eta = 1.0 / eta, al = m->alpha;
     const int n1 = m->n1, n2 = m->n2;
     const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
-    double s_tt[3] = {0, 0, 0}, s_trt[3] = {0, 0, 0}, s_trrt[3] = {0, 0, 0};
-    out[0] = out[1] = out[2] = 0.0;
+    for (int l = 0; l < lr->n; ++l) out[l][0] = out[l][1] = out[l][2] = 0.0;
     if (n1 * n1 > ABRDF__HUANG_NODES_MAX || n2 * n2 > ABRDF__HUANG_NODES_MAX) return;
     /* Per evaluation, not per node: the VNDF grids' disc points and the energy tables' axes. */
-    double node1[ABRDF__HUANG_NODES_MAX][2], node2[ABRDF__HUANG_NODES_MAX][2];
+    double node1[ABRDF__HUANG_NODES_MAX][3], node2[ABRDF__HUANG_NODES_MAX][3];
     vndf_nodes(n1, node1);
     vndf_nodes(n2, node2);
     energy_axes ax_in = energy_axes_of(m, eta);
     residual_ctx c = {.m = m,
                       .wi = wi,
-                      .wo = wo,
+                      .lr = lr,
                       .b = b,
                       .inv_eta = inv_eta,
+                      .inv_eta2 = inv_eta * inv_eta,
                       .a2 = al * al,
                       .e2 = 1.0 - b * b,
                       .st = sin(m->tilt),
@@ -601,7 +718,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
     double res = gr / n;
     for (int i = 0; i <= n; ++i) {
         ring_node r;
-        r.gmi = g0 + i * res;
+        r.gmi = sc_of(g0 + i * res);
         sphg_pair(c.st, c.ct, r.gmi, b, &r.wmi, &r.wmi_);
         /* The range is built so that wi sees every tilted mesonormal on it: cos_mi1 >= 0,
          * and 0 at the ends when the tilt hides the silhouette. Skipping cos_mi1 <= 0 let a
@@ -611,44 +728,59 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, v3 wo, double g0, doubl
         r.weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         /* Projected width of this surface element seen from wi, |dh/dgamma| cos(theta_i):
          * the light TRRT+ receives here (R, TT, TRT carry it through cos_mi1). */
-        r.proj = fabs(cp_i * cos(r.gmi) + b * sp_i * sin(r.gmi)) * cos_theta(wi);
+        r.proj = fabs(cp_i * r.gmi.c + b * sp_i * r.gmi.s) * cos_theta(wi);
         r.scale1 = energy_scale_at(m, &ax_in, r.cos_mi1); /* depends on the entry node only */
         vndf_frame f1;
         vndf_frame_make(al, wi, r.wmi, &f1);
         for (int j1 = 0; j1 < n1 * n1; ++j1) {
             entry_path e;
-            if (!entry_path_make(&c, &r, vndf_frame_node(&f1, node1[j1][0], node1[j1][1]), w1, &e))
-                continue;
-            if (lobes & 2u) tt_add(&c, &r, &e, s_tt);
+            if (!entry_path_make(&c, &r, vndf_frame_node(&f1, node1[j1]), w1, &e)) continue;
+            if (lobes & 2u) tt_add(&c, &e);
             if (!(lobes & 12u) || !(e.cos_mi2 > 0.0)) continue;
             /* TRT and TRRT+: internal reflection at wh2 (n2 x n2 VNDF nodes) */
             vndf_frame f2;
             vndf_frame_make(al, neg(e.wt), e.wmt, &f2);
             for (int j2 = 0; j2 < n2 * n2; ++j2)
-                trt_add(&c, &r, &e, vndf_frame_node(&f2, node2[j2][0], node2[j2][1]), e.wgt * w2,
-                        s_trt, s_trrt);
+                trt_add(&c, &r, &e, vndf_frame_node(&f2, node2[j2]), e.wgt * w2);
         }
     }
-    double mlong =
-        longitudinal_m(sin_theta(wi), cos_theta(wi), sin_theta(wo), cos_theta(wo), 4.0 * al);
     double k = 2.0 / 3.0 * res;
-    for (int i = 0; i < 3; ++i) {
-        double trrt_term = (lobes & 8u) ? s_trrt[i] * mlong / (2.0 * ABRDF__PI) : 0.0;
-        out[i] = ((s_tt[i] + s_trt[i]) * inv_eta * inv_eta + trrt_term) * k;
+    for (int l = 0; l < lr->n; ++l) {
+        v3 wo = lr->wo[l];
+        double mlong = (lobes & 8u) ? longitudinal_m(sin_theta(wi), cos_theta(wi), sin_theta(wo),
+                                                     cos_theta(wo), 4.0 * al)
+                                    : 0.0;
+        for (int i = 0; i < 3; ++i) {
+            double trrt_term = (lobes & 8u) ? c.s_trrt[l][i] * mlong / (2.0 * ABRDF__PI) : 0.0;
+            out[l][i] = ((c.s_tt[l][i] + c.s_trt[l][i]) * inv_eta * inv_eta + trrt_term) * k;
+        }
     }
 }
 
-void abrdf__huang_fibre(const abrdf__huang *m, const double wi_[3], const double wo_[3],
-                        unsigned lobes, double s[3])
+void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi_)[3],
+                            const double wo_[3], unsigned lobes, double (*s)[3])
 {
-    s[0] = s[1] = s[2] = 0.0;
+    for (int l = 0; l < count; ++l) s[l][0] = s[l][1] = s[l][2] = 0.0;
+    if (count < 1 || count > ABRDF__HUANG_RUN_MAX) return;
     /* Cycles' convention: its "wi" is the viewer (our wo), its "wo" the light (our wi). */
-    v3 wi = mk(wo_[1], wo_[0], wo_[2]), wo = mk(wi_[1], wi_[0], wi_[2]);
+    v3 wi = mk(wo_[1], wo_[0], wo_[2]);
     double ci = cos_theta(wi);
-    if (!(ci > ABRDF__HAIR_COS_MIN) || !(cos_theta(wo) > 0.0)) return;
+    if (!(ci > ABRDF__HAIR_COS_MIN)) return;
     double b = m->b, e2 = 1.0 - b * b;
     double tan_tilt = tan(m->tilt);
-    if (tan_tilt * sin_theta(wo) / cos_theta(wo) < -1.0) return; /* exit mesonormal hidden */
+    /* The lights that can be lit at all; the others keep S = 0. */
+    light_run lr = {0};
+    int slot[ABRDF__HUANG_RUN_MAX];
+    for (int l = 0; l < count; ++l) {
+        v3 wo = mk(wi_[l][1], wi_[l][0], wi_[l][2]);
+        if (!(cos_theta(wo) > 0.0)) continue;
+        if (tan_tilt * sin_theta(wo) / cos_theta(wo) < -1.0) continue; /* exit mesonormal hidden */
+        slot[lr.n] = l;
+        lr.wo[lr.n] = wo;
+        lr.wos[lr.n] = scl(wo, 1.0 / m->eta);
+        ++lr.n;
+    }
+    if (lr.n == 0) return;
     double x = -tan_tilt * sin_theta(wi) / ci;
     if (x > 1.0) return; /* entry mesonormal hidden */
     double half_span = acos(fmax(x, 0.0));
@@ -668,17 +800,44 @@ void abrdf__huang_fibre(const abrdf__huang *m, const double wi_[3], const double
     if (!(g1 > g0)) return;
     double area =
         ci * 2.0 * radius; /* projected width 2 (far field) times cos(theta_i), radius from dh */
-    double r = (lobes & 1u) ? lobe_r(m, wi, wo, g0, g1 - g0) : 0.0;
-    double res[3] = {0, 0, 0};
-    if (lobes & 14u) lobes_residual(m, wi, wo, g0, g1 - g0, sp_i, cp_i, lobes, res);
-    for (int c = 0; c < 3; ++c) s[c] = (r + res[c]) / area;
+    double res[ABRDF__HUANG_RUN_MAX][3];
+    for (int l = 0; l < lr.n; ++l) res[l][0] = res[l][1] = res[l][2] = 0.0;
+    if (lobes & 14u) lobes_residual(m, wi, &lr, g0, g1 - g0, sp_i, cp_i, lobes, res);
+    for (int l = 0; l < lr.n; ++l) {
+        double r = (lobes & 1u) ? lobe_r(m, wi, lr.wo[l], g0, g1 - g0) : 0.0;
+        for (int c = 0; c < 3; ++c) s[slot[l]][c] = (r + res[l][c]) / area;
+    }
+}
+
+void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double wo[3],
+                        unsigned lobes, double s[3])
+{
+    double si[1][3];
+    abrdf__huang_fibre_run(m, 1, (const double(*)[3])wi, wo, lobes, si);
+    for (int c = 0; c < 3; ++c) s[c] = si[0][c];
+}
+
+void abrdf__huang_eval_run(const abrdf__huang *m, int count, const double (*wi)[3],
+                           const double wo[3], double (*f)[3])
+{
+    double s[ABRDF__HUANG_RUN_MAX][3], lit[ABRDF__HUANG_RUN_MAX][3];
+    int slot[ABRDF__HUANG_RUN_MAX], n = 0;
+    for (int l = 0; l < count && l < ABRDF__HUANG_RUN_MAX; ++l) f[l][0] = f[l][1] = f[l][2] = 0.0;
+    if (count < 1 || count > ABRDF__HUANG_RUN_MAX || !(wo[2] > 0.0)) return;
+    for (int l = 0; l < count; ++l) /* lights above the ribbon; the others keep f_r = 0 */
+        if (wi[l][2] > 0.0) {
+            for (int c = 0; c < 3; ++c) lit[n][c] = wi[l][c];
+            slot[n++] = l;
+        }
+    if (n == 0) return;
+    abrdf__huang_fibre_run(m, n, (const double(*)[3])lit, wo, 15u, s);
+    for (int l = 0; l < n; ++l)
+        for (int c = 0; c < 3; ++c) f[slot[l]][c] = s[l][c] / lit[l][2]; /* f_r = S / |N.wi| */
 }
 
 void abrdf__huang_eval(const abrdf__huang *m, const double wi[3], const double wo[3], double f[3])
 {
-    f[0] = f[1] = f[2] = 0.0;
-    if (!(wi[2] > 0.0 && wo[2] > 0.0)) return;
-    double s[3];
-    abrdf__huang_fibre(m, wi, wo, 15u, s);
-    for (int c = 0; c < 3; ++c) f[c] = s[c] / wi[2]; /* f_r = S / |N.wi| */
+    double fl[1][3];
+    abrdf__huang_eval_run(m, 1, (const double(*)[3])wi, wo, fl);
+    for (int c = 0; c < 3; ++c) f[c] = fl[0][c];
 }

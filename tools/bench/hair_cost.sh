@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# hair_cost.sh - what the photoreal hair (huang) costs per light, before and after a change,
+# side by side in one run (docs/BENCHMARKS.md, "What hair costs").
+#   tools/bench/hair_cost.sh BEFORE_ABRDF AFTER_ABRDF [REPEATS]
+# Two scenes, each rendered by both binaries (one thread, 4 spp, runs interleaved, median of
+# REPEATS ray-tracing CPU times):
+#   - tools/bench/hair_robot.scene (the robot in three hair materials under four lights, 96 x 96):
+#     everything shaded is hair;
+#   - scenes/mixed.scene (160 x 120) and the same scene without its lock of hair: the lock's
+#     CPU is the difference.
+# The CPU is divided by the hair's lit (hit, light) pairs, the render's "integration evals"
+# counter (on mixed.scene: its difference with and without the lock): nanoseconds per light.
+# BEFORE is typically an `abrdf` built from an older commit in a scratch directory:
+#   git archive e929a63 | tar -x -C /tmp/before
+#   cmake -S /tmp/before -B /tmp/before/b -DCMAKE_BUILD_TYPE=Release -DABRDF_BUILD_TESTS=OFF
+#   cmake --build /tmp/before/b --target abrdf_cli        # then /tmp/before/b/bin/abrdf
+set -euo pipefail
+if (($# < 2)); then
+  echo "usage: $0 BEFORE_ABRDF AFTER_ABRDF [REPEATS]" >&2
+  exit 2
+fi
+before=$1 after=$2 repeats=${3:-3}
+for b in "$before" "$after"; do
+  [[ -x $b ]] || { echo "$0: $b: not an executable" >&2; exit 2; }
+done
+here=$(cd "$(dirname "$0")" && pwd)
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+robot=$here/hair_robot.scene mixed=$here/../../scenes/mixed.scene
+nohair=$out/mixed_nohair.scene # without the lock (its only object of material hair)
+grep -v '^capsule  *material=hair ' "$mixed" >"$nohair"
+if cmp -s "$mixed" "$nohair"; then
+  echo "$0: $mixed has no 'capsule material=hair' line to remove" >&2
+  exit 1
+fi
+
+run() { # BIN SCENE W H -> "CPU_SECONDS INTEGRATION_EVALS" of one render, or one line naming
+  # what failed and exit 1
+  local s n
+  if ! "$1" render "$2" -o "$out/r.exr" --no-preview --stats --threads 1 --width "$3" \
+    --height "$4" >"$out/stdout" 2>"$out/err"; then
+    echo "$0: $1 render $2 failed: $(tail -n 1 "$out/err")" >&2
+    exit 1
+  fi
+  s=$(sed -n 's/.*: \([0-9.]*\) s wall, \([0-9.]*\) s CPU.*/\2/p' "$out/err")
+  n=$(sed -n 's/^ *integration evals *\([0-9]*\).*/\1/p' "$out/stdout" "$out/err" | head -n 1)
+  if [[ -z $s || -z $n ]]; then
+    echo "$0: $1 render $2: no CPU time or 'integration evals' counter in its --stats" >&2
+    exit 1
+  fi
+  echo "$s $n"
+}
+
+declare -A t n
+cases=(robot mixed nohair)
+for ((i = 0; i < repeats; ++i)); do
+  for c in "${cases[@]}"; do
+    case $c in
+      robot) scene=$robot w=96 h=96 ;;
+      mixed) scene=$mixed w=160 h=120 ;;
+      nohair) scene=$nohair w=160 h=120 ;;
+    esac
+    for b in before after; do
+      bin=$before
+      [[ $b == after ]] && bin=$after
+      read -r s k < <(run "$bin" "$scene" "$w" "$h")
+      t[$c,$b]+="$s "
+      n[$c,$b]=$k
+    done
+  done
+done
+median() { tr ' ' '\n' | sed '/^$/d' | sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
+declare -A m
+for c in "${cases[@]}"; do
+  for b in before after; do m[$c,$b]=$(echo "${t[$c,$b]}" | median); done
+done
+for b in before after; do
+  if [[ ${n[robot,$b]} != "${n[robot,before]}" || ${n[mixed,$b]} != "${n[mixed,before]}" ]]; then
+    echo "$0: the two binaries shade different numbers of hair pairs" >&2
+    exit 1
+  fi
+done
+echo "| scene | hair lights shaded | before, us per light | after, us per light | before / after |"
+echo "|---|---:|---:|---:|---:|"
+row() { # NAME PAIRS BEFORE_CPU AFTER_CPU
+  awk -v name="$1" -v p="$2" -v b="$3" -v a="$4" 'BEGIN {
+    printf "| %s | %d | %.1f | %.1f | %.2f |\n", name, p, 1e6 * b / p, 1e6 * a / p, b / a }'
+}
+row "hair_robot (96 x 96)" "${n[robot,before]}" "${m[robot,before]}" "${m[robot,after]}"
+pairs=$((n[mixed,before] - n[nohair,before]))
+row "mixed, the lock (160 x 120)" "$pairs" \
+  "$(awk "BEGIN{print ${m[mixed,before]} - ${m[nohair,before]}}")" \
+  "$(awk "BEGIN{print ${m[mixed,after]} - ${m[nohair,after]}}")"
+echo
+echo "median of $repeats runs per cell, interleaved; 1 thread, 4 spp; CPU of ray tracing;" \
+  "load average $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
