@@ -364,26 +364,34 @@ static double table_read(const double *t, double x, double y, double z)
 
 /* 1/E: the factor that lifts a single microfacet interaction to the energy of all its
  * bounces (Cycles' bsdf_hair_huang_energy_scale); 1 when compensation is off. The table's x
- * and z axes depend only on alpha and eta: energy_axes_of computes them once per
- * evaluation, energy_scale_at looks up one cosine mu. */
-typedef struct energy_axes {
-    const double *t; /* the table for this relative index */
-    double x, z;     /* sqrt(alpha), the table's z axis for this relative index */
-} energy_axes;
-
-static energy_axes energy_axes_of(const abrdf__huang *m, double eta)
+ * and z axes depend only on alpha and eta, so abrdf__huang_tables collapses it once per
+ * material to a 1-D table in mu, node k at k/(N - 1) (the same bilinear weights in x and z
+ * as table_read's, so the same values up to rounding); energy_scale_at interpolates it. */
+static void energy_collapse(const double *t, double alpha, double eta, double out[])
 {
-    energy_axes a;
-    a.t = eta < 1.0 ? abrdf__hair_glass_inv_e : abrdf__hair_glass_e;
-    a.x = sqrt(m->alpha);
-    a.z = sqrt(fabs((eta - 1.0) / (eta + 1.0)));
-    return a;
+    const int n = ABRDF__HAIR_E_N;
+    double x = sqrt(alpha), z = sqrt(fabs((eta - 1.0) / (eta + 1.0)));
+    for (int k = 0; k < n; ++k) out[k] = table_read(t, x, (double)k / (n - 1), z);
 }
+
+void abrdf__huang_tables(abrdf__huang *m)
+{
+    double inv = 1.0 / m->eta;
+    energy_collapse(m->eta < 1.0 ? abrdf__hair_glass_inv_e : abrdf__hair_glass_e, m->alpha, m->eta,
+                    m->e_in);
+    energy_collapse(inv < 1.0 ? abrdf__hair_glass_inv_e : abrdf__hair_glass_e, m->alpha, inv,
+                    m->e_out);
+}
+
+typedef const double *energy_axes; /* m->e_in or m->e_out */
 
 static double energy_scale_at(const abrdf__huang *m, const energy_axes *a, double mu)
 {
     if (!m->compensate) return 1.0;
-    double e = table_read(a->t, a->x, mu, a->z);
+    const int n = ABRDF__HAIR_E_N;
+    double u = abrdf__clamp(mu, 0.0, 1.0) * (n - 1);
+    int i0 = (int)u < n - 1 ? (int)u : n - 1, i1 = i0 + 1 < n ? i0 + 1 : n - 1;
+    double f = u - i0, e = (1.0 - f) * (*a)[i0] + f * (*a)[i1];
     return 1.0 / fmax(e, ABRDF__HAIR_E_MIN);
 }
 
@@ -399,6 +407,7 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
     m->n1 = p->entry_grid;
     m->n2 = p->internal_grid;
     m->compensate = 1;
+    abrdf__huang_tables(m);
 }
 
 /* Simpson intervals (an even count) for a range of gamma with step at most res/refine.
@@ -417,7 +426,7 @@ static double simpson_r(const abrdf__huang *m, v3 wi, v3 wo, v3 wh, double lo, d
 {
     double b = m->b, a2 = m->alpha * m->alpha, e2 = 1.0 - b * b;
     double res = (hi - lo) / n, sum = 0.0;
-    energy_axes ax = energy_axes_of(m, m->eta);
+    energy_axes ax = m->e_in;
     const double st = sin(m->tilt), ct = cos(m->tilt);
     for (int i = 0; i <= n; ++i) {
         double gm = lo + i * res;
@@ -701,7 +710,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
     double node1[ABRDF__HUANG_NODES_MAX][3], node2[ABRDF__HUANG_NODES_MAX][3];
     vndf_nodes(n1, node1);
     vndf_nodes(n2, node2);
-    energy_axes ax_in = energy_axes_of(m, eta);
+    energy_axes ax_in = m->e_in;
     residual_ctx c = {.m = m,
                       .wi = wi,
                       .lr = lr,
@@ -712,7 +721,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
                       .e2 = 1.0 - b * b,
                       .st = sin(m->tilt),
                       .ct = cos(m->tilt),
-                      .ax_out = energy_axes_of(m, inv_eta),
+                      .ax_out = m->e_out,
                       .lobes = lobes};
     int n = simpson_intervals(0.8 * al, m->refine);
     double res = gr / n;
