@@ -68,6 +68,14 @@ class QuickBench(unittest.TestCase):
                 for v in s["float_ratio"] + s["double_ratio"]:
                     self.assertTrue(math.isfinite(v) and v > 0, r["name"])
 
+    def test_hair_per_evaluation_and_per_light(self):
+        # huang's lights of one view share its paths through the fibre: a light costs less
+        # when four share a view than alone (no timing threshold: only that both are measured)
+        h = self.data["huang_shared_view"]
+        self.assertEqual(h["lights"], 4)
+        for k in ("ns_per_eval", "ns_per_light"):
+            self.assertTrue(math.isfinite(h[k]) and h[k] > 0, "%s = %r" % (k, h[k]))
+
     def test_sweeps_where_cost_may_depend_on_a_parameter(self):
         self.assertEqual(self.row("blinn_phong")["sweep"]["param"], "n")
         self.assertEqual(self.row("disney_specular")["sweep"]["param"], "r")

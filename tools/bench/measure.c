@@ -225,6 +225,30 @@ double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_pa
     return time_batches(s, pairs, fn, &ctx, o);
 }
 
+double measure_shared_view_ns(abrdf_model model, const abrdf_params *p, int lights,
+                              const measure_opts *o)
+{
+    const abrdf_model_info *m = abrdf_model_get(model);
+    if (!m || lights < 1) return -1.0;
+    size_t pairs = (m->needs & ABRDF_NEEDS_INTEGRATION) ? o->integrating_pairs : o->pairs;
+    pairs -= pairs % (size_t)lights;
+    if (pairs == 0) pairs = (size_t)lights;
+    measure_set *s = measure_set_new(pairs);
+    if (!s) return -1.0;
+    /* pair i keeps its light and takes the view of the first pair of its run */
+    float *b = s->buf;
+    for (size_t i = 0; i < pairs; ++i)
+        for (int c = 3; c < 6; ++c)
+            b[(size_t)c * pairs + i] = b[(size_t)c * pairs + i - i % (size_t)lights];
+    model_ctx ctx;
+    ctx.model = model;
+    ctx.params = *p;
+    ctx.dir = s->dir;
+    double ns = time_batches(s, pairs, run_model, &ctx, o);
+    measure_set_free(s);
+    return ns;
+}
+
 double measure_unit_ns(measure_set *s, const measure_opts *o)
 {
     float n = 100.0f;

@@ -30,6 +30,12 @@ double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o
  * abrdf_eval_prepared_unit per pair). */
 double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
                                int double_path, const measure_opts *o);
+/* Median ns per pair of `model` (parameters p) on the float batch path when the pairs come
+ * in runs of `lights` pairs that share one view wo, as a renderer hands a shading point's
+ * lights over (huang builds the view's paths once per run): the cost per light. Fresh pairs
+ * from the same seed as measure_set_new; < 0 on error. */
+double measure_shared_view_ns(abrdf_model model, const abrdf_params *p, int lights,
+                              const measure_opts *o);
 /* Median ns/eval of the unit: a bare loop H = normalise(wi + wo), powf(H.z, n), n = 100. */
 double measure_unit_ns(measure_set *s, const measure_opts *o);
 

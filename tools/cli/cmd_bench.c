@@ -66,7 +66,8 @@ static int usage(void)
            "against the model it replaces: NMSE on a robot render (Table-1 approximations vs\n"
            "blinn_phong at n = 100, Table-5 lobes and cook_torrance vs disney_specular at\n"
            "alpha_g = 0.1 minimised over the paper's n, diffuse models vs disney_diffuse) and\n"
-           "the Table-2/3 errors of the approximations.\n"
+           "the Table-2/3 errors of the approximations. Then the hair reference (huang) per\n"
+           "evaluation and per light, its lights sharing one view as in a render.\n"
            "  --json         JSON instead of the table\n"
            "  --plot FILE    write the Pareto plot (robot NMSE vs float cost) as SVG\n"
            "  --quick        fewer and shorter repetitions, small renders (for tests)\n"
@@ -260,8 +261,27 @@ static targets compute_targets(const row *rows, int count, double unit_ns)
     return t;
 }
 
+/* The hair reference per evaluation and per light: huang at its defaults on the float batch
+ * path, pairs in runs of one view (HAIR_LIGHTS lights per view, as a renderer hands a shading
+ * point's lights over, against one light per view). */
+#define HAIR_LIGHTS 4
+typedef struct hair_cost {
+    double eval_ns;  /* one light per view */
+    double light_ns; /* HAIR_LIGHTS lights per view: ns per light */
+} hair_cost;
+
+static int time_hair(const measure_opts *mo, hair_cost *h)
+{
+    abrdf_params p;
+    abrdf_params_init(ABRDF_HUANG, &p);
+    fprintf(stderr, " huang (per light)");
+    h->eval_ns = measure_shared_view_ns(ABRDF_HUANG, &p, 1, mo);
+    h->light_ns = measure_shared_view_ns(ABRDF_HUANG, &p, HAIR_LIGHTS, mo);
+    return h->eval_ns > 0.0 && h->light_ns > 0.0 ? 0 : -1;
+}
+
 static void print_json(FILE *f, const row *rows, int count, double unit_ns, double drift,
-                       const measure_opts *mo, int size)
+                       const measure_opts *mo, int size, const hair_cost *h)
 {
     fprintf(f,
             "{\"unit\": \"powf_blinn_phong\", \"unit_spread\": %.4g, \"pairs\": %zu, \"reps\": %d, "
@@ -306,14 +326,16 @@ static void print_json(FILE *f, const row *rows, int count, double unit_ns, doub
     }
     targets t = compute_targets(rows, count, unit_ns);
     fprintf(f,
-            "\n], \"targets\": {\"approx_min_speedup\": %.6g, \"approx_max_speedup\": %.6g, "
-            "\"approx_target\": 20, \"f_2e_speedup\": %.6g, "
+            "\n], \"huang_shared_view\": {\"lights\": %d, \"ns_per_eval\": %.6g, "
+            "\"ns_per_light\": %.6g},\n \"targets\": {\"approx_min_speedup\": %.6g, "
+            "\"approx_max_speedup\": %.6g, \"approx_target\": 20, \"f_2e_speedup\": %.6g, "
             "\"f_2e_target\": 10, \"full_disney_ratio\": %.6g, \"full_disney_target\": 3}}\n",
-            t.approx_min_speedup, t.approx_max_speedup, t.f2e_speedup, t.disney_full_ratio);
+            HAIR_LIGHTS, h->eval_ns, h->light_ns, t.approx_min_speedup, t.approx_max_speedup,
+            t.f2e_speedup, t.disney_full_ratio);
 }
 
 static void print_table(FILE *f, const row *rows, int count, double unit_ns, double drift,
-                        const measure_opts *mo, int size)
+                        const measure_opts *mo, int size, const hair_cost *h)
 {
     fprintf(
         f,
@@ -355,6 +377,12 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
             t.approx_min_speedup >= 20 ? "met" : "missed", t.f2e_speedup,
             t.f2e_speedup >= 10 ? "met" : "missed", t.disney_full_ratio,
             t.disney_full_ratio <= 3 ? "met" : "missed");
+    fprintf(f,
+            "\nHair (huang, defaults, float batch path): %.1f us per evaluation with one light per "
+            "view;\n%.1f us per light with %d lights per view (a shading point's lights, one run "
+            "of wo):\n%.2fx less per light (tools/bench/hair_cost.sh compares renders with an "
+            "older build).\n",
+            1e-3 * h->eval_ns, 1e-3 * h->light_ns, HAIR_LIGHTS, h->eval_ns / h->light_ns);
 }
 
 /* Pareto plot: robot NMSE (log) vs float cost ratio (log), one colour per reference, the
@@ -603,7 +631,9 @@ static int bench_models(const bench_args *ba)
     row *rows = calloc((size_t)abrdf_model_count(), sizeof *rows);
     int count = set && rows ? rows_fill(rows, ba->quick) : 0;
     double unit_ns = 0.0, drift = 0.0;
-    if (!set || !rows || time_models(rows, count, set, &mo, &unit_ns, &drift)) {
+    hair_cost hair = {0.0, 0.0};
+    if (!set || !rows || time_models(rows, count, set, &mo, &unit_ns, &drift) ||
+        time_hair(&mo, &hair)) {
         measure_set_free(set);
         free(rows);
         out_file_discard(&plot_out);
@@ -618,9 +648,9 @@ static int bench_models(const bench_args *ba)
         rc = 1;
     } else {
         if (ba->json)
-            print_json(stdout, rows, count, unit_ns, drift, &mo, (int)size);
+            print_json(stdout, rows, count, unit_ns, drift, &mo, (int)size, &hair);
         else
-            print_table(stdout, rows, count, unit_ns, drift, &mo, (int)size);
+            print_table(stdout, rows, count, unit_ns, drift, &mo, (int)size, &hair);
         if (ba->plot) {
             write_plot(plot_out.f, rows, count, unit_ns);
             if (out_file_close(&plot_out, err, sizeof err) ||
