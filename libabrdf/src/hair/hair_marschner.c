@@ -59,6 +59,9 @@
  * converges quadratically, so the step after one this small would be below double precision;
  * the root is then as accurate as Phi can be evaluated (~1e-16). */
 #define ABRDF__MARSCHNER_ROOT_TOL 1e-10
+/* ... or earlier, once two Newton steps s' then s show the quadratic convergence: the next
+ * step would be about s (s / s')^2, and when that is below this the root is as exact. */
+#define ABRDF__MARSCHNER_ROOT_NEXT 1e-17
 
 void abrdf__marschner_setup(const abrdf_params *p, abrdf__marschner *m)
 {
@@ -125,9 +128,7 @@ void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1
     for (int q = 1; q < p; ++q) tr *= fo; /* F^(p-1) */
     for (int c = 0; c < 3; ++c) {
         /* sigma_a = 0 must give T = 1 even where cos_theta_t -> 0 (no 0/0). */
-        double tau = m->sigma_a[c] > 0.0
-                         ? 2.0 * m->sigma_a[c] * cos_gt / ct
-                         : 0.0;
+        double tau = m->sigma_a[c] > 0.0 ? 2.0 * m->sigma_a[c] * cos_gt / ct : 0.0;
         a[c] = tr * exp(-tau * p); /* T^p */
     }
 }
@@ -196,6 +197,7 @@ static double root_gamma(int p, double target, double eta1, const phi_end *lo, c
     double x0 = lo->gamma, x1 = hi->gamma;
     double x = x0 + (target - lo->phi) * (x1 - x0) / (hi->phi - lo->phi); /* the secant */
     if (!(x > x0 && x < x1)) x = 0.5 * (x0 + x1);
+    double last = 0.0; /* the previous Newton step, 0 after a bisection */
     for (int it = 0; it < ABRDF__MARSCHNER_BISECT_STEPS; ++it) {
         double sx = sin(x), cx = cos(x);
         double g = phi_of_gammas(p, asin(sx / eta1), x) - target;
@@ -207,10 +209,15 @@ static double root_gamma(int p, double target, double eta1, const phi_end *lo, c
         /* dPhi/dgamma_i = 2 p cos(gamma_i) / (eta' cos(gamma_t)) - 2 */
         double dg = 2.0 * p * cx / sqrt(eta1 * eta1 - sx * sx) - 2.0;
         double xn = x - g / dg;
-        if (!(xn > x0 && xn < x1)) xn = 0.5 * (x0 + x1);
+        int newton = xn > x0 && xn < x1;
+        if (!newton) xn = 0.5 * (x0 + x1);
         double step = fabs(xn - x);
         x = xn;
         if (step <= ABRDF__MARSCHNER_ROOT_TOL) break;
+        if (newton && last > 0.0 && step < last &&
+            step * step * step <= ABRDF__MARSCHNER_ROOT_NEXT * last * last)
+            break;
+        last = newton ? step : 0.0;
     }
     return x;
 }
@@ -287,8 +294,8 @@ static void np_sc(const abrdf__marschner *m, int p, double phi, double sin_d, do
 void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double theta_d,
                          double cos_phi_sum, int glint, double n[3])
 {
-    np_sc(m, p, abrdf__wrap_pi(phi), sin(theta_d), fmax(cos(theta_d), ABRDF__HAIR_COS_MIN), cos_phi_sum, glint,
-          n);
+    np_sc(m, p, abrdf__wrap_pi(phi), sin(theta_d), fmax(cos(theta_d), ABRDF__HAIR_COS_MIN),
+          cos_phi_sum, glint, n);
 }
 
 void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const double wo[3],
