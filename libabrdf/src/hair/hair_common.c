@@ -18,16 +18,20 @@ void abrdf__hair_sigma_a(double melanin, double redness, double sigma[3])
     for (int c = 0; c < 3; ++c) sigma[c] = ce * eu[c] + cp * pheo[c];
 }
 
+/* c clamped to [0, 1], NaN to 0 (abrdf__clamp's result, inline: fmin and fmax are libm
+ * calls, and these run several times per azimuthal root). */
+static double clamp_cos(double c) { return c > 0.0 ? (c < 1.0 ? c : 1.0) : 0.0; }
+
 /* Cosine of the refracted angle for relative index n, or -1 for total internal reflection. */
 static double cos_refracted(double n, double c)
 {
-    double s2 = fmax(0.0, 1.0 - c * c) / (n * n);
+    double s2 = (1.0 - c * c) / (n * n); /* c in [0, 1]: 1 - c^2 >= 0 */
     return s2 >= 1.0 ? -1.0 : sqrt(1.0 - s2);
 }
 
 double abrdf__fresnel_s(double n, double c)
 {
-    c = abrdf__clamp(c, 0.0, 1.0);
+    c = clamp_cos(c);
     double ct = cos_refracted(n, c);
     if (ct < 0.0) return 1.0;
     double den = c + n * ct;
@@ -38,7 +42,7 @@ double abrdf__fresnel_s(double n, double c)
 
 double abrdf__fresnel_p(double n, double c)
 {
-    c = abrdf__clamp(c, 0.0, 1.0);
+    c = clamp_cos(c);
     double ct = cos_refracted(n, c);
     if (ct < 0.0) return 1.0;
     double den = n * c + ct;

@@ -20,7 +20,8 @@
  *
  * Choices (MODELS.md B7.1; each is stated in docs/MODELS.md, "Hair models"):
  *  - Phi is the EXACT map above, not the paper's cubic approximation; its roots are found by
- *    bisection on the intervals where Phi is monotone (split at the TRT caustic h_c).
+ *    safeguarded Newton in gamma_i on the intervals where Phi is monotone (split at the TRT
+ *    caustic h_c); R's is exact, gamma_i = -phi/2.
  *  - Absorption T = exp(-2 sigma_a cos(gamma_t) / cos(theta_t)), sin(theta_t) =
  *    sin(theta_d)/eta: the chord 2 cos(gamma_t) of the unit circle (pbrt-v4; the paper's
  *    printed form is not used). theta_d makes T symmetric in wi and wo.
@@ -48,12 +49,19 @@
 #define ABRDF__MARSCHNER_GLINT_DETA 0.3
 #define ABRDF__MARSCHNER_GLINT_DHM 0.3
 
-/* Steps of the root search for Phi: each is a Newton step kept inside the bracket, or a
- * bisection where Newton would leave it, so 60 still halve a [-1, 1] interval to below
- * 1e-17 in the worst case; Newton ends it in ~5 steps (each costs two asin). */
+/* Steps of the root search for Phi: each is a Newton step in gamma_i = asin h kept inside
+ * the bracket, or a bisection where Newton would leave it, so 60 still halve a [-pi/2, pi/2]
+ * interval to below 1e-17 in the worst case. Phi is close to a cubic in gamma_i (the paper's
+ * approximation), so Newton from the secant of the bracket ends it in ~3 steps (each costs
+ * one sine, cosine and asin). */
 #define ABRDF__MARSCHNER_BISECT_STEPS 60
-/* The search stops when a step moves h by at most this (h in [-1, 1]): double precision. */
-#define ABRDF__MARSCHNER_ROOT_TOL 1e-16
+/* The search stops after a Newton step of at most this (gamma_i in [-pi/2, pi/2]): Newton
+ * converges quadratically, so the step after one this small would be below double precision;
+ * the root is then as accurate as Phi can be evaluated (~1e-16). */
+#define ABRDF__MARSCHNER_ROOT_TOL 1e-10
+/* ... or earlier, once two Newton steps s' then s show the quadratic convergence: the next
+ * step would be about s (s / s')^2, and when that is below this the root is as exact. */
+#define ABRDF__MARSCHNER_ROOT_NEXT 1e-17
 
 void abrdf__marschner_setup(const abrdf_params *p, abrdf__marschner *m)
 {
@@ -75,10 +83,19 @@ double abrdf__marschner_mp(const abrdf__marschner *m, int p, double theta_h)
     return 0.5 * abrdf__gauss(theta_h - m->alpha[p], m->beta[p]);
 }
 
+/* max(x, lo) for a finite lo: lo when x is NaN, as fmax, but inline (fmax is a libm call). */
+static double at_least(double x, double lo) { return x > lo ? x : lo; }
+
+/* Phi(p, h) from gamma_t = asin(h / eta') and gamma_i = asin h. */
+static double phi_of_gammas(int p, double gamma_t, double gamma_i)
+{
+    return 2.0 * p * gamma_t - 2.0 * gamma_i + p * ABRDF__PI;
+}
+
 /* Phi(p, h) and its first two derivatives in h, for |h| < 1 <= eta1. */
 static double phi_of(int p, double h, double eta1)
 {
-    return 2.0 * p * asin(h / eta1) - 2.0 * asin(h) + p * ABRDF__PI;
+    return phi_of_gammas(p, asin(h / eta1), asin(h));
 }
 
 static double dphi_dh(int p, double h, double eta1)
@@ -86,29 +103,32 @@ static double dphi_dh(int p, double h, double eta1)
     return 2.0 * p / sqrt(eta1 * eta1 - h * h) - 2.0 / sqrt(1.0 - h * h);
 }
 
+/* x^1.5 for x >= 0. */
+static double pow_1_5(double x) { return x * sqrt(x); }
+
 static double d2phi_dh2(int p, double h, double eta1)
 {
-    return 2.0 * p * h / pow(eta1 * eta1 - h * h, 1.5) - 2.0 * h / pow(1.0 - h * h, 1.5);
+    return 2.0 * p * h / pow_1_5(eta1 * eta1 - h * h) - 2.0 * h / pow_1_5(1.0 - h * h);
 }
 
 void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1, double eta2,
                          double cos_theta_t, double a[3])
 {
-    double cos_gi = abrdf__safe_sqrt(1.0 - h * h);
+    double cos_gi = sqrt(at_least(1.0 - h * h, 0.0));
     double fi = 0.5 * (abrdf__fresnel_s(eta1, cos_gi) + abrdf__fresnel_p(eta2, cos_gi));
     if (p == 0) {
         a[0] = a[1] = a[2] = fi; /* A_0 */
         return;
     }
     double st = h / eta1;
-    double cos_gt = abrdf__safe_sqrt(1.0 - st * st);
+    double cos_gt = sqrt(at_least(1.0 - st * st, 0.0));
     double fo = 0.5 * (abrdf__fresnel_s(1.0 / eta1, cos_gt) + abrdf__fresnel_p(1.0 / eta2, cos_gt));
-    double tr = (1.0 - fi) * (1.0 - fo) * pow(fo, p - 1);
+    double ct = at_least(cos_theta_t, ABRDF__HAIR_COS_MIN);
+    double tr = (1.0 - fi) * (1.0 - fo);
+    for (int q = 1; q < p; ++q) tr *= fo; /* F^(p-1) */
     for (int c = 0; c < 3; ++c) {
         /* sigma_a = 0 must give T = 1 even where cos_theta_t -> 0 (no 0/0). */
-        double tau = m->sigma_a[c] > 0.0
-                         ? 2.0 * m->sigma_a[c] * cos_gt / fmax(cos_theta_t, ABRDF__HAIR_COS_MIN)
-                         : 0.0;
+        double tau = m->sigma_a[c] > 0.0 ? 2.0 * m->sigma_a[c] * cos_gt / ct : 0.0;
         a[c] = tr * exp(-tau * p); /* T^p */
     }
 }
@@ -117,11 +137,11 @@ void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1
 static void bravais(double eta, double sin_d, double cos_d, double *eta1, double *eta2,
                     double *cos_t)
 {
-    double q = abrdf__safe_sqrt(eta * eta - sin_d * sin_d);
-    *eta1 = fmax(q / cos_d, 1.0);
-    *eta2 = eta * eta * cos_d / fmax(q, ABRDF__HAIR_COS_MIN);
+    double q = sqrt(at_least(eta * eta - sin_d * sin_d, 0.0));
+    *eta1 = at_least(q / cos_d, 1.0);
+    *eta2 = eta * eta * cos_d / at_least(q, ABRDF__HAIR_COS_MIN);
     double st = sin_d / eta;
-    *cos_t = abrdf__safe_sqrt(1.0 - st * st);
+    *cos_t = sqrt(at_least(1.0 - st * st, 0.0));
 }
 
 /* Marschner's eccentricity trick for TRT: the effective index for an elliptical section. */
@@ -129,55 +149,96 @@ static double eta_star(double eta, double a, double cos_phi_sum)
 {
     double e1 = 2.0 * (eta - 1.0) * a * a - eta + 2.0;
     double e2 = 2.0 * (eta - 1.0) / (a * a) - eta + 2.0;
-    return fmax(1.0, 0.5 * ((e1 + e2) + cos_phi_sum * (e1 - e2)));
+    return at_least(0.5 * ((e1 + e2) + cos_phi_sum * (e1 - e2)), 1.0);
 }
 
-/* Bare root sum: sum over roots h of Phi(p, h) = phi (mod 2 pi) of A_p(h) / |2 Phi'(h)|. */
-static void root_sum(const abrdf__marschner *m, int p, double phi, double eta1, double eta2,
-                     double cos_t, double n[3])
+/* One end of a piece of [-1, 1] on which Phi is monotone: h, gamma_i = asin h, Phi(p, h). */
+typedef struct phi_end {
+    double h, gamma, phi;
+} phi_end;
+
+/* The ends of the monotone pieces of Phi(p, .) on [-1, 1], in increasing h; returns their
+ * count (2, or 4 with the caustics +-h_c). Phi'(h) = 0 where p^2 (1 - h^2) = eta'^2 - h^2:
+ * the caustic, inside (-1, 1) only for p >= 2 and eta' < p. Phi(p, -h) = 2 p pi - Phi(p, h)
+ * up to rounding, but each end is evaluated as phi_of does, for the same bits. */
+static int phi_ends(int p, double eta1, phi_end e[4])
 {
-    n[0] = n[1] = n[2] = 0.0;
-    double cuts[4] = {-1.0, 1.0, 0.0, 0.0};
-    int ncut = 2;
-    /* Phi'(h) = 0 where p^2 (1 - h^2) = eta'^2 - h^2: the caustic, inside (-1, 1) only for
-     * p >= 2 and eta' < p. Between cuts Phi is monotone. */
+    double gt = asin(1.0 / eta1), gi = asin(1.0);
+    e[0].h = -1.0;
+    e[0].gamma = -gi;
+    e[0].phi = phi_of_gammas(p, -gt, -gi);
+    int n = 1;
     if (p >= 2 && eta1 < p) {
         double hc = sqrt((p * p - eta1 * eta1) / (p * p - 1.0));
-        cuts[0] = -1.0;
-        cuts[1] = -hc;
-        cuts[2] = hc;
-        cuts[3] = 1.0;
-        ncut = 4;
+        double ct = asin(hc / eta1), ci = asin(hc);
+        e[1].h = -hc;
+        e[1].gamma = -ci;
+        e[1].phi = phi_of_gammas(p, -ct, -ci);
+        e[2].h = hc;
+        e[2].gamma = ci;
+        e[2].phi = phi_of_gammas(p, ct, ci);
+        n = 3;
     }
-    for (int k = 0; k + 1 < ncut; ++k) {
-        double a = cuts[k], b = cuts[k + 1];
-        double pa = phi_of(p, a, eta1), pb = phi_of(p, b, eta1);
-        if (fabs(pb - pa) < ABRDF__HAIR_FLAT_PHI) continue;
-        double lo = fmin(pa, pb), hi = fmax(pa, pb);
-        int inc = pb > pa;
+    e[n].h = 1.0;
+    e[n].gamma = gi;
+    e[n].phi = phi_of_gammas(p, gt, gi);
+    return n + 1;
+}
+
+/* The root gamma_i of Phi(p, sin gamma_i) = target between the ends lo and hi, where Phi is
+ * monotone and target lies between their values. R (p = 0) is exact: Phi = -2 gamma_i. */
+static double root_gamma(int p, double target, double eta1, const phi_end *lo, const phi_end *hi)
+{
+    if (p == 0) return -0.5 * target;
+    /* Safeguarded Newton in gamma_i: Phi is monotone on the piece, so the root stays
+     * bracketed; dPhi/dgamma_i is 0 at a caustic, where the Newton step leaves the bracket
+     * and a bisection is taken instead. */
+    int inc = hi->phi > lo->phi;
+    double x0 = lo->gamma, x1 = hi->gamma;
+    double x = x0 + (target - lo->phi) * (x1 - x0) / (hi->phi - lo->phi); /* the secant */
+    if (!(x > x0 && x < x1)) x = 0.5 * (x0 + x1);
+    double last = 0.0; /* the previous Newton step, 0 after a bisection */
+    for (int it = 0; it < ABRDF__MARSCHNER_BISECT_STEPS; ++it) {
+        double sx = sin(x), cx = cos(x);
+        double g = phi_of_gammas(p, asin(sx / eta1), x) - target;
+        if (g == 0.0) break; /* on the root (its Newton step would not move) */
+        if ((g < 0.0) == inc)
+            x0 = x;
+        else
+            x1 = x;
+        /* dPhi/dgamma_i = 2 p cos(gamma_i) / (eta' cos(gamma_t)) - 2 */
+        double dg = 2.0 * p * cx / sqrt(eta1 * eta1 - sx * sx) - 2.0;
+        double xn = x - g / dg;
+        int newton = xn > x0 && xn < x1;
+        if (!newton) xn = 0.5 * (x0 + x1);
+        double step = fabs(xn - x);
+        x = xn;
+        if (step <= ABRDF__MARSCHNER_ROOT_TOL) break;
+        if (newton && last > 0.0 && step < last &&
+            step * step * step <= ABRDF__MARSCHNER_ROOT_NEXT * last * last)
+            break;
+        last = newton ? step : 0.0;
+    }
+    return x;
+}
+
+/* Bare root sum: sum over roots h of Phi(p, h) = phi (mod 2 pi) of A_p(h) / |2 Phi'(h)|,
+ * with the ends of the monotone pieces of Phi from phi_ends. */
+static void root_sum(const abrdf__marschner *m, int p, double phi, double eta1, double eta2,
+                     double cos_t, const phi_end *ends, int nend, double n[3])
+{
+    n[0] = n[1] = n[2] = 0.0;
+    for (int k = 0; k + 1 < nend; ++k) {
+        const phi_end *a = &ends[k], *b = &ends[k + 1];
+        if (fabs(b->phi - a->phi) < ABRDF__HAIR_FLAT_PHI) continue;
+        double lo = a->phi < b->phi ? a->phi : b->phi, hi = a->phi < b->phi ? b->phi : a->phi;
         /* Every branch phi + 2 pi j inside [lo, hi] has exactly one root here. */
         double j0 = ceil((lo - phi) / (2.0 * ABRDF__PI)),
                j1 = floor((hi - phi) / (2.0 * ABRDF__PI));
         for (double j = j0; j <= j1; j += 1.0) {
-            double target = phi + 2.0 * ABRDF__PI * j;
-            /* Safeguarded Newton: Phi is monotone on [a, b] (between caustics), so the root
-             * stays bracketed; Phi' is infinite at |h| = 1 and 0 at a caustic, where the
-             * Newton step leaves the bracket and a bisection is taken instead. */
-            double x0 = a, x1 = b, h = 0.5 * (a + b);
-            for (int it = 0; it < ABRDF__MARSCHNER_BISECT_STEPS; ++it) {
-                double g = phi_of(p, h, eta1) - target;
-                if ((g < 0.0) == inc)
-                    x0 = h;
-                else
-                    x1 = h;
-                double hn = h - g / dphi_dh(p, h, eta1);
-                if (!(hn > x0 && hn < x1)) hn = 0.5 * (x0 + x1);
-                double step = fabs(hn - h);
-                h = hn;
-                if (step <= ABRDF__MARSCHNER_ROOT_TOL) break;
-            }
+            double h = sin(root_gamma(p, phi + 2.0 * ABRDF__PI * j, eta1, a, b));
             if (!(fabs(h) < 1.0)) continue; /* |dPhi/dh| is infinite at |h| = 1: N = 0 */
-            double d = fmax(fabs(dphi_dh(p, h, eta1)), ABRDF__HAIR_DPHI_MIN);
+            double d = at_least(fabs(dphi_dh(p, h, eta1)), ABRDF__HAIR_DPHI_MIN);
             double ap[3];
             abrdf__marschner_ap(m, p, h, eta1, eta2, cos_t, ap);
             for (int c = 0; c < 3; ++c) n[c] += ap[c] / (2.0 * d);
@@ -185,24 +246,27 @@ static void root_sum(const abrdf__marschner *m, int p, double phi, double eta1, 
     }
 }
 
-void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double theta_d,
-                         double cos_phi_sum, int glint, double n[3])
+/* N_p with phi already wrapped into (-pi, pi] and the sine and the (floored) cosine of
+ * theta_d given. */
+static void np_sc(const abrdf__marschner *m, int p, double phi, double sin_d, double cos_d,
+                  double cos_phi_sum, int glint, double n[3])
 {
-    double sin_d = sin(theta_d), cos_d = fmax(cos(theta_d), ABRDF__HAIR_COS_MIN);
     double eta = p == 2 ? eta_star(m->eta, m->aspect, cos_phi_sum) : m->eta;
     double eta1, eta2, cos_t;
     bravais(eta, sin_d, cos_d, &eta1, &eta2, &cos_t);
-    phi = abrdf__wrap_pi(phi);
-    root_sum(m, p, phi, eta1, eta2, cos_t, n);
+    phi_end ends[4];
+    int nend = phi_ends(p, eta1, ends);
+    root_sum(m, p, phi, eta1, eta2, cos_t, ends, nend, n);
     if (p != 2 || !glint) return;
 
     /* TRT glint smoothing (paper Sec. 4.4): the caustic at +-phi_c is cut out of the root sum
      * with a Gaussian notch of width w_c and replaced by a Gaussian glint of energy
      * k_G A(h_c) Delta h. Past eta' = 2 the caustics merge at phi = 0 and fade out over
      * Delta eta' (t = 1 - smoothstep). */
-    double hc, dh, t;
-    if (eta1 < 2.0) {
-        hc = sqrt((4.0 - eta1 * eta1) / 3.0);
+    double hc, dh, t, phic;
+    if (nend == 4) { /* eta' < 2: the caustic is the end h_c of phi_ends */
+        hc = ends[2].h;
+        phic = ends[2].phi;
         double d2 = fabs(d2phi_dh2(2, hc, eta1));
         dh = d2 > 0.0 ? fmin(ABRDF__MARSCHNER_GLINT_DHM,
                              2.0 * sqrt(2.0 * ABRDF__MARSCHNER_GLINT_WC / d2))
@@ -210,12 +274,13 @@ void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double th
         t = 1.0;
     } else {
         hc = 0.0;
+        phic = phi_of(2, hc, eta1);
         dh = ABRDF__MARSCHNER_GLINT_DHM;
         double x = fmin(1.0, (eta1 - 2.0) / ABRDF__MARSCHNER_GLINT_DETA);
         t = 1.0 - x * x * (3.0 - 2.0 * x);
     }
     if (!(t > 0.0)) return;
-    double phic = abrdf__wrap_pi(phi_of(2, hc, eta1));
+    phic = abrdf__wrap_pi(phic);
     double g0 = abrdf__gauss(0.0, ABRDF__MARSCHNER_GLINT_WC);
     double gm = abrdf__gauss(abrdf__wrap_pi(phi - phic), ABRDF__MARSCHNER_GLINT_WC);
     double gp = abrdf__gauss(abrdf__wrap_pi(phi + phic), ABRDF__MARSCHNER_GLINT_WC);
@@ -224,6 +289,13 @@ void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double th
     abrdf__marschner_ap(m, 2, hc, eta1, eta2, cos_t, ac);
     for (int c = 0; c < 3; ++c)
         n[c] = n[c] * notch + t * ABRDF__MARSCHNER_GLINT_KG * ac[c] * dh * (gm + gp);
+}
+
+void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double theta_d,
+                         double cos_phi_sum, int glint, double n[3])
+{
+    np_sc(m, p, abrdf__wrap_pi(phi), sin(theta_d), fmax(cos(theta_d), ABRDF__HAIR_COS_MIN),
+          cos_phi_sum, glint, n);
 }
 
 void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const double wo[3],
@@ -235,13 +307,13 @@ void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const
     abrdf__fibre_angles(wo, &so, &co, &po);
     double ti = asin(si), to = asin(so);
     double th = 0.5 * (ti + to), td = 0.5 * (to - ti);
-    double cd = fmax(cos(td), ABRDF__HAIR_COS_MIN);
-    double phi = po - pi_;
+    double sd = sin(td), cd = fmax(cos(td), ABRDF__HAIR_COS_MIN);
+    double phi = abrdf__wrap_pi(po - pi_);
     double cps = cos(pi_ + po); /* cos(2 phi_h) */
     for (int p = 0; p < 3; ++p) {
         if (!(lobes & (1u << p))) continue;
         double n[3];
-        abrdf__marschner_np(m, p, phi, td, cps, 1, n);
+        np_sc(m, p, phi, sd, cd, cps, 1, n);
         double w = abrdf__marschner_mp(m, p, th) / (cd * cd) * ci; /* S = S_M cos(theta_i) */
         for (int c = 0; c < 3; ++c) s[c] += w * n[c];
     }

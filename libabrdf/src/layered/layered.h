@@ -7,11 +7,32 @@
  * described by p->layer_count and p->layers[]; f = 0 for back-facing pairs. */
 void abrdf__eval_weidlich_wilkie(const abrdf_params *p, const double wi[3], const double wo[3],
                                  double f[3]);
-/* What Belcour's evaluation takes from the parameters alone, per interface: the variances
- * of its reflection and of its two transmissions, s(alpha) of the roughness (one pow each,
- * computed once by abrdf__belcour_setup, not per evaluation). */
+/* A value's place on a table axis: the lower node i and the weight t of node i + 1. */
+typedef struct abrdf__belcour_cell {
+    int i;
+    double t;
+} abrdf__belcour_cell;
+
+/* The corners of a table's trailing axes (FGD: eta and kappa; TIR: eta) fixed by one
+ * interface, premixed: their n offsets from a (cos, alpha) node and their weights. */
+typedef struct abrdf__belcour_mix {
+    int n;
+    int off[4];
+    double w[4];
+} abrdf__belcour_mix;
+
+/* What Belcour's evaluation takes from the parameters alone, per interface, computed once
+ * by abrdf__belcour_setup, not per evaluation: the variances of its reflection and of its
+ * two transmissions, s(alpha) of the roughness (a pow each); its index and extinction on the
+ * FGD table's axes and the index ratio of the interface above on the TIR table's (a log and
+ * a sqrt); the roughness a(s_R12) the top interface is seen with (a pow) and its cell. */
 typedef struct abrdf__belcour {
     double s_r12[ABRDF_MAX_LAYERS], s_t12[ABRDF_MAX_LAYERS], s_t21[ABRDF_MAX_LAYERS];
+    abrdf__belcour_mix fgd[ABRDF_MAX_LAYERS]; /* eta_k, kappa_k */
+    abrdf__belcour_mix tir[ABRDF_MAX_LAYERS]; /* 1 / eta_{k-1}, for k >= 1 */
+    int tir_dense[ABRDF_MAX_LAYERS];          /* 1 / eta_{k-1} < 1: TIR can occur (else 1) */
+    double alpha_top0;                        /* a(s_R12) of interface 0 */
+    abrdf__belcour_cell alpha_top0_cell;      /* its place on the FGD table's alpha axis */
 } abrdf__belcour;
 void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b);
 void abrdf__eval_belcour(const abrdf__belcour *b, const abrdf_params *p, const double wi[3],

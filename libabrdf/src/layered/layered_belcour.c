@@ -56,52 +56,92 @@ static void cell(double x, int n, int *i, double *t)
     *t = x - k;
 }
 
+static abrdf__belcour_cell cell_of(double x, int n)
+{
+    abrdf__belcour_cell c;
+    cell(x, n, &c.i, &c.t);
+    return c;
+}
+
+/* FGD's eta and kappa corners for one interface (weights of exactly 0 left out). */
+static abrdf__belcour_mix fgd_mix(double eta, double kappa)
+{
+    abrdf__belcour_cell e = cell_of(abrdf__bt_x_fgd_eta(eta), ABRDF__FGD_NETA);
+    abrdf__belcour_cell k = cell_of(abrdf__bt_x_fgd_kappa(kappa), ABRDF__FGD_NKAPPA);
+    abrdf__belcour_mix m = {0, {0, 0, 0, 0}, {0.0, 0.0, 0.0, 0.0}};
+    for (int hk = 0; hk < 2; ++hk)
+        for (int he = 0; he < 2; ++he) {
+            double w = (he ? e.t : 1.0 - e.t) * (hk ? k.t : 1.0 - k.t);
+            if (w == 0.0) continue;
+            m.off[m.n] = (e.i + he) * ABRDF__FGD_NKAPPA + k.i + hk;
+            m.w[m.n++] = w;
+        }
+    return m;
+}
+
+/* TIR's eta corners for the index ratio eta < 1. */
+static abrdf__belcour_mix tir_mix(double eta)
+{
+    abrdf__belcour_cell e = cell_of(abrdf__bt_x_tir_eta(eta), ABRDF__TIR_NETA);
+    abrdf__belcour_mix m = {0, {0, 0, 0, 0}, {0.0, 0.0, 0.0, 0.0}};
+    for (int he = 0; he < 2; ++he) {
+        double w = he ? e.t : 1.0 - e.t;
+        if (w == 0.0) continue;
+        m.off[m.n] = e.i + he;
+        m.w[m.n++] = w;
+    }
+    return m;
+}
+
+/* Multilinear interpolation of a table laid out [cos][alpha][trailing axes]: bilinear in
+ * the cells c (cos) and a (alpha), strides s0 and s1, of the premixed trailing corners m. */
+static double mix_interp(const float *table, int s0, int s1, abrdf__belcour_cell c,
+                         abrdf__belcour_cell a, const abrdf__belcour_mix *m)
+{
+    double v = 0.0;
+    for (int ha = 0; ha < 2; ++ha)
+        for (int hc = 0; hc < 2; ++hc) {
+            double w = (hc ? c.t : 1.0 - c.t) * (ha ? a.t : 1.0 - a.t);
+            if (w == 0.0) continue;
+            const float *row = table + (c.i + hc) * s0 + (a.i + ha) * s1;
+            double r = 0.0;
+            for (int k = 0; k < m->n; ++k) r += m->w[k] * row[m->off[k]];
+            v += w * r;
+        }
+    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+}
+
+enum {
+    FGD_S0 = ABRDF__FGD_NALPHA * ABRDF__FGD_NETA * ABRDF__FGD_NKAPPA,
+    FGD_S1 = ABRDF__FGD_NETA * ABRDF__FGD_NKAPPA,
+    TIR_S0 = ABRDF__TIR_NALPHA * ABRDF__TIR_NETA,
+    TIR_S1 = ABRDF__TIR_NETA
+};
+
+static double fgd_at(double c, abrdf__belcour_cell a, const abrdf__belcour_mix *m)
+{
+    abrdf__belcour_cell cc = cell_of(abrdf__bt_x_cos(c, ABRDF__FGD_NCOS), ABRDF__FGD_NCOS);
+    return mix_interp(abrdf__fgd_table, FGD_S0, FGD_S1, cc, a, m);
+}
+
+static double tir_at(double c, double a, const abrdf__belcour_mix *m)
+{
+    abrdf__belcour_cell cc = cell_of(abrdf__bt_x_cos(c, ABRDF__TIR_NCOS), ABRDF__TIR_NCOS);
+    abrdf__belcour_cell ca = cell_of(abrdf__bt_x_alpha(a, ABRDF__TIR_NALPHA), ABRDF__TIR_NALPHA);
+    return mix_interp(abrdf__tir_table, TIR_S0, TIR_S1, cc, ca, m);
+}
+
 double abrdf__belcour_fgd(double c, double a, double eta, double kappa)
 {
-    int i[4];
-    double t[4];
-    cell(abrdf__bt_x_cos(c, ABRDF__FGD_NCOS), ABRDF__FGD_NCOS, &i[0], &t[0]);
-    cell(abrdf__bt_x_alpha(a, ABRDF__FGD_NALPHA), ABRDF__FGD_NALPHA, &i[1], &t[1]);
-    cell(abrdf__bt_x_fgd_eta(eta), ABRDF__FGD_NETA, &i[2], &t[2]);
-    cell(abrdf__bt_x_fgd_kappa(kappa), ABRDF__FGD_NKAPPA, &i[3], &t[3]);
-    double v = 0.0;
-    for (int corner = 0; corner < 16; ++corner) {
-        double w = 1.0;
-        int b[4];
-        for (int d = 0; d < 4; ++d) {
-            int hi = (corner >> d) & 1;
-            b[d] = i[d] + hi;
-            w *= hi ? t[d] : 1.0 - t[d];
-        }
-        if (w == 0.0) continue;
-        v += w * abrdf__fgd_table[((b[0] * ABRDF__FGD_NALPHA + b[1]) * ABRDF__FGD_NETA + b[2]) *
-                                      ABRDF__FGD_NKAPPA +
-                                  b[3]];
-    }
-    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+    abrdf__belcour_mix m = fgd_mix(eta, kappa);
+    return fgd_at(c, cell_of(abrdf__bt_x_alpha(a, ABRDF__FGD_NALPHA), ABRDF__FGD_NALPHA), &m);
 }
 
 double abrdf__belcour_tir(double c, double a, double eta)
 {
     if (eta >= 1.0) return 1.0; /* from the less dense side nothing is totally reflected */
-    int i[3];
-    double t[3];
-    cell(abrdf__bt_x_cos(c, ABRDF__TIR_NCOS), ABRDF__TIR_NCOS, &i[0], &t[0]);
-    cell(abrdf__bt_x_alpha(a, ABRDF__TIR_NALPHA), ABRDF__TIR_NALPHA, &i[1], &t[1]);
-    cell(abrdf__bt_x_tir_eta(eta), ABRDF__TIR_NETA, &i[2], &t[2]);
-    double v = 0.0;
-    for (int corner = 0; corner < 8; ++corner) {
-        double w = 1.0;
-        int b[3];
-        for (int d = 0; d < 3; ++d) {
-            int hi = (corner >> d) & 1;
-            b[d] = i[d] + hi;
-            w *= hi ? t[d] : 1.0 - t[d];
-        }
-        if (w == 0.0) continue;
-        v += w * abrdf__tir_table[(b[0] * ABRDF__TIR_NALPHA + b[1]) * ABRDF__TIR_NETA + b[2]];
-    }
-    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+    abrdf__belcour_mix m = tir_mix(eta);
+    return tir_at(c, a, &m);
 }
 
 static double avg3(const double v[3]) { return (v[0] + v[1] + v[2]) / 3.0; }
@@ -124,7 +164,14 @@ void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b)
         b->s_r12[k] = used ? var_of_alpha(alpha) : 0.0;
         b->s_t12[k] = transmits ? var_of_alpha(alpha * 0.5 * fabs(eta - 1.0) / eta) : 0.0;
         b->s_t21[k] = transmits ? var_of_alpha(alpha * 0.5 * fabs(1.0 / eta - 1.0) * eta) : 0.0;
+        b->fgd[k] = fgd_mix(eta, ly->kappa);
+        double eta_up = k > 0 ? 1.0 / p->layers[k - 1].eta : 1.0; /* abrdf__belcour_tir's */
+        b->tir_dense[k] = k > 0 && !(eta_up >= 1.0);
+        b->tir[k] = tir_mix(b->tir_dense[k] ? eta_up : 1.0);
     }
+    b->alpha_top0 = alpha_of_var(0.0 + b->s_r12[0]); /* add_interface's a_top at k = 0 */
+    b->alpha_top0_cell =
+        cell_of(abrdf__bt_x_alpha(b->alpha_top0, ABRDF__FGD_NALPHA), ABRDF__FGD_NALPHA);
 }
 
 /* Adds interface k to the stack; writes its lobe (energy e, roughness alpha). Returns 1 if
@@ -147,27 +194,33 @@ static int add_interface(stack_stats *st, const abrdf__belcour *bp, const abrdf_
         j12 = eta * cos_t / c;
         j21 = 1.0 / j12;
     }
-    double a_top = alpha_of_var(st->sT0i + sR12); /* roughness seen through the stack above */
-    double R12 = abrdf__belcour_fgd(c, a_top, eta, ly->kappa);
+    /* roughness seen through the stack above (at the top: s_T0i = 0, from the setup) */
+    double a_top = k == 0 ? bp->alpha_top0 : alpha_of_var(st->sT0i + sR12);
+    abrdf__belcour_cell ca =
+        k == 0 ? bp->alpha_top0_cell
+               : cell_of(abrdf__bt_x_alpha(a_top, ABRDF__FGD_NALPHA), ABRDF__FGD_NALPHA);
+    double R12 = fgd_at(c, ca, &bp->fgd[k]); /* abrdf__belcour_fgd(c, a_top, eta, kappa) */
     double T12 = has_t ? 1.0 - R12 : 0.0, R21 = has_t ? R12 : 0.0, T21 = T12;
     if (k > 0) { /* TIR at the interface above, seen from this medium */
-        double tau = abrdf__belcour_tir(c, a_top, 1.0 / p->layers[k - 1].eta);
+        /* abrdf__belcour_tir(c, a_top, 1 / eta_{k-1}) */
+        double tau = bp->tir_dense[k] ? tir_at(c, a_top, &bp->tir[k]) : 1.0;
         for (int ch = 0; ch < 3; ++ch) {
-            st->Ri0[ch] = fmin(1.0, st->Ri0[ch] + (1.0 - tau) * st->Ti0[ch]);
+            double ri = st->Ri0[ch] + (1.0 - tau) * st->Ti0[ch];
+            st->Ri0[ch] = ri < 1.0 ? ri : 1.0; /* fmin(1, ri), inline */
             st->Ti0[ch] *= tau;
         }
     }
     double R0i[3], T0i[3], Ri0[3], Ti0[3], eterm[3], riterm[3], rr[3];
     for (int ch = 0; ch < 3; ++ch) {
         double den = 1.0 - st->Ri0[ch] * R12;
-        int ok = den > 0.0;
-        eterm[ch] = ok ? st->T0i[ch] * R12 * st->Ti0[ch] / den : 0.0;
-        riterm[ch] = ok ? T21 * st->Ri0[ch] * T12 / den : 0.0;
-        rr[ch] = ok ? st->Ri0[ch] * R12 / den : 0.0;
+        double inv = den > 0.0 ? 1.0 / den : 0.0; /* 0: the terms below are 0 */
+        eterm[ch] = st->T0i[ch] * R12 * st->Ti0[ch] * inv;
+        riterm[ch] = T21 * st->Ri0[ch] * T12 * inv;
+        rr[ch] = st->Ri0[ch] * R12 * inv;
         R0i[ch] = st->R0i[ch] + eterm[ch];
-        T0i[ch] = ok ? st->T0i[ch] * T12 / den : 0.0;
+        T0i[ch] = st->T0i[ch] * T12 * inv;
         Ri0[ch] = R21 + riterm[ch];
-        Ti0[ch] = ok ? T21 * st->Ti0[ch] / den : 0.0;
+        Ti0[ch] = T21 * st->Ti0[ch] * inv;
     }
     double e_avg = avg3(eterm), ri_avg = avg3(riterm), rr_avg = avg3(rr);
     double sR0i = avg3(st->R0i) * st->sR0i +
@@ -177,10 +230,12 @@ static int add_interface(stack_stats *st, const abrdf__belcour *bp, const abrdf_
         R21 * sR12 + ri_avg * (sT12 + j12 * (sT21 + st->sRi0 + rr_avg * (sR12 + st->sRi0)));
     double sTi0 = st->Ji0 * sT21 + st->sTi0 + st->Ji0 * (sR12 + st->sRi0) * rr_avg;
     double r0i_avg = avg3(R0i), ri0_avg = avg3(Ri0);
+    /* at the top the variance sum is s_R12 exactly (every other term is 0): a_top */
     *alpha_k =
-        e_avg > 0.0
-            ? alpha_of_var(st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)))
-            : 0.0;
+        !(e_avg > 0.0) ? 0.0
+        : k == 0
+            ? bp->alpha_top0
+            : alpha_of_var(st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)));
     for (int ch = 0; ch < 3; ++ch) e[ch] = e_avg > 0.0 ? eterm[ch] : 0.0;
     for (int ch = 0; ch < 3; ++ch) {
         st->R0i[ch] = R0i[ch];
