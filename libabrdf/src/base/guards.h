@@ -84,6 +84,11 @@
  * 1/(1 - a (1 - T)): keeps it finite for a lossless fibre (a = 1) with T -> 0. */
 #define ABRDF__HUANG_TAVG_MIN 1e-5
 
+/* Cycles' clip of h (units of the projected radius) before its Simpson over h, where
+ * dgamma/dh is singular at +-1; used only by the tests' Cycles quadrature (cycles_nodes in
+ * hair.h): the model integrates over gamma and needs no clip. */
+#define ABRDF__HUANG_CYCLES_H_CLIP 0.999
+
 /* Floor of the squared projected radius 1 - e^2 sin^2(phi_i) of the elliptical section;
  * it is >= b^2 >= 1e-4 for the registry's aspect ratios, so this only keeps 1/0 out. */
 #define ABRDF__HUANG_RADIUS2_MIN 1e-12

@@ -121,7 +121,15 @@ typedef struct abrdf__huang {
      * changes alpha or eta afterwards calls abrdf__huang_tables). */
     double e_in[ABRDF__HAIR_E_N];  /* entering the fibre (eta) */
     double e_out[ABRDF__HAIR_E_N]; /* leaving it (1/eta) */
+    /* Tests only (the Cycles oracle, tests/ports/hair_huang_lobes.c): parts of Blender 5.0
+     * Cycles' far-field quadrature, a bit mask. ABRDF__HUANG_CYCLES_H: Simpson nodes uniform
+     * in h over the visible width clipped to +-ABRDF__HUANG_CYCLES_H_CLIP, weighted by
+     * dgamma/dh, visibility tested per node (steps divided by refine). ABRDF__HUANG_CYCLES_TRRT:
+     * TRRT+ weighted by the constant 2/pi. 0 (setup's value): the model. */
+    unsigned cycles_nodes;
 } abrdf__huang;
+#define ABRDF__HUANG_CYCLES_H 1u
+#define ABRDF__HUANG_CYCLES_TRRT 2u
 
 /* Lights per run: abrdf__huang_fibre_run and abrdf__huang_eval_run take up to this many
  * lights of one view (a shading point's lights; the batch path hands them over as runs). */

@@ -36,7 +36,9 @@
  *  - No near field: the whole visible projected width is integrated.
  *  - The cross-section's major axis is the local +y (along the ribbon, B), the minor axis
  *    +z (N); Cycles' local frame (X major axis, Y tangent, Z) is (w.y, w.x, w.z) here.
- *  - cuticle_tilt is Blender's "offset" (degrees); the model's tilt is its negative. */
+ *  - cuticle_tilt is Blender's "offset" (degrees); the model's tilt is its negative.
+ * For the tests only, cycles_nodes (hair.h) switches to Cycles' quadrature, so that a Cycles
+ * render can be checked against the same integrand (docs/MODELS.md, "Cycles as an oracle"). */
 #include <math.h>
 
 #include "hair.h"
@@ -407,6 +409,7 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
     m->n1 = p->entry_grid;
     m->n2 = p->internal_grid;
     m->compensate = 1;
+    m->cycles_nodes = 0;
     abrdf__huang_tables(m);
 }
 
@@ -492,6 +495,45 @@ static double lobe_r(const abrdf__huang *m, v3 wi, v3 wo, double g0, double gr)
         arc_hi += 2.0 * pi;
     }
     return 0.25 * fresnel(dot(wi, wh), m->eta, NULL) * sum; /* Eq. 12 */
+}
+
+/* dgamma/dh at gamma for the viewer's azimuth (sp_i, cp_i), h in units of the projected
+ * radius (as the nodes are): the radius over the projected width per unit gamma. Cycles'
+ * quadrature weights its h nodes by it (cycles_nodes). */
+static double dgamma_dh(sc g, double b, double sp_i, double cp_i)
+{
+    double radius = sqrt(fmax(ABRDF__HUANG_RADIUS2_MIN, 1.0 - (1.0 - b * b) * sp_i * sp_i));
+    return radius / fabs(cp_i * g.c + b * sp_i * g.s);
+}
+
+/* Eq. 12 in Cycles' quadrature (cycles_nodes, tests only): Simpson over h in [h0, h1] (units
+ * of the projected radius) with steps <= 0.7 alpha / refine, each node weighted by dgamma/dh
+ * and counted when wi and wo see the half vector and the untilted normal; D from the squared
+ * cosine, as Cycles. */
+static double lobe_r_cycles(const abrdf__huang *m, v3 wi, v3 wo, double h0, double h1, double sp_i,
+                            double cp_i)
+{
+    const double b = m->b, a2 = m->alpha * m->alpha, e2 = 1.0 - b * b;
+    v3 wh = add(wi, wo);
+    double l = len(wh);
+    if (!(l > 0.0)) return 0.0;
+    wh = scl(wh, 1.0 / l);
+    int n = 2 * (int)ceil((h1 - h0) / (0.7 * m->alpha) * 0.5) * m->refine;
+    double res = (h1 - h0) / n, sum = 0.0;
+    energy_axes ax = m->e_in;
+    const double st = sin(m->tilt), ct = cos(m->tilt);
+    for (int i = 0; i <= n; ++i) {
+        sc g = sc_of(h_to_gamma(h0 + i * res, b, wi));
+        v3 wm, flat;
+        sphg_pair(st, ct, g, b, &wm, NULL);
+        flat = mk(wm.x, 0.0, wm.z);
+        if (!visible2(wi, wo, flat, wh)) continue;
+        double w = ((i == 0 || i == n) ? 0.5 : (i % 2 + 1)) * dgamma_dh(g, b, sp_i, cp_i);
+        double c = dot(wm, wh);
+        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc_length(e2, g) *
+               energy_scale_at(m, &ax, dot(wm, wi));
+    }
+    return 0.25 * fresnel(dot(wi, wh), m->eta, NULL) * sum * 2.0 / 3.0 * res;
 }
 
 /* ---- TT, TRT, TRRT+: the view's paths, then each light's exit --------------------------
@@ -699,7 +741,8 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
 /* TT + TRT + TRRT+ (RGB) of every light of the run: Simpson over h, nested midpoint rules
  * over the VNDF squares; out[l] for light l. */
 static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, double g0, double gr,
-                           double sp_i, double cp_i, unsigned lobes, double (*out)[3])
+                           double h0, double h1, double sp_i, double cp_i, unsigned lobes,
+                           double (*out)[3])
 {
     const double b = m->b, eta = m->eta, inv_eta = 1.0 / eta, al = m->alpha;
     const int n1 = m->n1, n2 = m->n2;
@@ -723,11 +766,14 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
                       .ct = cos(m->tilt),
                       .ax_out = m->e_out,
                       .lobes = lobes};
-    int n = simpson_intervals(0.8 * al, m->refine);
-    double res = gr / n;
+    /* Cycles' quadrature (tests only): Simpson over h, not gamma */
+    const int ch = (m->cycles_nodes & ABRDF__HUANG_CYCLES_H) != 0;
+    int n = ch ? 2 * (int)ceil((h1 - h0) / (0.8 * al) * 0.5) * m->refine
+               : simpson_intervals(0.8 * al, m->refine);
+    double res = ch ? (h1 - h0) / n : gr / n;
     for (int i = 0; i <= n; ++i) {
         ring_node r;
-        r.gmi = sc_of(g0 + i * res);
+        r.gmi = sc_of(ch ? h_to_gamma(h0 + i * res, b, wi) : g0 + i * res);
         sphg_pair(c.st, c.ct, r.gmi, b, &r.wmi, &r.wmi_);
         /* The range is built so that wi sees every tilted mesonormal on it: cos_mi1 >= 0,
          * and 0 at the ends when the tilt hides the silhouette. Skipping cos_mi1 <= 0 let a
@@ -735,9 +781,12 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
          * not 0: S jumped. The VNDF map is continuous through cos_mi1 = 0. */
         r.cos_mi1 = fmax(dot(wi, r.wmi), 0.0);
         r.weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
+        if (ch) r.weight *= dgamma_dh(r.gmi, b, sp_i, cp_i);
         /* Projected width of this surface element seen from wi, |dh/dgamma| cos(theta_i):
          * the light TRRT+ receives here (R, TT, TRT carry it through cos_mi1). */
-        r.proj = fabs(cp_i * r.gmi.c + b * sp_i * r.gmi.s) * cos_theta(wi);
+        r.proj = (m->cycles_nodes & ABRDF__HUANG_CYCLES_TRRT)
+                     ? 2.0 / ABRDF__PI
+                     : fabs(cp_i * r.gmi.c + b * sp_i * r.gmi.s) * cos_theta(wi);
         r.scale1 = energy_scale_at(m, &ax_in, r.cos_mi1); /* depends on the entry node only */
         vndf_frame f1;
         vndf_frame_make(al, wi, r.wmi, &f1);
@@ -798,8 +847,10 @@ void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi_
     double phi_i = dir_phi(wi);
     double hmin = phi_to_h(phi_i + half_span, b, sp_i, cp_i) / radius;
     double hmax = phi_to_h(phi_i - half_span, b, sp_i, cp_i) / radius;
-    hmin = fmax(hmin, -1.0);
-    hmax = fmin(hmax, 1.0);
+    const double hclip =
+        (m->cycles_nodes & ABRDF__HUANG_CYCLES_H) ? ABRDF__HUANG_CYCLES_H_CLIP : 1.0;
+    hmin = fmax(hmin, -hclip);
+    hmax = fmin(hmax, hclip);
     if (!(hmax > hmin)) return;
     /* Integrate over the surface parameter gamma, not h: integral g dgamma/dh dh =
      * integral g dgamma, and dgamma/dh (Cycles' Jacobian) has an integrable singularity at
@@ -811,9 +862,12 @@ void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi_
         ci * 2.0 * radius; /* projected width 2 (far field) times cos(theta_i), radius from dh */
     double res[ABRDF__HUANG_RUN_MAX][3];
     for (int l = 0; l < lr.n; ++l) res[l][0] = res[l][1] = res[l][2] = 0.0;
-    if (lobes & 14u) lobes_residual(m, wi, &lr, g0, g1 - g0, sp_i, cp_i, lobes, res);
+    if (lobes & 14u) lobes_residual(m, wi, &lr, g0, g1 - g0, hmin, hmax, sp_i, cp_i, lobes, res);
     for (int l = 0; l < lr.n; ++l) {
-        double r = (lobes & 1u) ? lobe_r(m, wi, lr.wo[l], g0, g1 - g0) : 0.0;
+        double r = !(lobes & 1u) ? 0.0
+                   : (m->cycles_nodes & ABRDF__HUANG_CYCLES_H)
+                       ? lobe_r_cycles(m, wi, lr.wo[l], hmin, hmax, sp_i, cp_i)
+                       : lobe_r(m, wi, lr.wo[l], g0, g1 - g0);
         for (int c = 0; c < 3; ++c) s[slot[l]][c] = (r + res[l][c]) / area;
     }
 }
