@@ -136,9 +136,14 @@
 /* ---- guards of the double-only models --------------------------------------------------- */
 
 /* sqrt of a quantity that is >= 0 up to rounding (1 - c^2, a sum of squares minus one). */
-static inline double abrdf__safe_sqrt(double x) { return sqrt(fmax(0.0, x)); }
+static inline double abrdf__safe_sqrt(double x) { return x > 0.0 ? sqrt(x) : 0.0; }
 
-/* x clamped to [lo, hi]; NaN gives lo (fmax ignores a NaN argument). */
-static inline double abrdf__clamp(double x, double lo, double hi) { return fmin(fmax(x, lo), hi); }
+/* x clamped to [lo, hi]; NaN gives lo. Compares, not fmin/fmax: without -ffinite-math-only
+ * those are library calls on x86-64 (their NaN rules), and the double paths call this in
+ * their inner loops. */
+static inline double abrdf__clamp(double x, double lo, double hi)
+{
+    return x > lo ? (x < hi ? x : hi) : lo;
+}
 
 #endif /* ABRDF_GUARDS_H */

@@ -43,6 +43,11 @@
 
 #include "hair.h"
 
+/* The larger of x and a floor, the smaller of x and a ceiling; a NaN x gives the bound (as
+ * fmax/fmin do, which are library calls on x86-64 without -ffinite-math-only). */
+static double max_of(double x, double floor_) { return x > floor_ ? x : floor_; }
+static double min_of(double x, double ceil_) { return x < ceil_ ? x : ceil_; }
+
 typedef struct v3 {
     double x, y, z;
 } v3;
@@ -245,7 +250,7 @@ static v3 vndf_frame_node(const vndf_frame *f, const double p[3])
     double p3 = abrdf__safe_sqrt(1.0 - p1 * p1 - p2 * p2);
     double nx = f->t1.x * p1 + f->t2.x * p2 + f->vh.x * p3;
     double ny = f->t1.y * p1 + f->t2.y * p2 + f->vh.y * p3;
-    double nz = fmax(0.0, f->t2.z * p2 + f->vh.z * p3); /* t1.z = 0 */
+    double nz = max_of(f->t2.z * p2 + f->vh.z * p3, 0.0); /* t1.z = 0 */
     double inv = 1.0 / sqrt(alpha * alpha * (nx * nx + ny * ny) + nz * nz);
     v3 w = add(add(scl(f->q1, p1), scl(f->q2, p2)), add(scl(f->q3, p3), scl(f->wm, nz)));
     return scl(w, inv);
@@ -306,7 +311,7 @@ static double longitudinal_m(double si, double ci, double so, double co, double 
  * one division for the three (each denominator is >= tavg >= 1e-5). */
 static void trrt3(double w, double t1, double r2, const double a[3], double out[3])
 {
-    double tavg = fmax(1.0 - r2, ABRDF__HUANG_TAVG_MIN), k = w * t1 * r2 * r2 * tavg;
+    double tavg = max_of(1.0 - r2, ABRDF__HUANG_TAVG_MIN), k = w * t1 * r2 * r2 * tavg;
     double d0 = 1.0 - a[0] * (1.0 - tavg), d1 = 1.0 - a[1] * (1.0 - tavg);
     double d2 = 1.0 - a[2] * (1.0 - tavg), inv = k / (d0 * d1 * d2);
     out[0] = a[0] * a[0] * a[0] * (d1 * d2) * inv;
@@ -394,7 +399,7 @@ static double energy_scale_at(const abrdf__huang *m, const energy_axes *a, doubl
     double u = abrdf__clamp(mu, 0.0, 1.0) * (n - 1);
     int i0 = (int)u < n - 1 ? (int)u : n - 1, i1 = i0 + 1 < n ? i0 + 1 : n - 1;
     double f = u - i0, e = (1.0 - f) * (*a)[i0] + f * (*a)[i1];
-    return 1.0 / fmax(e, ABRDF__HAIR_E_MIN);
+    return 1.0 / max_of(e, ABRDF__HAIR_E_MIN);
 }
 
 /* ---- the model ------------------------------------------------------------------------ */
@@ -552,7 +557,7 @@ static double lobe_r_cycles(const abrdf__huang *m, v3 wi, v3 wo, double h0, doub
  * reflection gives 1. *cos_t (if not NULL) gets -t / eta, the refracted cosine. */
 static double fresnel1(double c, double eta, double eta2, double *cos_t)
 {
-    c = fmin(fabs(c), 1.0);
+    c = min_of(fabs(c), 1.0);
     double q = eta2 - (1.0 - c * c);
     if (q <= 0.0) {
         if (cos_t) *cos_t = 0.0;
@@ -630,7 +635,7 @@ static int entry_path_make(const residual_ctx *c, const ring_node *r, v3 wh1, do
     e->g1o = ggx_go(c->a2, r->cos_mi1, e->cos_mo1);
     e->scale2 = energy_scale_at(m, &c->ax_out, e->cos_mi2);
     e->lam2 = ggx_lambda(c->a2, e->cos_mi2);
-    double ct_t = fmax(cos_theta(wt), ABRDF__HAIR_COS_MIN);
+    double ct_t = max_of(cos_theta(wt), ABRDF__HAIR_COS_MIN);
     double chord = len(add(to_point(r->gmi, b), to_point(e->gmt, b))); /* exit at gmt + pi */
     for (int k = 0; k < 3; ++k)
         e->at[k] = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_t * chord) : 1.0;
@@ -718,7 +723,7 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
             !(dot(neg(wo), wmtr_) > 0.0))
             continue;
         if (!pre_made) { /* once per node, for the first light that exits */
-            double ct_tr = fmax(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
+            double ct_tr = max_of(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
             double chord2 = len(add(to_point(gmtr, b), neg(to_point(e->gmt, b))));
             lam3 = ggx_lambda(a2, cos_mi3);
             pre = wgt2 * e->t1 * r->scale1 * r2 * energy_scale_at(m, &c->ax_out, cos_mi3) * e->g1o *
@@ -779,7 +784,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
          * and 0 at the ends when the tilt hides the silhouette. Skipping cos_mi1 <= 0 let a
          * 1e-16 rounding drop an end node, whose TRRT+ (weighted by proj, not cos_mi1) is
          * not 0: S jumped. The VNDF map is continuous through cos_mi1 = 0. */
-        r.cos_mi1 = fmax(dot(wi, r.wmi), 0.0);
+        r.cos_mi1 = max_of(dot(wi, r.wmi), 0.0);
         r.weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         if (ch) r.weight *= dgamma_dh(r.gmi, b, sp_i, cp_i);
         /* Projected width of this surface element seen from wi, |dh/dgamma| cos(theta_i):
