@@ -1,6 +1,7 @@
 /* eval_float.c - the float structure-of-arrays batch path. One loop per model, with the
  * model's kernel inlined, so the compiler can vectorise it. */
 #define ABRDF__KERNEL_FLOAT 1 /* kernel.h: the kernels in float */
+#include "isa.h"
 #include "k_dispatch.h"
 #include "prepared.h"
 #include "vec.h"
@@ -12,11 +13,6 @@
  * guard are combined with & (not &&) so the body has no control flow, and the arrays are
  * restrict parameters (abrdf.h: outputs may not alias inputs), so the compiler needs no
  * run-time alias checks: both are required for the loop to vectorise. */
-#if defined(__GNUC__)
-#define ABRDF__NOINLINE __attribute__((noinline)) /* inlining would drop the restrict facts */
-#else
-#define ABRDF__NOINLINE
-#endif
 /* The front-facing test as float arithmetic on single float compares: an int flag combined
  * with float compares is a mixed mask GCC's vectoriser rejects, and a select whose other arm
  * is 0 is one compare and one AND. 1 for front-facing pairs, else 0; finite_or_zero's
@@ -36,39 +32,9 @@ static inline float abrdf__keep(float front, float x)
     return (u <= 0x7F7FFFFFu ? x : 0.0f) * front;
 }
 
-/* RUN-TIME INSTRUCTION SETS. Each loop is compiled once per level below, and every batch
- * call runs the best level the CPU supports, so the default (portable) build runs AVX2 or
- * AVX-512 code where the machine has it. The choice is a pure function of the CPU
- * (abrdf__isa_best reads the compiler runtime's CPU model, which it fills once at program
- * start): no state of the library's own, no ifunc (which needs the dynamic loader's
- * cooperation that a static link does not have, and cannot be forced to a level in tests).
- * The float tolerance of the batch path holds at every level (FMA contraction changes the
- * last bits); tests run every level the machine has (abrdf__eval_prepared_f_isa). */
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define ABRDF__ISA_X86 1
-/* Levels: 0 the build's baseline, 1 AVX2 + FMA (x86-64-v3), 2 AVX-512 (x86-64-v4). */
-#define ABRDF__ISA_ATTR_0
-#define ABRDF__ISA_ATTR_1 __attribute__((target("avx2,fma")))
-#define ABRDF__ISA_ATTR_2                                                                          \
-    __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,avx2,fma,prefer-vector-width=512")))
-#define ABRDF__ISA_LEVELS(X) X(0) X(1) X(2)
-#else
-#define ABRDF__ISA_X86 0
-#define ABRDF__ISA_ATTR_0
-#define ABRDF__ISA_LEVELS(X) X(0)
-#endif
-
-int abrdf__isa_best(void)
-{
-#if ABRDF__ISA_X86
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-        __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq"))
-        return 2;
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return 1;
-#endif
-    return 0;
-}
-
+/* RUN-TIME INSTRUCTION SETS (isa.h). The float tolerance of the batch path holds at every
+ * level (FMA contraction changes the last bits); tests run every level the machine has
+ * (abrdf__eval_prepared_f_isa). */
 const char *abrdf__isa_name(int level)
 {
     static const char *const names[] = {"baseline", "avx2+fma", "avx512"};

@@ -42,6 +42,7 @@
 #include <math.h>
 
 #include "hair.h"
+#include "isa.h"
 
 /* The larger of x and a floor, the smaller of x and a ceiling; a NaN x gives the bound (as
  * fmax/fmin do, which are library calls on x86-64 without -ffinite-math-only). */
@@ -304,19 +305,6 @@ static double longitudinal_m(double si, double ci, double so, double co, double 
     if (v <= ABRDF__HUANG_M_LOG_V)
         return exp(log_bessel_i0(a) - bsin - 1.0 / v + log(2.0) + log(0.5 / v));
     return exp(-bsin) * bessel_i0(a) / (sinh(1.0 / v) * 2.0 * v);
-}
-
-/* Cycles' TRRT+ estimate, the geometric series of further internal bounces
- * t1 r2^2 tavg a^3 / (1 - a (1 - tavg)), for the three channels' absorptions a[k], times w:
- * one division for the three (each denominator is >= tavg >= 1e-5). */
-static void trrt3(double w, double t1, double r2, const double a[3], double out[3])
-{
-    double tavg = max_of(1.0 - r2, ABRDF__HUANG_TAVG_MIN), k = w * t1 * r2 * r2 * tavg;
-    double d0 = 1.0 - a[0] * (1.0 - tavg), d1 = 1.0 - a[1] * (1.0 - tavg);
-    double d2 = 1.0 - a[2] * (1.0 - tavg), inv = k / (d0 * d1 * d2);
-    out[0] = a[0] * a[0] * a[0] * (d1 * d2) * inv;
-    out[1] = a[1] * a[1] * a[1] * (d0 * d2) * inv;
-    out[2] = a[2] * a[2] * a[2] * (d0 * d1) * inv;
 }
 
 /* ---- energy compensation (Cycles' ggx_glass_E tables, regenerated) ------------------ */
@@ -672,17 +660,13 @@ static void tt_add(residual_ctx *c, const entry_path *e)
 
 /* TRT through the internal microfacet wh2, each light's exit at wh3 (Eq. 14), and TRRT+
  * where the path stays inside; wgt2: the node's weight. */
-static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3 wh2, double wgt2)
+static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3 wh2, double wgt2,
+                    double r2f, v3 wtr, const double rr[3])
 {
     const abrdf__huang *m = c->m;
     const double a2 = c->a2, b = c->b, inv_eta = c->inv_eta;
     v3 wt = e->wt;
-    double cos_hi2 = dot(neg(wt), wh2);
-    if (!(cos_hi2 > 0.0)) return;
-    double r2f = fresnel1(cos_hi2, inv_eta, c->inv_eta2, NULL), r2 = r2f * e->scale2;
-    v3 wtr = neg(reflect_dir(wt, wh2));
-    double rr[3];
-    trrt3(wgt2 * r->proj, e->t1, r2f, e->at, rr);
+    double r2 = r2f * e->scale2;
     /* Total internal reflection toward a light keeps the path inside (TRRT+); the rest of
      * the exit is built only if some light of the run leaves here. */
     int leaves[ABRDF__HUANG_RUN_MAX], any = 0;
@@ -743,6 +727,86 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
     }
 }
 
+/* ---- the internal reflections of one entry path, a chunk of nodes at a time -------------
+ * TRRT+ is Cycles' geometric series of further internal bounces,
+ * t1 r2^2 tavg a^3 / (1 - a (1 - tavg)) per channel (absorption a), tavg = max(1 - r2, 1e-5);
+ * its three channels share one division (each denominator is >= tavg).
+ * What every internal node needs before its light-dependent tests, without a branch: its
+ * microfacet wh2 (Heitz's map, vndf_frame_node), the cosine to the refracted ray, the
+ * reflectance there (fresnel1 at 1/eta), the reflected ray wtr and TRRT+'s three channels
+ * (trrt3). The compiler vectorises the loop; it is compiled once per instruction-set level
+ * (isa.h). A node with cos_hi2 <= 0 is skipped by the caller. */
+#define INTERNAL_CHUNK 16
+
+typedef struct internal_nodes {
+    double hx[INTERNAL_CHUNK], hy[INTERNAL_CHUNK], hz[INTERNAL_CHUNK]; /* wh2 */
+    double ci[INTERNAL_CHUNK];                                         /* cos_hi2 */
+    double r2f[INTERNAL_CHUNK];                                        /* F(cos_hi2) at 1/eta */
+    double tx[INTERNAL_CHUNK], ty[INTERNAL_CHUNK], tz[INTERNAL_CHUNK]; /* wtr */
+    double rr[3][INTERNAL_CHUNK];                                      /* TRRT+ (RGB) */
+} internal_nodes;
+
+/* The path's constants the chunk reads: the frame of the map, the refracted ray, TRRT+'s
+ * weight w (node weight times projected width), t1 and absorption, (1/eta)^2. */
+typedef struct internal_path {
+    const vndf_frame *f;
+    double wx, wy, wz;
+    double w, t1, at[3], e2;
+} internal_path;
+
+#define INTERNAL_BASE(L)                                                                           \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void internal_base_##L(                             \
+        const internal_path *restrict q, const double *restrict p1, const double *restrict p2,     \
+        const double *restrict pq, int n, internal_nodes *restrict o)                              \
+    {                                                                                              \
+        const vndf_frame *f = q->f;                                                                \
+        const double al = f->alpha, sh = f->sh, e2 = q->e2;                                        \
+        for (int j = 0; j < n; ++j) { /* vndf_frame_node */                                        \
+            double a = p1[j], b = (1.0 - sh) * pq[j] + sh * p2[j];                                 \
+            double d = 1.0 - a * a - b * b, c3 = d > 0.0 ? sqrt(d) : 0.0;                          \
+            double nx = f->t1.x * a + f->t2.x * b + f->vh.x * c3;                                  \
+            double ny = f->t1.y * a + f->t2.y * b + f->vh.y * c3;                                  \
+            double nz = f->t2.z * b + f->vh.z * c3;                                                \
+            nz = nz > 0.0 ? nz : 0.0;                                                              \
+            double inv = 1.0 / sqrt(al * al * (nx * nx + ny * ny) + nz * nz);                      \
+            double hx = (f->q1.x * a + f->q2.x * b + f->q3.x * c3 + f->wm.x * nz) * inv;           \
+            double hy = (f->q1.y * a + f->q2.y * b + f->q3.y * c3 + f->wm.y * nz) * inv;           \
+            double hz = (f->q1.z * a + f->q2.z * b + f->q3.z * c3 + f->wm.z * nz) * inv;           \
+            o->hx[j] = hx, o->hy[j] = hy, o->hz[j] = hz;                                           \
+            double ci = -(q->wx * hx + q->wy * hy + q->wz * hz);                                   \
+            o->ci[j] = ci; /* fresnel1(ci, 1/eta) */                                               \
+            double c = fabs(ci) < 1.0 ? fabs(ci) : 1.0, qq = e2 - (1.0 - c * c);                   \
+            double t = sqrt(qq > 0.0 ? qq : 0.0), ds = c + t, dp = e2 * c + t;                     \
+            double ns = (c - t) * dp, np = (e2 * c - t) * ds, dd = ds * dp;                        \
+            double dd2 = dd > 0.0 ? dd * dd : 1.0;                                                 \
+            double r2 = qq > 0.0 && dd > 0.0 ? 0.5 * (ns * ns + np * np) / dd2 : 1.0;              \
+            o->r2f[j] = r2; /* wtr = -(wt - 2 (wt.wh2) wh2) */                                     \
+            double k2 = 2.0 * ci;                                                                  \
+            o->tx[j] = -(q->wx + k2 * hx), o->ty[j] = -(q->wy + k2 * hy);                          \
+            o->tz[j] = -(q->wz + k2 * hz); /* trrt3 */                                             \
+            double tavg = 1.0 - r2 > ABRDF__HUANG_TAVG_MIN ? 1.0 - r2 : ABRDF__HUANG_TAVG_MIN;     \
+            double kk = q->w * q->t1 * r2 * r2 * tavg;                                             \
+            double a0 = q->at[0], a1 = q->at[1], a2 = q->at[2];                                    \
+            double d0 = 1.0 - a0 * (1.0 - tavg), d1 = 1.0 - a1 * (1.0 - tavg);                     \
+            double dd3 = 1.0 - a2 * (1.0 - tavg), iv = kk / (d0 * d1 * dd3);                       \
+            o->rr[0][j] = a0 * a0 * a0 * (d1 * dd3) * iv;                                          \
+            o->rr[1][j] = a1 * a1 * a1 * (d0 * dd3) * iv;                                          \
+            o->rr[2][j] = a2 * a2 * a2 * (d0 * d1) * iv;                                           \
+        }                                                                                          \
+    }
+ABRDF__ISA_LEVELS(INTERNAL_BASE)
+
+typedef void (*internal_base_fn)(const internal_path *restrict, const double *restrict,
+                                 const double *restrict, const double *restrict, int,
+                                 internal_nodes *restrict);
+#define INTERNAL_BASE_ENTRY(L) internal_base_##L,
+static internal_base_fn internal_base_at(int level)
+{
+    static const internal_base_fn fns[] = {ABRDF__ISA_LEVELS(INTERNAL_BASE_ENTRY)};
+    const int n = (int)(sizeof fns / sizeof fns[0]);
+    return fns[level < 0 ? 0 : level < n ? level : n - 1];
+}
+
 /* TT + TRT + TRRT+ (RGB) of every light of the run: Simpson over h, nested midpoint rules
  * over the VNDF squares; out[l] for light l. */
 static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, double g0, double gr,
@@ -758,6 +822,11 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
     double node1[ABRDF__HUANG_NODES_MAX][3], node2[ABRDF__HUANG_NODES_MAX][3];
     vndf_nodes(n1, node1);
     vndf_nodes(n2, node2);
+    /* the internal grid's disc points as three arrays, for the vectorised loop */
+    double p2s[3][ABRDF__HUANG_NODES_MAX];
+    for (int j = 0; j < n2 * n2; ++j)
+        p2s[0][j] = node2[j][0], p2s[1][j] = node2[j][1], p2s[2][j] = node2[j][2];
+    const internal_base_fn base = internal_base_at(abrdf__isa_best());
     energy_axes ax_in = m->e_in;
     residual_ctx c = {.m = m,
                       .wi = wi,
@@ -803,8 +872,25 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
             /* TRT and TRRT+: internal reflection at wh2 (n2 x n2 VNDF nodes) */
             vndf_frame f2;
             vndf_frame_make(al, neg(e.wt), e.wmt, &f2);
-            for (int j2 = 0; j2 < n2 * n2; ++j2)
-                trt_add(&c, &r, &e, vndf_frame_node(&f2, node2[j2]), e.wgt * w2);
+            internal_path ip = {&f2,
+                                e.wt.x,
+                                e.wt.y,
+                                e.wt.z,
+                                e.wgt * w2 * r.proj,
+                                e.t1,
+                                {e.at[0], e.at[1], e.at[2]},
+                                c.inv_eta2};
+            for (int j0 = 0; j0 < n2 * n2; j0 += INTERNAL_CHUNK) {
+                int nc = n2 * n2 - j0 < INTERNAL_CHUNK ? n2 * n2 - j0 : INTERNAL_CHUNK;
+                internal_nodes in;
+                base(&ip, p2s[0] + j0, p2s[1] + j0, p2s[2] + j0, nc, &in);
+                for (int j = 0; j < nc; ++j) {
+                    if (!(in.ci[j] > 0.0)) continue;
+                    double rr[3] = {in.rr[0][j], in.rr[1][j], in.rr[2][j]};
+                    trt_add(&c, &r, &e, mk(in.hx[j], in.hy[j], in.hz[j]), e.wgt * w2, in.r2f[j],
+                            mk(in.tx[j], in.ty[j], in.tz[j]), rr);
+                }
+            }
         }
     }
     double k = 2.0 / 3.0 * res;
