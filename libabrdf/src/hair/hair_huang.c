@@ -693,19 +693,17 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
     for (int l = 0; l < c->lr->n; ++l) {
         if (!leaves[l]) continue;
         v3 wo = c->lr->wo[l];
-        v3 wh3 = add(wtr, c->lr->wos[l]);
+        v3 wh3 = add(wtr, c->lr->wos[l]); /* not normalised: l3 = |wh3|^2 */
         double l3 = dot(wh3, wh3);
         if (!(l3 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
         for (int k = 0; k < 3; ++k) c->s_trrt[l][k] += rr[k];
         if (!exit_seen) continue;
-        double rn3 = 1.0 / sqrt(l3);
-        wh3 = scl(wh3, rn3);
-        double cos_mh3 = dot(wmtr, wh3), cos_hi3 = dot(wh3, wtr), cos_ho3 = dot(wh3, neg(wo));
+        /* visible2(wtr, -wo, wmtr, wh3) and the same for wmtr_ (wtr's half is exit_seen),
+         * on the signs of the unnormalised cosines */
         double cos_om3 = dot(wmtr, neg(wo));
-        /* visible2(wtr, -wo, wmtr, wh3) and the same for wmtr_; wtr's half is exit_seen */
-        if (cos_mh3 < 0.0 || !(cos_hi3 > 0.0) || !(cos_ho3 > 0.0) || !(cos_om3 > 0.0) ||
-            !(dot(neg(wo), wmtr_) > 0.0))
-            continue;
+        if (!(cos_om3 > 0.0) || !(dot(neg(wo), wmtr_) > 0.0)) continue;
+        double u_mh = dot(wmtr, wh3), u_hi = dot(wh3, wtr), u_ho = dot(wh3, neg(wo));
+        if (!(u_mh > 0.0) || !(u_hi > 0.0) || !(u_ho > 0.0)) continue;
         if (!pre_made) { /* once per node, for the first light that exits */
             double ct_tr = max_of(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
             double chord2 = len(add(to_point(gmtr, b), neg(to_point(e->gmt, b))));
@@ -719,9 +717,21 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
             }
             pre_made = 1;
         }
-        double t3 = 1.0 - fresnel1(cos_hi3, inv_eta, c->inv_eta2, NULL);
-        double g = 1.0 / (1.0 + lam3 + ggx_lambda(a2, cos_om3));
-        double v = pre * t3 * ggx_d(a2, cos_mh3) * g * cos_hi3 * cos_ho3 * rn3 * rn3;
+        /* Eq. 14's light factors with wh3 = h / |h|, one division: each cosine to wh3 is u /
+         * sqrt(l3). The Fresnel ratios are scale-free in (u_hi, T), T = sqrt(l3) eta' cos_t;
+         * D = alpha^2 / (pi k^2) with k l3 = l3 + (alpha^2 - 1) u_mh^2 =: K; cos_hi3 cos_ho3
+         * / l3 (the Jacobian's rn3^2) = u_hi u_ho / l3^2, which cancels D's l3^2. */
+        double e2 = c->inv_eta2, q = (e2 - 1.0) * l3 + u_hi * u_hi, t3n, t3d;
+        if (q > 0.0) {
+            double t = sqrt(q), ds = u_hi + t, dp = e2 * u_hi + t;
+            double ns = (u_hi - t) * dp, np = (e2 * u_hi - t) * ds, dd = ds * dp;
+            t3n = dd * dd - 0.5 * (ns * ns + np * np), t3d = dd * dd; /* 1 - F = t3n / t3d */
+        } else {
+            continue; /* totally reflected at wh3: 1 - F = 0 */
+        }
+        double K = l3 + (a2 - 1.0) * u_mh * u_mh;
+        double v = pre * t3n * a2 * u_hi * u_ho /
+                   (ABRDF__PI * K * K * t3d * (1.0 + lam3 + ggx_lambda(a2, cos_om3)));
         if (isfinite(v))
             for (int k = 0; k < 3; ++k) c->s_trt[l][k] += v * att[k]; /* Eq. 14 */
     }
