@@ -153,7 +153,6 @@ static double ggx_d_sq(double alpha2, double c2)
     return alpha2 / (ABRDF__PI * k * k);
 }
 
-static double ggx_d(double alpha2, double c) { return c > 0.0 ? ggx_d_sq(alpha2, c * c) : 0.0; }
 
 static double ggx_lambda(double alpha2, double c)
 {
@@ -633,6 +632,27 @@ static int entry_path_make(const residual_ctx *c, const ring_node *r, v3 wh1, do
     return 1;
 }
 
+/* A light's factors of an exit through the microfacet whose half vector is h / |h| (h not
+ * normalised, l = |h|^2), from the cosines of h (not normalised either) to the ray inside
+ * (u_i), to the light (u_o) and to the exit mesonormal (u_m > 0): (1 - F) D G cos_i cos_o
+ * rn^2, the last factor the generalised half vector's Jacobian, at index e2 = (1/eta)^2. Each
+ * cosine to h / |h| is u / sqrt(l): the Fresnel ratios are scale-free in (u_i, sqrt(l) eta'
+ * cos_t), D = alpha^2 / (pi k^2) with k l = l + (alpha^2 - 1) u_m^2 =: K, and cos_i cos_o
+ * rn^2 = u_i u_o / l^2 cancels D's l^2: one root and one division, no normalisation.
+ * lam_in: Smith Lambda of the mesonormal seen from inside; cos_om: from the light. 0 when the
+ * light is totally reflected there. */
+static double exit_factor(double u_i, double u_o, double u_m, double l, double e2, double a2,
+                          double lam_in, double cos_om)
+{
+    double u = fabs(u_i), q = (e2 - 1.0) * l + u * u;
+    if (!(q > 0.0)) return 0.0; /* 1 - F = 0 */
+    double t = sqrt(q), ds = u + t, dp = e2 * u + t;
+    double ns = (u - t) * dp, np = (e2 * u - t) * ds, dd2 = ds * dp * ds * dp;
+    double k = l + (a2 - 1.0) * u_m * u_m;
+    return (dd2 - 0.5 * (ns * ns + np * np)) * a2 * u_i * u_o /
+           (ABRDF__PI * k * k * dd2 * (1.0 + lam_in + ggx_lambda(a2, cos_om)));
+}
+
 /* TT: each light exits through the microfacet with generalised half vector wh2 (Eq. 13). */
 static void tt_add(residual_ctx *c, const entry_path *e)
 {
@@ -642,17 +662,13 @@ static void tt_add(residual_ctx *c, const entry_path *e)
         v3 wo = c->lr->wo[l];
         /* exit possible only if wo is within the critical cone */
         if (!(dot(wo, wt) >= inv_eta - ABRDF__HUANG_CRITICAL_TOL)) continue;
-        v3 wh2 = add(neg(wt), c->lr->wos[l]);
+        v3 wh2 = add(neg(wt), c->lr->wos[l]); /* not normalised: l2 = |wh2|^2 */
         double l2 = dot(wh2, wh2);
         if (!(l2 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
-        double rn = 1.0 / sqrt(l2);
-        wh2 = scl(wh2, rn);
-        double cos_mh2 = dot(e->wmt, wh2);
-        if (!(cos_mh2 >= 0.0)) continue;
-        double cos_hi2 = dot(neg(wt), wh2), cos_ho2 = dot(neg(wo), wh2);
-        double t2 = 1.0 - fresnel1(cos_hi2, inv_eta, c->inv_eta2, NULL);
-        double g = 1.0 / (1.0 + e->lam2 + ggx_lambda(a2, dot(neg(wo), e->wmt)));
-        double v = e->tt_pre * t2 * ggx_d(a2, cos_mh2) * g * cos_hi2 * cos_ho2 * rn * rn;
+        double u_mh = dot(e->wmt, wh2);
+        if (!(u_mh > 0.0)) continue; /* D = 0 at 90 degrees and beyond */
+        double v = e->tt_pre * exit_factor(dot(neg(wt), wh2), dot(neg(wo), wh2), u_mh, l2,
+                                           c->inv_eta2, a2, e->lam2, dot(neg(wo), e->wmt));
         if (isfinite(v))
             for (int k = 0; k < 3; ++k) c->s_tt[l][k] += v * e->at[k]; /* Eq. 13 */
     }
@@ -717,21 +733,7 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
             }
             pre_made = 1;
         }
-        /* Eq. 14's light factors with wh3 = h / |h|, one division: each cosine to wh3 is u /
-         * sqrt(l3). The Fresnel ratios are scale-free in (u_hi, T), T = sqrt(l3) eta' cos_t;
-         * D = alpha^2 / (pi k^2) with k l3 = l3 + (alpha^2 - 1) u_mh^2 =: K; cos_hi3 cos_ho3
-         * / l3 (the Jacobian's rn3^2) = u_hi u_ho / l3^2, which cancels D's l3^2. */
-        double e2 = c->inv_eta2, q = (e2 - 1.0) * l3 + u_hi * u_hi, t3n, t3d;
-        if (q > 0.0) {
-            double t = sqrt(q), ds = u_hi + t, dp = e2 * u_hi + t;
-            double ns = (u_hi - t) * dp, np = (e2 * u_hi - t) * ds, dd = ds * dp;
-            t3n = dd * dd - 0.5 * (ns * ns + np * np), t3d = dd * dd; /* 1 - F = t3n / t3d */
-        } else {
-            continue; /* totally reflected at wh3: 1 - F = 0 */
-        }
-        double K = l3 + (a2 - 1.0) * u_mh * u_mh;
-        double v = pre * t3n * a2 * u_hi * u_ho /
-                   (ABRDF__PI * K * K * t3d * (1.0 + lam3 + ggx_lambda(a2, cos_om3)));
+        double v = pre * exit_factor(u_hi, u_ho, u_mh, l3, c->inv_eta2, a2, lam3, cos_om3);
         if (isfinite(v))
             for (int k = 0; k < 3; ++k) c->s_trt[l][k] += v * att[k]; /* Eq. 14 */
     }
