@@ -153,7 +153,6 @@ static double ggx_d_sq(double alpha2, double c2)
     return alpha2 / (ABRDF__PI * k * k);
 }
 
-
 static double ggx_lambda(double alpha2, double c)
 {
     double c2 = c * c;
@@ -166,12 +165,9 @@ static double ggx_g(double alpha2, double ci, double co)
     return 1.0 / (1.0 + ggx_lambda(alpha2, ci) + ggx_lambda(alpha2, co));
 }
 
-/* G2 / G1(in): the masking of the outgoing side given the incoming side is visible. */
-static double ggx_go(double alpha2, double ci, double co)
-{
-    double li = ggx_lambda(alpha2, ci), lo = ggx_lambda(alpha2, co);
-    return (1.0 + li) / (1.0 + li + lo);
-}
+/* G2 / G1(in), the masking of the outgoing side given the incoming side is visible, is
+ * (1 + Lambda_in) / (1 + Lambda_in + Lambda_out); the paths keep Lambda_in of their mesonormals
+ * (ring_node.lam1, entry_path.lam2), so it is written out where it is used. */
 
 /* Heitz 2018, "Sampling the GGX distribution of visible normals": maps (u1, u2) in the unit
  * square to a microfacet normal distributed as the VNDF of direction wi about normal wm.
@@ -584,6 +580,7 @@ typedef struct ring_node {
     sc gmi; /* the entry point's ellipse parameter */
     v3 wmi, wmi_;
     double cos_mi1, proj, scale1; /* wi's cosine, projected width (TRRT+), entry energy scale */
+    double lam1;                  /* Smith Lambda of the entry mesonormal seen from wi */
     double weight;                /* Simpson weight */
 } ring_node;
 
@@ -594,6 +591,7 @@ typedef struct entry_path {
     sc gmt;           /* the exit point's ellipse parameter */
     double t1, scale2, g1o, cos_mo1, cos_mi2;
     double lam2;   /* Smith Lambda of the exit mesonormal seen from inside */
+    int flat_seen; /* the refracted ray sees the untilted exit mesonormal */
     double tt_pre; /* TT's factors that do not depend on the light */
     double at[3];  /* absorption along the chord */
     double wgt;    /* Simpson weight times the entry node's */
@@ -619,9 +617,10 @@ static int entry_path_make(const residual_ctx *c, const ring_node *r, v3 wh1, do
      * the end nodes, where it is 0 (S jumped). The refracted ray is tested here. */
     if (!(dot(neg(wt), wh1) > 0.0 && dot(neg(wt), r->wmi) > 0.0 && dot(neg(wt), r->wmi_) > 0.0))
         return 0;
-    e->g1o = ggx_go(c->a2, r->cos_mi1, e->cos_mo1);
+    e->g1o = (1.0 + r->lam1) / (1.0 + r->lam1 + ggx_lambda(c->a2, e->cos_mo1)); /* G2/G1 */
     e->scale2 = energy_scale_at(m, &c->ax_out, e->cos_mi2);
     e->lam2 = ggx_lambda(c->a2, e->cos_mi2);
+    e->flat_seen = dot(neg(wt), e->wmt_) > 0.0;
     double ct_t = max_of(cos_theta(wt), ABRDF__HAIR_COS_MIN);
     double chord = len(add(to_point(r->gmi, b), to_point(e->gmt, b))); /* exit at gmt + pi */
     for (int k = 0; k < 3; ++k)
@@ -681,7 +680,6 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
 {
     const abrdf__huang *m = c->m;
     const double a2 = c->a2, b = c->b, inv_eta = c->inv_eta;
-    v3 wt = e->wt;
     double r2 = r2f * e->scale2;
     /* Total internal reflection toward a light keeps the path inside (TRRT+); the rest of
      * the exit is built only if some light of the run leaves here. */
@@ -693,7 +691,11 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
             for (int k = 0; k < 3; ++k) c->s_trrt[l][k] += rr[k];
     }
     if (!any) return;
-    if (!visible2(neg(wt), neg(wtr), e->wmt, wh2) || !visible2(neg(wt), neg(wtr), e->wmt_, wh2))
+    /* visible2(-wt, -wtr, wmt, wh2) and the same for wmt_: -wt's halves are the node's
+     * cos_hi2 > 0, the path's cos_mi2 > 0 and flat_seen */
+    double cos_mo2 = dot(e->wmt, neg(wtr));
+    if (!e->flat_seen || !(dot(neg(wtr), wh2) > 0.0) || !(cos_mo2 > 0.0) ||
+        !(dot(neg(wtr), e->wmt_) > 0.0))
         return;
     /* The view's part of the exit: the exit mesonormals, the second chord, and the factors
      * of Eq. 14 that do not see the light. */
@@ -702,7 +704,7 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
     gmtr.s = -gmtr.s, gmtr.c = -gmtr.c;
     v3 wmtr, wmtr_;
     sphg_pair(-c->st, c->ct, gmtr, b, &wmtr, &wmtr_);
-    double cos_mi3 = dot(wmtr, wtr), cos_mo2 = dot(e->wmt, neg(wtr));
+    double cos_mi3 = dot(wmtr, wtr);
     int exit_seen = cos_mi3 > 0.0 && dot(wtr, wmtr_) > 0.0 && (c->lobes & 4u);
     double pre = 0.0, lam3 = 0.0, att[3] = {0, 0, 0};
     int pre_made = 0;
@@ -725,8 +727,8 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
             double chord2 = len(add(to_point(gmtr, b), neg(to_point(e->gmt, b))));
             lam3 = ggx_lambda(a2, cos_mi3);
             pre = wgt2 * e->t1 * r->scale1 * r2 * energy_scale_at(m, &c->ax_out, cos_mi3) * e->g1o *
-                  ggx_go(a2, e->cos_mi2, cos_mo2) / (e->cos_mo1 * cos_mo2) * r->cos_mi1 *
-                  e->cos_mi2 * arc_length(c->e2, gmtr);
+                  (1.0 + e->lam2) / (1.0 + e->lam2 + ggx_lambda(a2, cos_mo2)) /
+                  (e->cos_mo1 * cos_mo2) * r->cos_mi1 * e->cos_mi2 * arc_length(c->e2, gmtr);
             for (int k = 0; k < 3; ++k) {
                 double atr = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_tr * chord2) : 1.0;
                 att[k] = e->at[k] * atr;
@@ -874,6 +876,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
                      ? 2.0 / ABRDF__PI
                      : fabs(cp_i * r.gmi.c + b * sp_i * r.gmi.s) * cos_theta(wi);
         r.scale1 = energy_scale_at(m, &ax_in, r.cos_mi1); /* depends on the entry node only */
+        r.lam1 = ggx_lambda(c.a2, r.cos_mi1);
         vndf_frame f1;
         vndf_frame_make(al, wi, r.wmi, &f1);
         for (int j1 = 0; j1 < n1 * n1; ++j1) {
