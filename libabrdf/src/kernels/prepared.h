@@ -57,6 +57,7 @@ typedef struct ABRDF__MAY_ALIAS abrdf__prep {
         abrdf__marschner marschner;
         abrdf__huang huang;
         abrdf__belcour belcour;
+        abrdf__ww ww;
     } special; /* setup of a model evaluated in double only (special.c) */
 } abrdf__prep;
 

@@ -3,10 +3,21 @@
 #define ABRDF_LAYERED_H
 #include "abrdf_internal.h"
 
+/* What Weidlich-Wilkie's evaluation takes from the parameters alone (abrdf__ww_setup). */
+typedef struct abrdf__ww {
+    int count;                        /* interfaces used, min(layer_count, ABRDF_MAX_LAYERS) */
+    double ag[ABRDF_MAX_LAYERS];      /* alpha_g = max(r^2, ABRDF__ALPHA_G_MIN) per interface */
+    double inv_eta[ABRDF_MAX_LAYERS]; /* 1 / eta per interface */
+    double sd[ABRDF_MAX_LAYERS][3];   /* sigma_a depth of the medium below each interface */
+    int grey[ABRDF_MAX_LAYERS];       /* its three channels are equal: one exp serves them */
+    double base[3];                   /* the Lambert base kd / pi */
+} abrdf__ww;
+void abrdf__ww_setup(const abrdf_params *p, abrdf__ww *w);
+
 /* Local-frame f_r of the Weidlich-Wilkie (Eq. 15) and Belcour (Eq. 16) layer stacks
  * described by p->layer_count and p->layers[]; f = 0 for back-facing pairs. */
-void abrdf__eval_weidlich_wilkie(const abrdf_params *p, const double wi[3], const double wo[3],
-                                 double f[3]);
+void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const abrdf_params *p, const double wi[3],
+                                 const double wo[3], double f[3]);
 /* A value's place on a table axis: the lower node i and the weight t of node i + 1. */
 typedef struct abrdf__belcour_cell {
     int i;
