@@ -72,7 +72,7 @@ void abrdf__prep_make(abrdf__prep *pr, abrdf_model model, const abrdf_params *p,
     pr->params = *p;
     pr->params.struct_size = sizeof(abrdf_params);
     if (abrdf__is_double_only(model)) {
-        abrdf__prep_setup_special(pr);
+        abrdf__prep_setup_special(pr, what);
         return;
     }
     if (what & ABRDF__PREP_DOUBLE) abrdf__prep_setup_d(pr);
@@ -201,7 +201,7 @@ int abrdf_eval(abrdf_model model, const abrdf_params *params, const abrdf_frame 
     f[0] = f[1] = f[2] = 0.0;
     if (!params || !wi || !wo) return ABRDF_E_NULL;
     abrdf__prep pr; /* only the double path's part: abrdf_prepare's, bit for bit */
-    int st = abrdf__prep_checked(model, params, &pr, ABRDF__PREP_DOUBLE);
+    int st = abrdf__prep_checked(model, params, &pr, ABRDF__PREP_DOUBLE | ABRDF__PREP_ONCE);
     if (st != ABRDF_OK) return st;
     return eval_prep(&pr, frame, wi, wo, f);
 }

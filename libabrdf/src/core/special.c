@@ -15,12 +15,14 @@ int abrdf__is_double_only(abrdf_model model)
     }
 }
 
-void abrdf__prep_setup_special(abrdf__prep *pr)
+void abrdf__prep_setup_special(abrdf__prep *pr, unsigned what)
 {
     switch (pr->model) {
     case ABRDF_MARSCHNER: abrdf__marschner_setup(&pr->params, &pr->special.marschner); break;
     case ABRDF_HUANG: abrdf__huang_setup(&pr->params, &pr->special.huang); break;
-    case ABRDF_BELCOUR: abrdf__belcour_setup(&pr->params, &pr->special.belcour); break;
+    case ABRDF_BELCOUR:
+        abrdf__belcour_setup(&pr->params, &pr->special.belcour, !(what & ABRDF__PREP_ONCE));
+        break;
     case ABRDF_WEIDLICH_WILKIE: abrdf__ww_setup(&pr->params, &pr->special.ww); break;
     default: break;
     }

@@ -2,6 +2,7 @@
 #ifndef ABRDF_LAYERED_H
 #define ABRDF_LAYERED_H
 #include "abrdf_internal.h"
+#include "belcour_tables.h"
 
 /* What Weidlich-Wilkie's evaluation takes from the parameters alone (abrdf__ww_setup). */
 typedef struct abrdf__ww {
@@ -36,16 +37,27 @@ typedef struct abrdf__belcour_mix {
  * by abrdf__belcour_setup, not per evaluation: the variances of its reflection and of its
  * two transmissions, s(alpha) of the roughness (a pow each); its index and extinction on the
  * FGD table's axes and the index ratio of the interface above on the TIR table's (a log and
- * a sqrt); the roughness a(s_R12) the top interface is seen with (a pow) and its cell. */
+ * a sqrt); the two top interfaces' tables along cos at the roughness they are seen with. */
 typedef struct abrdf__belcour {
     double s_r12[ABRDF_MAX_LAYERS], s_t12[ABRDF_MAX_LAYERS], s_t21[ABRDF_MAX_LAYERS];
+    double inv_eta2[ABRDF_MAX_LAYERS];        /* 1 / eta^2 (Snell's law of the mean direction) */
     abrdf__belcour_mix fgd[ABRDF_MAX_LAYERS]; /* eta_k, kappa_k */
     abrdf__belcour_mix tir[ABRDF_MAX_LAYERS]; /* 1 / eta_{k-1}, for k >= 1 */
     int tir_dense[ABRDF_MAX_LAYERS];          /* 1 / eta_{k-1} < 1: TIR can occur (else 1) */
-    double alpha_top0;                        /* a(s_R12) of interface 0 */
-    abrdf__belcour_cell alpha_top0_cell;      /* its place on the FGD table's alpha axis */
+    /* Interfaces 0 and 1 are seen with a fixed roughness a_top: the variance through the
+     * stack above them is 0 and s_T12 of interface 0 (the empty stack reflects nothing back,
+     * so the direction drops out). Their FGD (and interface 1's TIR) then vary with cos
+     * alone: the tables interpolated in every other axis, at each cos node. */
+    double alpha_top0;                  /* a(s_R12) of interface 0 */
+    double fgd_top[2][ABRDF__FGD_NCOS]; /* FGD(cos node, a_top, eta_k, kappa_k), k = 0, 1 */
+    double tir_top1[ABRDF__TIR_NCOS];   /* TIR(cos node, a_top, 1 / eta_0) of interface 1 */
+    int tops;     /* fgd_top and tir_top1 are filled (else their values come from the tables) */
+    int channels; /* 1 when every medium absorbs the same in R, G and B (one channel is
+                     carried and broadcast), else 3 */
 } abrdf__belcour;
-void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b);
+/* tables = 0 leaves out the tables along cos (tops = 0), which take longer to fill than
+ * they save on one evaluation; evaluations give the same bits either way. */
+void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b, int tables);
 void abrdf__eval_belcour(const abrdf__belcour *b, const abrdf_params *p, const double wi[3],
                          const double wo[3], double f[3]);
 
