@@ -27,9 +27,11 @@ int abrdf__normalise3(const double v[3], double out[3]);
 /* The same, faster for a direction of about unit length (what a renderer passes per sample):
  * one square root and one division where abrdf__normalise3 divides six times (two thirds of a
  * per-sample Lambert call); other vectors go through abrdf__normalise3. The result can differ
- * from abrdf__normalise3's in the last bit: the per-sample closed-form path uses it, the
- * double-only models keep abrdf__normalise3 (huang's quadrature moves by 3e-8 for a one-ulp
- * change of its directions, and their reference values are kept to 1e-10: test_prepared). */
+ * from abrdf__normalise3's in the last bit: every path uses it except huang's, which keeps
+ * abrdf__normalise3 (its quadrature moves by 3e-8 for a one-ulp change of its directions, and
+ * its reference values are kept to 1e-10: test_prepared); marschner, weidlich_wilkie and
+ * belcour, whose values move by ~1e-14, take directions within 1e-14 of unit length as given
+ * (api.c). */
 static inline int abrdf__normalise3_unit(const double v[3], double out[3])
 {
     double d = abrdf__dot3(v, v);

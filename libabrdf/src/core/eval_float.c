@@ -148,7 +148,7 @@ static void abrdf__batch_special(const abrdf__prep *pr, const abrdf_batch *b)
         double wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
         double wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
         double ui[3], uo[3], f[3] = {0.0, 0.0, 0.0};
-        if (abrdf__normalise3(wi, ui) && abrdf__normalise3(wo, uo))
+        if (abrdf__normalise3_unit(wi, ui) && abrdf__normalise3_unit(wo, uo))
             abrdf__eval_prepared_d(pr, ui, uo, f);
         b->f_r[i] = abrdf__to_float(f[0]);
         b->f_g[i] = abrdf__to_float(f[1]);

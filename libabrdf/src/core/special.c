@@ -15,13 +15,16 @@ int abrdf__is_double_only(abrdf_model model)
     }
 }
 
-void abrdf__prep_setup_special(abrdf__prep *pr)
+void abrdf__prep_setup_special(abrdf__prep *pr, unsigned what)
 {
     switch (pr->model) {
     case ABRDF_MARSCHNER: abrdf__marschner_setup(&pr->params, &pr->special.marschner); break;
     case ABRDF_HUANG: abrdf__huang_setup(&pr->params, &pr->special.huang); break;
-    case ABRDF_BELCOUR: abrdf__belcour_setup(&pr->params, &pr->special.belcour); break;
-    default: break; /* weidlich_wilkie reads the parameters itself */
+    case ABRDF_BELCOUR:
+        abrdf__belcour_setup(&pr->params, &pr->special.belcour, !(what & ABRDF__PREP_ONCE));
+        break;
+    case ABRDF_WEIDLICH_WILKIE: abrdf__ww_setup(&pr->params, &pr->special.ww); break;
+    default: break;
     }
 }
 
@@ -32,7 +35,9 @@ void abrdf__eval_special_prepared(const abrdf__prep *pr, const double wi[3], con
     switch (pr->model) {
     case ABRDF_MARSCHNER: abrdf__marschner_eval(&pr->special.marschner, wi, wo, f); break;
     case ABRDF_HUANG: abrdf__huang_eval(&pr->special.huang, wi, wo, f); break;
-    case ABRDF_WEIDLICH_WILKIE: abrdf__eval_weidlich_wilkie(&pr->params, wi, wo, f); break;
+    case ABRDF_WEIDLICH_WILKIE:
+        abrdf__eval_weidlich_wilkie(&pr->special.ww, &pr->params, wi, wo, f);
+        break;
     case ABRDF_BELCOUR: abrdf__eval_belcour(&pr->special.belcour, &pr->params, wi, wo, f); break;
     default: break;
     }

@@ -86,6 +86,18 @@ double abrdf__marschner_mp(const abrdf__marschner *m, int p, double theta_h)
 /* max(x, lo) for a finite lo: lo when x is NaN, as fmax, but inline (fmax is a libm call). */
 static double at_least(double x, double lo) { return x > lo ? x : lo; }
 
+/* abrdf__clamp(x, -1, 1), inline. */
+static double clamp_unit(double x) { return x > -1.0 ? (x < 1.0 ? x : 1.0) : -1.0; }
+
+/* abrdf__wrap_pi for an angle within 3 pi of 0 (every one wrapped here: differences and sums
+ * of two wrapped angles), without its fmod. */
+static double wrap_pi_near(double a)
+{
+    if (a > ABRDF__PI) return a - 2.0 * ABRDF__PI;
+    if (a <= -ABRDF__PI) return a + 2.0 * ABRDF__PI;
+    return a;
+}
+
 /* Phi(p, h) from gamma_t = asin(h / eta') and gamma_i = asin h. */
 static double phi_of_gammas(int p, double gamma_t, double gamma_i)
 {
@@ -98,11 +110,6 @@ static double phi_of(int p, double h, double eta1)
     return phi_of_gammas(p, asin(h / eta1), asin(h));
 }
 
-static double dphi_dh(int p, double h, double eta1)
-{
-    return 2.0 * p / sqrt(eta1 * eta1 - h * h) - 2.0 / sqrt(1.0 - h * h);
-}
-
 /* x^1.5 for x >= 0. */
 static double pow_1_5(double x) { return x * sqrt(x); }
 
@@ -111,18 +118,38 @@ static double d2phi_dh2(int p, double h, double eta1)
     return 2.0 * p * h / pow_1_5(eta1 * eta1 - h * h) - 2.0 * h / pow_1_5(1.0 - h * h);
 }
 
-void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1, double eta2,
-                         double cos_theta_t, double a[3])
+/* Fresnel amplitude (c - n ct) / (c + n ct) squared, for incidence cosine c and refracted
+ * cosine ct (abrdf__fresnel_s's; abrdf__fresnel_p's with c and ct swapped): 1 where the
+ * denominator vanishes (grazing). */
+static double fresnel_r2(double c, double n, double ct)
 {
-    double cos_gi = sqrt(at_least(1.0 - h * h, 0.0));
-    double fi = 0.5 * (abrdf__fresnel_s(eta1, cos_gi) + abrdf__fresnel_p(eta2, cos_gi));
+    double den = c + n * ct;
+    if (!(den > 0.0)) return 1.0;
+    double r = (c - n * ct) / den;
+    return r * r;
+}
+
+/* The refracted cosine sqrt(1 - s2) for the squared refracted sine s2, or -1 for total
+ * internal reflection. */
+static double cos_of_sin2(double s2) { return s2 >= 1.0 ? -1.0 : sqrt(1.0 - s2); }
+
+/* A_p from h^2 <= 1 and the cosines of gamma_i and gamma_t (sin gamma_t = h / eta').
+ * Snell's law in the normal plane makes the four Fresnel terms share their cosines: entry
+ * and exit for eta' (perpendicular) are the same reflectance, F_s(eta', cos gamma_i) =
+ * F_s(1/eta', cos gamma_t), and the parallel ones refract at sin = h / eta'' and
+ * h eta'' / eta'. */
+static void ap_of(const abrdf__marschner *m, int p, double h2, double cos_gi, double cos_gt,
+                  double eta1, double eta2, double cos_theta_t, double a[3])
+{
+    double fs = fresnel_r2(cos_gi, eta1, cos_gt); /* eta1 >= 1: no total reflection */
+    double cpi = cos_of_sin2(h2 / (eta2 * eta2));
+    double fi = 0.5 * (fs + (cpi < 0.0 ? 1.0 : fresnel_r2(eta2 * cos_gi, 1.0, cpi)));
     if (p == 0) {
         a[0] = a[1] = a[2] = fi; /* A_0 */
         return;
     }
-    double st = h / eta1;
-    double cos_gt = sqrt(at_least(1.0 - st * st, 0.0));
-    double fo = 0.5 * (abrdf__fresnel_s(1.0 / eta1, cos_gt) + abrdf__fresnel_p(1.0 / eta2, cos_gt));
+    double cpo = cos_of_sin2(h2 * (eta2 * eta2) / (eta1 * eta1));
+    double fo = 0.5 * (fs + (cpo < 0.0 ? 1.0 : fresnel_r2(cos_gt, eta2, cpo)));
     double ct = at_least(cos_theta_t, ABRDF__HAIR_COS_MIN);
     double tr = (1.0 - fi) * (1.0 - fo);
     for (int q = 1; q < p; ++q) tr *= fo; /* F^(p-1) */
@@ -131,6 +158,13 @@ void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1
         double tau = m->sigma_a[c] > 0.0 ? 2.0 * m->sigma_a[c] * cos_gt / ct : 0.0;
         a[c] = tr * exp(-tau * p); /* T^p */
     }
+}
+
+void abrdf__marschner_ap(const abrdf__marschner *m, int p, double h, double eta1, double eta2,
+                         double cos_theta_t, double a[3])
+{
+    double h2 = h * h < 1.0 ? h * h : 1.0;
+    ap_of(m, p, h2, sqrt(1.0 - h2), sqrt(1.0 - h2 / (eta1 * eta1)), eta1, eta2, cos_theta_t, a);
 }
 
 /* Bravais indices for index eta at theta_d, and the refracted longitudinal cosine. */
@@ -163,7 +197,7 @@ typedef struct phi_end {
  * up to rounding, but each end is evaluated as phi_of does, for the same bits. */
 static int phi_ends(int p, double eta1, phi_end e[4])
 {
-    double gt = asin(1.0 / eta1), gi = asin(1.0);
+    double gt = p > 0 ? asin(1.0 / eta1) : 0.0, gi = asin(1.0); /* R: Phi has no gamma_t */
     e[0].h = -1.0;
     e[0].gamma = -gi;
     e[0].phi = phi_of_gammas(p, -gt, -gi);
@@ -185,11 +219,28 @@ static int phi_ends(int p, double eta1, phi_end e[4])
     return n + 1;
 }
 
-/* The root gamma_i of Phi(p, sin gamma_i) = target between the ends lo and hi, where Phi is
- * monotone and target lies between their values. R (p = 0) is exact: Phi = -2 gamma_i. */
-static double root_gamma(int p, double target, double eta1, const phi_end *lo, const phi_end *hi)
+/* Below this step d (the last Newton steps of a root search are), sin and cos of x + d come
+ * from those of x by the angle-sum formulas with Taylor's series for sin d and cos d to d^5
+ * and d^4: the terms left out are below d^6 / 720 < 1e-20, and each such update adds an ulp
+ * or so of rounding. */
+#define ABRDF__MARSCHNER_STEP_TAYLOR 1e-3
+
+/* sin and cos of x + d from *s = sin x and *c = cos x, in place (|d| small, as above). */
+static void rotate_small(double d, double *s, double *c)
 {
-    if (p == 0) return -0.5 * target;
+    double d2 = d * d;
+    double cd = 1.0 - d2 * (0.5 - d2 * (1.0 / 24.0));
+    double sd = d * (1.0 - d2 * (1.0 / 6.0 - d2 * (1.0 / 120.0)));
+    double sx = *s, cx = *c;
+    *s = sx * cd + cx * sd;
+    *c = cx * cd - sx * sd;
+}
+
+/* The root h = sin gamma_i of Phi(p, h) = target between the ends lo and hi, where Phi is
+ * monotone and target lies between their values. R (p = 0) is exact: Phi = -2 gamma_i. */
+static double root_h(int p, double target, double eta1, const phi_end *lo, const phi_end *hi)
+{
+    if (p == 0) return sin(-0.5 * target);
     /* Safeguarded Newton in gamma_i: Phi is monotone on the piece, so the root stays
      * bracketed; dPhi/dgamma_i is 0 at a caustic, where the Newton step leaves the bracket
      * and a bisection is taken instead. */
@@ -197,9 +248,16 @@ static double root_gamma(int p, double target, double eta1, const phi_end *lo, c
     double x0 = lo->gamma, x1 = hi->gamma;
     double x = x0 + (target - lo->phi) * (x1 - x0) / (hi->phi - lo->phi); /* the secant */
     if (!(x > x0 && x < x1)) x = 0.5 * (x0 + x1);
-    double last = 0.0; /* the previous Newton step, 0 after a bisection */
+    double last = 0.0;                 /* the previous Newton step, 0 after a bisection */
+    double xs = x, sx = 0.0, cx = 1.0; /* sin and cos at xs */
     for (int it = 0; it < ABRDF__MARSCHNER_BISECT_STEPS; ++it) {
-        double sx = sin(x), cx = cos(x);
+        if (it > 0 && fabs(x - xs) < ABRDF__MARSCHNER_STEP_TAYLOR) {
+            rotate_small(x - xs, &sx, &cx);
+        } else {
+            sx = sin(x);
+            cx = cos(x);
+        }
+        xs = x;
         double g = phi_of_gammas(p, asin(sx / eta1), x) - target;
         if (g == 0.0) break; /* on the root (its Newton step would not move) */
         if ((g < 0.0) == inc)
@@ -219,7 +277,10 @@ static double root_gamma(int p, double target, double eta1, const phi_end *lo, c
             break;
         last = newton ? step : 0.0;
     }
-    return x;
+    if (x == xs) return sx;
+    if (!(fabs(x - xs) < ABRDF__MARSCHNER_STEP_TAYLOR)) return sin(x);
+    rotate_small(x - xs, &sx, &cx);
+    return sx;
 }
 
 /* Bare root sum: sum over roots h of Phi(p, h) = phi (mod 2 pi) of A_p(h) / |2 Phi'(h)|,
@@ -236,11 +297,14 @@ static void root_sum(const abrdf__marschner *m, int p, double phi, double eta1, 
         double j0 = ceil((lo - phi) / (2.0 * ABRDF__PI)),
                j1 = floor((hi - phi) / (2.0 * ABRDF__PI));
         for (double j = j0; j <= j1; j += 1.0) {
-            double h = sin(root_gamma(p, phi + 2.0 * ABRDF__PI * j, eta1, a, b));
+            double h = root_h(p, phi + 2.0 * ABRDF__PI * j, eta1, a, b);
             if (!(fabs(h) < 1.0)) continue; /* |dPhi/dh| is infinite at |h| = 1: N = 0 */
-            double d = at_least(fabs(dphi_dh(p, h, eta1)), ABRDF__HAIR_DPHI_MIN);
+            double h2 = h * h, cos_gi = sqrt(1.0 - h2), cos_gt = sqrt(1.0 - h2 / (eta1 * eta1));
+            /* dPhi/dh = 2 p / sqrt(eta'^2 - h^2) - 2 / sqrt(1 - h^2) */
+            double d =
+                at_least(fabs(2.0 * p / (eta1 * cos_gt) - 2.0 / cos_gi), ABRDF__HAIR_DPHI_MIN);
             double ap[3];
-            abrdf__marschner_ap(m, p, h, eta1, eta2, cos_t, ap);
+            ap_of(m, p, h2, cos_gi, cos_gt, eta1, eta2, cos_t, ap);
             for (int c = 0; c < 3; ++c) n[c] += ap[c] / (2.0 * d);
         }
     }
@@ -281,14 +345,16 @@ static void np_sc(const abrdf__marschner *m, int p, double phi, double sin_d, do
     }
     if (!(t > 0.0)) return;
     phic = abrdf__wrap_pi(phic);
-    double g0 = abrdf__gauss(0.0, ABRDF__MARSCHNER_GLINT_WC);
-    double gm = abrdf__gauss(abrdf__wrap_pi(phi - phic), ABRDF__MARSCHNER_GLINT_WC);
-    double gp = abrdf__gauss(abrdf__wrap_pi(phi + phic), ABRDF__MARSCHNER_GLINT_WC);
-    double notch = (1.0 - t * gm / g0) * (1.0 - t * gp / g0);
+    /* the Gaussians of width w_c at phi -+ phi_c, relative to their peak g0 */
+    double xm = wrap_pi_near(phi - phic), xp = wrap_pi_near(phi + phic);
+    double k = -0.5 / (ABRDF__MARSCHNER_GLINT_WC * ABRDF__MARSCHNER_GLINT_WC);
+    double em = exp(k * (xm * xm)), ep = exp(k * (xp * xp));
+    double g0 = 1.0 / (ABRDF__MARSCHNER_GLINT_WC * 2.5066282746310002); /* sqrt(2 pi) */
+    double notch = (1.0 - t * em) * (1.0 - t * ep);
     double ac[3];
     abrdf__marschner_ap(m, 2, hc, eta1, eta2, cos_t, ac);
     for (int c = 0; c < 3; ++c)
-        n[c] = n[c] * notch + t * ABRDF__MARSCHNER_GLINT_KG * ac[c] * dh * (gm + gp);
+        n[c] = n[c] * notch + t * ABRDF__MARSCHNER_GLINT_KG * ac[c] * dh * (g0 * (em + ep));
 }
 
 void abrdf__marschner_np(const abrdf__marschner *m, int p, double phi, double theta_d,
@@ -302,14 +368,33 @@ void abrdf__marschner_fibre(const abrdf__marschner *m, const double wi[3], const
                             unsigned lobes, double s[3])
 {
     s[0] = s[1] = s[2] = 0.0;
-    double si, ci, pi_, so, co, po;
-    abrdf__fibre_angles(wi, &si, &ci, &pi_);
-    abrdf__fibre_angles(wo, &so, &co, &po);
-    double ti = asin(si), to = asin(so);
-    double th = 0.5 * (ti + to), td = 0.5 * (to - ti);
-    double sd = sin(td), cd = fmax(cos(td), ABRDF__HAIR_COS_MIN);
-    double phi = abrdf__wrap_pi(po - pi_);
-    double cps = cos(pi_ + po); /* cos(2 phi_h) */
+    double si = clamp_unit(wi[0]), so = clamp_unit(wo[0]);
+    double ci = sqrt(wi[1] * wi[1] + wi[2] * wi[2]), co = sqrt(wo[1] * wo[1] + wo[2] * wo[2]);
+    /* theta_h = (theta_i + theta_o) / 2 from the sum's sine and cosine (one atan2, no asin);
+     * theta_d's sine and cosine from the difference's by the half-angle formulas, each taken
+     * where it does not cancel (|theta_d| < pi / 2, so cos theta_d >= 0) */
+    double th = 0.5 * atan2(si * co + ci * so, ci * co - si * so);
+    double s2d = so * ci - co * si, c2d = co * ci + so * si, sd, cd;
+    if (c2d >= 0.0) {
+        cd = sqrt(0.5 * (1.0 + c2d));
+        sd = 0.5 * s2d / cd;
+    } else {
+        sd = copysign(sqrt(0.5 * (1.0 - c2d)), s2d);
+        cd = 0.5 * s2d / sd;
+    }
+    cd = at_least(cd, ABRDF__HAIR_COS_MIN);
+    /* phi = phi_o - phi_i and cos(phi_i + phi_o) = cos(2 phi_h) from the directions' (y, z)
+     * parts, of lengths ci and co */
+    double phi, cps, cc = ci * co;
+    if (cc > 0.0) {
+        double yy = wi[1] * wo[1], zz = wi[2] * wo[2];
+        phi = atan2(wi[1] * wo[2] - wi[2] * wo[1], yy + zz);
+        cps = (yy - zz) / cc;
+    } else { /* along the fibre: azimuth 0, atan2(0, 0)'s (abrdf__fibre_angles) */
+        double pi_ = atan2(wi[2], wi[1]), po = atan2(wo[2], wo[1]);
+        phi = abrdf__wrap_pi(po - pi_);
+        cps = cos(pi_ + po);
+    }
     for (int p = 0; p < 3; ++p) {
         if (!(lobes & (1u << p))) continue;
         double n[3];

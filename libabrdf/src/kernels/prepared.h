@@ -57,15 +57,19 @@ typedef struct ABRDF__MAY_ALIAS abrdf__prep {
         abrdf__marschner marschner;
         abrdf__huang huang;
         abrdf__belcour belcour;
+        abrdf__ww ww;
     } special; /* setup of a model evaluated in double only (special.c) */
 } abrdf__prep;
 
-/* Which precisions abrdf__prep_make fills (abrdf_eval needs only double). */
+/* Which precisions abrdf__prep_make fills (abrdf_eval needs only double), and ONCE for an
+ * object that serves a single evaluation (abrdf_eval, abrdf_sample): a setup may then leave
+ * out what only pays over many evaluations, as long as the results keep their bits. */
 #define ABRDF__PREP_DOUBLE 1u
 #define ABRDF__PREP_FLOAT 2u
+#define ABRDF__PREP_ONCE 4u
 
 /* Fill *pr for a model whose parameters p (this library's layout) passed abrdf_params_check;
- * p is copied. what: ABRDF__PREP_DOUBLE | ABRDF__PREP_FLOAT (api.c). */
+ * p is copied. what: ABRDF__PREP_DOUBLE | ABRDF__PREP_FLOAT | ABRDF__PREP_ONCE (api.c). */
 void abrdf__prep_make(abrdf__prep *pr, abrdf_model model, const abrdf_params *p, unsigned what);
 
 /* Validate params for model (abrdf_params_check's status) and, if valid, abrdf__prep_make
@@ -78,7 +82,7 @@ const abrdf__prep *abrdf__prep_of(const abrdf_prepared *prepared);
 /* The setups, per precision (eval_double.c, eval_float.c, special.c). */
 void abrdf__prep_setup_d(abrdf__prep *pr);
 void abrdf__prep_setup_f(abrdf__prep *pr);
-void abrdf__prep_setup_special(abrdf__prep *pr);
+void abrdf__prep_setup_special(abrdf__prep *pr, unsigned what);
 
 /* Local-frame evaluation of a prepared model; wi, wo unit (the scalar path normalises before
  * calling). f is finite and >= 0 (eval_double.c). */

@@ -2,11 +2,23 @@
 #ifndef ABRDF_LAYERED_H
 #define ABRDF_LAYERED_H
 #include "abrdf_internal.h"
+#include "belcour_tables.h"
+
+/* What Weidlich-Wilkie's evaluation takes from the parameters alone (abrdf__ww_setup). */
+typedef struct abrdf__ww {
+    int count;                        /* interfaces used, min(layer_count, ABRDF_MAX_LAYERS) */
+    double ag[ABRDF_MAX_LAYERS];      /* alpha_g = max(r^2, ABRDF__ALPHA_G_MIN) per interface */
+    double inv_eta[ABRDF_MAX_LAYERS]; /* 1 / eta per interface */
+    double sd[ABRDF_MAX_LAYERS][3];   /* sigma_a depth of the medium below each interface */
+    int grey[ABRDF_MAX_LAYERS];       /* its three channels are equal: one exp serves them */
+    double base[3];                   /* the Lambert base kd / pi */
+} abrdf__ww;
+void abrdf__ww_setup(const abrdf_params *p, abrdf__ww *w);
 
 /* Local-frame f_r of the Weidlich-Wilkie (Eq. 15) and Belcour (Eq. 16) layer stacks
  * described by p->layer_count and p->layers[]; f = 0 for back-facing pairs. */
-void abrdf__eval_weidlich_wilkie(const abrdf_params *p, const double wi[3], const double wo[3],
-                                 double f[3]);
+void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const abrdf_params *p, const double wi[3],
+                                 const double wo[3], double f[3]);
 /* A value's place on a table axis: the lower node i and the weight t of node i + 1. */
 typedef struct abrdf__belcour_cell {
     int i;
@@ -25,16 +37,27 @@ typedef struct abrdf__belcour_mix {
  * by abrdf__belcour_setup, not per evaluation: the variances of its reflection and of its
  * two transmissions, s(alpha) of the roughness (a pow each); its index and extinction on the
  * FGD table's axes and the index ratio of the interface above on the TIR table's (a log and
- * a sqrt); the roughness a(s_R12) the top interface is seen with (a pow) and its cell. */
+ * a sqrt); the two top interfaces' tables along cos at the roughness they are seen with. */
 typedef struct abrdf__belcour {
     double s_r12[ABRDF_MAX_LAYERS], s_t12[ABRDF_MAX_LAYERS], s_t21[ABRDF_MAX_LAYERS];
+    double inv_eta2[ABRDF_MAX_LAYERS];        /* 1 / eta^2 (Snell's law of the mean direction) */
     abrdf__belcour_mix fgd[ABRDF_MAX_LAYERS]; /* eta_k, kappa_k */
     abrdf__belcour_mix tir[ABRDF_MAX_LAYERS]; /* 1 / eta_{k-1}, for k >= 1 */
     int tir_dense[ABRDF_MAX_LAYERS];          /* 1 / eta_{k-1} < 1: TIR can occur (else 1) */
-    double alpha_top0;                        /* a(s_R12) of interface 0 */
-    abrdf__belcour_cell alpha_top0_cell;      /* its place on the FGD table's alpha axis */
+    /* Interfaces 0 and 1 are seen with a fixed roughness a_top: the variance through the
+     * stack above them is 0 and s_T12 of interface 0 (the empty stack reflects nothing back,
+     * so the direction drops out). Their FGD (and interface 1's TIR) then vary with cos
+     * alone: the tables interpolated in every other axis, at each cos node. */
+    double alpha_top0;                  /* a(s_R12) of interface 0 */
+    double fgd_top[2][ABRDF__FGD_NCOS]; /* FGD(cos node, a_top, eta_k, kappa_k), k = 0, 1 */
+    double tir_top1[ABRDF__TIR_NCOS];   /* TIR(cos node, a_top, 1 / eta_0) of interface 1 */
+    int tops;     /* fgd_top and tir_top1 are filled (else their values come from the tables) */
+    int channels; /* 1 when every medium absorbs the same in R, G and B (one channel is
+                     carried and broadcast), else 3 */
 } abrdf__belcour;
-void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b);
+/* tables = 0 leaves out the tables along cos (tops = 0), which take longer to fill than
+ * they save on one evaluation; evaluations give the same bits either way. */
+void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b, int tables);
 void abrdf__eval_belcour(const abrdf__belcour *b, const abrdf_params *p, const double wi[3],
                          const double wo[3], double f[3]);
 

@@ -93,22 +93,45 @@ static abrdf__belcour_mix tir_mix(double eta)
     return m;
 }
 
-/* Multilinear interpolation of a table laid out [cos][alpha][trailing axes]: bilinear in
- * the cells c (cos) and a (alpha), strides s0 and s1, of the premixed trailing corners m. */
+static double clamp01(double v) { return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v); }
+
+/* A table laid out [cos][alpha][trailing axes] at cos node ic, interpolated in the cell a
+ * (alpha) and the premixed trailing corners m; s0 and s1 are the strides of cos and alpha. */
+static double mix_node(const float *table, int s0, int s1, int ic, abrdf__belcour_cell a,
+                       const abrdf__belcour_mix *m)
+{
+    double v = 0.0;
+    for (int ha = 0; ha < 2; ++ha) {
+        double w = ha ? a.t : 1.0 - a.t;
+        if (w == 0.0) continue;
+        const float *row = table + ic * s0 + (a.i + ha) * s1;
+        double r = 0.0;
+        for (int k = 0; k < m->n; ++k) r += m->w[k] * row[m->off[k]];
+        v += w * r;
+    }
+    return v;
+}
+
+/* The value at cos between the two nodes of cell c whose values are v0 and v1. */
+static double cos_lerp(abrdf__belcour_cell c, double v0, double v1)
+{
+    return clamp01((1.0 - c.t) * v0 + c.t * v1);
+}
+
+/* Multilinear interpolation of such a table: in alpha and the trailing axes at the two cos
+ * nodes of the cell c, then in cos. */
 static double mix_interp(const float *table, int s0, int s1, abrdf__belcour_cell c,
                          abrdf__belcour_cell a, const abrdf__belcour_mix *m)
 {
-    double v = 0.0;
-    for (int ha = 0; ha < 2; ++ha)
-        for (int hc = 0; hc < 2; ++hc) {
-            double w = (hc ? c.t : 1.0 - c.t) * (ha ? a.t : 1.0 - a.t);
-            if (w == 0.0) continue;
-            const float *row = table + (c.i + hc) * s0 + (a.i + ha) * s1;
-            double r = 0.0;
-            for (int k = 0; k < m->n; ++k) r += m->w[k] * row[m->off[k]];
-            v += w * r;
-        }
-    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+    return cos_lerp(c, mix_node(table, s0, s1, c.i, a, m), mix_node(table, s0, s1, c.i + 1, a, m));
+}
+
+/* The same from a table's values at every cos node (n of them, from mix_node): the same
+ * arithmetic, so the same bits. */
+static double node_interp(const double *v, int n, double c)
+{
+    abrdf__belcour_cell cc = cell_of(abrdf__bt_x_cos(c, n), n);
+    return cos_lerp(cc, v[cc.i], v[cc.i + 1]);
 }
 
 enum {
@@ -124,27 +147,37 @@ static double fgd_at(double c, abrdf__belcour_cell a, const abrdf__belcour_mix *
     return mix_interp(abrdf__fgd_table, FGD_S0, FGD_S1, cc, a, m);
 }
 
-static double tir_at(double c, double a, const abrdf__belcour_mix *m)
+static abrdf__belcour_cell fgd_alpha_cell(double a)
+{
+    return cell_of(abrdf__bt_x_alpha(a, ABRDF__FGD_NALPHA), ABRDF__FGD_NALPHA);
+}
+
+static abrdf__belcour_cell tir_alpha_cell(double a)
+{
+    return cell_of(abrdf__bt_x_alpha(a, ABRDF__TIR_NALPHA), ABRDF__TIR_NALPHA);
+}
+
+static double tir_at(double c, abrdf__belcour_cell ca, const abrdf__belcour_mix *m)
 {
     abrdf__belcour_cell cc = cell_of(abrdf__bt_x_cos(c, ABRDF__TIR_NCOS), ABRDF__TIR_NCOS);
-    abrdf__belcour_cell ca = cell_of(abrdf__bt_x_alpha(a, ABRDF__TIR_NALPHA), ABRDF__TIR_NALPHA);
     return mix_interp(abrdf__tir_table, TIR_S0, TIR_S1, cc, ca, m);
 }
 
 double abrdf__belcour_fgd(double c, double a, double eta, double kappa)
 {
     abrdf__belcour_mix m = fgd_mix(eta, kappa);
-    return fgd_at(c, cell_of(abrdf__bt_x_alpha(a, ABRDF__FGD_NALPHA), ABRDF__FGD_NALPHA), &m);
+    return fgd_at(c, fgd_alpha_cell(a), &m);
 }
 
 double abrdf__belcour_tir(double c, double a, double eta)
 {
     if (eta >= 1.0) return 1.0; /* from the less dense side nothing is totally reflected */
     abrdf__belcour_mix m = tir_mix(eta);
-    return tir_at(c, a, &m);
+    return tir_at(c, tir_alpha_cell(a), &m);
 }
 
-static double avg3(const double v[3]) { return (v[0] + v[1] + v[2]) / 3.0; }
+/* The mean of the nc (1 or 3) channels carried. */
+static double avg(const double v[3], int nc) { return nc == 1 ? v[0] : (v[0] + v[1] + v[2]) / 3.0; }
 
 /* The statistics carried from the top of the stack down to the current medium. */
 typedef struct stack_stats {
@@ -154,14 +187,20 @@ typedef struct stack_stats {
     double cos; /* cosine of the mean direction in the current medium */
 } stack_stats;
 
-void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b)
+/* abrdf__belcour_setup without the tables along cos (tops = 0). */
+static void setup_stack(const abrdf_params *p, abrdf__belcour *b)
 {
     int n = p->layer_count < ABRDF_MAX_LAYERS ? p->layer_count : ABRDF_MAX_LAYERS;
+    b->channels = 1;
     for (int k = 0; k < ABRDF_MAX_LAYERS; ++k) {
         const abrdf_layer *ly = &p->layers[k];
+        if (k < n && ly->depth > 0.0 &&
+            !(ly->sigma_a[0] == ly->sigma_a[1] && ly->sigma_a[0] == ly->sigma_a[2]))
+            b->channels = 3;
         double eta = ly->eta, alpha = ly->r * ly->r;
         int used = k < n, transmits = used && !(ly->kappa > 0.0); /* what add_interface reads */
         b->s_r12[k] = used ? var_of_alpha(alpha) : 0.0;
+        b->inv_eta2[k] = 1.0 / (eta * eta);
         b->s_t12[k] = transmits ? var_of_alpha(alpha * 0.5 * fabs(eta - 1.0) / eta) : 0.0;
         b->s_t21[k] = transmits ? var_of_alpha(alpha * 0.5 * fabs(1.0 / eta - 1.0) * eta) : 0.0;
         b->fgd[k] = fgd_mix(eta, ly->kappa);
@@ -169,9 +208,36 @@ void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b)
         b->tir_dense[k] = k > 0 && !(eta_up >= 1.0);
         b->tir[k] = tir_mix(b->tir_dense[k] ? eta_up : 1.0);
     }
-    b->alpha_top0 = alpha_of_var(0.0 + b->s_r12[0]); /* add_interface's a_top at k = 0 */
-    b->alpha_top0_cell =
-        cell_of(abrdf__bt_x_alpha(b->alpha_top0, ABRDF__FGD_NALPHA), ABRDF__FGD_NALPHA);
+    /* add_interface's a_top = a(s_T0i + s_R12) at k = 0 and 1, s_T0i being 0 and s_T12 */
+    b->alpha_top0 = alpha_of_var(0.0 + b->s_r12[0]);
+    b->tops = 0;
+}
+
+void abrdf__belcour_setup(const abrdf_params *p, abrdf__belcour *b, int tables)
+{
+    setup_stack(p, b);
+    if (!tables) return;
+    double alpha_top1 = alpha_of_var(b->s_t12[0] + b->s_r12[1]);
+    abrdf__belcour_cell f0 = fgd_alpha_cell(b->alpha_top0), f1 = fgd_alpha_cell(alpha_top1);
+    abrdf__belcour_cell t1 = tir_alpha_cell(alpha_top1);
+    for (int i = 0; i < ABRDF__FGD_NCOS; ++i) {
+        b->fgd_top[0][i] = mix_node(abrdf__fgd_table, FGD_S0, FGD_S1, i, f0, &b->fgd[0]);
+        b->fgd_top[1][i] = mix_node(abrdf__fgd_table, FGD_S0, FGD_S1, i, f1, &b->fgd[1]);
+    }
+    for (int i = 0; i < ABRDF__TIR_NCOS; ++i)
+        b->tir_top1[i] = mix_node(abrdf__tir_table, TIR_S0, TIR_S1, i, t1, &b->tir[1]);
+    b->tops = 1;
+}
+
+/* D_GGX(H) G(L, V) / (4 cos_i cos_o) with the separable Smith G (Eq. 9), that is
+ * abrdf__lo_d_ggx(ch, sh2, ag) abrdf__lo_v1(ci, ag) abrdf__lo_v1(co, ag) with one division;
+ * ch = N.H > 0 since both directions are above the surface. */
+static double ggx_lobe(double ch, double sh2, double ci, double co, double ag)
+{
+    double a2 = ag * ag, t = sh2 + a2 * ch * ch;
+    if (!(t > 0.0)) return 0.0;
+    double vi = ci + sqrt(a2 + (1.0 - a2) * ci * ci), vo = co + sqrt(a2 + (1.0 - a2) * co * co);
+    return a2 / (ABRDF__LO_PI * t * t * vi * vo);
 }
 
 /* Adds interface k to the stack; writes its lobe (energy e, roughness alpha). Returns 1 if
@@ -183,7 +249,7 @@ static int add_interface(stack_stats *st, const abrdf__belcour *bp, const abrdf_
     double eta = ly->eta;
     int conductor = ly->kappa > 0.0;
     double c = st->cos;
-    double sin_t2 = (1.0 - c * c) / (eta * eta);
+    double sin_t2 = (1.0 - c * c) * bp->inv_eta2[k];
     int has_t = !conductor && sin_t2 < 1.0;
     double cos_t = has_t ? sqrt(1.0 - sin_t2) : 0.0;
     if (cos_t < ABRDF__BELCOUR_COS_MIN) has_t = 0;
@@ -192,57 +258,73 @@ static int add_interface(stack_stats *st, const abrdf__belcour *bp, const abrdf_
         sT12 = bp->s_t12[k];
         sT21 = bp->s_t21[k];
         j12 = eta * cos_t / c;
-        j21 = 1.0 / j12;
+        j21 = c / (eta * cos_t); /* 1 / j12, not waiting for it */
     }
-    /* roughness seen through the stack above (at the top: s_T0i = 0, from the setup) */
-    double a_top = k == 0 ? bp->alpha_top0 : alpha_of_var(st->sT0i + sR12);
-    abrdf__belcour_cell ca =
-        k == 0 ? bp->alpha_top0_cell
-               : cell_of(abrdf__bt_x_alpha(a_top, ABRDF__FGD_NALPHA), ABRDF__FGD_NALPHA);
-    double R12 = fgd_at(c, ca, &bp->fgd[k]); /* abrdf__belcour_fgd(c, a_top, eta, kappa) */
+    /* roughness seen through the stack above (k < 2: fixed, the setup's tables along cos) */
+    int top = k < 2 && bp->tops;
+    double a_top = top ? 0.0 : alpha_of_var(st->sT0i + sR12);
+    /* abrdf__belcour_fgd(c, a_top, eta, kappa) */
+    double R12 = top ? node_interp(bp->fgd_top[k], ABRDF__FGD_NCOS, c)
+                     : fgd_at(c, fgd_alpha_cell(a_top), &bp->fgd[k]);
     double T12 = has_t ? 1.0 - R12 : 0.0, R21 = has_t ? R12 : 0.0, T21 = T12;
-    if (k > 0) { /* TIR at the interface above, seen from this medium */
+    int nc = bp->channels;
+    if (k == 0) {
+        /* Under the empty stack (R = 0, T = 1, no variance, J = 1) the adding step below
+         * reduces to the interface itself: e = R12, alpha = a_top, and the normalised
+         * variances s R / R are s_R12. */
+        for (int ch = 0; ch < 3; ++ch) e[ch] = R12 > 0.0 ? R12 : 0.0;
+        *alpha_k = R12 > 0.0 ? bp->alpha_top0 : 0.0;
+        for (int ch = 0; ch < nc; ++ch) {
+            st->R0i[ch] = R12;
+            st->T0i[ch] = T12;
+            st->Ri0[ch] = R21;
+            st->Ti0[ch] = T21;
+        }
+        st->sR0i = R12 > 0.0 ? sR12 : 0.0;
+        st->sT0i = sT12;
+        st->sRi0 = R21 > 0.0 ? sR12 : 0.0;
+        st->sTi0 = sT21;
+        st->J0i = j12;
+        st->Ji0 = j21;
+        st->cos = cos_t;
+        return has_t;
+    }
+    if (bp->tir_dense[k]) { /* TIR at the interface above, seen from this medium */
         /* abrdf__belcour_tir(c, a_top, 1 / eta_{k-1}) */
-        double tau = bp->tir_dense[k] ? tir_at(c, a_top, &bp->tir[k]) : 1.0;
-        for (int ch = 0; ch < 3; ++ch) {
+        double tau = top ? node_interp(bp->tir_top1, ABRDF__TIR_NCOS, c)
+                         : tir_at(c, tir_alpha_cell(a_top), &bp->tir[k]);
+        for (int ch = 0; ch < nc; ++ch) {
             double ri = st->Ri0[ch] + (1.0 - tau) * st->Ti0[ch];
             st->Ri0[ch] = ri < 1.0 ? ri : 1.0; /* fmin(1, ri), inline */
             st->Ti0[ch] *= tau;
         }
     }
-    double R0i[3], T0i[3], Ri0[3], Ti0[3], eterm[3], riterm[3], rr[3];
-    for (int ch = 0; ch < 3; ++ch) {
-        double den = 1.0 - st->Ri0[ch] * R12;
+    double r0i_prev = avg(st->R0i, nc), eterm[3], riterm[3], rr[3];
+    for (int ch = 0; ch < nc; ++ch) { /* the adding step, in place */
+        double ri = st->Ri0[ch], ti = st->Ti0[ch], t0 = st->T0i[ch];
+        double den = 1.0 - ri * R12;
         double inv = den > 0.0 ? 1.0 / den : 0.0; /* 0: the terms below are 0 */
-        eterm[ch] = st->T0i[ch] * R12 * st->Ti0[ch] * inv;
-        riterm[ch] = T21 * st->Ri0[ch] * T12 * inv;
-        rr[ch] = st->Ri0[ch] * R12 * inv;
-        R0i[ch] = st->R0i[ch] + eterm[ch];
-        T0i[ch] = st->T0i[ch] * T12 * inv;
-        Ri0[ch] = R21 + riterm[ch];
-        Ti0[ch] = T21 * st->Ti0[ch] * inv;
+        eterm[ch] = t0 * R12 * ti * inv;
+        riterm[ch] = T21 * ri * T12 * inv;
+        rr[ch] = ri * R12 * inv;
+        st->R0i[ch] += eterm[ch];
+        st->T0i[ch] = t0 * T12 * inv;
+        st->Ri0[ch] = R21 + riterm[ch];
+        st->Ti0[ch] = T21 * ti * inv;
     }
-    double e_avg = avg3(eterm), ri_avg = avg3(riterm), rr_avg = avg3(rr);
-    double sR0i = avg3(st->R0i) * st->sR0i +
+    double e_avg = avg(eterm, nc), ri_avg = avg(riterm, nc), rr_avg = avg(rr, nc);
+    double sR0i = r0i_prev * st->sR0i +
                   e_avg * (st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)));
     double sT0i = j12 * st->sT0i + sT12 + j12 * (sR12 + st->sRi0) * rr_avg;
     double sRi0 =
         R21 * sR12 + ri_avg * (sT12 + j12 * (sT21 + st->sRi0 + rr_avg * (sR12 + st->sRi0)));
     double sTi0 = st->Ji0 * sT21 + st->sTi0 + st->Ji0 * (sR12 + st->sRi0) * rr_avg;
-    double r0i_avg = avg3(R0i), ri0_avg = avg3(Ri0);
-    /* at the top the variance sum is s_R12 exactly (every other term is 0): a_top */
+    double r0i_avg = avg(st->R0i, nc), ri0_avg = avg(st->Ri0, nc);
     *alpha_k =
-        !(e_avg > 0.0) ? 0.0
-        : k == 0
-            ? bp->alpha_top0
-            : alpha_of_var(st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)));
-    for (int ch = 0; ch < 3; ++ch) e[ch] = e_avg > 0.0 ? eterm[ch] : 0.0;
-    for (int ch = 0; ch < 3; ++ch) {
-        st->R0i[ch] = R0i[ch];
-        st->T0i[ch] = T0i[ch];
-        st->Ri0[ch] = Ri0[ch];
-        st->Ti0[ch] = Ti0[ch];
-    }
+        e_avg > 0.0
+            ? alpha_of_var(st->sTi0 + st->J0i * (st->sT0i + sR12 + rr_avg * (sR12 + st->sRi0)))
+            : 0.0;
+    for (int ch = 0; ch < 3; ++ch) e[ch] = e_avg > 0.0 ? eterm[nc == 1 ? 0 : ch] : 0.0;
     st->sR0i = r0i_avg > 0.0 ? sR0i / r0i_avg : 0.0;
     st->sT0i = sT0i;
     st->sRi0 = ri0_avg > 0.0 ? sRi0 / ri0_avg : 0.0;
@@ -254,9 +336,9 @@ static int add_interface(stack_stats *st, const abrdf__belcour *bp, const abrdf_
 }
 
 /* The absorbing medium below interface k: transmittance exp(-sigma_a d / cos) each way. */
-static void add_medium(stack_stats *st, const abrdf_layer *ly)
+static void add_medium(stack_stats *st, const abrdf_layer *ly, int nc)
 {
-    for (int ch = 0; ch < 3; ++ch) {
+    for (int ch = 0; ch < nc; ++ch) {
         double sd = ly->sigma_a[ch] * ly->depth;
         double T = sd > 0.0 ? exp(-sd / st->cos) : 1.0;
         st->T0i[ch] *= T;
@@ -279,16 +361,17 @@ void abrdf__eval_belcour(const abrdf__belcour *bp, const abrdf_params *p, const 
     double cd = wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2];
     if (!(cd > ABRDF__BELCOUR_COS_MIN)) return;
     double sh2 = h[0] * h[0] + h[1] * h[1];
-    stack_stats st = {{0, 0, 0}, {1, 1, 1}, {0, 0, 0}, {1, 1, 1}, 0, 0, 0, 0, 1, 1, fmin(cd, 1.0)};
+    stack_stats st = {{0, 0, 0}, {1, 1, 1}, {0, 0, 0}, {1, 1, 1},          0, 0, 0,
+                      0,         1,         1,         cd < 1.0 ? cd : 1.0};
     int n = p->layer_count < ABRDF_MAX_LAYERS ? p->layer_count : ABRDF_MAX_LAYERS;
     for (int k = 0; k < n; ++k) {
         double e[3], ak;
         int below = add_interface(&st, bp, p, k, e, &ak);
-        double ag = fmax(ak, ABRDF__ALPHA_G_MIN);
-        double lobe = abrdf__lo_d_ggx(h[2], sh2, ag) * abrdf__lo_v1(ci, ag) * abrdf__lo_v1(co, ag);
+        double ag = ak > ABRDF__ALPHA_G_MIN ? ak : ABRDF__ALPHA_G_MIN; /* fmax, inline */
+        double lobe = ggx_lobe(h[2], sh2, ci, co, ag);
         for (int c = 0; c < 3; ++c) f[c] += e[c] * lobe; /* Eq. 16 */
         if (!below) break;
-        if (p->layers[k].depth > 0.0) add_medium(&st, &p->layers[k]);
+        if (p->layers[k].depth > 0.0) add_medium(&st, &p->layers[k], bp->channels);
     }
 }
 
@@ -306,14 +389,14 @@ int abrdf__belcour_lobes(const abrdf_params *p, double cos_theta, double e[][3],
                       1,
                       fmin(fmax(cos_theta, ABRDF__BELCOUR_COS_MIN), 1.0)};
     abrdf__belcour bp;
-    abrdf__belcour_setup(p, &bp);
+    setup_stack(p, &bp);
     int n = p->layer_count < ABRDF_MAX_LAYERS ? p->layer_count : ABRDF_MAX_LAYERS, count = 0;
     for (int k = 0; k < n; ++k) {
         double ak;
         int below = add_interface(&st, &bp, p, k, e[count], &ak);
         alpha[count++] = fmax(ak, ABRDF__ALPHA_G_MIN);
         if (!below) break;
-        if (p->layers[k].depth > 0.0) add_medium(&st, &p->layers[k]);
+        if (p->layers[k].depth > 0.0) add_medium(&st, &p->layers[k], bp.channels);
     }
     return count;
 }

@@ -104,7 +104,7 @@ int abrdf_sample(abrdf_model model, const abrdf_params *params, const abrdf_fram
     no_sample(frame, result);
     if (!params || !wo) return ABRDF_E_NULL;
     abrdf__prep pr; /* the double path's part of abrdf_prepare: the same bits */
-    int st = abrdf__prep_checked(model, params, &pr, ABRDF__PREP_DOUBLE);
+    int st = abrdf__prep_checked(model, params, &pr, ABRDF__PREP_DOUBLE | ABRDF__PREP_ONCE);
     if (st != ABRDF_OK) return st;
     return sample_prep(&pr, frame, wo, u1, u2, result);
 }
