@@ -12,15 +12,8 @@
 #   cmake -S /tmp/before -B /tmp/before/b -DCMAKE_BUILD_TYPE=Release -DABRDF_BUILD_TESTS=OFF
 #   cmake --build /tmp/before/b --target abrdf_cli        # then /tmp/before/b/bin/abrdf
 set -euo pipefail
-if (($# < 2)); then
-  echo "usage: $0 BEFORE_ABRDF AFTER_ABRDF [REPEATS]" >&2
-  exit 2
-fi
-before=$1 after=$2 repeats=${3:-5}
-for b in "$before" "$after"; do
-  [[ -x $b ]] || { echo "$0: $b: not an executable" >&2; exit 2; }
-done
-here=$(cd "$(dirname "$0")" && pwd)
+. "$(dirname "$0")/before_after.sh"
+before_after_args 5 "$@"
 scenes=("$here/../../scenes/robot16.scene" "$here/sphere16.scene")
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT

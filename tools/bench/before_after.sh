@@ -1,0 +1,22 @@
+# before_after.sh - sourced by the benchmarks that run two builds of `abrdf` side by side
+# (selection_render.sh, hair_cost.sh): checks "BEFORE_ABRDF AFTER_ABRDF [REPEATS]" and sets
+# before, after, repeats (default $1 of before_after_args) and here (the caller's folder).
+#   . "$(dirname "$0")/before_after.sh"; before_after_args DEFAULT_REPEATS "$@"
+before_after_args() {
+  local default=$1
+  shift
+  if (($# < 2)); then
+    echo "usage: $0 BEFORE_ABRDF AFTER_ABRDF [REPEATS]" >&2
+    exit 2
+  fi
+  before=$1 after=$2 repeats=${3:-$default}
+  local b
+  for b in "$before" "$after"; do
+    [[ -x $b ]] || { echo "$0: $b: not an executable" >&2; exit 2; }
+  done
+  if ! [[ $repeats =~ ^[1-9][0-9]*$ ]]; then
+    echo "$0: REPEATS must be a positive whole number, not '$repeats'" >&2
+    exit 2
+  fi
+  here=$(cd "$(dirname "$0")" && pwd)
+}
