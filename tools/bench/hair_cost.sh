@@ -68,7 +68,8 @@ for c in "${cases[@]}"; do
   for b in before after; do m[$c,$b]=$(echo "${t[$c,$b]}" | median); done
 done
 for b in before after; do
-  if [[ ${n[robot,$b]} != "${n[robot,before]}" || ${n[mixed,$b]} != "${n[mixed,before]}" ]]; then
+  if [[ ${n[robot,$b]} != "${n[robot,before]}" || ${n[mixed,$b]} != "${n[mixed,before]}" ||
+    ${n[nohair,$b]} != "${n[nohair,before]}" ]]; then
     echo "$0: the two binaries shade different numbers of hair pairs" >&2
     exit 1
   fi

@@ -225,21 +225,28 @@ double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_pa
     return time_batches(s, pairs, fn, &ctx, o);
 }
 
-double measure_shared_view_ns(abrdf_model model, const abrdf_params *p, int lights,
+double measure_shared_view_ns(abrdf_model model, const abrdf_params *p, int lights, int group,
                               const measure_opts *o)
 {
     const abrdf_model_info *m = abrdf_model_get(model);
-    if (!m || lights < 1) return -1.0;
-    size_t pairs = (m->needs & ABRDF_NEEDS_INTEGRATION) ? o->integrating_pairs : o->pairs;
-    pairs -= pairs % (size_t)lights;
-    if (pairs == 0) pairs = (size_t)lights;
-    measure_set *s = measure_set_new(pairs);
+    if (!m || lights < 1 || group < lights) return -1.0;
+    size_t total = (m->needs & ABRDF_NEEDS_INTEGRATION) ? o->integrating_pairs : o->pairs;
+    size_t views = total / (size_t)group > 0 ? total / (size_t)group : 1;
+    size_t pairs = views * (size_t)lights;
+    measure_set *s = measure_set_new(views * (size_t)group);
     if (!s) return -1.0;
-    /* pair i keeps its light and takes the view of the first pair of its run */
+    /* group g of the set: the view of its first pair and the lights of its first `lights`
+     * pairs, packed to the front (the same views and lights whatever `lights` is) */
     float *b = s->buf;
-    for (size_t i = 0; i < pairs; ++i)
-        for (int c = 3; c < 6; ++c)
-            b[(size_t)c * pairs + i] = b[(size_t)c * pairs + i - i % (size_t)lights];
+    size_t P = s->pairs;
+    for (size_t g = 0; g < views; ++g)
+        for (size_t l = 0; l < (size_t)lights; ++l) {
+            size_t from = g * (size_t)group + l, to = g * (size_t)lights + l;
+            for (int c = 0; c < 3; ++c) {
+                b[(size_t)c * P + to] = b[(size_t)c * P + from];
+                b[(size_t)(3 + c) * P + to] = b[(size_t)(3 + c) * P + g * (size_t)group];
+            }
+        }
     model_ctx ctx;
     ctx.model = model;
     ctx.params = *p;

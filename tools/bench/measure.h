@@ -32,9 +32,11 @@ double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_pa
                                int double_path, const measure_opts *o);
 /* Median ns per pair of `model` (parameters p) on the float batch path when the pairs come
  * in runs of `lights` pairs that share one view wo, as a renderer hands a shading point's
- * lights over (huang builds the view's paths once per run): the cost per light. Fresh pairs
- * from the same seed as measure_set_new; < 0 on error. */
-double measure_shared_view_ns(abrdf_model model, const abrdf_params *p, int lights,
+ * lights over (huang builds the view's paths once per run): the cost per light. The views
+ * and lights are those of groups of `group` >= lights fresh pairs (the seed of
+ * measure_set_new), so that runs of 1 and of `group` lights are timed on the same views;
+ * < 0 on error. */
+double measure_shared_view_ns(abrdf_model model, const abrdf_params *p, int lights, int group,
                               const measure_opts *o);
 /* Median ns/eval of the unit: a bare loop H = normalise(wi + wo), powf(H.z, n), n = 100. */
 double measure_unit_ns(measure_set *s, const measure_opts *o);

@@ -263,7 +263,7 @@ static targets compute_targets(const row *rows, int count, double unit_ns)
 
 /* The hair reference per evaluation and per light: huang at its defaults on the float batch
  * path, pairs in runs of one view (HAIR_LIGHTS lights per view, as a renderer hands a shading
- * point's lights over, against one light per view). */
+ * point's lights over, against one light per view), on the same views. */
 #define HAIR_LIGHTS 4
 typedef struct hair_cost {
     double eval_ns;  /* one light per view */
@@ -275,8 +275,8 @@ static int time_hair(const measure_opts *mo, hair_cost *h)
     abrdf_params p;
     abrdf_params_init(ABRDF_HUANG, &p);
     fprintf(stderr, " huang (per light)");
-    h->eval_ns = measure_shared_view_ns(ABRDF_HUANG, &p, 1, mo);
-    h->light_ns = measure_shared_view_ns(ABRDF_HUANG, &p, HAIR_LIGHTS, mo);
+    h->eval_ns = measure_shared_view_ns(ABRDF_HUANG, &p, 1, HAIR_LIGHTS, mo);
+    h->light_ns = measure_shared_view_ns(ABRDF_HUANG, &p, HAIR_LIGHTS, HAIR_LIGHTS, mo);
     return h->eval_ns > 0.0 && h->light_ns > 0.0 ? 0 : -1;
 }
 

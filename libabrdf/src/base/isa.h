@@ -6,8 +6,9 @@
  * it. The choice is a pure function of the CPU (abrdf__isa_best reads the compiler runtime's
  * CPU model, which it fills once at program start): no state of the library's own, no ifunc
  * (which needs the dynamic loader's cooperation that a static link does not have, and cannot
- * be forced to a level in tests). FMA contraction at levels 1 and 2 changes the last bits of
- * a result, nothing more. */
+ * be forced to a level in tests). Where the compiler contracts a * b + c into an FMA (Clang
+ * by default; GCC not in ISO C mode), levels 1 and 2 change the last bits of a result, nothing
+ * more; huang's loops are compiled without contraction (libabrdf/CMakeLists.txt). */
 #ifndef ABRDF_ISA_H
 #define ABRDF_ISA_H
 

@@ -124,7 +124,7 @@ typedef struct abrdf__huang {
     /* Tests only (the Cycles oracle, tests/ports/hair_huang_lobes.c): parts of Blender 5.0
      * Cycles' far-field quadrature, a bit mask. ABRDF__HUANG_CYCLES_H: Simpson nodes uniform
      * in h over the visible width clipped to +-ABRDF__HUANG_CYCLES_H_CLIP, weighted by
-     * dgamma/dh, visibility tested per node (steps divided by refine). ABRDF__HUANG_CYCLES_TRRT:
+     * dgamma/dh, R's visibility tested per node (steps divided by refine). ABRDF__HUANG_CYCLES_TRRT:
      * TRRT+ weighted by the constant 2/pi. 0 (setup's value): the model. */
     unsigned cycles_nodes;
 } abrdf__huang;
@@ -142,7 +142,7 @@ void abrdf__huang_tables(abrdf__huang *m);
 void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double wo[3],
                         unsigned lobes, double s[3]);
 /* S for count (1 to ABRDF__HUANG_RUN_MAX) lights wi[l] seen from one view wo: the same
- * values as count calls of abrdf__huang_fibre (up to rounding), with the view's paths built
+ * values as count calls of abrdf__huang_fibre (the same bits), with the view's paths built
  * once (hair_huang.c, "the view's paths, then each light's exit"). */
 void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi)[3],
                             const double wo[3], unsigned lobes, double (*s)[3]);

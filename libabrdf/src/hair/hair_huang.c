@@ -373,7 +373,7 @@ void abrdf__huang_tables(abrdf__huang *m)
                     m->e_out);
 }
 
-typedef const double *energy_axes; /* m->e_in or m->e_out */
+typedef const double *energy_axes; /* the collapsed table: m->e_in or m->e_out */
 
 static double energy_scale_at(const abrdf__huang *m, const energy_axes *a, double mu)
 {
@@ -569,7 +569,7 @@ typedef struct residual_ctx {
     const light_run *lr;
     double b, inv_eta, inv_eta2, a2, e2; /* e2 = 1 - b^2 */
     double st, ct;                       /* sin and cos of the cuticle tilt; the exit's: -st, ct */
-    energy_axes ax_out;                  /* the energy table's axes leaving the fibre */
+    energy_axes ax_out;                  /* the energy table leaving the fibre (m->e_out) */
     unsigned lobes;
     double s_tt[ABRDF__HUANG_RUN_MAX][3], s_trt[ABRDF__HUANG_RUN_MAX][3];
     double s_trrt[ABRDF__HUANG_RUN_MAX][3];
@@ -832,14 +832,15 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
     const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
     for (int l = 0; l < lr->n; ++l) out[l][0] = out[l][1] = out[l][2] = 0.0;
     if (n1 * n1 > ABRDF__HUANG_NODES_MAX || n2 * n2 > ABRDF__HUANG_NODES_MAX) return;
-    /* Per evaluation, not per node: the VNDF grids' disc points and the energy tables' axes. */
-    double node1[ABRDF__HUANG_NODES_MAX][3], node2[ABRDF__HUANG_NODES_MAX][3];
+    /* Per evaluation, not per node: the VNDF grids' disc points; the internal grid's as three
+     * arrays, for the vectorised loop (48 KiB of stack at the largest grids) */
+    double node1[ABRDF__HUANG_NODES_MAX][3], p2s[3][ABRDF__HUANG_NODES_MAX];
     vndf_nodes(n1, node1);
-    vndf_nodes(n2, node2);
-    /* the internal grid's disc points as three arrays, for the vectorised loop */
-    double p2s[3][ABRDF__HUANG_NODES_MAX];
-    for (int j = 0; j < n2 * n2; ++j)
-        p2s[0][j] = node2[j][0], p2s[1][j] = node2[j][1], p2s[2][j] = node2[j][2];
+    for (int j = 0; j < n2 * n2; ++j) {
+        double p[3];
+        vndf_disc((j / n2 + 0.5) / n2, (j % n2 + 0.5) / n2, p);
+        p2s[0][j] = p[0], p2s[1][j] = p[1], p2s[2][j] = p[2];
+    }
     const internal_base_fn base = internal_base_at(abrdf__isa_best());
     energy_axes ax_in = m->e_in;
     residual_ctx c = {.m = m,
@@ -991,7 +992,7 @@ void abrdf__huang_eval_run(const abrdf__huang *m, int count, const double (*wi)[
 {
     double s[ABRDF__HUANG_RUN_MAX][3], lit[ABRDF__HUANG_RUN_MAX][3];
     int slot[ABRDF__HUANG_RUN_MAX], n = 0;
-    for (int l = 0; l < count && l < ABRDF__HUANG_RUN_MAX; ++l) f[l][0] = f[l][1] = f[l][2] = 0.0;
+    for (int l = 0; l < count; ++l) f[l][0] = f[l][1] = f[l][2] = 0.0;
     if (count < 1 || count > ABRDF__HUANG_RUN_MAX || !(wo[2] > 0.0)) return;
     for (int l = 0; l < count; ++l) /* lights above the ribbon; the others keep f_r = 0 */
         if (wi[l][2] > 0.0) {
