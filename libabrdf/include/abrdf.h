@@ -38,13 +38,13 @@
  *     size your own arrays with it, ask abrdf_model_count() at run time, and never pass a
  *     *_COUNT to the library. "No model" is ABRDF_MODEL_NONE (-1).
  *   - A struct you allocate that can grow starts with `size_t struct_size` (here
- *     abrdf_params and abrdf_sample_result; in abrdf_select.h the material, tolerance and
+ *     abrdf_params, abrdf_sample_result and abrdf_measured; in abrdf_select.h the material, tolerance and
  *     selection). Its _init function is a static inline that passes your sizeof to the
  *     library's _init_sized function, which fills the defaults and sets struct_size. New
  *     fields are only ever appended. The library reads and writes only the first
  *     struct_size bytes; a field beyond them takes its default. struct_size 0 (a block
  *     never initialised) or below the struct's first published layout (0.2.0; the sample
- *     result's first layout is the one here) is rejected with ABRDF_E_SIZE; copying an
+ *     result's and the measured table's first layouts are the ones here) is rejected with ABRDF_E_SIZE; copying an
  *     initialised struct copies struct_size with it.
  *   - A struct the library owns and hands out by pointer (abrdf_model_info,
  *     abrdf_param_info, abrdf_sampler_info; abrdf_select_rules and abrdf_select_step) only
@@ -83,6 +83,9 @@
  *   abrdf_eval_prepared_unit the same for unit local-frame directions: a renderer's
  *                            per-sample call, with nothing to normalise
  *   abrdf_eval_prepared_batch  abrdf_eval_batch of a prepared model (float, structure of arrays)
+ *   abrdf_measured_init      fill a measured-table descriptor, set its struct_size (static inline)
+ *   abrdf_measured_init_sized  the same for a block of struct_size bytes
+ *   abrdf_prepare_measured   prepare the `measured` model on a caller's table of measured f_r
  *   abrdf_shade              the paper's pixel intensity I = ka Ia + Il cos (f_d + f_s)
  *   abrdf_sample             importance sampling: a direction wi for wo, its pdf and the
  *                            weight f_r cos / pdf (double reference)
@@ -173,6 +176,8 @@ typedef enum abrdf_model {
     ABRDF_HUANG,            /* "huang"                 Eqs. 12-14 */
     ABRDF_WEIDLICH_WILKIE,  /* "weidlich_wilkie"       Eq. 15 */
     ABRDF_BELCOUR,          /* "belcour"               Eq. 16 */
+    /* measured data (added after 0.2.0) */
+    ABRDF_MEASURED, /* "measured"              a caller's table (abrdf_prepare_measured) */
     ABRDF_MODEL_COUNT       /* ids in this header; grows with every model (never "none") */
 } abrdf_model;
 
@@ -189,6 +194,8 @@ typedef enum abrdf_model {
 #define ABRDF_NEEDS_FRESNEL 0x02u     /* evaluates a Fresnel term */
 #define ABRDF_NEEDS_LAYERS 0x04u      /* uses the layer stack */
 #define ABRDF_NEEDS_INTEGRATION 0x08u /* numerical integration inside eval (slow) */
+#define ABRDF_NEEDS_TABLE 0x10u       /* evaluates a caller's table: abrdf_prepare_measured only
+                                         (abrdf_eval, abrdf_prepare: ABRDF_E_TABLE) */
 
 /* Physical properties (bit flags of abrdf_model_info.props). */
 #define ABRDF_PROP_RECIPROCAL 0x01u        /* f_r(wi, wo) == f_r(wo, wi) */
@@ -348,7 +355,8 @@ ABRDF_API int abrdf_eval_batch(abrdf_model model, const abrdf_params *params,
  * LIFETIME AND SHARING. abrdf_prepared is plain data of a fixed size, owned by the caller
  * (stack, array, heap) and valid as long as that memory is: it holds a copy of the
  * parameters (the block passed to abrdf_prepare may change or go away afterwards) and no
- * pointer, so a copy (assignment, memcpy) is a prepared object too. Nothing is allocated
+ * pointer, so a copy (assignment, memcpy) is a prepared object too. The one exception is the
+ * `measured` model (abrdf_prepare_measured below), which points at the caller's table. Nothing is allocated
  * and nothing needs releasing. A prepared object is never modified by an evaluation, so
  * any number of threads may evaluate one concurrently. It is valid only for the library
  * that prepared it (the same process); do not store it in files. A block that
@@ -397,6 +405,51 @@ ABRDF_API int abrdf_eval_prepared_unit(const abrdf_prepared *prepared, const dou
  * supports (AVX2 + FMA, AVX-512 on x86-64), chosen per call from the CPU alone; results
  * agree with the double path within the batch path's float tolerance (docs/MODELS.md). */
 ABRDF_API int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const abrdf_batch *batch);
+
+/* ---- measured materials (added after 0.2.0) -------------------------------------------- *
+ * The `measured` model (ABRDF_MEASURED) evaluates a table of measured f_r that the caller
+ * owns, on the isotropic half/difference grid of the MERL database (Rusinkiewicz, EGWR 1998;
+ * Matusik et al., SIGGRAPH 2003). Cell (ih, id, ip) holds f_r (1/sr, linear RGB, without the
+ * cosine) at
+ *   theta_h = (ih / n_theta_h)^2 pi/2,  theta_d = id / n_theta_d pi/2,  phi_d = ip / n_phi_d pi
+ * (phi_h = 0; phi_d and phi_d + pi are one cell: reciprocity) in
+ *   data[((ih * n_theta_d + id) * n_phi_d + ip) * 3 + channel].
+ * A negative (or NaN) value means "not measured". Evaluation interpolates trilinearly in
+ * (the square-root theta_h index, theta_d, phi_d), periodic in phi_d and held at the last
+ * cell beyond the grid's end; a channel's unmeasured corners drop out and the others'
+ * weights are renormalised (none measured: 0). The parametrisation makes the model exactly
+ * reciprocal. docs/MEASURED.md states it with its error on analytic tables.
+ *
+ * LIFETIME. abrdf_prepare_measured does not copy the table: the prepared object points at
+ * `data`, which must stay valid and unchanged while the object (or any copy of it) is
+ * evaluated or sampled; the descriptor itself may go away. The library never writes the
+ * table. Everything else of abrdf_prepared holds (plain data, thread-safe, no allocation).
+ * abrdf_eval, abrdf_eval_batch, abrdf_prepare, abrdf_sample and abrdf_pdf have no table to
+ * read and return ABRDF_E_TABLE for ABRDF_MEASURED; the prepared forms all work.
+ *
+ * SAMPLING. abrdf_sample_prepared draws from a cosine lobe and a GGX visible-normal lobe
+ * whose roughness and share abrdf_prepare_measured fits to the table (docs/MEASURED.md), with
+ * one-sample MIS: the pdf is exact whatever the fit. */
+typedef struct abrdf_measured {
+    size_t struct_size; /* bytes of this struct as the caller compiled it; set by _init */
+    int n_theta_h;      /* cells along theta_h, [2, 1024]; MERL: 90 */
+    int n_theta_d;      /* cells along theta_d, [2, 1024]; MERL: 90 */
+    int n_phi_d;        /* cells along phi_d over [0, pi), [2, 1024]; MERL: 180 */
+    const float *data;  /* 3 * n_theta_h * n_theta_d * n_phi_d values (above), caller-owned */
+} abrdf_measured;
+
+/* Sets struct_size and clears the block (ABRDF_E_SIZE, writing nothing, below the first
+ * layout). Call it through abrdf_measured_init. */
+ABRDF_API int abrdf_measured_init_sized(abrdf_measured *table, size_t struct_size);
+static inline int abrdf_measured_init(abrdf_measured *table)
+{
+    return abrdf_measured_init_sized(table, sizeof(abrdf_measured));
+}
+/* Prepare ABRDF_MEASURED on `table` (LIFETIME above). ABRDF_E_NULL (table, data or prepared
+ * NULL), ABRDF_E_SIZE (struct_size not set by abrdf_measured_init), ABRDF_E_TABLE (a grid
+ * size outside [2, 1024]); *prepared is then "not prepared". The prepared object's
+ * parameters (abrdf_prepared_params) are the model's defaults: it reads none. */
+ABRDF_API int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared *prepared);
 
 /* The paper's pixel intensity (Sec. 1), physically based convention (MODELS.md B1):
  *   I = ka*Ia + Il * max(0, N.wi) * (f_diffuse + f_specular)

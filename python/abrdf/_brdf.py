@@ -32,7 +32,8 @@ class Parameter:
 @dataclass(frozen=True)
 class Model:
     """A registered model (abrdf_model_info): its stable name, title, the paper's formula
-    reference, citation, what it needs ("tangent", "fresnel", "layers", "integration"),
+    reference, citation, what it needs ("tangent", "fresnel", "layers", "integration",
+    "table": a measured table, not parameters),
     its properties, the paper's Table-4 cost in cycles (None when the table has none) and
     the parameters it reads."""
 

@@ -11,7 +11,8 @@ static const struct {
 } needs_names[] = {{ABRDF_NEEDS_TANGENT, "tangent"},
                    {ABRDF_NEEDS_FRESNEL, "fresnel"},
                    {ABRDF_NEEDS_LAYERS, "layers"},
-                   {ABRDF_NEEDS_INTEGRATION, "integration"}};
+                   {ABRDF_NEEDS_INTEGRATION, "integration"},
+                   {ABRDF_NEEDS_TABLE, "table"}};
 
 static const char *kind_name(abrdf_param_kind k)
 {

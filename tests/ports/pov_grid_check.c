@@ -232,6 +232,7 @@ int main(int argc, char **argv)
     for (int id = 0; id < ABRDF_MODEL_COUNT; ++id) {
         const abrdf_model_info *m = abrdf_model_get((abrdf_model)id);
         if (!m) continue; /* POV-Ray ids number the registered models in registry order */
+        if (m->needs & ABRDF_NEEDS_TABLE) continue; /* a table: no twin (docs/MEASURED.md) */
         int wanted = argc == first;
         for (int i = first; i < argc; ++i) wanted |= strcmp(argv[i], m->name) == 0;
         if (wanted && !pov_ported(argv[2], m->name)) {

@@ -218,7 +218,8 @@ int main(int argc, char **argv)
         models[nmodels++] = "scene"; /* the scene's own materials */
         for (int id = 0; id < ABRDF_MODEL_COUNT; ++id) {
             const abrdf_model_info *mi = abrdf_model_get((abrdf_model)id);
-            if (mi) models[nmodels++] = mi->name;
+            /* a table model has no twin: the hosts get its fitted stand-in (MEASURED.md) */
+            if (mi && !(mi->needs & ABRDF_NEEDS_TABLE)) models[nmodels++] = mi->name;
         }
     }
 

@@ -420,7 +420,7 @@ START_TEST(rgb_channels)
 {
     hand g = hand_make(0);
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (!m) continue;
         abrdf_params p = params(m->id), q;
         double w[3] = {0.2, 0.5, 1.0}, f[3], f1[3];

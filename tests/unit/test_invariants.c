@@ -119,7 +119,7 @@ START_TEST(finite_nonnegative_reciprocal)
     long bad = 0, asym_bad = 0, evals = 0, flag_bad = 0;
     grid_make();
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (!m) continue;
         int rec = (m->props & ABRDF_PROP_RECIPROCAL) != 0;
         int ns = tg_param_sets(m->id, TG_TYPICAL, sets, set_cap(m, MAX_SETS));
@@ -226,7 +226,7 @@ START_TEST(white_furnace)
     printf("white furnace: directional albedo (largest channel) at theta_i = 0/45/80/89 deg;"
            " EC = flagged energy conserving (converged, +- the last refinement's change)\n");
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (!m) continue;
         int ec = (m->props & ABRDF_PROP_ENERGY_CONSERVING) != 0;
         if (m->needs & ABRDF_NEEDS_INTEGRATION) {
@@ -343,7 +343,7 @@ static void float_batch_level(int level)
     long fails = 0, evals = 0, sens_used = 0;
     grid_make();
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (!m || (level > 0 && abrdf__is_double_only(m->id))) continue;
         int np = 0;
         for (int j = 0; j < grid.count; j += grid_stride(m), ++np) {
@@ -432,7 +432,7 @@ START_TEST(prepared_equals_unprepared)
     long diffs = 0, evals = 0;
     grid_make();
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (!m) continue;
         int stride = grid_stride(m) * ((m->needs & ABRDF_NEEDS_INTEGRATION) ? 4 : 1), np = 0;
         for (int j = 0; j < grid.count; j += stride, ++np) {
@@ -494,7 +494,7 @@ START_TEST(frame_invariance)
     long fails = 0;
     grid_make();
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (!m) continue;
         int ns = tg_param_sets(m->id, TG_TYPICAL, sets, set_cap(m, 8));
         int stride = 7 * grid_stride(m);

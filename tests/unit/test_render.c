@@ -267,7 +267,11 @@ START_TEST(fast_path_within_nmse_1e8_of_double)
             scene s;
             char err[512];
             ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
-            const abrdf_model_info *m = mi < 0 ? NULL : abrdf_model_get((abrdf_model)mi);
+            const abrdf_model_info *m = mi < 0 ? NULL : tu_param_model(mi);
+            if (mi >= 0 && !m) {
+                scene_free(&s);
+                continue; /* the measured model renders a table (test_measured.c) */
+            }
             if (m) ck_assert_msg(scene_replace_models(&s, m->id, err, sizeof err) == 0, "%s", err);
             int size = m && (m->needs & ABRDF_NEEDS_INTEGRATION) ? 12 : 40;
             double e = nmse_fast_vs_double(&s, size);

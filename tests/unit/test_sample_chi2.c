@@ -95,7 +95,7 @@ static int same_sampler(abrdf_model model, const sc_set *a, const sc_set *b, dou
 START_TEST(chi2_every_model)
 {
     abrdf_model model = (abrdf_model)_i;
-    if (!abrdf_model_get(model)) return;
+    if (!tu_param_model(model)) return;
     static sc_set sets[SC_MAX_SETS];
     int n = sc_param_sets(model, sets);
     double wos[2][3];

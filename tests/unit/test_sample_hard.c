@@ -32,7 +32,7 @@ static long target(const char *name)
 START_TEST(hard_cases_stay_finite)
 {
     abrdf_model model = (abrdf_model)_i;
-    const abrdf_model_info *m = abrdf_model_get(model);
+    const abrdf_model_info *m = tu_param_model(model);
     if (!m) return;
     static tg_set sets[MAX_SETS];
     int nsets = tg_param_sets(model, TG_HARD, sets, MAX_SETS);

@@ -194,7 +194,7 @@ START_TEST(hard_cases_never_nan_inf_negative)
     /* Random pairs per set so that the closed-form models reach TARGET_EVALS. */
     long nsets = 0;
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (m && !(m->needs & ABRDF_NEEDS_INTEGRATION))
             nsets += tg_param_sets(m->id, TG_HARD, sets, MAX_SETS);
     }
@@ -205,7 +205,7 @@ START_TEST(hard_cases_never_nan_inf_negative)
     if (extra > MAXPAIRS - hard_pairs) extra = MAXPAIRS - hard_pairs;
     long nd = 0, nf = 0, bad = 0, nd_int = 0, nf_int = 0;
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (!m) continue;
         int slow = (m->needs & ABRDF_NEEDS_INTEGRATION) != 0;
         /* Models that integrate inside eval get the hard pairs and 4 parameter sets. */
@@ -262,7 +262,7 @@ START_TEST(out_of_range_parameters_rejected)
 {
     long cases = 0, fails = 0;
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (!m) continue;
         for (int i = 0; i < m->param_count; ++i) {
             const abrdf_model_param *mp = &m->params[i];
@@ -293,7 +293,7 @@ START_TEST(out_of_range_parameters_rejected)
      * test above; outside a model's range (f_2e, f_ct2e need n >= 1) they must be rejected. */
     static const double ns[] = {0.0, 1.0, 1e4, 1e6}, rs[] = {0.0, 1e-8, 1e-4, 1.0};
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
-        const abrdf_model_info *m = abrdf_model_get((abrdf_model)mi);
+        const abrdf_model_info *m = tu_param_model(mi);
         if (!m) continue;
         for (int i = 0; i < m->param_count; ++i) {
             const char *nm = abrdf_param_get(m->params[i].id)->name;

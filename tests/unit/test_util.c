@@ -45,3 +45,9 @@ int tu_run(Suite *s)
     srunner_free(sr);
     return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
+
+const abrdf_model_info *tu_param_model(int id)
+{
+    const abrdf_model_info *m = abrdf_model_get((abrdf_model)id);
+    return m && !(m->needs & ABRDF_NEEDS_TABLE) ? m : NULL;
+}

@@ -17,6 +17,10 @@ typedef struct tu_counts {
 } tu_counts;
 /* Add f[0..2] to the counters (each value counts once: NaN, else Inf, else negative). */
 void tu_count(tu_counts *k, const double f[3]);
+/* Model `id`'s metadata if it is evaluated from parameters alone (every model but the
+ * `measured` one, which needs a caller's table: test_measured.c runs the shared properties
+ * on tables), else NULL; what the suites that loop over every model iterate. */
+const abrdf_model_info *tu_param_model(int id);
 /* Run one suite, print the summary, return the process exit status. */
 int tu_run(Suite *s);
 #endif

@@ -11,12 +11,15 @@
 
 #include "cost_file.h"
 #include "measure.h"
+#include "measured_table.h"
 
 /* Pairs per batch for models that integrate inside eval (hair, layered): enough for a
  * stable mean, small enough to keep a calibration within seconds. */
 #define INTEGRATING_PAIRS 256
 
 struct measure_set {
+    measured_table table;    /* the measured model's table (bench_table), built on first use */
+    abrdf_prepared measured; /* ... prepared */
     size_t pairs;
     float *buf;  /* 9 arrays of `pairs` floats: wi xyz, wo xyz, f rgb */
     double *dir; /* the same directions in double, interleaved wi[3] wo[3] per pair */
@@ -60,6 +63,7 @@ measure_set *measure_set_new(size_t pairs)
 {
     measure_set *s = malloc(sizeof *s);
     if (!s) return NULL;
+    memset(&s->table, 0, sizeof s->table);
     s->pairs = pairs;
     s->buf = malloc(9 * pairs * sizeof(float));
     s->dir = malloc(6 * pairs * sizeof(double));
@@ -89,6 +93,7 @@ measure_set *measure_set_new(size_t pairs)
 void measure_set_free(measure_set *s)
 {
     if (!s) return;
+    measured_table_free(&s->table);
     free(s->buf);
     free(s->dir);
     free(s);
@@ -108,12 +113,14 @@ typedef int (*batch_fn)(void *ctx, const abrdf_batch *b);
 typedef struct model_ctx {
     abrdf_model model;
     abrdf_params params;
+    const abrdf_prepared *table; /* the measured model: its prepared table (else NULL) */
     const double *dir; /* double path: interleaved directions (measure_set.dir) */
 } model_ctx;
 
 static int run_model(void *ctx, const abrdf_batch *b)
 {
     const model_ctx *c = ctx;
+    if (c->table) return abrdf_eval_prepared_batch(c->table, b);
     return abrdf_eval_batch(c->model, &c->params, b);
 }
 
@@ -123,7 +130,10 @@ static int run_model(void *ctx, const abrdf_batch *b)
 static int run_prepared(const model_ctx *c, const abrdf_batch *b, int unit)
 {
     abrdf_prepared prep;
-    if (abrdf_prepare(c->model, &c->params, &prep) != ABRDF_OK) return -1;
+    if (c->table)
+        prep = *c->table;
+    else if (abrdf_prepare(c->model, &c->params, &prep) != ABRDF_OK)
+        return -1;
     double f[3], acc = 0.0;
     for (size_t i = 0; i < b->count; ++i) {
         const double *wi = c->dir + 6 * i, *wo = wi + 3;
@@ -144,10 +154,12 @@ static int run_model_prepared_unit(void *ctx, const abrdf_batch *b)
     return run_prepared(ctx, b, 1);
 }
 
-/* The double scalar reference path, one abrdf_eval call (local frame) per pair. */
+/* The double scalar reference path, one abrdf_eval call (local frame) per pair (the measured
+ * model has no unprepared path: abrdf_eval_prepared). */
 static int run_model_double(void *ctx, const abrdf_batch *b)
 {
     const model_ctx *c = ctx;
+    if (c->table) return run_prepared(c, b, 0);
     double f[3], acc = 0.0;
     for (size_t i = 0; i < b->count; ++i) {
         if (abrdf_eval(c->model, &c->params, NULL, c->dir + 6 * i, c->dir + 6 * i + 3, f) !=
@@ -206,12 +218,49 @@ double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o
     return measure_model_params_ns(s, model, &p, 0, o);
 }
 
+/* The measured model's table for timing: MERL's grid (90 x 90 x 180, 17.5 MB of floats, the
+ * memory a renderer's lookups walk) written from lambert kd = 0.5 + disney_specular r = 0.3,
+ * a glossy plastic; cells below the horizon not measured, as the generator writes them. */
+static const abrdf_prepared *bench_table(measure_set *s)
+{
+    measured_table *t = &s->table;
+    if (t->data) return &s->measured;
+    char err[256];
+    if (measured_table_alloc(t, 90, 90, 180, err, sizeof err) != 0) return NULL;
+    abrdf_params p;
+    abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
+    p.r = 0.3;
+    for (int c = 0; c < 3; ++c) p.kd[c] = 0.5;
+    for (int ih = 0; ih < t->n_theta_h; ++ih)
+        for (int id = 0; id < t->n_theta_d; ++id)
+            for (int ip = 0; ip < t->n_phi_d; ++ip) {
+                double wi[3], wo[3], fd[3], fs[3];
+                measured_table_directions(t, ih, id, ip, wi, wo);
+                if (!(wi[2] > 0.0 && wo[2] > 0.0)) continue;
+                abrdf_eval(ABRDF_LAMBERT, &p, NULL, wi, wo, fd);
+                abrdf_eval(ABRDF_DISNEY_SPECULAR, &p, NULL, wi, wo, fs);
+                float *v = t->data + measured_table_cell(t, ih, id, ip);
+                for (int c = 0; c < 3; ++c) v[c] = (float)(fd[c] + fs[c]);
+            }
+    abrdf_measured desc;
+    abrdf_measured_init(&desc);
+    desc.n_theta_h = t->n_theta_h, desc.n_theta_d = t->n_theta_d, desc.n_phi_d = t->n_phi_d;
+    desc.data = t->data;
+    if (abrdf_prepare_measured(&desc, &s->measured) != ABRDF_OK) {
+        measured_table_free(t);
+        return NULL;
+    }
+    return &s->measured;
+}
+
 double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
                                int double_path, const measure_opts *o)
 {
     const abrdf_model_info *m = abrdf_model_get(model);
     if (!m) return -1.0;
     model_ctx ctx;
+    ctx.table = NULL;
+    if ((m->needs & ABRDF_NEEDS_TABLE) && !(ctx.table = bench_table(s))) return -1.0;
     ctx.model = model;
     ctx.params = *p;
     ctx.dir = s->dir;
@@ -248,10 +297,13 @@ double measure_shared_view_ns(abrdf_model model, const abrdf_params *p, int ligh
             }
         }
     model_ctx ctx;
+    ctx.table = (m->needs & ABRDF_NEEDS_TABLE) ? bench_table(s) : NULL;
     ctx.model = model;
     ctx.params = *p;
     ctx.dir = s->dir;
-    double ns = time_batches(s, pairs, run_model, &ctx, o);
+    double ns = ctx.table || !(m->needs & ABRDF_NEEDS_TABLE)
+                    ? time_batches(s, pairs, run_model, &ctx, o)
+                    : -1.0;
     measure_set_free(s);
     return ns;
 }

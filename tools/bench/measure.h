@@ -22,7 +22,9 @@ measure_set *measure_set_new(size_t pairs);
 void measure_set_free(measure_set *s);
 
 /* Median ns/eval of `model` (its default parameters) via abrdf_eval_batch. Models that
- * integrate numerically use at most o->integrating_pairs of the pairs. Returns < 0 on error. */
+ * integrate numerically use at most o->integrating_pairs of the pairs. The measured model
+ * evaluates a table of MERL's grid written from an analytic material (measure.c,
+ * bench_table), prepared once. Returns < 0 on error. */
 double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o);
 /* The same for parameters p, on the float batch path (double_path 0), the double scalar
  * reference path abrdf_eval in the local frame (double_path 1, one call per pair), or the

@@ -16,7 +16,8 @@ static void needs_list(unsigned needs, char *buf, size_t size)
     } names[] = {{ABRDF_NEEDS_TANGENT, "tangent"},
                  {ABRDF_NEEDS_FRESNEL, "fresnel"},
                  {ABRDF_NEEDS_LAYERS, "layers"},
-                 {ABRDF_NEEDS_INTEGRATION, "integration"}};
+                 {ABRDF_NEEDS_INTEGRATION, "integration"},
+                 {ABRDF_NEEDS_TABLE, "table"}};
     buf[0] = '\0';
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
         if ((needs & names[i].bit) && strlen(buf) + strlen(names[i].name) + 2 < size)

@@ -36,7 +36,10 @@ def params_inc(reg, rules, fkub_src, models_inc):
     --rules --json`), the text of fkub_table.c and the path of abrdf_models.inc."""
     decl = r"^#declare abrdf_(\w+) = function\(([^)]*)\)"
     sigs = dict(re.findall(decl, open(models_inc).read(), re.M))
-    models = reg["models"]
+    # Every model evaluated from parameters has a twin; the measured one reads a table the
+    # host cannot (exports write its fitted stand-in, docs/MEASURED.md) and is last in the
+    # registry, so leaving it out keeps the ids of the others.
+    models = [m for m in reg["models"] if "table" not in m["needs"]]
     own = set()  # models whose kernel is in their own include, loaded on first use
     for m in models:
         path = os.path.join(os.path.dirname(models_inc), "abrdf_%s.inc" % m["name"])

@@ -106,6 +106,34 @@ int abrdf_prepare(abrdf_model model, const abrdf_params *params, abrdf_prepared 
     return st;
 }
 
+int abrdf_measured_init_sized(abrdf_measured *table, size_t struct_size)
+{
+    if (!table) return ABRDF_E_NULL;
+    if (struct_size < sizeof *table) return ABRDF_E_SIZE; /* this is the first layout */
+    memset(table, 0, struct_size);
+    table->struct_size = struct_size;
+    return ABRDF_OK;
+}
+
+int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared *prepared)
+{
+    if (!prepared) return ABRDF_E_NULL;
+    memset(prepared, 0, sizeof *prepared); /* not prepared, and no stale bytes in a copy */
+    if (!table) return ABRDF_E_NULL;
+    if (table->struct_size < sizeof *table) return ABRDF_E_SIZE;
+    if (!table->data) return ABRDF_E_NULL;
+    const int dims[3] = {table->n_theta_h, table->n_theta_d, table->n_phi_d};
+    for (int k = 0; k < 3; ++k)
+        if (dims[k] < ABRDF__MEASURED_DIM_MIN || dims[k] > ABRDF__MEASURED_DIM_MAX)
+            return ABRDF_E_TABLE;
+    abrdf__prep *pr = (abrdf__prep *)(void *)prepared;
+    pr->model = ABRDF_MEASURED;
+    abrdf_params_init(ABRDF_MEASURED, &pr->params);
+    abrdf__measured_setup(table, &pr->special.measured);
+    pr->magic = ABRDF__PREP_MAGIC;
+    return ABRDF_OK;
+}
+
 abrdf_model abrdf_prepared_model(const abrdf_prepared *prepared)
 {
     const abrdf__prep *pr = abrdf__prep_of(prepared);

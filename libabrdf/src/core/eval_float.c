@@ -175,6 +175,10 @@ static void abrdf__batch_special(const abrdf__prep *pr, const abrdf_batch *b)
 int abrdf__eval_prepared_f_isa(const abrdf__prep *pr, const abrdf_batch *b, int level)
 {
     if (level < 0 || level > abrdf__isa_best()) return -1;
+    if (pr->model == ABRDF_MEASURED) {
+        abrdf__measured_batch(&pr->special.measured, b);
+        return 0;
+    }
     if (abrdf__is_double_only(pr->model)) {
         abrdf__batch_special(pr, b);
         return 0;

@@ -162,6 +162,9 @@ static const abrdf_model_param mp_huang[] = {
     {P_INTERNAL_GRID, ABRDF__HUANG_N2, 1.0, ABRDF__HUANG_GRID_MAX}};
 #define CIT_HUANG "W. Huang, M. B. Hullin, J. Hanika, A microfacet-based hair scattering model, " \
     "Computer Graphics Forum 41(4), 2022"
+#define CIT_MERL "W. Matusik, H. Pfister, M. Brand, L. McMillan, A data-driven reflectance " \
+    "model, ACM TOG 22(3), 2003; S. Rusinkiewicz, A new change of variables for efficient " \
+    "BRDF representation, EGWR 1998"
 #define HAIR_NEEDS (ABRDF_NEEDS_TANGENT | ABRDF_NEEDS_INTEGRATION | ABRDF_NEEDS_FRESNEL)
 
 static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
@@ -237,6 +240,10 @@ static const abrdf_model_info models_table[ABRDF_MODEL_COUNT] = {
     [ABRDF_BELCOUR] = {ABRDF_BELCOUR, "belcour", "Belcour layered (atomic decomposition)",
         "Eq. 16", CIT_BELCOUR, ABRDF_NEEDS_FRESNEL | ABRDF_NEEDS_LAYERS, REC | EC | SPE, -1,
         PARAMS(mp_belcour)},
+    /* measured data: reads no parameter, only the caller's table */
+    [ABRDF_MEASURED] = {ABRDF_MEASURED, "measured", "measured table (MERL half/difference grid)",
+        "measured data (docs/MEASURED.md)", CIT_MERL, ABRDF_NEEDS_TABLE, REC | DIF | SPE, -1, 0,
+        NULL},
 };
 /* clang-format on */
 
@@ -420,6 +427,12 @@ int abrdf_params_check(abrdf_model model, const abrdf_params *p, char *msg, size
     if (!m) {
         if (msg && msg_size) snprintf(msg, msg_size, "unknown model id %d", (int)model);
         return ABRDF_E_MODEL;
+    }
+    if (m->needs & ABRDF_NEEDS_TABLE) {
+        if (msg && msg_size)
+            snprintf(msg, msg_size, "%s: evaluates a caller's table: prepare it with "
+                                    "abrdf_prepare_measured", m->name);
+        return ABRDF_E_TABLE;
     }
     for (int i = 0; i < m->param_count; ++i) {
         int id = m->params[i].id;

@@ -15,6 +15,7 @@
 #include "abrdf_internal.h"
 #include "hair.h"
 #include "layered.h"
+#include "measured.h"
 
 /* The kernels' parameters, one field list for both precisions (kernel.h: abrdf__kp). */
 #define ABRDF__KP_FIELDS(REAL)                                                                     \
@@ -58,6 +59,7 @@ typedef struct ABRDF__MAY_ALIAS abrdf__prep {
         abrdf__huang huang;
         abrdf__belcour belcour;
         abrdf__ww ww;
+        abrdf__measured measured;
     } special; /* setup of a model evaluated in double only (special.c) */
 } abrdf__prep;
 

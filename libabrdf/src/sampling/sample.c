@@ -57,6 +57,15 @@ static void no_sample(const abrdf_frame *fr, abrdf_sample_result *r)
     r->weight[0] = r->weight[1] = r->weight[2] = 0.0;
 }
 
+/* The sampler of a prepared model for local wo: from its parameters, or from its table. */
+static void mixture_of(const abrdf__prep *pr, const double wo[3], abrdf__mixture *mx)
+{
+    if (pr->model == ABRDF_MEASURED)
+        abrdf__mixture_setup_measured(&pr->special.measured, wo, mx);
+    else
+        abrdf__mixture_setup(pr->model, &pr->params, wo, mx);
+}
+
 /* abrdf_sample's body on a prepared model (pr holds validated parameters in this library's
  * layout); result checked, u1 and u2 not yet. */
 static int sample_prep(const abrdf__prep *pr, const abrdf_frame *frame, const double wo[3],
@@ -67,7 +76,7 @@ static int sample_prep(const abrdf__prep *pr, const abrdf_frame *frame, const do
     if ((frame && !frame_ok(frame)) || !to_local(frame, wo, lo) || !(lo[2] > 0.0))
         return ABRDF_OK; /* degenerate or below the surface: no sample */
     abrdf__mixture mx;
-    abrdf__mixture_setup(pr->model, &pr->params, lo, &mx);
+    mixture_of(pr, lo, &mx);
     if (!abrdf__mixture_sample(&mx, u1, u2, li)) return ABRDF_OK;
     double pdf = abrdf__mixture_pdf(&mx, li);
     if (!(pdf > 0.0) || !isfinite(pdf)) return ABRDF_OK; /* a set of measure zero */
@@ -91,7 +100,7 @@ static double pdf_prep(const abrdf__prep *pr, const abrdf_frame *frame, const do
         !(lo[2] > 0.0))
         return 0.0;
     abrdf__mixture mx;
-    abrdf__mixture_setup(pr->model, &pr->params, lo, &mx);
+    mixture_of(pr, lo, &mx);
     double p = abrdf__mixture_pdf(&mx, li);
     return (p >= 0.0 && isfinite(p)) ? p : 0.0;
 }

@@ -13,6 +13,7 @@
 #ifndef ABRDF_SAMPLE_H
 #define ABRDF_SAMPLE_H
 #include "abrdf_internal.h"
+#include "measured.h"
 
 /* ---- 1-D densities of the cosine c to an axis -----------------------------------------
  * Each is a density p(c) over c in [1 - T, 1], written in t = 1 - c (the angle to the axis
@@ -119,6 +120,10 @@ struct abrdf__mixture {
  * local unit wo with wo[2] > 0. */
 void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double wo[3],
                           abrdf__mixture *mx);
+/* The mixture of the `measured` model: cosine and a GGX visible-normal lobe with the
+ * roughness and share its setup fitted to the table (measured.h). */
+void abrdf__mixture_setup_measured(const abrdf__measured *m, const double wo[3],
+                                   abrdf__mixture *mx);
 /* Draw wi (local, unit) with u1, u2 in [0, 1); returns 0 if the draw degenerated (a set of
  * measure zero: the half vector orthogonal to wo), then wi is +z and carries no weight. */
 int abrdf__mixture_sample(const abrdf__mixture *mx, double u1, double u2, double wi[3]);

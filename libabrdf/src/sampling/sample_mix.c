@@ -189,6 +189,16 @@ void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double
     normalise(mx);
 }
 
+void abrdf__mixture_setup_measured(const abrdf__measured *m, const double wo[3],
+                                   abrdf__mixture *mx)
+{
+    mx->count = 0;
+    for (int c = 0; c < 3; ++c) mx->wo[c] = wo[c];
+    add(mx, ABRDF__LOBE_COSINE, 1.0 - m->p_lobe);
+    add_vndf(mx, m->p_lobe, m->alpha, m->alpha);
+    normalise(mx);
+}
+
 int abrdf__mixture_sample(const abrdf__mixture *mx, double u1, double u2, double wi[3])
 {
     int i = 0;
@@ -271,6 +281,7 @@ static const abrdf_sampler_info samplers[ABRDF_MODEL_COUNT] = {
     [ABRDF_MARSCHNER] = {"hair_lobes", "far-field R/TT/TRT above the ribbon: (offset h, lobe) by attenuation, logistic theta_i about M_p's peak, logistic azimuth about Phi(p, h); 10% cosine", CIT_HAIR, MIX},
     [ABRDF_HUANG] = {"hair_lobes", "marschner's R/TT/TRT proposal with widths from the GGX roughness (approximate: no exact sampler of Huang's integrals), 10% cosine", CIT_HAIR, MIX},
     [ABRDF_WEIDLICH_WILKIE] = {"layered_vndf_cosine", "GGX visible normals per interface, cosine for the Lambert base, shares from Fresnel and transmission at N.wo", CIT_VNDF "; " CIT_VEACH, MIX | BELOW},
+    [ABRDF_MEASURED] = {"measured_vndf_cosine", "cosine, and GGX visible normals with the roughness and share fitted to the table at prepare (its lobe at normal incidence); one-sample MIS", CIT_VNDF "; " CIT_VEACH, MIX | BELOW},
     [ABRDF_BELCOUR] = {"belcour_vndf", "GGX visible normals per lobe of Eq. 16, energies and roughnesses at N.wo", CIT_VNDF "; " CIT_VEACH, MIX | BELOW},
 };
 /* clang-format on */
