@@ -1,6 +1,7 @@
 /* cmd_tabulate.c - `abrdf tabulate MODEL -o FILE [...]`: a model's f_r on the measured grid
  * (measured_table.h), with optional noise and holes, written as a measured-BRDF file
  * (measured_file.h; docs/MEASURED.md, "Files"). */
+#include <limits.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -56,17 +57,31 @@ static double cell_normal(uint64_t seed, uint64_t cell, unsigned stream)
 
 static int parse_grid(const char *s, int grid[3])
 {
-    char extra;
-    if (sscanf(s, "%d,%d,%d%c", &grid[0], &grid[1], &grid[2], &extra) != 3)
-        return cli_fail(CMD, "--grid: '%s' is not three whole numbers NH,ND,NP", s);
+    char buf[64];
+    const char *parts[3] = {buf, NULL, NULL};
+    int n = 1;
+    if (strlen(s) < sizeof buf) {
+        strcpy(buf, s);
+        for (char *p = buf; *p; ++p)
+            if (*p == ',') {
+                *p = '\0';
+                if (n < 3) parts[n] = p + 1;
+                ++n;
+            }
+    }
+    long v[3];
+    for (int k = 0; k < 3 && n == 3; ++k)
+        if (!cli_parse_int(parts[k], LONG_MIN, LONG_MAX, &v[k])) n = 0;
+    if (n != 3) return cli_fail(CMD, "--grid: '%s' is not three whole numbers NH,ND,NP", s);
     for (int k = 0; k < 3; ++k)
-        if (grid[k] < MEASURED_DIM_MIN || grid[k] > MEASURED_DIM_MAX)
+        if (v[k] < MEASURED_DIM_MIN || v[k] > MEASURED_DIM_MAX)
             return cli_fail(CMD, "--grid %s: each of NH,ND,NP must be in [%d, %d]", s,
                             MEASURED_DIM_MIN, MEASURED_DIM_MAX);
-    if ((size_t)grid[0] * (size_t)grid[1] * (size_t)grid[2] > MEASURED_MAX_CELLS)
-        return cli_fail(CMD, "--grid %s: %zu cells, more than the %zu a table may hold", s,
-                        (size_t)grid[0] * (size_t)grid[1] * (size_t)grid[2],
+    size_t cells = (size_t)v[0] * (size_t)v[1] * (size_t)v[2];
+    if (cells > MEASURED_MAX_CELLS)
+        return cli_fail(CMD, "--grid %s: %zu cells, more than the %zu a table may hold", s, cells,
                         (size_t)MEASURED_MAX_CELLS);
+    for (int k = 0; k < 3; ++k) grid[k] = (int)v[k];
     return 0;
 }
 
