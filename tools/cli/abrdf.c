@@ -32,6 +32,10 @@ static const cli_command commands[] = {
      cmd_advise},
     {"fit", "fit one model's parameters to another's; errors and the predicted image NMSE",
      cmd_fit},
+    {"tabulate", "write a model's f_r on the measured grid as a MERL BRDF file (noise, holes)",
+     cmd_tabulate},
+    {"inspect", "what a measured BRDF file holds: grid, cells not measured, max f_r, albedo",
+     cmd_inspect},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

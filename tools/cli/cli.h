@@ -23,5 +23,7 @@ int cmd_calibrate(int argc, char **argv);
 int cmd_advise(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
+int cmd_tabulate(int argc, char **argv);
+int cmd_inspect(int argc, char **argv);
 
 #endif
