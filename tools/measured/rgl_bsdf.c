@@ -3,9 +3,9 @@
  * Source: J. Dupuy, W. Jakob, "An Adaptive Parameterization for Efficient Material
  * Acquisition and Rendering", ACM TOG 37(6), 2018. A material is stored per incident
  * direction on the unit square of a warp: the visible normals' distribution D_wi(m) =
- * D(m) <wi, m> / sigma(wi) (Sec. 4), mapped to (u_theta, u_phi) = (sqrt(2 theta / pi),
+ * D(m) <wi, m> / sigma(wi), mapped to (u_theta, u_phi) = (sqrt(2 theta / pi),
  * (phi + pi) / 2 pi) and inverted through its piecewise-bilinear marginal and conditional
- * CDFs; the reflectance is tabulated on the square the warp produces (Sec. 5), so that its
+ * CDFs; the reflectance is tabulated on the square the warp produces, so that its
  * samples crowd where the lobe is. Evaluation undoes the warp: half vector -> (u_theta, u_phi)
  * -> warped square -> bilinear lookup, with every table also interpolated linearly between
  * the incident slices around wi, as Mitsuba 3's `measured` plugin does.

@@ -1,7 +1,7 @@
 /* rgl_warp.c - grids and the continuous marginal/conditional warp (rgl_warp.h).
  *
  * Source: J. Dupuy, W. Jakob, "An Adaptive Parameterization for Efficient Material
- * Acquisition and Rendering", ACM TOG 37(6), 2018, Sec. 4. The tables are stored in float,
+ * Acquisition and Rendering", ACM TOG 37(6), 2018. The tables are stored in float,
  * their sums accumulated in double, as the files' reader in Mitsuba 3 builds them, so that the
  * two evaluate a file alike to float precision.
  */

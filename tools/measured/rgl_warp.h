@@ -1,5 +1,5 @@
 /* rgl_warp.h - the tables of an RGL .bsdf file as functions on the unit square (rgl_bsdf.h):
- * piecewise-bilinear grids, and the warp of Dupuy & Jakob 2018 (Sec. 4): a grid taken as a
+ * piecewise-bilinear grids, and the warp of Dupuy & Jakob 2018: a grid taken as a
  * density on the square, mapped to the square by its continuous marginal (over rows) and
  * conditional (along a row) CDFs, both of the bilinear interpolant. A table holds several
  * slices (one per incident direction); a lookup mixes up to 4 of them linearly, value by value,

@@ -4,16 +4,20 @@
  * Parameterization for Efficient Material Acquisition and Rendering", ACM TOG 37(6), 2018,
  * derives them from measurements, with these simplifications (docs/MEASURED_RGL.md):
  *  - ndf: D(theta) from the back-scattered luminance, D ~ Y(f_r(w, w)) cos^2(theta) (the
- *    retro-reflection of a microfacet BRDF is F D G / (4 cos^2), Sec. 4.1; the paper refines
+ *    retro-reflection of a microfacet BRDF is F D G / (4 cos^2); the paper refines
  *    it by power iteration, here the shadowing G is taken as 1), floored at 1e-4 of its peak
  *    and normalised so that the projected microfacet area is 1;
  *  - sigma(theta_i) = integral of D(m) <wi, m>+ over the hemisphere, by quadrature;
  *  - vndf: D(m) <wi, m>+ / sigma(wi) on the square (u_theta, u_phi), times the square's
- *    Jacobian 2 pi^2 u_theta sin(theta_m), plus 1e-3 of its mean so that every row can be
- *    inverted (the lobe's azimuthal far side is empty at grazing incidence);
+ *    Jacobian 2 pi^2 u_theta sin(theta_m), plus 0.1 of its mean: every row can then be
+ *    inverted (the lobe's azimuthal far side is empty at grazing incidence), and the warp
+ *    keeps nodes near the pole, where the Jacobian vanishes as u_theta^3 (with 1e-3 the first
+ *    column of a 64-node square spans 11 degrees of theta_m there, and a Lambert BRDF read
+ *    back was off by 7% near the mirror direction; with 0.1, 1.3%);
  *  - rgb: at each node of the warped square, f_r cos(theta_o) / (D(m) / (4 sigma(wi))) for
  *    the m the warp gives and wo = m's mirror of wi (jacobian = 1: the sampling weight of the
- *    visible normals, smooth where the BRDF is microfacet-like);
+ *    visible normals, smooth where the BRDF is microfacet-like), 0 where wo is below the
+ *    horizon;
  *  - luminance: the luminance of that weight plus 1e-4 of its peak (a density for sampling);
  *  - one phi_i slice (isotropic), theta_i uniform in 0 to 90 degrees; the 90-degree slice is
  *    tabulated 0.06 degrees above the horizon, where f_r is still defined.
@@ -32,7 +36,7 @@
 #define PI 3.14159265358979323846
 #define GRAZING_EPS 1e-3 /* radians below 90 degrees where the last slice is tabulated */
 #define NDF_FLOOR 1e-4   /* of D's peak: D > 0 everywhere, so that the ratio is finite */
-#define VNDF_FLOOR 1e-3  /* of the vndf's mean: every row of the warp invertible */
+#define VNDF_FLOOR 0.1   /* of the vndf's mean: the warp's rows invertible, nodes near the pole */
 #define LUM_FLOOR 1e-4   /* of the luminance's peak: a density positive everywhere */
 #define SIGMA_QUAD 256   /* quadrature nodes per axis of sigma's integral */
 
@@ -243,8 +247,6 @@ int rgl_write(const char *path, rgl_brdf_fn f, void *user, const rgl_write_grid 
                 double dot = wi[0] * m[0] + wi[1] * m[1] + wi[2] * m[2];
                 for (int a = 0; a < 3; ++a) wo[a] = 2 * dot * m[a] - wi[a];
                 if (dot > 0 && wo[2] > 0) {
-                    double nrm = sqrt(wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2]);
-                    for (int a = 0; a < 3; ++a) wo[a] /= nrm;
                     f(user, wi, wo, c);
                     double weight = wo[2] * 4 * sig / rgl_grid_eval(&ndf_g, &one, u);
                     for (int a = 0; a < 3; ++a) c[a] = isfinite(c[a]) ? c[a] * weight : 0;
