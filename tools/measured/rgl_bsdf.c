@@ -293,7 +293,7 @@ static int parse(const unsigned char *data, size_t size, rgl_bsdf **out, char *w
     if (read_header(data, size, &f, &n, why, why_size)) return -1;
     rgl_bsdf *b = NULL;
     const rgl_field *th, *ph, *ndf, *sig, *vndf, *lum, *rgb, *desc, *jac;
-    if (!field(f, n, "rgb") && field(f, n, "spectra")) {
+    if (!field(f, n, "rgb") && (field(f, n, "spectra") || field(f, n, "wavelengths"))) {
         snprintf(why, why_size,
                  ": a spectral file (no \"rgb\" field): read the database's RGB file instead");
         goto fail;
