@@ -226,10 +226,11 @@ int rgl_write(const char *path, rgl_brdf_fn f, void *user, const rgl_write_grid 
                 mean += v[y * nw + x];
             }
         mean /= (double)slice;
-        for (size_t q = 0; q < slice; ++q) v[q] = (float)(v[q] + VNDF_FLOOR * mean);
+        for (size_t q = 0; q < slice; ++q) /* uniform if the grid misses the lobe */
+            v[q] = mean > 0 ? (float)(v[q] + VNDF_FLOOR * mean) : 1.0f;
     }
-    if (rgl_warp_init(&warp, vndf, T, nw, nw)) {
-        path_msg(err, err_size, path, ": out of memory for the warp (or a BRDF of no reflection)");
+    if (rgl_warp_init(&warp, vndf, T, nw, nw)) { /* each slice is positive: only memory */
+        path_msg(err, err_size, path, ": out of memory for the warp");
         goto done;
     }
 
