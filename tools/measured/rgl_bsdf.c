@@ -289,7 +289,7 @@ static int parse(const unsigned char *data, size_t size, rgl_bsdf **out, char *w
 {
     rgl_field *f;
     unsigned n;
-    char s1[96], s2[96];
+    char s1[96];
     if (read_header(data, size, &f, &n, why, why_size)) return -1;
     rgl_bsdf *b = NULL;
     const rgl_field *th, *ph, *ndf, *sig, *vndf, *lum, *rgb, *desc, *jac;
@@ -352,7 +352,6 @@ static int parse(const unsigned char *data, size_t size, rgl_bsdf **out, char *w
                  (unsigned long long)rgb->shape[3], (unsigned long long)rgb->shape[4]);
         goto fail;
     }
-    (void)s2;
 
     b = calloc(1, sizeof *b);
     if (!b) {
@@ -405,7 +404,8 @@ static int parse(const unsigned char *data, size_t size, rgl_bsdf **out, char *w
         snprintf(why, why_size, ": out of memory");
         goto fail;
     }
-    memcpy(b->description, data + desc->offset, (size_t)desc->count);
+    if (desc->count) /* an empty field's offset is not checked: no pointer made from it */
+        memcpy(b->description, data + desc->offset, (size_t)desc->count);
     b->description[desc->count] = '\0';
     free(f);
     *out = b;

@@ -21,7 +21,8 @@
  * WHAT IS READ: isotropic materials (one or two phi_i slices) with an `rgb` field. Refused,
  * each with one line: spectral-only files (no `rgb`: the database offers RGB files),
  * anisotropic ones (the tools' table is isotropic), and any file that is not a consistent
- * tensor file (every bound checked before anything is allocated, NaN and Inf refused).
+ * tensor file (every bound checked against the file's size before any data is copied, NaN
+ * and Inf refused).
  *
  *   rgl_parse          a material from bytes in memory ("name" names it in messages)
  *   rgl_load           a material from a file
