@@ -177,8 +177,8 @@ typedef enum abrdf_model {
     ABRDF_WEIDLICH_WILKIE,  /* "weidlich_wilkie"       Eq. 15 */
     ABRDF_BELCOUR,          /* "belcour"               Eq. 16 */
     /* measured data (added after 0.2.0) */
-    ABRDF_MEASURED, /* "measured"              a caller's table (abrdf_prepare_measured) */
-    ABRDF_MODEL_COUNT       /* ids in this header; grows with every model (never "none") */
+    ABRDF_MEASURED,   /* "measured"              a caller's table (abrdf_prepare_measured) */
+    ABRDF_MODEL_COUNT /* ids in this header; grows with every model (never "none") */
 } abrdf_model;
 
 /* ---- hair models (marschner, huang) ----
@@ -194,7 +194,8 @@ typedef enum abrdf_model {
 #define ABRDF_NEEDS_FRESNEL 0x02u     /* evaluates a Fresnel term */
 #define ABRDF_NEEDS_LAYERS 0x04u      /* uses the layer stack */
 #define ABRDF_NEEDS_INTEGRATION 0x08u /* numerical integration inside eval (slow) */
-#define ABRDF_NEEDS_TABLE 0x10u       /* evaluates a caller's table: abrdf_prepare_measured only
+#define ABRDF_NEEDS_TABLE                                                                          \
+    0x10u /* evaluates a caller's table: abrdf_prepare_measured only
                                          (abrdf_eval, abrdf_prepare: ABRDF_E_TABLE) */
 
 /* Physical properties (bit flags of abrdf_model_info.props). */

@@ -1,5 +1,6 @@
 /* fuzz_driver.c - deterministic driver for a fuzz target (fuzz_scene.c, fuzz_mesh.c,
- * fuzz_image.c, fuzz_costs.c, fuzz_materials.c, fuzz_merl.c, fuzz_cli.c) under CTest: every seed file given on the command line, then
+ * fuzz_image.c, fuzz_costs.c, fuzz_materials.c, fuzz_merl.c, fuzz_rgl.c, fuzz_cli.c) under CTest:
+ * every seed file given on the command line, then
  * ITERATIONS inputs mutated from them by a fixed-seed generator (byte flips, inserted tokens
  * of the target's format and hostile numbers, deleted and duplicated spans, splices of two
  * seeds). A crash, sanitizer report or abort() fails it. Each target defines fuzz_tokens[]

@@ -173,7 +173,7 @@ class CrossCheck(unittest.TestCase):
     def setUpClass(cls):
         info = json.loads(run("models", "--json"))["models"]
         # Every model has an OSL twin (the layered ones and the hair quadratures too), but
-        # the measured one, which reads a table (docs/MEASURED.md, "In other renderers").
+        # the measured one, which reads a table (docs/MEASURED.md, "The measured model").
         cls.models = [m["name"] for m in info if "table" not in m["needs"]]
         cls.layered = [m["name"] for m in info if "layers" in m["needs"]]
         # ABRDF_OSL_MODELS="m1,m2" (or space separated): render only these (development);

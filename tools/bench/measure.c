@@ -114,7 +114,7 @@ typedef struct model_ctx {
     abrdf_model model;
     abrdf_params params;
     const abrdf_prepared *table; /* the measured model: its prepared table (else NULL) */
-    const double *dir; /* double path: interleaved directions (measure_set.dir) */
+    const double *dir;           /* double path: interleaved directions (measure_set.dir) */
 } model_ctx;
 
 static int run_model(void *ctx, const abrdf_batch *b)

@@ -4,11 +4,14 @@
 #include <limits.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
+#include <strings.h>
 
 #include "cli.h"
 #include "measured_file.h"
 #include "out_file.h"
+#include "rgl_bsdf.h"
 
 #define CMD "tabulate"
 #define TABULATE_NOISE_MAX 2.0 /* sigma: exp(2 z) already spans 50x at 2 standard deviations */
@@ -19,8 +22,10 @@ static int usage(void)
            "                      [--noise SIGMA] [--holes FRACTION] [--seed N]\n\n"
            "Writes MODEL's f_r (double reference, local frame N = +z, phi_h = 0) at every cell of\n"
            "the half/difference grid as a measured-BRDF file, its format by FILE's extension:\n"
-           ".binary = MERL BRDF database. Cells with the light or the view at or below the\n"
-           "horizon hold 0 (measured).\n"
+           ".binary = MERL BRDF database; .bsdf = RGL BSDF (Dupuy-Jakob), sampled on its own\n"
+           "adaptive grid (no --grid, --noise, --holes). Cells with the light or the view at or "
+           "below the\n"
+           "horizon are not measured (-1), as in a measurement.\n"
            "  --grid NH,ND,NP   cells over theta_h, theta_d, phi_d, each %d to %d (default\n"
            "                    90,90,180, MERL's grid); %zu cells at most\n"
            "  --noise SIGMA     f_r * exp(SIGMA z - SIGMA^2/2), z standard normal per cell and\n"
@@ -102,11 +107,16 @@ static int tabulate(abrdf_model model, const abrdf_params *p, double sigma, doub
             for (int ip = 0; ip < t->n_phi_d; ++ip, ++cell) {
                 double wi[3], wo[3], f[3] = {0, 0, 0};
                 measured_table_directions(t, ih, id, ip, wi, wo);
-                if (wi[2] > 0 && wo[2] > 0) {
-                    int st = abrdf_eval(model, p, NULL, wi, wo, f);
-                    if (st != ABRDF_OK) return cli_fail(CMD, "%s", abrdf_strerror(st));
-                }
                 float *dst = t->data + measured_table_cell(t, ih, id, ip);
+                /* no instrument measures with a direction below the surface: such a cell is
+                 * "not measured", so the lookup near the horizon interpolates the cells
+                 * above it instead of pulling toward 0 (docs/MEASURED.md) */
+                if (!(wi[2] > 0 && wo[2] > 0)) {
+                    dst[0] = dst[1] = dst[2] = -1.0f;
+                    continue;
+                }
+                int st = abrdf_eval(model, p, NULL, wi, wo, f);
+                if (st != ABRDF_OK) return cli_fail(CMD, "%s", abrdf_strerror(st));
                 if (holes > 0 && cell_uniform(seed, cell, 6) < holes) {
                     dst[0] = dst[1] = dst[2] = -1.0f;
                     continue;
@@ -123,11 +133,49 @@ static int tabulate(abrdf_model model, const abrdf_params *p, double sigma, doub
     return 0;
 }
 
+/* ---- RGL .bsdf: the model itself sampled by rgl_write ---- */
+
+typedef struct model_fn {
+    abrdf_model model;
+    const abrdf_params *p;
+} model_fn;
+
+static void eval_model(void *user, const double wi[3], const double wo[3], double rgb[3])
+{
+    const model_fn *m = user;
+    if (abrdf_eval(m->model, m->p, NULL, wi, wo, rgb) != ABRDF_OK) rgb[0] = rgb[1] = rgb[2] = 0;
+}
+
+static int is_bsdf(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 5 && strcasecmp(path + n - 5, ".bsdf") == 0;
+}
+
+static int tabulate_bsdf(abrdf_model model, const abrdf_params *p, const char *path, double sigma,
+                         double holes, int grid_given)
+{
+    if (sigma > 0 || holes > 0 || grid_given)
+        return cli_fail(CMD, "--noise, --holes and --grid apply to .binary files; a .bsdf file "
+                             "has its own adaptive grid (docs/MEASURED.md, \"RGL .bsdf files\")");
+    model_fn m = {model, p};
+    rgl_write_grid g = RGL_WRITE_GRID_DEFAULT;
+    char desc[128], err[1024];
+    snprintf(desc, sizeof desc, "abrdf tabulate %s", abrdf_model_get(model)->name);
+    if (rgl_write(path, eval_model, &m, &g, desc, err, sizeof err)) {
+        fprintf(stderr, "abrdf %s: %s\n", CMD, err);
+        return 1;
+    }
+    fprintf(stderr, "abrdf %s: wrote %s (RGL BSDF, %d elevations, %d x %d warp)\n", CMD, path,
+            g.n_theta_i, g.n_warp, g.n_warp);
+    return 0;
+}
+
 int cmd_tabulate(int argc, char **argv)
 {
     const char *name = NULL, *out_path = NULL;
     const char *sets[64];
-    int nsets = 0, grid[3] = {90, 90, 180};
+    int nsets = 0, grid[3] = {90, 90, 180}, grid_given = 0;
     double sigma = 0, holes = 0;
     long seed = 1;
     for (int i = 1; i < argc; ++i) {
@@ -144,6 +192,7 @@ int cmd_tabulate(int argc, char **argv)
         } else if (!strcmp(a, "--grid")) {
             if (!has_val) return cli_fail(CMD, "--grid needs NH,ND,NP");
             if (parse_grid(argv[++i], grid)) return CLI_EXIT_USAGE;
+            grid_given = 1;
         } else if (!strcmp(a, "--noise")) {
             if (!has_val)
                 return cli_fail(CMD, "--noise needs SIGMA in [0, %g]", TABULATE_NOISE_MAX);
@@ -175,7 +224,9 @@ int cmd_tabulate(int argc, char **argv)
         if (cli_set_param(CMD, model, &p, sets[i])) return CLI_EXIT_USAGE;
     char err[1024];
     if (abrdf_params_check(model, &p, err, sizeof err) != ABRDF_OK) return cli_fail(CMD, "%s", err);
-    if (!out_path) return cli_fail(CMD, "missing -o FILE (FILE.binary: a MERL BRDF file)");
+    if (!out_path)
+        return cli_fail(CMD, "missing -o FILE (FILE.binary: a MERL BRDF file; FILE.bsdf: RGL)");
+    if (is_bsdf(out_path)) return tabulate_bsdf(model, &p, out_path, sigma, holes, grid_given);
     const measured_format *format = measured_file_format(out_path, 1, err, sizeof err);
     if (!format) return cli_fail(CMD, "%s", err);
 

@@ -5,9 +5,20 @@
 #include "measured_file.h"
 #include "merl.h"
 #include "path_msg.h"
+#include "rgl_bsdf.h"
 
+/* An RGL file resampled onto MERL's grid (90 x 90 x 180), the grid every table of the tools
+ * shares, so that fits and renders see one resolution whatever the source. */
+static int bsdf_read(const char *path, measured_table *out, char *err, size_t err_size)
+{
+    return rgl_read(path, out, 90, 90, 180, err, err_size);
+}
+
+/* Writing .bsdf: abrdf tabulate calls rgl_write with the model itself (a table cannot be
+ * turned back into the file's adaptive parametrisation without a model to sample). */
 static const measured_format formats[] = {
     {".binary", "MERL BRDF database", merl_read, merl_write_to},
+    {".bsdf", "RGL BSDF (Dupuy-Jakob 2018), resampled to 90 x 90 x 180", bsdf_read, NULL},
 };
 #define FORMAT_COUNT (sizeof formats / sizeof formats[0])
 

@@ -430,8 +430,10 @@ int abrdf_params_check(abrdf_model model, const abrdf_params *p, char *msg, size
     }
     if (m->needs & ABRDF_NEEDS_TABLE) {
         if (msg && msg_size)
-            snprintf(msg, msg_size, "%s: evaluates a caller's table: prepare it with "
-                                    "abrdf_prepare_measured", m->name);
+            snprintf(msg, msg_size,
+                     "%s: evaluates a caller's table: prepare it with "
+                     "abrdf_prepare_measured",
+                     m->name);
         return ABRDF_E_TABLE;
     }
     for (int i = 0; i < m->param_count; ++i) {

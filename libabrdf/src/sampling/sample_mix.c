@@ -189,8 +189,7 @@ void abrdf__mixture_setup(abrdf_model model, const abrdf_params *p, const double
     normalise(mx);
 }
 
-void abrdf__mixture_setup_measured(const abrdf__measured *m, const double wo[3],
-                                   abrdf__mixture *mx)
+void abrdf__mixture_setup_measured(const abrdf__measured *m, const double wo[3], abrdf__mixture *mx)
 {
     mx->count = 0;
     for (int c = 0; c < 3; ++c) mx->wo[c] = wo[c];
