@@ -448,7 +448,7 @@ static inline int abrdf_measured_init(abrdf_measured *table)
 }
 /* Prepare ABRDF_MEASURED on `table` (LIFETIME above). ABRDF_E_NULL (table, data or prepared
  * NULL), ABRDF_E_SIZE (struct_size not set by abrdf_measured_init), ABRDF_E_TABLE (a grid
- * size outside [2, 1024]); *prepared is then "not prepared". The prepared object's
+ * size outside [2, 1024], or more than 2^26 cells in all); *prepared is then "not prepared". The prepared object's
  * parameters (abrdf_prepared_params) are the model's defaults: it reads none. */
 ABRDF_API int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared *prepared);
 

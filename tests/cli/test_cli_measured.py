@@ -195,5 +195,64 @@ class Inspect(Base):
         self.fails(2, ["inspect"], "missing FILE")
 
 
+SCENE = """camera position=0,0,4 look_at=0,0,0 up=0,1,0 fov=30 resolution=64,64
+light directional direction=-1,1,1 color=1,1,1 intensity=3
+light point position=2,1,3 color=1,0.9,0.8 intensity=4
+ambient 0
+{material}
+sphere material=m radius=1
+"""
+
+
+class Render(Base):
+    """`material NAME measured=FILE [kd=...]` in a scene (docs/MEASURED.md, "In a scene")."""
+
+    def render(self, name, material, *extra):
+        scene = self.path(name + ".scene")
+        with open(scene, "w") as f:
+            f.write(SCENE.format(material=material))
+        out = self.path(name + ".exr")
+        rc, stdout, err = run("render", scene, "-o", out, *extra)
+        self.assertEqual(rc, 0, err)
+        return out, stdout + err
+
+    def nmse(self, a, b):
+        rc, out, err = run("compare", a, b, "--json")
+        self.assertEqual(rc, 0, err)
+        return json.loads(out)["nmse"]
+
+    def test_table_renders_as_its_model(self):
+        # a table written from disney_specular under a Lambert term given as kd= renders as the
+        # analytic pair: the grid's interpolation error only (bound stated in MEASURED.md)
+        self.tabulate("s.binary", "disney_specular", "--set", "r=0.35", "--set", "f0=0.04")
+        data, err = self.render("data", "material m measured=s.binary kd=0.18,0.30,0.60",
+                                "--explain")
+        self.assertIn("lambert + measured", err)
+        self.assertIn("measured table: ", err)
+        self.assertIn("90 x 90 x 180 cells", err)
+        model, _ = self.render("model", "material m diffuse=lambert specular=disney_specular "
+                                        "kd=0.18,0.30,0.60 r=0.35 f0=0.04")
+        self.assertLess(self.nmse(model, data), 1e-6)
+        # the same under the double reference path
+        dd, _ = self.render("dd", "material m measured=s.binary kd=0.18,0.30,0.60",
+                            "--precision", "double")
+        self.assertLess(self.nmse(data, dd), 1e-8)
+
+    def test_bad_materials(self):
+        self.tabulate("s.binary", "lambert", "--grid", "8,8,16")
+        for material, needle in (
+                ("material m measured=none.binary", "cannot open"),
+                ("material m measured=s.png", "'.png' is not"),
+                ("material m measured=s.binary specular=disney_specular", "drop model=/specular="),
+                ("material m measured=s.binary diffuse=disney_specular", "not a diffuse model"),
+                ("material m measured=s.binary r=0.3", "not used by the material"),
+                ("material m table=gold measured=s.binary", "drop model=/diffuse=/specular=/measured=")):
+            scene = self.path("bad.scene")
+            with open(scene, "w") as f:
+                f.write(SCENE.format(material=material))
+            self.fails(1, ["render", scene, "-o", self.path("bad.exr")], "bad.scene:5:", needle)
+            self.assertFalse(os.path.exists(self.path("bad.exr")))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -48,6 +48,8 @@ static int eval_sum(const abrdf_model *lobes, int n, const abrdf_params *p, int 
     f[0] = f[1] = f[2] = 0.0;
     for (int l = 0; l < n; ++l) {
         double g[3];
+        /* a table lobe reads no parameter: the same in both evaluations compared */
+        if (abrdf_model_get(lobes[l])->needs & ABRDF_NEEDS_TABLE) continue;
         if (abrdf_eval(lobes[l], p, &fr, wi, wo, g) != ABRDF_OK) return -1;
         for (int c = 0; c < 3; ++c) f[c] += g[c];
     }

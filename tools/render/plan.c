@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "abrdf_fit.h"
 #include "light.h"
 #include "plan.h"
 
@@ -133,6 +134,28 @@ static void lobe_names(const render_material *m, char *buf, size_t size)
 }
 
 /* Which lights are sampled, with which estimator (light.h); "off" for exact lights only. */
+/* What a measured lobe reads and costs: its table, and the built-in cost of a lookup beside
+ * the analytic pair it most often stands for. */
+static void explain_measured(FILE *f, const scene_measured *sm)
+{
+    const measured_table *t = &sm->table;
+    size_t cells = (size_t)t->n_theta_h * (size_t)t->n_theta_d * (size_t)t->n_phi_d;
+    fprintf(f,
+            "    measured table: %s (%s, %d x %d x %d cells, %.1f %% not measured, %.1f MB of "
+            "floats): one trilinear lookup per evaluation (docs/MEASURED.md)\n",
+            sm->path, sm->format, t->n_theta_h, t->n_theta_d, t->n_phi_d,
+            100.0 * (double)t->unmeasured / (double)cells, 12.0 * (double)cells / 1e6);
+    abrdf_costs c;
+    abrdf_costs_builtin(&c);
+    double lookup = abrdf_costs_get(&c, ABRDF_MEASURED),
+           pair = abrdf_costs_get(&c, ABRDF_LAMBERT) + abrdf_costs_get(&c, ABRDF_DISNEY_SPECULAR);
+    if (lookup > 0 && pair > 0)
+        fprintf(f,
+                "    cost: %.3g ns per evaluation (built-in cost table), %.2gx lambert + "
+                "disney_specular's %.3g ns\n",
+                lookup, lookup / pair, pair);
+}
+
 static void explain_sampling(const render_scene *rs, const render_options *opt, FILE *f)
 {
     int count[SCENE_LIGHT_ENVIRONMENT + 1] = {0};
@@ -226,5 +249,7 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
         fprintf(f, "    numerical integration: %s\n",
                 (m->needs & ABRDF_NEEDS_INTEGRATION) ? "yes (slow lobe)" : "no");
         fprintf(f, "    ambient: %s\n", m->use_ambient ? "yes - ka * Ia > 0" : "no - ka * Ia = 0");
+        if (s->materials[i].measured >= 0)
+            explain_measured(f, &s->measured[s->materials[i].measured]);
     }
 }

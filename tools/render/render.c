@@ -97,7 +97,17 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         m->params = sm->params;
         /* Validate and precompute each lobe once: shading then evaluates with no check. */
         for (int k = 0; k < m->lobe_count; ++k) {
-            int st = abrdf_prepare(m->lobes[k], &m->params, &m->prepared[k]);
+            int st;
+            if (m->lobes[k] == ABRDF_MEASURED) { /* the scene's table, alive as long as it */
+                const measured_table *t = &s->measured[sm->measured].table;
+                abrdf_measured desc;
+                abrdf_measured_init(&desc);
+                desc.n_theta_h = t->n_theta_h, desc.n_theta_d = t->n_theta_d;
+                desc.n_phi_d = t->n_phi_d, desc.data = t->data;
+                st = abrdf_prepare_measured(&desc, &m->prepared[k]);
+            } else {
+                st = abrdf_prepare(m->lobes[k], &m->params, &m->prepared[k]);
+            }
             if (st != ABRDF_OK) {
                 char msg[256];
                 abrdf_params_check(m->lobes[k], &m->params, msg, sizeof msg);

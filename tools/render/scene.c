@@ -12,6 +12,7 @@
 
 #include "cli_args.h"
 #include "in_file.h"
+#include "measured_file.h"
 #include "out_file.h"
 #include "param_effect.h"
 #include "path_msg.h"
@@ -414,14 +415,52 @@ static int copy_name(parser *p, const char *what, const char *src, char dst[SCEN
     return 0;
 }
 
-/* How the material chooses its models (adaptive with goal= or budget=, table=, or model= /
- * diffuse= / specular=) into m; *from: the first word after them. 0, or -1 after the
- * message. */
+/* The table of `measured=FILE` (docs/MEASURED.md, "In a scene"), read once however many
+ * materials name it: m->measured. 0, or -1 after the message. */
+static int load_measured(parser *p, const char *file, scene_material *m)
+{
+    scene *s = p->s;
+    char *path = named_path(p, file);
+    if (!path) return -1;
+    for (int i = 0; i < s->measured_count; ++i)
+        if (!strcmp(s->measured[i].path, path)) {
+            free(path);
+            m->measured = i;
+            return 0;
+        }
+    if (s->measured_count == SCENE_MAX_MEASURED_FILES) {
+        free(path);
+        return fail(p, "more than %d measured files", SCENE_MAX_MEASURED_FILES);
+    }
+    char err[512];
+    const measured_format *f = measured_file_format(path, 0, err, sizeof err);
+    scene_measured *grown =
+        f ? realloc(s->measured, (size_t)(s->measured_count + 1) * sizeof *grown) : NULL;
+    if (!grown) {
+        free(path);
+        return f ? fail(p, "out of memory") : fail(p, "measured: %s", err);
+    }
+    s->measured = grown;
+    scene_measured *sm = &grown[s->measured_count];
+    if (f->read(path, &sm->table, err, sizeof err)) {
+        free(path);
+        return fail(p, "measured: %s", err);
+    }
+    sm->path = path;
+    sm->format = f->name;
+    m->measured = s->measured_count++;
+    return 0;
+}
+
+/* How the material chooses its models (adaptive with goal= or budget=, table=, measured=, or
+ * model= / diffuse= / specular=) into m; *from: the first word after them. 0, or -1 after
+ * the message. */
 static int material_kind(parser *p, word *w, int n, scene_material *m, int *from)
 {
     *from = 2;
     const char *model = take(w, n, *from, "model"), *dif = take(w, n, *from, "diffuse"),
-               *spe = take(w, n, *from, "specular"), *table = take(w, n, *from, "table");
+               *spe = take(w, n, *from, "specular"), *table = take(w, n, *from, "table"),
+               *measured = take(w, n, *from, "measured");
     int adaptive = n > 2 && !w[2].val && !strcmp(w[2].key, "adaptive");
     if (adaptive) w[2].used = 1, *from = 3;
     if (adaptive) {
@@ -446,8 +485,24 @@ static int material_kind(parser *p, word *w, int n, scene_material *m, int *from
                 p, "an adaptive material chooses its own models; drop model=/diffuse=/specular=");
     } else if (table) {
         m->kind = SCENE_MAT_TABLE;
-        if (model || dif || spe)
-            return fail(p, "table= names a complete material; drop model=/diffuse=/specular=");
+        if (model || dif || spe || measured)
+            return fail(p, "table= names a complete material; drop "
+                           "model=/diffuse=/specular=/measured=");
+    } else if (measured) {
+        /* the table, with an optional diffuse lobe under it (diffuse=MODEL, or kd= alone:
+         * Lambert) for data measured without its diffuse part */
+        m->kind = SCENE_MAT_MODELS;
+        if (model || spe)
+            return fail(p, "measured= is the material's specular part; drop model=/specular= "
+                           "(diffuse=MODEL or kd= adds a diffuse lobe)");
+        if (dif && set_model(p, "diffuse", dif, &m->lobes[m->lobe_count++])) return -1;
+        if (!dif)
+            for (int i = *from; i < n; ++i)
+                if (w[i].val && !strcmp(w[i].key, "kd")) m->lobes[m->lobe_count++] = ABRDF_LAMBERT;
+        if (m->lobe_count && (abrdf_model_get(m->lobes[0])->props & ABRDF_PROP_DIFFUSE) == 0)
+            return fail(p, "diffuse=%s is not a diffuse model", dif);
+        m->lobes[m->lobe_count++] = ABRDF_MEASURED;
+        if (load_measured(p, measured, m)) return -1;
     } else {
         m->kind = SCENE_MAT_MODELS;
         if (model && (dif || spe))
@@ -461,7 +516,8 @@ static int material_kind(parser *p, word *w, int n, scene_material *m, int *from
         } else {
             return fail(
                 p,
-                "material '%s' needs model=, diffuse=/specular=, table= or adaptive goal=|budget=",
+                "material '%s' needs model=, diffuse=/specular=, measured=, table= or adaptive "
+                "goal=|budget=",
                 m->name);
         }
     }
@@ -508,9 +564,8 @@ static int material_params(parser *p, word *w, int n, int from, scene_material *
         int id;
         if (abrdf_param_find(w[i].key, &id) != ABRDF_OK)
             return fail(p,
-                        "unknown key '%s'; keys: model, diffuse, specular, table, goal, budget, ka "
-                        "and the "
-                        "models' parameters (abrdf models)",
+                        "unknown key '%s'; keys: model, diffuse, specular, measured, table, goal, "
+                        "budget, ka and the models' parameters (abrdf models)",
                         w[i].key);
         int used = m->kind != SCENE_MAT_MODELS;
         for (int l = 0; l < m->lobe_count; ++l) used |= cli_model_reads(m->lobes[l], id);
@@ -540,6 +595,7 @@ static int do_material(parser *p, word *w, int n)
     scene_material m;
     memset(&m, 0, sizeof m);
     m.line = p->line;
+    m.measured = -1;
     if (copy_name(p, "material name", w[1].key, m.name)) return -1;
     if (find_material(s, m.name) >= 0) return fail(p, "material '%s' is defined twice", m.name);
     int from, ka_set, kd_used = 0;
@@ -548,6 +604,7 @@ static int do_material(parser *p, word *w, int n)
     if (material_params(p, w, n, from, &m, &ka_set)) return -1;
     for (int l = 0; l < m.lobe_count; ++l) {
         char msg[256];
+        if (m.lobes[l] == ABRDF_MEASURED) continue; /* its table was checked as it was read */
         if (abrdf_params_check(m.lobes[l], &m.params, msg, sizeof msg) != ABRDF_OK)
             return fail(p, "material '%s': %s", m.name, msg);
         int kd_id;
@@ -758,6 +815,11 @@ void scene_free(scene *s)
         free(s->meshes[i]);
     }
     free(s->meshes);
+    for (int i = 0; i < s->measured_count; ++i) {
+        free(s->measured[i].path);
+        measured_table_free(&s->measured[i].table);
+    }
+    free(s->measured);
     memset(s, 0, sizeof *s);
 }
 
@@ -777,6 +839,8 @@ int scene_named_files(const scene *s, const char **paths, const char **roles, in
     for (int i = 0; i < s->light_count; ++i)
         if (s->lights[i].env)
             name_file(paths, roles, max, n++, s->lights[i].env->path, "environment map");
+    for (int i = 0; i < s->measured_count; ++i)
+        name_file(paths, roles, max, n++, s->measured[i].path, "measured file");
     return n;
 }
 

@@ -17,12 +17,16 @@
 #include <stddef.h>
 #include "abrdf_select.h"
 #include "envmap.h"
+#include "measured_table.h"
 #include "mesh.h"
 
 #define SCENE_NAME_MAX 64        /* material names, table entries, goals (with the NUL) */
 #define SCENE_MAX_OBJECTS 100000 /* keeps a hostile file from exhausting memory */
 #define SCENE_MAX_TRIANGLES MESH_MAX_TRIANGLES /* of all mesh objects together */
 #define SCENE_MAX_MESH_FILES 1024              /* distinct files (each is read once) */
+#define SCENE_MAX_MEASURED_FILES                                                                   \
+    64 /* measured-BRDF files (each read once; 17.5 MB
+                                                  a MERL table) */
 #define SCENE_MAX_LIGHTS 64
 #define SCENE_MAX_MATERIALS 256
 #define SCENE_MAX_RESOLUTION 16384
@@ -80,6 +84,13 @@ typedef enum scene_material_kind {
 
 #define SCENE_MAX_LOBES 2
 
+/* A measured-BRDF file a material names (`measured=FILE`, docs/MEASURED.md): its table. */
+typedef struct scene_measured {
+    char *path;           /* as resolved from the scene's directory */
+    const char *format;   /* the file's format, for messages ("MERL BRDF database") */
+    measured_table table; /* owned */
+} scene_measured;
+
 typedef struct scene_material {
     char name[SCENE_NAME_MAX];
     scene_material_kind kind;
@@ -90,7 +101,8 @@ typedef struct scene_material {
     double ka[3];                  /* ambient reflectance: ambient term = ka * scene ambient */
     int ka_given;                  /* ka given in the file (else it follows kd) */
     char table[SCENE_NAME_MAX];    /* TABLE / ADAPTIVE: material table entry ("" if none) */
-    select_request request;        /* ADAPTIVE: its goal= or budget=, parsed */
+    int measured; /* a lobe is ABRDF_MEASURED: its table, an index into scene.measured; else -1 */
+    select_request request; /* ADAPTIVE: its goal= or budget=, parsed */
     int line;
 } scene_material;
 
@@ -140,7 +152,9 @@ typedef struct scene {
     int material_count;
     scene_object *objects;
     int object_count;
-    mesh **meshes; /* the mesh files, each read once however many objects use it */
+    mesh **meshes;            /* the mesh files, each read once however many objects use it */
+    scene_measured *measured; /* the measured-BRDF files of `measured=`, each read once */
+    int measured_count;
     int mesh_count;
     long long triangle_count; /* of all mesh objects, <= SCENE_MAX_TRIANGLES */
 } scene;

@@ -126,6 +126,8 @@ int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared *prepared
     for (int k = 0; k < 3; ++k)
         if (dims[k] < ABRDF__MEASURED_DIM_MIN || dims[k] > ABRDF__MEASURED_DIM_MAX)
             return ABRDF_E_TABLE;
+    if ((size_t)dims[0] * (size_t)dims[1] * (size_t)dims[2] > ABRDF__MEASURED_CELLS_MAX)
+        return ABRDF_E_TABLE;
     abrdf__prep *pr = (abrdf__prep *)(void *)prepared;
     pr->model = ABRDF_MEASURED;
     abrdf_params_init(ABRDF_MEASURED, &pr->params);

@@ -176,7 +176,7 @@ int abrdf__eval_prepared_f_isa(const abrdf__prep *pr, const abrdf_batch *b, int 
 {
     if (level < 0 || level > abrdf__isa_best()) return -1;
     if (pr->model == ABRDF_MEASURED) {
-        abrdf__measured_batch(&pr->special.measured, b);
+        abrdf__measured_batch(&pr->special.measured, b, level);
         return 0;
     }
     if (abrdf__is_double_only(pr->model)) {

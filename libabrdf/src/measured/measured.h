@@ -22,6 +22,9 @@ typedef struct abrdf__measured {
 /* The grid sizes a table may have (each axis), checked by abrdf_prepare_measured. */
 #define ABRDF__MEASURED_DIM_MIN 2
 #define ABRDF__MEASURED_DIM_MAX 1024
+/* ... and cells in all: 3 values each stay below 2^31, the batch path's 32-bit indices (a
+ * MERL table has 1 458 000). */
+#define ABRDF__MEASURED_CELLS_MAX (1 << 26)
 
 /* Fill m from a table the caller checked (non-NULL data, sizes in range) and fit the sampling
  * lobe from the data. */
@@ -30,7 +33,8 @@ void abrdf__measured_setup(const abrdf_measured *table, abrdf__measured *m);
  * caller guards (finite_or_zero): a NaN or Inf cell in the table. */
 void abrdf__measured_eval(const abrdf__measured *m, const double wi[3], const double wo[3],
                           double f[3]);
-/* The float batch over a structure-of-arrays batch; every output finite and >= 0. */
-void abrdf__measured_batch(const abrdf__measured *m, const abrdf_batch *b);
+/* The float batch over a structure-of-arrays batch at instruction-set level `level` (isa.h;
+ * the caller checked the CPU runs it); every output finite and >= 0. */
+void abrdf__measured_batch(const abrdf__measured *m, const abrdf_batch *b, int level);
 
 #endif /* ABRDF_MEASURED_H */
