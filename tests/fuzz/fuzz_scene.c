@@ -91,6 +91,8 @@ const char *const fuzz_tokens[] = {
     "off",
     "uv",
     "x.obj",
+    "measured=",
+    "m.binary",
     "1e-310", /* subnormal: a finite number */
     "#" LONG_COMMENT,
     LONG_WORD,
