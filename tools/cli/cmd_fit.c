@@ -397,9 +397,11 @@ static void print_json(const fit_job *j, const char *rn, const char *cn)
     print_params(j->cand, &j->cp, 1);
     /* a prediction or an error may be infinite (a candidate that cannot follow the
      * reference at all): JSON says null */
-    const char *keys[5] = {"rel_l2", "max_rel_pct", "max_abs", "nmse_pred", "objective"};
-    const double vals[5] = {r->rel_l2, r->max_rel_pct, r->max_abs, r->nmse_pred, r->objective};
-    for (int k = 0; k < 5; ++k) {
+    const char *keys[7] = {"rel_l2",  "rel_log",   "rel_cbrt", "max_rel_pct",
+                           "max_abs", "nmse_pred", "objective"};
+    const double vals[7] = {r->rel_l2,  r->rel_log,   r->rel_cbrt, r->max_rel_pct,
+                            r->max_abs, r->nmse_pred, r->objective};
+    for (int k = 0; k < 7; ++k) {
         printf("%s\"%s\": ", k ? ", " : ",\n ", keys[k]);
         cli_json_number(stdout, vals[k]);
     }
@@ -420,6 +422,8 @@ static void print_text(const fit_job *j, const char *rn, const char *cn)
     printf("candidate   %s (fitted, metric %s)\n", cn, abrdf_fit_metric_name(r->metric));
     print_params(j->cand, &j->cp, 0);
     printf("rel L2      %.4g   (of f cos over %d direction pairs)\n", r->rel_l2, r->directions);
+    printf("rel log     %.4g   (of log(1 + f cos), exact on the same set)\n", r->rel_log);
+    printf("rel cbrt    %.4g   (of (f cos)^(1/3), exact on the same set)\n", r->rel_cbrt);
     printf("highlight   %.4g%%  (largest relative error in the reference's highlight zone)\n",
            r->max_rel_pct);
     printf("max abs     %.4g   (largest |f - f_ref| cos / largest f_ref cos)\n", r->max_abs);
