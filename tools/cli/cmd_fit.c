@@ -14,6 +14,7 @@
 #include "cli.h"
 #include "data_path.h"
 #include "materials.h"
+#include "measured_ref.h"
 #include "metrics.h"
 
 #define CMD "fit"
@@ -25,7 +26,9 @@ static int usage(void)
 {
     printf("usage: abrdf fit (--ref MODEL[+MODEL] [--set NAME=VALUE ...] | --material NAME)\n"
            "                 --candidate MODEL[+MODEL] [--metric l2|log|cbrt|auto]\n"
-           "                 [--resolution 0..5] [--materials FILE] [--json]\n\n"
+           "                 [--resolution 0..5] [--materials FILE] [--json]\n"
+           "       abrdf fit --to FILE (MODEL [--diffuse MODEL] | --all) [...]: fit to a measured\n"
+           "                 file (abrdf fit --to FILE --help)\n\n"
            "Fits the candidate's parameters to the reference (abrdf_fit, docs/SELECTION.md,\n"
            "\"1. The fit\"): cosine-weighted least squares over a direction set covering the\n"
            "hemisphere, the weights (kd, ks, ks*f0) solved in closed form for every trial of the\n"
@@ -444,6 +447,8 @@ static void print_text(const fit_job *j, const char *rn, const char *cn)
 
 int cmd_fit(int argc, char **argv)
 {
+    for (int i = 1; i < argc; ++i)
+        if (!strcmp(argv[i], "--to")) return fit_to_run(argc, argv); /* a measured file */
     fit_args a;
     fit_job j;
     int rc = parse_args(argc, argv, &a);
