@@ -196,8 +196,8 @@ static void print_human(const measured_ref *ref, double max, const measured_fit 
                n + 2, nm, max, 100.0 * COST_TIE, c[win].cost, c[win].res.nmse_pred,
                abrdf_nmse_class(c[win].res.nmse_pred));
     } else {
-        printf("  %2d. measured: no fitted candidate within NMSE < %g has a known cost: the "
-               "table\n",
+        printf("  %2d. measured: no fitted candidate with a known cost is within NMSE < %g: "
+               "the table itself\n",
                n + 2, max);
     }
 }
