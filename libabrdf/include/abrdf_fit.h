@@ -57,7 +57,8 @@
  *   abrdf_fit_result_init, abrdf_fit_result_init_sized    an empty fit result
  *   abrdf_budget_init, abrdf_budget_init_sized            a budget (default: slight)
  *   abrdf_fit_workspace_size    bytes of workspace abrdf_fit / abrdf_predict_nmse /
- *                               abrdf_select_budget need for the given options and view
+ *                               abrdf_select_budget (and the _to forms) need for the given
+ *                               options and view
  *   abrdf_fit                   fit a candidate BRDF to a reference BRDF
  *   abrdf_fit_to                the same against a prepared reference (any model, a
  *                               measured table in particular)
@@ -181,8 +182,9 @@ static inline int abrdf_fit_result_init(abrdf_fit_result *r)
     return abrdf_fit_result_init_sized(r, sizeof *r);
 }
 
-/* Bytes of workspace for abrdf_fit, abrdf_predict_nmse and abrdf_select_budget with these
- * options (NULL = defaults) and view (NULL = the default sphere); 0 if either is invalid. */
+/* Bytes of workspace for abrdf_fit, abrdf_predict_nmse and abrdf_select_budget (and their _to
+ * forms) with these options (NULL = defaults) and view (NULL = the default sphere); 0 if
+ * either is invalid. */
 ABRDF_API size_t abrdf_fit_workspace_size(const abrdf_fit_options *opt, const abrdf_view *view);
 
 /* Fit the candidate (cand_diffuse + cand_specular) to the reference (ref_diffuse +
