@@ -57,9 +57,13 @@
  *   abrdf_fit_result_init, abrdf_fit_result_init_sized    an empty fit result
  *   abrdf_budget_init, abrdf_budget_init_sized            a budget (default: slight)
  *   abrdf_fit_workspace_size    bytes of workspace abrdf_fit / abrdf_predict_nmse /
- *                               abrdf_select_budget need for the given options and view
+ *                               abrdf_select_budget (and the _to forms) need for the given
+ *                               options and view
  *   abrdf_fit                   fit a candidate BRDF to a reference BRDF
+ *   abrdf_fit_to                the same against a prepared reference (any model, a
+ *                               measured table in particular)
  *   abrdf_predict_nmse          predicted image NMSE of a BRDF against a reference
+ *   abrdf_predict_nmse_to       the same against a prepared reference
  *   abrdf_fit_metric_name, abrdf_fit_metric_find   metric: id <-> stable name
  *   abrdf_budget_class_find     a Table-8 class name ("none", "slight", "noticeable") -> NMSE
  *   abrdf_budget_candidate      the candidates the budget mode fits for a material, one by one
@@ -164,6 +168,12 @@ typedef struct abrdf_fit_result {
     int evals;               /* objective evaluations made */
     int directions;          /* direction pairs of the set */
     char message[ABRDF_FIT_MESSAGE_MAX]; /* why abrdf_fit failed; empty on success */
+    /* appended after 0.2.0 (CHANGELOG): the log and cube-root metrics of the kept fit,
+     * computed exactly on the direction set (not linearised), relative as rel_l2 is:
+     *   sqrt(sum a (g(f cos) - g(f_ref cos))^2 / sum a g(f_ref cos)^2), a the set's solid-angle
+     *   weights times cos(theta_o) (rel_l2's q without its cos^2(theta_i)), g the metric */
+    double rel_log;  /* g(y) = log(1 + y) (Low et al. 2012), >= 0; < 0 = not computed */
+    double rel_cbrt; /* g(y) = y^(1/3) (Fores et al. 2012), >= 0; < 0 = not computed */
 } abrdf_fit_result;
 
 ABRDF_API int abrdf_fit_result_init_sized(abrdf_fit_result *r, size_t struct_size);
@@ -172,24 +182,44 @@ static inline int abrdf_fit_result_init(abrdf_fit_result *r)
     return abrdf_fit_result_init_sized(r, sizeof *r);
 }
 
-/* Bytes of workspace for abrdf_fit, abrdf_predict_nmse and abrdf_select_budget with these
- * options (NULL = defaults) and view (NULL = the default sphere); 0 if either is invalid. */
+/* Bytes of workspace for abrdf_fit, abrdf_predict_nmse and abrdf_select_budget (and their _to
+ * forms) with these options (NULL = defaults) and view (NULL = the default sphere); 0 if
+ * either is invalid. */
 ABRDF_API size_t abrdf_fit_workspace_size(const abrdf_fit_options *opt, const abrdf_view *view);
 
 /* Fit the candidate (cand_diffuse + cand_specular) to the reference (ref_diffuse +
- * ref_specular with ref_params). cand_params (initialised by abrdf_params_init) receives the
- * fitted block: the parameters the candidate reads that the reference also reads start from
- * the reference's values (clamped into the candidate's range), the rest from the candidate's
- * defaults, then the fit sets kd, ks, f0 and the searched parameters (docs/SELECTION.md,
- * "1. The fit", lists them per model). work: abrdf_fit_workspace_size(opt, opt->view) bytes,
- * aligned for double. Returns ABRDF_OK, or ABRDF_E_NULL / ABRDF_E_MODEL / ABRDF_E_RANGE /
- * ABRDF_E_SIZE with res->message naming the problem (a candidate with no lobe, invalid
- * reference parameters, a workspace too small). */
+ * ref_specular with ref_params; a measured reference: abrdf_fit_to, below). cand_params
+ * (initialised by abrdf_params_init) receives the fitted block: the parameters the candidate
+ * reads that the reference also reads start from the reference's values (clamped into the
+ * candidate's range), the rest from the candidate's defaults, then the fit sets kd, ks, f0
+ * and the searched parameters (docs/SELECTION.md, "1. The fit", lists them per model).
+ * work: abrdf_fit_workspace_size(opt, opt->view) bytes, aligned for double. Returns
+ * ABRDF_OK, or ABRDF_E_NULL / ABRDF_E_MODEL / ABRDF_E_RANGE / ABRDF_E_SIZE with res->message
+ * naming the problem (a candidate with no lobe, invalid reference parameters, a workspace
+ * too small), or ABRDF_E_TABLE for a reference lobe that reads a table (ABRDF_MEASURED:
+ * prepare it and call abrdf_fit_to). */
 ABRDF_API int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular,
                         const abrdf_params *ref_params, abrdf_model cand_diffuse,
                         abrdf_model cand_specular, abrdf_params *cand_params,
                         const abrdf_fit_options *opt, abrdf_fit_result *res, void *work,
                         size_t work_size);
+
+/* abrdf_fit against a reference given as a prepared object (abrdf_prepare, or
+ * abrdf_prepare_measured for a measured table; it must stay valid during the call), evaluated
+ * as prepared (the double path) on the same direction set and view. For a closed-form model
+ * the result is abrdf_fit's with (ABRDF_MODEL_NONE, that model, its prepared parameters) as
+ * the reference. A reference with no parameter block (ABRDF_MEASURED) shares no parameter
+ * with any candidate: the candidate starts from its defaults, except a searched roughness r
+ * (or exponent n), which starts from the GGX alpha_g abrdf_prepare_measured fitted to the
+ * table for its sampler (n through abrdf_alpha_g_to_n); the search scans the whole range
+ * anyway (docs/SELECTION.md, "1. The fit"). keep_shared then keeps nothing. A candidate
+ * lobe that reads a table (ABRDF_MEASURED) is refused (ABRDF_E_MODEL): it has nothing to fit.
+ * Returns abrdf_fit's statuses; ABRDF_E_NULL for a NULL reference, ABRDF_E_MODEL for one
+ * that is not prepared. */
+ABRDF_API int abrdf_fit_to(const abrdf_prepared *reference, abrdf_model cand_diffuse,
+                           abrdf_model cand_specular, abrdf_params *cand_params,
+                           const abrdf_fit_options *opt, abrdf_fit_result *res, void *work,
+                           size_t work_size);
 
 /* Predicted image NMSE of the BRDF (diffuse + specular, params) against the reference:
  * both render `view` (NULL = the default sphere), NMSE = sum (I - R)^2 / sum R^2 over the
@@ -201,6 +231,12 @@ ABRDF_API int abrdf_predict_nmse(abrdf_model ref_diffuse, abrdf_model ref_specul
                                  abrdf_model specular, const abrdf_params *params,
                                  const abrdf_view *view, double *nmse, void *work,
                                  size_t work_size);
+/* abrdf_predict_nmse against a prepared reference (abrdf_fit_to says which); the same
+ * workspace. ABRDF_E_NULL for a NULL reference, ABRDF_E_MODEL for one not prepared. */
+ABRDF_API int abrdf_predict_nmse_to(const abrdf_prepared *reference, abrdf_model diffuse,
+                                    abrdf_model specular, const abrdf_params *params,
+                                    const abrdf_view *view, double *nmse, void *work,
+                                    size_t work_size);
 
 /* ---- the selection within an error budget --------------------------------------------- */
 

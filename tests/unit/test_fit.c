@@ -351,7 +351,8 @@ START_TEST(shared_lobe_is_kept)
 }
 END_TEST
 
-/* Every registered model has a built-in cost (the budget ranks every candidate by it). */
+/* Every registered model has a built-in cost (the budget ranks every candidate by it; the
+ * measured model's is a lookup in a MERL-size table, what `abrdf calibrate` times). */
 START_TEST(builtin_costs_cover_every_model)
 {
     abrdf_costs c;

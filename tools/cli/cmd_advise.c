@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "advise_budget.h"
+#include "measured_ref.h"
 #include "cli.h"
 #include "cost_file.h"
 #include "data_path.h"
@@ -55,7 +56,8 @@ static void usage(FILE *f)
         "       abrdf advise --list [--json] [--materials FILE]...\n"
         "       abrdf advise --rules [--json]\n"
         "       abrdf advise [MATERIAL] --budget none|slight|noticeable|NMSE [--json]\n"
-        "       abrdf advise [MATERIAL] --pareto [--plot FILE.svg] [--json]\n\n"
+        "       abrdf advise [MATERIAL] --pareto [--plot FILE.svg] [--json]\n"
+        "       abrdf advise --measured FILE --budget none|slight|noticeable|NMSE [--json]\n\n"
         "Chooses the diffuse and specular models for a material by the paper's flowchart\n"
         "(Zavalniuk & Romanyuk 2024, Fig. 2) and explains every decision (docs/SELECTION.md).\n\n"
         "  MATERIAL               a name from the material table (abrdf advise --list)\n"
@@ -88,6 +90,10 @@ static void usage(FILE *f)
            "                         cheapest fitted candidate whose predicted image NMSE against\n"
            "                         the photoreal choice is below B, a Table-8 class (none,\n"
            "                         slight, noticeable) or a number in (0, 1]\n"
+           "  --measured FILE        budget mode against a measured table (FILE.binary,\n"
+           "                         FILE.bsdf) as the photoreal reference: every general\n"
+           "                         candidate fitted to it\n"
+           "                         (docs/MEASURED.md, \"Fitting measured data\")\n"
            "  --pareto               every candidate's cost and predicted NMSE: the front\n"
            "  --plot FILE.svg        with --pareto: draw the cost/error plane\n"
            "  --list                 list the materials\n"
@@ -413,7 +419,7 @@ typedef struct advise_overrides {
 /* What the command line asks for. */
 typedef struct advise_args {
     int help; /* --help given: print the usage and stop */
-    const char *name, *files[MAX_FILES], *costs_file, *plot;
+    const char *name, *files[MAX_FILES], *costs_file, *plot, *measured;
     int nfiles, list, json, rules, pareto, has_goal;
     select_request rq;   /* --goal, or --budget (rq.by_budget) */
     abrdf_tolerance tol; /* --max-rel-error, --max-abs-error */
@@ -486,6 +492,9 @@ static int take_option(advise_args *aa, const char *a, const char *v, int *takes
     } else if (!strcmp(a, "--budget")) {
         if (!v) return cli_fail(CMD, "--budget needs none, slight, noticeable or an NMSE");
         return select_request_budget(&aa->rq, CMD, v);
+    } else if (!strcmp(a, "--measured")) {
+        if (!v) return cli_fail(CMD, "--measured needs a file (FILE.binary, FILE.bsdf)");
+        aa->measured = v;
     } else if (!strcmp(a, "--plot")) {
         if (!v) return cli_fail(CMD, "--plot needs a file name (FILE.svg)");
         aa->plot = v;
@@ -537,6 +546,17 @@ static int advise_args_parse(int argc, char **argv, advise_args *aa)
                         "photoreal choice",
                         aa->pareto ? "pareto" : "budget");
     if (aa->plot && !aa->pareto) return cli_fail(CMD, "--plot draws the front of --pareto");
+    if (aa->measured) {
+        const advise_overrides *o = &aa->o;
+        int material = aa->name || o->has_n || o->has_r || o->has_kd || o->has_ks || o->has_f0 ||
+                       o->has_eta || o->has_aniso || o->has_mel || o->has_red || o->has_type;
+        if (!rq->by_budget)
+            return cli_fail(CMD, "--measured needs --budget none|slight|noticeable|NMSE");
+        if (material || aa->pareto || aa->has_goal || aa->list || aa->rules || aa->nfiles ||
+            aa->costs_file)
+            return cli_fail(CMD, "--measured FILE is the material and the reference: it takes "
+                                 "--budget and --json only (costs: the built-in table)");
+    }
     if (aa->plot) { /* the plot never replaces an input */
         char tpath[1024], perr[1024];
         data_path_find("materials.csv", tpath, sizeof tpath);
@@ -670,6 +690,7 @@ int cmd_advise(int argc, char **argv)
         print_rules(aa.json);
         return 0;
     }
+    if (aa.measured) return advise_measured(aa.measured, aa.rq.max_nmse, aa.json);
     mat_table table = {NULL, 0, 0};
     rc = load_tables(&table, aa.files, aa.nfiles);
     if (!rc && aa.list)

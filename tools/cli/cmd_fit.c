@@ -14,6 +14,7 @@
 #include "cli.h"
 #include "data_path.h"
 #include "materials.h"
+#include "measured_ref.h"
 #include "metrics.h"
 
 #define CMD "fit"
@@ -25,7 +26,9 @@ static int usage(void)
 {
     printf("usage: abrdf fit (--ref MODEL[+MODEL] [--set NAME=VALUE ...] | --material NAME)\n"
            "                 --candidate MODEL[+MODEL] [--metric l2|log|cbrt|auto]\n"
-           "                 [--resolution 0..5] [--materials FILE] [--json]\n\n"
+           "                 [--resolution 0..5] [--materials FILE] [--json]\n"
+           "       abrdf fit --to FILE (MODEL [--diffuse MODEL] | --all) [...]: fit to a measured\n"
+           "                 file (abrdf fit --to FILE --help)\n\n"
            "Fits the candidate's parameters to the reference (abrdf_fit, docs/SELECTION.md,\n"
            "\"1. The fit\"): cosine-weighted least squares over a direction set covering the\n"
            "hemisphere, the weights (kd, ks, ks*f0) solved in closed form for every trial of the\n"
@@ -397,9 +400,11 @@ static void print_json(const fit_job *j, const char *rn, const char *cn)
     print_params(j->cand, &j->cp, 1);
     /* a prediction or an error may be infinite (a candidate that cannot follow the
      * reference at all): JSON says null */
-    const char *keys[5] = {"rel_l2", "max_rel_pct", "max_abs", "nmse_pred", "objective"};
-    const double vals[5] = {r->rel_l2, r->max_rel_pct, r->max_abs, r->nmse_pred, r->objective};
-    for (int k = 0; k < 5; ++k) {
+    const char *keys[7] = {"rel_l2",  "rel_log",   "rel_cbrt", "max_rel_pct",
+                           "max_abs", "nmse_pred", "objective"};
+    const double vals[7] = {r->rel_l2,  r->rel_log,   r->rel_cbrt, r->max_rel_pct,
+                            r->max_abs, r->nmse_pred, r->objective};
+    for (int k = 0; k < 7; ++k) {
         printf("%s\"%s\": ", k ? ", " : ",\n ", keys[k]);
         cli_json_number(stdout, vals[k]);
     }
@@ -420,6 +425,8 @@ static void print_text(const fit_job *j, const char *rn, const char *cn)
     printf("candidate   %s (fitted, metric %s)\n", cn, abrdf_fit_metric_name(r->metric));
     print_params(j->cand, &j->cp, 0);
     printf("rel L2      %.4g   (of f cos over %d direction pairs)\n", r->rel_l2, r->directions);
+    printf("rel log     %.4g   (of log(1 + f cos), exact on the same set)\n", r->rel_log);
+    printf("rel cbrt    %.4g   (of (f cos)^(1/3), exact on the same set)\n", r->rel_cbrt);
     printf("highlight   %.4g%%  (largest relative error in the reference's highlight zone)\n",
            r->max_rel_pct);
     printf("max abs     %.4g   (largest |f - f_ref| cos / largest f_ref cos)\n", r->max_abs);
@@ -440,6 +447,8 @@ static void print_text(const fit_job *j, const char *rn, const char *cn)
 
 int cmd_fit(int argc, char **argv)
 {
+    for (int i = 1; i < argc; ++i)
+        if (!strcmp(argv[i], "--to")) return fit_to_run(argc, argv); /* a measured file */
     fit_args a;
     fit_job j;
     int rc = parse_args(argc, argv, &a);

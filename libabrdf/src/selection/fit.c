@@ -419,6 +419,7 @@ static double clampd(double v, double lo, double hi) { return v < lo ? lo : (v >
 
 void abrdf__fit_start(const abrdf__brdf *ref, abrdf__brdf *cand)
 {
+    cand->prepared = NULL;
     abrdf_params_init(cand->lobe[1] != ABRDF_MODEL_NONE ? cand->lobe[1] : cand->lobe[0], &cand->p);
     if (cand->lobe[0] != ABRDF_MODEL_NONE && cand->lobe[1] != ABRDF_MODEL_NONE) {
         /* the diffuse lobe's own parameters at its defaults too */
@@ -819,6 +820,13 @@ static double start_value(const fit_work *w, int k)
         return abrdf_alpha_g_to_n(abrdf_r_to_alpha_g(w->ref->p.r));
     if (!strcmp(pi->name, "r") && brdf_reads(w->ref, nid))
         return abrdf_alpha_g_to_r(abrdf_n_to_alpha_g(w->ref->p.n));
+    /* a measured table reads no parameter: the GGX lobe its sampler fitted at prepare
+     * (measured.h) gives r and, through the converters, n */
+    if (w->ref->prepared && w->ref->prepared->model == ABRDF_MEASURED) {
+        double ag = w->ref->prepared->special.measured.alpha;
+        if (!strcmp(pi->name, "r")) return abrdf_alpha_g_to_r(ag);
+        if (!strcmp(pi->name, "n")) return abrdf_alpha_g_to_n(ag);
+    }
     return cur[0];
 }
 
@@ -893,6 +901,9 @@ static void metric_weights(const abrdf__fit_set *s, abrdf_fit_metric metric, dou
 void abrdf__fit_errors(const abrdf__fit_set *s, const abrdf__brdf *cand, abrdf_fit_result *res)
 {
     double num = 0.0, den = 0.0, ymax = 0.0, dmax = 0.0, rel = 0.0;
+    /* the log and cube-root metrics, exact: squared differences of g(f cos) with the set's
+     * solid-angle weights (q without its cos^2(theta_i), which g's argument carries) */
+    double lnum = 0.0, lden = 0.0, cnum = 0.0, cden = 0.0;
     abrdf__brdf_prep bp;
     abrdf__brdf_prepare(cand, &bp);
     /* the highlight zone: per incidence group, pairs with f_ref cos >= half the group's max */
@@ -914,6 +925,13 @@ void abrdf__fit_errors(const abrdf__fit_set *s, const abrdf__brdf *cand, abrdf_f
                 ymax = fmax(ymax, y * s->cosi[j]);
                 dmax = fmax(dmax, fabs(d) * s->cosi[j]);
                 if (zone && y > 0.0) rel = fmax(rel, fabs(d) / y);
+                double qa = s->q[j] / (s->cosi[j] * s->cosi[j]);
+                double a = fmax(0.0, f[c]) * s->cosi[j], b = fmax(0.0, y) * s->cosi[j];
+                double gl = log1p(a) - log1p(b), gc = cbrt(a) - cbrt(b);
+                lnum += qa * gl * gl;
+                lden += qa * log1p(b) * log1p(b);
+                cnum += qa * gc * gc;
+                cden += qa * cbrt(b) * cbrt(b);
             }
         }
         g0 = g1;
@@ -921,6 +939,8 @@ void abrdf__fit_errors(const abrdf__fit_set *s, const abrdf__brdf *cand, abrdf_f
     res->rel_l2 = den > 0.0 ? sqrt(num / den) : (num > 0.0 ? INFINITY : 0.0);
     res->max_rel_pct = 100.0 * rel;
     res->max_abs = ymax > 0.0 ? dmax / ymax : (dmax > 0.0 ? INFINITY : 0.0);
+    res->rel_log = lden > 0.0 ? sqrt(lnum / lden) : (lnum > 0.0 ? INFINITY : 0.0);
+    res->rel_cbrt = cden > 0.0 ? sqrt(cnum / cden) : (cnum > 0.0 ? INFINITY : 0.0);
 }
 
 void abrdf__fit_run(const abrdf__fit_set *s, const abrdf__brdf *ref, abrdf__brdf *cand,
@@ -1069,6 +1089,7 @@ static void result_empty(abrdf_fit_result *r)
     memset(r, 0, sizeof *r);
     r->struct_size = sizeof *r;
     r->rel_l2 = r->max_rel_pct = r->max_abs = r->nmse_pred = r->objective = -1.0;
+    r->rel_log = r->rel_cbrt = -1.0;
 }
 
 /* An _init: the defaults in the caller's struct_size bytes. */
@@ -1126,36 +1147,18 @@ int abrdf__fit_level(int resolution, int integrating)
     return DEFAULT_LEVEL;
 }
 
-int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_params *ref_params,
-              abrdf_model cand_diffuse, abrdf_model cand_specular, abrdf_params *cand_params,
-              const abrdf_fit_options *opt, abrdf_fit_result *res, void *work, size_t work_size)
+/* The fit of the candidate to a reference already made (abrdf_fit, abrdf_fit_to): st is
+ * ABRDF_OK so far, or the status whose message r holds. Returns the status; on success
+ * cand_params receives the fitted block in the caller's layout. */
+static int fit_against(int st, const abrdf__brdf *ref, abrdf_model cand_diffuse,
+                       abrdf_model cand_specular, abrdf_params *cand_params,
+                       const abrdf_fit_options *o, abrdf_fit_result *rr, void *work,
+                       size_t work_size)
 {
-    if (!res) return ABRDF_E_NULL;
-    if (res->struct_size < RESULT_SIZE_0_3) return ABRDF_E_SIZE; /* nowhere to say why */
-    abrdf_fit_result r;
-    result_empty(&r);
-    int st = ABRDF_OK;
-    abrdf_fit_options o;
-    abrdf__brdf ref, cand;
+    abrdf_fit_result r = *rr;
+    abrdf__brdf cand;
     abrdf__arena a;
-    if (!ref_params || !cand_params || !work) {
-        st = ABRDF_E_NULL;
-        snprintf(r.message, sizeof r.message,
-                 "abrdf_fit: a parameter block or the workspace is NULL");
-    } else if (!read_options(opt, &o)) {
-        st = ABRDF_E_SIZE;
-        snprintf(r.message, sizeof r.message,
-                 "abrdf_fit_options: struct_size %zu is below its first layout: initialise it "
-                 "with abrdf_fit_options_init",
-                 opt->struct_size);
-    } else if (!((int)o.metric >= 0 && o.metric < ABRDF_FIT_METRIC_COUNT) || o.resolution < 0 ||
-               o.resolution > LEVELS) {
-        st = ABRDF_E_RANGE;
-        snprintf(r.message, sizeof r.message,
-                 "abrdf_fit_options: metric %d is unknown or resolution %d is outside [0, %d]",
-                 (int)o.metric, o.resolution, LEVELS);
-    } else if ((st = abrdf__brdf_make(&ref, ref_diffuse, ref_specular, ref_params, r.message,
-                                      sizeof r.message)) != ABRDF_OK) {
+    if (st != ABRDF_OK) {
         /* message set */
     } else if (cand_diffuse == ABRDF_MODEL_NONE && cand_specular == ABRDF_MODEL_NONE) {
         st = ABRDF_E_MODEL;
@@ -1164,6 +1167,13 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
                !(cand_specular == ABRDF_MODEL_NONE || abrdf_model_get(cand_specular))) {
         st = ABRDF_E_MODEL;
         snprintf(r.message, sizeof r.message, "the candidate names an unknown model id");
+    } else if ((cand_diffuse != ABRDF_MODEL_NONE &&
+                (abrdf_model_get(cand_diffuse)->needs & ABRDF_NEEDS_TABLE)) ||
+               (cand_specular != ABRDF_MODEL_NONE &&
+                (abrdf_model_get(cand_specular)->needs & ABRDF_NEEDS_TABLE))) {
+        st = ABRDF_E_MODEL;
+        snprintf(r.message, sizeof r.message,
+                 "the candidate evaluates a caller's table: it has nothing to fit");
     } else if (cand_params->struct_size < END_OF(abrdf_params, layers)) {
         st = ABRDF_E_SIZE;
         snprintf(r.message, sizeof r.message,
@@ -1173,23 +1183,23 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
     } else {
         cand.lobe[0] = cand_diffuse;
         cand.lobe[1] = cand_specular;
-        abrdf__fit_start(&ref, &cand);
+        abrdf__fit_start(ref, &cand);
         int integrating =
-            ((abrdf__brdf_needs(&ref) | abrdf__brdf_needs(&cand)) & ABRDF_NEEDS_INTEGRATION) != 0;
+            ((abrdf__brdf_needs(ref) | abrdf__brdf_needs(&cand)) & ABRDF_NEEDS_INTEGRATION) != 0;
         abrdf__arena_init(&a, work, work_size);
         abrdf__pred pr, *ppr = NULL;
         abrdf__fit_set s;
-        if (o.predict) {
-            st = abrdf__pred_prepare(&pr, o.view, &ref, integrating, &a, r.message,
+        if (o->predict) {
+            st = abrdf__pred_prepare(&pr, o->view, ref, integrating, &a, r.message,
                                      sizeof r.message);
             ppr = &pr;
         }
         if (st == ABRDF_OK) {
-            int tangent = abrdf__brdf_uses_tangent(&ref) || abrdf__brdf_uses_tangent(&cand) ||
+            int tangent = abrdf__brdf_uses_tangent(ref) || abrdf__brdf_uses_tangent(&cand) ||
                           (cand_specular == ABRDF_DISNEY_SPECULAR_ANISO);
-            int fibre = abrdf__brdf_is_fibre(&ref) || abrdf__brdf_is_fibre(&cand);
-            if (abrdf__fit_set_make(&s, &ref, tangent, fibre,
-                                    abrdf__fit_level(o.resolution, integrating), &a) != ABRDF_OK) {
+            int fibre = abrdf__brdf_is_fibre(ref) || abrdf__brdf_is_fibre(&cand);
+            if (abrdf__fit_set_make(&s, ref, tangent, fibre,
+                                    abrdf__fit_level(o->resolution, integrating), &a) != ABRDF_OK) {
                 st = ABRDF_E_SIZE;
                 snprintf(r.message, sizeof r.message,
                          "the workspace (%zu bytes) is too small: abrdf_fit_workspace_size",
@@ -1197,8 +1207,8 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
             }
         }
         if (st == ABRDF_OK) {
-            if (o.metric != ABRDF_FIT_AUTO) {
-                abrdf__fit_run(&s, &ref, &cand, o.metric, o.keep_shared, ppr, &r, &a);
+            if (o->metric != ABRDF_FIT_AUTO) {
+                abrdf__fit_run(&s, ref, &cand, o->metric, o->keep_shared, ppr, &r, &a);
             } else { /* Bieron & Peers 2020: each metric's fit, the best rendered one kept */
                 abrdf__brdf start = cand, best = cand;
                 abrdf_fit_result rb = r;
@@ -1207,7 +1217,7 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
                     abrdf_fit_result rk;
                     result_empty(&rk);
                     cand = start;
-                    abrdf__fit_run(&s, &ref, &cand, (abrdf_fit_metric)k, o.keep_shared, ppr, &rk,
+                    abrdf__fit_run(&s, ref, &cand, (abrdf_fit_metric)k, o->keep_shared, ppr, &rk,
                                    &a);
                     evals += rk.evals;
                     if (rk.message[0]) {
@@ -1236,8 +1246,78 @@ int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_par
             memcpy(cand_params, &cand.p, size < sizeof cand.p ? size : sizeof cand.p);
         }
     }
+    *rr = r;
+    return st;
+}
+
+/* The checks every fit makes before its reference: ABRDF_OK (o filled), or the status with
+ * its message in r. */
+static int fit_checks(const char *fn, int have_blocks, const abrdf_fit_options *opt,
+                      abrdf_fit_options *o, abrdf_fit_result *r)
+{
+    if (!have_blocks) {
+        snprintf(r->message, sizeof r->message, "%s: a parameter block or the workspace is NULL",
+                 fn);
+        return ABRDF_E_NULL;
+    }
+    if (!read_options(opt, o)) {
+        snprintf(r->message, sizeof r->message,
+                 "abrdf_fit_options: struct_size %zu is below its first layout: initialise it "
+                 "with abrdf_fit_options_init",
+                 opt->struct_size);
+        return ABRDF_E_SIZE;
+    }
+    if (!((int)o->metric >= 0 && o->metric < ABRDF_FIT_METRIC_COUNT) || o->resolution < 0 ||
+        o->resolution > LEVELS) {
+        snprintf(r->message, sizeof r->message,
+                 "abrdf_fit_options: metric %d is unknown or resolution %d is outside [0, %d]",
+                 (int)o->metric, o->resolution, LEVELS);
+        return ABRDF_E_RANGE;
+    }
+    return ABRDF_OK;
+}
+
+/* The result into the caller's struct, in its layout. */
+static void result_copy(abrdf_fit_result *res, abrdf_fit_result *r)
+{
     size_t size = res->struct_size;
-    r.struct_size = size;
-    memcpy(res, &r, size < sizeof r ? size : sizeof r);
+    r->struct_size = size;
+    memcpy(res, r, size < sizeof *r ? size : sizeof *r);
+}
+
+int abrdf_fit(abrdf_model ref_diffuse, abrdf_model ref_specular, const abrdf_params *ref_params,
+              abrdf_model cand_diffuse, abrdf_model cand_specular, abrdf_params *cand_params,
+              const abrdf_fit_options *opt, abrdf_fit_result *res, void *work, size_t work_size)
+{
+    if (!res) return ABRDF_E_NULL;
+    if (res->struct_size < RESULT_SIZE_0_3) return ABRDF_E_SIZE; /* nowhere to say why */
+    abrdf_fit_result r;
+    result_empty(&r);
+    abrdf_fit_options o;
+    abrdf__brdf ref;
+    int st = fit_checks("abrdf_fit", ref_params && cand_params && work, opt, &o, &r);
+    if (st == ABRDF_OK)
+        st = abrdf__brdf_make(&ref, ref_diffuse, ref_specular, ref_params, r.message,
+                              sizeof r.message);
+    st = fit_against(st, &ref, cand_diffuse, cand_specular, cand_params, &o, &r, work, work_size);
+    result_copy(res, &r);
+    return st;
+}
+
+int abrdf_fit_to(const abrdf_prepared *reference, abrdf_model cand_diffuse,
+                 abrdf_model cand_specular, abrdf_params *cand_params, const abrdf_fit_options *opt,
+                 abrdf_fit_result *res, void *work, size_t work_size)
+{
+    if (!res) return ABRDF_E_NULL;
+    if (res->struct_size < RESULT_SIZE_0_3) return ABRDF_E_SIZE; /* nowhere to say why */
+    abrdf_fit_result r;
+    result_empty(&r);
+    abrdf_fit_options o;
+    abrdf__brdf ref;
+    int st = fit_checks("abrdf_fit_to", cand_params && work, opt, &o, &r);
+    if (st == ABRDF_OK)
+        st = abrdf__brdf_from_prepared(&ref, reference, r.message, sizeof r.message);
+    st = fit_against(st, &ref, cand_diffuse, cand_specular, cand_params, &o, &r, work, work_size);
+    result_copy(res, &r);
     return st;
 }

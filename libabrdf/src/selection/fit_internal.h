@@ -29,16 +29,26 @@ void abrdf__lobe_eval(const abrdf__lobe_prep *lp, const double wi[3], const doub
 typedef struct abrdf__brdf {
     abrdf_model lobe[2]; /* diffuse, specular; ABRDF_MODEL_NONE = absent */
     abrdf_params p;      /* this library's full layout, validated for both lobes */
+    /* A caller's prepared object standing for the whole BRDF (abrdf_fit_to's reference; NULL
+     * for every other BRDF): lobe = (none, its model), p = its parameters, and it is evaluated
+     * as prepared, which is how a measured table (no parameter block) is a reference. */
+    const abrdf__prep *prepared;
 } abrdf__brdf;
 
 /* Set b from the caller's models and block (any struct_size): ABRDF_OK, or an error with a
  * message naming the problem (no lobe, unknown model, parameter out of range). */
 int abrdf__brdf_make(abrdf__brdf *b, abrdf_model diffuse, abrdf_model specular,
                      const abrdf_params *p, char *msg, size_t msg_size);
+/* The BRDF of a caller's prepared object (abrdf__brdf.prepared): ABRDF_OK, or ABRDF_E_NULL /
+ * ABRDF_E_MODEL (not prepared) with a message. The object must outlive b. */
+int abrdf__brdf_from_prepared(abrdf__brdf *b, const abrdf_prepared *prepared, char *msg,
+                              size_t msg_size);
 /* f_r of the sum of the lobes, local frame, unit vectors, no checks (b was made valid), with
- * both lobes prepared once (a copy of b's block: b may change or go away afterwards). */
+ * both lobes prepared once (a copy of b's block: b may change or go away afterwards; a
+ * `prepared` object is pointed at, not copied). */
 typedef struct abrdf__brdf_prep {
     abrdf__lobe_prep lobe[2];
+    const abrdf__prep *prepared; /* b's prepared object, or NULL */
 } abrdf__brdf_prep;
 void abrdf__brdf_prepare(const abrdf__brdf *b, abrdf__brdf_prep *bp);
 void abrdf__brdf_prep_eval(const abrdf__brdf_prep *bp, const double wi[3], const double wo[3],

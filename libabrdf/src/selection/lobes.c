@@ -31,6 +31,7 @@ int abrdf__brdf_make(abrdf__brdf *b, abrdf_model diffuse, abrdf_model specular,
 {
     b->lobe[0] = diffuse;
     b->lobe[1] = specular;
+    b->prepared = NULL;
     if (diffuse == ABRDF_MODEL_NONE && specular == ABRDF_MODEL_NONE) {
         snprintf(msg, msg_size, "a BRDF needs a diffuse or a specular model (both are none)");
         return ABRDF_E_MODEL;
@@ -52,14 +53,40 @@ int abrdf__brdf_make(abrdf__brdf *b, abrdf_model diffuse, abrdf_model specular,
             snprintf(msg, msg_size, "unknown model id %d", (int)b->lobe[l]);
             return ABRDF_E_MODEL;
         }
+        if (abrdf_model_get(b->lobe[l])->needs & ABRDF_NEEDS_TABLE) {
+            snprintf(msg, msg_size,
+                     "%s evaluates a caller's table, which a model and a parameter block do "
+                     "not give: prepare it (abrdf_prepare_measured) and use abrdf_fit_to / "
+                     "abrdf_predict_nmse_to",
+                     abrdf_model_get(b->lobe[l])->name);
+            return ABRDF_E_TABLE;
+        }
         int st = abrdf_params_check(b->lobe[l], &b->p, msg, msg_size);
         if (st != ABRDF_OK) return st;
     }
     return ABRDF_OK;
 }
 
+int abrdf__brdf_from_prepared(abrdf__brdf *b, const abrdf_prepared *prepared, char *msg,
+                              size_t msg_size)
+{
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
+    if (!pr) {
+        snprintf(msg, msg_size, "the reference is %s",
+                 prepared ? "not prepared (abrdf_prepare, abrdf_prepare_measured)" : "NULL");
+        return prepared ? ABRDF_E_MODEL : ABRDF_E_NULL;
+    }
+    b->lobe[0] = ABRDF_MODEL_NONE;
+    b->lobe[1] = pr->model;
+    b->p = pr->params;
+    b->prepared = pr;
+    return ABRDF_OK;
+}
+
 void abrdf__brdf_prepare(const abrdf__brdf *b, abrdf__brdf_prep *bp)
 {
+    bp->prepared = b->prepared;
+    if (b->prepared) return;
     for (int l = 0; l < 2; ++l) abrdf__lobe_prepare(&bp->lobe[l], b->lobe[l], &b->p);
 }
 
@@ -67,6 +94,10 @@ void abrdf__brdf_prep_eval(const abrdf__brdf_prep *bp, const double wi[3], const
                            double f[3])
 {
     double g[3];
+    if (bp->prepared) {
+        abrdf__eval_prepared_d(bp->prepared, wi, wo, f);
+        return;
+    }
     abrdf__lobe_eval(&bp->lobe[0], wi, wo, f);
     if (bp->lobe[1].model == ABRDF_MODEL_NONE) return;
     abrdf__lobe_eval(&bp->lobe[1], wi, wo, g);

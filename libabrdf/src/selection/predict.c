@@ -363,3 +363,26 @@ int abrdf_predict_nmse(abrdf_model ref_diffuse, abrdf_model ref_specular,
     *nmse = abrdf__pred_nmse(&pr, &b);
     return ABRDF_OK;
 }
+
+int abrdf_predict_nmse_to(const abrdf_prepared *reference, abrdf_model diffuse,
+                          abrdf_model specular, const abrdf_params *params, const abrdf_view *view,
+                          double *nmse, void *work, size_t work_size)
+{
+    if (!nmse) return ABRDF_E_NULL;
+    *nmse = -1.0;
+    if (!reference || !params || !work) return ABRDF_E_NULL;
+    char msg[ABRDF_FIT_MESSAGE_MAX];
+    abrdf__brdf ref, b;
+    int st = abrdf__brdf_from_prepared(&ref, reference, msg, sizeof msg);
+    if (st == ABRDF_OK) st = abrdf__brdf_make(&b, diffuse, specular, params, msg, sizeof msg);
+    if (st != ABRDF_OK) return st;
+    int integrating =
+        ((abrdf__brdf_needs(&ref) | abrdf__brdf_needs(&b)) & ABRDF_NEEDS_INTEGRATION) != 0;
+    abrdf__arena a;
+    abrdf__arena_init(&a, work, work_size);
+    abrdf__pred pr;
+    st = abrdf__pred_prepare(&pr, view, &ref, integrating, &a, msg, sizeof msg);
+    if (st != ABRDF_OK) return st;
+    *nmse = abrdf__pred_nmse(&pr, &b);
+    return ABRDF_OK;
+}
