@@ -238,6 +238,23 @@ class Render(Base):
                             "--precision", "double")
         self.assertLess(self.nmse(data, dd), 1e-8)
 
+    def test_exports_write_the_fitted_stand_in(self):
+        # the hosts cannot read a table: both exports carry the stand-in and say so
+        # (POV-Ray renders it: tests/ports/test_pov_measured.py)
+        self.tabulate("s.binary", "cook_torrance", "--set", "r=0.4", "--grid", "45,45,90")
+        scene = self.path("e.scene")
+        with open(scene, "w") as f:
+            f.write(SCENE.format(material="material m measured=s.binary"))
+        for flag, ext, comment in (("--pov", ".pov", "//"), ("--cycles", ".py", "#")):
+            out = self.path("e" + ext)
+            rc, _, err = run("export", flag, scene, "-o", out)
+            self.assertEqual(rc, 0, err)
+            with open(out) as f:
+                text = f.read()
+            self.assertRegex(text, comment + r" material m: the host cannot read the measured "
+                             r"table .*s\.binary.*fitted stand-in \w+ \+ \w+, fit rel\. L2")
+            self.assertNotIn("measured", text.split("fitted stand-in")[1].split("\n")[0])
+
     def test_bad_materials(self):
         self.tabulate("s.binary", "lambert", "--grid", "8,8,16")
         for material, needle in (

@@ -17,6 +17,7 @@
 #include "data_path.h"
 #include "export.h"
 #include "export_pov.h"
+#include "measured_standin.h"
 #include "out_file.h"
 #include "scene_select.h"
 
@@ -219,6 +220,10 @@ static int export_scene(export_args *ea, scene *s)
     /* a budget's prediction samples the image the scene file describes (its resolution, 4
      * samples per pixel), as abrdf render's does: the same choices */
     int applied = scene_choice_apply(&ea->choice, CMD, s, ea->path, 4, trace);
+    if (!applied && measured_standins(s, trace, err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s\n", err);
+        applied = 1;
+    }
     if (fclose(trace)) {
         fprintf(stderr, "abrdf export: out of memory\n");
         goto done;
