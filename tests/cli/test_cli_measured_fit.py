@@ -119,6 +119,13 @@ class MeasuredFit(unittest.TestCase):
         self.assertLessEqual(j["cost"]["total"], cheapest * (1 + COST_TIE))
         self.assertIn(j["specular"], GENERAL_SPECULAR | {"lambert", "disney_diffuse",
                                                          "oren_nayar"})
+        # proved on the image: the renderer's sphere with the table and with the choice, within
+        # the budget and within a factor 3 of the prediction (or both below 1e-5)
+        self.assertGreater(j["reference"]["cost"], 0)
+        r = j["rendered"]["nmse"]
+        self.assertLess(r, SLIGHT)
+        p = j["error"]["nmse_pred"]
+        self.assertTrue(max(r, p) < 1e-5 or p / 3 <= r <= 3 * p, (r, p))
 
     def test_bad_files_and_arguments(self):
         d = self.tmp.name

@@ -3,7 +3,8 @@
  * every general candidate fitted to the table (abrdf_fit_to, metric auto, as the budget mode
  * fits), its image NMSE predicted against it, its cost read from the built-in table; the
  * cheapest within the budget wins, costs within 15 % of it counting as equal (of those, the
- * lowest predicted NMSE), as abrdf_select_budget decides. */
+ * lowest predicted NMSE), as abrdf_select_budget decides; the choice is then proved on the
+ * image: the built-in renderer renders a lit sphere with the table and with the stand-in. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,12 +14,16 @@
 #include "cli.h"
 #include "measured_ref.h"
 #include "metrics.h"
+#include "render.h"
+#include "scene.h"
 
 #define CMD "advise"
 #define NONE ABRDF_MODEL_NONE
 /* abrdf_select_budget's COST_TIE (budget.c): calibrations move cost ratios by up to 15 %. */
 #define COST_TIE 0.15
 #define CAND_MAX 96
+#define PROOF_SIZE 128 /* the proof's image (render_proof), pixels across */
+#define PROOF_SPP 4    /* ... and its samples per pixel */
 
 /* The candidates: each specular lobe alone and over each diffuse term, and each diffuse term
  * alone (the general class's pairs of the budget mode). */
@@ -84,7 +89,7 @@ static void candidate_text(const measured_fit *f, double max, char *buf, size_t 
 }
 
 static void print_json(const measured_ref *ref, double max, const measured_fit *c, int n, int win,
-                       double secs, const abrdf_costs *costs)
+                       double secs, const abrdf_costs *costs, double proof)
 {
     const char *bc = class_name(max);
     printf("{\"measured\": ");
@@ -101,7 +106,9 @@ static void print_json(const measured_ref *ref, double max, const measured_fit *
         printf("null");
     printf("},\n \"reference\": {\"model\": \"measured\", \"file\": ");
     cli_json_string(stdout, ref->path);
-    printf(", \"cost\": null},\n \"diffuse\": ");
+    printf(", \"cost\": ");
+    json_cost(abrdf_costs_get(costs, ABRDF_MEASURED));
+    printf("},\n \"diffuse\": ");
     json_model(win >= 0 ? c[win].diffuse : NONE);
     printf(", \"specular\": ");
     if (win >= 0)
@@ -122,7 +129,16 @@ static void print_json(const measured_ref *ref, double max, const measured_fit *
     json_cost(win >= 0 ? c[win].cost : -1.0);
     printf(", \"unit\": ");
     cli_json_string(stdout, costs->unit);
-    printf("}, \"seconds\": %.3f,\n \"candidates\": [", secs);
+    printf("},\n \"rendered\": ");
+    if (proof >= 0.0) {
+        printf("{\"nmse\": ");
+        cli_json_number(stdout, proof);
+        printf(", \"class\": \"%s\", \"width\": %d, \"height\": %d, \"spp\": %d}",
+               abrdf_nmse_class(proof), PROOF_SIZE, PROOF_SIZE, PROOF_SPP);
+    } else {
+        printf("null");
+    }
+    printf(", \"seconds\": %.3f,\n \"candidates\": [", secs);
     for (int i = 0; i < n; ++i) {
         printf("%s\n  {\"diffuse\": ", i ? "," : "");
         json_model(c[i].diffuse);
@@ -147,13 +163,18 @@ static void print_json(const measured_ref *ref, double max, const measured_fit *
 }
 
 static void print_human(const measured_ref *ref, double max, const measured_fit *c, int n, int win,
-                        double secs, const abrdf_costs *costs)
+                        double secs, const abrdf_costs *costs, double proof)
 {
     char desc[1400], nm[128], line[512];
     const char *bc = class_name(max);
     measured_ref_describe(ref, desc, sizeof desc);
     printf("measured   %s\n", desc);
-    printf("reference  measured (the table: the photoreal reference), cost unknown\n");
+    double table_cost = abrdf_costs_get(costs, ABRDF_MEASURED);
+    if (table_cost > 0.0)
+        printf("reference  measured (the table: the photoreal reference), %.3g ns/eval\n",
+               table_cost);
+    else
+        printf("reference  measured (the table: the photoreal reference), cost unknown\n");
     printf("budget     predicted image NMSE < %g%s%s%s\n", max, bc ? " (" : "", bc ? bc : "",
            bc ? ")" : "");
     if (win >= 0) {
@@ -165,7 +186,12 @@ static void print_human(const measured_ref *ref, double max, const measured_fit 
                "table\n",
                w->res.nmse_pred, abrdf_nmse_class(w->res.nmse_pred), w->res.rel_l2,
                w->res.max_rel_pct);
-        printf("cost       %.3g ns/eval  [%s]\n", w->cost, costs->unit);
+        printf("cost       %.3g ns/eval  [%s]", w->cost, costs->unit);
+        if (table_cost > 0.0 && w->cost > 0.0)
+            printf("; the table's lookup costs %.3gx as much", table_cost / w->cost);
+        printf("\nrendered   NMSE %.3g (%s) against the table: abrdf's renderer, a %d x %d sphere "
+               "under two lights, %d samples per pixel\n",
+               proof, abrdf_nmse_class(proof), PROOF_SIZE, PROOF_SIZE, PROOF_SPP);
     } else {
         printf(
             "choice     measured (no fitted candidate is within the budget: the table itself)\n");
@@ -200,6 +226,75 @@ static void print_human(const measured_ref *ref, double max, const measured_fit 
                "the table itself\n",
                n + 2, max);
     }
+}
+
+/* The proof: the prediction's default sphere as a renderer sees it (scenes/sphere.scene's
+ * camera and key light, the prediction's fill light), rendered by abrdf's ray tracer with the
+ * table and with the stand-in. */
+static const char proof_scene[] =
+    "camera position=0,0,4 look_at=0,0,0 up=0,1,0 fov=30 resolution=128,128\n"
+    "light directional direction=-1,1,1 color=1,1,1 intensity=3\n"
+    "light directional direction=1,0.3,0.5 color=1,1,1 intensity=1\n"
+    "ambient 0\n"
+    "material m model=lambert\n"
+    "sphere material=m radius=1\n";
+
+static int render_into(const scene *s, float *rgb, char *err, size_t err_size)
+{
+    render_options o;
+    memset(&o, 0, sizeof o);
+    o.width = o.height = PROOF_SIZE;
+    o.spp = PROOF_SPP;
+    o.threads = 1;
+    render_scene rs;
+    if (render_prepare(s, &o, &rs, err, err_size)) return -1;
+    int rc = render_image(&rs, &o, rgb, NULL);
+    render_release(&rs);
+    if (rc) snprintf(err, err_size, "the proof's render failed");
+    return rc;
+}
+
+/* The image NMSE of the stand-in w against the table: 0, or -1 with the message. The scene's
+ * one material is the stand-in, then the table of ref (lent to the scene for the render and
+ * taken back: the scene does not own it). */
+static int render_proof(const measured_ref *ref, const measured_fit *w, double *nmse, char *err,
+                        size_t err_size)
+{
+    scene s;
+    if (scene_parse_text("(proof)", proof_scene, sizeof proof_scene - 1, &s, err, err_size))
+        return -1;
+    size_t n = (size_t)PROOF_SIZE * PROOF_SIZE * 3;
+    float *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+    int rc = -1;
+    if (!a || !b) {
+        snprintf(err, err_size, "out of memory");
+        goto done;
+    }
+    scene_material *m = &s.materials[0];
+    m->lobe_count = 0;
+    if (w->diffuse != NONE) m->lobes[m->lobe_count++] = w->diffuse;
+    m->lobes[m->lobe_count++] = w->specular;
+    m->params = w->params;
+    if (render_into(&s, b, err, err_size)) goto done;
+    scene_measured lent = {(char *)ref->path, ref->format, ref->table};
+    s.measured = &lent;
+    s.measured_count = 1;
+    m->lobes[0] = ABRDF_MEASURED;
+    m->lobe_count = 1;
+    m->measured = 0;
+    int failed = render_into(&s, a, err, err_size);
+    s.measured = NULL; /* taken back before scene_free */
+    s.measured_count = 0;
+    if (failed) goto done;
+    abrdf_metrics mt;
+    abrdf_metrics_compute(b, a, PROOF_SIZE, PROOF_SIZE, 3, &mt);
+    *nmse = mt.nmse;
+    rc = 0;
+done:
+    free(a);
+    free(b);
+    scene_free(&s);
+    return rc;
 }
 
 int advise_measured(const char *path, double max_nmse, int json)
@@ -246,10 +341,19 @@ int advise_measured(const char *path, double max_nmse, int json)
             (c[i].res.nmse_pred == c[win].res.nmse_pred && c[i].cost < c[win].cost))
             win = i;
     }
+    double proof = -1.0;
+    char err[1024];
+    if (win >= 0 && render_proof(&ref, &c[win], &proof, err, sizeof err)) {
+        fprintf(stderr, "abrdf %s: %s\n", CMD, err);
+        free(work);
+        free(c);
+        measured_ref_free(&ref);
+        return 1;
+    }
     if (json)
-        print_json(&ref, max_nmse, c, n, win, secs, &costs);
+        print_json(&ref, max_nmse, c, n, win, secs, &costs, proof);
     else
-        print_human(&ref, max_nmse, c, n, win, secs, &costs);
+        print_human(&ref, max_nmse, c, n, win, secs, &costs, proof);
     free(work);
     free(c);
     measured_ref_free(&ref);
