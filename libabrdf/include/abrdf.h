@@ -415,11 +415,11 @@ ABRDF_API int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const ab
  *   theta_h = (ih / n_theta_h)^2 pi/2,  theta_d = id / n_theta_d pi/2,  phi_d = ip / n_phi_d pi
  * (phi_h = 0; phi_d and phi_d + pi are one cell: reciprocity) in
  *   data[((ih * n_theta_d + id) * n_phi_d + ip) * 3 + channel].
- * A negative (or NaN) value means "not measured". Evaluation interpolates trilinearly in
+ * A negative, NaN or infinite value means "not measured". Evaluation interpolates trilinearly in
  * (the square-root theta_h index, theta_d, phi_d), periodic in phi_d and held at the last
  * cell beyond the grid's end; a channel's unmeasured corners drop out and the others'
- * weights are renormalised (none measured: 0). The parametrisation makes the model exactly
- * reciprocal. docs/MEASURED.md states it with its error on analytic tables.
+ * weights are renormalised (none measured: 0). The parametrisation makes the model
+ * reciprocal, and every path takes the pair in one order, so f(wi, wo) == f(wo, wi) exactly. docs/MEASURED.md states it with its error on analytic tables.
  *
  * LIFETIME. abrdf_prepare_measured does not copy the table: the prepared object points at
  * `data`, which must stay valid and unchanged while the object (or any copy of it) is

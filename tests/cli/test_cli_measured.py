@@ -255,6 +255,19 @@ class Render(Base):
                              r"table .*s\.binary.*fitted stand-in \w+ \+ \w+, fit rel\. L2")
             self.assertNotIn("measured", text.split("fitted stand-in")[1].split("\n")[0])
 
+    def test_model_override_drops_the_table(self):
+        # --model replaces every material's lobes: the table is no longer read or named
+        self.tabulate("s.binary", "lambert", "--grid", "8,8,16")
+        _, text = self.render("o", "material m measured=s.binary", "--model", "lambert",
+                              "--explain")
+        self.assertIn("m (line 5): lambert", text)
+        self.assertNotIn("measured table", text)
+        scene = self.path("o.scene")
+        self.fails(2, ["render", scene, "-o", self.path("x.exr"), "--model", "measured"],
+                   "reads a table")
+        self.fails(1, ["render", scene, "-o", self.path("x.exr"), "--adaptive", "--goal",
+                       "photoreal"], "is measured", "advise --measured")
+
     def test_bad_materials(self):
         self.tabulate("s.binary", "lambert", "--grid", "8,8,16")
         for material, needle in (
@@ -263,7 +276,11 @@ class Render(Base):
                 ("material m measured=s.binary specular=disney_specular", "drop model=/specular="),
                 ("material m measured=s.binary diffuse=disney_specular", "not a diffuse model"),
                 ("material m measured=s.binary r=0.3", "not used by the material"),
-                ("material m table=gold measured=s.binary", "drop model=/diffuse=/specular=/measured=")):
+                ("material m table=gold measured=s.binary", "drop model=/diffuse=/specular=/measured="),
+                ("material m model=measured", "names its table: measured=FILE"),
+                ("material m diffuse=measured measured=s.binary", "names its table"),
+                ("material m adaptive budget=slight r=0.3 measured=s.binary",
+                 "drop model=/diffuse=/specular=/measured=")):
             scene = self.path("bad.scene")
             with open(scene, "w") as f:
                 f.write(SCENE.format(material=material))

@@ -6,6 +6,7 @@
 
 #include "abrdf_fit.h"
 #include "budget_run.h"
+#include "cli_args.h"
 #include "metrics.h"
 
 /* The candidates: the models both hosts render natively or through their ports at the cost
@@ -34,8 +35,18 @@ static void copy_read(abrdf_model model, const abrdf_params *from, abrdf_params 
     }
 }
 
+/* Does `a` read a parameter `b` reads? (One block holds both lobes' parameters.) */
+static int share_params(abrdf_model a, abrdf_model b)
+{
+    const abrdf_model_info *mi = abrdf_model_get(a);
+    for (int i = 0; i < mi->param_count; ++i)
+        if (cli_model_reads(b, mi->params[i].id)) return 1;
+    return 0;
+}
+
 /* Best stand-in of material m's table (the material keeps its own diffuse lobe if it has
- * one). 0, or -1 with the message. */
+ * one, and a specular lobe that would share a parameter with it - disney_diffuse's r - is no
+ * candidate: the block holds one value). 0, or -1 with the message. */
 static int fit_standin(const scene *s, const scene_material *m, standin *best, void *work,
                        size_t work_size, char *err, size_t err_size)
 {
@@ -58,6 +69,7 @@ static int fit_standin(const scene *s, const scene_material *m, standin *best, v
             standin c;
             c.diffuse = own_diffuse ? ABRDF_MODEL_NONE : diffuse_candidates[d];
             c.specular = specular_candidates[k];
+            if (own_diffuse && share_params(m->lobes[0], c.specular)) continue;
             abrdf_params_init(c.specular, &c.params);
             abrdf_fit_result_init(&c.res);
             int st =
@@ -69,6 +81,13 @@ static int fit_standin(const scene *s, const scene_material *m, standin *best, v
             }
             if (best->res.nmse_pred < 0 || c.res.nmse_pred < best->res.nmse_pred) *best = c;
         }
+    if (best->res.nmse_pred < 0) {
+        snprintf(err, err_size,
+                 "material '%s': every stand-in lobe reads a parameter of its diffuse lobe %s, "
+                 "which the exported material could hold only once (use kd= or diffuse=lambert)",
+                 m->name, abrdf_model_get(m->lobes[0])->name);
+        return -1;
+    }
     return 0;
 }
 

@@ -72,6 +72,13 @@ int scene_choice_check(scene_choice *c, const char *cmd)
     if (c->budget && select_request_budget(rq, cmd, c->budget)) return CLI_EXIT_USAGE;
     if (c->nsets && !c->model_name)
         return cli_fail(cmd, "--set needs --model (the scene file sets materials' parameters)");
+    abrdf_model m;
+    if (c->model_name && abrdf_model_find(c->model_name, &m) == ABRDF_OK &&
+        (abrdf_model_get(m)->needs & ABRDF_NEEDS_TABLE))
+        return cli_fail(cmd,
+                        "--model %s: %s reads a table: name it in the scene (material NAME "
+                        "measured=FILE)",
+                        c->model_name, c->model_name);
     if (adaptive && !c->budget && (!c->goal || abrdf_goal_find(c->goal, &rq->goal) != ABRDF_OK))
         return cli_fail(cmd, "--adaptive needs --goal photoreal, --goal performance or --budget B");
     return 0;

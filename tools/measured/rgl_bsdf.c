@@ -190,12 +190,17 @@ static int read_header(const unsigned char *data, size_t size, rgl_field **out, 
         order[i] = g;
     }
     qsort(order, (size_t)n, sizeof *order, cmp_offset);
-    for (unsigned i = 1; i < n; ++i) {
-        const rgl_field *a = order[i - 1], *b = order[i];
-        if (a->bytes && b->bytes && a->offset + a->bytes > b->offset) {
-            snprintf(why, why_size, ": fields \"%s\" and \"%s\" overlap", a->name, b->name);
+    /* each field with data against the last one before it with data (an empty field
+     * between them overlaps nothing) */
+    const rgl_field *prev = NULL;
+    for (unsigned i = 0; i < n; ++i) {
+        const rgl_field *b = order[i];
+        if (!b->bytes) continue;
+        if (prev && prev->offset + prev->bytes > b->offset) {
+            snprintf(why, why_size, ": fields \"%s\" and \"%s\" overlap", prev->name, b->name);
             goto fail;
         }
+        prev = b;
     }
     free(order);
     *out = f;

@@ -98,6 +98,12 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         /* Validate and precompute each lobe once: shading then evaluates with no check. */
         for (int k = 0; k < m->lobe_count; ++k) {
             int st;
+            if (m->lobes[k] == ABRDF_MEASURED && sm->measured < 0) {
+                snprintf(err, err_size, "material '%s' (line %d): a measured lobe without a table",
+                         sm->name, sm->line);
+                render_release(rs);
+                return -1;
+            }
             if (m->lobes[k] == ABRDF_MEASURED) { /* the scene's table, alive as long as it */
                 const measured_table *t = &s->measured[sm->measured].table;
                 abrdf_measured desc;

@@ -386,8 +386,11 @@ static int find_material(const scene *s, const char *name)
 
 static int set_model(parser *p, const char *key, const char *val, abrdf_model *out)
 {
-    if (abrdf_model_find(val, out) == ABRDF_OK) return 0;
-    return fail(p, "%s: unknown model '%s' (abrdf models lists them)", key, val);
+    if (abrdf_model_find(val, out) != ABRDF_OK)
+        return fail(p, "%s: unknown model '%s' (abrdf models lists them)", key, val);
+    if (abrdf_model_get(*out)->needs & ABRDF_NEEDS_TABLE)
+        return fail(p, "%s=%s: a measured material names its table: measured=FILE", key, val);
+    return 0;
 }
 
 /* A parameter of the line that changes nothing in the material's reflectance (a layer past
@@ -480,9 +483,9 @@ static int material_kind(parser *p, word *w, int n, scene_material *m, int *from
         } else if (abrdf_goal_find(goal, &m->request.goal) != ABRDF_OK) {
             return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
         }
-        if (model || dif || spe)
-            return fail(
-                p, "an adaptive material chooses its own models; drop model=/diffuse=/specular=");
+        if (model || dif || spe || measured)
+            return fail(p, "an adaptive material chooses its own models; drop "
+                           "model=/diffuse=/specular=/measured=");
     } else if (table) {
         m->kind = SCENE_MAT_TABLE;
         if (model || dif || spe || measured)
@@ -604,7 +607,7 @@ static int do_material(parser *p, word *w, int n)
     if (material_params(p, w, n, from, &m, &ka_set)) return -1;
     for (int l = 0; l < m.lobe_count; ++l) {
         char msg[256];
-        if (m.lobes[l] == ABRDF_MEASURED) continue; /* its table was checked as it was read */
+        if (m.lobes[l] == ABRDF_MEASURED && m.measured >= 0) continue; /* read and checked */
         if (abrdf_params_check(m.lobes[l], &m.params, msg, sizeof msg) != ABRDF_OK)
             return fail(p, "material '%s': %s", m.name, msg);
         int kd_id;

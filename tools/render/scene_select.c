@@ -274,6 +274,13 @@ static int select_material(scene_material *sm, const char *scene_name, const sel
                            size_t err_size)
 {
     const mat_entry *e;
+    if (sm->measured >= 0) {
+        path_msg(err, err_size, scene_name,
+                 ":%d: material '%s' is measured: the selection chooses from a material's "
+                 "parameters; for a table, abrdf advise --measured FILE --budget B",
+                 sm->line, sm->name);
+        return -1;
+    }
     if (entry_of(sm, table, scene_name, &e, err, err_size)) return -1;
     if (!e && !described(sm, "r") && !described(sm, "n")) {
         path_msg(err, err_size, scene_name,
@@ -357,6 +364,13 @@ int scene_replace_models(scene *s, abrdf_model model, char *err, size_t err_size
         snprintf(err, err_size, "unknown model id %d", (int)model);
         return -1;
     }
+    if (mi->needs & ABRDF_NEEDS_TABLE) {
+        snprintf(err, err_size,
+                 "%s reads a table: name it in the scene (material NAME "
+                 "measured=FILE)",
+                 mi->name);
+        return -1;
+    }
     for (int i = 0; i < s->material_count; ++i) {
         scene_material *m = &s->materials[i];
         abrdf_params p;
@@ -378,6 +392,7 @@ int scene_replace_models(scene *s, abrdf_model model, char *err, size_t err_size
         m->lobe_count = 1;
         m->lobes[0] = model;
         m->params = p;
+        m->measured = -1; /* a measured material replaced: its table is no longer read */
     }
     return 0;
 }

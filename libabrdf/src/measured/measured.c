@@ -8,6 +8,7 @@
 
 #include "isa.h"
 
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 
@@ -45,7 +46,9 @@ static int grid_coords(const abrdf__measured *m, const double wi[3], const doubl
     u[0] = sqrt(theta_h / HALF_PI) * m->n_h;
     u[1] = theta_d / HALF_PI * m->n_d;
     u[2] = phi_d / PI * m->n_p;
-    return 1;
+    /* a NaN coordinate (h underflowing to 0 for directions a few 1e-160 above the horizon)
+     * reads nothing */
+    return u[0] >= 0.0 && u[1] >= 0.0 && u[2] >= 0.0 && u[2] <= m->n_p;
 }
 
 /* The two cells of an axis around coordinate u and the weight of the second: clamped to the
@@ -91,9 +94,19 @@ static void lookup(const abrdf__measured *m, const double u[3], double f[3])
                               (size_t)ip[c];
                 const float *v = m->data + 3 * cell;
                 for (int k = 0; k < 3; ++k)
-                    if (v[k] >= 0.0f) acc[k] += w * v[k], wsum[k] += w;
+                    if (v[k] >= 0.0f && v[k] <= FLT_MAX) acc[k] += w * v[k], wsum[k] += w;
             }
     for (int k = 0; k < 3; ++k) f[k] = wsum[k] > 0.0 ? acc[k] / wsum[k] : 0.0;
+}
+
+/* 1 if (a, b) comes after (b, a) in the order the lookup takes its pair in: the larger
+ * cosine first (then x, then y), so that f(wi, wo) and f(wo, wi) are one computation and
+ * reciprocity holds to the bit, not to rounding. */
+static int after(const double a[3], const double b[3])
+{
+    if (a[2] != b[2]) return a[2] < b[2];
+    if (a[0] != b[0]) return a[0] < b[0];
+    return a[1] < b[1];
 }
 
 void abrdf__measured_eval(const abrdf__measured *m, const double wi[3], const double wo[3],
@@ -101,6 +114,10 @@ void abrdf__measured_eval(const abrdf__measured *m, const double wi[3], const do
 {
     double u[3];
     f[0] = f[1] = f[2] = 0.0;
+    if (after(wi, wo)) {
+        const double *t = wi;
+        wi = wo, wo = t;
+    }
     if (grid_coords(m, wi, wo, u)) lookup(m, u, f);
 }
 
@@ -163,8 +180,13 @@ static inline float into(float u, float hi) { return u >= 0.0f ? (u < hi ? u : h
     {                                                                                              \
         const float sh = (float)nh, sd = (float)nd, sp = (float)np;                                \
         for (size_t i = 0; i < n; ++i) {                                                           \
-            float wx = ix[i], wy = iy[i], wz = iz[i];                                              \
-            float hx = wx + ox[i], hy = wy + oy[i], hz = wz + oz[i];                               \
+            /* the pair in the double path's order (after): exactly reciprocal */                  \
+            float ax = ix[i], ay = iy[i], az = iz[i], bx = ox[i], by = oy[i], bz = oz[i];          \
+            float sw = ay < by ? 1.0f : 0.0f;                                                      \
+            sw = ax != bx ? (ax < bx ? 1.0f : 0.0f) : sw;                                          \
+            sw = az != bz ? (az < bz ? 1.0f : 0.0f) : sw;                                          \
+            float wx = sw > 0.0f ? bx : ax, wy = sw > 0.0f ? by : ay, wz = sw > 0.0f ? bz : az;    \
+            float hx = ax + bx, hy = ay + by, hz = az + bz;                                        \
             /* h unnormalised: theta_h and theta_d are atan2 of two numbers of the same      \
              * degree in h, so |h| cancels; phi_d's (d_x, d_y) are taken times s |h| > 0     \
              * (four divisions fewer than normalising h and its azimuth) */     \
@@ -174,9 +196,9 @@ static inline float into(float u, float hi) { return u >= 0.0f ? (u < hi ? u : h
             float cd = wx * hx + wy * hy + wz * hz;                                                \
             float theta_d = atan2_q1(sqrtf(x0 * x0 + x1 * x1 + x2 * x2), cd > 0.0f ? cd : 0.0f);   \
             /* phi_h = 0 where h is the normal (AZIMUTH_MIN in float): d = (wx hz - wz s, wy) */   \
-            float az = s > 1e-6f * hn ? 1.0f : 0.0f;                                               \
-            float dx = az > 0.0f ? (wx * hx + wy * hy) * hz - wz * s2 : wx * hz - wz * s;          \
-            float dy = (az > 0.0f ? wy * hx - wx * hy : wy) * hn;                                  \
+            float azim = s > 1e-6f * hn ? 1.0f : 0.0f;                                             \
+            float dx = azim > 0.0f ? (wx * hx + wy * hy) * hz - wz * s2 : wx * hz - wz * s;        \
+            float dy = (azim > 0.0f ? wy * hx - wx * hy : wy) * hn;                                \
             float flip = dy < 0.0f ? -1.0f : 1.0f; /* phi_d + pi: the same cell */                 \
             dx *= flip, dy *= flip;                                                                \
             float a_d = atan2_q1(dy, fabsf(dx));                                                   \
@@ -202,8 +224,8 @@ static inline float into(float u, float hi) { return u >= 0.0f ? (u < hi ? u : h
             CORNER(h1, d0, p1, th *(1.0f - td) * tp);                                              \
             CORNER(h1, d1, p0, th *td *(1.0f - tp));                                               \
             CORNER(h1, d1, p1, th *td *tp);                                                        \
-            float front = wz > 0.0f ? 1.0f : 0.0f;                                                 \
-            front = oz[i] > 0.0f ? front : 0.0f;                                                   \
+            float front = az > 0.0f ? 1.0f : 0.0f;                                                 \
+            front = bz > 0.0f ? front : 0.0f;                                                      \
             fr[i] = keep_f(ws[0] > 0.0f ? acc[0] / ws[0] : 0.0f) * front;                          \
             fg[i] = keep_f(ws[1] > 0.0f ? acc[1] / ws[1] : 0.0f) * front;                          \
             fb[i] = keep_f(ws[2] > 0.0f ? acc[2] / ws[2] : 0.0f) * front;                          \
@@ -216,8 +238,10 @@ static inline float into(float u, float hi) { return u >= 0.0f ? (u < hi ? u : h
         const int c_ = 3 * (((H)*nd + (D)) * np + (P));                                            \
         for (int k_ = 0; k_ < 3; ++k_) {                                                           \
             float v_ = data[c_ + k_];                                                              \
-            acc[k_] += v_ >= 0.0f ? w_ * v_ : 0.0f;                                                \
-            ws[k_] += v_ >= 0.0f ? w_ : 0.0f;                                                      \
+            float ok_ = v_ >= 0.0f ? 1.0f : 0.0f; /* not measured (< 0, NaN) or Inf: out */        \
+            ok_ = v_ <= 3.4028234e38f ? ok_ : 0.0f;                                                \
+            acc[k_] += ok_ > 0.0f ? w_ * v_ : 0.0f;                                                \
+            ws[k_] += ok_ > 0.0f ? w_ : 0.0f;                                                      \
         }                                                                                          \
     } while (0)
 
