@@ -27,6 +27,8 @@ Functions:
     load_measured(path)          a measured BRDF file (MERL .binary, RGL .bsdf) as a Measured
     measured_from_array(a)       a Measured from a NumPy table on MERL's grid
     Measured                     a measured table: .table, .grid, .unmeasured, .eval(wi, wo)
+    sweep(materials, models)     every material fitted by every candidate, with the NMSE, cost
+                                 and budget verdict, on dask.distributed or in a loop
     surfaces(), goals()          the flowchart's surface classes and goals
     compare(reference, test)     NMSE (the paper's), PSNR, Table-8 class, of arrays or files
     read_image(path)             a linear float RGB image (OpenImageIO)
@@ -45,6 +47,7 @@ from ._fit import Fit, fit
 from ._measured import Measured, load_measured, measured_from_array
 from ._select import (Layer, Material, Selection, Step, budget_nmse, goals, material, materials,
                       select, surfaces)
+from ._sweep import Sweep, SweepRow, sweep
 
 __version__: str = "0.2.0"
 
@@ -64,6 +67,8 @@ __all__ = [
     "Params",
     "Selection",
     "Step",
+    "Sweep",
+    "SweepRow",
     "budget_nmse",
     "compare",
     "fit",
@@ -77,4 +82,5 @@ __all__ = [
     "read_image",
     "select",
     "surfaces",
+    "sweep",
 ]
