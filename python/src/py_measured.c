@@ -13,6 +13,9 @@
 
 #include "measured_file.h"
 
+/* Cells per axis this file multiplies without overflow; more than the library takes. */
+#define GRID_AXIS_MAX 65536
+
 static void table_dealloc(PyObject *self)
 {
     abrdf_py_table *t = (abrdf_py_table *)self;
@@ -35,8 +38,10 @@ static PyObject *table_new(PyTypeObject *type, PyObject *args, PyObject *kwargs)
     abrdf_measured_init(&m);
     m.n_theta_h = n[0], m.n_theta_d = n[1], m.n_phi_d = n[2];
     m.data = view.buf;
+    /* Each axis bounded before the product (no overflow); the library's own bounds, [2, 1024],
+     * are checked by abrdf_prepare_measured below, once the buffer is known to be whole. */
     long long cells = 1;
-    for (int k = 0; k < 3; ++k) cells *= n[k] > 0 ? n[k] : 0;
+    for (int k = 0; k < 3; ++k) cells *= n[k] > 0 && n[k] <= GRID_AXIS_MAX ? n[k] : 0;
     if (view.len != (Py_ssize_t)(3 * cells * (long long)sizeof(float))) {
         PyBuffer_Release(&view);
         return abrdf_py_fail(ABRDF_E_TABLE,

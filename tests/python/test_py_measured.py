@@ -236,6 +236,10 @@ def test_the_table_lives_as_long_as_the_prepared_object():
         _abrdf.Table(np.zeros(24, np.float64), 2, 2, 2)
     with pytest.raises(abrdf.Error):
         _abrdf.Table(np.zeros(3, np.float32), 1, 1, 1)
+    with pytest.raises(abrdf.Error):
+        _abrdf.Table(np.zeros(0, np.float32), 0, 4, 4)
+    with pytest.raises(abrdf.Error):  # the product of the axes would overflow
+        _abrdf.Table(np.zeros(24, np.float32), 2 ** 31 - 1, 2 ** 31 - 1, 2 ** 31 - 1)
 
 
 def test_pickle_keeps_the_table():
