@@ -97,8 +97,18 @@ def _candidate_name(c: Candidate) -> str:
 
 
 @functools.lru_cache(maxsize=_LOADED_MAX)
-def _loaded(path: str) -> Measured:
+def _loaded_version(path: str, mtime_ns: int, size: int) -> Measured:
     return load_measured(path)
+
+
+def _loaded(path: str) -> Measured:
+    """The file read, or the copy read before if it has not changed since (a worker that
+    outlives one sweep sees a rewritten file anew)."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return load_measured(path)  # raises abrdf.Error with the reader's words
+    return _loaded_version(path, st.st_mtime_ns, st.st_size)
 
 
 def _shippable(m: object) -> tuple[Any, ...]:
@@ -152,7 +162,10 @@ def _best(rows: Sequence[SweepRow]) -> SweepRow | None:
 
 def _run_serial(jobs: list[tuple[tuple[Any, ...], Candidate]], metric: Metric,
                 resolution: int) -> list[Fit]:
-    return [_fit_one(ref, c, metric, resolution) for ref, c in jobs]
+    try:
+        return [_fit_one(ref, c, metric, resolution) for ref, c in jobs]
+    finally:
+        _loaded_version.cache_clear()  # the caller's process keeps no table
 
 
 def _run_dask(client: Client, jobs: list[tuple[tuple[Any, ...], Candidate]], metric: Metric,
@@ -194,6 +207,9 @@ def _with_client(scheduler: Scheduler, workers: int | None,
                           "distributed), or scheduler='serial'") from e
     if isinstance(scheduler, Client):
         return run(scheduler)
+    if scheduler is not None and not (isinstance(scheduler, str) and "://" in scheduler):
+        raise ValueError("sweep: scheduler is None, 'serial', a scheduler's address "
+                         "('tcp://host:8786') or a distributed.Client, got %r" % (scheduler,))
     if scheduler is None:
         n = _usable_cores() if workers is None else workers
         with LocalCluster(n_workers=n, threads_per_worker=1, processes=True,

@@ -73,6 +73,8 @@ def test_bad_arguments():
         abrdf.sweep(["gold"], ["blinn_phong"], scheduler="serial", workers=2)
     with pytest.raises(ValueError):
         abrdf.sweep(["gold"], ["blinn_phong"], workers=0)
+    with pytest.raises(ValueError):
+        abrdf.sweep(["gold"], ["blinn_phong"], scheduler="serail")
 
 
 def test_local_cluster_of_two_workers_equals_the_loop(serial):
@@ -93,3 +95,15 @@ def test_a_client_given_is_used_and_left_open(serial):
         with pytest.raises(abrdf.Error):
             abrdf.sweep(["gold"], ["no_such_model"], scheduler=client)
     assert not math.isnan(serial.max_nmse)
+
+
+def test_a_worker_rereads_a_rewritten_file(cli, tmp_path):
+    from abrdf import _sweep
+    path = str(tmp_path / "t.binary")
+    cli("tabulate", "lambert", "--set", "kd=0.5", "--grid", "4,4,8", "-o", path)
+    first = _sweep._loaded(path)
+    assert _sweep._loaded(path) is first  # read once
+    cli("tabulate", "lambert", "--set", "kd=0.25", "--grid", "4,4,8", "-o", path)
+    again = _sweep._loaded(path)
+    assert again is not first and again.table.max() < first.table.max()
+    _sweep._loaded_version.cache_clear()
