@@ -2,6 +2,8 @@
  * Python, through the code `abrdf fit` and `abrdf advise --budget` use:
  *   fit            abrdf_fit of a candidate (one model or a diffuse + specular pair) to a
  *                  reference given as Params, with its errors and predicted image NMSE
+ *   fit_to         abrdf_fit_to: the same against a prepared reference, a measured Table
+ *                  (or a Params, prepared here)
  *   select_budget  abrdf_select_budget (budget_run, tools/common) on a material dict, with
  *                  the trace (every fitted candidate)
  *   budget_class   a Table-8 class name -> its largest NMSE (abrdf_budget_class_find) */
@@ -140,6 +142,41 @@ static PyObject *py_fit(PyObject *self, PyObject *args, PyObject *kwargs)
     return fit_dict(cd, cs, &cand, &res);
 }
 
+static PyObject *py_fit_to(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kw[] = {"reference",  "cand_diffuse", "cand_specular", "metric",
+                         "resolution", "keep_shared",  "predict",       NULL};
+    PyObject *reference;
+    const char *cd_name = NULL, *cs_name = NULL, *metric_name = "l2";
+    int resolution = 0, keep_shared = 1, predict = 1;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Ozz|sipp:fit_to", kw, &reference, &cd_name,
+                                     &cs_name, &metric_name, &resolution, &keep_shared, &predict))
+        return NULL;
+    /* A Table's prepared object points at the Table's buffer; `reference` is held by the
+     * arguments for the whole call. */
+    abrdf_prepared ref;
+    if (abrdf_py_prepared_arg(reference, "reference", &ref)) return NULL;
+    abrdf_model cd, cs;
+    abrdf_fit_options opt;
+    if (fit_setup(cd_name, cs_name, metric_name, resolution, keep_shared, predict, &cd, &cs, &opt))
+        return NULL;
+    abrdf_params cand;
+    abrdf_params_init(cs != ABRDF_MODEL_NONE ? cs : cd, &cand);
+    abrdf_fit_result res;
+    abrdf_fit_result_init(&res);
+    size_t ws;
+    void *work = fit_workspace(&opt, &ws);
+    if (!work) return NULL;
+    int st;
+    Py_BEGIN_ALLOW_THREADS;
+    st = abrdf_fit_to(&ref, cd, cs, &cand, &opt, &res, work, ws);
+    Py_END_ALLOW_THREADS;
+    PyMem_RawFree(work);
+    if (st != ABRDF_OK) return abrdf_py_fail(st, "%s", res.message);
+    return fit_dict(cd, cs, &cand, &res);
+}
+
 static PyObject *py_budget_class(PyObject *self, PyObject *args)
 {
     (void)self;
@@ -188,6 +225,11 @@ PyMethodDef abrdf_py_fit_methods[] = {
      "keep_shared=True, predict=True) -> dict: abrdf_fit of the candidate models (names or "
      "None) to the reference (Params or None; one block, the diffuse lobe's parameters from "
      "its Params): the fitted Params per lobe and the errors. Releases the GIL."},
+    {"fit_to", (PyCFunction)(void (*)(void))py_fit_to, METH_VARARGS | METH_KEYWORDS,
+     "fit_to(reference, cand_diffuse, cand_specular, metric='l2', resolution=0, "
+     "keep_shared=True, predict=True) -> dict: abrdf_fit_to of the candidate models (names or "
+     "None) to a prepared reference: a Table (a measured table) or a Params; fit()'s dict. "
+     "Releases the GIL."},
     {"select_budget", (PyCFunction)(void (*)(void))py_select_budget, METH_VARARGS | METH_KEYWORDS,
      "select_budget(material, max_nmse, costs=None, cost_unit=None) -> dict: "
      "abrdf_select_budget on a material dict (abrdf.Material's fields), with the trace; costs "
