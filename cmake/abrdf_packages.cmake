@@ -45,7 +45,8 @@ if(ABRDF_PACKAGES)
   # What pip builds from (pyproject.toml's sdist.include): a change rebuilds the packages.
   file(GLOB_RECURSE python_inputs CONFIGURE_DEPENDS
        ${PROJECT_SOURCE_DIR}/libabrdf/include/*.h ${PROJECT_SOURCE_DIR}/libabrdf/src/*
-       ${PROJECT_SOURCE_DIR}/tools/common/* ${PROJECT_SOURCE_DIR}/tools/image/metrics.*
+       ${PROJECT_SOURCE_DIR}/tools/common/* ${PROJECT_SOURCE_DIR}/tools/measured/*
+       ${PROJECT_SOURCE_DIR}/tools/image/metrics.*
        ${PROJECT_SOURCE_DIR}/python/abrdf/* ${PROJECT_SOURCE_DIR}/python/src/*)
   list(APPEND python_inputs ${PROJECT_SOURCE_DIR}/pyproject.toml ${PROJECT_SOURCE_DIR}/CMakeLists.txt
        ${PROJECT_SOURCE_DIR}/python/CMakeLists.txt ${PROJECT_SOURCE_DIR}/data/materials.csv

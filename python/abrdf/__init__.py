@@ -22,8 +22,13 @@ Functions:
     select(material, goal=...)   the paper's flowchart, with its trace
     select(material, budget=...) the budget mode: the cheapest candidate fitted to the
                                  photoreal choice within a Table-8 image-error class
-    fit(reference, candidate)    one model's parameters fitted to another's, with the errors
-                                 and the predicted image NMSE (abrdf_fit)
+    fit(reference, candidate)    one model's parameters fitted to another's (or to a measured
+                                 table), with the errors and the predicted image NMSE
+    load_measured(path)          a measured BRDF file (MERL .binary, RGL .bsdf) as a Measured
+    measured_from_array(a)       a Measured from a NumPy table on MERL's grid
+    Measured                     a measured table: .table, .grid, .unmeasured, .eval(wi, wo)
+    sweep(materials, models)     every material fitted by every candidate, with the NMSE, cost
+                                 and budget verdict, on dask.distributed or in a loop
     surfaces(), goals()          the flowchart's surface classes and goals
     compare(reference, test)     NMSE (the paper's), PSNR, Table-8 class, of arrays or files
     read_image(path)             a linear float RGB image (OpenImageIO)
@@ -39,8 +44,10 @@ from ._abrdf import MAX_LAYERS, Error, Params
 from ._brdf import BRDF, Model, Parameter, eval, model, models
 from ._compare import Comparison, compare, read_image
 from ._fit import Fit, fit
+from ._measured import Measured, load_measured, measured_from_array
 from ._select import (Layer, Material, Selection, Step, budget_nmse, goals, material, materials,
                       select, surfaces)
+from ._sweep import Sweep, SweepRow, sweep
 
 __version__: str = "0.2.0"
 
@@ -54,20 +61,26 @@ __all__ = [
     "Layer",
     "MAX_LAYERS",
     "Material",
+    "Measured",
     "Model",
     "Parameter",
     "Params",
     "Selection",
     "Step",
+    "Sweep",
+    "SweepRow",
     "budget_nmse",
     "compare",
     "fit",
     "goals",
+    "load_measured",
     "material",
     "materials",
+    "measured_from_array",
     "model",
     "models",
     "read_image",
     "select",
     "surfaces",
+    "sweep",
 ]

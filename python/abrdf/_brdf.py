@@ -4,13 +4,16 @@ from __future__ import annotations
 import functools
 import operator
 from dataclasses import dataclass
-from typing import Literal, Sequence, Union
+from typing import TYPE_CHECKING, Literal, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _abrdf
 from ._arrays import real_array
+
+if TYPE_CHECKING:
+    from ._measured import Measured
 
 ParamValue = Union[float, int, Sequence[float]]
 Precision = Literal["float", "double"]
@@ -89,6 +92,34 @@ def _rows(v: npt.ArrayLike, what: str) -> np.ndarray:
     return a
 
 
+def eval_block(block: _abrdf.Params | _abrdf.Table, wi: npt.ArrayLike, wo: npt.ArrayLike,
+               precision: Precision, threads: int) -> np.ndarray:
+    """f_r of a C block (a Params, or a measured Table) over broadcast direction arrays: what
+    BRDF.eval and Measured.eval share."""
+    try:
+        t = -1 if isinstance(threads, bool) else operator.index(threads)
+    except TypeError:
+        t = -1
+    if not 0 <= t <= 64:
+        raise ValueError("threads: an int in [0, 64] (0 = one per core), got %r" % (threads,))
+    threads = t
+    a, b = np.broadcast_arrays(_rows(wi, "wi"), _rows(wo, "wo"))
+    shape = a.shape
+    if precision == "double":
+        a = np.ascontiguousarray(a.reshape(-1, 3), dtype=np.float64)
+        b = np.ascontiguousarray(b.reshape(-1, 3), dtype=np.float64)
+        out = np.empty(a.shape, np.float64)
+        _abrdf.eval_double(block, a, b, out)
+    elif precision == "float":
+        a = np.ascontiguousarray(a.reshape(-1, 3))
+        b = np.ascontiguousarray(b.reshape(-1, 3))
+        out = np.empty(a.shape, np.float32)
+        _abrdf.eval_float(block, a, b, out, threads)
+    else:
+        raise ValueError("precision: 'float' or 'double', got %r" % (precision,))
+    return out.reshape(shape)
+
+
 class BRDF:
     """A model with a validated parameter block.
 
@@ -124,6 +155,18 @@ class BRDF:
         """The C parameter block (what the extension module's functions take)."""
         return self._p
 
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, BRDF):
+            return NotImplemented
+        return self.model == other.model and self.params == other.params
+
+    def __hash__(self) -> int:
+        return hash((self.model, tuple(sorted(self.params.items()))))
+
+    def __reduce__(self) -> tuple[object, tuple[object, ...]]:
+        # The values read back set the same doubles: a pickled BRDF is the same block.
+        return (_brdf_from, (self.model, self.params))
+
     def __repr__(self) -> str:
         return "BRDF(%r, %s)" % (self.model, ", ".join(
             "%s=%r" % kv for kv in self.params.items()))
@@ -142,35 +185,24 @@ class BRDF:
         array is split over the machine's cores (threads=0: one thread per core, each with at
         least 32768 pairs; threads=N: N threads, at most 64), the same result as one
         thread."""
-        try:
-            t = -1 if isinstance(threads, bool) else operator.index(threads)
-        except TypeError:
-            t = -1
-        if not 0 <= t <= 64:
-            raise ValueError("threads: an int in [0, 64] (0 = one per core), got %r" % (threads,))
-        threads = t
-        a, b = np.broadcast_arrays(_rows(wi, "wi"), _rows(wo, "wo"))
-        shape = a.shape
-        if precision == "double":
-            a = np.ascontiguousarray(a.reshape(-1, 3), dtype=np.float64)
-            b = np.ascontiguousarray(b.reshape(-1, 3), dtype=np.float64)
-            out = np.empty(a.shape, np.float64)
-            _abrdf.eval_double(self._p, a, b, out)
-        elif precision == "float":
-            a = np.ascontiguousarray(a.reshape(-1, 3))
-            b = np.ascontiguousarray(b.reshape(-1, 3))
-            out = np.empty(a.shape, np.float32)
-            _abrdf.eval_float(self._p, a, b, out, threads)
-        else:
-            raise ValueError("precision: 'float' or 'double', got %r" % (precision,))
-        return out.reshape(shape)
+        return eval_block(self._p, wi, wo, precision, threads)
 
 
-def eval(model: str | BRDF, wi: npt.ArrayLike, wo: npt.ArrayLike,
+def _brdf_from(model: str, params: dict[str, ParamValue]) -> BRDF:
+    return BRDF(model, **params)
+
+
+def eval(model: str | BRDF | Measured, wi: npt.ArrayLike, wo: npt.ArrayLike,
          precision: Precision = "float", threads: int = 0, **params: ParamValue) -> np.ndarray:
-    """f_r of `model` (a name, with its parameters as keywords, or a BRDF) for arrays of
-    direction pairs: BRDF(model, **params).eval(wi, wo, precision, threads)."""
-    b = model if isinstance(model, BRDF) else BRDF(model, **params)
-    if isinstance(model, BRDF) and params:
-        raise TypeError("eval: parameters are given to BRDF(...), not with a BRDF")
-    return b.eval(wi, wo, precision, threads)
+    """f_r of `model` (a name, with its parameters as keywords, a BRDF or a Measured table)
+    for arrays of direction pairs: BRDF(model, **params).eval(wi, wo, precision, threads)."""
+    if isinstance(model, str):
+        return BRDF(model, **params).eval(wi, wo, precision, threads)
+    if params:
+        raise TypeError("eval: parameters are given to BRDF(...), not with a %s"
+                        % type(model).__name__)
+    from ._measured import Measured
+    if not isinstance(model, (BRDF, Measured)):
+        raise TypeError("eval: a model name, a BRDF or a Measured is needed, got %s"
+                        % type(model).__name__)
+    return model.eval(wi, wo, precision, threads)

@@ -1,16 +1,19 @@
-"""One model fitted to another (abrdf_fit, docs/SELECTION.md, "The budget mode"): fit() and its
-result, Fit."""
+"""One model fitted to another (abrdf_fit, docs/SELECTION.md, "The budget mode") or to a measured
+table (abrdf_fit_to, docs/MEASURED.md): fit() and its result, Fit."""
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from typing import Literal, Mapping, Union
 
 from . import _abrdf
 from ._brdf import BRDF
+from ._measured import Measured, is_measured_path, load_measured
 from ._select import Material, Selection, _error, select
 
 Metric = Literal["l2", "log", "cbrt", "auto"]
-Reference = Union[str, BRDF, Selection, Material, Mapping[str, object], tuple]
+Reference = Union[str, "os.PathLike[str]", BRDF, Measured, Selection, Material,
+                  Mapping[str, object], tuple]
 
 
 @dataclass(frozen=True)
@@ -66,8 +69,11 @@ def fit(reference: Reference, candidate: str | tuple[str | None, str | None], *,
 
     reference: a BRDF; a (diffuse BRDF or None, specular BRDF) pair, whose parameters the
     library reads as one block (the diffuse lobe's from its BRDF); a Selection (its two
-    lobes); or a material (a table name, a Material or a mapping), whose photoreal choice
-    of the flowchart is the reference, as `abrdf fit --material NAME`. candidate: a model
+    lobes); a material (a table name, a Material or a mapping), whose photoreal choice
+    of the flowchart is the reference, as `abrdf fit --material NAME`; or a measured table,
+    a Measured or the path of a measured file (an os.PathLike, or a str ending in .binary or
+    .bsdf: load_measured reads it), fitted by abrdf_fit_to on the prepared table, as
+    `abrdf fit --to FILE` (no parameter is shared with a table). candidate: a model
     name, "diffuse+specular" or a (diffuse, specular) pair of names (either may be None).
     metric: "l2" (cosine-weighted L2), "log", "cbrt" or "auto" (each, the smallest
     predicted image NMSE wins). resolution: direction-set density 1-5 (0: the default, 3).
@@ -79,10 +85,15 @@ def fit(reference: Reference, candidate: str | tuple[str | None, str | None], *,
     (no candidate lobe, unknown model or metric) raises abrdf.Error. Releases the GIL.
     For example fit(BRDF("disney_specular", r=0.5), "blinn_phong").specular.params["n"] is
     the Blinn-Phong exponent closest to that GGX lobe over the hemisphere."""
-    rd, rs = _reference(reference)
     cd, cs = _lobes(candidate)
-    d = _abrdf.fit(None if rd is None else rd.block, None if rs is None else rs.block, cd, cs,
-                   metric, resolution, keep_shared, predict)
+    if is_measured_path(reference):
+        reference = load_measured(reference)  # type: ignore[arg-type]
+    if isinstance(reference, Measured):
+        d = _abrdf.fit_to(reference.block, cd, cs, metric, resolution, keep_shared, predict)
+    else:
+        rd, rs = _reference(reference)
+        d = _abrdf.fit(None if rd is None else rd.block, None if rs is None else rs.block, cd,
+                       cs, metric, resolution, keep_shared, predict)
     dp, sp = d.pop("diffuse_params"), d.pop("specular_params")
     return Fit(diffuse=None if dp is None else BRDF._from_params(dp),
                specular=None if sp is None else BRDF._from_params(sp), **d)

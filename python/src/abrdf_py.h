@@ -15,6 +15,8 @@
  *   py_select.c   the material table, cost files, the paper's flowchart with its trace
  *   py_compare.c  the paper's NMSE, PSNR and Table-8 class of two float images
  *   py_fit.c      one model fitted to another, the selection's budget mode
+ *   py_measured.c measured tables: Table (the `measured` model on a held buffer), the readers
+ *                 of MERL and RGL files (tools/measured)
  * A new C entry point (prepared evaluation, sampling, fitting) is a new py_*.c with its
  * methods, listed in py_module.c, using Params and the buffer helpers below. */
 #ifndef ABRDF_PY_H
@@ -45,6 +47,8 @@ int abrdf_py_rows3(PyObject *obj, const char *what, int want, int writable, Py_b
 /* The same for a C-contiguous float32 buffer of any shape; *count is its number of floats
  * and, for images, shape[0..2] are (height, width, channels) with channels 1 for 2-D. */
 int abrdf_py_float_image(PyObject *obj, const char *what, Py_buffer *view, Py_ssize_t shape[3]);
+/* The same for a C-contiguous float32 buffer of any shape, read only; view->len is its bytes. */
+int abrdf_py_float_buffer(PyObject *obj, const char *what, Py_buffer *view);
 
 /* ---- Params (py_params.c) ------------------------------------------------------------ */
 typedef struct abrdf_py_params {
@@ -65,12 +69,27 @@ int abrdf_py_model_find(const char *name, abrdf_model *out);
 /* Python value of parameter `id` read from `params` (float, int or a 3-tuple). */
 PyObject *abrdf_py_param_value(const abrdf_params *params, int id);
 
+/* ---- Table (py_measured.c) ------------------------------------------------------------ */
+typedef struct abrdf_py_table {
+    PyObject ob_base;        /* what PyObject_HEAD declares */
+    Py_buffer data;          /* the table's floats, exported to this object while it lives */
+    int grid[3];             /* n_theta_h, n_theta_d, n_phi_d */
+    abrdf_prepared prepared; /* ABRDF_MEASURED prepared on data.buf */
+} abrdf_py_table;
+
+extern PyTypeObject abrdf_py_table_type;
+/* The prepared model of `obj`, a Params (abrdf_prepare of its block: abrdf.Error if that
+ * fails) or a Table (a copy of its prepared object, valid while the Table lives), into *out;
+ * else TypeError naming `what`. 0 or -1. */
+int abrdf_py_prepared_arg(PyObject *obj, const char *what, abrdf_prepared *out);
+
 /* ---- method tables of the parts, joined by py_module.c ---------------------------------- */
 extern PyMethodDef abrdf_py_models_methods[];
 extern PyMethodDef abrdf_py_eval_methods[];
 extern PyMethodDef abrdf_py_select_methods[];
 extern PyMethodDef abrdf_py_compare_methods[];
 extern PyMethodDef abrdf_py_fit_methods[];
+extern PyMethodDef abrdf_py_measured_methods[];
 
 /* ---- the selection's conversions (py_select.c), shared with py_fit.c ------------------ */
 /* m from a dict of abrdf.Material's fields (absent ones keep abrdf_material_init's); m->name

@@ -79,3 +79,13 @@ int abrdf_py_float_image(PyObject *obj, const char *what, Py_buffer *view, Py_ss
     shape[2] = view->ndim == 3 ? view->shape[2] : 1;
     return 0;
 }
+
+int abrdf_py_float_buffer(PyObject *obj, const char *what, Py_buffer *view)
+{
+    if (acquire(obj, what, 0, view)) return -1;
+    if (real_kind(view) == ABRDF_PY_F32) return 0;
+    PyErr_Format(PyExc_TypeError, "%s: float32 needed, got format '%s'", what,
+                 view->format ? view->format : "B");
+    PyBuffer_Release(view);
+    return -1;
+}

@@ -5,7 +5,8 @@
  *                written back as rows; large arrays are split over the machine's cores, one
  *                thread per range of rows (the library itself has no threads);
  *   eval_double  the double-precision scalar reference (abrdf_eval with the local frame), one
- *                pair at a time.
+ *                pair at a time; a Table (a measured table) by abrdf_eval_prepared, the
+ *                model's only double path.
  *   _time_eval_batch  the C batch path alone on the same directions, timed here, so that the
  *                binding's cost is measured against it in one process (docs/BENCHMARKS.md).
  * Directions are in the local frame (N = +z, T = +x); wi toward the light, wo toward the
@@ -105,9 +106,11 @@ ROW_LOOPS static void load(const void *buf, abrdf_py_real kind, Py_ssize_t start
     }
 }
 
-/* The arguments every evaluation takes: a Params and two (N, 3) direction arrays. */
+/* The arguments every evaluation takes: a Params or a Table (a measured table) and two (N, 3)
+ * direction arrays. */
 typedef struct eval_args {
-    abrdf_py_params *params;
+    abrdf_py_params *params; /* NULL for a Table */
+    abrdf_py_table *table;   /* NULL for a Params */
     Py_buffer wi, wo, out;
     Py_ssize_t rows;
     abrdf_py_real wi_kind, wo_kind;
@@ -117,7 +120,11 @@ static int get_args(PyObject *args, const char *name, int out_kind, eval_args *a
 {
     PyObject *p, *wi, *wo, *out;
     if (!PyArg_ParseTuple(args, "OOOO", &p, &wi, &wo, &out)) return -1;
-    if (!(a->params = abrdf_py_params_arg(p, name))) return -1;
+    a->params = NULL, a->table = NULL;
+    if (PyObject_TypeCheck(p, &abrdf_py_table_type))
+        a->table = (abrdf_py_table *)p;
+    else if (!(a->params = abrdf_py_params_arg(p, name)))
+        return -1;
     Py_ssize_t n_wo, n_out;
     abrdf_py_real k_out;
     if (abrdf_py_rows3(wi, "wi", 0, 0, &a->wi, &a->rows, &a->wi_kind)) return -1;
@@ -228,10 +235,10 @@ static PyObject *py_eval_float(PyObject *self, PyObject *args)
     Py_DECREF(four);
     if (bad) return NULL;
     abrdf_prepared prep;
-    int st = abrdf_prepare(a.params->model, &a.params->params, &prep);
+    int st = abrdf_py_prepared_arg(p, "eval_float", &prep) ? ABRDF_E_NULL : ABRDF_OK;
     if (st != ABRDF_OK) {
         release(&a);
-        return abrdf_py_fail(st, "abrdf_prepare: %s", abrdf_strerror(st));
+        return NULL;
     }
     int t = thread_count(a.rows, threads);
     eval_range range[MAX_THREADS];
@@ -268,11 +275,14 @@ static PyObject *py_eval_double(PyObject *self, PyObject *args)
         double wi[3], wo[3];
         row(a.wi.buf, a.wi_kind, k, wi);
         row(a.wo.buf, a.wo_kind, k, wo);
-        st = abrdf_eval(a.params->model, &a.params->params, NULL, wi, wo, out + 3 * k);
+        st = a.table ? abrdf_eval_prepared(&a.table->prepared, NULL, wi, wo, out + 3 * k)
+                     : abrdf_eval(a.params->model, &a.params->params, NULL, wi, wo, out + 3 * k);
     }
     Py_END_ALLOW_THREADS;
     release(&a);
-    if (st != ABRDF_OK) return abrdf_py_fail(st, "abrdf_eval: %s", abrdf_strerror(st));
+    if (st != ABRDF_OK)
+        return abrdf_py_fail(st, "%s: %s", a.table ? "abrdf_eval_prepared" : "abrdf_eval",
+                             abrdf_strerror(st));
     Py_RETURN_NONE;
 }
 
@@ -302,6 +312,10 @@ static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
     int bad = get_args(tuple, "_time_eval_batch", ABRDF_PY_F32, &a);
     Py_DECREF(tuple);
     if (bad) return NULL;
+    if (!a.params) {
+        release(&a);
+        return PyErr_Format(PyExc_TypeError, "_time_eval_batch: a Params is needed");
+    }
     size_t n = (size_t)a.rows;
     float *mem = malloc(9 * (n ? n : 1) * sizeof *mem);
     if (!mem) {
@@ -337,7 +351,8 @@ static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
 
 PyMethodDef abrdf_py_eval_methods[] = {
     {"eval_float", py_eval_float, METH_VARARGS,
-     "eval_float(params, wi, wo, out, threads=0) -> None: f_r of every row pair by the float "
+     "eval_float(params, wi, wo, out, threads=0) -> None: f_r of every row pair (params: a "
+     "Params or a Table) by the float "
      "batch path (abrdf_eval_prepared_batch) into out; wi, wo: C-contiguous (N, 3) float32 or "
      "float64 local-frame directions (normalised here); out: writable (N, 3) float32; threads: "
      "0 = one per usable core for large arrays (32768 rows or more per thread), else that "
@@ -345,7 +360,8 @@ PyMethodDef abrdf_py_eval_methods[] = {
      "Releases the GIL."},
     {"eval_double", py_eval_double, METH_VARARGS,
      "eval_double(params, wi, wo, out) -> None: the same by the double-precision scalar "
-     "reference (abrdf_eval, local frame); out: writable (N, 3) float64. Releases the GIL."},
+     "reference (abrdf_eval, local frame; a Table: abrdf_eval_prepared); out: writable (N, 3) "
+     "float64. Releases the GIL."},
     {"_time_eval_batch", py_time_eval_batch, METH_VARARGS,
      "_time_eval_batch(params, wi, wo, out, calls) -> float: seconds of thread CPU time per "
      "call of abrdf_eval_batch over all rows, `calls` calls timed together, on "

@@ -2,6 +2,8 @@
  * Python, through the code `abrdf fit` and `abrdf advise --budget` use:
  *   fit            abrdf_fit of a candidate (one model or a diffuse + specular pair) to a
  *                  reference given as Params, with its errors and predicted image NMSE
+ *   fit_to         abrdf_fit_to: the same against a prepared reference, a measured Table
+ *                  (or a Params, prepared here)
  *   select_budget  abrdf_select_budget (budget_run, tools/common) on a material dict, with
  *                  the trace (every fitted candidate)
  *   budget_class   a Table-8 class name -> its largest NMSE (abrdf_budget_class_find) */
@@ -48,6 +50,60 @@ static PyObject *lobe_params(abrdf_model m, const abrdf_params *p)
     return m == ABRDF_MODEL_NONE ? Py_NewRef(Py_None) : abrdf_py_params_from_block(m, p);
 }
 
+/* The options of a fit from fit()'s arguments and the candidate's lobes: 0, or -1 with
+ * abrdf.Error (an unknown model or metric). */
+static int fit_setup(const char *cd_name, const char *cs_name, const char *metric_name,
+                     int resolution, int keep_shared, int predict, abrdf_model *cd, abrdf_model *cs,
+                     abrdf_fit_options *opt)
+{
+    if (model_or_none(cd_name, cd) || model_or_none(cs_name, cs)) return -1;
+    abrdf_fit_options_init(opt);
+    if (abrdf_fit_metric_find(metric_name, &opt->metric) != ABRDF_OK) {
+        abrdf_py_fail(ABRDF_E_RANGE, "fit: unknown metric '%s' (l2, log, cbrt, auto)", metric_name);
+        return -1;
+    }
+    opt->resolution = resolution;
+    opt->keep_shared = keep_shared;
+    opt->predict = predict;
+    return 0;
+}
+
+/* A workspace for opt (PyMem_RawFree it), or NULL with the exception set. */
+static void *fit_workspace(const abrdf_fit_options *opt, size_t *size)
+{
+    *size = abrdf_fit_workspace_size(opt, NULL);
+    if (!*size) {
+        abrdf_py_fail(ABRDF_E_RANGE, "fit: resolution %d is outside [0, 5]", opt->resolution);
+        return NULL;
+    }
+    void *work = PyMem_RawMalloc(*size);
+    if (!work) PyErr_NoMemory();
+    return work;
+}
+
+/* The dict fit() returns: the fitted Params per lobe and the errors. */
+static PyObject *fit_dict(abrdf_model cd, abrdf_model cs, const abrdf_params *cand,
+                          const abrdf_fit_result *res)
+{
+    PyObject *out = PyDict_New();
+    if (!out) return NULL;
+    if (abrdf_py_set(out, "diffuse_params", lobe_params(cd, cand)) ||
+        abrdf_py_set(out, "specular_params", lobe_params(cs, cand)) ||
+        abrdf_py_set(out, "rel_l2", PyFloat_FromDouble(res->rel_l2)) ||
+        abrdf_py_set(out, "max_rel_pct", PyFloat_FromDouble(res->max_rel_pct)) ||
+        abrdf_py_set(out, "max_abs", PyFloat_FromDouble(res->max_abs)) ||
+        abrdf_py_set(out, "nmse_pred", abrdf_py_opt(res->nmse_pred)) ||
+        abrdf_py_set(out, "objective", PyFloat_FromDouble(res->objective)) ||
+        abrdf_py_set(out, "metric", PyUnicode_FromString(abrdf_fit_metric_name(res->metric))) ||
+        abrdf_py_set(out, "fitted", PyLong_FromLong(res->fitted)) ||
+        abrdf_py_set(out, "evals", PyLong_FromLong(res->evals)) ||
+        abrdf_py_set(out, "directions", PyLong_FromLong(res->directions))) {
+        Py_DECREF(out);
+        return NULL;
+    }
+    return out;
+}
+
 static PyObject *py_fit(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
@@ -65,25 +121,17 @@ static PyObject *py_fit(PyObject *self, PyObject *args, PyObject *kwargs)
     if (rs != Py_None && !(s = abrdf_py_params_arg(rs, "ref_specular"))) return NULL;
     if (!d && !s) return abrdf_py_fail(ABRDF_E_MODEL, "fit: the reference has no lobe");
     abrdf_model cd, cs;
-    if (model_or_none(cd_name, &cd) || model_or_none(cs_name, &cs)) return NULL;
     abrdf_fit_options opt;
-    abrdf_fit_options_init(&opt);
-    if (abrdf_fit_metric_find(metric_name, &opt.metric) != ABRDF_OK)
-        return abrdf_py_fail(ABRDF_E_RANGE, "fit: unknown metric '%s' (l2, log, cbrt, auto)",
-                             metric_name);
-    opt.resolution = resolution;
-    opt.keep_shared = keep_shared;
-    opt.predict = predict;
+    if (fit_setup(cd_name, cs_name, metric_name, resolution, keep_shared, predict, &cd, &cs, &opt))
+        return NULL;
     abrdf_params ref, cand;
     if (reference_block(d, s, &ref)) return NULL;
     abrdf_params_init(cs != ABRDF_MODEL_NONE ? cs : cd, &cand);
     abrdf_fit_result res;
     abrdf_fit_result_init(&res);
-    size_t ws = abrdf_fit_workspace_size(&opt, NULL);
-    if (!ws)
-        return abrdf_py_fail(ABRDF_E_RANGE, "fit: resolution %d is outside [0, 5]", resolution);
-    void *work = PyMem_RawMalloc(ws);
-    if (!work) return PyErr_NoMemory();
+    size_t ws;
+    void *work = fit_workspace(&opt, &ws);
+    if (!work) return NULL;
     int st;
     Py_BEGIN_ALLOW_THREADS;
     st = abrdf_fit(d ? d->model : ABRDF_MODEL_NONE, s ? s->model : ABRDF_MODEL_NONE, &ref, cd, cs,
@@ -91,23 +139,42 @@ static PyObject *py_fit(PyObject *self, PyObject *args, PyObject *kwargs)
     Py_END_ALLOW_THREADS;
     PyMem_RawFree(work);
     if (st != ABRDF_OK) return abrdf_py_fail(st, "%s", res.message);
-    PyObject *out = PyDict_New();
-    if (!out) return NULL;
-    if (abrdf_py_set(out, "diffuse_params", lobe_params(cd, &cand)) ||
-        abrdf_py_set(out, "specular_params", lobe_params(cs, &cand)) ||
-        abrdf_py_set(out, "rel_l2", PyFloat_FromDouble(res.rel_l2)) ||
-        abrdf_py_set(out, "max_rel_pct", PyFloat_FromDouble(res.max_rel_pct)) ||
-        abrdf_py_set(out, "max_abs", PyFloat_FromDouble(res.max_abs)) ||
-        abrdf_py_set(out, "nmse_pred", abrdf_py_opt(res.nmse_pred)) ||
-        abrdf_py_set(out, "objective", PyFloat_FromDouble(res.objective)) ||
-        abrdf_py_set(out, "metric", PyUnicode_FromString(abrdf_fit_metric_name(res.metric))) ||
-        abrdf_py_set(out, "fitted", PyLong_FromLong(res.fitted)) ||
-        abrdf_py_set(out, "evals", PyLong_FromLong(res.evals)) ||
-        abrdf_py_set(out, "directions", PyLong_FromLong(res.directions))) {
-        Py_DECREF(out);
+    return fit_dict(cd, cs, &cand, &res);
+}
+
+static PyObject *py_fit_to(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kw[] = {"reference",  "cand_diffuse", "cand_specular", "metric",
+                         "resolution", "keep_shared",  "predict",       NULL};
+    PyObject *reference;
+    const char *cd_name = NULL, *cs_name = NULL, *metric_name = "l2";
+    int resolution = 0, keep_shared = 1, predict = 1;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "Ozz|sipp:fit_to", kw, &reference, &cd_name,
+                                     &cs_name, &metric_name, &resolution, &keep_shared, &predict))
         return NULL;
-    }
-    return out;
+    /* A Table's prepared object points at the Table's buffer; `reference` is held by the
+     * arguments for the whole call. */
+    abrdf_prepared ref;
+    if (abrdf_py_prepared_arg(reference, "reference", &ref)) return NULL;
+    abrdf_model cd, cs;
+    abrdf_fit_options opt;
+    if (fit_setup(cd_name, cs_name, metric_name, resolution, keep_shared, predict, &cd, &cs, &opt))
+        return NULL;
+    abrdf_params cand;
+    abrdf_params_init(cs != ABRDF_MODEL_NONE ? cs : cd, &cand);
+    abrdf_fit_result res;
+    abrdf_fit_result_init(&res);
+    size_t ws;
+    void *work = fit_workspace(&opt, &ws);
+    if (!work) return NULL;
+    int st;
+    Py_BEGIN_ALLOW_THREADS;
+    st = abrdf_fit_to(&ref, cd, cs, &cand, &opt, &res, work, ws);
+    Py_END_ALLOW_THREADS;
+    PyMem_RawFree(work);
+    if (st != ABRDF_OK) return abrdf_py_fail(st, "%s", res.message);
+    return fit_dict(cd, cs, &cand, &res);
 }
 
 static PyObject *py_budget_class(PyObject *self, PyObject *args)
@@ -158,6 +225,11 @@ PyMethodDef abrdf_py_fit_methods[] = {
      "keep_shared=True, predict=True) -> dict: abrdf_fit of the candidate models (names or "
      "None) to the reference (Params or None; one block, the diffuse lobe's parameters from "
      "its Params): the fitted Params per lobe and the errors. Releases the GIL."},
+    {"fit_to", (PyCFunction)(void (*)(void))py_fit_to, METH_VARARGS | METH_KEYWORDS,
+     "fit_to(reference, cand_diffuse, cand_specular, metric='l2', resolution=0, "
+     "keep_shared=True, predict=True) -> dict: abrdf_fit_to of the candidate models (names or "
+     "None) to a prepared reference: a Table (a measured table) or a Params; fit()'s dict. "
+     "Releases the GIL."},
     {"select_budget", (PyCFunction)(void (*)(void))py_select_budget, METH_VARARGS | METH_KEYWORDS,
      "select_budget(material, max_nmse, costs=None, cost_unit=None) -> dict: "
      "abrdf_select_budget on a material dict (abrdf.Material's fields), with the trace; costs "

@@ -10,7 +10,7 @@ static int join_methods(void)
 {
     const PyMethodDef *parts[] = {abrdf_py_models_methods, abrdf_py_eval_methods,
                                   abrdf_py_select_methods, abrdf_py_compare_methods,
-                                  abrdf_py_fit_methods};
+                                  abrdf_py_fit_methods,    abrdf_py_measured_methods};
     int n = 0;
     for (size_t p = 0; p < sizeof parts / sizeof parts[0]; ++p)
         for (const PyMethodDef *m = parts[p]; m->ml_name; ++m) {
@@ -26,7 +26,7 @@ static struct PyModuleDef module = {
     .m_doc =
         "libabrdf's C API for the package abrdf (python/abrdf): the registry, parameter "
         "blocks, evaluation over arrays, the selection flowchart, fitting and the budget mode, "
-        "and image metrics.",
+        "image metrics and measured tables.",
     .m_size = -1,
     .m_methods = methods,
 };
@@ -37,7 +37,8 @@ PyMODINIT_FUNC PyInit__abrdf(void)
         PyErr_SetString(PyExc_SystemError, "abrdf._abrdf: METHODS_MAX is too small");
         return NULL;
     }
-    if (PyType_Ready(&abrdf_py_params_type) < 0) return NULL;
+    if (PyType_Ready(&abrdf_py_params_type) < 0 || PyType_Ready(&abrdf_py_table_type) < 0)
+        return NULL;
     PyObject *m = PyModule_Create(&module);
     if (!m) return NULL;
     PyObject *error = abrdf_py_error_type_new();
@@ -49,6 +50,12 @@ PyMODINIT_FUNC PyInit__abrdf(void)
     Py_INCREF(&abrdf_py_params_type);
     if (PyModule_AddObject(m, "Params", (PyObject *)&abrdf_py_params_type) < 0) {
         Py_DECREF(&abrdf_py_params_type);
+        Py_DECREF(m);
+        return NULL;
+    }
+    Py_INCREF(&abrdf_py_table_type);
+    if (PyModule_AddObject(m, "Table", (PyObject *)&abrdf_py_table_type) < 0) {
+        Py_DECREF(&abrdf_py_table_type);
         Py_DECREF(m);
         return NULL;
     }

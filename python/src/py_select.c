@@ -4,6 +4,7 @@
  *                   mat_table_load, with its "file:line: problem" errors)
  *   load_costs      a cost file of `abrdf calibrate` (costs_load)
  *   paper_costs     the paper's Table 4 (abrdf_costs_paper)
+ *   builtin_costs   the budget mode's built-in table (abrdf_costs_builtin)
  *   select          abrdf_select on a material given as a dict, with the trace
  *   rules           the flowchart's thresholds and model choices (abrdf_select_rules_get)
  *   surfaces, goals the stable names of the surface classes and goals */
@@ -12,6 +13,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "abrdf_fit.h"
 #include "cost_file.h"
 #include "materials.h"
 #include "select_trace.h"
@@ -150,6 +152,15 @@ static PyObject *py_paper_costs(PyObject *self, PyObject *unused)
     (void)self, (void)unused;
     abrdf_costs c;
     abrdf_costs_paper(&c);
+    return costs_dict(&c, -1.0);
+}
+
+static PyObject *py_builtin_costs(PyObject *self, PyObject *unused)
+{
+    (void)self, (void)unused;
+    abrdf_costs c;
+    int st = abrdf_costs_builtin(&c);
+    if (st != ABRDF_OK) return abrdf_py_fail(st, "abrdf_costs_builtin: %s", abrdf_strerror(st));
     return costs_dict(&c, -1.0);
 }
 
@@ -496,6 +507,9 @@ PyMethodDef abrdf_py_select_methods[] = {
      "load_costs(path) -> dict: a cost file of `abrdf calibrate` (unit, unit_ns, costs)"},
     {"paper_costs", py_paper_costs, METH_NOARGS,
      "paper_costs() -> dict: the paper's Table 4 cycle counts (unit, unit_ns None, costs)"},
+    {"builtin_costs", py_builtin_costs, METH_NOARGS,
+     "builtin_costs() -> dict: the built-in table of measured costs the budget mode uses "
+     "(abrdf_costs_builtin: unit, unit_ns None, costs)"},
     {"select", (PyCFunction)(void (*)(void))py_select, METH_VARARGS | METH_KEYWORDS,
      "select(material, goal, max_rel_pct=2, max_abs=0.05, costs=None, cost_unit=None) -> dict: "
      "abrdf_select on a material dict (abrdf.Material's fields), with the trace. Releases the "
