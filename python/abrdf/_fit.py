@@ -62,10 +62,13 @@ def _reference(ref: Reference) -> tuple[BRDF | None, BRDF | None]:
     return sel.diffuse_brdf, sel.specular_brdf
 
 
-def fit(reference: Reference, candidate: str | tuple[str | None, str | None], *,
-        metric: Metric = "l2", resolution: int = 0, keep_shared: bool = True,
-        predict: bool = True) -> Fit:
+def fit(reference: Reference, candidate: str | tuple[str | None, str | None] | None = None, *,
+        to: Reference | None = None, metric: Metric = "l2", resolution: int = 0,
+        keep_shared: bool = True, predict: bool = True) -> Fit:
     """Fit a candidate model (or diffuse + specular pair) to a reference (abrdf_fit).
+
+    fit(reference, candidate) or, the same, fit(candidate, to=reference): "fit this model to
+    that", as fit("disney_specular", to=abrdf.load_measured("gold.binary")) reads.
 
     reference: a BRDF; a (diffuse BRDF or None, specular BRDF) pair, whose parameters the
     library reads as one block (the diffuse lobe's from its BRDF); a Selection (its two
@@ -85,6 +88,12 @@ def fit(reference: Reference, candidate: str | tuple[str | None, str | None], *,
     (no candidate lobe, unknown model or metric) raises abrdf.Error. Releases the GIL.
     For example fit(BRDF("disney_specular", r=0.5), "blinn_phong").specular.params["n"] is
     the Blinn-Phong exponent closest to that GGX lobe over the hemisphere."""
+    if to is not None:
+        if candidate is not None:
+            raise _error("fit: give the reference first or as to=, not both")
+        reference, candidate = to, reference  # type: ignore[assignment]
+    if candidate is None:
+        raise _error("fit: no candidate (fit(reference, candidate) or fit(candidate, to=...))")
     cd, cs = _lobes(candidate)
     if is_measured_path(reference):
         reference = load_measured(reference)  # type: ignore[arg-type]

@@ -58,6 +58,12 @@ def test_a_measured_fits_as_its_file(files):
     assert abrdf.fit(os.fsencode(path).decode(), "lambert+f_ge", metric="auto") == by_path
     copied = abrdf.measured_from_array(np.array(loaded.table))
     assert abrdf.fit(copied, "lambert+f_ge", metric="auto") == by_path
+    # "fit this model to that": the same call with the reference as to=
+    assert abrdf.fit("lambert+f_ge", to=loaded, metric="auto") == by_path
+    with pytest.raises(abrdf.Error):
+        abrdf.fit(loaded, "lambert", to=loaded)
+    with pytest.raises(abrdf.Error):
+        abrdf.fit(loaded)
 
 
 def test_a_lambert_table_fits_lambert_exactly(files):
