@@ -8,56 +8,9 @@
 #include <string.h>
 
 #include "abrdf_fit.h"
+#include "measured_cases.h"
 #include "test_util.h"
 
-#define PI 3.14159265358979323846
-
-/* A table and its descriptor. */
-typedef struct table {
-    abrdf_measured desc;
-    float *data;
-} table;
-
-static size_t cell_of(const abrdf_measured *t, int ih, int id, int ip)
-{
-    return (((size_t)ih * t->n_theta_d + id) * t->n_phi_d + ip) * 3;
-}
-
-/* The directions of cell (ih, id, ip) (abrdf.h's grid, phi_h = 0): d rotated by theta_h
- * about y is wi; wo is wi mirrored about h. */
-static void cell_dirs(const abrdf_measured *t, int ih, int id, int ip, double wi[3], double wo[3])
-{
-    double u = (double)ih / t->n_theta_h, th = u * u * PI / 2;
-    double td = (double)id / t->n_theta_d * PI / 2, pd = (double)ip / t->n_phi_d * PI;
-    double d[3] = {sin(td) * cos(pd), sin(td) * sin(pd), cos(td)}, h[3] = {sin(th), 0, cos(th)};
-    wi[0] = d[0] * cos(th) + d[2] * sin(th);
-    wi[1] = d[1];
-    wi[2] = -d[0] * sin(th) + d[2] * cos(th);
-    double hi = wi[0] * h[0] + wi[2] * h[2];
-    for (int c = 0; c < 3; ++c) wo[c] = 2 * hi * h[c] - wi[c];
-}
-
-/* MERL's grid filled with diffuse + specular (either may be none), as abrdf tabulate writes
- * it: cells with a direction below the horizon not measured (-1). */
-static void table_of(table *t, abrdf_model diffuse, abrdf_model specular, const abrdf_params *p)
-{
-    abrdf_measured_init(&t->desc);
-    t->desc.n_theta_h = 90, t->desc.n_theta_d = 90, t->desc.n_phi_d = 180;
-    t->data = malloc((size_t)90 * 90 * 180 * 3 * sizeof *t->data);
-    ck_assert_ptr_nonnull(t->data);
-    t->desc.data = t->data;
-    for (int ih = 0; ih < 90; ++ih)
-        for (int id = 0; id < 90; ++id)
-            for (int ip = 0; ip < 180; ++ip) {
-                double wi[3], wo[3], fd[3] = {0, 0, 0}, fs[3] = {0, 0, 0};
-                cell_dirs(&t->desc, ih, id, ip, wi, wo);
-                if (diffuse != ABRDF_MODEL_NONE) abrdf_eval(diffuse, p, NULL, wi, wo, fd);
-                if (specular != ABRDF_MODEL_NONE) abrdf_eval(specular, p, NULL, wi, wo, fs);
-                float *v = t->data + cell_of(&t->desc, ih, id, ip);
-                int above = wi[2] > 0.0 && wo[2] > 0.0;
-                for (int c = 0; c < 3; ++c) v[c] = above ? (float)(fd[c] + fs[c]) : -1.0f;
-            }
-}
 
 /* The fit of diffuse + specular to a prepared reference, by the L2 metric. */
 typedef struct fit_out {
@@ -91,8 +44,8 @@ static void recovers(abrdf_model spec, double r, double kd, double tol_r, double
     abrdf_params_init(spec, &g);
     g.r = r;
     for (int c = 0; c < 3; ++c) g.kd[c] = kd;
-    table t;
-    table_of(&t, ABRDF_LAMBERT, spec, &g);
+    mc_table t;
+    mc_table_of(&t, 90, 90, 180, ABRDF_LAMBERT, spec, &g);
     abrdf_prepared ref;
     ck_assert_int_eq(abrdf_prepare_measured(&t.desc, &ref), ABRDF_OK);
     fit_out o = fit_to(&ref, ABRDF_LAMBERT, spec);
@@ -203,8 +156,8 @@ START_TEST(bad_arguments_refused)
 {
     abrdf_params g, p;
     abrdf_params_init(ABRDF_LAMBERT, &g);
-    table t;
-    table_of(&t, ABRDF_LAMBERT, ABRDF_MODEL_NONE, &g);
+    mc_table t;
+    mc_table_of(&t, 90, 90, 180, ABRDF_LAMBERT, ABRDF_MODEL_NONE, &g);
     abrdf_prepared ref, blank;
     memset(&blank, 0, sizeof blank);
     ck_assert_int_eq(abrdf_prepare_measured(&t.desc, &ref), ABRDF_OK);

@@ -10,63 +10,14 @@
 
 #include "abrdf.h"
 #include "prepared.h"
+#include "measured_cases.h"
 #include "sample_stats.h"
 #include "test_grid.h"
 #include "test_util.h"
 
 #define PI 3.14159265358979323846
 
-/* A table and its descriptor. */
-typedef struct table {
-    abrdf_measured desc;
-    float *data;
-} table;
-
-static size_t cell_of(const abrdf_measured *t, int ih, int id, int ip)
-{
-    return (((size_t)ih * t->n_theta_d + id) * t->n_phi_d + ip) * 3;
-}
-
-/* The directions of cell (ih, id, ip) (abrdf.h's grid, phi_h = 0): d rotated by theta_h
- * about y is wi; wo is wi mirrored about h. */
-static void cell_dirs(const abrdf_measured *t, int ih, int id, int ip, double wi[3], double wo[3])
-{
-    double u = (double)ih / t->n_theta_h, th = u * u * PI / 2;
-    double td = (double)id / t->n_theta_d * PI / 2, pd = (double)ip / t->n_phi_d * PI;
-    double d[3] = {sin(td) * cos(pd), sin(td) * sin(pd), cos(td)}, h[3] = {sin(th), 0, cos(th)};
-    wi[0] = d[0] * cos(th) + d[2] * sin(th);
-    wi[1] = d[1];
-    wi[2] = -d[0] * sin(th) + d[2] * cos(th);
-    double hi = wi[0] * h[0] + wi[2] * h[2];
-    for (int c = 0; c < 3; ++c) wo[c] = 2 * hi * h[c] - wi[c];
-}
-
-/* A table of the analytic BRDF diffuse + specular (either may be ABRDF_MODEL_NONE), as the
- * generator writes it. */
-static void table_of(table *t, int nh, int nd, int np, abrdf_model diffuse, abrdf_model specular,
-                     const abrdf_params *p)
-{
-    abrdf_measured_init(&t->desc);
-    t->desc.n_theta_h = nh, t->desc.n_theta_d = nd, t->desc.n_phi_d = np;
-    t->data = malloc((size_t)nh * nd * np * 3 * sizeof *t->data);
-    ck_assert_ptr_nonnull(t->data);
-    t->desc.data = t->data;
-    for (int ih = 0; ih < nh; ++ih)
-        for (int id = 0; id < nd; ++id)
-            for (int ip = 0; ip < np; ++ip) {
-                double wi[3], wo[3], fd[3] = {0, 0, 0}, fs[3] = {0, 0, 0};
-                cell_dirs(&t->desc, ih, id, ip, wi, wo);
-                if (diffuse != ABRDF_MODEL_NONE) abrdf_eval(diffuse, p, NULL, wi, wo, fd);
-                if (specular != ABRDF_MODEL_NONE) abrdf_eval(specular, p, NULL, wi, wo, fs);
-                float *v = t->data + cell_of(&t->desc, ih, id, ip);
-                /* a cell with a direction below the horizon holds no reflection: "not
-                 * measured", so that interpolation near the horizon uses the cells above it */
-                int above = wi[2] > 0.0 && wo[2] > 0.0;
-                for (int c = 0; c < 3; ++c) v[c] = above ? (float)(fd[c] + fs[c]) : -1.0f;
-            }
-}
-
-static void prepare(const table *t, abrdf_prepared *pr)
+static void prepare(const mc_table *t, abrdf_prepared *pr)
 {
     ck_assert_int_eq(abrdf_prepare_measured(&t->desc, pr), ABRDF_OK);
 }
@@ -139,7 +90,7 @@ END_TEST
  * precision), away from the grid's clamped end and the horizon. */
 START_TEST(cells_are_exact)
 {
-    table t;
+    mc_table t;
     abrdf_measured_init(&t.desc);
     t.desc.n_theta_h = 12, t.desc.n_theta_d = 10, t.desc.n_phi_d = 16;
     size_t n = (size_t)12 * 10 * 16 * 3;
@@ -153,10 +104,10 @@ START_TEST(cells_are_exact)
         for (int id = 1; id < 9; ++id)
             for (int ip = 0; ip < 16; ++ip) {
                 double wi[3], wo[3], f[3];
-                cell_dirs(&t.desc, ih, id, ip, wi, wo);
+                mc_cell_dirs(&t.desc, ih, id, ip, wi, wo);
                 if (!(wi[2] > 1e-3 && wo[2] > 1e-3)) continue;
                 ck_assert_int_eq(abrdf_eval_prepared(&pr, NULL, wi, wo, f), ABRDF_OK);
-                const float *v = t.data + cell_of(&t.desc, ih, id, ip);
+                const float *v = t.data + mc_cell(&t.desc, ih, id, ip);
                 for (int c = 0; c < 3; ++c)
                     if (!tu_close(f[c], v[c], 1e-9, 1e-12))
                         ck_abort_msg("cell (%d,%d,%d) c%d: %.17g, table %.9g", ih, id, ip, c, f[c],
@@ -171,7 +122,7 @@ END_TEST
 /* Relative cosine-weighted L2 error of the table's BRDF against the analytic one over
  * random direction pairs above the horizon, and the largest pointwise error relative to the
  * BRDF's peak over the set. */
-static void table_error(const table *t, abrdf_model diffuse, abrdf_model specular,
+static void table_error(const mc_table *t, abrdf_model diffuse, abrdf_model specular,
                         const abrdf_params *p, double *rel_l2, double *max_rel)
 {
     abrdf_prepared pr;
@@ -214,8 +165,8 @@ START_TEST(analytic_tables_read_back)
         abrdf_params_init(cases[k].s != ABRDF_MODEL_NONE ? cases[k].s : cases[k].d, &p);
         p.r = cases[k].r;
         for (int c = 0; c < 3; ++c) p.kd[c] = 0.5, p.ks[c] = 1.0, p.f0[c] = 0.04 + 0.3 * c;
-        table t;
-        table_of(&t, 90, 90, 180, cases[k].d, cases[k].s, &p);
+        mc_table t;
+        mc_table_of(&t, 90, 90, 180, cases[k].d, cases[k].s, &p);
         double l2, mx;
         table_error(&t, cases[k].d, cases[k].s, &p, &l2, &mx);
         printf("measured %s + %s r=%.2f: rel L2 %.3g, max %.3g of the peak\n",
@@ -230,12 +181,12 @@ START_TEST(analytic_tables_read_back)
 END_TEST
 
 /* A table with holes, NaN, Inf and huge cells, on a coarse grid. */
-static void hostile_table(table *t)
+static void hostile_table(mc_table *t)
 {
     abrdf_params p;
     abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
     p.r = 0.2;
-    table_of(t, 16, 12, 24, ABRDF_LAMBERT, ABRDF_DISNEY_SPECULAR, &p);
+    mc_table_of(t, 16, 12, 24, ABRDF_LAMBERT, ABRDF_DISNEY_SPECULAR, &p);
     size_t n = (size_t)16 * 12 * 24 * 3;
     for (size_t i = 0; i < n; i += 37) t->data[i] = -1.0f;
     t->data[5] = NAN;
@@ -245,7 +196,7 @@ static void hostile_table(table *t)
 
 START_TEST(invariants)
 {
-    table t;
+    mc_table t;
     hostile_table(&t);
     abrdf_prepared pr;
     prepare(&t, &pr);
@@ -316,8 +267,8 @@ START_TEST(albedo_bound)
     abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
     p.r = 0.5;
     for (int c = 0; c < 3; ++c) p.ks[c] = 1.0, p.f0[c] = 1.0;
-    table t;
-    table_of(&t, 45, 45, 90, ABRDF_MODEL_NONE, ABRDF_DISNEY_SPECULAR, &p);
+    mc_table t;
+    mc_table_of(&t, 45, 45, 90, ABRDF_MODEL_NONE, ABRDF_DISNEY_SPECULAR, &p);
     abrdf_prepared pr;
     prepare(&t, &pr);
     for (int k = 0; k < 6; ++k) {
@@ -341,14 +292,14 @@ END_TEST
  * direction pair on a grid node, where 0 * Inf would be NaN). */
 START_TEST(infinite_cells)
 {
-    table t;
+    mc_table t;
     abrdf_measured_init(&t.desc);
     t.desc.n_theta_h = 8, t.desc.n_theta_d = 8, t.desc.n_phi_d = 16;
     size_t n = (size_t)8 * 8 * 16 * 3;
     t.data = malloc(n * sizeof *t.data);
     t.desc.data = t.data;
     for (size_t i = 0; i < n; ++i) t.data[i] = 0.1f;
-    t.data[cell_of(&t.desc, 0, 1, 0)] = INFINITY;
+    t.data[mc_cell(&t.desc, 0, 1, 0)] = INFINITY;
     abrdf_prepared pr;
     prepare(&t, &pr);
     const double z[3] = {0, 0, 1};
@@ -366,18 +317,18 @@ END_TEST
 /* Holes are filled from the measured neighbours; a region with none gives 0. */
 START_TEST(holes)
 {
-    table t;
+    mc_table t;
     abrdf_measured_init(&t.desc);
     t.desc.n_theta_h = t.desc.n_theta_d = 4, t.desc.n_phi_d = 8;
     size_t n = (size_t)4 * 4 * 8 * 3;
     t.data = malloc(n * sizeof *t.data);
     t.desc.data = t.data;
     for (size_t i = 0; i < n; ++i) t.data[i] = 0.25f;
-    t.data[cell_of(&t.desc, 1, 1, 2) + 1] = -1.0f; /* green of one cell not measured */
+    t.data[mc_cell(&t.desc, 1, 1, 2) + 1] = -1.0f; /* green of one cell not measured */
     abrdf_prepared pr;
     prepare(&t, &pr);
     double wi[3], wo[3], f[3];
-    cell_dirs(&t.desc, 1, 1, 2, wi, wo);
+    mc_cell_dirs(&t.desc, 1, 1, 2, wi, wo);
     abrdf_eval_prepared(&pr, NULL, wi, wo, f);
     ck_assert(tu_close(f[0], 0.25, 1e-12, 0) && tu_close(f[1], 0.25, 1e-12, 0));
     for (size_t i = 0; i < n; ++i) t.data[i] = -1.0f;
@@ -410,8 +361,8 @@ START_TEST(sampling)
     abrdf_params p;
     abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
     p.r = 0.3;
-    table t;
-    table_of(&t, 45, 45, 90, ABRDF_LAMBERT, ABRDF_DISNEY_SPECULAR, &p);
+    mc_table t;
+    mc_table_of(&t, 45, 45, 90, ABRDF_LAMBERT, ABRDF_DISNEY_SPECULAR, &p);
     abrdf_prepared pr;
     prepare(&t, &pr);
     enum { NT = 24, NP = 48 };
