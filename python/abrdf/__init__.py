@@ -41,7 +41,8 @@ without the cosine factor, per RGB channel.
 from __future__ import annotations
 
 from ._abrdf import MAX_LAYERS, Error, Params
-from ._brdf import BRDF, Model, Parameter, eval, model, models
+from ._brdf import BRDF, Model, Parameter, model, models
+from ._eval import eval
 from ._compare import Comparison, compare, read_image
 from ._fit import Fit, fit
 from ._measured import Measured, load_measured, measured_from_array

@@ -1,19 +1,16 @@
-"""The registry and evaluation: models(), model(), BRDF, eval()."""
+"""The registry and the BRDF: models(), model(), BRDF (abrdf.eval is in _eval.py)."""
 from __future__ import annotations
 
 import functools
 import operator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Literal, Sequence, Union
+from typing import Literal, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _abrdf
 from ._arrays import real_array
-
-if TYPE_CHECKING:
-    from ._measured import Measured
 
 ParamValue = Union[float, int, Sequence[float]]
 Precision = Literal["float", "double"]
@@ -190,19 +187,3 @@ class BRDF:
 
 def _brdf_from(model: str, params: dict[str, ParamValue]) -> BRDF:
     return BRDF(model, **params)
-
-
-def eval(model: str | BRDF | Measured, wi: npt.ArrayLike, wo: npt.ArrayLike,
-         precision: Precision = "float", threads: int = 0, **params: ParamValue) -> np.ndarray:
-    """f_r of `model` (a name, with its parameters as keywords, a BRDF or a Measured table)
-    for arrays of direction pairs: BRDF(model, **params).eval(wi, wo, precision, threads)."""
-    if isinstance(model, str):
-        return BRDF(model, **params).eval(wi, wo, precision, threads)
-    if params:
-        raise TypeError("eval: parameters are given to BRDF(...), not with a %s"
-                        % type(model).__name__)
-    from ._measured import Measured
-    if not isinstance(model, (BRDF, Measured)):
-        raise TypeError("eval: a model name, a BRDF or a Measured is needed, got %s"
-                        % type(model).__name__)
-    return model.eval(wi, wo, precision, threads)
