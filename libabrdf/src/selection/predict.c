@@ -340,6 +340,22 @@ double abrdf__pred_nmse(abrdf__pred *pr, const abrdf__brdf *b)
     return worst;
 }
 
+/* The prediction of b against ref once both are made (the public forms' common part). */
+static int predict_made(const abrdf__brdf *ref, const abrdf__brdf *b, const abrdf_view *view,
+                        double *nmse, void *work, size_t work_size)
+{
+    char msg[ABRDF_FIT_MESSAGE_MAX];
+    int integrating =
+        ((abrdf__brdf_needs(ref) | abrdf__brdf_needs(b)) & ABRDF_NEEDS_INTEGRATION) != 0;
+    abrdf__arena a;
+    abrdf__arena_init(&a, work, work_size);
+    abrdf__pred pr;
+    int st = abrdf__pred_prepare(&pr, view, ref, integrating, &a, msg, sizeof msg);
+    if (st != ABRDF_OK) return st;
+    *nmse = abrdf__pred_nmse(&pr, b);
+    return ABRDF_OK;
+}
+
 int abrdf_predict_nmse(abrdf_model ref_diffuse, abrdf_model ref_specular,
                        const abrdf_params *ref_params, abrdf_model diffuse, abrdf_model specular,
                        const abrdf_params *params, const abrdf_view *view, double *nmse, void *work,
@@ -353,15 +369,7 @@ int abrdf_predict_nmse(abrdf_model ref_diffuse, abrdf_model ref_specular,
     int st = abrdf__brdf_make(&ref, ref_diffuse, ref_specular, ref_params, msg, sizeof msg);
     if (st == ABRDF_OK) st = abrdf__brdf_make(&b, diffuse, specular, params, msg, sizeof msg);
     if (st != ABRDF_OK) return st;
-    int integrating =
-        ((abrdf__brdf_needs(&ref) | abrdf__brdf_needs(&b)) & ABRDF_NEEDS_INTEGRATION) != 0;
-    abrdf__arena a;
-    abrdf__arena_init(&a, work, work_size);
-    abrdf__pred pr;
-    st = abrdf__pred_prepare(&pr, view, &ref, integrating, &a, msg, sizeof msg);
-    if (st != ABRDF_OK) return st;
-    *nmse = abrdf__pred_nmse(&pr, &b);
-    return ABRDF_OK;
+    return predict_made(&ref, &b, view, nmse, work, work_size);
 }
 
 int abrdf_predict_nmse_to(const abrdf_prepared *reference, abrdf_model diffuse,
@@ -376,13 +384,5 @@ int abrdf_predict_nmse_to(const abrdf_prepared *reference, abrdf_model diffuse,
     int st = abrdf__brdf_from_prepared(&ref, reference, msg, sizeof msg);
     if (st == ABRDF_OK) st = abrdf__brdf_make(&b, diffuse, specular, params, msg, sizeof msg);
     if (st != ABRDF_OK) return st;
-    int integrating =
-        ((abrdf__brdf_needs(&ref) | abrdf__brdf_needs(&b)) & ABRDF_NEEDS_INTEGRATION) != 0;
-    abrdf__arena a;
-    abrdf__arena_init(&a, work, work_size);
-    abrdf__pred pr;
-    st = abrdf__pred_prepare(&pr, view, &ref, integrating, &a, msg, sizeof msg);
-    if (st != ABRDF_OK) return st;
-    *nmse = abrdf__pred_nmse(&pr, &b);
-    return ABRDF_OK;
+    return predict_made(&ref, &b, view, nmse, work, work_size);
 }
