@@ -11,7 +11,6 @@
 #include "measured_cases.h"
 #include "test_util.h"
 
-
 /* The fit of diffuse + specular to a prepared reference, by the L2 metric. */
 typedef struct fit_out {
     int status;
