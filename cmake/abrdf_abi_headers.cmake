@@ -23,11 +23,12 @@ endfunction()
 function(abrdf_abi_headers out_dir mode)
   set(inc ${PROJECT_SOURCE_DIR}/libabrdf/include)
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
-               ${inc}/abrdf.h ${inc}/abrdf_select.h ${inc}/abrdf_fit.h
+               ${inc}/abrdf.h ${inc}/abrdf_select.h ${inc}/abrdf_fit.h ${inc}/abrdf_pbr.h
                ${CMAKE_CURRENT_FUNCTION_LIST_FILE})
   file(READ ${inc}/abrdf.h abrdf_h)
   file(READ ${inc}/abrdf_select.h select_h)
   file(READ ${inc}/abrdf_fit.h fit_h)
+  file(READ ${inc}/abrdf_pbr.h pbr_h)
 
   # New ids go just before the terminators: existing values stay, every count grows.
   _abrdf_abi_edit(abrdf_h "a model" "\n    ABRDF_MODEL_COUNT "
@@ -56,6 +57,8 @@ function(abrdf_abi_headers out_dir mode)
       _abrdf_abi_edit(fit_h "${t}" "\n} ${t};"
                       "\n    double abi_test_appended[5]; /* a later release's field */\n} ${t};")
     endforeach()
+    _abrdf_abi_edit(pbr_h "abrdf_pbr" "\n} abrdf_pbr;"
+                    "\n    double abi_test_appended[5]; /* a later release's field */\n} abrdf_pbr;")
   elseif(NOT mode STREQUAL "COUNTS")
     message(FATAL_ERROR "abrdf_abi_headers: mode is COUNTS or GROWN, not '${mode}'")
   endif()
@@ -64,7 +67,9 @@ function(abrdf_abi_headers out_dir mode)
   file(WRITE ${out_dir}/abrdf.h.new "${note}${abrdf_h}")
   file(WRITE ${out_dir}/abrdf_select.h.new "${note}${select_h}")
   file(WRITE ${out_dir}/abrdf_fit.h.new "${note}${fit_h}")
+  file(WRITE ${out_dir}/abrdf_pbr.h.new "${note}${pbr_h}")
   configure_file(${out_dir}/abrdf.h.new ${out_dir}/abrdf.h COPYONLY)
   configure_file(${out_dir}/abrdf_select.h.new ${out_dir}/abrdf_select.h COPYONLY)
   configure_file(${out_dir}/abrdf_fit.h.new ${out_dir}/abrdf_fit.h COPYONLY)
+  configure_file(${out_dir}/abrdf_pbr.h.new ${out_dir}/abrdf_pbr.h COPYONLY)
 endfunction()
