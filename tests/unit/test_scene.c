@@ -103,6 +103,12 @@ static const struct {
     {"ambient\n", 3, "ambient needs"},
     {"sphere material=m radius=1 stray\n", 3, "unexpected word 'stray'"},
     {"=5\n", 3, "no key"},
+    {"material g pbr roughness=1.5\n", 3, "roughness = 1.5 is outside [0, 1]"},
+    {"material g pbr metalic=1\n", 3, "unknown key 'metalic'"},
+    {"material g pbr goal=photoreal budget=slight\n", 3, "not both"},
+    {"material g pbr base_color_map=no_such.png\n", 3, "base_color_map: no_such.png"},
+    {"material g pbr normal_channel=1\n", 3, "read as RGB"},
+    {"material g pbr roughness_channel=1.5\n", 3, "not a whole number"},
 };
 
 START_TEST(errors_name_file_line_and_problem)
@@ -394,6 +400,47 @@ START_TEST(table_material_parameters_take_effect)
 }
 END_TEST
 
+/* `material NAME pbr`: glTF's defaults, the mapped lobes, and an adaptive one chosen from
+ * abrdf_pbr_material. */
+START_TEST(pbr_materials_map_and_select)
+{
+    scene s;
+    char err[512];
+    ck_assert_msg(parse("material g pbr base_color=1,0.5,0.25 metallic=1 roughness=0.4\n"
+                        "material d pbr\n"
+                        "material a pbr metallic=0 roughness=0.01 goal=photoreal\n"
+                        "sphere material=g radius=1\n",
+                        &s, err, sizeof err) == 0,
+                  "%s", err);
+    const scene_material *g = &s.materials[1], *d = &s.materials[2];
+    ck_assert(g->pbr && g->kind == SCENE_MAT_MODELS && !g->textured);
+    ck_assert_int_eq(g->lobe_count, 2);
+    ck_assert_int_eq(g->lobes[0], ABRDF_LAMBERT_FRESNEL);
+    ck_assert_int_eq(g->lobes[1], ABRDF_DISNEY_SPECULAR);
+    ck_assert_double_eq_tol(g->params.f0[1], 0.5, 1e-15);
+    ck_assert_double_eq(g->params.kd[0], 0);
+    ck_assert_double_eq(g->params.r, 0.4);
+    ck_assert(d->pbr_in.metallic == 1 && d->pbr_in.roughness == 1); /* glTF's defaults */
+    ck_assert(d->maps[SCENE_MAP_ROUGHNESS].channel == 1 &&
+              d->maps[SCENE_MAP_METALLIC].channel == 2);
+    ck_assert_int_eq(s.materials[3].kind, SCENE_MAT_ADAPTIVE);
+    scene_selection how = SCENE_SELECTION_INIT;
+    ck_assert_msg(scene_select(&s, "t.scene", &how, NULL, NULL, err, sizeof err) == 0, "%s", err);
+    /* smooth (alpha <= 0.03) photoreal general surface: Lambert (1 - F) + f_2E */
+    ck_assert_int_eq(s.materials[3].lobes[0], ABRDF_LAMBERT_FRESNEL);
+    ck_assert_int_eq(s.materials[3].lobes[1], ABRDF_F_2E);
+    abrdf_pbr q = g->pbr_in;
+    q.roughness = 0.8, q.base_color[0] = 0.5;
+    abrdf_params at;
+    ck_assert_int_eq(scene_pbr_params(g, &q, &at), 0);
+    ck_assert_double_eq(at.r, 0.8);
+    ck_assert_double_eq_tol(at.f0[0], 0.5, 1e-15);
+    q.roughness = -1;
+    ck_assert_int_eq(scene_pbr_params(g, &q, &at), -1);
+    scene_free(&s);
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("scene");
@@ -403,6 +450,7 @@ static Suite *suite(void)
                         (int)(sizeof bad / sizeof bad[0]));
     tcase_add_test(tp, whole_file_errors);
     tcase_add_test(tp, table_material_parameters_take_effect);
+    tcase_add_test(tp, pbr_materials_map_and_select);
     suite_add_tcase(s, tp);
     TCase *tg = tcase_create("geometry");
     tcase_add_test(tg, sphere_closed_form);

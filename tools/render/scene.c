@@ -589,6 +589,184 @@ static int material_params(parser *p, word *w, int n, int from, scene_material *
     return 0;
 }
 
+/* ---- pbr materials (glTF metallic-roughness, abrdf_pbr.h) ------------------------------ */
+
+static const char *const map_names[SCENE_MAP_COUNT] = {"base_color", "metallic", "roughness",
+                                                       "occlusion", "normal"};
+
+const char *scene_map_name(scene_map_slot slot)
+{
+    return (unsigned)slot < SCENE_MAP_COUNT ? map_names[slot] : NULL;
+}
+
+#define PBR_KEYS                                                                                   \
+    "base_color, metallic, roughness, ior, specular, specular_color, clearcoat, "                  \
+    "clearcoat_roughness, sheen_color, sheen_roughness, anisotropy, anisotropy_rotation, "         \
+    "transmission, base_color_map, base_color_srgb, metallic_map, metallic_channel, "              \
+    "roughness_map, roughness_channel, occlusion_map, occlusion_channel, occlusion_strength, "     \
+    "normal_map, normal_scale, ka, goal, budget"
+
+static void maps_free(scene_material *m)
+{
+    for (int k = 0; k < SCENE_MAP_COUNT; ++k) free(m->maps[k].path), m->maps[k].path = NULL;
+}
+
+/* The words of `material NAME pbr ...` from index 3: factors, maps, goal= or budget=. The
+ * material gets glTF's defaults for what the line omits. 0, or -1 after the message (its
+ * map paths freed). */
+static int pbr_words(parser *p, word *w, int n, scene_material *m)
+{
+    abrdf_pbr *q = &m->pbr_in;
+    abrdf_pbr_init(q);
+    static const int default_channel[SCENE_MAP_COUNT] = {0, 2, 1, 0, 0};
+    for (int k = 0; k < SCENE_MAP_COUNT; ++k) {
+        m->maps[k].channel = default_channel[k];
+        m->maps[k].srgb = k == SCENE_MAP_BASE_COLOR;
+        m->maps[k].strength = 1;
+        m->maps[k].scale[0] = m->maps[k].scale[1] = 1;
+    }
+    struct {
+        const char *key;
+        double *v;
+        int rgb;
+        double lo, hi;
+    } const f[] = {
+        {"base_color", q->base_color, 1, 0, 1},
+        {"metallic", &q->metallic, 0, 0, 1},
+        {"roughness", &q->roughness, 0, 0, 1},
+        {"ior", &q->ior, 0, 1, 4},
+        {"specular", &q->specular, 0, 0, 1},
+        {"specular_color", q->specular_color, 1, 0, 100},
+        {"clearcoat", &q->clearcoat, 0, 0, 1},
+        {"clearcoat_roughness", &q->clearcoat_roughness, 0, 0, 1},
+        {"sheen_color", q->sheen_color, 1, 0, 1},
+        {"sheen_roughness", &q->sheen_roughness, 0, 0, 1},
+        {"anisotropy", &q->anisotropy, 0, 0, 1},
+        {"anisotropy_rotation", &q->anisotropy_rotation, 0, -1e3, 1e3},
+        {"transmission", &q->transmission, 0, 0, 1},
+        {"occlusion_strength", &m->maps[SCENE_MAP_OCCLUSION].strength, 0, 0, 1},
+        {"normal_scale", &m->maps[SCENE_MAP_NORMAL].strength, 0, -100, 100},
+    };
+    for (size_t i = 0; i < sizeof f / sizeof f[0]; ++i) {
+        const char *v = take(w, n, 3, f[i].key);
+        if (!v) continue;
+        if (f[i].rgb) {
+            double c[3];
+            if (get_rgb(p, f[i].key, v, c)) return -1;
+            for (int k = 0; k < 3; ++k)
+                if (c[k] < f[i].lo || c[k] > f[i].hi)
+                    return fail(p, "%s = %s is outside [%g, %g]", f[i].key, v, f[i].lo, f[i].hi);
+            memcpy(f[i].v, c, sizeof c);
+        } else if (get_num(p, f[i].key, v, f[i].lo, f[i].hi, 0, f[i].v)) {
+            return -1;
+        }
+    }
+    for (int k = 0; k < SCENE_MAP_COUNT; ++k) {
+        char key[40];
+        snprintf(key, sizeof key, "%s_map", map_names[k]);
+        const char *file = take(w, n, 3, key);
+        snprintf(key, sizeof key, "%s_channel", map_names[k]);
+        const char *ch = take(w, n, 3, key);
+        if (ch) {
+            double c;
+            if (k == SCENE_MAP_BASE_COLOR || k == SCENE_MAP_NORMAL)
+                return fail(p, "%s: the %s map is read as RGB", key, map_names[k]);
+            if (get_num(p, key, ch, 0, 3, 0, &c)) return -1;
+            if (c != floor(c)) return fail(p, "%s = %s is not a whole number", key, ch);
+            m->maps[k].channel = (int)c;
+        }
+        if (!file) continue;
+        if (!*file) return fail(p, "%s_map= is empty", map_names[k]);
+        char *path = named_path(p, file);
+        if (!path) return -1;
+        char err[512];
+        if (in_file_check(path, err, sizeof err)) {
+            free(path);
+            return fail(p, "%s_map: %s", map_names[k], err);
+        }
+        m->maps[k].path = path;
+        m->textured = 1;
+    }
+    const char *srgb = take(w, n, 3, "base_color_srgb");
+    if (srgb) {
+        if (strcmp(srgb, "on") && strcmp(srgb, "off"))
+            return fail(p, "base_color_srgb=%s: on or off", srgb);
+        m->maps[SCENE_MAP_BASE_COLOR].srgb = !strcmp(srgb, "on");
+    }
+    const char *ka = take(w, n, 3, "ka");
+    if (ka) {
+        if (get_rgb(p, "ka", ka, m->ka)) return -1;
+        m->ka_given = 1;
+    }
+    const char *goal = take(w, n, 3, "goal"), *budget = take(w, n, 3, "budget");
+    if (goal && budget)
+        return fail(p, "give goal= or budget=, not both (a budget's reference is the "
+                       "photoreal choice)");
+    if (budget) {
+        char err[160];
+        m->kind = SCENE_MAT_ADAPTIVE, m->request.by_budget = 1;
+        if (budget_parse(budget, &m->request.max_nmse, err, sizeof err)) return fail(p, "%s", err);
+    } else if (goal) {
+        m->kind = SCENE_MAT_ADAPTIVE;
+        if (abrdf_goal_find(goal, &m->request.goal) != ABRDF_OK)
+            return fail(p, "unknown goal '%s'; goals: photoreal, performance", goal);
+    }
+    if (leftovers(p, w, n, 3, PBR_KEYS)) return -1;
+    char msg[256];
+    if (abrdf_pbr_lobes(q, m->lobes, &m->lobe_count, &m->params) != ABRDF_OK) {
+        abrdf_pbr_check(q, msg, sizeof msg);
+        return fail(p, "material '%s': %s", m->name, msg);
+    }
+    m->params_set = 0;
+    if (!m->ka_given) memcpy(m->ka, m->params.kd, sizeof m->ka);
+    return 0;
+}
+
+int scene_pbr_params(const scene_material *sm, const abrdf_pbr *q, abrdf_params *out)
+{
+    abrdf_model lobes[ABRDF_PBR_MAX_LOBES];
+    int count;
+    abrdf_params mapped;
+    abrdf_params_init(ABRDF_DISNEY_SPECULAR, &mapped);
+    if (abrdf_pbr_lobes(q, lobes, &count, &mapped) != ABRDF_OK) return -1;
+    *out = sm->params;
+    memcpy(out->kd, mapped.kd, sizeof out->kd);
+    memcpy(out->ks, mapped.ks, sizeof out->ks);
+    memcpy(out->f0, mapped.f0, sizeof out->f0);
+    out->r = mapped.r;
+    out->anisotropic = mapped.anisotropic;
+    int n_id;
+    abrdf_param_find("n", &n_id);
+    for (int l = 0; l < sm->lobe_count; ++l)
+        if (cli_model_reads(sm->lobes[l], n_id)) {
+            double a = mapped.r * mapped.r;
+            out->n = a > 0 ? fmin(abrdf_alpha_g_to_n(a), 1e6) : 1e6;
+        }
+    return 0;
+}
+
+/* `material NAME pbr ...`: into the scene's materials. 0, or -1 after the message. */
+static int do_pbr_material(parser *p, word *w, int n, scene_material *m)
+{
+    w[2].used = 1;
+    m->pbr = 1;
+    m->kind = SCENE_MAT_MODELS;
+    abrdf_params_init(ABRDF_DISNEY_SPECULAR, &m->params);
+    if (pbr_words(p, w, n, m)) {
+        maps_free(m);
+        return -1;
+    }
+    scene *s = p->s;
+    scene_material *grown = realloc(s->materials, (size_t)(s->material_count + 1) * sizeof *grown);
+    if (!grown) {
+        maps_free(m);
+        return fail(p, "out of memory");
+    }
+    s->materials = grown;
+    grown[s->material_count++] = *m;
+    return 0;
+}
+
 static int do_material(parser *p, word *w, int n)
 {
     scene *s = p->s;
@@ -601,6 +779,7 @@ static int do_material(parser *p, word *w, int n)
     m.measured = -1;
     if (copy_name(p, "material name", w[1].key, m.name)) return -1;
     if (find_material(s, m.name) >= 0) return fail(p, "material '%s' is defined twice", m.name);
+    if (n > 2 && !w[2].val && !strcmp(w[2].key, "pbr")) return do_pbr_material(p, w, n, &m);
     int from, ka_set, kd_used = 0;
     if (material_kind(p, w, n, &m, &from)) return -1;
     material_defaults(&m);
@@ -811,6 +990,7 @@ void scene_free(scene *s)
     for (int i = 0; i < s->light_count; ++i)
         if (s->lights[i].env) envmap_free(s->lights[i].env), free(s->lights[i].env);
     free(s->lights);
+    for (int i = 0; i < s->material_count; ++i) maps_free(&s->materials[i]);
     free(s->materials);
     free(s->objects);
     for (int i = 0; i < s->mesh_count; ++i) {
@@ -844,6 +1024,10 @@ int scene_named_files(const scene *s, const char **paths, const char **roles, in
             name_file(paths, roles, max, n++, s->lights[i].env->path, "environment map");
     for (int i = 0; i < s->measured_count; ++i)
         name_file(paths, roles, max, n++, s->measured[i].path, "measured file");
+    for (int i = 0; i < s->material_count; ++i)
+        for (int k = 0; k < SCENE_MAP_COUNT; ++k)
+            if (s->materials[i].maps[k].path)
+                name_file(paths, roles, max, n++, s->materials[i].maps[k].path, "texture");
     return n;
 }
 

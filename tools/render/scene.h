@@ -15,6 +15,7 @@
 #define ABRDF_SCENE_H
 
 #include <stddef.h>
+#include "abrdf_pbr.h"
 #include "abrdf_select.h"
 #include "envmap.h"
 #include "measured_table.h"
@@ -91,6 +92,27 @@ typedef struct scene_measured {
     measured_table table; /* owned */
 } scene_measured;
 
+/* The textures of a `pbr` material (glTF's, docs/GLTF.md, "In a scene"): what each multiplies. */
+typedef enum scene_map_slot {
+    SCENE_MAP_BASE_COLOR = 0, /* RGB times base_color; sRGB-encoded unless srgb = 0 (glTF) */
+    SCENE_MAP_METALLIC,       /* one channel (glTF's packing: 2, blue) times metallic */
+    SCENE_MAP_ROUGHNESS,      /* one channel (glTF's packing: 1, green) times roughness */
+    SCENE_MAP_OCCLUSION,      /* one channel (0, red): the ambient term times 1 + s (o - 1) */
+    SCENE_MAP_NORMAL,         /* tangent-space normal, RGB [0, 1] -> [-1, 1], xy times s */
+    SCENE_MAP_COUNT
+} scene_map_slot;
+
+typedef struct scene_map {
+    char *path;       /* the image file, resolved from the scene's directory; NULL: no map */
+    int channel;      /* one-channel slots: the channel read, [0, 3] */
+    int srgb;         /* base colour: 1 = the file holds sRGB-encoded values */
+    double strength;  /* occlusion strength or normal scale (s above); 1 */
+    int uv_set;       /* the mesh's texture coordinates it reads (glTF TEXCOORD_n); 0 */
+    double offset[2]; /* KHR_texture_transform: uv' = offset + R(rotation) (scale * uv); 0 */
+    double scale[2];  /* 1 */
+    double rotation;  /* radians; 0 */
+} scene_map;
+
 typedef struct scene_material {
     char name[SCENE_NAME_MAX];
     scene_material_kind kind;
@@ -104,6 +126,14 @@ typedef struct scene_material {
     int measured; /* a lobe is ABRDF_MEASURED: its table, an index into scene.measured; else -1 */
     select_request request; /* ADAPTIVE: its goal= or budget=, parsed */
     int line;
+    /* `pbr` materials (glTF metallic-roughness, abrdf_pbr.h): pbr_in holds the factors; an
+     * explicit one (SCENE_MAT_MODELS) has abrdf_pbr_lobes(&pbr_in) as lobes and params, an
+     * ADAPTIVE one (goal= or budget=) is chosen from abrdf_pbr_material(&pbr_in). Textures
+     * (maps) multiply the factors per shading point; textured = some map is given. */
+    int pbr;
+    abrdf_pbr pbr_in;
+    scene_map maps[SCENE_MAP_COUNT];
+    int textured;
 } scene_material;
 
 typedef enum scene_shape {
@@ -166,8 +196,9 @@ int scene_parse_file(const char *path, scene *out, char *err, size_t err_size);
 int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,
                      size_t err_size);
 void scene_free(scene *s);
-/* The files the scene names - its mesh files, then its environment maps, as they were read -
- * with their roles ("mesh file", "environment map"): at most max into paths/roles (NULL
+/* The files the scene names - its mesh files, then its environment maps, its measured files
+ * and its materials' textures, as they were read - with their roles ("mesh file",
+ * "environment map", "measured file", "texture"): at most max into paths/roles (NULL
  * roles: not wanted). Returns how many the scene names (it may be more than max). */
 int scene_named_files(const scene *s, const char **paths, const char **roles, int max);
 /* Refuse outputs that are files the scene names (out_files_distinct: links included):
@@ -175,7 +206,14 @@ int scene_named_files(const scene *s, const char **paths, const char **roles, in
 int scene_outputs_distinct(const scene *s, const char *const *outputs,
                            const char *const *output_roles, int nout, char *err, size_t err_size);
 
+/* The parameters of material sm at a shading point whose pbr inputs (its factors times the
+ * texels there) are q: sm's block with what abrdf_pbr_lobes maps q to (kd, ks, f0, r,
+ * anisotropic), and n from r (abrdf_alpha_g_to_n of r^2) where sm's lobes read n (the
+ * performance goal's Blinn-Phong). 0, or -1 if q is out of its ranges. */
+int scene_pbr_params(const scene_material *sm, const abrdf_pbr *q, abrdf_params *out);
+
 const char *scene_shape_name(scene_shape shape);
+const char *scene_map_name(scene_map_slot slot); /* "base_color", ... as `KEY_map=` spells it */
 const char *scene_tangent_name(scene_tangent tangent);
 
 #endif

@@ -268,6 +268,35 @@ static void explain_choice(FILE *f, const scene_material *sm, const select_reque
         fprintf(f, "  %2d. %s\n", k + 1, c->trace.steps[k].text);
 }
 
+/* A `pbr` material (glTF metallic-roughness) as rq asks: the selection reads the material
+ * abrdf_pbr_material makes of its factors. 0, or -1 with the message in err. */
+static int select_pbr(scene_material *sm, const char *scene_name, const select_request *rq,
+                      const abrdf_view *view, FILE *explain, char *err, size_t err_size)
+{
+    abrdf_material am;
+    abrdf_material_init(&am);
+    char msg[512];
+    budget_result c;
+    if (abrdf_pbr_material(&sm->pbr_in, &am) != ABRDF_OK) {
+        abrdf_pbr_check(&sm->pbr_in, msg, sizeof msg);
+        goto fail;
+    }
+    am.name = sm->name;
+    if (choose(&am, rq, view, explain != NULL, &c, msg, sizeof msg)) goto fail;
+    sm->kind = SCENE_MAT_MODELS;
+    sm->lobe_count = 0;
+    if (c.sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = c.sel.diffuse;
+    sm->lobes[sm->lobe_count++] = c.sel.specular;
+    sm->params = c.params;
+    ambient_of(sm, rq, &c);
+    if (explain) explain_choice(explain, sm, rq, NULL, &c);
+    budget_result_free(&c);
+    return 0;
+fail:
+    path_msg(err, err_size, scene_name, ":%d: material '%s': %s", sm->line, sm->name, msg);
+    return -1;
+}
+
 /* Material sm as rq asks (scene_select): 0, or -1 with the message in err. */
 static int select_material(scene_material *sm, const char *scene_name, const select_request *rq,
                            const mat_table *table, const abrdf_view *view, FILE *explain, char *err,
@@ -281,6 +310,7 @@ static int select_material(scene_material *sm, const char *scene_name, const sel
                  sm->line, sm->name);
         return -1;
     }
+    if (sm->pbr) return select_pbr(sm, scene_name, rq, view, explain, err, err_size);
     if (entry_of(sm, table, scene_name, &e, err, err_size)) return -1;
     if (!e && !described(sm, "r") && !described(sm, "n")) {
         path_msg(err, err_size, scene_name,
