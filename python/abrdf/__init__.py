@@ -32,6 +32,9 @@ Functions:
     surfaces(), goals()          the flowchart's surface classes and goals
     compare(reference, test)     NMSE (the paper's), PSNR, Table-8 class, of arrays or files
     read_image(path)             a linear float RGB image (OpenImageIO)
+    Pbr                          a glTF metallic-roughness material's factors (abrdf_pbr)
+    pbr_lobes(p), pbr_material(p)  its explicit lobes (BRDFs) and the flowchart's Material
+    PbrMaterial, TextureRef      a material read from a file: name, Pbr, texture maps
     Error                        a failure of the library (a ValueError), with its message
 
 Conventions are libabrdf's (abrdf.h): directions in the local frame (N = +z, T = +x), `wi`
@@ -46,6 +49,7 @@ from ._eval import eval
 from ._compare import Comparison, compare, read_image
 from ._fit import Fit, fit
 from ._measured import Measured, load_measured, measured_from_array
+from ._pbr import Pbr, PbrMaterial, TextureRef, pbr_lobes, pbr_material
 from ._select import (Layer, Material, Selection, Step, budget_nmse, goals, material, materials,
                       select, surfaces)
 from ._sweep import Sweep, SweepRow, sweep
@@ -66,10 +70,13 @@ __all__ = [
     "Model",
     "Parameter",
     "Params",
+    "Pbr",
+    "PbrMaterial",
     "Selection",
     "Step",
     "Sweep",
     "SweepRow",
+    "TextureRef",
     "budget_nmse",
     "compare",
     "fit",
@@ -80,6 +87,8 @@ __all__ = [
     "measured_from_array",
     "model",
     "models",
+    "pbr_lobes",
+    "pbr_material",
     "read_image",
     "select",
     "surfaces",

@@ -7,7 +7,7 @@ import functools
 import os
 from dataclasses import dataclass
 from importlib import resources
-from typing import Literal, Mapping, Sequence, Union
+from typing import Any, Literal, Mapping, Sequence, Union
 
 from . import _abrdf
 from ._arrays import real_number
@@ -202,7 +202,7 @@ def _error(message: str) -> _abrdf.Error:
     return err
 
 
-def select(material: str | Material | Mapping[str, object], goal: Goal | None = None,
+def select(material: str | Material | Mapping[str, object] | Any, goal: Goal | None = None,
            max_rel_error: float | None = None, max_abs_error: float | None = None,
            costs: PathLike | Mapping[str, float] | None = None, cost_unit: str | None = None,
            extra: PathLike | Sequence[PathLike] | None = None,
@@ -210,8 +210,9 @@ def select(material: str | Material | Mapping[str, object], goal: Goal | None = 
     """The paper's flowchart (Fig. 2; abrdf_select) for a material and a goal, or the
     selection's budget mode (abrdf_select_budget, docs/SELECTION.md, "The budget mode").
 
-    material: a table name (abrdf.materials(extra)), a Material, or a mapping of Material's
-    fields. goal: "photoreal" (the default) or "performance". max_rel_error (percent) and
+    material: a table name (abrdf.materials(extra)), a Material, a mapping of Material's
+    fields, or a glTF / MaterialX material (a PbrMaterial of abrdf.load_gltf or
+    abrdf.load_materialx, or a Pbr: abrdf.pbr_material's Material). goal: "photoreal" (the default) or "performance". max_rel_error (percent) and
     max_abs_error: the performance branch's tolerances (None: the library's defaults, 2 %
     and 0.05; math.inf: no limit). costs: None for the paper's Table 4 (in the budget mode:
     the built-in table of measured costs), a cost file of `abrdf calibrate`, or
@@ -227,7 +228,13 @@ def select(material: str | Material | Mapping[str, object], goal: Goal | None = 
     elif isinstance(material, Material):
         mat = material
     else:
-        mat = _material_of(material)
+        from ._pbr import Pbr, PbrMaterial, pbr_material  # _pbr builds on this module
+        if isinstance(material, PbrMaterial):
+            mat = material.material
+        elif isinstance(material, Pbr):
+            mat = pbr_material(material)
+        else:
+            mat = _material_of(material)
     table, unit = _costs(costs, cost_unit)
     if budget is not None:
         if goal is not None or max_rel_error is not None or max_abs_error is not None:

@@ -17,6 +17,8 @@
  *   py_fit.c      one model fitted to another, the selection's budget mode
  *   py_measured.c measured tables: Table (the `measured` model on a held buffer), the readers
  *                 of MERL and RGL files (tools/measured)
+ *   py_pbr.c      glTF metallic-roughness materials (abrdf_pbr.h): their lobes and the
+ *                 flowchart's material
  * A new C entry point (prepared evaluation, sampling, fitting) is a new py_*.c with its
  * methods, listed in py_module.c, using Params and the buffer helpers below. */
 #ifndef ABRDF_PY_H
@@ -90,6 +92,7 @@ extern PyMethodDef abrdf_py_select_methods[];
 extern PyMethodDef abrdf_py_compare_methods[];
 extern PyMethodDef abrdf_py_fit_methods[];
 extern PyMethodDef abrdf_py_measured_methods[];
+extern PyMethodDef abrdf_py_pbr_methods[];
 
 /* ---- the selection's conversions (py_select.c), shared with py_fit.c ------------------ */
 /* m from a dict of abrdf.Material's fields (absent ones keep abrdf_material_init's); m->name
@@ -102,6 +105,9 @@ int abrdf_py_costs_from(PyObject *costs, const char *unit, abrdf_costs *c);
  * m->name points into: Py_XDECREF it once m is no longer used. 0 or -1 (nothing held). */
 int abrdf_py_material_costs_from(PyObject *mat, PyObject *costs, const char *unit,
                                  abrdf_material *m, abrdf_costs *c, PyObject **name_ref);
+/* m as a dict of abrdf.Material's fields (name, type, n, r, kd, ks, f0, eta, anisotropy,
+ * melanin, redness, layers; unset n, r and eta as None). */
+PyObject *abrdf_py_material_dict(const abrdf_material *m);
 /* The dict abrdf._abrdf.select returns: the choice, its lobes' Params and the trace. */
 PyObject *abrdf_py_selection_dict(const abrdf_selection *s, const abrdf_params *p,
                                   const select_trace *trace);

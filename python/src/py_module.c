@@ -10,7 +10,8 @@ static int join_methods(void)
 {
     const PyMethodDef *parts[] = {abrdf_py_models_methods, abrdf_py_eval_methods,
                                   abrdf_py_select_methods, abrdf_py_compare_methods,
-                                  abrdf_py_fit_methods,    abrdf_py_measured_methods};
+                                  abrdf_py_fit_methods,    abrdf_py_measured_methods,
+                                  abrdf_py_pbr_methods};
     int n = 0;
     for (size_t p = 0; p < sizeof parts / sizeof parts[0]; ++p)
         for (const PyMethodDef *m = parts[p]; m->ml_name; ++m) {
@@ -26,7 +27,7 @@ static struct PyModuleDef module = {
     .m_doc =
         "libabrdf's C API for the package abrdf (python/abrdf): the registry, parameter "
         "blocks, evaluation over arrays, the selection flowchart, fitting and the budget mode, "
-        "image metrics and measured tables.",
+        "image metrics, measured tables and glTF metallic-roughness materials.",
     .m_size = -1,
     .m_methods = methods,
 };

@@ -53,13 +53,11 @@ static PyObject *layers_tuple(const abrdf_layer *layers, int count)
     return t;
 }
 
-/* A table entry as the fields of abrdf.Material. */
-static PyObject *entry_dict(const mat_entry *e)
+PyObject *abrdf_py_material_dict(const abrdf_material *m)
 {
-    const abrdf_material *m = &e->m;
     PyObject *d = PyDict_New();
     if (!d) return NULL;
-    if (abrdf_py_set(d, "name", PyUnicode_FromString(e->name)) ||
+    if (abrdf_py_set(d, "name", m->name ? PyUnicode_FromString(m->name) : Py_NewRef(Py_None)) ||
         abrdf_py_set(d, "type", PyUnicode_FromString(abrdf_surface_name(m->type))) ||
         abrdf_py_set(d, "n", abrdf_py_opt(m->n)) || abrdf_py_set(d, "r", abrdf_py_opt(m->r)) ||
         abrdf_py_set(d, "kd", abrdf_py_rgb(m->kd)) || abrdf_py_set(d, "ks", abrdf_py_rgb(m->ks)) ||
@@ -68,7 +66,19 @@ static PyObject *entry_dict(const mat_entry *e)
         abrdf_py_set(d, "anisotropy", PyFloat_FromDouble(m->anisotropy)) ||
         abrdf_py_set(d, "melanin", PyFloat_FromDouble(m->melanin)) ||
         abrdf_py_set(d, "redness", PyFloat_FromDouble(m->redness)) ||
-        abrdf_py_set(d, "layers", layers_tuple(m->layers, m->layer_count)) ||
+        abrdf_py_set(d, "layers", layers_tuple(m->layers, m->layer_count))) {
+        Py_DECREF(d);
+        return NULL;
+    }
+    return d;
+}
+
+/* A table entry as the fields of abrdf.Material. */
+static PyObject *entry_dict(const mat_entry *e)
+{
+    PyObject *d = abrdf_py_material_dict(&e->m);
+    if (!d) return NULL;
+    if (abrdf_py_set(d, "name", PyUnicode_FromString(e->name)) ||
         abrdf_py_set(d, "source", PyUnicode_FromString(e->source)) ||
         abrdf_py_set(d, "file", PyUnicode_FromString(e->file)) ||
         abrdf_py_set(d, "line", PyLong_FromLong(e->line))) {
