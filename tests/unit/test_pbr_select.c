@@ -154,8 +154,9 @@ START_TEST(budget_of_one_value_is_the_budget_mode)
     pbr_budget_choice c;
     select_trace t = SELECT_TRACE_INIT;
     char msg[256];
-    ck_assert_msg(pbr_budget_range(&p, &r, 2.5e-4, NULL, small_view(), &c, &t, msg, sizeof msg) == 0, "%s",
-                  msg);
+    ck_assert_msg(pbr_budget_range(&p, &r, 2.5e-4, NULL, small_view(), &c, &t, msg, sizeof msg) ==
+                      0,
+                  "%s", msg);
     abrdf_pbr q = p;
     q.roughness = 0.3;
     abrdf_material am;
@@ -182,8 +183,8 @@ START_TEST(budget_over_a_map)
     pbr_budget_choice c;
     select_trace t = SELECT_TRACE_INIT;
     char msg[256];
-    ck_assert_msg(pbr_budget_range(&p, &r, 1e-3, NULL, small_view(), &c, &t, msg, sizeof msg) == 0, "%s",
-                  msg);
+    ck_assert_msg(pbr_budget_range(&p, &r, 1e-3, NULL, small_view(), &c, &t, msg, sizeof msg) == 0,
+                  "%s", msg);
     ck_assert(c.within && c.nmse < 1e-3 && c.groups == 3);
     int pairs = 0;
     for (int k = 0; k < t.count; ++k) {
@@ -198,14 +199,16 @@ START_TEST(budget_over_a_map)
     ck_assert_int_ge(pairs, 3);
     select_trace_free(&t);
     /* a budget nothing but the reference meets: the reference, the same at every value */
-    ck_assert_int_eq(pbr_budget_range(&p, &r, 1e-14, NULL, small_view(), &c, &t, msg, sizeof msg), 0);
+    ck_assert_int_eq(pbr_budget_range(&p, &r, 1e-14, NULL, small_view(), &c, &t, msg, sizeof msg),
+                     0);
     ck_assert(c.within && c.nmse == 0);
     ck_assert_int_eq(c.specular, ABRDF_DISNEY_SPECULAR);
     select_trace_free(&t);
     /* across the smooth threshold the references differ (f_2e, GGX): nothing fitted at
      * every value meets it, and the photoreal choice over the map (GGX) is taken */
     r = range_of(0.01, 0.6, 2);
-    ck_assert_int_eq(pbr_budget_range(&p, &r, 1e-14, NULL, small_view(), &c, &t, msg, sizeof msg), 0);
+    ck_assert_int_eq(pbr_budget_range(&p, &r, 1e-14, NULL, small_view(), &c, &t, msg, sizeof msg),
+                     0);
     ck_assert(!c.within);
     ck_assert_int_eq(c.specular, ABRDF_DISNEY_SPECULAR);
     ck_assert_msg(strstr(t.steps[t.count - 1].text, "photoreal choice"), "%s",
