@@ -3,8 +3,10 @@
  * threshold, and for the performance goal an approximation that passes at every value. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "budget_run.h"
 #include "pbr_select.h"
 #include "test_util.h"
 
@@ -134,6 +136,87 @@ START_TEST(bad_ranges_are_refused)
 }
 END_TEST
 
+/* The default sphere at 32 samples across: the budget's fits in a fraction of the time. */
+static const abrdf_view *small_view(void)
+{
+    static abrdf_view v;
+    abrdf_view_init(&v);
+    v.resolution = 32;
+    return &v;
+}
+
+/* One value: the budget over the map is the budget mode's own choice for that material. */
+START_TEST(budget_of_one_value_is_the_budget_mode)
+{
+    abrdf_pbr p = dielectric();
+    pbr_range r = range_of(0.3, 0.6, 2);
+    r.count = 1; /* r 0.3 alone */
+    pbr_budget_choice c;
+    select_trace t = SELECT_TRACE_INIT;
+    char msg[256];
+    ck_assert_msg(pbr_budget_range(&p, &r, 2.5e-4, NULL, small_view(), &c, &t, msg, sizeof msg) ==
+                      0,
+                  "%s", msg);
+    abrdf_pbr q = p;
+    q.roughness = 0.3;
+    abrdf_material am;
+    abrdf_material_init(&am);
+    ck_assert_int_eq(abrdf_pbr_material(&q, &am), ABRDF_OK);
+    budget_result b;
+    ck_assert_int_eq(budget_run(&am, 2.5e-4, NULL, small_view(), &b, msg, sizeof msg), 0);
+    ck_assert_int_eq(c.specular, b.sel.specular);
+    ck_assert_int_eq(c.diffuse, b.sel.diffuse);
+    ck_assert_double_eq_tol(c.nmse, b.sel.err_nmse, 1e-15);
+    ck_assert(c.within && c.groups == 1);
+    budget_result_free(&b);
+    select_trace_free(&t);
+}
+END_TEST
+
+/* A map over several values: the winner's NMSE over the map is within the budget, and no
+ * pair the trace lists as within is more than 15 % cheaper. An impossible budget falls back
+ * to the photoreal choice over the map. */
+START_TEST(budget_over_a_map)
+{
+    abrdf_pbr p = dielectric();
+    pbr_range r = range_of(0.15, 0.6, 3);
+    pbr_budget_choice c;
+    select_trace t = SELECT_TRACE_INIT;
+    char msg[256];
+    ck_assert_msg(pbr_budget_range(&p, &r, 1e-3, NULL, small_view(), &c, &t, msg, sizeof msg) == 0,
+                  "%s", msg);
+    ck_assert(c.within && c.nmse < 1e-3 && c.groups == 3);
+    int pairs = 0;
+    for (int k = 0; k < t.count; ++k) {
+        const abrdf_select_step *st = &t.steps[k];
+        if (!strstr(st->text, "predicts NMSE")) continue;
+        ++pairs;
+        if (strstr(st->text, ": within")) {
+            double cost = atof(strstr(st->text, "cost ") + 5);
+            ck_assert_msg(cost >= c.cost / 1.15 - 1e-9, "%s is cheaper than the winner", st->text);
+        }
+    }
+    ck_assert_int_ge(pairs, 3);
+    select_trace_free(&t);
+    /* a budget nothing but the reference meets: the reference, the same at every value */
+    ck_assert_int_eq(pbr_budget_range(&p, &r, 1e-14, NULL, small_view(), &c, &t, msg, sizeof msg),
+                     0);
+    ck_assert(c.within && c.nmse == 0);
+    ck_assert_int_eq(c.specular, ABRDF_DISNEY_SPECULAR);
+    select_trace_free(&t);
+    /* across the smooth threshold the references differ (f_2e, GGX): nothing fitted at
+     * every value meets it, and the photoreal choice over the map (GGX) is taken */
+    r = range_of(0.01, 0.6, 2);
+    ck_assert_int_eq(pbr_budget_range(&p, &r, 1e-14, NULL, small_view(), &c, &t, msg, sizeof msg),
+                     0);
+    ck_assert(!c.within);
+    ck_assert_int_eq(c.specular, ABRDF_DISNEY_SPECULAR);
+    ck_assert_msg(strstr(t.steps[t.count - 1].text, "photoreal choice"), "%s",
+                  t.steps[t.count - 1].text);
+    select_trace_free(&t);
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("pbr_select");
@@ -143,6 +226,11 @@ static Suite *suite(void)
     tcase_add_test(tc, performance_choice_passes_everywhere);
     tcase_add_test(tc, bad_ranges_are_refused);
     suite_add_tcase(s, tc);
+    TCase *tb = tcase_create("budget"); /* the budget mode fits every candidate: seconds */
+    tcase_set_timeout(tb, 600);
+    tcase_add_test(tb, budget_of_one_value_is_the_budget_mode);
+    tcase_add_test(tb, budget_over_a_map);
+    suite_add_tcase(s, tb);
     return s;
 }
 

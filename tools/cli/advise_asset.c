@@ -203,7 +203,8 @@ static void entry_of(const scene_material *sm, const char *path, const abrdf_mat
 }
 
 static int advise_one(const char *path, const scene_material *sm, const select_request *rq,
-                      const abrdf_tolerance *tol, const abrdf_costs *costs, int json)
+                      const abrdf_tolerance *tol, const abrdf_costs *costs, int json,
+                      advise_printer print)
 {
     abrdf_material m;
     abrdf_material_init(&m);
@@ -227,13 +228,13 @@ static int advise_one(const char *path, const scene_material *sm, const select_r
     else if (trace.lost)
         rc = cli_fail(CMD, "out of memory");
     else
-        advise_print_selection(&sel, &params, &trace, &e, tol, json);
+        print(&sel, &params, &trace, &e, tol, json);
     select_trace_free(&trace);
     return rc;
 }
 
 int advise_asset(const char *path, const select_request *rq, const abrdf_tolerance *tol,
-                 const abrdf_costs *costs, int json)
+                 const abrdf_costs *costs, int json, advise_printer print)
 {
     scene s;
     char err[1024];
@@ -262,7 +263,7 @@ int advise_asset(const char *path, const select_request *rq, const abrdf_toleran
         if (!s.materials[i].pbr) continue;
         if (json && done) printf(",\n");
         if (!json && done) printf("\n");
-        rc = advise_one(path, &s.materials[i], rq, tol, costs, json);
+        rc = advise_one(path, &s.materials[i], rq, tol, costs, json, print);
         ++done;
     }
     if (json && !rc) printf("]}\n");

@@ -11,21 +11,21 @@
 /* Is `name` a file `abrdf advise` reads whole (by its extension) rather than a table entry? */
 int advise_is_asset(const char *name);
 
+/* The printer of one flowchart choice (cmd_advise.c's; e: the material's name and source). */
+typedef void (*advise_printer)(const abrdf_selection *s, const abrdf_params *p,
+                               const select_trace *trace, const mat_entry *e,
+                               const abrdf_tolerance *tol, int json);
+
 /* Every pbr material of the file `path`: the flowchart's choice for rq's goal (over the
  * roughness map's values for a textured one), or the budget mode's for rq's budget, printed
- * as text or (json) one JSON object {"file", "materials": [...]}. costs NULL: the paper's
- * table (the built-in one for a budget). Returns the exit status. */
+ * by print as text or (json) in one JSON object {"file", "materials": [...]}. costs NULL:
+ * the paper's table (the built-in one for a budget). Returns the exit status. */
 int advise_asset(const char *path, const select_request *rq, const abrdf_tolerance *tol,
-                 const abrdf_costs *costs, int json);
+                 const abrdf_costs *costs, int json, advise_printer print);
 
 /* The materials of an asset file as a scene: .scene and .gltf/.glb through their readers,
  * .mtlx through the Python package's MaterialX reader (python -m abrdf.scene_materials; the
  * interpreter is $ABRDF_PYTHON, else python3). 0, or -1 with one line in err. */
 int advise_asset_load(const char *path, scene *out, char *err, size_t err_size);
-
-/* cmd_advise.c's printer of one flowchart choice (e: the material's name and source). */
-void advise_print_selection(const abrdf_selection *s, const abrdf_params *p,
-                            const select_trace *trace, const mat_entry *e,
-                            const abrdf_tolerance *tol, int json);
 
 #endif

@@ -412,9 +412,9 @@ static void print_json(const abrdf_selection *s, const abrdf_params *p, const se
     printf("\n]}\n");
 }
 
-void advise_print_selection(const abrdf_selection *s, const abrdf_params *p,
-                            const select_trace *trace, const mat_entry *e,
-                            const abrdf_tolerance *tol, int json)
+static void advise_print_selection(const abrdf_selection *s, const abrdf_params *p,
+                                   const select_trace *trace, const mat_entry *e,
+                                   const abrdf_tolerance *tol, int json)
 {
     if (json)
         print_json(s, p, trace, e, tol);
@@ -710,7 +710,8 @@ static int advise_file(const advise_args *aa)
         if (costs_load(aa->costs_file, &costs, NULL, err, sizeof err))
             return cli_fail(CMD, "%s", err);
     }
-    return advise_asset(aa->name, &aa->rq, &aa->tol, aa->costs_file ? &costs : NULL, aa->json);
+    return advise_asset(aa->name, &aa->rq, &aa->tol, aa->costs_file ? &costs : NULL, aa->json,
+                        advise_print_selection);
 }
 
 int cmd_advise(int argc, char **argv)

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "budget_run.h"
 #include "pbr_select.h"
 
 #define MODEL_BITS 64 /* candidate models tracked in a mask (Table-1 ids are far below) */
@@ -229,6 +230,163 @@ int pbr_select_range(const abrdf_pbr *p, const pbr_range *range, abrdf_goal goal
     add_step(trace, sel->specular, lo, hi, text);
     if (trace->lost) {
         select_trace_free(trace);
+        snprintf(msg, msg_size, "out of memory");
+        return -1;
+    }
+    return 0;
+}
+
+/* ---- the budget mode over a map ---------------------------------------------------------- */
+
+typedef struct group {
+    double r, share;
+} group;
+
+/* The values (share > 0) in r order, cut into at most PBR_BUDGET_GROUPS groups of about equal
+ * share, each at its share-weighted mean r. Returns the count. */
+static int quantile_groups(const pbr_range *range, group *g)
+{
+    int order[PBR_RANGE_MAX], n = 0;
+    double total = 0;
+    for (int i = 0; i < range->count; ++i)
+        if (range->share[i] > 0) order[n++] = i, total += range->share[i];
+    for (int a = 1; a < n; ++a) /* insertion sort by r */
+        for (int b = a; b > 0 && range->r[order[b]] < range->r[order[b - 1]]; --b) {
+            int t = order[b];
+            order[b] = order[b - 1], order[b - 1] = t;
+        }
+    int count = 0;
+    double acc = 0, sum_r = 0, sum_w = 0;
+    for (int k = 0; k < n; ++k) {
+        int i = order[k];
+        acc += range->share[i];
+        sum_r += range->share[i] * range->r[i], sum_w += range->share[i];
+        int last = k == n - 1;
+        if (last || acc >= total * (count + 1) / PBR_BUDGET_GROUPS) {
+            g[count].r = sum_r / sum_w, g[count].share = sum_w / total;
+            ++count, sum_r = sum_w = 0;
+        }
+    }
+    return count;
+}
+
+typedef struct pair_stats {
+    abrdf_model d, s;
+    double nmse[PBR_BUDGET_GROUPS], cost, combined;
+    int seen;
+    abrdf_params params; /* fitted at the median group */
+} pair_stats;
+
+int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse,
+                     const abrdf_costs *costs, const abrdf_view *view, pbr_budget_choice *out,
+                     select_trace *trace, char *msg, size_t msg_size)
+{
+    group g[PBR_BUDGET_GROUPS];
+    int ng =
+        range && range->count >= 1 && range->count <= PBR_RANGE_MAX ? quantile_groups(range, g) : 0;
+    if (ng < 1) {
+        snprintf(msg, msg_size, "a roughness range needs values with shares > 0");
+        return -1;
+    }
+    const char *what = range->what ? range->what : "roughness map";
+    enum { MAX_PAIRS = 32 };
+    pair_stats pairs[MAX_PAIRS];
+    int np = 0, median = 0;
+    double below = 0;
+    for (int k = 0; k < ng; ++k) { /* the group holding the median texel */
+        if (below < 0.5) median = k;
+        below += g[k].share;
+    }
+    memset(out, 0, sizeof *out);
+    for (int k = 0; k < ng; ++k) {
+        abrdf_pbr q = *p;
+        q.roughness = fmin(fmax(g[k].r, 0.0), 1.0);
+        abrdf_material am;
+        abrdf_material_init(&am);
+        if (abrdf_pbr_material(&q, &am) != ABRDF_OK) {
+            abrdf_pbr_check(&q, msg, msg_size);
+            return -1;
+        }
+        budget_result res;
+        if (budget_run(&am, max_nmse, costs, view, &res, msg, msg_size)) return -1;
+        out->unit = res.sel.cost_unit;
+        const abrdf_select_step *cand[64];
+        int nc = budget_candidates(&res, cand, 64);
+        for (int c = 0; c < nc; ++c) {
+            int j = 0;
+            while (j < np && !(pairs[j].d == cand[c]->diffuse && pairs[j].s == cand[c]->model)) ++j;
+            if (j == np) {
+                if (k > 0 || np == MAX_PAIRS) continue; /* a pair the first group did not fit */
+                memset(&pairs[np], 0, sizeof pairs[np]);
+                pairs[np].d = cand[c]->diffuse, pairs[np].s = cand[c]->model, ++np;
+            }
+            if (pairs[j].seen != k) continue; /* one fit per group */
+            pairs[j].nmse[k] = cand[c]->value, pairs[j].cost = cand[c]->cost, ++pairs[j].seen;
+            if (k == median && cand[c]->params) pairs[j].params = *cand[c]->params;
+        }
+        char text[256];
+        snprintf(text, sizeof text,
+                 "%s: budget at r %.4g (%.0f%% of the texels): the "
+                 "reference there is %s%s%s",
+                 what, g[k].r, 100 * g[k].share,
+                 res.sel.diffuse != ABRDF_MODEL_NONE && nc ? name_of(cand[0]->diffuse) : "",
+                 res.sel.diffuse != ABRDF_MODEL_NONE && nc ? " + " : "",
+                 nc ? name_of(cand[0]->model) : "none");
+        add_step(trace, nc ? cand[0]->model : ABRDF_MODEL_NONE, g[k].r, g[k].r, text);
+        budget_result_free(&res);
+    }
+    /* each pair fitted at every group: its prediction over the map */
+    int best = -1;
+    for (int j = 0; j < np; ++j) {
+        if (pairs[j].seen != ng) continue;
+        pairs[j].combined = 0;
+        for (int k = 0; k < ng; ++k) pairs[j].combined += g[k].share * pairs[j].nmse[k];
+        int within = pairs[j].combined < max_nmse && pairs[j].cost >= 0;
+        char text[320], pair[96];
+        pair_name(pairs[j].d, pairs[j].s, pair, sizeof pair);
+        snprintf(text, sizeof text,
+                 "%s: %s predicts NMSE %.3g over the map (the texels' "
+                 "share-weighted mean: texels of equal reference energy), cost %.3g: %s",
+                 what, pair, pairs[j].combined, pairs[j].cost,
+                 within ? "within" : "over the budget");
+        add_step(trace, pairs[j].s, pairs[j].combined, max_nmse, text);
+        if (within && (best < 0 || pairs[j].cost < pairs[best].cost)) best = j;
+    }
+    if (best >= 0) { /* of the pairs within 15 % of the cheapest's cost, the lowest NMSE */
+        double limit = pairs[best].cost * 1.15;
+        for (int j = 0; j < np; ++j)
+            if (pairs[j].seen == ng && pairs[j].combined < max_nmse && pairs[j].cost >= 0 &&
+                pairs[j].cost <= limit && pairs[j].combined < pairs[best].combined)
+                best = j;
+    }
+    char text[512], pair[96];
+    out->groups = ng;
+    if (best >= 0) {
+        out->diffuse = pairs[best].d, out->specular = pairs[best].s;
+        out->params = pairs[best].params;
+        out->nmse = pairs[best].combined, out->cost = pairs[best].cost, out->within = 1;
+        pair_name(out->diffuse, out->specular, pair, sizeof pair);
+        snprintf(text, sizeof text,
+                 "%s: the cheapest pair within NMSE %g over the map: %s "
+                 "(predicted %.3g)",
+                 what, max_nmse, pair, out->nmse);
+    } else {
+        abrdf_selection sel;
+        select_trace t = SELECT_TRACE_INIT;
+        int rc = pbr_select_range(p, range, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &sel, &out->params,
+                                  &t, msg, msg_size);
+        select_trace_free(&t);
+        if (rc) return -1;
+        out->diffuse = sel.diffuse, out->specular = sel.specular;
+        out->nmse = 0, out->cost = -1, out->within = 0;
+        pair_name(out->diffuse, out->specular, pair, sizeof pair);
+        snprintf(text, sizeof text,
+                 "%s: no pair fitted at every value is within NMSE %g over "
+                 "the map: the photoreal choice over it, %s",
+                 what, max_nmse, pair);
+    }
+    add_step(trace, out->specular, out->nmse, max_nmse, text);
+    if (trace->lost) {
         snprintf(msg, msg_size, "out of memory");
         return -1;
     }

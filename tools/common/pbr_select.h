@@ -15,12 +15,14 @@
  *
  * PUBLIC FUNCTIONS
  *   pbr_select_range   the choice over a roughness histogram, with its trace
+ *   pbr_budget_range   the budget mode over a roughness histogram
  */
 #ifndef ABRDF_PBR_SELECT_H
 #define ABRDF_PBR_SELECT_H
 
 #include <stddef.h>
 #include "abrdf_pbr.h"
+#include "abrdf_fit.h"
 #include "select_trace.h"
 
 #define PBR_RANGE_MAX 66 /* histogram bins + the least and largest values */
@@ -41,5 +43,31 @@ typedef struct pbr_range {
 int pbr_select_range(const abrdf_pbr *p, const pbr_range *range, abrdf_goal goal,
                      const abrdf_tolerance *tol, const abrdf_costs *costs, abrdf_selection *sel,
                      abrdf_params *params, select_trace *trace, char *msg, size_t msg_size);
+
+/* The budget mode over a roughness map: the values grouped into at most PBR_BUDGET_GROUPS
+ * quantile groups of the texels (each at its share-weighted mean r), the budget mode run at
+ * each (abrdf_select_budget: every candidate fitted against the photoreal choice there), and
+ * each candidate pair's predicted image NMSE over the map taken as the share-weighted mean
+ * of its predictions (texels of equal reference energy: stated in the trace). The cheapest
+ * pair within max_nmse wins (of those within 15 % of its cost, the lowest NMSE, as the
+ * library ranks); none within: the photoreal choice over the map (pbr_select_range). */
+#define PBR_BUDGET_GROUPS 8
+
+typedef struct pbr_budget_choice {
+    abrdf_model diffuse, specular; /* diffuse may be ABRDF_MODEL_NONE */
+    abrdf_params params;           /* fitted at the group of the median texel */
+    double nmse;                   /* predicted over the map; 0 for the photoreal fallback */
+    double cost;                   /* in the costs' unit; < 0 unknown */
+    const char *unit;              /* the costs' unit */
+    int groups;                    /* values the budget mode ran at */
+    int within;                    /* 1: a candidate within the budget; 0: the fallback */
+} pbr_budget_choice;
+
+/* costs NULL: the built-in table; view NULL: the default sphere. Returns 0, or -1 with one
+ * line in msg. The trace receives one step per group and one per compared pair, then the
+ * choice. */
+int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse,
+                     const abrdf_costs *costs, const abrdf_view *view, pbr_budget_choice *out,
+                     select_trace *trace, char *msg, size_t msg_size);
 
 #endif
