@@ -160,7 +160,8 @@ class ABRDF_OT_advise_principled(bpy.types.Operator):
         settings.results.clear()
         for a in found:
             r = settings.results.add()
-            r.material, r.choice, r.error, r.cost = a.name, a.choice, a.error, a.cost
+            r.name = r.material = a.name  # name: the collection's key
+            r.choice, r.error, r.cost = a.choice, a.error, a.cost
             r.notes = "\n".join(a.notes) if a.selection else a.skipped
         done = sum(1 for a in found if a.selection)
         if not done:

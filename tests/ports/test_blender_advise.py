@@ -12,7 +12,8 @@ docs/OSL.md "Advising Principled materials") in Blender's `bpy` module, headless
    `abrdf_pbr:` line) are those, and the trace lines are the command's;
 3. the text "abrdf advice" holds every advised material's trace, the driven input is named
    with the value advised on, and the Emission material is listed as not advised;
-4. a Base Color above 1 cancels the run with one line naming the material and the field,
+4. the panel draws the goal's settings, the button and each material's result;
+5. a Base Color above 1 cancels the run with one line naming the material and the field,
    leaving the last results and the text as they were.
 
 usage: test_blender_advise.py ABRDF SOURCE_DIR WORK_DIR ZIP [unittest args]  (with bpy)
@@ -130,6 +131,29 @@ def scene_file():
     return path, values
 
 
+class Layout:
+    """A stand-in for a panel's layout: records labels, checks that every property drawn
+    exists on its data and every operator is registered."""
+
+    def __init__(self, out):
+        self.out = out
+
+    def prop(self, data, name, **kw):
+        assert name in data.bl_rna.properties, name
+        self.out.append("prop " + name)
+
+    def operator(self, idname, **kw):
+        mod, op = idname.split(".")
+        assert hasattr(getattr(bpy.ops, mod), op), idname
+        self.out.append("operator " + idname)
+
+    def label(self, text="", **kw):
+        self.out.append(text)
+
+    def box(self):
+        return self
+
+
 class Advise(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -198,6 +222,20 @@ class Advise(unittest.TestCase):
     def test_budget(self):
         got, _ = self.check(["--budget", "slight"], by="BUDGET", budget="slight")
         self.assertTrue(got["Glaze"].error.startswith("predicted NMSE"))
+
+    def test_panel(self):
+        self.advise(by="GOAL", goal="performance", max_rel_error=5.0)
+        ui = sys.modules[MODULE + ".abrdf_ext_ui"]
+        out = []
+        ui.draw_advice(Layout(out), bpy.context)
+        self.assertIn("prop max_rel_error", out)
+        self.assertIn("operator abrdf.advise_principled", out)
+        results = bpy.context.scene.abrdf_advice.results
+        for r in results:
+            line = "%s: %s" % (r.material, r.choice) if r.choice else r.material + ": not advised"
+            self.assertIn(line, out)
+        gold = out.index("Gold: %s" % results["Gold"].choice)
+        self.assertRegex(out[gold + 1], r"^predicted error .* relative, .* absolute; cost ")
 
     def test_refuses_out_of_range(self):
         self.advise(by="GOAL", goal="photoreal")
