@@ -7,8 +7,8 @@ selection's choice for a goal or a budget, as `abrdf advise FILE.scene` chooses 
 Socket values only: an input driven by a link is advised on the socket's own (unlinked)
 value, and the result says so. Cycles' meaning of the inputs (Blender 5's Principled BSDF,
 intern/cycles/kernel/svm/closure.h): the dielectric F0 is F0(IOR) * 2 * Specular IOR Level,
-tinted by Specular Tint and clamped to 1, with F90 = 1 and no specular lobe at all when the
-level is 0; a metal's F0 is its Base Color and Specular Tint its edge tint (F82).
+tinted by Specular Tint and clamped to 1, with F90 = 1 and no specular lobe at all when that
+F0 is 0 (level 0 or IOR 1); a metal's F0 is its Base Color and Specular Tint its edge tint (F82).
 """
 import math
 
@@ -103,6 +103,9 @@ def pbr_fields(v):
         notes.append("IOR %.4g is beyond abrdf_pbr's [1, 4]: ior 4 with specular_color "
                      "scaled to the same F0" % v["IOR"])
         eta = IOR_MAX
+    # Cycles has no specular lobe when the adjusted F0 is 0 (level 0, or IOR 1); else
+    # F0 * 2 level and F90 = 1, which glTF's specular 1 and specular_color give.
+    lobe = scale > 0 and eta > 1.0
     if v["Metallic"] > 0 and any(abs(t - 1.0) > 1e-6 for t in tint):
         notes.append("Specular Tint on the metallic part (Cycles' edge tint, F82) is ignored")
     fields = {
@@ -110,9 +113,8 @@ def pbr_fields(v):
         "metallic": v["Metallic"],
         "roughness": v["Roughness"],
         "ior": eta,
-        # Cycles has no specular lobe at level 0 (eta 1); else F0 * 2 level, F90 = 1.
-        "specular": 0.0 if level <= 0 else 1.0,
-        "specular_color": (1.0, 1.0, 1.0) if level <= 0 else tuple(scale * t for t in tint),
+        "specular": 1.0 if lobe else 0.0,
+        "specular_color": tuple(scale * t for t in tint) if lobe else (1.0, 1.0, 1.0),
         "clearcoat": v["Coat Weight"],
         "clearcoat_roughness": v["Coat Roughness"],
         "sheen_color": tuple(v["Sheen Weight"] * t for t in v["Sheen Tint"]),

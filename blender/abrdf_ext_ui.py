@@ -145,7 +145,7 @@ class ABRDF_OT_advise_principled(bpy.types.Operator):
 
     bl_idname = "abrdf.advise_principled"
     bl_label = "Advise Principled materials"
-    bl_options = {"REGISTER"}
+    bl_options = {"REGISTER", "UNDO"}
 
     def execute(self, context):
         settings = context.scene.abrdf_advice

@@ -3,8 +3,9 @@
 docs/OSL.md "Advising Principled materials") in Blender's `bpy` module, headless:
 
 1. a .blend made here with Principled materials (a gold metal r 0.3, a smooth dielectric
-   r 0.02, a coated one with a tinted Specular IOR Level, a sheen, one whose roughness an
-   Image Texture drives) and one Emission material is saved and opened again;
+   r 0.02, a coated one with a tinted Specular IOR Level, a sheen, one of Specular IOR
+   Level 0, one whose roughness an Image Texture drives) and one Emission material is
+   saved and opened again;
 2. "Advise Principled materials" (the installed extension's operator) for the photoreal
    and performance goals and a budget chooses, per material, what `abrdf advise FILE.scene
    --json` chooses for `material NAME pbr` lines holding the glTF values this test derives
@@ -50,6 +51,7 @@ MATERIALS = {
     "Cloth": {"Base Color": (0.3, 0.3, 0.5), "Roughness": 0.8, "Sheen Weight": 0.8,
               "Sheen Tint": (0.9, 0.5, 0.5), "Sheen Roughness": 0.7},
     "Scuffed": {"Base Color": (0.5, 0.5, 0.5), "Metallic": 1.0, "Roughness": 0.45},
+    "Chalk": {"Base Color": (0.9, 0.9, 0.85), "Roughness": 0.9, "Specular IOR Level": 0.0},
 }
 DRIVEN = ("Scuffed", "Roughness")  # an Image Texture drives this input
 
@@ -101,10 +103,12 @@ def gltf_values(bsdf):
     v = {s.name: (tuple(s.default_value)[:3] if hasattr(s.default_value, "__len__")
                   else s.default_value) for s in bsdf.inputs if hasattr(s, "default_value")}
     level = v["Specular IOR Level"]
+    lobe = level > 0 and v["IOR"] != 1  # F0 0: Cycles has no specular lobe
     return {"base_color": v["Base Color"], "metallic": v["Metallic"],
             "roughness": v["Roughness"], "ior": v["IOR"],
-            "specular": 1.0 if level > 0 else 0.0,
-            "specular_color": tuple(2 * level * t for t in v["Specular Tint"]),
+            "specular": 1.0 if lobe else 0.0,
+            "specular_color": (tuple(2 * level * t for t in v["Specular Tint"]) if lobe
+                               else (1.0, 1.0, 1.0)),
             "clearcoat": v["Coat Weight"], "clearcoat_roughness": v["Coat Roughness"],
             "sheen_color": tuple(v["Sheen Weight"] * t for t in v["Sheen Tint"]),
             "sheen_roughness": v["Sheen Roughness"], "anisotropy": v["Anisotropic"],
