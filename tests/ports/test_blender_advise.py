@@ -14,7 +14,8 @@ docs/OSL.md "Advising Principled materials") in Blender's `bpy` module, headless
 3. the text "abrdf advice" holds every advised material's trace, the driven input is named
    with the value advised on, and the Emission material is listed as not advised;
 4. the panel draws the goal's settings, the button and each material's result;
-5. a Base Color above 1 cancels the run with one line naming the material and the field,
+5. an IOR below 1 or above 4 is read at the same dielectric F0;
+6. a Base Color above 1 cancels the run with one line naming the material and the field,
    leaving the last results and the text as they were.
 
 usage: test_blender_advise.py ABRDF SOURCE_DIR WORK_DIR ZIP [unittest args]  (with bpy)
@@ -240,6 +241,26 @@ class Advise(unittest.TestCase):
             self.assertIn(line, out)
         gold = out.index("Gold: %s" % results["Gold"].choice)
         self.assertRegex(out[gold + 1], r"^predicted error .* relative, .* absolute; cost ")
+
+    def test_ior_outside_abrdf_pbr(self):
+        """IOR below 1 or above 4 is read at the same dielectric F0 (docs/OSL.md's table)."""
+        import abrdf
+        adv = sys.modules[MODULE + ".abrdf_ext_advise"]
+        bsdf = next(n for n in bpy.data.materials["Lacquer"].node_tree.nodes
+                    if n.bl_idname == "ShaderNodeBsdfPrincipled")
+        values, _ = adv.socket_inputs(bsdf)
+        level, tint = values["Specular IOR Level"], values["Specular Tint"]
+        for ior in (0.4, 1.0 / 0.4, 6.0, 1.0 / 6.0):
+            with self.subTest(ior=ior):
+                fields, notes = adv.pbr_fields(dict(values, IOR=ior))
+                self.assertTrue(1 <= fields["ior"] <= 4, fields["ior"])
+                f0 = ((ior - 1) / (ior + 1)) ** 2
+                want = [min(f0 * 2 * level * t, 1.0) for t in tint]
+                got = abrdf.pbr_material(abrdf.Pbr(**fields)).f0
+                for a, b in zip(got, want):
+                    self.assertTrue(math.isclose(a, b, rel_tol=1e-9), (got, want))
+                self.assertEqual(any(n.startswith("IOR ") for n in notes),
+                                 max(ior, 1 / ior) > 4)
 
     def test_refuses_out_of_range(self):
         self.advise(by="GOAL", goal="photoreal")
