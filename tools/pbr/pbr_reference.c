@@ -36,7 +36,7 @@ double pbr_ref_d_ggx_aniso(double at, double ab, const double h[3])
 }
 
 /* Appendix B.3.3: the height-correlated Smith term over 4 |N.L| |N.V|,
- * V = 0.5 / (|N.L| sqrt(alpha^2 + (1 - alpha^2)(N.V)^2) + |N.V| sqrt(alpha^2 + (1 - alpha^2)(N.L)^2)),
+ * V = 0.5 / (|N.L| sqrt(a2 + (1 - a2)(N.V)^2) + |N.V| sqrt(a2 + (1 - a2)(N.L)^2)), a2 = alpha^2,
  * which is G2 = 1 / (1 + Lambda(V) + Lambda(L)) divided by 4 |N.L| |N.V|. */
 double pbr_ref_v_ggx(double alpha, double cos_l, double cos_v)
 {
