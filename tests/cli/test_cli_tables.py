@@ -1,4 +1,4 @@
-"""CLI tests of `abrdf tables 2|3|4` and `abrdf calibrate` (run by CTest with the path of
+"""CLI tests of `abrdf tables 2|3|4|gltf` and `abrdf calibrate` (run by CTest with the path of
 the abrdf binary). No timing thresholds: only that the commands run, their CSV parses, the
 Markdown has its tables, and a calibration file names every model with a positive cost."""
 import csv
@@ -101,6 +101,35 @@ class CostTable(unittest.TestCase):
             self.assertIn("cycles (here) = ns x the clock the cost file gives, 2.00 GHz.", out)
             self.assertIn("| f2 | 2 | 2 | 0 | 8 | 8 | 1.00 | 5.000 | 10.0 | 1.00 | 0.50 |", out)
             self.assertIn("| fs | 2 | 1 | 1 | 15 | 15 | 1.88 | 20.000 | 40.0 | 4.00 | 2.00 |", out)
+
+
+class GltfTable(unittest.TestCase):
+    """`abrdf tables gltf`: the glTF mapping's measured error (docs/GLTF.md, "The mapping")."""
+
+    def test_csv_rows_and_classes(self):
+        rows = list(csv.DictReader(io.StringIO(run("tables", "gltf", "--csv").stdout)))
+        names = [r["mapping"] for r in rows]
+        for name in ("dielectric, rough", "metal", "metallic 0.5", "anisotropy 0.5",
+                     "clearcoat 1", "sheen", "transmission 0.5"):
+            self.assertIn(name, names)
+        bounds = [(1e-4, "none"), (2.5e-4, "slight"), (1e-3, "noticeable"), (float("inf"), "significant")]
+        for r in rows:
+            errs = [float(r[f"albedo_err_{a}"]) for a in (0, 45, 75)]
+            self.assertAlmostEqual(float(r["albedo_max_abs"]), max(abs(e) for e in errs), delta=1e-6)
+            nmse = float(r["nmse"])
+            self.assertGreaterEqual(nmse, 0.0)
+            self.assertEqual(r["class"], next(c for b, c in bounds if nmse < b))
+        by = {r["mapping"]: r for r in rows}
+        # left out layers are errors the table must show; an exact row must show none
+        self.assertEqual(by["sheen"]["class"], "significant")
+        self.assertEqual(by["clearcoat 1"]["class"], "significant")
+        self.assertLess(float(by["dielectric, smooth"]["nmse"]), 1e-9)
+
+    def test_markdown_is_default(self):
+        out = run("tables", "gltf").stdout
+        self.assertEqual(out, run("tables", "gltf", "--markdown").stdout)
+        self.assertIn("| mapping | glTF material | exact | approximated |", out)
+        self.assertEqual(out.count("\n| "), 12)  # the header and 11 rows
 
 
 class Calibrate(unittest.TestCase):

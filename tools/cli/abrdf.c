@@ -22,7 +22,9 @@ static const cli_command commands[] = {
     {"slice", "f_r and f_r*cos over the outgoing angle in the plane of incidence (CSV)", cmd_slice},
     {"compare", "NMSE (the paper's metric), PSNR, max error and Table-8 class of two images",
      cmd_compare},
-    {"tables", "the paper's Tables 2, 3, 4, 6, 7 recomputed, beside the published values",
+    {"tables",
+     "the paper's Tables 2, 3, 4, 6, 7 recomputed, beside the published values; gltf: the glTF "
+     "mapping's error",
      cmd_tables},
     {"calibrate", "measure ns/eval of every model on this machine; write a cost file",
      cmd_calibrate},

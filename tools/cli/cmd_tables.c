@@ -16,6 +16,8 @@ static const table_gen generators[] = {
      tables_images},
     {"7", "image experiment: min NMSE over n of f_ge, f_ctphe, f_ct2e, f_ct16e vs Disney GGX",
      tables_images},
+    {"gltf", "not the paper's: the glTF mapping's error (docs/GLTF.md, \"The mapping\")",
+     tables_gltf},
 };
 #define GEN_COUNT (sizeof generators / sizeof generators[0])
 

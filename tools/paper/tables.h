@@ -49,5 +49,7 @@ void tab_csv(const tab_grid *g, const char *tag_name, const char *tag, int heade
 int tables_error(const table_gen *self, const tables_opts *o, const paper_data *paper);
 int tables_cost(const table_gen *self, const tables_opts *o, const paper_data *paper);
 int tables_images(const table_gen *self, const tables_opts *o, const paper_data *paper);
+/* Not the paper's: the glTF mapping's measured error (tools/pbr/tables_gltf.c). */
+int tables_gltf(const table_gen *self, const tables_opts *o, const paper_data *paper);
 
 #endif
