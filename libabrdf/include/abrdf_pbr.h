@@ -18,13 +18,15 @@
  *   S = D_GGX(alpha) V_heightcorrelated(alpha),  alpha = roughness^2
  *   f0_d = min(((ior - 1)/(ior + 1))^2 specular_color, 1),  w = specular
  * abrdf_pbr_lobes maps it onto lambert_fresnel + disney_specular (Eqs. 2, 5, 6, 8, 9):
- *   kd = (1 - metallic)(1 - transmission) base_color
+ *   kd = (1 - metallic)(1 - transmission) base_color (1 - max f0_d) / (1 - f0)   (w = 1;
+ *        w < 1: without the last factor)
  *   ks = (1 - metallic) w + metallic,  f0 = ((1 - metallic) w f0_d + metallic base_color) / ks
  *   r  = roughness (alpha = r^2, the same GGX distribution)
  * The Fresnel part of the specular lobe is then exact (Schlick is linear in f0 and f90, and
  * the mix of two Schlick terms is ks times one); what differs is the masking (the paper's
  * separable Smith, Eq. 9, against glTF's height-correlated form), the diffuse lobe's Fresnel
- * factor for 0 < metallic < 1 or w < 1, and the extensions below. Anisotropy
+ * factor for w < 1 (with w = 1 the factor's ratio to glTF's is a constant, folded into kd),
+ * and the extensions below. Anisotropy
  * (KHR_materials_anisotropy) switches the specular lobe to disney_specular_aniso, with the
  * Disney aspect chosen so that alpha_x alpha_y and alpha_x / alpha_y match glTF's
  * alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha where the Disney form can (its aspect

@@ -86,6 +86,33 @@ START_TEST(specular_fresnel_is_the_gltf_mix_exactly)
 }
 END_TEST
 
+/* With specular weight 1 the diffuse lobe (lambert_fresnel: kd / pi (1 - Schlick(f0))) equals
+ * glTF's (1 - m)(1 - t) base / pi (1 - max_c Schlick(f0_d)) at every angle, for a metallic
+ * mix and a coloured f0_d. */
+START_TEST(diffuse_is_the_gltf_diffuse_exactly)
+{
+    abrdf_pbr p;
+    abrdf_pbr_init(&p);
+    double base[3] = {0.8, 0.3, 0.2}, sc[3] = {2, 1, 0.5};
+    memcpy(p.base_color, base, sizeof base);
+    memcpy(p.specular_color, sc, sizeof sc);
+    p.metallic = 0.5, p.transmission = 0.25;
+    abrdf_model lobes[ABRDF_PBR_MAX_LOBES];
+    int n;
+    abrdf_params q;
+    abrdf_params_init(ABRDF_LAMBERT, &q);
+    ck_assert_int_eq(abrdf_pbr_lobes(&p, lobes, &n, &q), ABRDF_OK);
+    double f0d_max = 0.04 * 2; /* the largest of 0.04 * specular_color */
+    for (int c = 0; c < 3; ++c)
+        for (double cos_d = 0; cos_d <= 1; cos_d += 0.125) {
+            double want = 0.5 * 0.75 * base[c] * (1 - schlick(f0d_max, 1, cos_d));
+            double got = q.kd[c] * (1 - schlick(q.f0[c], 1, cos_d));
+            ck_assert_msg(fabs(got - want) < 1e-14, "c %d cos %g: %.17g vs %.17g", c, cos_d, got,
+                          want);
+        }
+}
+END_TEST
+
 /* Disney's alpha_x alpha_y and alpha_x / alpha_y equal glTF's alpha_t alpha_b and
  * alpha_t / alpha_b while the ratio is within reach (aspect^2 >= 0.1). */
 START_TEST(anisotropy_matches_area_and_ratio)
@@ -179,6 +206,7 @@ static Suite *suite(void)
     tcase_add_test(tc, defaults_are_gltf_defaults);
     tcase_add_test(tc, dielectric_and_metal_in_closed_form);
     tcase_add_test(tc, specular_fresnel_is_the_gltf_mix_exactly);
+    tcase_add_test(tc, diffuse_is_the_gltf_diffuse_exactly);
     tcase_add_test(tc, anisotropy_matches_area_and_ratio);
     tcase_add_test(tc, flowchart_material_classes);
     tcase_add_test(tc, out_of_range_fields_are_named);

@@ -236,15 +236,15 @@ static void rows_make(void)
     p->metallic = 1, p->roughness = 0.3;
     p->base_color[0] = 0.95, p->base_color[1] = 0.64, p->base_color[2] = 0.54;
     p = row("metallic 0.5", "metallic 0.5, r 0.4",
-            ROW_EXACT_D ", specular Fresnel mix (ks Schlick(f0))",
-            ROW_MASKING "; diffuse 1 - F of the mixed f0, not of f0_d");
+            ROW_EXACT_D ", specular Fresnel mix (ks Schlick(f0)), diffuse (kd scaled)",
+            ROW_MASKING);
     p->metallic = 0.5;
     p = row("specular 0.5", "specular 0.5, r 0.4", ROW_EXACT_D ", specular Fresnel (ks = 0.5)",
             ROW_MASKING "; diffuse 1 - F, not 1 - 0.5 F");
     p->specular = 0.5;
     p = row("coloured specular", "specular_color (2, 1, 0.5), r 0.4",
-            ROW_EXACT_D ", specular Fresnel per channel",
-            ROW_MASKING "; diffuse 1 - F per channel, not 1 - max F");
+            ROW_EXACT_D ", specular Fresnel per channel, diffuse 1 - max F (kd scaled)",
+            ROW_MASKING);
     p->specular_color[0] = 2, p->specular_color[2] = 0.5;
     p = row("ior 2", "ior 2, r 0.4", ROW_EXACT_D ", Fresnel (f0 = 1/9), diffuse 1 - F",
             ROW_MASKING);

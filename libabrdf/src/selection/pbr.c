@@ -117,14 +117,23 @@ static void pbr_map(const abrdf_pbr *p, pbr_mapped *m)
     double m1 = p->metallic, w = p->specular;
     double e = (p->ior - 1) / (p->ior + 1);
     double ks = (1 - m1) * w + m1;
+    double f0d[3], f0d_max = 0;
     for (int c = 0; c < 3; ++c) {
-        double f0d = fmin(e * e * p->specular_color[c], 1.0);
+        f0d[c] = fmin(e * e * p->specular_color[c], 1.0);
+        f0d_max = fmax(f0d_max, f0d[c]);
+    }
+    for (int c = 0; c < 3; ++c) {
         m->kd[c] = (1 - m1) * (1 - p->transmission) * p->base_color[c];
         m->ks[c] = ks;
         /* ks * Schlick(f0) == (1 - m) w Schlick(f0_d) + m Schlick(base): the same value at
          * normal incidence and at grazing (f90 = ks), and both are linear in between */
-        m->f0[c] = ks > 0 ? ((1 - m1) * w * f0d + m1 * p->base_color[c]) / ks : 0;
+        m->f0[c] = ks > 0 ? ((1 - m1) * w * f0d[c] + m1 * p->base_color[c]) / ks : 0;
         m->f0[c] = fmin(fmax(m->f0[c], 0.0), 1.0);
+        /* The diffuse: glTF's 1 - w max_c Schlick(f0_d) against lambert_fresnel's
+         * 1 - Schlick(f0). With w = 1 both are (1 - f0')(1 - (1 - cos)^5), so their ratio
+         * (1 - max f0_d) / (1 - f0) is a constant, folded into kd: exact for any metallic
+         * and a coloured f0_d. With w < 1 no constant is exact (docs/GLTF.md measures it). */
+        if (w == 1 && m->f0[c] < 1) m->kd[c] = fmin(m->kd[c] * (1 - f0d_max) / (1 - m->f0[c]), 1.0);
     }
     double alpha = p->roughness * p->roughness;
     m->r = p->roughness;
