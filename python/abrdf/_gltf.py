@@ -46,7 +46,12 @@ def _error(message: str) -> _abrdf.Error:
 
 
 def _is_number(v: Json) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+    if not isinstance(v, (int, float)) or isinstance(v, bool):
+        return False
+    try:
+        return math.isfinite(float(v))
+    except OverflowError:  # an integer beyond a double's range
+        return False
 
 
 def _number(d: dict[str, Json], key: str, where: str, default: float) -> float:
@@ -137,6 +142,8 @@ def _file_of_uri(uri: str, base: str, where: str) -> str:
         raise _Bad(where, "uri %s: abrdf reads files relative to the glTF file, not %s"
                    % (_shown(uri), "URLs" if "://" in uri else "absolute paths"))
     path = os.path.normpath(os.path.join(base, urllib.parse.unquote(uri)))
+    if "\0" in path:
+        raise _Bad(where, "uri %s holds a NUL character" % _shown(uri))
     if not os.path.isfile(path):
         raise _Bad(where, "uri %s: no such file %s" % (_shown(uri), path))
     return path

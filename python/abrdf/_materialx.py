@@ -188,6 +188,9 @@ class _Reader:
             if cat == "extract":
                 index = self.node_input(node, "index", what).value
                 channel = int(index[0]) if index else 0
+                if not 0 <= channel <= 3:
+                    raise _Bad("%s: node '%s' (extract): index %d is outside [0, 3]"
+                               % (what, node.getName(), channel))
             else:
                 channel = _CHANNEL_OF_OUTPUT.get(output, -1)
                 if channel < 0:
@@ -236,6 +239,9 @@ class _Reader:
                            % (what, name))
             idx = self.node_input(up, "index", what).value
             uv_set = int(idx[0]) if idx else 0
+            if uv_set < 0:
+                raise _Bad("%s: texcoord node '%s': index %d is negative"
+                           % (what, up.getName(), uv_set))
         factor: tuple[float, ...] = (1.0,)
         channel = 0 if node.getType() == "float" else None
         nd = node.getNodeDef()
@@ -316,6 +322,13 @@ def load_materialx(path: str | os.PathLike[str]) -> dict[str, PbrMaterial]:
                      "(pip install materialx)" % shown)
     if not os.path.isfile(p):
         raise _error("%s: no such file" % shown)
+    try:  # the library hands its strings to Python as UTF-8
+        with open(p, "rb") as fh:
+            fh.read().decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise _error("%s: not UTF-8 text (byte %d)" % (shown, e.start)) from None
+    except OSError as e:
+        raise _error("%s: %s" % (shown, e.strerror or e)) from None
     doc = mx.createDocument()
     try:
         mx.readFromXmlFile(doc, p)
