@@ -5,7 +5,9 @@ abrdf.load_materialx, python -m abrdf.scene_materials) and of the renderer.
 
     tools/gen/gen_material_assets.py OUTDIR
 
-writes, byte for byte the same on every run (standard library only):
+writes, byte for byte the same on every run, with the standard library only (the PNG
+encoder is the few lines below: no image library's version can change the bytes, and any
+python3 runs it):
     OUTDIR/textures/*.png   base colour (sRGB), metallic-roughness (G roughness across the
                             flowchart's smooth limit, B metallic), normal, and an RGBA map
                             for the extensions
