@@ -5,7 +5,8 @@ Shader Editor or Material Properties > abrdf: "New abrdf material" adds a materi
 Script node runs the OSL port (osl/abrdf_material.osl: the models on Cycles' closures; or
 osl/abrdf_eval.osl: the exact model under the scene's lights, as emission), with every model
 of the library in a list and its parameters within their ranges; "Select models" runs the
-flowchart (the abrdf Python package, bundled as a wheel) and applies its choice.
+flowchart (the abrdf Python package, bundled as a wheel) and applies its choice. "Advise
+Principled materials" gives the choice for every Principled BSDF material of the file.
 docs/OSL.md, "The Blender extension".
 """
 from . import abrdf_ext_props, abrdf_ext_ui

@@ -3,10 +3,11 @@ bundled abrdf package): the models by their stable names, every parameter with t
 the OSL shaders' metadata (the widest range over the models, as tools/gen/osl_headers.py
 writes osl/abrdf_meta.h) and the library's default, the adaptive mode's inputs, and the
 selection panel's inputs and last result. Every change is written into the material's
-Script node (abrdf_ext_material.push)."""
+Script node (abrdf_ext_material.push). Scene.abrdf_advice: the advisor of the file's
+Principled materials (abrdf_ext_advise), its goal or budget and its last results."""
 import bpy
-from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty,
-                       IntProperty, PointerProperty, StringProperty)
+from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty,
+                       FloatVectorProperty, IntProperty, PointerProperty, StringProperty)
 
 import abrdf
 from abrdf import _abrdf
@@ -117,6 +118,44 @@ def settings_class():
     return type("AbrdfMaterialSettings", (bpy.types.PropertyGroup,), {"__annotations__": ann})
 
 
+class AbrdfAdviceResult(bpy.types.PropertyGroup):
+    """One material's advice, as the panel shows it (the full trace is in the text)."""
+
+    material: StringProperty(name="Material")
+    choice: StringProperty(name="Choice", description="the chosen models; empty: not advised")
+    error: StringProperty(name="Predicted error")
+    cost: StringProperty(name="Cost")
+    notes: StringProperty(name="Notes", description="one note a line: inputs driven by "
+                          "nodes, ignored inputs, why the material was not advised")
+
+
+def advice_class():
+    """Scene.abrdf_advice: the advisor's goal or budget and its last results."""
+    _items["advice_goal"] = [(g, g, "the flowchart's %s branch" % g) for g in abrdf.goals()]
+    _items["budget"] = [(b, b, "predicted image NMSE below %g (Table 8: %s difference)"
+                         % (abrdf.budget_nmse(b), "no visible" if b == "none" else b))
+                        for b in ("none", "slight", "noticeable")]
+    rules = _abrdf.rules()
+    ann = {
+        "by": EnumProperty(name="Choose by", items=[
+            ("GOAL", "Goal", "the paper's flowchart for a goal"),
+            ("BUDGET", "Budget", "the cheapest fitted model whose predicted image error is "
+             "within a class of the paper's Table 8")]),
+        "goal": EnumProperty(name="Goal", items=_items["advice_goal"], default="photoreal"),
+        "max_rel_error": FloatProperty(name="Max rel. error %", min=0.0, max=1e30,
+                                       default=rules["default_max_rel_pct"],
+                                       description="performance: max relative error of the "
+                                       "Table-1 lobe in the highlight, percent"),
+        "max_abs_error": FloatProperty(name="Max abs. error", min=0.0, max=1e30,
+                                       default=rules["default_max_abs"],
+                                       description="performance: max absolute error of the "
+                                       "Table-1 lobe"),
+        "budget": EnumProperty(name="Budget", default="slight", items=_items["budget"]),
+        "results": CollectionProperty(type=AbrdfAdviceResult),
+    }
+    return type("AbrdfAdviceSettings", (bpy.types.PropertyGroup,), {"__annotations__": ann})
+
+
 _classes = []
 
 
@@ -125,9 +164,16 @@ def register():
     bpy.utils.register_class(cls)
     _classes.append(cls)
     bpy.types.Material.abrdf = PointerProperty(type=cls)
+    bpy.utils.register_class(AbrdfAdviceResult)
+    _classes.append(AbrdfAdviceResult)
+    adv = advice_class()
+    bpy.utils.register_class(adv)
+    _classes.append(adv)
+    bpy.types.Scene.abrdf_advice = PointerProperty(type=adv)
 
 
 def unregister():
+    del bpy.types.Scene.abrdf_advice
     del bpy.types.Material.abrdf
     while _classes:
         bpy.utils.unregister_class(_classes.pop())

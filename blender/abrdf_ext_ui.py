@@ -1,11 +1,13 @@
 """The abrdf panel (Material Properties and the Shader Editor's sidebar) and its operators:
 a new abrdf material on the active object, Cycles set up for OSL, the selection run and
-applied, the scene's lights given to an evaluation-mode material, a model's defaults."""
+applied, the scene's lights given to an evaluation-mode material, a model's defaults; and the
+advisor of the file's Principled materials (abrdf_ext_advise)."""
 import bpy
 from bpy.props import EnumProperty
 
 import abrdf
 
+from . import abrdf_ext_advise as advise
 from . import abrdf_ext_material as mats
 
 
@@ -136,6 +138,70 @@ class ABRDF_OT_model_defaults(bpy.types.Operator):
         return {"FINISHED"}
 
 
+class ABRDF_OT_advise_principled(bpy.types.Operator):
+    """Advise every material of the file whose Material Output takes a Principled BSDF: the
+    models abrdf chooses for the goal or budget, their predicted error and cost (full trace
+    in the text "abrdf advice")"""
+
+    bl_idname = "abrdf.advise_principled"
+    bl_label = "Advise Principled materials"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        settings = context.scene.abrdf_advice
+        options = advise.select_options(settings)
+        try:
+            found = advise.advise(bpy.data.materials, options)
+        except abrdf.Error as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        text = bpy.data.texts.get(advise.TEXT) or bpy.data.texts.new(advise.TEXT)
+        text.from_string(advise.report(found, options, bpy.data.filepath))
+        settings.results.clear()
+        for a in found:
+            r = settings.results.add()
+            r.name = r.material = a.name  # name: the collection's key
+            r.choice, r.error, r.cost = a.choice, a.error, a.cost
+            r.notes = "\n".join(a.notes) if a.selection else a.skipped
+        done = sum(1 for a in found if a.selection)
+        if not done:
+            self.report({"WARNING"}, "abrdf: no material takes a Principled BSDF at its "
+                        "Material Output")
+            return {"FINISHED"}
+        self.report({"INFO"}, "abrdf: %d Principled material%s advised, %d not; the trace is "
+                    "in the text \"%s\"" % (done, "" if done == 1 else "s", len(found) - done,
+                                             advise.TEXT))
+        return {"FINISHED"}
+
+
+def draw_advice(layout, context):
+    """The advisor: goal or budget, the button, one box per material."""
+    st = context.scene.abrdf_advice
+    layout.prop(st, "by", expand=True)
+    if st.by == "BUDGET":
+        layout.prop(st, "budget")
+    else:
+        layout.prop(st, "goal")
+        if st.goal == "performance":
+            layout.prop(st, "max_rel_error")
+            layout.prop(st, "max_abs_error")
+    layout.operator("abrdf.advise_principled")
+    layout.label(text="Socket values only: texture-driven inputs are advised at their "
+                 "socket's own value")
+    for r in st.results:
+        box = layout.box()
+        if not r.choice:
+            box.label(text="%s: not advised" % r.material, icon="BLANK1")
+            box.label(text=r.notes)
+            continue
+        box.label(text="%s: %s" % (r.material, r.choice), icon="MATERIAL")
+        box.label(text="%s; %s" % (r.error, r.cost or "no cost"))
+        for line in r.notes.splitlines():
+            box.label(text=line, icon="INFO")
+    if st.results:
+        layout.label(text="Full trace: the text \"%s\" (Text Editor)" % advise.TEXT)
+
+
 def _shown_params(s):
     """The parameters the chosen models read, in registry order (all of them when the
     shader chooses by itself)."""
@@ -239,8 +305,33 @@ class NODE_PT_abrdf(bpy.types.Panel):
         draw(self.layout, context)
 
 
+class MATERIAL_PT_abrdf_advice(bpy.types.Panel):
+    bl_label = "Advise Principled materials"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "material"
+    bl_parent_id = "MATERIAL_PT_abrdf"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        draw_advice(self.layout, context)
+
+
+class NODE_PT_abrdf_advice(bpy.types.Panel):
+    bl_label = "Advise Principled materials"
+    bl_space_type = "NODE_EDITOR"
+    bl_region_type = "UI"
+    bl_category = "abrdf"
+    bl_parent_id = "NODE_PT_abrdf"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        draw_advice(self.layout, context)
+
+
 _classes = (ABRDF_OT_material_add, ABRDF_OT_setup_cycles, ABRDF_OT_select, ABRDF_OT_sync_lights,
-            ABRDF_OT_model_defaults, MATERIAL_PT_abrdf, NODE_PT_abrdf)
+            ABRDF_OT_model_defaults, ABRDF_OT_advise_principled, MATERIAL_PT_abrdf,
+            NODE_PT_abrdf, MATERIAL_PT_abrdf_advice, NODE_PT_abrdf_advice)
 
 
 def register():

@@ -441,6 +441,48 @@ START_TEST(pbr_materials_map_and_select)
 }
 END_TEST
 
+/* A fake roughness map's values: half the texels at r 0.01 (smooth), half at 0.5. */
+static int fake_range(void *user, const scene_material *sm, pbr_range *out, char *err,
+                      size_t err_size)
+{
+    (void)user, (void)err, (void)err_size;
+    memset(out, 0, sizeof *out);
+    out->count = 2;
+    out->r[0] = 0.01 * sm->pbr_in.roughness, out->r[1] = 0.5 * sm->pbr_in.roughness;
+    out->share[0] = out->share[1] = 0.5;
+    out->what = "roughness map";
+    return 0;
+}
+
+/* An adaptive pbr material with a roughness map is chosen over the map's values (the safe
+ * branch when they cross the smooth threshold), and refused when nothing reads the map. */
+START_TEST(pbr_textured_selection_reads_the_map)
+{
+    FILE *f = fopen("test_scene_rough.png", "wb"); /* its bytes are not read here */
+    ck_assert(f != NULL);
+    fputs("x", f);
+    fclose(f);
+    scene s;
+    char err[512];
+    const char *body = "material t pbr metallic=0 roughness=1 roughness_map=test_scene_rough.png "
+                       "goal=photoreal\nsphere material=t radius=1\n";
+    ck_assert_msg(parse(body, &s, err, sizeof err) == 0, "%s", err);
+    ck_assert(s.materials[1].textured);
+    scene_selection how = SCENE_SELECTION_INIT;
+    ck_assert_int_eq(scene_select(&s, "t.scene", &how, NULL, NULL, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "t.scene:3: material 't'") && strstr(err, "roughness map"), "%s",
+                  err);
+    scene_free(&s);
+    ck_assert_msg(parse(body, &s, err, sizeof err) == 0, "%s", err);
+    how.map_range = fake_range;
+    ck_assert_msg(scene_select(&s, "t.scene", &how, NULL, NULL, err, sizeof err) == 0, "%s", err);
+    ck_assert_int_eq(s.materials[1].lobes[1], ABRDF_DISNEY_SPECULAR); /* GGX covers both */
+    ck_assert_int_eq(s.materials[1].kind, SCENE_MAT_MODELS);
+    scene_free(&s);
+    remove("test_scene_rough.png");
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("scene");
@@ -451,6 +493,7 @@ static Suite *suite(void)
     tcase_add_test(tp, whole_file_errors);
     tcase_add_test(tp, table_material_parameters_take_effect);
     tcase_add_test(tp, pbr_materials_map_and_select);
+    tcase_add_test(tp, pbr_textured_selection_reads_the_map);
     suite_add_tcase(s, tp);
     TCase *tg = tcase_create("geometry");
     tcase_add_test(tg, sphere_closed_form);

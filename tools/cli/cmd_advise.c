@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "advise_asset.h"
 #include "advise_budget.h"
 #include "measured_ref.h"
 #include "cli.h"
@@ -57,10 +58,14 @@ static void usage(FILE *f)
         "       abrdf advise --rules [--json]\n"
         "       abrdf advise [MATERIAL] --budget none|slight|noticeable|NMSE [--json]\n"
         "       abrdf advise [MATERIAL] --pareto [--plot FILE.svg] [--json]\n"
-        "       abrdf advise --measured FILE --budget none|slight|noticeable|NMSE [--json]\n\n"
+        "       abrdf advise --measured FILE --budget none|slight|noticeable|NMSE [--json]\n"
+        "       abrdf advise FILE.gltf|FILE.glb|FILE.mtlx|FILE.scene [--goal G|--budget B] "
+        "[--json]\n\n"
         "Chooses the diffuse and specular models for a material by the paper's flowchart\n"
         "(Zavalniuk & Romanyuk 2024, Fig. 2) and explains every decision (docs/SELECTION.md).\n\n"
         "  MATERIAL               a name from the material table (abrdf advise --list)\n"
+        "  FILE                   every glTF-style material of a glTF, MaterialX or scene\n"
+        "                         file, each with its choice and trace (docs/GLTF.md)\n"
         "  --goal G               performance | photoreal (default photoreal)\n"
         "  --max-rel-error PCT    performance: max relative error in %% (default %g; 'none')\n"
         "  --max-abs-error X      performance: max absolute error (default %g; 'none')\n"
@@ -407,6 +412,16 @@ static void print_json(const abrdf_selection *s, const abrdf_params *p, const se
     printf("\n]}\n");
 }
 
+static void advise_print_selection(const abrdf_selection *s, const abrdf_params *p,
+                                   const select_trace *trace, const mat_entry *e,
+                                   const abrdf_tolerance *tol, int json)
+{
+    if (json)
+        print_json(s, p, trace, e, tol);
+    else
+        print_human(s, p, trace, e);
+}
+
 /* ---- the command line ------------------------------------------------------------------ */
 
 /* Values given on the command line, applied over the table's material (or the defaults). */
@@ -650,10 +665,8 @@ static int advise_flowchart(const advise_args *aa, const abrdf_material *m, cons
         rc = cli_fail(CMD, "%s", sel.message);
     } else if (trace.lost) {
         rc = cli_fail(CMD, "out of memory");
-    } else if (aa->json) {
-        print_json(&sel, &params, &trace, e, &aa->tol);
     } else {
-        print_human(&sel, &params, &trace, e);
+        advise_print_selection(&sel, &params, &trace, e, &aa->tol, aa->json);
     }
     select_trace_free(&trace);
     return rc;
@@ -680,6 +693,27 @@ static int advise_material(const advise_args *aa, const mat_table *table)
     return advise_flowchart(aa, &m, e, c);
 }
 
+/* `abrdf advise FILE.gltf|.glb|.mtlx|.scene`: every pbr material of the file. Returns the
+ * exit status. */
+static int advise_file(const advise_args *aa)
+{
+    const advise_overrides *o = &aa->o;
+    if (o->has_n || o->has_r || o->has_kd || o->has_ks || o->has_f0 || o->has_eta || o->has_aniso ||
+        o->has_mel || o->has_red || o->has_type || aa->pareto || aa->list || aa->nfiles || aa->plot)
+        return cli_fail(CMD,
+                        "%s: a file's materials take --goal or --budget, --max-rel-error, "
+                        "--max-abs-error, --costs and --json only",
+                        aa->name);
+    abrdf_costs costs;
+    if (aa->costs_file) {
+        char err[512];
+        if (costs_load(aa->costs_file, &costs, NULL, err, sizeof err))
+            return cli_fail(CMD, "%s", err);
+    }
+    return advise_asset(aa->name, &aa->rq, &aa->tol, aa->costs_file ? &costs : NULL, aa->json,
+                        advise_print_selection);
+}
+
 int cmd_advise(int argc, char **argv)
 {
     advise_args aa;
@@ -691,6 +725,7 @@ int cmd_advise(int argc, char **argv)
         return 0;
     }
     if (aa.measured) return advise_measured(aa.measured, aa.rq.max_nmse, aa.json);
+    if (aa.name && advise_is_asset(aa.name)) return advise_file(&aa);
     mat_table table = {NULL, 0, 0};
     rc = load_tables(&table, aa.files, aa.nfiles);
     if (!rc && aa.list)

@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include "abrdf_select.h"
 
-#define MAT_NAME_MAX 48
+#define MAT_NAME_MAX 64 /* with the NUL, as the scene format's names (SCENE_NAME_MAX) */
 #define MAT_SOURCE_MAX 400
 #define MAT_FILE_MAX 256
 #define MAT_ERR_MAX 512

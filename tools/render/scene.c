@@ -31,7 +31,8 @@ typedef struct parser {
     size_t err_size;
     scene *s;
     int have_camera;
-    int object_cap; /* allocated length of s->objects */
+    int object_cap;     /* allocated length of s->objects */
+    int materials_only; /* scene_parse_materials: material lines only, no camera or object */
 } parser;
 
 static int fail(parser *p, const char *fmt, ...)
@@ -972,6 +973,8 @@ static int do_line(parser *p, char *line)
     if (n == 0) return 0;
     if (w[0].val) return fail(p, "a line starts with a directive, got '%s=...'", w[0].key);
     const char *d = w[0].key;
+    if (p->materials_only && strcmp(d, "material"))
+        return fail(p, "'%s': a material list holds material lines only", d);
     if (!strcmp(d, "camera")) return do_camera(p, w, n);
     if (!strcmp(d, "ambient")) return do_ambient(p, w, n);
     if (!strcmp(d, "light")) return do_light(p, w, n);
@@ -1048,13 +1051,13 @@ int scene_outputs_distinct(const scene *s, const char *const *outputs,
     return rc;
 }
 
-int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,
-                     size_t err_size)
+static int parse_text(const char *name, const char *text, size_t len, int materials_only,
+                      scene *out, char *err, size_t err_size)
 {
     if (err && err_size) err[0] = '\0';
     if (!out) return -1;
     memset(out, 0, sizeof *out);
-    parser p = {name ? name : "<scene>", 0, err, err_size, out, 0, 0};
+    parser p = {name ? name : "<scene>", 0, err, err_size, out, 0, 0, materials_only};
     if (!text) return fail(&p, "no text");
     /* Lines are split in a copy of the text, in place: any length is fine. */
     char *copy = malloc(len + 1);
@@ -1081,6 +1084,12 @@ int scene_parse_text(const char *name, const char *text, size_t len, scene *out,
     }
     free(copy);
     ++p.line;
+    if (materials_only) {
+        if (out->material_count) return 0;
+        p.line = 0;
+        fail(&p, "no materials");
+        goto bad;
+    }
     if (!p.have_camera) {
         p.line = 0;
         fail(&p, "no camera (a scene needs 'camera position=... look_at=...')");
@@ -1095,6 +1104,18 @@ int scene_parse_text(const char *name, const char *text, size_t len, scene *out,
 bad:
     scene_free(out);
     return -1;
+}
+
+int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,
+                     size_t err_size)
+{
+    return parse_text(name, text, len, 0, out, err, err_size);
+}
+
+int scene_parse_materials(const char *name, const char *text, size_t len, scene *out, char *err,
+                          size_t err_size)
+{
+    return parse_text(name, text, len, 1, out, err, err_size);
 }
 
 int scene_parse_file(const char *path, scene *out, char *err, size_t err_size)

@@ -8,6 +8,7 @@
  * PUBLIC FUNCTIONS
  *   scene_parse_file    read and validate a scene file
  *   scene_parse_text    the same for text in memory (name is used in messages)
+ *   scene_parse_materials  material lines alone (a material library)
  *   scene_free          release a parsed scene
  *   scene_shape_name, scene_tangent_name   names as the format spells them
  */
@@ -195,6 +196,11 @@ typedef struct scene {
 int scene_parse_file(const char *path, scene *out, char *err, size_t err_size);
 int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,
                      size_t err_size);
+/* A list of material lines alone (no camera, light or object; at least one material): the
+ * materials of a MaterialX document as `abrdf advise` reads them. Errors as above; paths in
+ * the lines are resolved against the directory of name. */
+int scene_parse_materials(const char *name, const char *text, size_t len, scene *out, char *err,
+                          size_t err_size);
 void scene_free(scene *s);
 /* The files the scene names - its mesh files, then its environment maps, its measured files
  * and its materials' textures, as they were read - with their roles ("mesh file",

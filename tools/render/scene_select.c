@@ -268,15 +268,71 @@ static void explain_choice(FILE *f, const scene_material *sm, const select_reque
         fprintf(f, "  %2d. %s\n", k + 1, c->trace.steps[k].text);
 }
 
+/* The choice over sm's roughness map (pbr_select.h) as rq asks, into sm. 0, or -1 with the
+ * reason in msg. */
+static int select_pbr_range(scene_material *sm, const select_request *rq,
+                            const scene_selection *how, const abrdf_view *view, FILE *explain,
+                            char *msg, size_t msg_size)
+{
+    if (!how->map_range) {
+        snprintf(msg, msg_size,
+                 "its roughness map cannot be read here: the selection needs "
+                 "the map's values");
+        return -1;
+    }
+    pbr_range range;
+    if (how->map_range(how->map_user, sm, &range, msg, msg_size)) return -1;
+    select_trace trace = SELECT_TRACE_INIT;
+    abrdf_model d, sp;
+    abrdf_params params;
+    char asked[64];
+    if (rq->by_budget) {
+        pbr_budget_choice c;
+        if (pbr_budget_range(&sm->pbr_in, &range, rq->max_nmse, NULL, view, &c, &trace, msg,
+                             msg_size))
+            return -1;
+        d = c.diffuse, sp = c.specular, params = c.params;
+        snprintf(asked, sizeof asked, "budget NMSE < %g", rq->max_nmse);
+    } else {
+        abrdf_selection sel;
+        if (pbr_select_range(&sm->pbr_in, &range, rq->goal, NULL, NULL, &sel, &params, &trace, msg,
+                             msg_size))
+            return -1;
+        d = sel.diffuse, sp = sel.specular;
+        snprintf(asked, sizeof asked, "goal %s", abrdf_goal_name(rq->goal));
+    }
+    sm->kind = SCENE_MAT_MODELS;
+    sm->lobe_count = 0;
+    if (d != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = d;
+    sm->lobes[sm->lobe_count++] = sp;
+    sm->params = params;
+    ka_from(sm, sm->lobes, sm->lobe_count, &sm->params);
+    if (explain) {
+        fprintf(explain, "selection: material '%s' (line %d), %s over its roughness map: %s%s%s\n",
+                sm->name, sm->line, asked, d != ABRDF_MODEL_NONE ? abrdf_model_get(d)->name : "",
+                d != ABRDF_MODEL_NONE ? " + " : "", abrdf_model_get(sp)->name);
+        for (int k = 0; k < trace.count; ++k)
+            fprintf(explain, "  %2d. %s\n", k + 1, trace.steps[k].text);
+    }
+    select_trace_free(&trace);
+    return 0;
+}
+
 /* A `pbr` material (glTF metallic-roughness) as rq asks: the selection reads the material
- * abrdf_pbr_material makes of its factors. 0, or -1 with the message in err. */
+ * abrdf_pbr_material makes of its factors, or, with a roughness map, of each value of the
+ * map (select_pbr_range). 0, or -1 with the message in err. */
 static int select_pbr(scene_material *sm, const char *scene_name, const select_request *rq,
-                      const abrdf_view *view, FILE *explain, char *err, size_t err_size)
+                      const scene_selection *how, const abrdf_view *view, FILE *explain, char *err,
+                      size_t err_size)
 {
     abrdf_material am;
     abrdf_material_init(&am);
     char msg[512];
     budget_result c;
+    if (sm->maps[SCENE_MAP_ROUGHNESS].path) {
+        if (select_pbr_range(sm, rq, how, view, explain, msg, sizeof msg)) goto fail;
+        return 0;
+    }
     if (abrdf_pbr_material(&sm->pbr_in, &am) != ABRDF_OK) {
         abrdf_pbr_check(&sm->pbr_in, msg, sizeof msg);
         goto fail;
@@ -299,8 +355,8 @@ fail:
 
 /* Material sm as rq asks (scene_select): 0, or -1 with the message in err. */
 static int select_material(scene_material *sm, const char *scene_name, const select_request *rq,
-                           const mat_table *table, const abrdf_view *view, FILE *explain, char *err,
-                           size_t err_size)
+                           const scene_selection *how, const mat_table *table,
+                           const abrdf_view *view, FILE *explain, char *err, size_t err_size)
 {
     const mat_entry *e;
     if (sm->measured >= 0) {
@@ -310,7 +366,7 @@ static int select_material(scene_material *sm, const char *scene_name, const sel
                  sm->line, sm->name);
         return -1;
     }
-    if (sm->pbr) return select_pbr(sm, scene_name, rq, view, explain, err, err_size);
+    if (sm->pbr) return select_pbr(sm, scene_name, rq, how, view, explain, err, err_size);
     if (entry_of(sm, table, scene_name, &e, err, err_size)) return -1;
     if (!e && !described(sm, "r") && !described(sm, "n")) {
         path_msg(err, err_size, scene_name,
@@ -360,7 +416,7 @@ int scene_select(scene *s, const char *scene_name, const scene_selection *how,
                                    : sm->kind == SCENE_MAT_ADAPTIVE ? &sm->request
                                    : sm->kind == SCENE_MAT_TABLE    ? &photoreal /* a bare table= */
                                                                     : NULL;
-        if (rq && select_material(sm, scene_name, rq, table, &view, explain, err, err_size))
+        if (rq && select_material(sm, scene_name, rq, how, table, &view, explain, err, err_size))
             return -1;
     }
     return 0;

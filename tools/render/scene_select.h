@@ -7,24 +7,35 @@
 #include <stdio.h>
 #include "abrdf_fit.h"
 #include "materials.h"
+#include "pbr_select.h"
 #include "scene.h"
 
 /* How a scene's materials are chosen, from the command line to the selection in one piece:
  * forced, every material (explicit ones included: their parameters describe the material)
  * is chosen by `all`; otherwise each table= material by the photoreal flowchart and each
  * adaptive one by its own goal= or budget=. */
+/* The roughness values of a pbr material's roughness map with their shares of the texels
+ * (pbr_select.h: the factor times each texel value): 0, or -1 with one line in err. */
+typedef int (*scene_map_range_fn)(void *user, const scene_material *sm, pbr_range *out, char *err,
+                                  size_t err_size);
+
 typedef struct scene_selection {
     int forced;                /* every material by `all` (--adaptive) */
     select_request all;        /* with forced */
     const char *const *tables; /* material-table files merged over data/materials.csv */
     int table_count;
     int spp; /* the image's samples per pixel: the budget's view */
+    /* A pbr material with a roughness map is chosen over the map's values (pbr_select.h)
+     * through this; NULL: such a material is refused (the selection cannot see its texels). */
+    scene_map_range_fn map_range;
+    void *map_user;
 } scene_selection;
 
-/* A selection that forces nothing, reads no extra table, and predicts at 4 samples/pixel. */
+/* A selection that forces nothing, reads no extra table, predicts at 4 samples/pixel and
+ * reads no texture. */
 #define SCENE_SELECTION_INIT                                                                       \
     {                                                                                              \
-        0, {0, ABRDF_GOAL_PHOTOREAL, 0.0}, NULL, 0, 4                                              \
+        0, {0, ABRDF_GOAL_PHOTOREAL, 0.0}, NULL, 0, 4, NULL, NULL                                  \
     }
 
 /* Every SCENE_MAT_TABLE / SCENE_MAT_ADAPTIVE material of s (every material, forced) becomes
