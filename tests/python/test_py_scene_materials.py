@@ -141,3 +141,22 @@ def test_paths_a_scene_cannot_carry(material_assets, tmp_path):
     (d / "materials.mtlx").write_text((out / "materials.mtlx").read_text())
     r = run(d / "materials.mtlx")
     assert r.returncode == 1 and "holds a space" in r.stderr and r.stdout == ""
+
+
+def test_abrdf_advise_reads_materialx_through_this_module(material_assets, cli, monkeypatch):
+    """`abrdf advise FILE.mtlx` runs `python -m abrdf.scene_materials` ($ABRDF_PYTHON, this
+    interpreter with this package): its choice for every constant material is
+    abrdf.select's on the same PbrMaterial."""
+    out, gen = material_assets
+    mx = abrdf.load_materialx(out / "materials.mtlx")
+    monkeypatch.setenv("ABRDF_PYTHON", sys.executable)
+    for goal in ("photoreal", "performance"):
+        d = cli("advise", out / "materials.mtlx", "--goal", goal, "--json")
+        got = {m["material"]: m for m in d["materials"]}
+        assert list(got) == list(mx)
+        for prefix in ("gltf", "std", "opbr"):
+            for name in gen.CONSTANTS:
+                s = abrdf.select(mx["%s_%s" % (prefix, name)], goal=goal)
+                m = got["%s_%s" % (prefix, name)]
+                assert (m["type"], m["diffuse"], m["specular"]) == \
+                    (s.type, s.diffuse, s.specular), (prefix, name, goal)
