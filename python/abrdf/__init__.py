@@ -34,6 +34,8 @@ Functions:
     read_image(path)             a linear float RGB image (OpenImageIO)
     Pbr                          a glTF metallic-roughness material's factors (abrdf_pbr)
     pbr_lobes(p), pbr_material(p)  its explicit lobes (BRDFs) and the flowchart's Material
+    load_gltf(path)              the materials of a .gltf / .glb file, as PbrMaterials
+    load_materialx(path)         the materials of a MaterialX document (PyPI materialx)
     PbrMaterial, TextureRef      a material read from a file: name, Pbr, texture maps
     Error                        a failure of the library (a ValueError), with its message
 
@@ -50,6 +52,8 @@ from ._compare import Comparison, compare, read_image
 from ._fit import Fit, fit
 from ._measured import Measured, load_measured, measured_from_array
 from ._pbr import Pbr, PbrMaterial, TextureRef, pbr_lobes, pbr_material
+from ._gltf import load_gltf
+from ._materialx import load_materialx
 from ._select import (Layer, Material, Selection, Step, budget_nmse, goals, material, materials,
                       select, surfaces)
 from ._sweep import Sweep, SweepRow, sweep
@@ -81,6 +85,8 @@ __all__ = [
     "compare",
     "fit",
     "goals",
+    "load_gltf",
+    "load_materialx",
     "load_measured",
     "material",
     "materials",

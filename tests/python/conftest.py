@@ -33,3 +33,20 @@ def source_dir():
     if not d or not os.path.isdir(d):
         pytest.fail("$ABRDF_SOURCE_DIR must name the source tree (CTest sets it)")
     return d
+
+
+@pytest.fixture(scope="session")
+def material_assets(source_dir, tmp_path_factory):
+    """The files of tools/gen/gen_material_assets.py, generated into a temporary directory,
+    and the generator itself as a module (its CONSTANTS table): (directory, module)."""
+    import importlib.util
+    import sys
+
+    script = os.path.join(source_dir, "tools", "gen", "gen_material_assets.py")
+    out = tmp_path_factory.mktemp("material_assets")
+    r = subprocess.run([sys.executable, script, str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    spec = importlib.util.spec_from_file_location("gen_material_assets", script)
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    return out, gen
