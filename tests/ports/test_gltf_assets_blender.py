@@ -35,7 +35,9 @@ class GltfAssetsInBlender(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         shutil.rmtree(WORK, ignore_errors=True)
-        subprocess.run([sys.executable, SCRIPT, WORK], check=True)
+        # the generator writes its PNGs through OpenImageIO, which Blender's Python does not
+        # have: Debian's python3 runs it (python3-openimageio, scripts/setup.sh)
+        subprocess.run(["/usr/bin/python3", SCRIPT, WORK], check=True)
 
     def load(self, name):
         bpy.ops.wm.read_factory_settings(use_empty=True)

@@ -5,9 +5,9 @@ abrdf.load_materialx, python -m abrdf.scene_materials) and of the renderer.
 
     tools/gen/gen_material_assets.py OUTDIR
 
-writes, byte for byte the same on every run, with the standard library only (the PNG
-encoder is the few lines below: no image library's version can change the bytes, and any
-python3 runs it):
+writes, byte for byte the same on every run of one OpenImageIO version (the PNGs are written
+by OpenImageIO: Debian's python3-openimageio or the pip wheel; everything else is the
+standard library):
     OUTDIR/textures/*.png   base colour (sRGB), metallic-roughness (G roughness across the
                             flowchart's smooth limit, B metallic), normal, and an RGBA map
                             for the extensions
@@ -31,7 +31,6 @@ import math
 import os
 import struct
 import sys
-import zlib
 
 # name -> the glTF factors (Pbr's fields; absent fields keep glTF's defaults). Roughness 0.02
 # is below the flowchart's smooth limit (r <= 0.03, docs/SELECTION.md).
@@ -61,16 +60,30 @@ ROUGHNESS_BYTES = (3, 6, 26, 39, 77, 128, 153, 255)
 # ---- PNG (8-bit RGB or RGBA, no filter) -----------------------------------------------
 
 def png(width: int, height: int, rows: list[list[tuple[int, ...]]]) -> bytes:
-    channels = len(rows[0][0])
-    kind = {3: 2, 4: 6}[channels]
+    """The bytes of an 8-bit PNG of these pixels, written by OpenImageIO (Debian's
+    python3-openimageio, or the pip wheel)."""
+    import tempfile
 
-    def chunk(tag: bytes, data: bytes) -> bytes:
-        return (struct.pack(">I", len(data)) + tag + data
-                + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF))
-    raw = b"".join(b"\0" + bytes(c for px in row for c in px) for row in rows)
-    return (b"\x89PNG\r\n\x1a\n"
-            + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, kind, 0, 0, 0))
-            + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+    import OpenImageIO as oiio
+    channels = len(rows[0][0])
+    pixels = [c / 255.0 for row in rows for px in row for c in px]
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "t.png")
+        out = oiio.ImageOutput.create(path)
+        spec = oiio.ImageSpec(width, height, channels, "uint8")
+        if not out or not out.open(path, spec):
+            raise RuntimeError("cannot write a PNG: " + oiio.geterror())
+        buf = oiio.ImageBuf(spec)
+        for y in range(height):
+            for x in range(width):
+                base = (y * width + x) * channels
+                buf.setpixel(x, y, pixels[base:base + channels])
+        ok = out.write_image(buf.get_pixels(oiio.UINT8))
+        out.close()
+        if not ok:
+            raise RuntimeError("cannot write a PNG: " + oiio.geterror())
+        with open(path, "rb") as f:
+            return f.read()
 
 
 def textures() -> dict[str, bytes]:
