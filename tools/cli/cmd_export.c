@@ -282,6 +282,11 @@ static int export_scene(export_args *ea, scene *s)
         rc = export_gltf(ea, s);
         goto done;
     }
+    for (int i = 0; i < s->material_count; ++i)
+        if (s->materials[i].textured)
+            fprintf(stderr,
+                    "abrdf export: material '%s': its maps are not exported (its factors are)\n",
+                    s->materials[i].name);
     if (render_prepare(s, &ea->opt, &rs, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;

@@ -448,10 +448,15 @@ struct reader {
         } else {
             const tinygltf::Material &gm = m->materials[(size_t)gi];
             what = "material " + std::to_string(gi);
-            std::string nm;
-            for (char c : gm.name) nm += (c > ' ' && c < 0x7f) ? c : '_';
-            snprintf(sm.name, sizeof sm.name, "%d%s%.*s", gi, nm.empty() ? "" : "_", 50,
-                     nm.c_str());
+            // its name where it is one the scene format could spell (printable, no space,
+            // unique), else material_N
+            bool ok = !gm.name.empty() && gm.name.size() < SCENE_NAME_MAX;
+            for (char c : gm.name) ok = ok && c > ' ' && c < 0x7f;
+            for (int k = 0; ok && k < s->material_count; ++k) ok = gm.name != s->materials[k].name;
+            if (ok)
+                snprintf(sm.name, sizeof sm.name, "%s", gm.name.c_str());
+            else
+                snprintf(sm.name, sizeof sm.name, "material_%d", gi);
             int models = 0;
             try {
                 read_material(gm, &sm, what);
