@@ -10,6 +10,7 @@ import json
 import math
 import os
 import re
+import struct
 import subprocess
 import sys
 import unittest
@@ -240,6 +241,40 @@ class WriteGltf(TempDirCase):
         self.assertEqual(plastic["extras"]["abrdf"]["params"]["n"], 40)
         shapes = [n["extras"]["abrdf"]["shape"] for n in doc["nodes"] if "extras" in n]
         self.assertEqual(shapes, ["sphere", "box", "capsule", "cylinder", "mesh"])
+
+    def test_maps_written(self):
+        # embedded images: one image in the buffer for the three maps that read it
+        seed = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "fuzz", "corpus",
+                            "gltf", "strip.gltf")
+        glb = self.path("strip.glb")
+        r = abrdf("export", "--gltf", seed, "-o", glb)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(glb, "rb") as f:
+            data = f.read()
+        (jlen,) = struct.unpack("<I", data[12:16])
+        doc = json.loads(data[20:20 + jlen])
+        self.assertEqual(doc["images"], [{"bufferView": 0, "mimeType": "image/png"}])
+        mat = doc["materials"][0]
+        pm = mat["pbrMetallicRoughness"]
+        self.assertEqual(pm["baseColorTexture"]["extensions"]["KHR_texture_transform"],
+                         {"offset": [0.5, 0.0], "rotation": 0.3, "scale": [2.0, 2.0]})
+        self.assertEqual(pm["metallicRoughnessTexture"], {"index": 0})
+        self.assertEqual(mat["normalTexture"], {"index": 0, "scale": 0.5})
+        # image files: a URI relative to the output, read back from there
+        self.put("red.ppm", "P3\n1 1\n255\n255 0 0\n")
+        scene = self.put("tex.scene", "camera position=0,0,3 look_at=0,0,0\n"
+                         "material t pbr base_color_map=red.ppm occlusion_map=red.ppm "
+                         "occlusion_strength=0.5\nsphere material=t radius=1\n")
+        os.mkdir(self.path("sub"))
+        out = self.path("sub/tex.gltf")
+        r = abrdf("export", "--gltf", scene, "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            doc = json.load(f)
+        self.assertEqual(doc["images"], [{"uri": "../red.ppm"}])
+        self.assertEqual(doc["materials"][0]["occlusionTexture"], {"index": 0, "strength": 0.5})
+        r = abrdf("render", out, "-o", self.path("tex.exr"), "--width", "8", "--height", "8")
+        self.assertEqual(r.returncode, 0, r.stderr)
 
     def test_area_lights_refused(self):
         out = self.path("area.gltf")

@@ -9,7 +9,6 @@
 #define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include "budget_run.h"
 #include "cli.h"
@@ -224,14 +223,12 @@ static int export_gltf(const export_args *ea, scene *s)
     char err[1024];
     if (ea->opt.width) s->camera.width = ea->opt.width;
     if (ea->opt.height) s->camera.height = ea->opt.height;
-    const char *dot = strrchr(ea->out, '.');
     unsigned char *bytes = NULL;
     size_t size = 0;
     out_file o = OUT_FILE_INIT;
     out_file *const files[1] = {&o};
     int rc = 1;
-    if (gltf_write_memory(s, dot && !strcasecmp(dot, ".glb"), stderr, &bytes, &size, err,
-                          sizeof err)) {
+    if (gltf_write_memory(s, ea->out, stderr, &bytes, &size, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s: %s\n", ea->path, err);
     } else if (out_file_open(&o, ea->out, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);

@@ -45,14 +45,16 @@ int gltf_read_file(const char *path, scene *out, char *err, size_t err_size);
 int gltf_read_memory(const char *name, const unsigned char *bytes, size_t size, scene *out,
                      char *err, size_t err_size);
 
-/* The scene as glTF (a .glb when binary, else .gltf text with its buffer as a data: URI) in
- * a malloc'd *bytes of *size bytes, for the caller's whole-or-nothing output (out_file.h);
- * a line on warn (if not NULL) for each textured material (its maps are not written). Every
- * material must be explicit (SCENE_MAT_MODELS: the selection applied) and not measured;
- * area and environment lights are refused. 0, or -1 with one line in err. docs/GLTF.md,
- * "Writing glTF". */
-int gltf_write_memory(const scene *s, int binary, FILE *warn, unsigned char **bytes, size_t *size,
-                      char *err, size_t err_size);
+/* The scene as glTF for the file out_path - a .glb if it ends in .glb, else .gltf text with its
+ * buffer as a data: URI - in a malloc'd *bytes of *size bytes, for the caller's
+ * whole-or-nothing output (out_file.h). Maps become textures: an image file by a URI
+ * relative to out_path's directory, a blob inside the buffer; what glTF cannot say (e.g.
+ * metallic and roughness from two files) is left out with a line on warn (if not NULL).
+ * Every material must be explicit (SCENE_MAT_MODELS: the selection applied) and not
+ * measured; area and environment lights are refused. 0, or -1 with one line in err.
+ * docs/GLTF.md, "Writing glTF". */
+int gltf_write_memory(const scene *s, const char *out_path, FILE *warn, unsigned char **bytes,
+                      size_t *size, char *err, size_t err_size);
 
 #ifdef __cplusplus
 }

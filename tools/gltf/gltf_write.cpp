@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <cctype>
+#include <strings.h>
 #include <exception>
 #include <new>
 #include <sstream>
@@ -260,6 +262,130 @@ struct writer {
 
     // ---- materials ----
 
+    // ---- textures ----
+
+    std::string out_dir; // the output's directory, resolved ("" if unknown)
+    std::vector<std::pair<const scene_map *, int>> image_of; // map -> glTF image
+
+    // A URI for file `path` relative to the output's directory (percent-encoded), so the
+    // output and the image may move together.
+    std::string uri_for(const char *path) const
+    {
+        char *abs = realpath(path, nullptr);
+        std::string a = abs ? abs : path, rel;
+        free(abs);
+        if (!out_dir.empty() && a[0] == '/') { // out_dir: absolute, ending in '/'
+            size_t common = 0;                 // the shared directories, through their last '/'
+            for (size_t k = 0; k < a.size() && k < out_dir.size() && a[k] == out_dir[k]; ++k)
+                if (a[k] == '/') common = k + 1;
+            for (size_t k = common; k < out_dir.size(); ++k)
+                if (out_dir[k] == '/') rel += "../";
+            a = rel + a.substr(common);
+        }
+        std::string u;
+        for (unsigned char c : a) {
+            if (isalnum(c) || strchr("-._~/", c)) {
+                u += (char)c;
+            } else {
+                char h[4];
+                snprintf(h, sizeof h, "%%%02X", c);
+                u += h;
+            }
+        }
+        return u;
+    }
+
+    // The glTF texture of map mp: its image once per file or blob (a blob into the buffer).
+    int texture(const scene_map *mp)
+    {
+        for (const auto &e : image_of)
+            if ((mp->blob && e.first->blob && e.first->blob_size == mp->blob_size &&
+                 !memcmp(e.first->blob, mp->blob, mp->blob_size)) ||
+                (!mp->blob && !e.first->blob && !strcmp(e.first->path, mp->path)))
+                return e.second;
+        tinygltf::Image im;
+        if (mp->blob) {
+            while (bin.size() % 4) bin.push_back(0);
+            tinygltf::BufferView bv;
+            bv.buffer = 0;
+            bv.byteOffset = bin.size();
+            bv.byteLength = mp->blob_size;
+            bin.insert(bin.end(), mp->blob, mp->blob + mp->blob_size);
+            m.bufferViews.push_back(bv);
+            im.bufferView = (int)m.bufferViews.size() - 1;
+            im.mimeType = mp->mime[0] ? mp->mime : "image/png";
+        } else {
+            im.uri = uri_for(mp->path);
+        }
+        m.images.push_back(im);
+        tinygltf::Texture t;
+        t.source = (int)m.images.size() - 1;
+        m.textures.push_back(t);
+        image_of.emplace_back(mp, (int)m.textures.size() - 1);
+        return (int)m.textures.size() - 1;
+    }
+
+    void transform(const scene_map *mp, tinygltf::ExtensionMap &e)
+    {
+        if (mp->offset[0] == 0 && mp->offset[1] == 0 && mp->scale[0] == 1 && mp->scale[1] == 1 &&
+            mp->rotation == 0)
+            return;
+        Value::Object t;
+        t["offset"] = vec(mp->offset, 2);
+        t["scale"] = vec(mp->scale, 2);
+        t["rotation"] = Value(mp->rotation);
+        e["KHR_texture_transform"] = Value(t);
+        if (std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), "KHR_texture_transform") ==
+            m.extensionsUsed.end())
+            m.extensionsUsed.push_back("KHR_texture_transform");
+    }
+
+    void skipped(const scene_material &sm, const char *why)
+    {
+        if (warn) fprintf(warn, "abrdf export: material '%s': %s\n", sm.name, why);
+    }
+
+    // A pbr material's maps as glTF textures (the mesh's uv is written as TEXCOORD_0).
+    void maps(const scene_material &sm, tinygltf::Material &gm)
+    {
+        const scene_map *mp = sm.maps;
+        tinygltf::PbrMetallicRoughness &pm = gm.pbrMetallicRoughness;
+        if (mp[SCENE_MAP_BASE_COLOR].path) {
+            if (!mp[SCENE_MAP_BASE_COLOR].srgb)
+                skipped(sm, "base_color_srgb=off has no glTF form (the map is written as sRGB)");
+            pm.baseColorTexture.index = texture(&mp[SCENE_MAP_BASE_COLOR]);
+            transform(&mp[SCENE_MAP_BASE_COLOR], pm.baseColorTexture.extensions);
+        }
+        const scene_map *me = &mp[SCENE_MAP_METALLIC], *ro = &mp[SCENE_MAP_ROUGHNESS];
+        if (me->path || ro->path) {
+            // glTF has one file: metallic in blue, roughness in green
+            bool one = me->path && ro->path && !strcmp(me->path, ro->path) &&
+                       me->blob_size == ro->blob_size && me->channel == 2 && ro->channel == 1;
+            if (one) {
+                pm.metallicRoughnessTexture.index = texture(me);
+                transform(me, pm.metallicRoughnessTexture.extensions);
+            } else {
+                skipped(sm, "metallic and roughness maps that are not one file's blue and green "
+                            "channels have no glTF form (not written)");
+            }
+        }
+        if (mp[SCENE_MAP_OCCLUSION].path) {
+            if (mp[SCENE_MAP_OCCLUSION].channel != 0) {
+                skipped(sm, "an occlusion map not in the red channel has no glTF form (not "
+                            "written)");
+            } else {
+                gm.occlusionTexture.index = texture(&mp[SCENE_MAP_OCCLUSION]);
+                gm.occlusionTexture.strength = mp[SCENE_MAP_OCCLUSION].strength;
+                transform(&mp[SCENE_MAP_OCCLUSION], gm.occlusionTexture.extensions);
+            }
+        }
+        if (mp[SCENE_MAP_NORMAL].path) {
+            gm.normalTexture.index = texture(&mp[SCENE_MAP_NORMAL]);
+            gm.normalTexture.scale = mp[SCENE_MAP_NORMAL].strength;
+            transform(&mp[SCENE_MAP_NORMAL], gm.normalTexture.extensions);
+        }
+    }
+
     int material(int i)
     {
         const scene_material &sm = s->materials[i];
@@ -315,11 +441,7 @@ struct writer {
                  {"anisotropyRotation", Value(near.anisotropy_rotation)}});
         if (near.transmission > 0)
             ext("KHR_materials_transmission", {{"transmissionFactor", Value(near.transmission)}});
-        if (sm.textured && warn)
-            fprintf(warn,
-                    "abrdf export: material '%s': its maps are not written to glTF (its factors "
-                    "are)\n",
-                    sm.name);
+        if (sm.pbr) maps(sm, gm);
         if (!ab.empty()) {
             Value::Object extras;
             extras["abrdf"] = Value(ab);
@@ -418,19 +540,32 @@ struct writer {
 
 } // namespace
 
-extern "C" int gltf_write_memory(const scene *s, int binary, FILE *warn, unsigned char **bytes,
-                                 size_t *size, char *err, size_t err_size)
+// A write callback that writes nothing: an image keeps the uri set above.
+bool keep_uri(const std::string *, const std::string *, const tinygltf::Image *, bool,
+              std::string *, void *)
+{
+    return false;
+}
+
+extern "C" int gltf_write_memory(const scene *s, const char *out_path, FILE *warn,
+                                 unsigned char **bytes, size_t *size, char *err, size_t err_size)
 {
     if (err && err_size) err[0] = '\0';
     *bytes = nullptr;
     *size = 0;
     try {
+        const char *dot = strrchr(out_path, '.'), *slash = strrchr(out_path, '/');
+        int binary = dot && (!slash || dot > slash) && !strcasecmp(dot, ".glb");
         writer w;
         w.s = s;
         w.warn = warn;
+        std::string dir = slash ? std::string(out_path, (size_t)(slash - out_path) + 1) : "./";
+        char *d = realpath(dir.c_str(), nullptr);
+        if (d) w.out_dir = std::string(d) + (strcmp(d, "/") ? "/" : ""), free(d);
         w.write();
         // .gltf: tinygltf writes the buffer as a data: URI; .glb: as the BIN chunk
         tinygltf::TinyGLTF t;
+        t.SetImageWriter(keep_uri, nullptr);
         std::ostringstream os;
         if (!t.WriteGltfSceneToStream(&w.m, os, !binary, binary != 0))
             fail("tinygltf could not serialise the model");
