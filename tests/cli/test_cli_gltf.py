@@ -3,9 +3,9 @@ renders as the same cube in the scene format (an OBJ mesh, the node's transform 
 object's) within NMSE 1e-6; the .glb and external-.bin forms and strips and fans render
 identically; the defaults taken are stated by --explain; bad files are one line naming the
 file, a non-zero exit and no output; abrdf export reads glTF. abrdf export --gltf writes
-scenes (analytic shapes, pbr and explicit materials, both light kinds, ambient) that render
-within NMSE 1e-6 of the scene itself, as .gltf and .glb. Run by CTest with ABRDF and SCENES in
-the environment."""
+scenes (analytic shapes, pbr, chosen and explicit materials, both light kinds, ambient) that
+render within NMSE 1e-6 of the scene itself, as .gltf and .glb, and maps as textures. Run by
+CTest with ABRDF and SCENES in the environment."""
 import json
 import math
 import os
@@ -193,11 +193,13 @@ material coat pbr base_color=0.2,0.3,0.8 metallic=0 roughness=0.6 ior=1.45 specu
 specular_color=1,0.9,0.9 clearcoat=0.5 clearcoat_roughness=0.1 ka=0.1,0.1,0.1
 material aniso pbr base_color=0.9,0.9,0.9 metallic=1 roughness=0.4 anisotropy=0.6
 material plastic diffuse=lambert specular=blinn_phong kd=0.5,0.1,0.1 ks=0.3 n=40
+material chosen pbr base_color=0.8,0.2,0.2 metallic=0 roughness=0.4 goal=performance
 sphere material=gold radius=0.5 translate=-1.2,0.5,0
 box material=coat size=0.8,0.6,0.8 translate=0,0.3,0 rotate=0,25,0
 capsule material=aniso radius=0.3 height=0.6 translate=1.2,0.6,0 rotate=0,0,20 tangent=v
 cylinder material=plastic radius=2 height=0.1 translate=0,-0.05,0
 mesh file=%s material=plastic scale=0.3 translate=0,0.6,1 rotate=0,40,0 smooth=off
+sphere material=chosen radius=0.3 translate=0.8,0.3,1.2
 """.replace("\\\n", "")
 
 
@@ -240,7 +242,11 @@ class WriteGltf(TempDirCase):
         self.assertEqual(plastic["extras"]["abrdf"]["models"], ["lambert", "blinn_phong"])
         self.assertEqual(plastic["extras"]["abrdf"]["params"]["n"], 40)
         shapes = [n["extras"]["abrdf"]["shape"] for n in doc["nodes"] if "extras" in n]
-        self.assertEqual(shapes, ["sphere", "box", "capsule", "cylinder", "mesh"])
+        self.assertEqual(shapes, ["sphere", "box", "capsule", "cylinder", "mesh", "sphere"])
+        # a pbr material whose models the selection chose: its factors, and the models
+        chosen = [m for m in doc["materials"] if m["name"] == "chosen"][0]
+        self.assertEqual(chosen["pbrMetallicRoughness"]["roughnessFactor"], 0.4)
+        self.assertIn("models", chosen["extras"]["abrdf"])
 
     def test_maps_written(self):
         # embedded images: one image in the buffer for the three maps that read it

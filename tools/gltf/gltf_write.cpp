@@ -401,8 +401,17 @@ struct writer {
                 fail(std::string("material '") + sm.name + "': a measured table has no glTF form");
         const abrdf_pbr *q = &sm.pbr_in;
         abrdf_pbr near;
+        bool chosen = false; // a pbr material whose models the selection chose
         if (sm.pbr) {
             near = *q;
+            abrdf_model lobes[ABRDF_PBR_MAX_LOBES];
+            int count = 0;
+            abrdf_params p;
+            abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
+            chosen = abrdf_pbr_lobes(q, lobes, &count, &p) != ABRDF_OK || count != sm.lobe_count ||
+                     memcmp(lobes, sm.lobes, (size_t)count * sizeof *lobes) ||
+                     memcmp(&p, &sm.params, sizeof p);
+            if (chosen) gltf_extras_models(&sm, ab); // the factors for viewers, models for abrdf
         } else {
             // the closest metallic-roughness material for other viewers; abrdf reads extras
             abrdf_pbr_init(&near);
@@ -412,7 +421,7 @@ struct writer {
             near.roughness = std::fmin(1, std::fmax(0, sm.params.r));
             gltf_extras_models(&sm, ab);
         }
-        if (sm.ka_given || !sm.pbr) ab["ka"] = vec(sm.ka, 3);
+        if (sm.ka_given || !sm.pbr || chosen) ab["ka"] = vec(sm.ka, 3);
         tinygltf::PbrMetallicRoughness &pm = gm.pbrMetallicRoughness;
         pm.baseColorFactor = {near.base_color[0], near.base_color[1], near.base_color[2], 1.0};
         pm.metallicFactor = near.metallic;
