@@ -57,6 +57,7 @@ START_TEST(strip_textures_hierarchy_defaults)
     ck_assert_int_eq(strip->material, mi);
     const mesh *ms = s.meshes[strip->mesh];
     ck_assert(ms->in_memory && ms->triangle_count == 2 && ms->uv && ms->uv_count == 4);
+    ck_assert(ms->uv_origin_top && ms->uv[2 * 3 + 1] == 1); /* as the file has it */
     ck_assert(ms->position[0] == 0.5f && ms->position[3] == 1.5f);
     ck_assert(strstr(ms->path, "strip.gltf#node/1/mesh/0/primitive/0") != NULL);
     /* strip triangles (0 1 2) and (2 1 3): both face +z (computed normals) */

@@ -697,6 +697,7 @@ struct reader {
                             "/primitive/" + std::to_string(pi);
         me->path = strdup(mname.c_str());
         me->in_memory = 1;
+        me->uv_origin_top = 1;
         me->vertex_count = (int)nv;
         me->triangle_count = (int)nt;
         me->position = static_cast<float *>(malloc(3 * nv * sizeof(float)));

@@ -118,8 +118,11 @@ struct writer {
                     nrm.push_back(smooth ? me->normal[3 * me->tri_normal[3 * t + k] + a]
                                          : (float)fn[a]);
                 }
-                if (me->uv)
-                    for (int a = 0; a < 2; ++a) uv.push_back(me->uv[2 * me->tri_uv[3 * t + k] + a]);
+                if (me->uv) { // glTF's v runs down the image (mesh.h, uv_origin_top)
+                    const float *q = me->uv + 2 * me->tri_uv[3 * t + k];
+                    uv.push_back(q[0]);
+                    uv.push_back(me->uv_origin_top ? q[1] : 1 - q[1]);
+                }
             }
         }
         return add_mesh(pos, nrm, uv, material);

@@ -42,7 +42,9 @@ typedef struct mesh {
     double radius;         /* largest distance of a position from center */
     int polygons_split;    /* faces of more than 3 corners, split as fans (0, k, k+1) */
     int in_memory;         /* 1: built from another file's data (a glTF primitive, gltf.h); path is
-                      then "FILE#node/N/mesh/M/primitive/P", a name for messages, no file */
+                              then "FILE#node/N/mesh/M/primitive/P", a name for messages, no file */
+    int uv_origin_top;     /* 1: v = 0 is the image's top row (glTF's texture coordinates, kept as
+                              the file has them); 0: its bottom row (OBJ's) */
 } mesh;
 
 /* Read; on failure frees everything, writes the message to err and returns -1 for a problem
