@@ -97,6 +97,14 @@ class ReadGltf(TempDirCase):
         a, _ = self.render(self.path("a.gltf"))
         for other in ("b.gltf", "c.glb"):
             self.assertEqual(nmse(a, self.render(self.path(other))[0]), 0.0)
+        # the .bin is one of the scene's files: never an output
+        with open(self.path("b.bin"), "rb") as f:
+            before = f.read()
+        r = abrdf("export", "--pov", self.path("b.gltf"), "-o", self.path("b.bin"))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn(b"buffer file", r.stderr)
+        with open(self.path("b.bin"), "rb") as f:
+            self.assertEqual(f.read(), before)
 
     def test_strips_and_fans_are_the_triangles(self):
         # a quad facing the default camera, three ways: its two triangles, a strip, a fan

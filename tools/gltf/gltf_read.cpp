@@ -1063,6 +1063,21 @@ struct reader {
         }
     }
 
+    // The files the buffers came from, so that no output replaces one (scene_named_files).
+    void buffer_files()
+    {
+        for (const tinygltf::Buffer &b : m->buffers) {
+            if (b.uri.empty() || b.uri.compare(0, 5, "data:") == 0) continue;
+            char **g = static_cast<char **>(
+                realloc(s->buffer_files, (size_t)(s->buffer_file_count + 1) * sizeof *g));
+            if (!g) throw std::bad_alloc();
+            s->buffer_files = g;
+            if (!(g[s->buffer_file_count] = strdup(uri_path(b.uri).c_str())))
+                throw std::bad_alloc();
+            ++s->buffer_file_count;
+        }
+    }
+
     void read()
     {
         material_of.assign(m->materials.size(), -1);
@@ -1170,6 +1185,7 @@ extern "C" int gltf_read_memory(const char *name, const unsigned char *bytes, si
         }
         r.m = &model;
         r.s = out;
+        r.buffer_files();
         if (!lwarn.empty()) r.note("tinygltf: " + one_line(lwarn));
         r.read();
         if (!r.notes.empty()) {

@@ -1021,6 +1021,8 @@ void scene_free(scene *s)
         measured_table_free(&s->measured[i].table);
     }
     free(s->measured);
+    for (int i = 0; i < s->buffer_file_count; ++i) free(s->buffer_files[i]);
+    free(s->buffer_files);
     free(s->notes);
     memset(s, 0, sizeof *s);
 }
@@ -1048,6 +1050,8 @@ int scene_named_files(const scene *s, const char **paths, const char **roles, in
         for (int k = 0; k < SCENE_MAP_COUNT; ++k)
             if (s->materials[i].maps[k].path && !s->materials[i].maps[k].blob)
                 name_file(paths, roles, max, n++, s->materials[i].maps[k].path, "texture");
+    for (int i = 0; i < s->buffer_file_count; ++i)
+        name_file(paths, roles, max, n++, s->buffer_files[i], "buffer file");
     return n;
 }
 

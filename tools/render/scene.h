@@ -193,6 +193,8 @@ typedef struct scene {
     int measured_count;
     int mesh_count;
     long long triangle_count; /* of all mesh objects, <= SCENE_MAX_TRIANGLES */
+    char **buffer_files;      /* the files a glTF file's buffers were read from (.bin), owned */
+    int buffer_file_count;
     char *notes; /* what the reader assumed or left out (a glTF file's defaults and ignored
                     features), one line each ending in '\n', owned; NULL: nothing to say */
 } scene;
@@ -204,10 +206,11 @@ int scene_parse_file(const char *path, scene *out, char *err, size_t err_size);
 int scene_parse_text(const char *name, const char *text, size_t len, scene *out, char *err,
                      size_t err_size);
 void scene_free(scene *s);
-/* The files the scene names - its mesh files, then its environment maps, its measured files
- * and its materials' textures, as they were read - with their roles ("mesh file",
- * "environment map", "measured file", "texture"): at most max into paths/roles (NULL
- * roles: not wanted). Returns how many the scene names (it may be more than max). */
+/* The files the scene names - its mesh files, then its environment maps, its measured files,
+ * its materials' textures and a glTF file's buffer files, as they were read - with their
+ * roles ("mesh file", "environment map", "measured file", "texture", "buffer file"): at most
+ * max into paths/roles (NULL roles: not wanted). Returns how many the scene names (it may be
+ * more than max). */
 int scene_named_files(const scene *s, const char **paths, const char **roles, int max);
 /* Refuse outputs that are files the scene names (out_files_distinct: links included):
  * 0, or -1 with one line in err. */
