@@ -14,6 +14,7 @@ debs=(build-essential g++ cmake pkg-config check python3 povray
       libsleef-dev   # tools/bench/vmath_choice: SLEEF timed against the library's own vector math
       libembree-dev        # ray queries of the built-in renderer (tools/render/accel.c)
       libtinyobjloader-dev # OBJ meshes (tools/render/mesh_obj.cpp)
+      libtinygltf-dev # glTF files (tools/gltf/)
       clang-format  # the C style, checked by the test check_format
       time)  # /usr/bin/time: POV-Ray's CPU time in tools/bench/renderers.sh (bpy: scripts/setup_bpy.sh)
 

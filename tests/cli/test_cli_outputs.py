@@ -117,6 +117,9 @@ class InputsAreNeverOutputs(Base):
         self.refused(["export", "--cycles", scene, "-o", scene], "the scene")
         for name in self.aliases(scene):
             self.refused(["export", "--pov", scene, "-o", name], "the scene")
+        glb = self.path("s.glb")  # a glTF file as the scene
+        self.assertEqual(run(ABRDF, "export", "--gltf", SPHERE, "-o", glb)[0], 0)
+        self.refused(["export", "--gltf", glb, "-o", glb], "the scene")
 
     def test_export_over_a_materials_file(self):
         mats = self.put("m.csv", read_text(os.path.join(SRC, "data", "materials.csv")))
@@ -211,7 +214,8 @@ class FullDisk(Base):
                           self.path("heat.png")], self.path("heat.png"), rc_expected=2)
 
     def test_export_pov_and_cycles(self):
-        for fmt, name in (("--pov", "x.pov"), ("--cycles", "x.py")):
+        for fmt, name in (("--pov", "x.pov"), ("--cycles", "x.py"), ("--gltf", "x.gltf"),
+                          ("--gltf", "x.glb")):
             self.fails_whole([ABRDF, "export", fmt, SPHERE, "-o", self.path(name)],
                              self.path(name), limit=1000)
 

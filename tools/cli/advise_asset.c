@@ -17,6 +17,7 @@
 #include "in_file.h"
 #include "path_msg.h"
 #include "pbr_select.h"
+#include "scene_load.h"
 
 #define CMD "advise"
 #define BRIDGE_MAX_OUTPUT (16u << 20) /* bytes of material lines from the MaterialX reader */
@@ -170,7 +171,8 @@ static int mtlx_lines(const char *path, char **text, size_t *len, char *err, siz
 int advise_asset_load(const char *path, scene *out, char *err, size_t err_size)
 {
     memset(out, 0, sizeof *out);
-    if (ends_with(path, ".scene")) return scene_parse_file(path, out, err, err_size);
+    if (ends_with(path, ".scene") || scene_is_gltf(path))
+        return scene_load(path, out, err, err_size);
     if (in_file_check(path, err, err_size)) return -1;
     if (ends_with(path, ".mtlx")) {
         char *text;

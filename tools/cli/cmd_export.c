@@ -17,8 +17,10 @@
 #include "data_path.h"
 #include "export.h"
 #include "export_pov.h"
+#include "gltf.h"
 #include "measured_standin.h"
 #include "out_file.h"
+#include "scene_load.h"
 #include "scene_select.h"
 
 #ifndef ABRDF_SOURCE_OSL_DIR
@@ -36,13 +38,20 @@ static int usage(void)
            "       abrdf export --cycles SCENE -o OUT.py [--model NAME [--set NAME=VALUE ...]]\n"
            "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
            "                    [--width W] [--height H] [--spp N] [--mode eval|closure|generic]\n"
-           "                    [--osl-dir DIR]\n\n"
+           "                    [--osl-dir DIR]\n"
+           "       abrdf export --gltf SCENE -o OUT.gltf|OUT.glb [--model NAME [--set ...]]\n"
+           "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
+           "                    [--width W] [--height H]\n\n"
            "--pov writes SCENE (docs/RENDERER.md, \"Scene format\") as POV-Ray 3.7 SDL that\n"
            "shades every object with the library's models (povray_macros/abrdf.inc,\n"
            "docs/POVRAY.md): same camera, lights, primitives and materials. Render it with\n"
            "+L<abrdf>/povray_macros, linear HDR (+FE).\n"
            "--cycles writes a Blender/Cycles (bpy) script for the same scene with the OSL port\n"
            "(osl/, docs/OSL.md); run it with a Python that has bpy.\n"
+           "--gltf writes glTF 2.0 (docs/GLTF.md, \"Writing glTF\"): meshes (analytic shapes\n"
+           "tessellated), metallic-roughness materials, camera and lights, with what only abrdf\n"
+           "reads back (exact shapes, explicit models) in extras; .glb for OUT.glb.\n"
+           "SCENE may be a scene file or a glTF file (.gltf, .glb).\n"
            "table= and adaptive materials are exported as the models the selection chose, with\n"
            "its trace as comments. OUT is written whole or not at all, never over SCENE.\n\n"
            "  --model/--set      as abrdf render: every material becomes this model\n"
@@ -96,13 +105,13 @@ static void export_failed(out_file *o, const char *scene_path, char *err, size_t
 
 /* What the command line asks for. */
 typedef struct export_args {
-    int help;                            /* --help given: print the usage and stop */
-    const char *path, *out;              /* the scene, the output */
-    const char *osl_dir, *mode;          /* --cycles: NULL for the defaults */
-    scene_choice choice;                 /* --model, --adaptive, --materials, ... */
-    int pov, cycles, no_shadows, native; /* the format and --pov's lighting */
-    int spp;                             /* --cycles: 0 for the default */
-    render_options opt;                  /* --width, --height */
+    int help;                                  /* --help given: print the usage and stop */
+    const char *path, *out;                    /* the scene, the output */
+    const char *osl_dir, *mode;                /* --cycles: NULL for the defaults */
+    scene_choice choice;                       /* --model, --adaptive, --materials, ... */
+    int pov, cycles, gltf, no_shadows, native; /* the format and --pov's lighting */
+    int spp;                                   /* --cycles: 0 for the default */
+    render_options opt;                        /* --width, --height */
 } export_args;
 
 /* One option at argv[*i] (its value taken, *i advanced): 0, or the exit status after the
@@ -112,6 +121,7 @@ static int take_option(export_args *ea, int argc, char **argv, int *i)
     const char *a = argv[*i];
     const cli_flag flags[] = {{"--pov", &ea->pov, 1},
                               {"--cycles", &ea->cycles, 1},
+                              {"--gltf", &ea->gltf, 1},
                               {"--no-shadows", &ea->no_shadows, 1},
                               {"--native", &ea->native, 1}};
     const cli_string strings[] = {
@@ -148,13 +158,18 @@ static int export_args_parse(int argc, char **argv, export_args *ea)
         int rc = took ? 0 : take_option(ea, argc, argv, &i);
         if (rc) return rc;
     }
-    if (ea->pov + ea->cycles != 1) return cli_fail(CMD, "choose one format: --pov or --cycles");
+    if (ea->pov + ea->cycles + ea->gltf != 1)
+        return cli_fail(CMD, "choose one format: --pov, --cycles or --gltf");
     if (!ea->path) return cli_fail(CMD, "missing SCENE (abrdf export --help)");
     if (!ea->out) return cli_fail(CMD, "missing -o OUT");
     if (ea->pov && (ea->spp || ea->mode || ea->osl_dir))
         return cli_fail(CMD, "--spp, --mode and --osl-dir are options of --cycles");
-    if (ea->cycles && (ea->native || ea->no_shadows))
+    if (!ea->pov && (ea->native || ea->no_shadows))
         return cli_fail(CMD, "--native and --no-shadows are options of --pov");
+    if (ea->gltf && (ea->spp || ea->mode || ea->osl_dir))
+        return cli_fail(CMD, "--spp, --mode and --osl-dir are options of --cycles");
+    if (ea->gltf && !scene_is_gltf(ea->out))
+        return cli_fail(CMD, "--gltf writes OUT.gltf or OUT.glb, not '%s'", ea->out);
     if (ea->native && ea->no_shadows)
         return cli_fail(CMD, "--native uses POV-Ray's lights (with shadows); drop --no-shadows");
     if (ea->mode && strcmp(ea->mode, "eval") && strcmp(ea->mode, "closure") &&
@@ -201,6 +216,34 @@ static int export_write(const export_args *ea, const render_scene *rs, out_file 
     return failed ? 1 : 0;
 }
 
+/* The scene, its materials chosen, as glTF (a .glb if OUT ends so) written whole or not at
+ * all: 0, or 1 after the message. */
+static int export_gltf(const export_args *ea, scene *s)
+{
+    char err[1024];
+    if (ea->opt.width) s->camera.width = ea->opt.width;
+    if (ea->opt.height) s->camera.height = ea->opt.height;
+    unsigned char *bytes = NULL;
+    size_t size = 0;
+    out_file o = OUT_FILE_INIT;
+    out_file *const files[1] = {&o};
+    int rc = 1;
+    if (gltf_write_memory(s, ea->out, stderr, &bytes, &size, err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s: %s\n", ea->path, err);
+    } else if (out_file_open(&o, ea->out, err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s\n", err);
+    } else {
+        out_file_write(&o, bytes, size);
+        if (out_file_close(&o, err, sizeof err) || out_file_commit(files, 1, err, sizeof err))
+            fprintf(stderr, "abrdf export: %s\n", err);
+        else
+            rc = 0;
+    }
+    out_file_discard(&o);
+    free(bytes);
+    return rc;
+}
+
 /* The parsed scene s, its materials chosen (the trace kept for the file's comments), written
  * whole or not at all. 0, or the exit status after the message. */
 static int export_scene(export_args *ea, scene *s)
@@ -232,6 +275,15 @@ static int export_scene(export_args *ea, scene *s)
         rc = applied;
         goto done;
     }
+    if (ea->gltf) {
+        rc = export_gltf(ea, s);
+        goto done;
+    }
+    for (int i = 0; i < s->material_count; ++i)
+        if (s->materials[i].textured)
+            fprintf(stderr,
+                    "abrdf export: material '%s': its maps are not exported (its factors are)\n",
+                    s->materials[i].name);
     if (render_prepare(s, &ea->opt, &rs, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;
@@ -262,7 +314,7 @@ int cmd_export(int argc, char **argv)
     if ((rc = output_refuse(&ea))) return rc;
     char err[1024];
     scene s;
-    if (scene_parse_file(ea.path, &s, err, sizeof err)) {
+    if (scene_load(ea.path, &s, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         return 1;
     }

@@ -14,6 +14,7 @@
 #include "image_io.h"
 #include "out_file.h"
 #include "render.h"
+#include "scene_load.h"
 #include "scene_select.h"
 
 static int usage(void)
@@ -304,7 +305,16 @@ static int render_to_files(render_args *ra, scene *s, const char *png, struct ti
         fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
-    if (ra->explain) render_explain(&rs, &ra->opt, stdout);
+    if (ra->explain) {
+        /* what the scene's reader assumed or left out (a glTF file's defaults) */
+        for (const char *q = s->notes; q && *q;) {
+            const char *nl = strchr(q, '\n');
+            int len = nl ? (int)(nl - q) : (int)strlen(q);
+            printf("scene: %.*s\n", len, q);
+            q += len + (nl != NULL);
+        }
+        render_explain(&rs, &ra->opt, stdout);
+    }
     rgb = malloc((size_t)rs.width * (size_t)rs.height * 3 * sizeof *rgb);
     if (!rgb) {
         fprintf(stderr, "abrdf render: out of memory for %dx%d\n", rs.width, rs.height);
@@ -356,7 +366,7 @@ int cmd_render(int argc, char **argv)
     scene s;
     struct timespec t[5];
     clock_gettime(CLOCK_MONOTONIC, &t[0]);
-    if (scene_parse_file(ra.path, &s, err, sizeof err)) {
+    if (scene_load(ra.path, &s, err, sizeof err)) {
         fprintf(stderr, "abrdf render: %s\n", err);
         free(png);
         return 1;

@@ -15,6 +15,7 @@
 #include "metrics.h"
 #include "render.h"
 #include "robot_scene.h"
+#include "scene_load.h"
 
 /* The paper's alpha_g values, as printed in Tables 6-7 (the rows of the published data). */
 static const char *const alpha_g_label[PAPER_IMAGES_ROWS] = {
@@ -113,7 +114,7 @@ int paper_images_compute(int table, const paper_images_options *o, paper_images_
     }
     scene s;
     int parsed = o->scene_path
-                     ? scene_parse_file(o->scene_path, &s, err, err_size)
+                     ? scene_load(o->scene_path, &s, err, err_size)
                      : scene_parse_text("robot.scene", abrdf_robot_scene_text,
                                         strlen(abrdf_robot_scene_text), &s, err, err_size);
     if (parsed) return -1;

@@ -346,7 +346,7 @@ static int on_other(void *user, const mesh_obj_line *line)
 
 /* Angle-weighted vertex normals (mesh.h); corners whose vertex gets no direction (every
  * triangle around it degenerate) take their own triangle's normal, or +z if it has none. */
-static int compute_normals(mesh *m)
+int mesh_compute_normals(mesh *m)
 {
     size_t nv = (size_t)m->vertex_count, nt = (size_t)m->triangle_count;
     double *acc = calloc(3 * nv, sizeof *acc);
@@ -432,7 +432,7 @@ static int compute_normals(mesh *m)
 }
 
 /* Centre of the bounding box of every position and the largest distance from it. */
-static void bounding_sphere(mesh *m)
+void mesh_bounding_sphere(mesh *m)
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t v = 0; v < (size_t)m->vertex_count; ++v)
@@ -511,13 +511,13 @@ int mesh_load_text(const char *name, const char *text, size_t len, int max_trian
         if (!ld.face_has_n) {
             free(out->tri_normal);
             out->tri_normal = NULL;
-            if (compute_normals(out)) st = fail(&ld, 0, "out of memory");
+            if (mesh_compute_normals(out)) st = fail(&ld, 0, "out of memory");
         }
         if (!ld.face_has_uv) {
             free(out->uv), free(out->tri_uv);
             out->uv = NULL, out->tri_uv = NULL, out->uv_count = 0;
         }
-        bounding_sphere(out);
+        mesh_bounding_sphere(out);
     }
     if (st != 0) {
         mesh_free(out);

@@ -13,6 +13,7 @@
  *   mesh_load_file   read and check an OBJ file
  *   mesh_load_text   the same for text in memory (name is used in messages)
  *   mesh_free        release a mesh
+ *   mesh_compute_normals, mesh_bounding_sphere   for meshes built in memory (glTF, gltf.h)
  */
 #ifndef ABRDF_MESH_H
 #define ABRDF_MESH_H
@@ -40,6 +41,10 @@ typedef struct mesh {
     double center[3];      /* centre of the positions' bounding box */
     double radius;         /* largest distance of a position from center */
     int polygons_split;    /* faces of more than 3 corners, split as fans (0, k, k+1) */
+    int in_memory;         /* 1: built from another file's data (a glTF primitive, gltf.h); path is
+                              then "FILE#node/N/mesh/M/primitive/P", a name for messages, no file */
+    int uv_origin_top;     /* 1: v = 0 is the image's top row (glTF's texture coordinates, kept as
+                              the file has them); 0: its bottom row (OBJ's) */
 } mesh;
 
 /* Read; on failure frees everything, writes the message to err and returns -1 for a problem
@@ -50,5 +55,10 @@ int mesh_load_text(const char *name, const char *text, size_t len, int max_trian
                    char *err, size_t err_size);
 int mesh_load_file(const char *path, int max_triangles, mesh *out, char *err, size_t err_size);
 void mesh_free(mesh *m);
+/* The angle-weighted vertex normals above, replacing normal and tri_normal (position and tri
+ * set): 0, or -1 out of memory. */
+int mesh_compute_normals(mesh *m);
+/* center and radius from the positions. */
+void mesh_bounding_sphere(mesh *m);
 
 #endif

@@ -607,9 +607,40 @@ const char *scene_map_name(scene_map_slot slot)
     "roughness_map, roughness_channel, occlusion_map, occlusion_channel, occlusion_strength, "     \
     "normal_map, normal_scale, ka, goal, budget"
 
-static void maps_free(scene_material *m)
+void scene_material_free(scene_material *m)
 {
-    for (int k = 0; k < SCENE_MAP_COUNT; ++k) free(m->maps[k].path), m->maps[k].path = NULL;
+    for (int k = 0; k < SCENE_MAP_COUNT; ++k) {
+        free(m->maps[k].path), free(m->maps[k].blob);
+        m->maps[k].path = NULL, m->maps[k].blob = NULL, m->maps[k].blob_size = 0;
+    }
+}
+
+void scene_pbr_init(scene_material *m)
+{
+    abrdf_pbr_init(&m->pbr_in);
+    static const int default_channel[SCENE_MAP_COUNT] = {0, 2, 1, 0, 0};
+    for (int k = 0; k < SCENE_MAP_COUNT; ++k) {
+        m->maps[k].channel = default_channel[k];
+        m->maps[k].srgb = k == SCENE_MAP_BASE_COLOR;
+        m->maps[k].strength = 1;
+        m->maps[k].scale[0] = m->maps[k].scale[1] = 1;
+    }
+}
+
+int scene_pbr_finish(scene_material *m, char *msg, size_t msg_size)
+{
+    m->pbr = 1;
+    if (m->kind != SCENE_MAT_ADAPTIVE) m->kind = SCENE_MAT_MODELS;
+    abrdf_params_init(ABRDF_DISNEY_SPECULAR, &m->params);
+    if (abrdf_pbr_lobes(&m->pbr_in, m->lobes, &m->lobe_count, &m->params) != ABRDF_OK) {
+        abrdf_pbr_check(&m->pbr_in, msg, msg_size);
+        return -1;
+    }
+    m->params_set = 0;
+    if (!m->ka_given) memcpy(m->ka, m->params.kd, sizeof m->ka);
+    m->textured = 0;
+    for (int k = 0; k < SCENE_MAP_COUNT; ++k) m->textured |= m->maps[k].path != NULL;
+    return 0;
 }
 
 /* The words of `material NAME pbr ...` from index 3: factors, maps, goal= or budget=. The
@@ -618,14 +649,7 @@ static void maps_free(scene_material *m)
 static int pbr_words(parser *p, word *w, int n, scene_material *m)
 {
     abrdf_pbr *q = &m->pbr_in;
-    abrdf_pbr_init(q);
-    static const int default_channel[SCENE_MAP_COUNT] = {0, 2, 1, 0, 0};
-    for (int k = 0; k < SCENE_MAP_COUNT; ++k) {
-        m->maps[k].channel = default_channel[k];
-        m->maps[k].srgb = k == SCENE_MAP_BASE_COLOR;
-        m->maps[k].strength = 1;
-        m->maps[k].scale[0] = m->maps[k].scale[1] = 1;
-    }
+    scene_pbr_init(m);
     struct {
         const char *key;
         double *v;
@@ -714,12 +738,7 @@ static int pbr_words(parser *p, word *w, int n, scene_material *m)
     }
     if (leftovers(p, w, n, 3, PBR_KEYS)) return -1;
     char msg[256];
-    if (abrdf_pbr_lobes(q, m->lobes, &m->lobe_count, &m->params) != ABRDF_OK) {
-        abrdf_pbr_check(q, msg, sizeof msg);
-        return fail(p, "material '%s': %s", m->name, msg);
-    }
-    m->params_set = 0;
-    if (!m->ka_given) memcpy(m->ka, m->params.kd, sizeof m->ka);
+    if (scene_pbr_finish(m, msg, sizeof msg)) return fail(p, "material '%s': %s", m->name, msg);
     return 0;
 }
 
@@ -752,15 +771,14 @@ static int do_pbr_material(parser *p, word *w, int n, scene_material *m)
     w[2].used = 1;
     m->pbr = 1;
     m->kind = SCENE_MAT_MODELS;
-    abrdf_params_init(ABRDF_DISNEY_SPECULAR, &m->params);
     if (pbr_words(p, w, n, m)) {
-        maps_free(m);
+        scene_material_free(m);
         return -1;
     }
     scene *s = p->s;
     scene_material *grown = realloc(s->materials, (size_t)(s->material_count + 1) * sizeof *grown);
     if (!grown) {
-        maps_free(m);
+        scene_material_free(m);
         return fail(p, "out of memory");
     }
     s->materials = grown;
@@ -993,7 +1011,7 @@ void scene_free(scene *s)
     for (int i = 0; i < s->light_count; ++i)
         if (s->lights[i].env) envmap_free(s->lights[i].env), free(s->lights[i].env);
     free(s->lights);
-    for (int i = 0; i < s->material_count; ++i) maps_free(&s->materials[i]);
+    for (int i = 0; i < s->material_count; ++i) scene_material_free(&s->materials[i]);
     free(s->materials);
     free(s->objects);
     for (int i = 0; i < s->mesh_count; ++i) {
@@ -1006,6 +1024,9 @@ void scene_free(scene *s)
         measured_table_free(&s->measured[i].table);
     }
     free(s->measured);
+    for (int i = 0; i < s->buffer_file_count; ++i) free(s->buffer_files[i]);
+    free(s->buffer_files);
+    free(s->notes);
     memset(s, 0, sizeof *s);
 }
 
@@ -1021,7 +1042,8 @@ int scene_named_files(const scene *s, const char **paths, const char **roles, in
 {
     int n = 0;
     for (int i = 0; i < s->mesh_count; ++i)
-        name_file(paths, roles, max, n++, s->meshes[i]->path, "mesh file");
+        if (!s->meshes[i]->in_memory)
+            name_file(paths, roles, max, n++, s->meshes[i]->path, "mesh file");
     for (int i = 0; i < s->light_count; ++i)
         if (s->lights[i].env)
             name_file(paths, roles, max, n++, s->lights[i].env->path, "environment map");
@@ -1029,8 +1051,10 @@ int scene_named_files(const scene *s, const char **paths, const char **roles, in
         name_file(paths, roles, max, n++, s->measured[i].path, "measured file");
     for (int i = 0; i < s->material_count; ++i)
         for (int k = 0; k < SCENE_MAP_COUNT; ++k)
-            if (s->materials[i].maps[k].path)
+            if (s->materials[i].maps[k].path && !s->materials[i].maps[k].blob)
                 name_file(paths, roles, max, n++, s->materials[i].maps[k].path, "texture");
+    for (int i = 0; i < s->buffer_file_count; ++i)
+        name_file(paths, roles, max, n++, s->buffer_files[i], "buffer file");
     return n;
 }
 

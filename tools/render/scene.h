@@ -104,14 +104,20 @@ typedef enum scene_map_slot {
 } scene_map_slot;
 
 typedef struct scene_map {
-    char *path;       /* the image file, resolved from the scene's directory; NULL: no map */
-    int channel;      /* one-channel slots: the channel read, [0, 3] */
-    int srgb;         /* base colour: 1 = the file holds sRGB-encoded values */
-    double strength;  /* occlusion strength or normal scale (s above); 1 */
-    int uv_set;       /* the mesh's texture coordinates it reads (glTF TEXCOORD_n); 0 */
-    double offset[2]; /* KHR_texture_transform: uv' = offset + R(rotation) (scale * uv); 0 */
-    double scale[2];  /* 1 */
-    double rotation;  /* radians; 0 */
+    char *path; /* the image file, resolved from the scene's directory; NULL: no map. With a
+                   blob: a name for messages only ("FILE.glb#image/N"), not a file to open */
+    unsigned char *blob; /* an image embedded in a glTF file (a .glb buffer view or a data:
+                            URI): the encoded file's bytes (PNG, JPEG...), owned; NULL: the
+                            image is the file at path */
+    size_t blob_size;    /* bytes of blob */
+    char mime[32];       /* with a blob: its glTF mimeType ("image/png"), or "" if not given */
+    int channel;         /* one-channel slots: the channel read, [0, 3] */
+    int srgb;            /* base colour: 1 = the file holds sRGB-encoded values */
+    double strength;     /* occlusion strength or normal scale (s above); 1 */
+    int uv_set;          /* the mesh's texture coordinates it reads (glTF TEXCOORD_n); 0 */
+    double offset[2];    /* KHR_texture_transform: uv' = offset + R(rotation) (scale * uv); 0 */
+    double scale[2];     /* 1 */
+    double rotation;     /* radians; 0 */
 } scene_map;
 
 typedef struct scene_material {
@@ -166,11 +172,11 @@ typedef struct scene_object {
     double rotate_deg[3];
     double translate[3];
     scene_tangent tangent;
-    double tangent_axis[3]; /* SCENE_TANGENT_AXIS: non-zero object-space direction */
-    int material;           /* index into scene.materials */
-    int mesh;               /* SCENE_MESH: index into scene.meshes, else -1 */
-    const mesh *mesh_data;  /* SCENE_MESH: scene.meshes[mesh], else NULL */
-    int smooth;             /* SCENE_MESH: 1 interpolate vertex normals, 0 flat faces */
+    double tangent_axis[3];       /* SCENE_TANGENT_AXIS: non-zero object-space direction */
+    int material;                 /* index into scene.materials */
+    int mesh;                     /* SCENE_MESH: index into scene.meshes, else -1 */
+    const struct mesh *mesh_data; /* SCENE_MESH: scene.meshes[mesh], else NULL */
+    int smooth;                   /* SCENE_MESH: 1 interpolate vertex normals, 0 flat faces */
     int line;
 } scene_object;
 
@@ -188,6 +194,10 @@ typedef struct scene {
     int measured_count;
     int mesh_count;
     long long triangle_count; /* of all mesh objects, <= SCENE_MAX_TRIANGLES */
+    char **buffer_files;      /* the files a glTF file's buffers were read from (.bin), owned */
+    int buffer_file_count;
+    char *notes; /* what the reader assumed or left out (a glTF file's defaults and ignored
+                    features), one line each ending in '\n', owned; NULL: nothing to say */
 } scene;
 
 /* Parse; on failure returns -1, frees everything and writes "NAME:LINE: problem" to err; a
@@ -202,10 +212,11 @@ int scene_parse_text(const char *name, const char *text, size_t len, scene *out,
 int scene_parse_materials(const char *name, const char *text, size_t len, scene *out, char *err,
                           size_t err_size);
 void scene_free(scene *s);
-/* The files the scene names - its mesh files, then its environment maps, its measured files
- * and its materials' textures, as they were read - with their roles ("mesh file",
- * "environment map", "measured file", "texture"): at most max into paths/roles (NULL
- * roles: not wanted). Returns how many the scene names (it may be more than max). */
+/* The files the scene names - its mesh files, then its environment maps, its measured files,
+ * its materials' textures and a glTF file's buffer files, as they were read - with their
+ * roles ("mesh file", "environment map", "measured file", "texture", "buffer file"): at most
+ * max into paths/roles (NULL roles: not wanted). Returns how many the scene names (it may be
+ * more than max). */
 int scene_named_files(const scene *s, const char **paths, const char **roles, int max);
 /* Refuse outputs that are files the scene names (out_files_distinct: links included):
  * 0, or -1 with one line in err. */
@@ -217,6 +228,16 @@ int scene_outputs_distinct(const scene *s, const char *const *outputs,
  * anisotropic), and n from r (abrdf_alpha_g_to_n of r^2) where sm's lobes read n (the
  * performance goal's Blinn-Phong). 0, or -1 if q is out of its ranges. */
 int scene_pbr_params(const scene_material *sm, const abrdf_pbr *q, abrdf_params *out);
+
+/* A `pbr` material's maps with their defaults (no file; glTF's channels, sRGB base colour,
+ * strength 1, identity transform), pbr_in at glTF's defaults. */
+void scene_pbr_init(scene_material *m);
+/* A `pbr` material (pbr_in and maps set) completed as the scene format completes it: kind
+ * SCENE_MAT_MODELS unless already ADAPTIVE, lobes and params from abrdf_pbr_lobes, ka from
+ * kd unless ka_given, textured from the maps. 0, or -1 with abrdf_pbr_check's message. */
+int scene_pbr_finish(scene_material *m, char *msg, size_t msg_size);
+/* Free a material's map paths and blobs. */
+void scene_material_free(scene_material *m);
 
 const char *scene_shape_name(scene_shape shape);
 const char *scene_map_name(scene_map_slot slot); /* "base_color", ... as `KEY_map=` spells it */
