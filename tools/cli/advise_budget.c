@@ -142,9 +142,11 @@ static void print_human(const budget_result *r, const mat_entry *e, double max_n
     const abrdf_select_step *ref = reference_step(r);
     char nm[128], unit[32] = "units";
     if (r->sel.cost_unit) sscanf(r->sel.cost_unit, "%31s", unit);
-    if (e)
+    if (e && e->line > 0)
         printf("material   %s (%s; %s:%d)\n", e->name, abrdf_surface_name(r->sel.type), e->file,
                e->line);
+    else if (e) /* a glTF or MaterialX material: the file holds no line for it */
+        printf("material   %s (%s; %s)\n", e->name, abrdf_surface_name(r->sel.type), e->file);
     else
         printf("material   explicit values (%s)\n", abrdf_surface_name(r->sel.type));
     budget_pair_name(ref ? ref->diffuse : ABRDF_MODEL_NONE, ref ? ref->model : ABRDF_MODEL_NONE,

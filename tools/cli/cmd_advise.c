@@ -288,9 +288,11 @@ static int limit_value(const char *opt, const char *s, double *out)
 static void print_human(const abrdf_selection *s, const abrdf_params *p, const select_trace *trace,
                         const mat_entry *e)
 {
-    if (e)
+    if (e && e->line > 0)
         printf("material  %s (%s; %s:%d)\n", e->name, abrdf_surface_name(s->type), e->file,
                e->line);
+    else if (e) /* a glTF or MaterialX material: the file holds no line for it */
+        printf("material  %s (%s; %s)\n", e->name, abrdf_surface_name(s->type), e->file);
     else
         printf("material  explicit values (%s)\n", abrdf_surface_name(s->type));
     printf("goal      %s\n", abrdf_goal_name(s->goal));
