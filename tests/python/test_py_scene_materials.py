@@ -160,3 +160,32 @@ def test_abrdf_advise_reads_materialx_through_this_module(material_assets, cli, 
                 m = got["%s_%s" % (prefix, name)]
                 assert (m["type"], m["diffuse"], m["specular"]) == \
                     (s.type, s.diffuse, s.specular), (prefix, name, goal)
+
+
+def test_abrdf_advise_gives_a_gltf_material_and_its_materialx_twin_the_same(material_assets,
+                                                                             cli, monkeypatch):
+    """`abrdf advise scene.gltf` (the C++ glTF reader) and `abrdf advise materials.mtlx` (this
+    package's MaterialX reader): each constant material and its MaterialX twin, through each
+    of the three shader nodes, get the same choice, parameters, predicted error and cost."""
+    out, gen = material_assets
+    monkeypatch.setenv("ABRDF_PYTHON", sys.executable)
+    for goal in ("photoreal", "performance"):
+        gl = {m["material"]: m for m in
+              cli("advise", out / "scene.gltf", "--goal", goal, "--json")["materials"]}
+        mx = {m["material"]: m for m in
+              cli("advise", out / "materials.mtlx", "--goal", goal, "--json")["materials"]}
+        for name in gen.CONSTANTS:
+            for prefix in ("gltf", "std", "opbr"):
+                a, b = gl[name], mx["%s_%s" % (prefix, name)]
+                for key in ("type", "diffuse", "specular", "error", "cost"):
+                    assert a[key] == b[key], (name, prefix, goal, key)
+                for key, v in a["params"].items():
+                    if key == "layers":  # a list of objects: compared field by field
+                        assert len(b["params"][key]) == len(v), (name, prefix, goal)
+                        for la, lb in zip(v, b["params"][key]):
+                            for f, x in la.items():
+                                assert lb[f] == pytest.approx(x, rel=1e-9, abs=1e-12), \
+                                    (name, prefix, goal, f)
+                    else:
+                        assert b["params"][key] == pytest.approx(v, rel=1e-9, abs=1e-12), \
+                            (name, prefix, goal, key)
