@@ -45,7 +45,7 @@ for i in range(count):
         "baseColorFactor": base + [1], "metallicFactor": metallic, "roughnessFactor": rough}})
     prims.append({"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3, "material": i})
     lines.append("material m%03d pbr base_color=%g,%g,%g metallic=%g roughness=%g"
-                 % (*base, metallic, rough))
+                 % (i, base[0], base[1], base[2], metallic, rough))
 doc = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
        "nodes": [{"mesh": 0}], "meshes": [{"primitives": prims}],
        "buffers": [{"byteLength": len(blob),

@@ -38,9 +38,9 @@
 #define GOLDEN_STEPS 80
 
 typedef struct err_ctx {
-    abrdf_model approx;
-    abrdf_params pa, pb; /* the approximation and Blinn-Phong, ks = 1, same n */
-    int relative;        /* 1: |f - g| / g, 0: |f - g| */
+    abrdf_prepared pa, pb; /* the approximation and Blinn-Phong, ks = 1, same n: prepared once
+                              (abrdf_eval is exactly abrdf_prepare then the prepared call) */
+    int relative;          /* 1: |f - g| / g, 0: |f - g| */
 } err_ctx;
 
 static int is_table1(abrdf_model m)
@@ -56,8 +56,8 @@ static double err_at(const err_ctx *e, double c)
     if (c > 1.0) c = 1.0;
     double w[3] = {sqrt((1.0 - c) * (1.0 + c)), 0.0, c}; /* no cancellation near c = 1 */
     double f[3], g[3];
-    abrdf_eval(e->approx, &e->pa, NULL, w, w, f);
-    abrdf_eval(ABRDF_BLINN_PHONG, &e->pb, NULL, w, w, g);
+    abrdf_eval_prepared(&e->pa, NULL, w, w, f);
+    abrdf_eval_prepared(&e->pb, NULL, w, w, g);
     double d = fabs(f[0] - g[0]);
     if (!e->relative) return d;
     return g[0] > 0.0 ? d / g[0] : 0.0;
@@ -133,13 +133,15 @@ int abrdf_approx_error_eval(abrdf_model approx, double n, abrdf_approx_error *ou
     memset(out, 0, sizeof *out);
     if (!is_table1(approx)) return ABRDF_E_MODEL;
     err_ctx e;
-    e.approx = approx;
-    abrdf_params_init(approx, &e.pa);
-    abrdf_params_init(ABRDF_BLINN_PHONG, &e.pb);
-    e.pa.n = e.pb.n = n;
-    for (int c = 0; c < 3; ++c) e.pa.ks[c] = e.pb.ks[c] = 1.0;
-    int st = abrdf_params_check(approx, &e.pa, NULL, 0);
+    abrdf_params pa, pb;
+    abrdf_params_init(approx, &pa);
+    abrdf_params_init(ABRDF_BLINN_PHONG, &pb);
+    pa.n = pb.n = n;
+    for (int c = 0; c < 3; ++c) pa.ks[c] = pb.ks[c] = 1.0;
+    int st = abrdf_params_check(approx, &pa, NULL, 0);
     if (st != ABRDF_OK) return st;
+    if ((st = abrdf_prepare(approx, &pa, &e.pa)) != ABRDF_OK) return st;
+    if ((st = abrdf_prepare(ABRDF_BLINN_PHONG, &pb, &e.pb)) != ABRDF_OK) return st;
 
     double zone = abrdf__highlight_zone_cos(n);
     e.relative = 1;
