@@ -207,6 +207,8 @@ static int textures_open(const scene *s, const render_options *opt, render_scene
             const scene_map *mp = &sm->maps[k];
             if (!mp->path) continue;
             texture_info info;
+            /* an image embedded in a .glb goes in through texture_open's bytes, named
+             * "FILE#imageN.EXT" (texture.h) */
             if (texture_open(rs->textures, mp->path, NULL, 0, &m->maps[k], &info, err, err_size))
                 return -1;
             m->map_channels[k] = info.channels;
