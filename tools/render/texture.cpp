@@ -35,7 +35,8 @@ struct texture_system {
     std::vector<std::unique_ptr<texture_file>> files;
     std::vector<std::unique_ptr<Filesystem::IOMemReader>> proxies; // in-memory images
     // Thread states are kept for reuse until the system goes: OpenImageIO 2.4 merges the
-    // statistics of every state it made, destroyed or not (a destroyed one crashes getstats).
+    // statistics of every state it made, destroyed or not (a destroyed one crashes getstats),
+    // so they are destroyed last, with the system.
     std::mutex lock;
     std::vector<texture_thread *> idle, all;
     std::string first_error; // of a lookup (under lock): "NAME: problem"
@@ -84,7 +85,10 @@ texture_system *system_new(double cache_mb, char *err, size_t err_size)
 void system_free(texture_system *s)
 {
     if (!s) return;
-    for (texture_thread *t : s->all) delete t; // their Perthread: the cache's, freed with it
+    for (texture_thread *t : s->all) {
+        s->ts->destroy_thread_info(t->info); // nothing reads the statistics after this
+        delete t;
+    }
     TextureSystem::destroy(s->ts);
     ImageCache::destroy(s->ic);
     delete s;
