@@ -218,6 +218,43 @@ START_TEST(occlusion_scales_ambient)
 }
 END_TEST
 
+/* KHR_texture_transform (scene_map offset, rotation, scale; set here as a glTF reader sets
+ * them): with rotation pi/2 and offset (0.25, 0), (s, t) -> (0.25 - t, s), so the pixel of
+ * texel (i, j) reads texel (4 - j mod 4, i) of the occlusion map (periodic wrap). */
+START_TEST(texture_transform_moves_texels)
+{
+    float occ[TX_N * TX_N * 3];
+    for (unsigned k = 0; k < TX_N * TX_N * 3; ++k) occ[k] = value(k + 11, 0.0f, 1.0f);
+    write_exr("occ.exr", TX_N, TX_N, occ);
+    write_quad("quad.obj", "");
+    write_text("occ.scene", TX_CAMERA "ambient 0.5\n"
+                                      "material m pbr base_color=1,1,1 metallic=0 "
+                                      "occlusion_map=occ.exr\n"
+                                      "mesh file=quad.obj material=m\n");
+    scene s;
+    char err[1024];
+    ck_assert_msg(scene_parse_file(in_dir("occ.scene"), &s, err, sizeof err) == 0, "%s", err);
+    scene_map *mp = &s.materials[0].maps[SCENE_MAP_OCCLUSION];
+    mp->rotation = acos(-1.0) / 2, mp->offset[0] = 0.25;
+    render_options opt = {0, 0, 1, 0, 2, 0, RENDER_DOUBLE, 0, 0, 0, 0};
+    render_scene rs;
+    ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
+    float *rgb = malloc((size_t)rs.width * rs.height * 3 * sizeof *rgb);
+    ck_assert_ptr_nonnull(rgb);
+    ck_assert_int_eq(render_image(&rs, &opt, rgb, NULL), 0);
+    for (int j = 0; j < TX_N; ++j)
+        for (int i = 0; i < TX_N; ++i) {
+            double o = occ[3 * (i * TX_N + (TX_N - j) % TX_N)];
+            double got = rgb[3 * ((size_t)(9 * j + 4) * rs.width + 9 * i + 4)];
+            ck_assert_msg(tu_close(got, 0.5 * o, 1e-5, 1e-8), "texel (%d, %d): %.9g, want %.9g", i,
+                          j, got, 0.5 * o);
+        }
+    free(rgb);
+    render_release(&rs);
+    scene_free(&s);
+}
+END_TEST
+
 /* A flat normal map (0.5, 0.5, 1) is the surface's normal: the image is the unmapped one's.
  * A constant tilted normal n = (sin a cos b, sin a sin b, cos a) in tangent space is, on this
  * quad (dP/du = +x, dP/dv = +y, N = +z), the world normal n: the same quad with that vertex
@@ -395,6 +432,7 @@ int main(void)
     tcase_add_loop_test(tr, white_map_changes_nothing_any_threads, RENDER_FLOAT, RENDER_DOUBLE + 1);
     tcase_add_loop_test(tr, occlusion_scales_ambient, RENDER_FLOAT, RENDER_DOUBLE + 1);
     tcase_add_loop_test(tr, normal_map_flat_and_tilted, RENDER_FLOAT, RENDER_DOUBLE + 1);
+    tcase_add_test(tr, texture_transform_moves_texels);
     tcase_add_test(tr, refusals_at_prepare);
     suite_add_tcase(s, tr);
     TCase *tt = tcase_create("texture");
