@@ -218,6 +218,43 @@ START_TEST(occlusion_scales_ambient)
 }
 END_TEST
 
+/* The footprint filters: a 256^2 checker of single texels (0 and 1) seen at 15 x 15 pixels
+ * (17 texels a pixel, 1 sample) or 7 x 7 pixels of 2 x 2 samples reads about its mean 0.5 in
+ * every pixel, where lookups without a footprint read anything from 0 to 1 (bilinear between
+ * texels at these off-grid positions). Occlusion against the closed form base_color * Ia * o. */
+START_TEST(footprint_filters_a_fine_checker)
+{
+    enum { S = 256 };
+    float *occ = malloc(S * S * 3 * sizeof *occ);
+    ck_assert_ptr_nonnull(occ);
+    for (int y = 0; y < S; ++y)
+        for (int x = 0; x < S; ++x)
+            for (int c = 0; c < 3; ++c) occ[3 * (y * S + x) + c] = (float)((x + y) & 1);
+    write_exr("checker.exr", S, S, occ);
+    free(occ);
+    write_quad("quad.obj", "");
+    write_text("occ.scene", TX_CAMERA "ambient 1\n"
+                                      "material m pbr base_color=1,1,1 metallic=0 "
+                                      "occlusion_map=checker.exr\n"
+                                      "mesh file=quad.obj material=m\n");
+    for (int spp = 1; spp <= 4; spp += 3) {
+        scene s;
+        char err[1024];
+        ck_assert_msg(scene_parse_file(in_dir("occ.scene"), &s, err, sizeof err) == 0, "%s", err);
+        int size = spp == 1 ? 15 : 7;
+        render_options opt = {size, size, spp, 0, 1, 0, RENDER_FLOAT, 0, 0, 0, 0};
+        render_scene rs;
+        ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
+        float rgb[16 * 16 * 3];
+        ck_assert_int_eq(render_image(&rs, &opt, rgb, NULL), 0);
+        for (int p = 0; p < size * size * 3; ++p)
+            ck_assert_msg(fabs(rgb[p] - 0.5) < 0.02, "spp %d, pixel %d: %.6g", spp, p / 3, rgb[p]);
+        render_release(&rs);
+        scene_free(&s);
+    }
+}
+END_TEST
+
 /* KHR_texture_transform (scene_map offset, rotation, scale; set here as a glTF reader sets
  * them): with rotation pi/2 and offset (0.25, 0), (s, t) -> (0.25 - t, s), so the pixel of
  * texel (i, j) reads texel (4 - j mod 4, i) of the occlusion map (periodic wrap). */
@@ -433,6 +470,7 @@ int main(void)
     tcase_add_loop_test(tr, occlusion_scales_ambient, RENDER_FLOAT, RENDER_DOUBLE + 1);
     tcase_add_loop_test(tr, normal_map_flat_and_tilted, RENDER_FLOAT, RENDER_DOUBLE + 1);
     tcase_add_test(tr, texture_transform_moves_texels);
+    tcase_add_test(tr, footprint_filters_a_fine_checker);
     tcase_add_test(tr, refusals_at_prepare);
     suite_add_tcase(s, tr);
     TCase *tt = tcase_create("texture");
