@@ -26,6 +26,7 @@ static int usage(void)
         "                    [--materials FILE ...] [--threads N] [--explain] [--stats]\n"
         "                    [--full] [--precision float|double] [--no-preview]\n"
         "                    [--estimator mis|light|brdf] [--light-samples N]\n"
+        "                    [--texture-cache MB]\n"
         "                    [--config OCIO] [--display D] [--view V]\n\n"
         "Renders SCENE (docs/RENDERER.md, \"Scene format\") to a linear float image (format from\n"
         "the extension, EXR recommended) and an sRGB PNG preview with the same name (.png);\n"
@@ -53,6 +54,8 @@ static int usage(void)
         "                    light sample and one BRDF sample per hit by the power heuristic;\n"
         "                    light or brdf uses that strategy alone (docs/RENDERER.md)\n"
         "  --light-samples N samples per hit, sampled light and strategy; default 1\n"
+        "  --texture-cache MB  memory of the textures' tile cache (OpenImageIO TextureSystem);\n"
+        "                    default 256 (docs/GLTF.md, \"Textures\")\n"
         "  --full            ignore the effect plan: shadow rays at every lit point, tangent\n"
         "                    frames and ambient everywhere (to measure what the plan saves)\n"
         "  --config/--display/--view   OpenColorIO preview transform (default: built-in sRGB)\n");
@@ -95,6 +98,7 @@ typedef struct render_args {
     const char *config, *display, *view; /* the preview's OpenColorIO transform */
     scene_choice choice;                 /* --model, --adaptive, --materials, ... */
     int full, explain, stats, preview;
+    int texture_cache; /* --texture-cache MB, 0: not given */
     render_options opt;
 } render_args;
 
@@ -140,11 +144,13 @@ static int take_option(render_args *ra, int argc, char **argv, int *i)
                                   {"--config", &ra->config},
                                   {"--display", &ra->display},
                                   {"--view", &ra->view}};
-    const cli_number numbers[] = {{"--light-samples", 4096, &ra->opt.light_samples},
-                                  {"--width", SCENE_MAX_RESOLUTION, &ra->opt.width},
-                                  {"--height", SCENE_MAX_RESOLUTION, &ra->opt.height},
-                                  {"--spp", 4096, &ra->opt.spp},
-                                  {"--threads", 64, &ra->opt.threads}};
+    const cli_number numbers[] = {
+        {"--light-samples", 4096, &ra->opt.light_samples},
+        {"--width", SCENE_MAX_RESOLUTION, &ra->opt.width},
+        {"--height", SCENE_MAX_RESOLUTION, &ra->opt.height},
+        {"--spp", 4096, &ra->opt.spp},
+        {"--threads", 64, &ra->opt.threads},
+        {"--texture-cache", (long)TEXTURE_CACHE_MB_MAX, &ra->texture_cache}};
     const cli_options table = {flags,   sizeof flags / sizeof *flags,
                                strings, sizeof strings / sizeof *strings,
                                numbers, sizeof numbers / sizeof *numbers};
@@ -164,9 +170,17 @@ static int render_args_parse(int argc, char **argv, render_args *ra)
     scene_choice_init(&ra->choice);
     ra->preview = 1;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-    ra->opt = (render_options){
-        0, 0, 4, 0, cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1, 0, RENDER_FLOAT, 0, RENDER_EST_MIS,
-        1};
+    ra->opt = (render_options){0,
+                               0,
+                               4,
+                               0,
+                               cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1,
+                               0,
+                               RENDER_FLOAT,
+                               0,
+                               RENDER_EST_MIS,
+                               1,
+                               TEXTURE_CACHE_MB_DEFAULT};
     for (int i = 1; i < argc; ++i) {
         if (cli_is_help(argv[i])) {
             ra->help = 1;
@@ -184,6 +198,7 @@ static int render_args_parse(int argc, char **argv, render_args *ra)
                         "--spp %d is not a square (1, 4, 9, 16, ...): strata form a k x k grid",
                         ra->opt.spp);
     if (scene_choice_check(&ra->choice, CMD)) return CLI_EXIT_USAGE;
+    if (ra->texture_cache) ra->opt.texture_cache_mb = ra->texture_cache;
     ra->opt.progress = isatty(2) && !ra->explain;
     return 0;
 }
@@ -328,9 +343,14 @@ static int render_to_files(render_args *ra, scene *s, const char *png, struct ti
         goto done;
     }
     clock_gettime(CLOCK_MONOTONIC, &t[4]);
+    if (render_texture_error(&rs, err, sizeof err)) {
+        fprintf(stderr, "abrdf render: %s\n", err);
+        goto done;
+    }
     double cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
     if (ra->explain || ra->stats) {
         render_stats_print(&st, stdout);
+        render_textures_print(&rs, stdout);
         fflush(stdout);
         print_times(ra, &rs, t, cpu);
     }

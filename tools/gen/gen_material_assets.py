@@ -234,9 +234,11 @@ def write_gltf_files(out: str, tex: dict[str, bytes]) -> None:
     doc = gltf_document([])
     views: list[dict[str, object]] = doc["bufferViews"]  # type: ignore[assignment]
     for t in TEXTURE_ORDER:
+        binary += b"\0" * (-len(binary) % 4)  # each image 4-byte aligned, and the chunk's end
         views.append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(tex[t])})
         images.append({"bufferView": len(views) - 1, "mimeType": "image/png"})
-        binary += tex[t] + b"\0" * (-len(tex[t]) % 4)
+        binary += tex[t]
+    binary += b"\0" * (-len(binary) % 4)
     doc["images"] = images
     doc["buffers"] = [{"byteLength": len(binary)}]
     js = json_bytes(doc)

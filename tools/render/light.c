@@ -303,11 +303,11 @@ static double brdf_pdf(const render_material *m, const abrdf_frame *fr, const do
     return m->lobe_count > 0 ? p / m->lobe_count : 0.0;
 }
 
-void light_shade_sampled(const render_scene *rs, const render_options *opt, const render_hit *h,
-                         const double o[3], const abrdf_frame *frame, light_blocked_fn blocked,
-                         double L[3], render_stats *st)
+void light_shade_sampled(const render_scene *rs, const render_options *opt,
+                         const render_material *m, const render_hit *h, const double o[3],
+                         const abrdf_frame *frame, light_blocked_fn blocked, double L[3],
+                         render_stats *st)
 {
-    const render_material *m = &rs->materials[rs->src->objects[h->obj].material];
     abrdf_frame local;
     if (!frame) {
         abrdf_frame_make(h->n, NULL, &local); /* isotropic lobes: any tangent */

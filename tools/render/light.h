@@ -62,9 +62,10 @@ typedef int (*light_blocked_fn)(const render_scene *rs, int l, const render_hit 
 
 /* Add to L the sampled lights' radiance at hit h (seen from the front; o the shadow-ray
  * origin; frame the material's tangent frame, or NULL to build one from the normal). */
-void light_shade_sampled(const render_scene *rs, const render_options *opt, const render_hit *h,
-                         const double o[3], const abrdf_frame *frame, light_blocked_fn blocked,
-                         double L[3], render_stats *st);
+void light_shade_sampled(const render_scene *rs, const render_options *opt,
+                         const render_material *m, const render_hit *h, const double o[3],
+                         const abrdf_frame *frame, light_blocked_fn blocked, double L[3],
+                         render_stats *st);
 
 const char *light_kind_name(scene_light_kind kind);
 

@@ -209,6 +209,16 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
             "exact intersector only on what its boxes let through\n",
             n, rs->triangle_count);
     explain_sampling(rs, opt, f);
+    if (rs->textures) {
+        int nt = 0;
+        for (int i = 0; i < rs->material_count; ++i) nt += rs->materials[i].textured;
+        fprintf(f,
+                "textures: %d textured materials; a hit on one reads its maps (OpenImageIO "
+                "TextureSystem: filtered, mip-mapped, the camera ray's footprint) and prepares "
+                "its lobes for that hit; tile cache bounded by %g MB (--texture-cache, default "
+                "%g)\n",
+                nt, rs->texture_cache_mb, TEXTURE_CACHE_MB_DEFAULT);
+    }
     fprintf(f, "shadows:\n");
     for (int l = 0; l < rs->light_count; ++l) {
         const render_light *lt = &rs->lights[l];

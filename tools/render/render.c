@@ -31,8 +31,12 @@ static void cross(const double a[3], const double b[3], double o[3])
     o[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+static int textures_open(const scene *s, const render_options *opt, render_scene *rs, char *err,
+                         size_t err_size);
+
 void render_release(render_scene *rs)
 {
+    texture_system_free(rs->textures);
     free(rs->objects);
     free(rs->materials);
     free(rs->lights);
@@ -125,6 +129,10 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
         }
         plan_material(m, s->ambient, sm->ka);
     }
+    if (textures_open(s, opt, rs, err, err_size)) {
+        render_release(rs);
+        return -1;
+    }
     for (int l = 0; l < s->light_count; ++l) {
         const scene_light *sl = &s->lights[l];
         render_light *rl = &rs->lights[l];
@@ -156,6 +164,256 @@ int render_plan_ignore(render_scene *rs)
     for (int i = 0; i < rs->material_count; ++i) rs->materials[i].full = 1;
     rs->full = 1;
     return 0;
+}
+
+/* ---- textures (texture.h) ---------------------------------------------------------- */
+
+/* Open the maps of the used textured materials into one texture system and check that every
+ * object with such a material has texture coordinates. 0, or -1 with one line in err. */
+static int textures_open(const scene *s, const render_options *opt, render_scene *rs, char *err,
+                         size_t err_size)
+{
+    for (int i = 0; i < s->object_count; ++i) {
+        const scene_object *o = &s->objects[i];
+        const scene_material *sm = &s->materials[o->material];
+        if (!sm->textured) continue;
+        if (o->shape != SCENE_MESH || !o->mesh_data->tri_uv) {
+            snprintf(err, err_size,
+                     "material '%s' (line %d) has textures, but the %s at line %d has no "
+                     "texture coordinates (a mesh with vt)",
+                     sm->name, sm->line, scene_shape_name(o->shape), o->line);
+            return -1;
+        }
+        for (int k = 0; k < SCENE_MAP_COUNT; ++k)
+            if (sm->maps[k].path && sm->maps[k].uv_set != 0) {
+                snprintf(err, err_size,
+                         "material '%s' (line %d): the %s map reads texture coordinates %d, but "
+                         "a mesh has one set (0)",
+                         sm->name, sm->line, scene_map_name((scene_map_slot)k), sm->maps[k].uv_set);
+                return -1;
+            }
+    }
+    rs->texture_cache_mb =
+        opt->texture_cache_mb > 0 ? opt->texture_cache_mb : TEXTURE_CACHE_MB_DEFAULT;
+    for (int i = 0; i < s->material_count; ++i) {
+        const scene_material *sm = &s->materials[i];
+        render_material *m = &rs->materials[i];
+        if (!sm->textured || !m->used) continue;
+        if (!rs->textures &&
+            !(rs->textures = texture_system_new(rs->texture_cache_mb, err, err_size)))
+            return -1;
+        m->textured = 1;
+        for (int k = 0; k < SCENE_MAP_COUNT; ++k) {
+            const scene_map *mp = &sm->maps[k];
+            if (!mp->path) continue;
+            texture_info info;
+            /* an image embedded in a glTF file goes in through texture_open's bytes, named
+             * "FILE#image/N.EXT": the extension (from its mimeType, else its first bytes)
+             * chooses OpenImageIO's reader (texture.h) */
+            char named[1200];
+            const char *name = mp->path;
+            if (mp->blob) {
+                const unsigned char *b = mp->blob;
+                int png = !strcmp(mp->mime, "image/png") ||
+                          (!mp->mime[0] && mp->blob_size >= 4 && b[0] == 0x89 && b[1] == 'P');
+                int jpg = !strcmp(mp->mime, "image/jpeg") ||
+                          (!mp->mime[0] && mp->blob_size >= 2 && b[0] == 0xff && b[1] == 0xd8);
+                snprintf(named, sizeof named, "%s%s", mp->path, png ? ".png" : jpg ? ".jpg" : "");
+                name = named;
+            }
+            if (texture_open(rs->textures, name, mp->blob, mp->blob_size, &m->maps[k], &info, err,
+                             err_size))
+                return -1;
+            m->map_channels[k] = info.channels;
+            int one = k != SCENE_MAP_BASE_COLOR && k != SCENE_MAP_NORMAL;
+            if (one && mp->channel >= info.channels) {
+                snprintf(err, err_size,
+                         "%s: no channel %d (it has %d) for %s_channel of material "
+                         "'%s' (line %d)",
+                         mp->path, mp->channel, info.channels, scene_map_name((scene_map_slot)k),
+                         sm->name, sm->line);
+                return -1;
+            }
+            if (k == SCENE_MAP_NORMAL && info.channels < 3) {
+                snprintf(err, err_size, "%s: a normal map needs 3 channels (it has %d)", mp->path,
+                         info.channels);
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* A textured material at one hit: its lobes prepared from the texels there (m, whose
+ * `ambient` also carries the occlusion), and the hit with the normal map's normal (h). */
+typedef struct tex_point {
+    render_material m;
+    render_hit h;
+} tex_point;
+
+static void sub3(const double a[3], const double b[3], double o[3])
+{
+    for (int k = 0; k < 3; ++k) o[k] = a[k] - b[k];
+}
+
+/* Texture coordinates (glTF's: s right, t down; an OBJ mesh's v is up, t = 1 - v; a glTF
+ * mesh's v is t) of a hit,
+ * and their derivatives across one sample's footprint (a stratum: the pixel / k for k x k
+ * samples). The footprint is the camera ray's differential (Igehy 1999): the rays through
+ * the stratum's neighbours in x and y meet the triangle's plane at p + dp/dx, p + dp/dy,
+ * and s, t are linear on the triangle. */
+static void hit_uv(const render_scene *rs, const render_options *opt, const render_hit *h,
+                   double st[2], double dx[2], double dy[2], double dpdu[3], double dpdv[3])
+{
+    const geom_object *g = &rs->objects[h->obj];
+    const mesh *me = g->mesh;
+    const int *ti = me->tri + 3 * (size_t)h->triangle, *tu = me->tri_uv + 3 * (size_t)h->triangle;
+    double P[3][3], uv[3][2];
+    for (int c = 0; c < 3; ++c) {
+        const float *q = me->position + 3 * (size_t)ti[c];
+        double po[3] = {q[0], q[1], q[2]};
+        geom_xform_point(g->xf.m, po, P[c]);
+        uv[c][0] = me->uv[2 * (size_t)tu[c]];
+        uv[c][1] = me->uv[2 * (size_t)tu[c] + 1];
+    }
+    double b0 = 1.0 - h->b1 - h->b2;
+    double u = b0 * uv[0][0] + h->b1 * uv[1][0] + h->b2 * uv[2][0];
+    double v = b0 * uv[0][1] + h->b1 * uv[1][1] + h->b2 * uv[2][1];
+    double e1[3], e2[3], n[3], g1[3], g2[3];
+    sub3(P[1], P[0], e1);
+    sub3(P[2], P[0], e2);
+    cross(e1, e2, n);
+    double nn = geom_dot(n, n);
+    cross(e2, n, g1); /* the duals of e1, e2 in the plane: gi . ej = (i == j) */
+    cross(n, e1, g2);
+    for (int k = 0; k < 3; ++k) g1[k] /= nn, g2[k] /= nn;
+    double du1 = uv[1][0] - uv[0][0], du2 = uv[2][0] - uv[0][0];
+    double dv1 = uv[1][1] - uv[0][1], dv2 = uv[2][1] - uv[0][1];
+    /* dP/du, dP/dv: the triangle's uv tangent frame (the normal map's) */
+    double det = du1 * dv2 - du2 * dv1, inv = det != 0 ? 1.0 / det : 0.0;
+    /* dpdv points up the image (the normal map's +y) for both: a glTF mesh's v runs down */
+    double up = me->uv_origin_top ? -1.0 : 1.0;
+    for (int k = 0; k < 3; ++k) {
+        dpdu[k] = (dv2 * e1[k] - dv1 * e2[k]) * inv;
+        dpdv[k] = up * (du1 * e2[k] - du2 * e1[k]) * inv;
+    }
+    /* the unnormalised camera direction D (forward . D = 1) and its change per stratum */
+    double fd = -geom_dot(h->wo, rs->forward), D[3], lam, pe[3];
+    for (int k = 0; k < 3; ++k) D[k] = -h->wo[k] / fd;
+    sub3(h->p, rs->eye, pe);
+    lam = geom_dot(pe, rs->forward);
+    double kk = sqrt((double)opt->spp), nD = geom_dot(n, D);
+    double sx = 2.0 / (rs->width * kk), sy = -2.0 / (rs->height * kk);
+    double *out[2] = {dx, dy};
+    for (int a = 0; a < 2; ++a) {
+        double dD[3], dp[3];
+        for (int k = 0; k < 3; ++k) dD[k] = a == 0 ? rs->right[k] * sx : rs->up[k] * sy;
+        double r = nD != 0 ? geom_dot(n, dD) / nD : 0.0;
+        for (int k = 0; k < 3; ++k) dp[k] = lam * (dD[k] - D[k] * r);
+        double db1 = geom_dot(g1, dp), db2 = geom_dot(g2, dp);
+        out[a][0] = du1 * db1 + du2 * db2;
+        /* t = 1 - v for an OBJ mesh (v up); t = v for a glTF one (mesh.h, uv_origin_top) */
+        out[a][1] = (me->uv_origin_top ? 1 : -1) * (dv1 * db1 + dv2 * db2);
+    }
+    st[0] = u, st[1] = me->uv_origin_top ? v : 1.0 - v;
+}
+
+/* KHR_texture_transform: x' = offset + R(rotation) (scale * x), R counter-clockwise. */
+static void map_transform(const scene_map *mp, const double in[2], double out[2], int linear)
+{
+    double c = mp->rotation ? cos(mp->rotation) : 1.0, s = mp->rotation ? sin(mp->rotation) : 0.0;
+    double x = mp->scale[0] * in[0], y = mp->scale[1] * in[1];
+    out[0] = c * x - s * y + (linear ? 0 : mp->offset[0]);
+    out[1] = s * x + c * y + (linear ? 0 : mp->offset[1]);
+}
+
+static double clamp01(double v) { return v > 0 ? (v < 1 ? v : 1) : 0; /* NaN -> 0 */ }
+
+/* Prepare the textured material of hit h (tp->m and tp->h); the texture thread th is the
+ * caller's. */
+static void texture_point(const render_scene *rs, const render_options *opt, const render_hit *h,
+                          texture_thread *th, tex_point *tp, render_stats *st)
+{
+    const scene_material *sm = &rs->src->materials[rs->src->objects[h->obj].material];
+    const render_material *base = &rs->materials[rs->src->objects[h->obj].material];
+    double uv[2], dx[2], dy[2], dpdu[3], dpdv[3];
+    hit_uv(rs, opt, h, uv, dx, dy, dpdu, dpdv);
+    float texel[SCENE_MAP_COUNT][4] = {{0}};
+    /* glTF packs metallic and roughness in one file: one lookup reads both channels (a
+     * channel's filtered value does not depend on the others looked up with it) */
+    const scene_map *mm = &sm->maps[SCENE_MAP_METALLIC], *mr = &sm->maps[SCENE_MAP_ROUGHNESS];
+    int packed = base->maps[SCENE_MAP_METALLIC] &&
+                 base->maps[SCENE_MAP_METALLIC] == base->maps[SCENE_MAP_ROUGHNESS] &&
+                 mm->offset[0] == mr->offset[0] && mm->offset[1] == mr->offset[1] &&
+                 mm->scale[0] == mr->scale[0] && mm->scale[1] == mr->scale[1] &&
+                 mm->rotation == mr->rotation;
+    for (int k = 0; k < SCENE_MAP_COUNT; ++k) {
+        const scene_map *mp = &sm->maps[k];
+        if (!base->maps[k] || (packed && k == SCENE_MAP_ROUGHNESS)) continue;
+        double q[2], qx[2], qy[2];
+        map_transform(mp, uv, q, 0);
+        map_transform(mp, dx, qx, 1);
+        map_transform(mp, dy, qy, 1);
+        int rgb = k == SCENE_MAP_BASE_COLOR || k == SCENE_MAP_NORMAL;
+        int first = rgb ? 0 : mp->channel;
+        int n = rgb ? (base->map_channels[k] < 3 ? 1 : 3) : 1;
+        if (packed && k == SCENE_MAP_METALLIC) {
+            first = mm->channel < mr->channel ? mm->channel : mr->channel;
+            n = abs(mm->channel - mr->channel) + 1;
+        }
+        float v[4];
+        texture_lookup(rs->textures, th, base->maps[k], first, n, q[0], q[1], qx[0], qx[1], qy[0],
+                       qy[1], v);
+        ++st->texture_lookups;
+        if (packed && k == SCENE_MAP_METALLIC) {
+            texel[SCENE_MAP_METALLIC][0] = v[mm->channel - first];
+            texel[SCENE_MAP_ROUGHNESS][0] = v[mr->channel - first];
+        } else {
+            for (int c = 0; c < 3; ++c) texel[k][c] = v[n == 1 ? 0 : c]; /* grey: every channel */
+        }
+    }
+    ++st->textured_hits;
+    abrdf_pbr q = sm->pbr_in;
+    if (base->maps[SCENE_MAP_BASE_COLOR])
+        for (int c = 0; c < 3; ++c) {
+            double t = clamp01(texel[SCENE_MAP_BASE_COLOR][c]);
+            q.base_color[c] *= sm->maps[SCENE_MAP_BASE_COLOR].srgb ? texture_srgb_decode(t) : t;
+        }
+    if (base->maps[SCENE_MAP_METALLIC]) q.metallic *= clamp01(texel[SCENE_MAP_METALLIC][0]);
+    if (base->maps[SCENE_MAP_ROUGHNESS]) q.roughness *= clamp01(texel[SCENE_MAP_ROUGHNESS][0]);
+    tp->m = *base;
+    scene_pbr_params(sm, &q, &tp->m.params); /* q is in range: factors times [0, 1] */
+    for (int k = 0; k < tp->m.lobe_count; ++k)
+        abrdf_prepare(tp->m.lobes[k], &tp->m.params, &tp->m.prepared[k]);
+    /* ambient: ka * Ia (ka follows the hit's kd unless given), times the occlusion */
+    double occ = 1.0;
+    if (base->maps[SCENE_MAP_OCCLUSION])
+        occ = 1.0 + sm->maps[SCENE_MAP_OCCLUSION].strength *
+                        (clamp01(texel[SCENE_MAP_OCCLUSION][0]) - 1.0);
+    for (int c = 0; c < 3; ++c)
+        tp->m.ambient[c] =
+            (sm->ka_given ? sm->ka[c] : tp->m.params.kd[c]) * rs->src->ambient[c] * occ;
+    tp->m.use_ambient = tp->m.ambient[0] > 0 || tp->m.ambient[1] > 0 || tp->m.ambient[2] > 0;
+    tp->h = *h;
+    if (base->maps[SCENE_MAP_NORMAL]) {
+        /* tangent space (glTF): x along dP/du, y along dP/dv (the image's up), z the normal */
+        const double *n = h->n;
+        double s = sm->maps[SCENE_MAP_NORMAL].strength, t[3], b[3], nb[3];
+        double x = (2.0 * texel[SCENE_MAP_NORMAL][0] - 1.0) * s;
+        double y = (2.0 * texel[SCENE_MAP_NORMAL][1] - 1.0) * s;
+        double z = 2.0 * texel[SCENE_MAP_NORMAL][2] - 1.0;
+        double tn = geom_dot(dpdu, n);
+        for (int k = 0; k < 3; ++k) t[k] = dpdu[k] - tn * n[k];
+        normalize(t);
+        cross(n, t, b);
+        if (geom_dot(b, dpdv) < 0) /* mirrored texture coordinates */
+            for (int k = 0; k < 3; ++k) b[k] = -b[k];
+        for (int k = 0; k < 3; ++k) nb[k] = x * t[k] + y * b[k] + z * n[k];
+        if (geom_dot(nb, nb) > 0 && geom_dot(t, t) > 0) {
+            normalize(nb);
+            memcpy(tp->h.n, nb, sizeof nb);
+        }
+    }
 }
 
 /* ---- shading ----------------------------------------------------------------------- */
@@ -260,12 +518,12 @@ static int light_at(const render_scene *rs, int l, const render_hit *h, const do
 }
 
 /* The ambient term, the shadow-ray origin and (for a material with a tangent rule) the
- * shading frame of a hit; 0 if the hit is seen from behind (no direct light). */
-static int hit_begin(const render_scene *rs, const render_hit *h, double L[3], double o[3],
-                     abrdf_frame *frame, render_stats *st)
+ * shading frame of a hit with material m; 0 if the hit is seen from behind (no direct
+ * light). */
+static int hit_begin(const render_scene *rs, const render_material *m, const render_hit *h,
+                     double L[3], double o[3], abrdf_frame *frame, render_stats *st)
 {
     const scene_object *so = &rs->src->objects[h->obj];
-    const render_material *m = &rs->materials[so->material];
     L[0] = L[1] = L[2] = 0;
     if (m->use_ambient || m->full) {
         for (int c = 0; c < 3; ++c) L[c] = m->ambient[c];
@@ -296,14 +554,14 @@ static void count_evals(const render_material *m, unsigned long long pairs, rend
     }
 }
 
-/* The double reference: every lobe per hit and light, abrdf_eval_prepared. */
-static void shade_double(const render_scene *rs, const render_options *opt, const render_hit *h,
-                         double out[3], render_stats *st)
+/* The double reference: every lobe of material m per hit and light, abrdf_eval_prepared. */
+static void shade_double(const render_scene *rs, const render_options *opt,
+                         const render_material *m, const render_hit *h, double out[3],
+                         render_stats *st)
 {
-    const render_material *m = &rs->materials[rs->src->objects[h->obj].material];
     double o[3];
     abrdf_frame frame;
-    if (!hit_begin(rs, h, out, o, &frame, st)) return;
+    if (!hit_begin(rs, m, h, out, o, &frame, st)) return;
     int tangent = m->use_tangent || m->full;
     iso_view view;
     if (!tangent) iso_view_make(h->n, h->wo, &view);
@@ -322,7 +580,47 @@ static void shade_double(const render_scene *rs, const render_options *opt, cons
         for (int c = 0; c < 3; ++c) out[c] += w[c] * f[c];
     }
     if (rs->sampled_lights)
-        light_shade_sampled(rs, opt, h, o, tangent ? &frame : NULL, shadow_blocked, out, st);
+        light_shade_sampled(rs, opt, m, h, o, tangent ? &frame : NULL, shadow_blocked, out, st);
+}
+
+/* The float path for one hit of a textured material (its own prepared lobes, tp): the hit's
+ * lit lights as one batch per lobe (abrdf_eval_prepared_batch). */
+static void shade_float_hit(const render_scene *rs, const render_options *opt,
+                            const render_material *m, const render_hit *h, double out[3],
+                            render_stats *st)
+{
+    double o[3], w[SCENE_MAX_LIGHTS][3];
+    abrdf_frame frame;
+    float in[6][SCENE_MAX_LIGHTS], f[3][SCENE_MAX_LIGHTS];
+    if (!hit_begin(rs, m, h, out, o, &frame, st)) return;
+    int tangent = m->use_tangent || m->full, n = 0;
+    if (rs->sampled_lights)
+        light_shade_sampled(rs, opt, m, h, o, tangent ? &frame : NULL, shadow_blocked, out, st);
+    iso_view view;
+    if (!tangent) iso_view_make(h->n, h->wo, &view);
+    for (int l = 0; l < rs->light_count; ++l) {
+        double wi[3], li[3], lo[3];
+        if (!light_at(rs, l, h, o, wi, w[n], st)) continue;
+        if (tangent) {
+            to_local(&frame, wi, li);
+            to_local(&frame, h->wo, lo);
+        } else {
+            iso_local(h->n, &view, wi, li, lo);
+        }
+        for (int c = 0; c < 3; ++c) in[c][n] = (float)li[c], in[3 + c][n] = (float)lo[c];
+        ++n;
+    }
+    if (!n) return;
+    count_evals(m, (unsigned long long)n, st);
+    double sum[SCENE_MAX_LIGHTS][3] = {{0}};
+    for (int k = 0; k < m->lobe_count && !opt->free_brdf; ++k) {
+        abrdf_batch b = {(size_t)n, in[0], in[1], in[2], in[3], in[4], in[5], f[0], f[1], f[2]};
+        abrdf_eval_prepared_batch(&m->prepared[k], &b);
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) sum[i][c] += f[c][i];
+    }
+    for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) out[c] += w[i][c] * sum[i][c];
 }
 
 /* Lit (hit, light) pairs gathered for the float path, at most this many per batch. */
@@ -339,6 +637,8 @@ struct render_shade_scratch {
     float *ix, *iy, *iz, *ox, *oy, *oz; /* sorted by material: the batch inputs */
     float *f[SCENE_MAX_LOBES][3];       /* each lobe's f_r over a chunk of sorted slots */
     int *start;                         /* per material: first sorted slot (material_count + 1) */
+    texture_system *textures;           /* the scene's (NULL: no textured material) */
+    texture_thread *tex;                /* ... and this thread's lookup state */
 };
 
 void render_shade_scratch_free(render_shade_scratch *sc)
@@ -350,6 +650,7 @@ void render_shade_scratch_free(render_shade_scratch *sc)
     for (int k = 0; k < SCENE_MAX_LOBES; ++k)
         for (int c = 0; c < 3; ++c) free(sc->f[k][c]);
     free(sc->start);
+    texture_thread_free(sc->textures, sc->tex);
     free(sc);
 }
 
@@ -374,6 +675,8 @@ render_shade_scratch *render_shade_scratch_new(const render_scene *rs, int capac
     for (int k = 0; k < SCENE_MAX_LOBES; ++k)
         for (int c = 0; c < 3; ++c) ok = (sc->f[k][c] = malloc(RENDER_CHUNK * sizeof(float))) && ok;
     sc->start = calloc((size_t)rs->material_count + 2, sizeof *sc->start);
+    sc->textures = rs->textures;
+    if (rs->textures) ok = (sc->tex = texture_thread_new(rs->textures)) && ok;
     if (!ok || !sc->start) {
         render_shade_scratch_free(sc);
         return NULL;
@@ -442,7 +745,13 @@ static void shade_float(const render_scene *rs, const render_options *opt, const
         const render_material *m = &rs->materials[mi];
         double o[3];
         abrdf_frame frame;
-        if (!hit_begin(rs, hit, L[h], o, &frame, st)) continue;
+        if (m->textured) { /* lobes of its own: shaded now, per hit */
+            tex_point tp;
+            texture_point(rs, opt, hit, sc->tex, &tp, st);
+            shade_float_hit(rs, opt, &tp.m, &tp.h, L[h], st);
+            continue;
+        }
+        if (!hit_begin(rs, m, hit, L[h], o, &frame, st)) continue;
         if (np + rs->light_count > sc->pair_cap) { /* full: evaluate what is gathered */
             flush_pairs(rs, opt, np, L, sc, st);
             np = 0;
@@ -450,7 +759,8 @@ static void shade_float(const render_scene *rs, const render_options *opt, const
         int tangent = m->use_tangent || m->full;
         /* sampled lights: double, scalar, per hit (light.h), in both precisions */
         if (rs->sampled_lights)
-            light_shade_sampled(rs, opt, hit, o, tangent ? &frame : NULL, shadow_blocked, L[h], st);
+            light_shade_sampled(rs, opt, m, hit, o, tangent ? &frame : NULL, shadow_blocked, L[h],
+                                st);
         iso_view view;
         if (!tangent) iso_view_make(hit->n, hit->wo, &view);
         for (int l = 0; l < rs->light_count; ++l) {
@@ -478,7 +788,16 @@ void render_shade_hits(const render_scene *rs, const render_options *opt, const 
                        int count, double (*L)[3], render_shade_scratch *sc, render_stats *st)
 {
     if (opt->precision == RENDER_DOUBLE) {
-        for (int h = 0; h < count; ++h) shade_double(rs, opt, &hits[h], L[h], st);
+        for (int h = 0; h < count; ++h) {
+            const render_material *m = &rs->materials[rs->src->objects[hits[h].obj].material];
+            if (m->textured) {
+                tex_point tp;
+                texture_point(rs, opt, &hits[h], sc->tex, &tp, st);
+                shade_double(rs, opt, &tp.m, &tp.h, L[h], st);
+            } else {
+                shade_double(rs, opt, m, &hits[h], L[h], st);
+            }
+        }
     } else {
         shade_float(rs, opt, hits, count, L, sc, st);
     }
@@ -561,6 +880,7 @@ static void trace_rays(worker *w, int nr, int *nh)
         ++st->hits;
         render_hit *h = &w->hits[*nh];
         h->obj = ah->object, h->triangle = ah->triangle;
+        h->b1 = ah->b1, h->b2 = ah->b2;
         memcpy(h->n, ah->n, sizeof h->n);
         h->p[0] = rs->eye[0] + ah->t * dx[r], h->wo[0] = -dx[r];
         h->p[1] = rs->eye[1] + ah->t * dy[r], h->wo[1] = -dy[r];
@@ -652,6 +972,8 @@ static void add_stats(render_stats *a, const render_stats *b)
     a->ambient_terms += b->ambient_terms;
     a->light_samples += b->light_samples;
     a->brdf_samples += b->brdf_samples;
+    a->textured_hits += b->textured_hits;
+    a->texture_lookups += b->texture_lookups;
 }
 
 static void worker_free(worker *w)
@@ -735,4 +1057,24 @@ void render_stats_print(const render_stats *s, FILE *f)
     if (s->light_samples || s->brdf_samples) /* sampled lights only: other scenes print as before */
         fprintf(f, "  light samples       %llu\n  brdf samples        %llu\n", s->light_samples,
                 s->brdf_samples);
+    if (s->textured_hits) /* textured materials only */
+        fprintf(f, "  textured hits       %llu\n  texture lookups     %llu\n", s->textured_hits,
+                s->texture_lookups);
+}
+
+void render_textures_print(const render_scene *rs, FILE *f)
+{
+    if (!rs->textures) return;
+    texture_stats t;
+    texture_stats_get(rs->textures, &t);
+    fprintf(f,
+            "textures: %d files, cache bound %g MB: peak %.3f MB, now %lld bytes, peak %d tiles; "
+            "%llu lookups, %llu bytes read\n",
+            t.files, rs->texture_cache_mb, t.peak_memory_mb, t.memory_used, t.tiles_peak, t.lookups,
+            t.bytes_read);
+}
+
+int render_texture_error(const render_scene *rs, char *err, size_t err_size)
+{
+    return rs->textures ? texture_error(rs->textures, err, err_size) : 0;
 }

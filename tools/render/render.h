@@ -21,8 +21,19 @@
  *   render_shade_hits   the radiance of a batch of camera-ray hits (direct light, both precisions)
  *   render_precision_name  "double" / "float" for --explain
  *   render_stats_print  print the work counters
+ *   render_textures_print  the texture system's statistics (nothing without textures)
+ *   render_texture_error   a texture that failed during the render (a truncated file)
  *   render_plan_ignore  do every effect everywhere (to measure the plan against)
  *   render_release      free what render_prepare allocated
+ *
+ * Textures (`pbr` materials with maps, scene.h; docs/GLTF.md, "Textures"): render_prepare
+ * opens every map of a used material in one texture system (texture.h), whose cache holds
+ * at most render_options.texture_cache_mb; each thread looks up through its own scratch. At
+ * a hit on a textured material the maps are read at the hit's texture coordinates with the
+ * derivatives of the camera ray's footprint, the material's parameters are made from its
+ * factors times the texels (scene_pbr_params) and its lobes prepared for that hit; every
+ * light is then evaluated with them in the precision asked for (the float path evaluates
+ * the hit's lights as one batch per lobe instead of joining the tile's sorted batches).
  */
 #ifndef ABRDF_RENDER_H
 #define ABRDF_RENDER_H
@@ -31,6 +42,7 @@
 #include "accel.h"
 #include "envmap.h"
 #include "geom.h"
+#include "texture.h"
 
 /* Work counters: what the renderer actually did. A "test" is one exact double-precision
  * intersection on a candidate Embree's BVH offers (accel.h): an analytic object's
@@ -50,6 +62,8 @@ typedef struct render_stats {
     unsigned long long ambient_terms;       /* hits that added ka*Ia */
     unsigned long long light_samples;       /* directions drawn on sampled lights */
     unsigned long long brdf_samples;        /* directions drawn from the BRDFs for them */
+    unsigned long long textured_hits;       /* hits whose lobes were prepared from texels */
+    unsigned long long texture_lookups;     /* filtered lookups made for them */
 } render_stats;
 
 /* Which BRDF path shades (render_options.precision).
@@ -75,6 +89,10 @@ typedef struct render_material {
     unsigned needs;    /* union of the lobes' ABRDF_NEEDS_* */
     int used;          /* some object uses it */
     int full;          /* render_plan_ignore: frames and ambient regardless of the plan */
+    /* Textured `pbr` materials: each map's file (NULL: no map), resolved at prepare. */
+    int textured;
+    texture_file *maps[SCENE_MAP_COUNT];
+    int map_channels[SCENE_MAP_COUNT]; /* channels the map's file holds */
 } render_material;
 
 typedef struct render_light {
@@ -103,8 +121,10 @@ typedef struct render_scene {
     accel *accel; /* every object in one Embree scene: camera and shadow rays */
     /* shadow[l * object_count + i]: light l needs shadow rays at object i (plan_shadows) */
     unsigned char *shadow;
-    int full;           /* render_plan_ignore was applied */
-    int sampled_lights; /* lights with SCENE_LIGHT_SAMPLED kinds (light.h) */
+    int full;                 /* render_plan_ignore was applied */
+    int sampled_lights;       /* lights with SCENE_LIGHT_SAMPLED kinds (light.h) */
+    texture_system *textures; /* the maps of textured materials; NULL if none is used */
+    double texture_cache_mb;  /* its cache bound */
 } render_scene;
 
 typedef struct render_options {
@@ -118,6 +138,7 @@ typedef struct render_options {
                           so that time minus this render's is the BRDFs' (abrdf bench --render) */
     int estimator;     /* render_estimator: how sampled (area, environment) lights are estimated */
     int light_samples; /* per hit, sampled light and strategy; < 1 means 1 */
+    double texture_cache_mb; /* textures' cache bound, MB; 0: TEXTURE_CACHE_MB_DEFAULT */
 } render_options;
 
 /* Estimators of the sampled lights (sphere, rectangle, environment; light.h). Point and
@@ -134,10 +155,13 @@ typedef enum render_estimator {
 } render_estimator;
 
 /* A camera-ray hit to shade: object (and mesh triangle, -1 on analytic objects), point,
- * unit shading normal and unit direction to the viewer. */
+ * unit shading normal and unit direction to the viewer; on a mesh, the barycentric weights
+ * of the triangle's corners 1 and 2 (texture coordinates). The hit must be a camera ray's:
+ * a textured material's lookups take their footprint from the camera (render.c). */
 typedef struct render_hit {
     int obj, triangle;
     double p[3], n[3], wo[3];
+    double b1, b2;
 } render_hit;
 
 /* Work memory of render_shade_hits for up to `capacity` hits (one per thread). */
@@ -145,7 +169,9 @@ typedef struct render_shade_scratch render_shade_scratch;
 render_shade_scratch *render_shade_scratch_new(const render_scene *rs, int capacity);
 void render_shade_scratch_free(render_shade_scratch *sc);
 
-/* Builds the Embree scene with opt->threads threads (0: every core). */
+/* Builds the Embree scene with opt->threads threads (0: every core). Opens the textures of
+ * used materials: a file that cannot be read, a channel it lacks, or a textured material on
+ * an object without texture coordinates fails here with one line, before any work. */
 int render_prepare(const scene *s, const render_options *opt, render_scene *rs, char *err,
                    size_t err_size);
 void render_release(render_scene *rs);
@@ -167,5 +193,11 @@ void render_shade_hits(const render_scene *rs, const render_options *opt, const 
                        int count, double (*L)[3], render_shade_scratch *sc, render_stats *st);
 const char *render_precision_name(int precision);
 void render_stats_print(const render_stats *st, FILE *f);
+/* The texture cache's bound and use (OpenImageIO's statistics: peak and current tile memory,
+ * peak tiles, lookups, bytes read); prints nothing for a scene without textures. */
+void render_textures_print(const render_scene *rs, FILE *f);
+/* 0, or -1 with "FILE: problem" if a texture lookup failed during render_image (its texels
+ * read as 0): the image is then not what the scene describes. */
+int render_texture_error(const render_scene *rs, char *err, size_t err_size);
 
 #endif
