@@ -276,9 +276,11 @@ class WriteGltf(TempDirCase):
         self.assertEqual(mat["normalTexture"], {"index": 0, "scale": 0.5})
         # image files: a URI relative to the output, read back from there
         self.put("red.ppm", "P3\n1 1\n255\n255 0 0\n")
+        self.put("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                 "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n")
         scene = self.put("tex.scene", "camera position=0,0,3 look_at=0,0,0\n"
                          "material t pbr base_color_map=red.ppm occlusion_map=red.ppm "
-                         "occlusion_strength=0.5\nsphere material=t radius=1\n")
+                         "occlusion_strength=0.5\nmesh file=quad.obj material=t\n")
         os.mkdir(self.path("sub"))
         out = self.path("sub/tex.gltf")
         r = abrdf("export", "--gltf", scene, "-o", out)

@@ -23,15 +23,24 @@ def run(*args):
                           capture_output=True, text=True)
 
 
+# a unit quad facing the camera, with texture coordinates (textured materials need them)
+QUAD = """v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0
+vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1
+f 1/1/1 2/2/1 3/3/1 4/4/1
+"""
+
+
 def render(cli, tmp_path, lines, name, *materials):
-    """The lines and a grid of spheres, one per material, rendered at 32 x 32."""
+    """The lines and a grid of quads with texture coordinates, one per material, rendered at
+    32 x 32."""
     scene = tmp_path / (name + ".scene")
+    (tmp_path / "quad.obj").write_text(QUAD)
     cols = math.ceil(math.sqrt(len(materials)))
     cell = 2.0 / cols
-    spheres = "".join("sphere material=%s radius=%g translate=%g,%g,0\n"
-                      % (m, 0.45 * cell, -1 + cell * (i % cols + 0.5),
-                         1 - cell * (i // cols + 0.5)) for i, m in enumerate(materials))
-    scene.write_text(SCENE + "".join(line + "\n" for line in lines) + spheres)
+    quads = "".join("mesh file=quad.obj material=%s scale=%g translate=%g,%g,0\n"
+                    % (m, 0.45 * cell, -1 + cell * (i % cols + 0.5),
+                       1 - cell * (i // cols + 0.5)) for i, m in enumerate(materials))
+    scene.write_text(SCENE + "".join(line + "\n" for line in lines) + quads)
     out = tmp_path / (name + ".exr")
     cli("render", scene, "-o", out, "--spp", "1", "--threads", "1", "--no-preview")
     return abrdf.read_image(out)
