@@ -160,8 +160,25 @@ class ReadGltf(TempDirCase):
         g.node(mesh=g.mesh(tri, material=0))
         g.material(pbrMetallicRoughness={"metallicFactor": 2})
         cases["metal.gltf"] = (g, "metallic")
+        # an image in a bufferView reaching past its buffer: refused before a byte is read
+        g = Gltf()
+        g.node(mesh=g.mesh(tri, uvs=[0, 0, 1, 0, 0, 1], material=0))
+        g.material(pbrMetallicRoughness={"baseColorTexture": {"index": 0}})
+        g.doc["bufferViews"].append({"buffer": 0, "byteOffset": 0, "byteLength": 200000})
+        g.doc["images"] = [{"bufferView": len(g.doc["bufferViews"]) - 1,
+                            "mimeType": "image/png"}]
+        g.doc["textures"] = [{"source": 0}]
+        cases["image_view.gltf"] = (g, "reaches past its buffer")
         for name, (g, want) in cases.items():
             g.write_gltf(self.path(name))
+        # extras nested 5000 deep (tinygltf recurses into them): refused before it parses
+        g = Gltf()
+        g.node(mesh=g.mesh(tri))
+        g.write_gltf(self.path("deep.gltf"))
+        with open(self.path("deep.gltf")) as f:
+            text = f.read()
+        self.put("deep.gltf", '{"extras": ' + "[" * 5000 + "]" * 5000 + ", " + text.lstrip()[1:])
+        cases["deep.gltf"] = (None, "JSON nested more than 256 deep")
         self.put("json.gltf", "{ not json")
         cases["json.gltf"] = (None, "")
         good, _, _, _ = cube_gltf()
@@ -180,6 +197,24 @@ class ReadGltf(TempDirCase):
                             (name, err))
             self.assertIn(want, err, name)
             self.assertFalse(os.path.exists(out), name)
+
+    def test_mirrored_normals_face_out(self):
+        """A mirroring node (negative determinant) turns the winding and the file's normals
+        alike: the cube renders as the same cube without NORMAL (normals computed)."""
+        pos, nrm, idx = cube()
+        outs = []
+        for with_normals in (True, False):
+            g = Gltf()
+            m = g.mesh(pos, idx, nrm if with_normals else None,
+                       material=g.material(pbrMetallicRoughness={"metallicFactor": 0.0}))
+            g.node(mesh=m, scale=[-1, 1, 1], rotation=[0, 0.2588, 0, 0.9659])
+            g.doc["cameras"] = [{"type": "perspective",
+                                 "perspective": {"yfov": 0.7, "aspectRatio": 1.5, "znear": 0.1}}]
+            g.node(camera=0, translation=[0, 0.5, 4])
+            name = "mirror%d.gltf" % with_normals
+            g.write_gltf(self.path(name))
+            outs.append(self.render(self.path(name))[0])
+        self.assertLess(nmse(outs[1], outs[0]), 1e-6)
 
     def test_export_reads_gltf(self):
         g, _, _, _ = cube_gltf()

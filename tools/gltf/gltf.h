@@ -38,6 +38,10 @@ extern "C" {
 #include "scene.h" /* a C header without its own extern "C" */
 
 #define GLTF_MAX_FILE ((size_t)1 << 30) /* bytes of the .gltf/.glb and of each file it names */
+#define GLTF_MAX_FILES_TOTAL                                                                       \
+    ((size_t)1 << 31)           /* bytes of all the files it names together (a
+                                                  buffer named twice counts twice) */
+#define GLTF_MAX_JSON_DEPTH 256 /* nesting of the JSON's arrays and objects */
 
 /* Read; 0, or -1 with "FILE: problem" (one line) in err, *out left empty. The format is told
  * by the bytes (a .glb starts with "glTF"), not by the name. */

@@ -53,7 +53,9 @@ bool file_exists(const std::string &path, void *)
 
 std::string expand_path(const std::string &path, void *) { return path; }
 
-bool read_whole(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *)
+// user: the bytes read so far by this load (size_t), all files together (GLTF_MAX_FILES_TOTAL)
+bool read_whole(std::vector<unsigned char> *out, std::string *err, const std::string &path,
+                void *user)
 {
     char msg[512];
     FILE *f = in_file_open(path.c_str(), msg, sizeof msg);
@@ -71,11 +73,47 @@ bool read_whole(std::vector<unsigned char> *out, std::string *err, const std::st
             return false;
         }
         out->insert(out->end(), buf, buf + got);
+        if (user) {
+            size_t *total = static_cast<size_t *>(user);
+            *total += got;
+            if (*total > GLTF_MAX_FILES_TOTAL) {
+                fclose(f);
+                if (err)
+                    *err += path + ": the files the glTF names hold more than " +
+                            num((double)GLTF_MAX_FILES_TOTAL) + " bytes together\n";
+                return false;
+            }
+        }
     }
     bool bad = ferror(f);
     fclose(f);
     if (bad && err) *err += path + ": read error\n";
     return !bad;
+}
+
+// The deepest nesting of arrays and objects in JSON text (strings skipped): tinygltf parses
+// extras and extensions recursively, so a file nested thousands deep would exhaust the
+// stack before any check of ours runs.
+size_t json_depth(const unsigned char *p, size_t n)
+{
+    size_t depth = 0, most = 0;
+    bool in_string = false;
+    for (size_t i = 0; i < n; ++i) {
+        unsigned char c = p[i];
+        if (in_string) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            most = std::max(most, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return most;
 }
 
 bool write_whole(std::string *err, const std::string &, const std::vector<unsigned char> &, void *)
@@ -96,7 +134,11 @@ bool keep_image(tinygltf::Image *image, const int index, std::string *, std::str
     image_store *st = static_cast<image_store *>(user);
     if (index < 0 || size < 0) return false;
     if ((size_t)index >= st->bytes.size()) st->bytes.resize((size_t)index + 1);
-    if (image->uri.empty()) st->bytes[(size_t)index].assign(data, data + size);
+    // A bufferView image is handed over without a check of its range against the buffer (a
+    // hostile file reaches past it): its bytes are taken later, after the same range check
+    // as an accessor's (texture()). Only a data: URI's decoded bytes are kept here.
+    if (image->uri.empty() && image->bufferView < 0)
+        st->bytes[(size_t)index].assign(data, data + size);
     return true;
 }
 
@@ -383,14 +425,32 @@ struct reader {
             if (in_file_check(path.c_str(), err, sizeof err))
                 fail(what + ": image " + std::to_string(img) + ": " + err);
         } else {
-            if (img >= images.bytes.size() || images.bytes[img].empty())
-                fail(what + ": image " + std::to_string(img) + " has no data");
+            const unsigned char *src = nullptr;
+            size_t len = 0;
+            if (im.bufferView >= 0) { // its range within its buffer, checked before reading
+                if ((size_t)im.bufferView >= m->bufferViews.size())
+                    fail(what + ": image " + std::to_string(img) + ": bufferView " +
+                         std::to_string(im.bufferView) + " does not exist");
+                const tinygltf::BufferView &bv = m->bufferViews[(size_t)im.bufferView];
+                if (bv.buffer < 0 || (size_t)bv.buffer >= m->buffers.size())
+                    fail(what + ": image " + std::to_string(img) + ": its bufferView's buffer " +
+                         std::to_string(bv.buffer) + " does not exist");
+                const std::vector<unsigned char> &data = m->buffers[(size_t)bv.buffer].data;
+                if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+                    fail(what + ": image " + std::to_string(img) + ": bufferView " +
+                         std::to_string(im.bufferView) + " (offset " + num((double)bv.byteOffset) +
+                         ", length " + num((double)bv.byteLength) + ") reaches past its buffer's " +
+                         num((double)data.size()) + " bytes");
+                src = data.data() + bv.byteOffset, len = bv.byteLength;
+            } else if (img < images.bytes.size()) {
+                src = images.bytes[img].data(), len = images.bytes[img].size();
+            }
+            if (!src || len == 0) fail(what + ": image " + std::to_string(img) + " has no data");
             path = name + "#image/" + std::to_string(img);
-            const std::vector<unsigned char> &b = images.bytes[img];
-            map->blob = static_cast<unsigned char *>(malloc(b.size()));
+            map->blob = static_cast<unsigned char *>(malloc(len));
             if (!map->blob) throw std::bad_alloc();
-            memcpy(map->blob, b.data(), b.size());
-            map->blob_size = b.size();
+            memcpy(map->blob, src, len);
+            map->blob_size = len;
             snprintf(map->mime, sizeof map->mime, "%s", im.mimeType.c_str());
         }
         map->path = strdup(path.c_str());
@@ -730,7 +790,9 @@ struct reader {
             me->tri_normal = static_cast<int *>(malloc(3 * nt * sizeof(int)));
             if (!me->normal || !me->tri_normal) throw std::bad_alloc();
             double c[9];
-            cofactor3(world, c);
+            cofactor3(world, c); // det(M) M^-T: its sign flips normals under a mirror
+            double sign = det3(world) < 0 ? -1.0 : 1.0;
+            for (int k = 0; k < 9; ++k) c[k] *= sign;
             have_normals = true;
             for (size_t v = 0; v < nv && have_normals; ++v) {
                 double n[3] = {get(nv3, v, 0), get(nv3, v, 1), get(nv3, v, 2)}, w[3];
@@ -1167,11 +1229,27 @@ extern "C" int gltf_read_memory(const char *name, const unsigned char *bytes, si
         r.name = nm;
         size_t slash = nm.rfind('/');
         r.dir = slash == std::string::npos ? "" : nm.substr(0, slash + 1);
-        tinygltf::FsCallbacks fs = {file_exists, expand_path, read_whole, write_whole, nullptr};
+        size_t named_bytes = 0; // all the files it names, together
+        tinygltf::FsCallbacks fs = {file_exists, expand_path, read_whole, write_whole,
+                                    &named_bytes};
         loader.SetFsCallbacks(fs);
         loader.SetImageLoader(keep_image, &r.images);
         std::string lerr, lwarn;
         bool ok;
+        { // the JSON's nesting, before tinygltf recurses into it (json_depth)
+            const unsigned char *js = bytes;
+            size_t jn = size;
+            if (size >= 20 && !memcmp(bytes, "glTF", 4)) { // GLB: the first chunk is the JSON
+                uint32_t len;
+                memcpy(&len, bytes + 12, 4);
+                js = bytes + 20, jn = std::min<size_t>(len, size - 20);
+            }
+            if (json_depth(js, jn) > GLTF_MAX_JSON_DEPTH) {
+                say(err, err_size, nm,
+                    "JSON nested more than " + std::to_string(GLTF_MAX_JSON_DEPTH) + " deep");
+                return -1;
+            }
+        }
         if (size >= 4 && !memcmp(bytes, "glTF", 4))
             ok = loader.LoadBinaryFromMemory(&model, &lerr, &lwarn, bytes, (unsigned int)size,
                                              r.dir);
