@@ -64,10 +64,16 @@ static int drain(int out_fd, int err_fd, char **out, size_t *out_len, char *errb
                 pf[k].fd = -1, --open_fds;
                 continue;
             }
-            if (k == 1) {
-                size_t take = (size_t)got;
-                if (elen + take >= errbuf_size) take = errbuf_size - 1 - elen;
-                memcpy(errbuf + elen, chunk, take);
+            if (k == 1) { /* the last errbuf_size - 1 bytes: the one-line message is last */
+                size_t take = (size_t)got, room = errbuf_size - 1;
+                const char *from = chunk;
+                if (take > room) from += take - room, take = room;
+                if (elen + take > room) {
+                    size_t drop = elen + take - room;
+                    memmove(errbuf, errbuf + drop, elen - drop);
+                    elen -= drop;
+                }
+                memcpy(errbuf + elen, from, take);
                 elen += take;
                 errbuf[elen] = '\0';
                 continue;
@@ -132,7 +138,14 @@ static int mtlx_lines(const char *path, char **text, size_t *len, char *err, siz
         close(out_pipe[0]), close(out_pipe[1]), close(err_pipe[0]), close(err_pipe[1]);
         int devnull = open("/dev/null", O_RDONLY);
         if (devnull >= 0) dup2(devnull, 0), close(devnull);
-        execlp(py, py, "-m", "abrdf.scene_materials", path, (char *)NULL);
+        /* PYTHONSAFEPATH (Python 3.11 on): the working directory is not put on the module
+         * path, so a directory holding an asset cannot plant its own `abrdf` package */
+        setenv("PYTHONSAFEPATH", "1", 1);
+        char dashed[4096];
+        const char *arg = path;
+        if (path[0] == '-' && snprintf(dashed, sizeof dashed, "./%s", path) < (int)sizeof dashed)
+            arg = dashed;
+        execlp(py, py, "-m", "abrdf.scene_materials", arg, (char *)NULL);
         fprintf(stderr, "cannot run %s: %s\n", py, strerror(errno));
         _exit(127);
     }
@@ -182,6 +195,8 @@ int advise_asset_load(const char *path, scene *out, char *err, size_t err_size)
         snprintf(name, sizeof name, "%s (its materials as scene lines)", path);
         int rc = scene_parse_materials(name, text, len, out, err, err_size);
         free(text);
+        /* the lines are the reader's, not the document's: a material is named by the file */
+        for (int i = 0; !rc && i < out->material_count; ++i) out->materials[i].line = 0;
         return rc;
     }
     snprintf(err, err_size, "%s: not a file abrdf advise reads (.gltf, .glb, .mtlx, .scene)", path);

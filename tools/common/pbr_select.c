@@ -262,7 +262,8 @@ static int quantile_groups(const pbr_range *range, group *g)
         acc += range->share[i];
         sum_r += range->share[i] * range->r[i], sum_w += range->share[i];
         int last = k == n - 1;
-        if (last || acc >= total * (count + 1) / PBR_BUDGET_GROUPS) {
+        if (last ||
+            (count < PBR_BUDGET_GROUPS - 1 && acc >= total * (count + 1) / PBR_BUDGET_GROUPS)) {
             g[count].r = sum_r / sum_w, g[count].share = sum_w / total;
             ++count, sum_r = sum_w = 0;
         }

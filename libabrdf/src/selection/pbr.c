@@ -28,7 +28,7 @@ int abrdf_pbr_init_sized(abrdf_pbr *p, size_t struct_size)
     abrdf_pbr d;
     pbr_defaults(&d);
     memset(p, 0, struct_size);
-    memcpy(p, &d, sizeof d);
+    memcpy(p, &d, struct_size < sizeof d ? struct_size : sizeof d); /* the caller's layout */
     p->struct_size = struct_size;
     return ABRDF_OK;
 }
