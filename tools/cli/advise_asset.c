@@ -14,7 +14,9 @@
 #include "advise_asset.h"
 #include "advise_budget.h"
 #include "cli.h"
+#include "budget_run.h"
 #include "in_file.h"
+#include "map_range.h"
 #include "path_msg.h"
 #include "pbr_select.h"
 #include "scene_load.h"
@@ -219,6 +221,93 @@ static void entry_of(const scene_material *sm, const char *path, const abrdf_mat
     e->m.name = e->name;
 }
 
+/* The budget mode over a roughness map (pbr_budget_range), printed. */
+static void print_budget_map(const char *path, const scene_material *sm, double max_nmse,
+                             const pbr_range *range, const pbr_budget_choice *c,
+                             const select_trace *trace, int json)
+{
+    char pair[128];
+    budget_pair_name(c->diffuse, c->specular, &c->params, pair, sizeof pair);
+    if (json) {
+        printf("{\"material\": ");
+        cli_json_string(stdout, sm->name);
+        printf(", \"file\": ");
+        cli_json_string(stdout, path);
+        printf(", \"budget\": {\"max_nmse\": %.10g}, \"roughness_map\": ", max_nmse);
+        cli_json_string(stdout, range->what ? range->what : "");
+        printf(", \"groups\": %d, \"within\": %s,\n \"diffuse\": ", c->groups,
+               c->within ? "true" : "false");
+        if (c->diffuse == ABRDF_MODEL_NONE)
+            printf("null");
+        else
+            cli_json_string(stdout, abrdf_model_get(c->diffuse)->name);
+        printf(", \"specular\": ");
+        cli_json_string(stdout, abrdf_model_get(c->specular)->name);
+        printf(", \"params\": ");
+        budget_params_json(stdout, c->diffuse, c->specular, &c->params);
+        printf(",\n \"error\": {\"nmse_pred\": %.10g}, \"cost\": {\"total\": ", c->nmse);
+        if (c->cost >= 0)
+            printf("%.10g", c->cost);
+        else
+            printf("null");
+        printf(", \"unit\": ");
+        cli_json_string(stdout, c->unit ? c->unit : "");
+        printf("},\n \"trace\": [");
+        for (int k = 0; k < trace->count; ++k) {
+            printf("%s\n  {\"text\": ", k ? "," : "");
+            cli_json_string(stdout, trace->steps[k].text);
+            printf("}");
+        }
+        printf("\n]}\n");
+        return;
+    }
+    printf("material   %s (textured; %s)\n", sm->name, path);
+    printf("budget     NMSE < %g over the roughness map %s (%d groups of texels)\n", max_nmse,
+           range->what ? range->what : "", c->groups);
+    printf("choice     %s  ", pair);
+    budget_params_text(stdout, c->diffuse, c->specular, &c->params);
+    printf("\n");
+    if (c->within)
+        printf("error      NMSE %.3g predicted over the map (the texels' share-weighted mean)\n",
+               c->nmse);
+    else
+        printf("error      none within the budget at every value: the photoreal choice\n");
+    if (c->cost >= 0) printf("cost       %.3g %s\n", c->cost, c->unit ? c->unit : "");
+    printf("why:\n");
+    for (int k = 0; k < trace->count; ++k) printf("  %2d. %s\n", k + 1, trace->steps[k].text);
+}
+
+/* A material with a roughness map: the choice over the map's values (pbr_select.h). */
+static int advise_map(const char *path, const scene_material *sm, const mat_entry *e,
+                      const select_request *rq, const abrdf_tolerance *tol,
+                      const abrdf_costs *costs, int json, advise_printer print)
+{
+    char msg[1024];
+    pbr_range range;
+    if (map_range_read(NULL, sm, &range, msg, sizeof msg))
+        return cli_fail(CMD, "%s: material '%s': %s", path, sm->name, msg);
+    select_trace trace = SELECT_TRACE_INIT;
+    int rc = 0;
+    if (rq->by_budget) {
+        pbr_budget_choice c;
+        if (pbr_budget_range(&sm->pbr_in, &range, rq->max_nmse, costs, NULL, &c, &trace, msg,
+                             sizeof msg))
+            rc = cli_fail(CMD, "%s: material '%s': %s", path, sm->name, msg);
+        else
+            print_budget_map(path, sm, rq->max_nmse, &range, &c, &trace, json);
+    } else {
+        abrdf_selection sel;
+        abrdf_params params;
+        if (pbr_select_range(&sm->pbr_in, &range, rq->goal, tol, costs, &sel, &params, &trace, msg,
+                             sizeof msg))
+            rc = cli_fail(CMD, "%s: material '%s': %s", path, sm->name, msg);
+        else
+            print(&sel, &params, &trace, e, tol, json);
+    }
+    select_trace_free(&trace);
+    return rc;
+}
+
 static int advise_one(const char *path, const scene_material *sm, const select_request *rq,
                       const abrdf_tolerance *tol, const abrdf_costs *costs, int json,
                       advise_printer print)
@@ -232,6 +321,8 @@ static int advise_one(const char *path, const scene_material *sm, const select_r
     }
     mat_entry e;
     entry_of(sm, path, &m, &e);
+    if (sm->maps[SCENE_MAP_ROUGHNESS].path)
+        return advise_map(path, sm, &e, rq, tol, costs, json, print);
     if (rq->by_budget) return advise_budget(&e.m, &e, rq->max_nmse, costs, json, 0, NULL);
     abrdf_selection sel;
     abrdf_params params;

@@ -3,6 +3,7 @@
 
 #include "budget_run.h"
 #include "cli_args.h"
+#include "map_range.h"
 #include "scene_choice.h"
 #include "scene_select.h"
 
@@ -11,6 +12,7 @@ void scene_choice_init(scene_choice *c)
     memset(c, 0, sizeof *c);
     c->how = (scene_selection)SCENE_SELECTION_INIT;
     c->how.tables = c->mats;
+    c->how.map_range = map_range_read; /* a roughness map's values (map_range.h) */
 }
 
 int scene_choice_option(scene_choice *c, const char *cmd, int argc, char **argv, int *i)

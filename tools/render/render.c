@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "light.h"
+#include "map_range.h"
 #include "plan.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
@@ -207,23 +208,7 @@ static int textures_open(const scene *s, const render_options *opt, render_scene
             const scene_map *mp = &sm->maps[k];
             if (!mp->path) continue;
             texture_info info;
-            /* an image embedded in a glTF file goes in through texture_open's bytes, named
-             * "FILE#image/N.EXT": the extension (from its mimeType, else its first bytes)
-             * chooses OpenImageIO's reader (texture.h) */
-            char named[1200];
-            const char *name = mp->path;
-            if (mp->blob) {
-                const unsigned char *b = mp->blob;
-                int png = !strcmp(mp->mime, "image/png") ||
-                          (!mp->mime[0] && mp->blob_size >= 4 && b[0] == 0x89 && b[1] == 'P');
-                int jpg = !strcmp(mp->mime, "image/jpeg") ||
-                          (!mp->mime[0] && mp->blob_size >= 2 && b[0] == 0xff && b[1] == 0xd8);
-                snprintf(named, sizeof named, "%s%s", mp->path, png ? ".png" : jpg ? ".jpg" : "");
-                name = named;
-            }
-            if (texture_open(rs->textures, name, mp->blob, mp->blob_size, &m->maps[k], &info, err,
-                             err_size))
-                return -1;
+            if (map_open(rs->textures, mp, &m->maps[k], &info, err, err_size)) return -1;
             m->map_channels[k] = info.channels;
             int one = k != SCENE_MAP_BASE_COLOR && k != SCENE_MAP_NORMAL;
             if (one && mp->channel >= info.channels) {
