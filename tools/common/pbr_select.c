@@ -1,6 +1,7 @@
 /* pbr_select.c - the flowchart over a roughness map (pbr_select.h). */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "budget_run.h"
@@ -275,7 +276,7 @@ typedef struct pair_stats {
     abrdf_model d, s;
     double nmse[PBR_BUDGET_GROUPS], cost, combined;
     int seen;
-    abrdf_params params; /* fitted at the median group */
+    abrdf_params params[PBR_BUDGET_GROUPS]; /* fitted at each group */
 } pair_stats;
 
 int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse,
@@ -291,7 +292,11 @@ int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse
     }
     const char *what = range->what ? range->what : "roughness map";
     enum { MAX_PAIRS = 32 };
-    pair_stats pairs[MAX_PAIRS];
+    pair_stats *pairs = malloc(MAX_PAIRS * sizeof *pairs); /* ~150 KB: not on the stack */
+    if (!pairs) {
+        snprintf(msg, msg_size, "out of memory");
+        return -1;
+    }
     int np = 0, median = 0;
     double below = 0;
     for (int k = 0; k < ng; ++k) { /* the group holding the median texel */
@@ -306,10 +311,14 @@ int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse
         abrdf_material_init(&am);
         if (abrdf_pbr_material(&q, &am) != ABRDF_OK) {
             abrdf_pbr_check(&q, msg, msg_size);
+            free(pairs);
             return -1;
         }
         budget_result res;
-        if (budget_run(&am, max_nmse, costs, view, &res, msg, msg_size)) return -1;
+        if (budget_run(&am, max_nmse, costs, view, &res, msg, msg_size)) {
+            free(pairs);
+            return -1;
+        }
         out->unit = res.sel.cost_unit;
         const abrdf_select_step *cand[64];
         int nc = budget_candidates(&res, cand, 64);
@@ -323,7 +332,10 @@ int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse
             }
             if (pairs[j].seen != k) continue; /* one fit per group */
             pairs[j].nmse[k] = cand[c]->value, pairs[j].cost = cand[c]->cost, ++pairs[j].seen;
-            if (k == median && cand[c]->params) pairs[j].params = *cand[c]->params;
+            if (cand[c]->params)
+                pairs[j].params[k] = *cand[c]->params;
+            else
+                abrdf_params_init(ABRDF_MODEL_NONE, &pairs[j].params[k]);
         }
         char text[256];
         snprintf(text, sizeof text,
@@ -362,9 +374,11 @@ int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse
     }
     char text[512], pair[96];
     out->groups = ng;
+    for (int k = 0; k < ng; ++k) out->group_r[k] = g[k].r;
     if (best >= 0) {
         out->diffuse = pairs[best].d, out->specular = pairs[best].s;
-        out->params = pairs[best].params;
+        out->params = pairs[best].params[median];
+        for (int k = 0; k < ng; ++k) out->group_params[k] = pairs[best].params[k];
         out->nmse = pairs[best].combined, out->cost = pairs[best].cost, out->within = 1;
         pair_name(out->diffuse, out->specular, pair, sizeof pair);
         snprintf(text, sizeof text,
@@ -377,7 +391,23 @@ int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse
         int rc = pbr_select_range(p, range, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &sel, &out->params,
                                   &t, msg, msg_size);
         select_trace_free(&t);
-        if (rc) return -1;
+        for (int k = 0; k < ng && !rc; ++k) { /* the photoreal choice's block at each r */
+            abrdf_pbr q = *p;
+            q.roughness = fmin(fmax(g[k].r, 0.0), 1.0);
+            abrdf_material am;
+            abrdf_selection sk;
+            abrdf_material_init(&am);
+            abrdf_selection_init(&sk);
+            abrdf_params_init(ABRDF_MODEL_NONE, &out->group_params[k]);
+            rc = abrdf_pbr_material(&q, &am) != ABRDF_OK ||
+                 abrdf_select(&am, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &sk, &out->group_params[k],
+                              NULL, NULL) != ABRDF_OK;
+            if (rc) snprintf(msg, msg_size, "%s", sk.message);
+        }
+        if (rc) {
+            free(pairs);
+            return -1;
+        }
         out->diffuse = sel.diffuse, out->specular = sel.specular;
         out->nmse = 0, out->cost = -1, out->within = 0;
         pair_name(out->diffuse, out->specular, pair, sizeof pair);
@@ -386,6 +416,7 @@ int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse
                  "the map: the photoreal choice over it, %s",
                  what, max_nmse, pair);
     }
+    free(pairs);
     add_step(trace, out->specular, out->nmse, max_nmse, text);
     if (trace->lost) {
         snprintf(msg, msg_size, "out of memory");

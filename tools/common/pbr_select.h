@@ -56,11 +56,15 @@ int pbr_select_range(const abrdf_pbr *p, const pbr_range *range, abrdf_goal goal
 typedef struct pbr_budget_choice {
     abrdf_model diffuse, specular; /* diffuse may be ABRDF_MODEL_NONE */
     abrdf_params params;           /* fitted at the group of the median texel */
-    double nmse;                   /* predicted over the map; 0 for the photoreal fallback */
-    double cost;                   /* in the costs' unit; < 0 unknown */
-    const char *unit;              /* the costs' unit */
-    int groups;                    /* values the budget mode ran at */
-    int within;                    /* 1: a candidate within the budget; 0: the fallback */
+    /* the pair's fitted block at each group's r (ascending), for a renderer to take per
+     * texel (the fallback: the photoreal choice's block at each r) */
+    double group_r[PBR_BUDGET_GROUPS];
+    abrdf_params group_params[PBR_BUDGET_GROUPS];
+    double nmse;      /* predicted over the map; 0 for the photoreal fallback */
+    double cost;      /* in the costs' unit; < 0 unknown */
+    const char *unit; /* the costs' unit */
+    int groups;       /* values the budget mode ran at */
+    int within;       /* 1: a candidate within the budget; 0: the fallback */
 } pbr_budget_choice;
 
 /* costs NULL: the built-in table; view NULL: the default sphere. Returns 0, or -1 with one

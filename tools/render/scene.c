@@ -749,6 +749,38 @@ int scene_pbr_params(const scene_material *sm, const abrdf_pbr *q, abrdf_params 
     abrdf_params mapped;
     abrdf_params_init(ABRDF_DISNEY_SPECULAR, &mapped);
     if (abrdf_pbr_lobes(q, lobes, &count, &mapped) != ABRDF_OK) return -1;
+    if (sm->fit_count > 0) { /* the budget's fits between the two nearest groups, recoloured */
+        int g = 0, n = sm->fit_count;
+        while (g + 1 < n && sm->fit_r[g + 1] <= q->roughness) ++g;
+        int h = g + 1 < n ? g + 1 : g;
+        double t =
+            h > g && sm->fit_r[h] > sm->fit_r[g]
+                ? fmin(fmax((q->roughness - sm->fit_r[g]) / (sm->fit_r[h] - sm->fit_r[g]), 0.0),
+                       1.0)
+                : 0.0;
+        const abrdf_params *a = &sm->fit_params[g], *b = &sm->fit_params[h];
+        *out = *a;
+        for (int c = 0; c < 3; ++c) {
+            out->kd[c] = a->kd[c] + t * (b->kd[c] - a->kd[c]);
+            out->ks[c] = a->ks[c] + t * (b->ks[c] - a->ks[c]);
+            out->f0[c] = a->f0[c] + t * (b->f0[c] - a->f0[c]);
+        }
+        out->r = a->r + t * (b->r - a->r);
+        out->anisotropic = a->anisotropic + t * (b->anisotropic - a->anisotropic);
+        /* an exponent changes by factors: between them geometrically */
+        out->n = a->n > 0 && b->n > 0 ? a->n * pow(b->n / a->n, t) : a->n + t * (b->n - a->n);
+        abrdf_pbr at = sm->pbr_in;
+        at.roughness = sm->fit_r[g] + t * (sm->fit_r[h] - sm->fit_r[g]);
+        abrdf_params base;
+        abrdf_params_init(ABRDF_DISNEY_SPECULAR, &base);
+        if (abrdf_pbr_lobes(&at, lobes, &count, &base) != ABRDF_OK) return -1;
+        for (int c = 0; c < 3; ++c) {
+            if (base.kd[c] > 0) out->kd[c] = fmin(out->kd[c] * mapped.kd[c] / base.kd[c], 1.0);
+            if (base.f0[c] > 0) out->ks[c] = fmin(out->ks[c] * mapped.f0[c] / base.f0[c], 1.0);
+            out->f0[c] = mapped.f0[c];
+        }
+        return 0;
+    }
     *out = sm->params;
     memcpy(out->kd, mapped.kd, sizeof out->kd);
     memcpy(out->ks, mapped.ks, sizeof out->ks);

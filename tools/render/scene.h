@@ -21,6 +21,7 @@
 #include "envmap.h"
 #include "measured_table.h"
 #include "mesh.h"
+#include "pbr_select.h"
 
 #define SCENE_NAME_MAX 64        /* material names, table entries, goals (with the NUL) */
 #define SCENE_MAX_OBJECTS 100000 /* keeps a hostile file from exhausting memory */
@@ -139,6 +140,12 @@ typedef struct scene_material {
      * (maps) multiply the factors per shading point; textured = some map is given. */
     int pbr;
     abrdf_pbr pbr_in;
+    /* A pbr material the budget mode chose over its roughness map (pbr_budget_range): the
+     * chosen pair's fitted block at each group's roughness, ascending; scene_pbr_params
+     * interpolates them for a shading point (fit_count 0: none). */
+    int fit_count;
+    double fit_r[PBR_BUDGET_GROUPS];
+    abrdf_params fit_params[PBR_BUDGET_GROUPS];
     scene_map maps[SCENE_MAP_COUNT];
     int textured;
 } scene_material;
@@ -226,7 +233,11 @@ int scene_outputs_distinct(const scene *s, const char *const *outputs,
 /* The parameters of material sm at a shading point whose pbr inputs (its factors times the
  * texels there) are q: sm's block with what abrdf_pbr_lobes maps q to (kd, ks, f0, r,
  * anisotropic), and n from r (abrdf_alpha_g_to_n of r^2) where sm's lobes read n (the
- * performance goal's Blinn-Phong). 0, or -1 if q is out of its ranges. */
+ * performance goal's Blinn-Phong). A budget choice over a roughness map (fit_count > 0)
+ * takes instead the fitted blocks of the two groups around q's roughness, interpolated
+ * (linearly; an exponent n geometrically), its kd scaled by the ratio of q's mapped kd to
+ * the groups', its ks by the ratio of the mapped f0 (the specular's normal reflectance). 0,
+ * or -1 if q is out of its ranges. */
 int scene_pbr_params(const scene_material *sm, const abrdf_pbr *q, abrdf_params *out);
 
 /* A `pbr` material's maps with their defaults (no file; glTF's channels, sRGB base colour,
