@@ -88,3 +88,73 @@ class AdviseFile(TempDirCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+GEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "gen",
+                   "gen_material_assets.py")
+QUAD = ("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+        "f 1/1/1 2/2/1 3/3/1 4/4/1\n")
+
+
+class AdviseTextured(TempDirCase):
+    """A roughness map is advised over its values (docs/GLTF.md, "Selection over a
+    texture"): the generated glTF's map crosses the smooth threshold (r 0.012 and 0.023
+    below 0.03, the rest above), so the trace names both branches and the safe one."""
+
+    def setUp(self):
+        super().setUp()
+        # the generator writes PNGs through OpenImageIO: Debian's python3 has it
+        subprocess.run(["/usr/bin/python3", GEN, self.dir], check=True, capture_output=True)
+
+    def textured(self, *args):
+        rc, out, err = run("advise", self.path("scene.gltf"), *args, "--json")
+        self.assertEqual(rc, 0, err)
+        return next(m for m in json.loads(out)["materials"] if m["material"] == "textured")
+
+    def test_photoreal_takes_the_reference_across_the_threshold(self):
+        m = self.textured()
+        self.assertEqual(m["specular"], "disney_specular")
+        last = m["trace"][-1]["text"]
+        for word in ("crosses", "f_2e", "disney_specular", "reference", "25% of texels"):
+            self.assertIn(word, last)
+
+    def test_performance_passes_at_every_value(self):
+        m = self.textured("--goal", "performance")
+        last = m["trace"][-1]["text"]
+        self.assertIn("the safe branch: %s" % m["specular"], last)
+
+    def test_render_explains_the_same_choice(self):
+        r = subprocess.run([ABRDF, "render", self.path("scene.gltf"), "-o", self.path("a.exr"),
+                            "--width", "24", "--height", "24", "--adaptive", "--goal",
+                            "photoreal", "--explain", "--no-preview"], capture_output=True)
+        err = checked_stderr(r)
+        self.assertEqual(r.returncode, 0, err)
+        out = r.stdout.decode()
+        self.assertIn("material 'textured'", out)
+        self.assertIn("over its roughness map: disney_diffuse + disney_specular", out)
+
+    def test_budget_over_a_map(self):
+        """Two roughness values on either half of a quad: the budget runs at each, and the
+        render with --adaptive --budget takes the same pair (its fits per texel)."""
+        subprocess.run(["/usr/bin/python3", "-c", """
+import OpenImageIO as oiio, numpy as np, sys
+img = np.zeros((4, 4, 3), np.float32); img[:, :2] = 0.3; img[:, 2:] = 0.6
+buf = oiio.ImageBuf(oiio.ImageSpec(4, 4, 3, "uint8"))
+buf.set_pixels(oiio.ROI(0, 4, 0, 4, 0, 1, 0, 3), img)
+assert buf.write(sys.argv[1])
+""", self.path("rough.png")], check=True)
+        self.put("quad.obj", QUAD)
+        scene = self.put("b.scene", "camera position=0,0,3.2 look_at=0,0,0 resolution=24,24\n"
+                         "light directional direction=-0.4,0.5,1 intensity=3\n"
+                         "material t pbr base_color=0.7,0.2,0.1 metallic=0 roughness=1 "
+                         "roughness_map=rough.png\nmesh file=quad.obj material=t\n")
+        rc, out, err = run("advise", scene, "--budget", "0.005", "--json")
+        self.assertEqual(rc, 0, err)
+        m = json.loads(out)["materials"][0]
+        self.assertEqual(m["groups"], 2)
+        self.assertLess(m["error"]["nmse_pred"], 0.005)
+        pair = " + ".join(x for x in (m["diffuse"], m["specular"]) if x)
+        r = subprocess.run([ABRDF, "render", scene, "-o", self.path("b.exr"), "--adaptive",
+                            "--budget", "0.005", "--explain", "--no-preview"], capture_output=True)
+        self.assertEqual(r.returncode, 0, checked_stderr(r))
+        self.assertIn("over its roughness map: " + pair, r.stdout.decode())
