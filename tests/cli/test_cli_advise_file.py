@@ -86,10 +86,6 @@ class AdviseFile(TempDirCase):
             self.assertIn(what, err)
 
 
-if __name__ == "__main__":
-    unittest.main()
-
-
 GEN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "gen",
                    "gen_material_assets.py")
 QUAD = ("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
@@ -158,3 +154,7 @@ assert buf.write(sys.argv[1])
                             "--budget", "0.005", "--explain", "--no-preview"], capture_output=True)
         self.assertEqual(r.returncode, 0, checked_stderr(r))
         self.assertIn("over its roughness map: " + pair, r.stdout.decode())
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -20,6 +20,7 @@
 #include "path_msg.h"
 #include "pbr_select.h"
 #include "scene_load.h"
+#include "scene_select.h"
 
 #define CMD "advise"
 #define BRIDGE_MAX_OUTPUT (16u << 20) /* bytes of material lines from the MaterialX reader */
@@ -278,8 +279,8 @@ static void print_budget_map(const char *path, const scene_material *sm, double 
 }
 
 /* A material with a roughness map: the choice over the map's values (pbr_select.h). */
-static int advise_map(const char *path, const scene_material *sm, const mat_entry *e,
-                      const select_request *rq, const abrdf_tolerance *tol,
+static int advise_map(const char *path, const scene *s, const scene_material *sm,
+                      const mat_entry *e, const select_request *rq, const abrdf_tolerance *tol,
                       const abrdf_costs *costs, int json, advise_printer print)
 {
     char msg[1024];
@@ -289,8 +290,13 @@ static int advise_map(const char *path, const scene_material *sm, const mat_entr
     select_trace trace = SELECT_TRACE_INIT;
     int rc = 0;
     if (rq->by_budget) {
+        /* predicted as `abrdf render --adaptive --budget` predicts it: on the file's own
+         * camera and lights (scene_budget_view), so that both choose the same pair */
+        abrdf_light_dir lights[SCENE_MAX_LIGHTS];
+        abrdf_view view;
+        scene_budget_view(s, 4, &view, lights);
         pbr_budget_choice c;
-        if (pbr_budget_range(&sm->pbr_in, &range, rq->max_nmse, costs, NULL, &c, &trace, msg,
+        if (pbr_budget_range(&sm->pbr_in, &range, rq->max_nmse, costs, &view, &c, &trace, msg,
                              sizeof msg))
             rc = cli_fail(CMD, "%s: material '%s': %s", path, sm->name, msg);
         else
@@ -308,9 +314,9 @@ static int advise_map(const char *path, const scene_material *sm, const mat_entr
     return rc;
 }
 
-static int advise_one(const char *path, const scene_material *sm, const select_request *rq,
-                      const abrdf_tolerance *tol, const abrdf_costs *costs, int json,
-                      advise_printer print)
+static int advise_one(const char *path, const scene *s, const scene_material *sm,
+                      const select_request *rq, const abrdf_tolerance *tol,
+                      const abrdf_costs *costs, int json, advise_printer print)
 {
     abrdf_material m;
     abrdf_material_init(&m);
@@ -322,7 +328,7 @@ static int advise_one(const char *path, const scene_material *sm, const select_r
     mat_entry e;
     entry_of(sm, path, &m, &e);
     if (sm->maps[SCENE_MAP_ROUGHNESS].path)
-        return advise_map(path, sm, &e, rq, tol, costs, json, print);
+        return advise_map(path, s, sm, &e, rq, tol, costs, json, print);
     if (rq->by_budget) return advise_budget(&e.m, &e, rq->max_nmse, costs, json, 0, NULL);
     abrdf_selection sel;
     abrdf_params params;
@@ -371,7 +377,7 @@ int advise_asset(const char *path, const select_request *rq, const abrdf_toleran
         if (!s.materials[i].pbr) continue;
         if (json && done) printf(",\n");
         if (!json && done) printf("\n");
-        rc = advise_one(path, &s.materials[i], rq, tol, costs, json, print);
+        rc = advise_one(path, &s, &s.materials[i], rq, tol, costs, json, print);
         ++done;
     }
     if (json && !rc) printf("]}\n");
