@@ -292,8 +292,10 @@ static int select_pbr_range(scene_material *sm, const select_request *rq,
                              msg_size))
             return -1;
         d = c.diffuse, sp = c.specular, params = c.params;
-        sm->fit_count = c.groups; /* the fit per group, for each texel (scene_pbr_params) */
-        for (int k = 0; k < c.groups; ++k)
+        /* a fitted stand-in: its fit per group, for each texel (scene_pbr_params); the
+         * reference itself (NMSE 0) or the photoreal fallback is the mapping, per texel */
+        sm->fit_count = c.within && c.nmse > 0 ? c.groups : 0;
+        for (int k = 0; k < sm->fit_count; ++k)
             sm->fit_r[k] = c.group_r[k], sm->fit_params[k] = c.group_params[k];
         snprintf(asked, sizeof asked, "budget NMSE < %g", rq->max_nmse);
     } else {
