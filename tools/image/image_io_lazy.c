@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "image_io.h"
+#include "module_open.h"
 
 #define MODULE_NAME "libabrdf_image_io.so"
 
@@ -48,35 +49,12 @@ static struct {
     is_display_fn is_display;
 } mod;
 
-static void *open_in(const char *dir, const char *rel)
-{
-    char path[4096];
-    if (snprintf(path, sizeof path, "%s/%s%s", dir, rel, MODULE_NAME) >= (int)sizeof path)
-        return NULL;
-    if (access(path, R_OK) != 0) return NULL;
-    return dlopen(path, RTLD_NOW | RTLD_LOCAL);
-}
-
 static int load(char *err, int err_size)
 {
     if (!mod.tried) {
         mod.tried = 1;
-        void *h = NULL;
         const char *env = getenv("ABRDF_IMAGE_IO_MODULE");
-        if (env && *env) {
-            h = dlopen(env, RTLD_NOW | RTLD_LOCAL);
-        } else {
-            char exe[4096];
-            ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-            if (n > 0) {
-                exe[n] = 0;
-                char *slash = strrchr(exe, '/');
-                if (slash) *slash = 0;
-                h = open_in(exe, "");
-                if (!h) h = open_in(exe, ABRDF_IMAGE_IO_RELATIVE "/");
-            }
-            if (!h) h = dlopen(MODULE_NAME, RTLD_NOW | RTLD_LOCAL); /* the loader's search path */
-        }
+        void *h = module_open("ABRDF_IMAGE_IO_MODULE", MODULE_NAME, ABRDF_IMAGE_IO_RELATIVE);
         if (!h) {
             const char *e = dlerror();
             snprintf(mod.error, sizeof mod.error, "cannot load the image I/O module %s: %s",

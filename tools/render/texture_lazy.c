@@ -12,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "module_open.h"
 #include "texture_module.h"
 
 #define TEXTURE_MODULE_NAME "libabrdf_texture.so"
@@ -19,36 +20,13 @@
 static const texture_module_api *api;
 static char load_error[512];
 
-static void *open_in(const char *dir, const char *rel)
-{
-    char path[4096];
-    if (snprintf(path, sizeof path, "%s/%s%s", dir, rel, TEXTURE_MODULE_NAME) >= (int)sizeof path)
-        return NULL;
-    if (access(path, R_OK) != 0) return NULL;
-    return dlopen(path, RTLD_NOW | RTLD_LOCAL);
-}
-
 static int load(char *err, size_t err_size)
 {
     static int tried;
     if (!tried) {
         tried = 1;
-        void *h = NULL;
         const char *env = getenv("ABRDF_TEXTURE_MODULE");
-        if (env && *env) {
-            h = dlopen(env, RTLD_NOW | RTLD_LOCAL);
-        } else {
-            char exe[4096];
-            ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-            if (n > 0) {
-                exe[n] = 0;
-                char *slash = strrchr(exe, '/');
-                if (slash) *slash = 0;
-                h = open_in(exe, "");
-                if (!h) h = open_in(exe, ABRDF_TEXTURE_RELATIVE "/");
-            }
-            if (!h) h = dlopen(TEXTURE_MODULE_NAME, RTLD_NOW | RTLD_LOCAL);
-        }
+        void *h = module_open("ABRDF_TEXTURE_MODULE", TEXTURE_MODULE_NAME, ABRDF_TEXTURE_RELATIVE);
         texture_module_fn get = NULL;
         if (h) *(void **)&get = dlsym(h, "abrdf_texture_module"); /* POSIX's idiom */
         if (!h) {
