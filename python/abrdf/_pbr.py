@@ -60,6 +60,10 @@ class Pbr:
         """A copy with some fields changed (checked again)."""
         return dataclasses.replace(self, **changes)  # type: ignore[arg-type]
 
+    def _flowchart_material(self) -> Material:
+        """What abrdf.select reads of it (abrdf.pbr_material)."""
+        return pbr_material(self)
+
 
 def _error(message: str) -> _abrdf.Error:
     err = _abrdf.Error(message)
@@ -138,6 +142,10 @@ class PbrMaterial:
     def material(self) -> Material:
         """The flowchart's material (abrdf.pbr_material), named after this one."""
         return pbr_material(self.pbr, self.name)
+
+    def _flowchart_material(self) -> Material:
+        """What abrdf.select reads of it: the material above."""
+        return self.material
 
     @property
     def brdfs(self) -> list[BRDF]:

@@ -227,14 +227,10 @@ def select(material: str | Material | Mapping[str, object] | Any, goal: Goal | N
         mat = _lookup(material, extra)
     elif isinstance(material, Material):
         mat = material
+    elif hasattr(material, "_flowchart_material"):  # a Pbr or PbrMaterial (_pbr.py)
+        mat = material._flowchart_material()  # type: ignore[union-attr]
     else:
-        from ._pbr import Pbr, PbrMaterial, pbr_material  # _pbr builds on this module
-        if isinstance(material, PbrMaterial):
-            mat = material.material
-        elif isinstance(material, Pbr):
-            mat = pbr_material(material)
-        else:
-            mat = _material_of(material)
+        mat = _material_of(material)
     table, unit = _costs(costs, cost_unit)
     if budget is not None:
         if goal is not None or max_rel_error is not None or max_abs_error is not None:
