@@ -880,6 +880,8 @@ struct reader {
 
     void add_object(const scene_object &o)
     {
+        if (s->object_count >= SCENE_MAX_OBJECTS)
+            fail("more than " + std::to_string(SCENE_MAX_OBJECTS) + " objects");
         if (s->object_count == object_cap) {
             int c = object_cap ? 2 * object_cap : 16;
             scene_object *g =
