@@ -432,6 +432,7 @@
   const images = [new Float32Array(3 * SIZE * SIZE), new Float32Array(3 * SIZE * SIZE)];
   const done = [false, false];
   let mask = null;
+  let renderedModels = ""; /* the models of the sphere-time line */
 
   function requestRender() {
     gen++;
@@ -440,6 +441,9 @@
     done[0] = false;
     done[1] = state.models[1] === "none";
     pending.render = true;
+    const key = state.models.join(" ");
+    if (key !== renderedModels) $("sphere-time").textContent = "";
+    renderedModels = key;
     $("name-a").textContent = state.models[0];
     $("name-b").textContent = state.models[1] === "none" ? "(none)" : state.models[1];
     if (state.models[1] === "none") {
@@ -708,6 +712,23 @@
     checkIdle();
   }
 
+  /* The scale of the plane plots: the largest value away from grazing (|theta_o| <= 85 deg),
+   * where some models grow without bound as cos theta_o -> 0; curves above it are clipped. */
+  const SCALE_LIMIT_DEG = 85;
+  function planeMax(vals) {
+    let max = 0;
+    let all = 0;
+    vals.forEach((v, s) => {
+      if (!v) return;
+      const th = plotData.plane[s].thetaO;
+      for (let k = 0; k < v.length; k++) {
+        all = Math.max(all, v[k]);
+        if (Math.abs(th[k]) <= SCALE_LIMIT_DEG) max = Math.max(max, v[k]);
+      }
+    });
+    return max > 0 ? max : all;
+  }
+
   function planeValues(pl) {
     const n = pl.thetaO.length;
     const v = new Float64Array(n);
@@ -733,19 +754,19 @@
     const cy = H - 24;
     const R = Math.min(W / 2 - 30, H - 44);
     const vals = plotData.plane.map((p) => (p ? planeValues(p) : null));
-    let max = 0;
-    for (const v of vals) if (v) for (const x of v) max = Math.max(max, x);
+    const max = planeMax(vals);
     /* grid: half circles at nice radii, spokes every 30 degrees */
     g.strokeStyle = GRID;
     g.fillStyle = LABEL;
     g.font = "11px sans-serif";
     g.lineWidth = 1;
     const step = max > 0 ? niceStep(max, 3) : 1;
+    g.textAlign = "center";
     for (let r = step; max > 0 && r <= max * 1.0001; r += step) {
       g.beginPath();
       g.arc(cx, cy, (R * r) / max, Math.PI, 2 * Math.PI);
       g.stroke();
-      g.fillText(fmt(r), cx + (R * r) / max + 2, cy + 12);
+      g.fillText(fmt(r), cx - (R * r) / max, cy + 13); /* radius labels on the left baseline */
     }
     for (let a = -90; a <= 90; a += 30) {
       const t = (a * Math.PI) / 180;
@@ -784,7 +805,7 @@
       g.beginPath();
       for (let k = 0; k < v.length; k++) {
         const t = (th[k] * Math.PI) / 180;
-        const r = (R * v[k]) / max;
+        const r = (R * Math.min(v[k], 1.1 * max)) / max;
         const x = cx + r * Math.sin(t);
         const y = cy - r * Math.cos(t);
         if (k) g.lineTo(x, y);
@@ -810,14 +831,9 @@
     const T = 22;
     const B = 34;
     const vals = plotData.plane.map((p) => (p ? planeValues(p) : null));
-    let max = 0;
+    const max = planeMax(vals);
     let minPos = Infinity;
-    for (const v of vals)
-      if (v)
-        for (const x of v) {
-          max = Math.max(max, x);
-          if (x > 0) minPos = Math.min(minPos, x);
-        }
+    for (const v of vals) if (v) for (const x of v) if (x > 0) minPos = Math.min(minPos, x);
     const log = state.logPlot && max > 0;
     let lo = 0;
     let hi = max > 0 ? max * 1.05 : 1;
@@ -879,9 +895,11 @@
       g.strokeStyle = SLOT_COLOURS[s];
       g.lineWidth = 2;
       g.beginPath();
+      const top = log ? Math.pow(10, hi) : hi;
       for (let k = 0; k < v.length; k++) {
-        if (k) g.lineTo(X(th[k]), Y(v[k]));
-        else g.moveTo(X(th[k]), Y(v[k]));
+        const y = Y(Math.min(v[k], top));
+        if (k) g.lineTo(X(th[k]), y);
+        else g.moveTo(X(th[k]), y);
       }
       g.stroke();
     });
