@@ -84,6 +84,12 @@
     if (a >= 1e5 || a < 1e-3) return v.toExponential(2);
     return String(+v.toPrecision(4));
   }
+  /* A parameter's field shows the value itself when it is short (what the table or the fit
+   * gave), else 8 significant digits. */
+  function fieldText(v) {
+    const s = String(v);
+    return s.length <= 12 ? s : String(+v.toPrecision(8));
+  }
   function lum(r, g, b) {
     return 0.2126 * r + 0.7152 * g + 0.0722 * b; /* Rec. 709 luminance of linear RGB */
   }
@@ -199,7 +205,7 @@
         fields.appendChild(pair);
         range.addEventListener("input", () => {
           const v = fromSlider(p, +range.value);
-          text.value = fmt(v);
+          text.value = fieldText(v);
           applyField(slot, p, c, v, text);
         });
         text.addEventListener("change", () => onTyped(slot, p, c, text));
@@ -234,7 +240,7 @@
         const c = el.dataset.comp === undefined ? null : +el.dataset.comp;
         const x = c === null ? v : v[c];
         if (el.type === "range") el.value = String(toSlider(p, x));
-        else el.value = fmt(x);
+        else el.value = fieldText(x);
       }
       if (p.kind === "rgb") {
         const sw = box.querySelector('.param:nth-child(' + (m.params.indexOf(p) + 1) + ") .colour");
@@ -500,7 +506,7 @@
   function showNmse(r) {
     last.nmse = r ? r.nmse : null;
     last.cls = r ? r.cls : null;
-    $("nmse").textContent = r ? fmt(r.nmse) : "\u2013";
+    $("nmse").textContent = r ? (r.nmse === 0 ? "0" : r.nmse.toExponential(3)) : "\u2013";
     const c = $("nmse-class");
     c.textContent = r ? r.cls : "\u2013";
     c.className = r ? "cls-" + r.cls : "";
