@@ -1124,7 +1124,7 @@
       if (m.type === "error") $("advise-result").innerHTML = '<p class="field-error"></p>';
       if (m.type === "error") $("advise-result").firstChild.textContent = m.message;
       else if (m.kind === "budget") showAdvice(m.result, "budget");
-      else drawPareto(m.result);
+      else drawPareto(m.result, last.advise); /* goal mode: ring the flowchart's choice */
     }
     checkIdle();
   }
@@ -1176,10 +1176,11 @@
       }
     });
     out.appendChild(use);
-    if (r.candidates) drawPareto(r);
+    if (r.candidates) drawPareto(r, r);
   }
 
-  function drawPareto(r) {
+  /* r: an object with candidates (budget or pareto); chosen: {diffuse, specular} to ring */
+  function drawPareto(r, chosen) {
     const cv = $("pareto");
     const g = cv.getContext("2d");
     const W = cv.width;
@@ -1258,7 +1259,7 @@
         g.fillStyle = LABEL;
         g.fillText(p.name, X(p.x) + 6, Y(p.y) - 4);
       }
-      if (p.c.specular === r.specular && p.c.diffuse === r.diffuse) {
+      if (chosen && (p.c.specular || null) === (chosen.specular || null) && (p.c.diffuse || null) === (chosen.diffuse || null)) {
         g.strokeStyle = SLOT_COLOURS[0];
         g.lineWidth = 2;
         g.beginPath();
