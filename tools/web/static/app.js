@@ -323,7 +323,7 @@
     const params = paramsFor(name, given || {});
     const r = api.setModel(slot, name, params);
     if (!r.ok) {
-      setStatus(name + ": " + r.message, true);
+      setStatus((r.message.indexOf(name) === 0 ? "" : name + ": ") + r.message, true);
       $(slot === 0 ? "model-a" : "model-b").value = state.models[slot];
       return false;
     }
@@ -1243,6 +1243,15 @@
       g.fillStyle = "#e06c75";
       g.fillText("budget " + fmt(r.budget.max_nmse), W - Rm - 90, y - 4);
     }
+    /* front labels that would overlap one already drawn are left out (the point stays) */
+    const placed = [];
+    const labelOnce = (text, x, y) => {
+      const w = g.measureText(text).width;
+      if (placed.some((b) => x < b[0] + b[2] + 4 && b[0] < x + w + 4 && Math.abs(y - b[1]) < 12)) return;
+      placed.push([x, y, w]);
+      g.fillStyle = LABEL;
+      g.fillText(text, x, y);
+    };
     const front = cs.filter((p) => p.c.pareto).sort((a, b) => a.x - b.x);
     g.strokeStyle = "#f0f0f0";
     g.lineWidth = 1.5;
@@ -1250,16 +1259,14 @@
     front.forEach((p, i) => (i ? g.lineTo(X(p.x), Y(p.y)) : g.moveTo(X(p.x), Y(p.y))));
     g.stroke();
     g.lineWidth = 1;
+    const isChosen = (p) =>
+      !!chosen && (p.c.specular || null) === (chosen.specular || null) && (p.c.diffuse || null) === (chosen.diffuse || null);
     for (const p of cs) {
       g.fillStyle = p.c.pareto ? "#f0f0f0" : "#70747e";
       g.beginPath();
       g.arc(X(p.x), Y(p.y), p.c.pareto ? 4 : 3, 0, 2 * Math.PI);
       g.fill();
-      if (p.c.pareto) {
-        g.fillStyle = LABEL;
-        g.fillText(p.name, X(p.x) + 6, Y(p.y) - 4);
-      }
-      if (chosen && (p.c.specular || null) === (chosen.specular || null) && (p.c.diffuse || null) === (chosen.diffuse || null)) {
+      if (isChosen(p)) {
         g.strokeStyle = SLOT_COLOURS[0];
         g.lineWidth = 2;
         g.beginPath();
@@ -1268,6 +1275,8 @@
         g.lineWidth = 1;
       }
     }
+    /* the choice's label first, then the front's from the cheapest */
+    for (const p of cs.filter(isChosen).concat(front)) labelOnce(p.name, X(p.x) + 8, Y(p.y) - 5);
   }
 
   /* ---- start -------------------------------------------------------------------------------- */
@@ -1279,6 +1288,11 @@
         o.value = m.name;
         o.textContent = m.name;
         o.title = m.title || "";
+        /* a model that evaluates a caller's measured table has nothing to show here */
+        if ((m.needs || []).indexOf("table") >= 0) {
+          o.disabled = true;
+          o.textContent = m.name + " (needs a measured table)";
+        }
         sel.appendChild(o);
       }
     }
