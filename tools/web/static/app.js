@@ -1111,6 +1111,11 @@
       const el = $("advise-working");
       if (el) el.textContent = "fitting every candidate in the worker\u2026 " + ((performance.now() - t0) / 1000).toFixed(1) + " s";
     }, 100);
+    if (!adviceWorker) {
+      adviceWorker = new Worker("worker.js");
+      adviceWorker.onmessage = onAdviceWorker;
+      adviceWorker.onerror = (e) => setStatus("worker.js (advisor): " + e.message, true);
+    }
     adviceWorker.postMessage(msg);
   }
   function onAdviceWorker(e) {
@@ -1342,6 +1347,11 @@
       readyReject(new Error("AbrdfApi missing"));
       return;
     }
+    /* The sphere worker loads its own module meanwhile; the advisor's starts at its first use,
+     * so that three module loads do not compete for the first sphere. */
+    worker = new Worker("worker.js");
+    worker.onmessage = onWorker;
+    worker.onerror = (e) => setStatus("worker.js: " + e.message, true);
     AbrdfApi.load().then(
       (a) => {
         api = a;
@@ -1353,12 +1363,6 @@
         mask = api.mask(SIZE);
         fillModelSelects();
         wire();
-        worker = new Worker("worker.js");
-        worker.onmessage = onWorker;
-        worker.onerror = (e) => setStatus("worker.js: " + e.message, true);
-        adviceWorker = new Worker("worker.js");
-        adviceWorker.onmessage = onAdviceWorker;
-        adviceWorker.onerror = (e) => setStatus("worker.js (advisor): " + e.message, true);
         setStatus("rendering\u2026");
         const first = byName[state.models[0]] ? state.models[0] : models[0].name;
         setSlotModel(0, first, {});
