@@ -990,7 +990,7 @@
           for (let k = 0; k <= nP; k++) ring.push(P(j, k));
           line(ring);
         }
-        for (let k = 0; k < nP; k += nP / 12 > 1 ? Math.round(nP / 24) : 1) {
+        for (let k = 0; k < nP; k += Math.max(1, Math.round(nP / 24))) { /* at most 24 meridians */
           const mer = [proj(0, 0, 0)];
           for (let j = 0; j < nT; j++) mer.push(P(j, k));
           line(mer);
@@ -1043,6 +1043,7 @@
   function chooseMaterial() {
     state.material = $("material").value;
     $("trace-material").textContent = state.material ? "of " + state.material : "";
+    $("trace-hint").hidden = !!state.material;
     if (!state.material) {
       traceList("trace-performance", null);
       traceList("trace-photoreal", null);
