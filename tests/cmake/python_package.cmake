@@ -33,6 +33,8 @@ if(PRELOAD)
   set(ENV{LD_PRELOAD} "${PRELOAD}")
   # CPython keeps its objects until exit; the leak report would be about them.
   set(ENV{ASAN_OPTIONS} "detect_leaks=0")
+  # The suite runs a few long cases on fewer inputs there (test_py_fit.py).
+  set(ENV{ABRDF_SANITIZE} 1)
 endif()
 # The package pip installed is imported, not the source tree's copy: run from WORK.
 execute_process(COMMAND "${PYTHON}" -m pytest -q -p no:cacheprovider --rootdir "${TESTS}"

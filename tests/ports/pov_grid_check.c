@@ -12,7 +12,8 @@
  *
  * --grid checks MODEL on an N x N x N grid plus NM sweep cells instead of 12 x 12 x 12 + 576:
  * for a model whose POV-Ray twin is too slow for the full grid (huang integrates ~5000 nodes
- * per value). N^3 + NM must be a multiple of the 48 cells of a pixel row.
+ * per value). N^3 + NM must be a multiple of the 48 cells of a pixel row. MODEL "all" sets
+ * every model's grid (a later --grid MODEL=... overrides it).
  *
  * POV-Ray 3.7 writes EXR as half floats (11 significant bits, relative spacing 2^-10); the
  * scene splits each value into exponent, high and low mantissa pixels (model_grid.pov) so
@@ -213,18 +214,23 @@ int main(int argc, char **argv)
         char name[64];
         int n = 0, nm = 0;
         const abrdf_model_info *gm = NULL;
-        if (sscanf(argv[first + 1], "%63[^=]=%d,%d", name, &n, &nm) == 3)
-            for (int id = 0; id < ABRDF_MODEL_COUNT && !gm; ++id) {
+        int all = 0;
+        if (sscanf(argv[first + 1], "%63[^=]=%d,%d", name, &n, &nm) == 3) {
+            all = !strcmp(name, "all");
+            for (int id = 0; id < ABRDF_MODEL_COUNT && !gm && !all; ++id) {
                 const abrdf_model_info *mi = abrdf_model_get((abrdf_model)id);
                 if (mi && !strcmp(mi->name, name)) gm = mi;
             }
-        if (!gm || n < 1 || n > N_FULL || nm < 0 || (n * n * n + nm) % COLS) {
+        }
+        if ((!gm && !all) || n < 1 || n > N_FULL || nm < 0 || (n * n * n + nm) % COLS) {
             fprintf(stderr,
-                    "pov_grid_check: bad --grid %s (MODEL=N,NM; N^3 + NM a multiple of %d)\n",
+                    "pov_grid_check: bad --grid %s (MODEL=N,NM or all=N,NM; N^3 + NM a multiple "
+                    "of %d)\n",
                     argv[first + 1], COLS);
             return 2;
         }
-        grid_of[gm->id] = (grid){n, nm};
+        for (int id = 0; id < ABRDF_MODEL_COUNT; ++id)
+            if (all || id == (int)gm->id) grid_of[id] = (grid){n, nm};
     }
     int fails = 0, pov_id = 0, running = 0;
     const abrdf_model_info *chosen[ABRDF_MODEL_COUNT];

@@ -33,6 +33,13 @@ int budget_parse(const char *s, double *max_nmse, char *err, size_t err_size)
 int budget_run(const abrdf_material *m, double max_nmse, const abrdf_costs *costs,
                const abrdf_view *view, budget_result *out, char *err, size_t err_size)
 {
+    return budget_run_at(m, max_nmse, 0, costs, view, out, err, err_size);
+}
+
+int budget_run_at(const abrdf_material *m, double max_nmse, int resolution,
+                  const abrdf_costs *costs, const abrdf_view *view, budget_result *out, char *err,
+                  size_t err_size)
+{
     memset(out, 0, sizeof *out);
     out->trace = (select_trace)SELECT_TRACE_INIT;
     abrdf_selection_init(&out->sel);
@@ -40,6 +47,7 @@ int budget_run(const abrdf_material *m, double max_nmse, const abrdf_costs *cost
     abrdf_budget b;
     abrdf_budget_init(&b);
     b.max_nmse = max_nmse;
+    b.resolution = resolution;
     b.view = view;
     size_t ws = abrdf_fit_workspace_size(NULL, view);
     if (!ws) {

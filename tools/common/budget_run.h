@@ -26,6 +26,11 @@ typedef struct budget_result {
  * Returns 0, or -1 with the library's message in err (the result is then empty). */
 int budget_run(const abrdf_material *m, double max_nmse, const abrdf_costs *costs,
                const abrdf_view *view, budget_result *out, char *err, size_t err_size);
+/* The same with the fits' direction-set density (abrdf_budget.resolution, [0, 5]; 0 is the
+ * default, which budget_run uses). */
+int budget_run_at(const abrdf_material *m, double max_nmse, int resolution,
+                  const abrdf_costs *costs, const abrdf_view *view, budget_result *out, char *err,
+                  size_t err_size);
 void budget_result_free(budget_result *r);
 
 /* The ABRDF_STEP_FIT steps of a result: *count candidates, their steps in trace order (the

@@ -283,6 +283,13 @@ int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse
                      const abrdf_costs *costs, const abrdf_view *view, pbr_budget_choice *out,
                      select_trace *trace, char *msg, size_t msg_size)
 {
+    return pbr_budget_range_at(p, range, max_nmse, 0, costs, view, out, trace, msg, msg_size);
+}
+
+int pbr_budget_range_at(const abrdf_pbr *p, const pbr_range *range, double max_nmse, int resolution,
+                        const abrdf_costs *costs, const abrdf_view *view, pbr_budget_choice *out,
+                        select_trace *trace, char *msg, size_t msg_size)
+{
     group g[PBR_BUDGET_GROUPS];
     int ng =
         range && range->count >= 1 && range->count <= PBR_RANGE_MAX ? quantile_groups(range, g) : 0;
@@ -315,7 +322,7 @@ int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse
             return -1;
         }
         budget_result res;
-        if (budget_run(&am, max_nmse, costs, view, &res, msg, msg_size)) {
+        if (budget_run_at(&am, max_nmse, resolution, costs, view, &res, msg, msg_size)) {
             free(pairs);
             return -1;
         }

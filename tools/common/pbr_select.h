@@ -16,6 +16,7 @@
  * PUBLIC FUNCTIONS
  *   pbr_select_range   the choice over a roughness histogram, with its trace
  *   pbr_budget_range   the budget mode over a roughness histogram
+ *   pbr_budget_range_at  the same with the fits' direction-set density
  */
 #ifndef ABRDF_PBR_SELECT_H
 #define ABRDF_PBR_SELECT_H
@@ -73,5 +74,9 @@ typedef struct pbr_budget_choice {
 int pbr_budget_range(const abrdf_pbr *p, const pbr_range *range, double max_nmse,
                      const abrdf_costs *costs, const abrdf_view *view, pbr_budget_choice *out,
                      select_trace *trace, char *msg, size_t msg_size);
+/* The same with the fits' direction-set density (budget_run_at; 0: the default). */
+int pbr_budget_range_at(const abrdf_pbr *p, const pbr_range *range, double max_nmse, int resolution,
+                        const abrdf_costs *costs, const abrdf_view *view, pbr_budget_choice *out,
+                        select_trace *trace, char *msg, size_t msg_size);
 
 #endif
