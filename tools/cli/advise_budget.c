@@ -17,129 +17,11 @@
 #define CMD "advise"
 #define MAX_CAND 256
 
-static const char *name_or_null(abrdf_model m)
-{
-    const abrdf_model_info *i = abrdf_model_get(m);
-    return i ? i->name : NULL;
-}
-
-static void json_model(abrdf_model m)
-{
-    const char *n = name_or_null(m);
-    if (n)
-        cli_json_string(stdout, n);
-    else
-        printf("null");
-}
-
-static void json_num(double v)
-{
-    if (isfinite(v))
-        printf("%.10g", v);
-    else
-        printf("null");
-}
-
-/* The class name of a budget that is a class bound, else NULL. */
-static const char *budget_class(double max)
-{
-    static const char *const names[3] = {"none", "slight", "noticeable"};
-    const double *c = abrdf_select_rules_get()->nmse_class_max;
-    for (int i = 0; i < 3; ++i)
-        if (max == c[i]) return names[i];
-    return NULL;
-}
-
-static const abrdf_select_step *reference_step(const budget_result *r)
-{
-    for (int i = 0; i < r->trace.count; ++i)
-        if (r->trace.steps[i].kind == ABRDF_STEP_REFERENCE) return &r->trace.steps[i];
-    return NULL;
-}
-
-static void print_json(const budget_result *r, const mat_entry *e, double max_nmse,
-                       const abrdf_select_step *const *cand, int n, const int *front, int nf,
-                       int pareto)
-{
-    const abrdf_select_step *ref = reference_step(r);
-    const char *bc = budget_class(max_nmse);
-    printf("{\"material\": ");
-    if (e)
-        cli_json_string(stdout, e->name);
-    else
-        printf("null");
-    printf(", \"type\": \"%s\", \"budget\": {\"max_nmse\": %.10g, \"class\": ",
-           abrdf_surface_name(r->sel.type), max_nmse);
-    if (bc && !pareto)
-        printf("\"%s\"", bc);
-    else
-        printf("null");
-    printf("},\n \"reference\": {\"diffuse\": ");
-    json_model(ref ? ref->diffuse : ABRDF_MODEL_NONE);
-    printf(", \"specular\": ");
-    json_model(ref ? ref->model : ABRDF_MODEL_NONE);
-    printf(", \"cost\": ");
-    json_num(ref ? ref->cost : NAN);
-    printf("},\n \"diffuse\": ");
-    json_model(r->sel.diffuse);
-    printf(", \"specular\": ");
-    json_model(r->sel.specular);
-    printf(", \"params\": ");
-    budget_params_json(stdout, r->sel.diffuse, r->sel.specular, &r->params);
-    printf(",\n \"error\": {\"nmse_pred\": ");
-    json_num(r->sel.err_nmse);
-    printf(", \"class\": \"%s\", \"rel_pct\": ", abrdf_nmse_class(r->sel.err_nmse));
-    json_num(r->sel.err_rel_pct);
-    printf(", \"abs\": ");
-    json_num(r->sel.err_abs);
-    printf("},\n \"cost\": {\"total\": ");
-    json_num(r->sel.cost_total);
-    printf(", \"unit\": ");
-    cli_json_string(stdout, r->sel.cost_unit ? r->sel.cost_unit : "");
-    printf("}, \"seconds\": %.3f,\n \"candidates\": [", r->seconds);
-    for (int i = 0; i < n; ++i) {
-        int on_front = 0;
-        for (int k = 0; k < nf; ++k) on_front |= front[k] == i;
-        printf("%s\n  {\"diffuse\": ", i ? "," : "");
-        json_model(cand[i]->diffuse);
-        printf(", \"specular\": ");
-        json_model(cand[i]->model);
-        printf(", \"params\": ");
-        budget_params_json(stdout, cand[i]->diffuse, cand[i]->model, cand[i]->params);
-        printf(", \"nmse_pred\": ");
-        json_num(cand[i]->value);
-        printf(", \"class\": \"%s\", \"rel_l2\": ", abrdf_nmse_class(cand[i]->value));
-        json_num(cand[i]->value2);
-        printf(", \"cost\": ");
-        json_num(cand[i]->cost >= 0.0 ? cand[i]->cost : NAN);
-        printf(", \"within\": %s, \"pareto\": %s}", cand[i]->passed ? "true" : "false",
-               on_front ? "true" : "false");
-    }
-    printf("\n], \"trace\": [");
-    for (int i = 0; i < r->trace.count; ++i) {
-        const abrdf_select_step *t = &r->trace.steps[i];
-        printf("%s\n  {\"step\": \"%s\", \"model\": ", i ? "," : "", abrdf_step_name(t->kind));
-        json_model(t->model);
-        printf(", \"diffuse\": ");
-        json_model(t->diffuse);
-        printf(", \"value\": ");
-        json_num(t->value);
-        printf(", \"threshold\": ");
-        json_num(t->threshold);
-        printf(", \"cost\": ");
-        json_num(t->cost >= 0.0 ? t->cost : NAN);
-        printf(", \"passed\": %s, \"text\": ", t->passed ? "true" : "false");
-        cli_json_string(stdout, t->text);
-        printf("}");
-    }
-    printf("\n]}\n");
-}
-
 static void print_human(const budget_result *r, const mat_entry *e, double max_nmse,
                         const abrdf_select_step *const *cand, int n, const int *front, int nf,
                         int pareto)
 {
-    const abrdf_select_step *ref = reference_step(r);
+    const abrdf_select_step *ref = budget_reference_step(r);
     char nm[128], unit[32] = "units";
     if (r->sel.cost_unit) sscanf(r->sel.cost_unit, "%31s", unit);
     if (e && e->line > 0)
@@ -154,7 +36,7 @@ static void print_human(const budget_result *r, const mat_entry *e, double max_n
     printf("reference  %s (the flowchart's photoreal choice), %.3g %s\n", nm,
            ref ? ref->cost : -1.0, unit);
     if (!pareto) {
-        const char *bc = budget_class(max_nmse);
+        const char *bc = budget_class_name(max_nmse);
         printf("budget     predicted image NMSE < %g%s%s%s\n", max_nmse, bc ? " (" : "",
                bc ? bc : "", bc ? ")" : "");
         budget_pair_name(r->sel.diffuse, r->sel.specular, &r->params, nm, sizeof nm);
@@ -295,7 +177,8 @@ int advise_budget(const abrdf_material *m, const mat_entry *e, double max_nmse,
     out_file_discard(&plot_out);
     if (!rc) {
         if (json)
-            print_json(&r, e, pareto ? 1.0 : max_nmse, cand, n, front, nf, pareto);
+            budget_json(stdout, &r, e ? e->name : NULL, pareto ? 1.0 : max_nmse, cand, n, front, nf,
+                        pareto);
         else
             print_human(&r, e, max_nmse, cand, n, front, nf, pareto);
     }

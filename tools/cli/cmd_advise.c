@@ -122,14 +122,6 @@ static void json_opt(double v)
 
 static void json_rgb(const double v[3]) { printf("[%.10g, %.10g, %.10g]", v[0], v[1], v[2]); }
 
-static void json_name(const char *s)
-{
-    if (s)
-        cli_json_string(stdout, s);
-    else
-        printf("null");
-}
-
 /* The model's stable name; NULL for ABRDF_MODEL_NONE. */
 static const char *model_name(abrdf_model m)
 {
@@ -339,87 +331,12 @@ static void print_human(const abrdf_selection *s, const abrdf_params *p, const s
     if (e) printf("source: %s\n", e->source);
 }
 
-static void print_json(const abrdf_selection *s, const abrdf_params *p, const select_trace *trace,
-                       const mat_entry *e, const abrdf_tolerance *tol)
-{
-    printf("{\"material\": ");
-    json_name(e ? e->name : NULL);
-    printf(", \"source\": ");
-    json_name(e ? e->source : NULL);
-    printf(", \"goal\": \"%s\", \"type\": \"%s\", \"diffuse\": ", abrdf_goal_name(s->goal),
-           abrdf_surface_name(s->type));
-    json_name(model_name(s->diffuse));
-    printf(", \"specular\": ");
-    json_name(model_name(s->specular));
-    printf(",\n \"tolerance\": {\"max_rel_pct\": ");
-    json_num(tol->max_rel_pct);
-    printf(", \"max_abs\": ");
-    json_num(tol->max_abs);
-    printf("},\n \"params\": {\"kd\": ");
-    json_rgb(p->kd);
-    printf(", \"ks\": ");
-    json_rgb(p->ks);
-    printf(", \"f0\": ");
-    json_rgb(p->f0);
-    printf(
-        ", \"n\": %.10g, \"r\": %.10g, \"anisotropic\": %.10g, \"eta\": %.10g, \"melanin\": %.10g, "
-        "\"redness\": %.10g, \"layers\": [",
-        p->n, p->r, p->anisotropic, p->eta, p->melanin, p->redness);
-    for (int i = 0; i < p->layer_count; ++i) {
-        printf("%s{\"eta\": %.10g, \"kappa\": %.10g, \"r\": %.10g, \"depth\": %.10g, \"sigma_a\": ",
-               i ? ", " : "", p->layers[i].eta, p->layers[i].kappa, p->layers[i].r,
-               p->layers[i].depth);
-        json_rgb(p->layers[i].sigma_a);
-        printf("}");
-    }
-    printf("]},\n \"error\": {\"rel_pct\": ");
-    json_opt(s->err_rel_pct);
-    printf(", \"abs\": ");
-    json_opt(s->err_abs);
-    printf(", \"nmse\": ");
-    json_opt(s->err_nmse);
-    printf("},\n \"cost\": {\"diffuse\": ");
-    json_opt(s->cost_diffuse);
-    printf(", \"specular\": ");
-    json_opt(s->cost_specular);
-    printf(", \"total\": ");
-    json_opt(s->cost_total);
-    printf(", \"unit\": ");
-    json_name(s->cost_unit);
-    printf("},\n \"trace\": [");
-    for (int i = 0; i < trace->count; ++i) {
-        const abrdf_select_step *t = &trace->steps[i];
-        printf("%s\n  {\"step\": \"%s\", \"model\": ", i ? "," : "", abrdf_step_name(t->kind));
-        json_name(model_name(t->model));
-        printf(", \"value\": ");
-        json_opt(t->value);
-        printf(", \"threshold\": ");
-        if (isinf(t->threshold))
-            printf("null");
-        else
-            json_opt(t->threshold);
-        printf(", \"value2\": ");
-        json_opt(t->value2);
-        printf(", \"threshold2\": ");
-        if (isinf(t->threshold2))
-            printf("null");
-        else
-            json_opt(t->threshold2);
-        printf(", \"cost\": ");
-        json_opt(t->cost);
-        printf(", \"passed\": %s, \"text\": ", t->passed ? "true" : "false");
-        cli_json_string(stdout, t->text);
-        printf("}");
-    }
-    printf("\n]}\n");
-}
-
 static void advise_print_selection(const abrdf_selection *s, const abrdf_params *p,
                                    const select_trace *trace, const mat_entry *e,
                                    const abrdf_tolerance *tol, int json)
 {
     if (json)
-        print_json(s, p, trace, e, tol);
+        select_json(stdout, s, p, trace, e ? e->name : NULL, e ? e->source : NULL, tol);
     else
         print_human(s, p, trace, e);
 }

@@ -46,4 +46,16 @@ void budget_params_text(FILE *f, abrdf_model diffuse, abrdf_model specular, cons
 void budget_pair_name(abrdf_model diffuse, abrdf_model specular, const abrdf_params *p, char *buf,
                       size_t size);
 
+/* The class name ("none", "slight", "noticeable") of a budget that is a class bound of the
+ * paper's Table 8, else NULL. */
+const char *budget_class_name(double max_nmse);
+/* The ABRDF_STEP_REFERENCE step of a result, or NULL. */
+const abrdf_select_step *budget_reference_step(const budget_result *r);
+/* The result as the JSON object of `abrdf advise --budget --json` (pareto 0) or `--pareto
+ * --json` (pareto 1; max_nmse 1): the choice, its error and cost, the candidates cand[0..n)
+ * (budget_candidates) with the front (budget_pareto) flagged, and the trace. material: the
+ * material's name or NULL. */
+void budget_json(FILE *f, const budget_result *r, const char *material, double max_nmse,
+                 const abrdf_select_step *const *cand, int n, const int *front, int nf, int pareto);
+
 #endif

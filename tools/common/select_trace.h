@@ -4,6 +4,7 @@
 #ifndef ABRDF_SELECT_TRACE_H
 #define ABRDF_SELECT_TRACE_H
 
+#include <stdio.h>
 #include "abrdf_select.h"
 
 typedef struct select_trace {
@@ -21,5 +22,12 @@ typedef struct select_trace {
 void select_trace_keep(void *trace, const abrdf_select_step *step);
 /* Free the copies; the trace is empty again. */
 void select_trace_free(select_trace *t);
+
+/* A flowchart choice with its kept trace as the JSON object of `abrdf advise MATERIAL --json`:
+ * material and source (may be NULL), goal, surface type, models, tolerance, the parameter
+ * block, the errors and costs, and every step. */
+void select_json(FILE *f, const abrdf_selection *s, const abrdf_params *p,
+                 const select_trace *trace, const char *material, const char *source,
+                 const abrdf_tolerance *tol);
 
 #endif
