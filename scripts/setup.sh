@@ -16,6 +16,8 @@ debs=(build-essential g++ cmake pkg-config check python3 povray
       libtinyobjloader-dev # OBJ meshes (tools/render/mesh_obj.cpp)
       libtinygltf-dev # glTF files (tools/gltf/)
       clang-format  # the C style, checked by the test check_format
+      emscripten    # the browser explorer: libabrdf to WebAssembly (tools/web)
+      chromium      # the explorer's tests, in headless Chromium (tests/web)
       time)  # /usr/bin/time: POV-Ray's CPU time in tools/bench/renderers.sh (bpy: scripts/setup_bpy.sh)
 
 missing=()

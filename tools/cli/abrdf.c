@@ -38,6 +38,8 @@ static const cli_command commands[] = {
      cmd_tabulate},
     {"inspect", "what a measured BRDF file holds: grid, cells not measured, max f_r, albedo",
      cmd_inspect},
+    {"explore", "serve the browser explorer: lobes, lit spheres, two models compared, advice",
+     cmd_explore},
 };
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
 

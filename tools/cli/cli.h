@@ -25,5 +25,6 @@ int cmd_bench(int argc, char **argv);
 int cmd_fit(int argc, char **argv);
 int cmd_tabulate(int argc, char **argv);
 int cmd_inspect(int argc, char **argv);
+int cmd_explore(int argc, char **argv);
 
 #endif
