@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """test_web_page.py - the explorer page (build/web/index.html) in Debian's chromium, driven
-as a user drives it, against its contract (docs/EXPLORER.md, "Test hooks"):
+as a user drives it, through its ids and window.explorer (docs/EXPLORER.md, "Using the page"):
 
   - it loads and draws its first complete sphere (explorer.ready) with no console or page
     error, every model in #model-a/#model-b, every material in #material;
