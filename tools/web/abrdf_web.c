@@ -8,7 +8,11 @@
  * budget_json), so the page and the command line give the same object. Texts returned to
  * JavaScript stay valid until the next call that returns a text. */
 #define _POSIX_C_SOURCE 200809L /* open_memstream, strtok_r */
+#ifdef __EMSCRIPTEN__
 #include <emscripten.h>
+#else /* the host build, which tests these functions under the sanitizers (test_web_glue) */
+#define EMSCRIPTEN_KEEPALIVE
+#endif
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,15 +21,16 @@
 #include "abrdf.h"
 #include "abrdf_fit.h"
 #include "abrdf_select.h"
+#include "abrdf_web.h"
 #include "budget_run.h"
 #include "cli_args.h"
+#include "data_path.h"
 #include "materials.h"
 #include "metrics.h"
 #include "select_trace.h"
 
-#define WEB_SLOTS 4
-#define WEB_CHUNK 1024                      /* direction pairs per batch call */
-#define WEB_MATERIALS "/data/materials.csv" /* embedded into the module (CMakeLists.txt) */
+#define WEB_SLOTS AW_SLOTS
+#define WEB_CHUNK 1024 /* direction pairs per batch call */
 #define PI 3.14159265358979323846
 
 typedef struct web_slot {
@@ -151,11 +156,18 @@ EMSCRIPTEN_KEEPALIVE const char *aw_models(void)
 
 /* ---- the material table ----------------------------------------------------------------- */
 
+/* The material table: embedded into the module at /data (CMakeLists.txt), or the host's
+ * data file. */
 static int materials_load(void)
 {
     if (table_loaded) return 0;
-    char e[MAT_ERR_MAX];
-    if (mat_table_load(&table, WEB_MATERIALS, e, sizeof e)) {
+    char e[MAT_ERR_MAX], path[4096];
+#ifdef __EMSCRIPTEN__
+    snprintf(path, sizeof path, "/data/materials.csv");
+#else
+    data_path_find("materials.csv", path, sizeof path);
+#endif
+    if (mat_table_load(&table, path, e, sizeof e)) {
         fail(NULL, "%s", e, 0.0);
         return -1;
     }
@@ -543,6 +555,10 @@ static int material_parse(const char *spec, abrdf_material *m, const mat_entry *
             double *dst = tok[0] == 'f' ? m->f0 : tok[1] == 'd' ? m->kd : m->ks;
             if (rgb_value(tok, v, dst)) return -1;
             if (tok[0] == 'f') m->eta = -1.0;
+        } else if (strcmp(tok, "n") && strcmp(tok, "r") && strcmp(tok, "eta") &&
+                   strcmp(tok, "anisotropy") && strcmp(tok, "melanin") && strcmp(tok, "redness")) {
+            fail(tok, "unknown material value '%s'", tok, 0.0);
+            return -1;
         } else if (!number) {
             fail(tok, "%s: the value is not a finite number", tok, 0.0);
             return -1;
@@ -556,12 +572,8 @@ static int material_parse(const char *spec, abrdf_material *m, const mat_entry *
             m->anisotropy = x;
         else if (!strcmp(tok, "melanin"))
             m->melanin = x;
-        else if (!strcmp(tok, "redness"))
+        else
             m->redness = x;
-        else {
-            fail(tok, "unknown material value '%s'", tok, 0.0);
-            return -1;
-        }
     }
     return 0;
 }
