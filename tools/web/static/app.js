@@ -323,7 +323,7 @@
     const params = paramsFor(name, given || {});
     const r = api.setModel(slot, name, params);
     if (!r.ok) {
-      setStatus(name + ": " + r.message, true);
+      setStatus((r.message.indexOf(name) === 0 ? "" : name + ": ") + r.message, true);
       $(slot === 0 ? "model-a" : "model-b").value = state.models[slot];
       return false;
     }
@@ -990,7 +990,7 @@
           for (let k = 0; k <= nP; k++) ring.push(P(j, k));
           line(ring);
         }
-        for (let k = 0; k < nP; k += nP / 12 > 1 ? Math.round(nP / 24) : 1) {
+        for (let k = 0; k < nP; k += Math.max(1, Math.round(nP / 24))) { /* at most 24 meridians */
           const mer = [proj(0, 0, 0)];
           for (let j = 0; j < nT; j++) mer.push(P(j, k));
           line(mer);
@@ -1043,6 +1043,7 @@
   function chooseMaterial() {
     state.material = $("material").value;
     $("trace-material").textContent = state.material ? "of " + state.material : "";
+    $("trace-hint").hidden = !!state.material;
     if (!state.material) {
       traceList("trace-performance", null);
       traceList("trace-photoreal", null);
@@ -1111,6 +1112,11 @@
       const el = $("advise-working");
       if (el) el.textContent = "fitting every candidate in the worker\u2026 " + ((performance.now() - t0) / 1000).toFixed(1) + " s";
     }, 100);
+    if (!adviceWorker) {
+      adviceWorker = new Worker("worker.js");
+      adviceWorker.onmessage = onAdviceWorker;
+      adviceWorker.onerror = (e) => setStatus("worker.js (advisor): " + e.message, true);
+    }
     adviceWorker.postMessage(msg);
   }
   function onAdviceWorker(e) {
@@ -1243,6 +1249,15 @@
       g.fillStyle = "#e06c75";
       g.fillText("budget " + fmt(r.budget.max_nmse), W - Rm - 90, y - 4);
     }
+    /* front labels that would overlap one already drawn are left out (the point stays) */
+    const placed = [];
+    const labelOnce = (text, x, y) => {
+      const w = g.measureText(text).width;
+      if (placed.some((b) => x < b[0] + b[2] + 4 && b[0] < x + w + 4 && Math.abs(y - b[1]) < 12)) return;
+      placed.push([x, y, w]);
+      g.fillStyle = LABEL;
+      g.fillText(text, x, y);
+    };
     const front = cs.filter((p) => p.c.pareto).sort((a, b) => a.x - b.x);
     g.strokeStyle = "#f0f0f0";
     g.lineWidth = 1.5;
@@ -1250,16 +1265,14 @@
     front.forEach((p, i) => (i ? g.lineTo(X(p.x), Y(p.y)) : g.moveTo(X(p.x), Y(p.y))));
     g.stroke();
     g.lineWidth = 1;
+    const isChosen = (p) =>
+      !!chosen && (p.c.specular || null) === (chosen.specular || null) && (p.c.diffuse || null) === (chosen.diffuse || null);
     for (const p of cs) {
       g.fillStyle = p.c.pareto ? "#f0f0f0" : "#70747e";
       g.beginPath();
       g.arc(X(p.x), Y(p.y), p.c.pareto ? 4 : 3, 0, 2 * Math.PI);
       g.fill();
-      if (p.c.pareto) {
-        g.fillStyle = LABEL;
-        g.fillText(p.name, X(p.x) + 6, Y(p.y) - 4);
-      }
-      if (chosen && (p.c.specular || null) === (chosen.specular || null) && (p.c.diffuse || null) === (chosen.diffuse || null)) {
+      if (isChosen(p)) {
         g.strokeStyle = SLOT_COLOURS[0];
         g.lineWidth = 2;
         g.beginPath();
@@ -1268,6 +1281,8 @@
         g.lineWidth = 1;
       }
     }
+    /* the choice's label first, then the front's from the cheapest */
+    for (const p of cs.filter(isChosen).concat(front)) labelOnce(p.name, X(p.x) + 8, Y(p.y) - 5);
   }
 
   /* ---- start -------------------------------------------------------------------------------- */
@@ -1279,6 +1294,11 @@
         o.value = m.name;
         o.textContent = m.name;
         o.title = m.title || "";
+        /* a model that evaluates a caller's measured table has nothing to show here */
+        if ((m.needs || []).indexOf("table") >= 0) {
+          o.disabled = true;
+          o.textContent = m.name + " (needs a measured table)";
+        }
         sel.appendChild(o);
       }
     }
@@ -1328,6 +1348,11 @@
       readyReject(new Error("AbrdfApi missing"));
       return;
     }
+    /* The sphere worker loads its own module meanwhile; the advisor's starts at its first use,
+     * so that three module loads do not compete for the first sphere. */
+    worker = new Worker("worker.js");
+    worker.onmessage = onWorker;
+    worker.onerror = (e) => setStatus("worker.js: " + e.message, true);
     AbrdfApi.load().then(
       (a) => {
         api = a;
@@ -1339,12 +1364,6 @@
         mask = api.mask(SIZE);
         fillModelSelects();
         wire();
-        worker = new Worker("worker.js");
-        worker.onmessage = onWorker;
-        worker.onerror = (e) => setStatus("worker.js: " + e.message, true);
-        adviceWorker = new Worker("worker.js");
-        adviceWorker.onmessage = onAdviceWorker;
-        adviceWorker.onerror = (e) => setStatus("worker.js (advisor): " + e.message, true);
         setStatus("rendering\u2026");
         const first = byName[state.models[0]] ? state.models[0] : models[0].name;
         setSlotModel(0, first, {});
