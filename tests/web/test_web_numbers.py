@@ -46,7 +46,17 @@ FB_ABS = 1e-6
 # Materials of every surface type of data/materials.csv, for select().
 SELECT_MATERIALS = ["gold", "brushed_steel", "mirror_silver", "office_paper", "glass", "cotton",
                     "silk", "car_paint", "coated_chrome", "frosted_plate", "hair_blond"]
-BUDGET_MATERIALS = ["gold"]  # each budget()/pareto() fits every candidate: seconds
+# budget() and pareto() fit every candidate (seconds each); pareto()'s candidates are budget()'s
+BUDGET_MATERIALS = ["gold", "terracotta", "cotton"]
+PARETO_MATERIALS = ["gold"]
+# A candidate's predicted NMSE: the fit's objective is evaluated by the float batch path, whose
+# last bits differ between WebAssembly SIMD128 and the host's AVX2/AVX-512, and Nelder-Mead's
+# comparisons of nearly equal values then take other steps: a weakly determined fit (cotton's
+# oren_nayar + disney_specular, r and f0 at their bounds) ends at another point of its flat
+# valley, 1.474e-5 in the browser against 1.546e-5 here. 1e-6 absolute is 1% of the smallest
+# Table-8 bound (1e-4): no class or choice can turn on it, and the classes are compared exactly.
+NMSE_PRED_REL = 1e-5
+NMSE_PRED_ABS = 1e-6
 
 page = None  # the module page, AbrdfApi loaded as window.api
 
@@ -267,16 +277,18 @@ class Numbers(unittest.TestCase):
         self.assertFalse(web["ok"])
         self.assertIn("fast", web["message"])
 
+    def assert_nmse_pred(self, web, cli):
+        self.assertAlmostEqual(web, cli, delta=NMSE_PRED_REL * abs(cli) + NMSE_PRED_ABS)
+
     def assert_candidates(self, web, cli):
         key = lambda c: (c["diffuse"] or "", c["specular"] or "")  # noqa: E731
         self.assertEqual([key(c) for c in web["candidates"]], [key(c) for c in cli["candidates"]])
         for w, c in zip(web["candidates"], cli["candidates"]):
             with self.subTest(candidate=key(c)):
                 self.assertAlmostEqual(w["cost"], c["cost"], delta=1e-4 * abs(c["cost"]))
-                # both fit in double; the printed value has 10 digits
-                self.assertAlmostEqual(w["nmse_pred"], c["nmse_pred"],
-                                       delta=1e-5 * abs(c["nmse_pred"]) + 1e-9)
-                self.assertEqual(w.get("pareto"), c.get("pareto"))
+                self.assert_nmse_pred(w["nmse_pred"], c["nmse_pred"])
+                self.assertEqual((w["class"], w.get("pareto"), w.get("within")),
+                                 (c["class"], c.get("pareto"), c.get("within")))
 
     def test_budget_and_pareto(self):
         for mat in BUDGET_MATERIALS:
@@ -286,12 +298,13 @@ class Numbers(unittest.TestCase):
                 self.assertTrue(web["ok"], web.get("message"))
                 self.assertEqual((web["diffuse"], web["specular"]),
                                  (cli["diffuse"], cli["specular"]))
-                self.assertAlmostEqual(web["error"]["nmse_pred"], cli["error"]["nmse_pred"],
-                                       delta=1e-5 * abs(cli["error"]["nmse_pred"]) + 1e-9)
+                self.assert_nmse_pred(web["error"]["nmse_pred"], cli["error"]["nmse_pred"])
                 self.assertEqual(web["error"]["class"], cli["error"]["class"])
                 self.assertAlmostEqual(web["cost"]["total"], cli["cost"]["total"],
                                        delta=1e-4 * cli["cost"]["total"])
                 self.assert_candidates(web, cli)
+            if mat not in PARETO_MATERIALS:
+                continue
             with self.subTest(material=mat, mode="pareto"):
                 cli = webtest.abrdf_json(ABRDF, "advise", mat, "--pareto", "--json")
                 web = page.evaluate("([m]) => api.pareto(m)", [mat])
