@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """What WebAssembly SIMD128 pays in the browser explorer (docs/EXPLORER.md, "Speed"): the
-256 x 256 lit sphere of every closed-form model rendered by the module built with -msimd128
+256 x 256 lit sphere of every closed-form model, and f_r of 65536 direction pairs through the
+float batch path (aw_eval on pairs already in the module's memory), computed by the module
+built with -msimd128
 (the build's web/) and by the same sources built without it (configured and built here in a
 scratch directory, -DABRDF_WEB_SIMD=OFF), side by side in one headless Chromium run.
 
@@ -24,20 +26,36 @@ BENCH_PAGE = """<!doctype html><meta charset="utf-8"><title>simd bench</title>
 BENCH_JS = """async (runs) => {
   const a = await AbrdfApi.load();
   const light = [0.3, 0.5, 1.0];
+  const n = 1 << 16, mod = a.m;
+  const pi = mod._malloc(12 * n), po = mod._malloc(12 * n), pf = mod._malloc(12 * n);
+  for (let k = 0; k < n; ++k) {  // fixed pairs over the upper hemisphere
+    const t1 = Math.acos(1 - (k % 97) / 97), p1 = 2 * Math.PI * (k % 89) / 89;
+    const t2 = Math.acos(1 - (k % 83) / 83), p2 = 2 * Math.PI * (k % 79) / 79;
+    const i = (pi >> 2) + 3 * k, o = (po >> 2) + 3 * k;
+    mod.HEAPF32[i] = Math.sin(t1) * Math.cos(p1); mod.HEAPF32[i + 1] = Math.sin(t1) * Math.sin(p1);
+    mod.HEAPF32[i + 2] = Math.cos(t1);
+    mod.HEAPF32[o] = Math.sin(t2) * Math.cos(p2); mod.HEAPF32[o + 1] = Math.sin(t2) * Math.sin(p2);
+    mod.HEAPF32[o + 2] = Math.cos(t2);
+  }
+  const fastest = (runs, f) => {
+    let best = Infinity;
+    for (let k = 0; k < runs; ++k) {
+      const t = performance.now();
+      f();
+      best = Math.min(best, performance.now() - t);
+    }
+    return best;
+  };
   const out = {};
   for (let pass = 0; pass < 2; ++pass) {
     for (const m of a.models()) {
       if (!m.closedForm || !a.setModel(0, m.name, {}).ok) continue;
-      const ts = [];
-      for (let k = 0; k < (pass ? runs : 1); ++k) {
-        const t = performance.now();
-        a.sphereRows(0, 256, light, 0, 256, 1);
-        ts.push(performance.now() - t);
-      }
-      ts.sort((x, y) => x - y);
-      out[m.name] = ts[0];
+      const r = pass ? runs : 1;
+      out[m.name] = [fastest(r, () => a.sphereRows(0, 256, light, 0, 256, 1)),
+                     fastest(r, () => mod._aw_eval(0, pi, po, n, pf)) / n * 1e6];
     }
   }
+  [pi, po, pf].forEach((p) => mod._free(p));
   return out;
 }"""
 
@@ -91,12 +109,15 @@ def main():
             srv.shutdown()
         version = browser.version
         browser.close()
-    print(f"# 256x256 lit sphere, ms (fastest of {args.runs}), Chromium {version}")
+    print(f"# fastest of {args.runs} runs, Chromium {version}: the 256x256 lit sphere (ms) and "
+          f"f_r of 65536 direction pairs (aw_eval, ns per pair)")
     print(f"# {' '.join(['tools/bench/web_simd.py'] + sys.argv[1:])}")
-    print(f"{'model':24s} {'simd128':>8s} {'scalar':>8s} {'scalar/simd':>11s}")
-    for m, t in times["simd128"].items():
-        s = times["scalar"].get(m)
-        print(f"{m:24s} {t:8.2f} {s:8.2f} {s / t if t > 0 else float('nan'):11.2f}")
+    print(f"{'model':24s} {'sphere simd128':>14s} {'scalar':>7s} {'ratio':>6s}   "
+          f"{'eval simd128':>12s} {'scalar':>7s} {'ratio':>6s}")
+    for m, (ts, es) in times["simd128"].items():
+        tc, ec = times["scalar"][m]
+        print(f"{m:24s} {ts:14.2f} {tc:7.2f} {tc / ts:6.2f}   {es:12.2f} {ec:7.2f} "
+              f"{ec / es:6.2f}")
     if tmp:
         tmp.cleanup()
 
