@@ -166,6 +166,17 @@ def run(page, url, abrdf, out_dir):
     check(float(r_text) == cli["params"]["r"], "A's r field %r, the material's %r"
           % (r_text, cli["params"]["r"]))
     plane_matches(page)
+    # The other goal re-runs the flowchart: A is the performance choice's specular lobe.
+    page.select_option("#goal", "performance")
+    wait_idle(page)
+    cli = webtest.abrdf_json(abrdf, "advise", "gold", "--goal", "performance", "--json")
+    model_a = page.evaluate("explorer.state.models[0]")
+    check(model_a == (cli["specular"] or cli["diffuse"]),
+          "model A %r for gold, performance; the flowchart's %r + %r"
+          % (model_a, cli["diffuse"], cli["specular"]))
+    page.select_option("#goal", "photoreal")
+    wait_idle(page)
+    plane_matches(page)
 
     step("models A and B")
     # Models A and B switched by their selects.
