@@ -84,6 +84,32 @@ START_TEST(eval_matches_reference)
 }
 END_TEST
 
+/* A diffuse + specular pair in one slot is the sum of the two lobes on one parameter block. */
+START_TEST(pair_is_the_sum)
+{
+    const char *spec = "kd=0.6,0.2,0.1;r=0.4;f0=0.04";
+    ck_assert_int_eq(aw_set_model(0, "disney_diffuse", spec), 0);
+    ck_assert_int_eq(aw_set_model(1, "disney_specular", spec), 0);
+    ck_assert_int_eq(aw_set_pair(2, "disney_diffuse", "disney_specular", spec), 0);
+    for (int i = 0; i < 10; ++i) {
+        double wi[3], wo[3];
+        tu_dir(3.0 + 8.0 * i, 20.0 * i, wi);
+        tu_dir(70.0 - 5.0 * i, 150.0 + 13.0 * i, wo);
+        float a[3] = {(float)wi[0], (float)wi[1], (float)wi[2]};
+        float b[3] = {(float)wo[0], (float)wo[1], (float)wo[2]}, fd[3], fs[3], f[3];
+        eval1(0, a, b, fd);
+        eval1(1, a, b, fs);
+        eval1(2, a, b, f);
+        for (int c = 0; c < 3; ++c) ck_assert(tu_close(f[c], fd[c] + fs[c], 1e-6, 1e-9));
+    }
+    /* the diffuse lobe's own parameters are checked too; the slot keeps its pair */
+    ck_assert_int_eq(aw_set_pair(2, "oren_nayar", "disney_specular", "sigma=9"), -1);
+    ck_assert_str_eq(aw_error_param(), "sigma");
+    ck_assert_int_eq(aw_set_pair(2, "no_such_diffuse", "disney_specular", ""), -1);
+    ck_assert_ptr_nonnull(strstr(aw_error(), "unknown model 'no_such_diffuse'"));
+}
+END_TEST
+
 START_TEST(refusals_keep_the_slot)
 {
     float wi[3] = {0.3f, 0.0f, 1.0f}, wo[3] = {-0.2f, 0.1f, 1.0f}, before[3], after[3];
@@ -264,6 +290,7 @@ static Suite *suite(void)
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, registry_and_table);
     tcase_add_test(tc, eval_matches_reference);
+    tcase_add_test(tc, pair_is_the_sum);
     tcase_add_test(tc, refusals_keep_the_slot);
     tcase_add_test(tc, sphere_closed_form);
     tcase_add_test(tc, plane_and_hemisphere);

@@ -38,6 +38,8 @@ typedef struct web_slot {
     abrdf_model model;
     abrdf_params params;
     abrdf_prepared prep;
+    int has_diffuse; /* a diffuse + specular pair (a material's choice): f_r is their sum */
+    abrdf_prepared diffuse;
 } web_slot;
 
 static web_slot slots[WEB_SLOTS];
@@ -48,7 +50,7 @@ static mat_table table;
 static int table_loaded;
 
 /* Structure-of-arrays scratch of one batch call. */
-static float sx[6][WEB_CHUNK], sf[3][WEB_CHUNK];
+static float sx[6][WEB_CHUNK], sf[3][WEB_CHUNK], sd[3][WEB_CHUNK];
 
 static void fail(const char *param, const char *fmt, const char *a, double v)
 {
@@ -273,30 +275,44 @@ static int params_apply(abrdf_model model, abrdf_params *p, const char *spec)
     return 0;
 }
 
-/* Set `slot` to `model` with its defaults and the parameters of `spec`. On any error the slot
+/* Set `slot` to `model` with its defaults and the parameters of `spec`, with the diffuse lobe
+ * `diffuse` ("" for none) reading the same block, as abrdf_shade does. On any error the slot
  * keeps what it had and -1 is returned (aw_error, aw_error_param say why). */
-EMSCRIPTEN_KEEPALIVE int aw_set_model(int slot, const char *model, const char *spec)
+EMSCRIPTEN_KEEPALIVE int aw_set_pair(int slot, const char *diffuse, const char *model,
+                                     const char *spec)
 {
     err[0] = err_param[0] = '\0';
     if (slot < 0 || slot >= WEB_SLOTS) {
         fail(NULL, "%sslot %g does not exist", "", slot);
         return -1;
     }
-    abrdf_model m;
+    abrdf_model m, d = ABRDF_MODEL_NONE;
     if (abrdf_model_find(model, &m) != ABRDF_OK) {
         fail(NULL, "unknown model '%s'", model, 0.0);
         return -1;
     }
+    if (*diffuse && abrdf_model_find(diffuse, &d) != ABRDF_OK) {
+        fail(NULL, "unknown model '%s'", diffuse, 0.0);
+        return -1;
+    }
     abrdf_params p;
     abrdf_params_init(m, &p);
-    if (params_apply(m, &p, spec)) return -1;
-    abrdf_prepared prep;
-    if (abrdf_prepare(m, &p, &prep) != ABRDF_OK) {
+    if (params_apply(m, &p, spec) || (*diffuse && params_apply(d, &p, ""))) return -1;
+    web_slot next;
+    memset(&next, 0, sizeof next);
+    next.set = 1, next.model = m, next.params = p, next.has_diffuse = *diffuse != '\0';
+    if (abrdf_prepare(m, &p, &next.prep) != ABRDF_OK ||
+        (next.has_diffuse && abrdf_prepare(d, &p, &next.diffuse) != ABRDF_OK)) {
         fail(NULL, "%s: cannot prepare these parameters", model, 0.0);
         return -1;
     }
-    slots[slot] = (web_slot){1, m, p, prep};
+    slots[slot] = next;
     return 0;
+}
+
+EMSCRIPTEN_KEEPALIVE int aw_set_model(int slot, const char *model, const char *spec)
+{
+    return aw_set_pair(slot, "", model, spec);
 }
 
 static const web_slot *slot_get(int slot)
@@ -316,11 +332,17 @@ static void unit(float v[3])
     if (l > 0.0f && isfinite(l)) v[0] /= l, v[1] /= l, v[2] /= l;
 }
 
-/* The pairs held in the scratch arrays, [0, n): f into sf. */
+/* The pairs held in the scratch arrays, [0, n): f into sf (the diffuse lobe's added). */
 static int eval_chunk(const web_slot *s, int n)
 {
     abrdf_batch b = {(size_t)n, sx[0], sx[1], sx[2], sx[3], sx[4], sx[5], sf[0], sf[1], sf[2]};
-    return abrdf_eval_prepared_batch(&s->prep, &b) == ABRDF_OK ? 0 : -1;
+    if (abrdf_eval_prepared_batch(&s->prep, &b) != ABRDF_OK) return -1;
+    if (!s->has_diffuse) return 0;
+    abrdf_batch bd = {(size_t)n, sx[0], sx[1], sx[2], sx[3], sx[4], sx[5], sd[0], sd[1], sd[2]};
+    if (abrdf_eval_prepared_batch(&s->diffuse, &bd) != ABRDF_OK) return -1;
+    for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < n; ++k) sf[c][k] += sd[c][k];
+    return 0;
 }
 
 /* f_r (RGB) of `count` pairs, wi and wo interleaved xyz in the local frame (normal +z), not

@@ -17,6 +17,9 @@ const char *aw_materials(void);
 /* Put `model` with its defaults and spec's values ("r=0.3;kd=0.5,0.4,0.3") into `slot`,
  * prepared; on any error the slot keeps its model. */
 int aw_set_model(int slot, const char *model, const char *spec);
+/* The same with a diffuse lobe (name, or "" for none) reading the same block: the slot's f_r
+ * is the sum, as abrdf_shade evaluates a material's choice. */
+int aw_set_pair(int slot, const char *diffuse, const char *model, const char *spec);
 /* f_r of count pairs, wi and wo interleaved xyz (any length), into out (3 count floats). */
 int aw_eval(int slot, const float *wi, const float *wo, int count, float *out);
 /* The plane of incidence: light at theta_i degrees (azimuth 0), views from -90 to +90

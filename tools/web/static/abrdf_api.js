@@ -5,7 +5,7 @@
  *
  *   AbrdfApi.load() -> Promise<Abrdf>   one module instance; every call on it is synchronous
  *
- * Abrdf: version(), models(), materials(), classes(), setModel(slot, model, params),
+ * Abrdf: version(), models(), materials(), classes(), setModel(slot, model, params[, diffuse]),
  * evalPairs(slot, wi, wo), plane(slot, thetaIDeg, count), hemisphere(slot, thetaIDeg, phiIDeg,
  * nTheta, nPhi), sphereRows(slot, size, light, y0, y1, step), mask(size), nmse(img, ref),
  * select(material, goal), budget(material, maxNmseOrClass), pareto(material).
@@ -82,8 +82,10 @@
     }
 
     // ---- a model in a slot ----
-    // params: {r: 0.3, kd: [0.5, 0.5, 0.5], ...}; values must be finite numbers.
-    setModel(slot, model, params) {
+    // params: {r: 0.3, kd: [0.5, 0.5, 0.5], ...}; values must be finite numbers. diffuse
+    // (optional): a diffuse lobe reading the same parameters, whose f_r is added (a material's
+    // diffuse + specular choice, as abrdf_shade evaluates it).
+    setModel(slot, model, params, diffuse) {
       const parts = [];
       for (const [k, v] of Object.entries(params || {})) {
         const vals = Array.isArray(v) ? v : [v];
@@ -93,8 +95,8 @@
         }
         parts.push(`${k}=${vals.join(',')}`);
       }
-      const rc = this._withStr([model, parts.join(';')], (pm, ps) =>
-        this.m._aw_set_model(slot, pm, ps));
+      const rc = this._withStr([diffuse || '', model, parts.join(';')], (pd, pm, ps) =>
+        this.m._aw_set_pair(slot, pd, pm, ps));
       if (rc === 0) return { ok: true };
       const param = this.m.UTF8ToString(this.m._aw_error_param());
       return { ok: false, param: param || null, message: this._error() };

@@ -21,6 +21,7 @@
   /* ---- state ------------------------------------------------------------------------------- */
   const state = {
     models: ["blinn_phong", "none"],
+    diffuse: ["", ""] /* a diffuse lobe beside the slot's model (a material's choice), or "" */,
     params: [{}, {}],
     light: { theta: 45, phi: 0 },
     exposure: 0,
@@ -132,6 +133,31 @@
     for (const p of m.params) out[p.name] = p.kind === "rgb" && !Array.isArray(p.def) ? [p.def, p.def, p.def] : p.def;
     return out;
   }
+  /* The parameters a slot shows: its diffuse lobe's, then its model's (one block: a name both
+   * read appears once). */
+  function slotParams(name, diffuse) {
+    const seen = new Set();
+    const out = [];
+    for (const n of [diffuse, name]) {
+      const m = byName[n];
+      if (!m) continue;
+      for (const p of m.params) {
+        if (seen.has(p.name)) continue;
+        seen.add(p.name);
+        out.push(p);
+      }
+    }
+    return out;
+  }
+  /* The slot's label: "disney_diffuse + disney_specular" or the model alone. */
+  function slotLabel(slot) {
+    return (state.diffuse[slot] ? state.diffuse[slot] + " + " : "") + state.models[slot];
+  }
+  /* paramsFor over both lobes of a pair (the model's values win where both read one). */
+  function pairParams(name, diffuse, given) {
+    return diffuse ? Object.assign(paramsFor(diffuse, given), paramsFor(name, given)) : paramsFor(name, given);
+  }
+
   /* Keeps only the model's own parameters, in the shape its kind asks for. */
   function paramsFor(name, given) {
     const out = defaults(name);
@@ -160,9 +186,11 @@
     if (m.equation) notes.push(m.equation);
     if (m.needs && m.needs.length) notes.push("needs " + m.needs.join(", "));
     if (!m.closedForm) notes.push("integrates numerically: slow");
-    info.textContent = (m.title || name) + (notes.length ? " (" + notes.join("; ") + ")" : "");
-    info.title = m.citation || "";
-    for (const p of m.params) {
+    const dm = byName[state.diffuse[slot]];
+    info.textContent =
+      (dm ? (dm.title || dm.name) + " + " : "") + (m.title || name) + (notes.length ? " (" + notes.join("; ") + ")" : "");
+    info.title = (dm && dm.citation ? dm.citation + "; " : "") + (m.citation || "");
+    for (const p of slotParams(name, state.diffuse[slot])) {
       const row = document.createElement("div");
       row.className = "param";
       const label = document.createElement("label");
@@ -231,10 +259,10 @@
 
   /* Shows the slot's current (valid) parameters in its fields. */
   function syncFields(slot) {
-    const m = byName[state.models[slot]];
-    if (!m) return;
+    if (!byName[state.models[slot]]) return;
     const box = $(slot === 0 ? "params-a" : "params-b");
-    for (const p of m.params) {
+    const list = slotParams(state.models[slot], state.diffuse[slot]);
+    for (const p of list) {
       const v = state.params[slot][p.name];
       for (const el of box.querySelectorAll('input[data-param="' + p.name + '"]')) {
         const c = el.dataset.comp === undefined ? null : +el.dataset.comp;
@@ -243,7 +271,7 @@
         else el.value = fieldText(x);
       }
       if (p.kind === "rgb") {
-        const sw = box.querySelector('.param:nth-child(' + (m.params.indexOf(p) + 1) + ") .colour");
+        const sw = box.querySelector('.param:nth-child(' + (list.indexOf(p) + 1) + ") .colour");
         if (sw) sw.style.background = cssColour(v);
       }
       fieldError(slot, p.name, "");
@@ -289,7 +317,7 @@
       next[p.name] = state.params[slot][p.name].slice();
       next[p.name][c] = v;
     }
-    const r = api.setModel(slot, state.models[slot], next);
+    const r = api.setModel(slot, state.models[slot], next, state.diffuse[slot]);
     if (!r.ok) {
       fieldError(slot, r.param || p.name, r.message);
       if (text) text.classList.add("bad");
@@ -310,24 +338,28 @@
     return true;
   }
 
-  /* Sets a slot's model (and parameters: given ones over the model's defaults). */
-  function setSlotModel(slot, name, given) {
+  /* Sets a slot's model (and parameters: given ones over the model's defaults), with a diffuse
+   * lobe beside it when `diffuse` names one (a material's diffuse + specular choice). */
+  function setSlotModel(slot, name, given, diffuse) {
+    diffuse = diffuse || "";
     if (slot === 1 && name === "none") {
       state.models[1] = "none";
+      state.diffuse[1] = "";
       state.params[1] = {};
       $("model-b").value = "none";
       buildParams(1);
       changed();
       return true;
     }
-    const params = paramsFor(name, given || {});
-    const r = api.setModel(slot, name, params);
+    const params = pairParams(name, diffuse, given || {});
+    const r = api.setModel(slot, name, params, diffuse);
     if (!r.ok) {
       setStatus((r.message.indexOf(name) === 0 ? "" : name + ": ") + r.message, true);
       $(slot === 0 ? "model-a" : "model-b").value = state.models[slot];
       return false;
     }
     state.models[slot] = name;
+    state.diffuse[slot] = diffuse;
     state.params[slot] = params;
     $(slot === 0 ? "model-a" : "model-b").value = name;
     buildParams(slot);
@@ -442,16 +474,17 @@
 
   function requestRender() {
     gen++;
-    const slots = [{ slot: 0, model: state.models[0], params: state.params[0] }];
-    if (state.models[1] !== "none") slots.push({ slot: 1, model: state.models[1], params: state.params[1] });
+    const slots = [0, 1]
+      .filter((k) => k === 0 || state.models[1] !== "none")
+      .map((k) => ({ slot: k, model: state.models[k], params: state.params[k], diffuse: state.diffuse[k], label: slotLabel(k) }));
     done[0] = false;
     done[1] = state.models[1] === "none";
     pending.render = true;
-    const key = state.models.join(" ");
+    const key = slotLabel(0) + " | " + slotLabel(1);
     if (key !== renderedModels) $("sphere-time").textContent = "";
     renderedModels = key;
-    $("name-a").textContent = state.models[0];
-    $("name-b").textContent = state.models[1] === "none" ? "(none)" : state.models[1];
+    $("name-a").textContent = slotLabel(0);
+    $("name-b").textContent = state.models[1] === "none" ? "(none)" : slotLabel(1);
     if (state.models[1] === "none") {
       images[1].fill(0);
       clearCanvas("sphere-b", "no model B");
@@ -493,7 +526,7 @@
       const r = api.nmse(images[0], images[1]);
       showNmse(r);
     }
-    const t = [state.models[0], state.models[1]]
+    const t = [slotLabel(0), state.models[1] === "none" ? "none" : slotLabel(1)]
       .filter((n) => n !== "none" && timings.sphereMs[n] !== undefined)
       .map((n) => n + " " + fmt(timings.sphereMs[n]) + " ms");
     $("sphere-time").textContent = "256\u00d7256 at full resolution in the worker: " + t.join(", ");
@@ -1059,8 +1092,8 @@
       setStatus(state.material + ": " + r.message, true);
       return;
     }
-    const model = r.specular || r.diffuse;
-    setSlotModel(0, model, r.params);
+    /* A diffuse + specular choice goes into A whole: the sphere shows the material. */
+    setSlotModel(0, r.specular || r.diffuse, r.params, r.specular ? r.diffuse : "");
   }
 
   /* ---- advisor ------------------------------------------------------------------------------ */
@@ -1173,12 +1206,11 @@
     use.type = "button";
     use.textContent = r.reference ? "Compare: A = choice, B = reference" : "Set A to the choice";
     use.addEventListener("click", () => {
-      const model = r.specular || r.diffuse;
-      setSlotModel(0, model, r.params || {});
+      setSlotModel(0, r.specular || r.diffuse, r.params || {}, r.specular ? r.diffuse : "");
       if (r.reference) {
         const ref = api.select(state.material, "photoreal");
-        const refModel = r.reference.specular || r.reference.diffuse;
-        if (ref.ok) setSlotModel(1, refModel, ref.params);
+        const rr = r.reference;
+        if (ref.ok) setSlotModel(1, rr.specular || rr.diffuse, ref.params, rr.specular ? rr.diffuse : "");
       }
     });
     out.appendChild(use);

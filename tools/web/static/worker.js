@@ -51,14 +51,14 @@ async function render(m) {
   const size = m.size;
   const jobs = [];
   for (const s of m.slots) {
-    const r = api.setModel(s.slot, s.model, s.params);
+    const r = api.setModel(s.slot, s.model, s.params, s.diffuse);
     if (!r.ok) {
       postMessage({ type: "error", gen, message: s.model + ": " + r.message });
       return;
     }
     let total = 0;
     for (const step of STEPS) total += Math.ceil(size / step) * Math.ceil(size / step);
-    jobs.push({ slot: s.slot, model: s.model, rows: 2, done: 0, total, ms1: 0, it: null });
+    jobs.push({ slot: s.slot, model: s.label || s.model, rows: 2, done: 0, total, ms1: 0, it: null });
   }
   for (const j of jobs) j.it = bands(j, size);
   /* Round robin over the slots, one band each: a fast model is not held back by a slow one. */
