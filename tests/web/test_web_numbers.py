@@ -7,7 +7,8 @@ Debian's chromium gives the numbers the `abrdf` command gives:
     parameter a third of the way through its range), AbrdfApi's evalPairs (the float batch
     path) against `abrdf eval MODEL --pairs` (double), within the batch path's tolerance
     (tests/unit/test_invariants.c, float_batch_matches_double); a set the command refuses is
-    refused by setModel too, and the other way round;
+    refused by setModel too, and the other way round; a material's diffuse + specular choice in
+    one slot (setModel's diffuse) is the sum of the two lobes the command evaluates;
   - the flowchart's choice (select) for materials of every surface type and both goals
     against `abrdf advise MAT --goal G --json`: diffuse, specular, every trace step's name and
     text;
@@ -46,6 +47,9 @@ FB_ABS = 1e-6
 # Materials of every surface type of data/materials.csv, for select().
 SELECT_MATERIALS = ["gold", "brushed_steel", "mirror_silver", "office_paper", "glass", "cotton",
                     "silk", "car_paint", "coated_chrome", "frosted_plate", "hair_blond"]
+# Materials whose choice is a diffuse + specular pair, evaluated in one slot.
+PAIR_CHOICES = [("terracotta", "photoreal"), ("terracotta", "performance"),
+                ("plastic_red", "photoreal")]
 # budget() and pareto() fit every candidate (seconds each); pareto()'s candidates are budget()'s
 BUDGET_MATERIALS = ["gold", "terracotta", "cotton"]
 PARETO_MATERIALS = ["gold"]
@@ -98,12 +102,12 @@ def cli_eval(model, sets, wi, wo):
     return np.array(json.loads(out), dtype=np.float64).reshape(-1, 3), None
 
 
-def web_eval(model, params, wi, wo):
+def web_eval(model, params, wi, wo, diffuse=None):
     """(f as an (n, 3) array, setModel's answer) from the module in the page. The float32
     arrays cross as base64 of their bytes (little-endian, as wasm's memory)."""
-    r = page.evaluate("""([name, params, wi, wo]) => {
+    r = page.evaluate("""([name, params, wi, wo, diffuse]) => {
         const f32 = (b64) => new Float32Array(Uint8Array.from(atob(b64), (c) => c.charCodeAt(0)).buffer);
-        const r = api.setModel(0, name, params);
+        const r = api.setModel(0, name, params, diffuse || undefined);
         if (!r.ok) return {r};
         const f = api.evalPairs(0, f32(wi), f32(wo));
         const bytes = new Uint8Array(f.buffer, f.byteOffset, f.byteLength);
@@ -111,7 +115,7 @@ def web_eval(model, params, wi, wo):
         for (let i = 0; i < bytes.length; i += 8192) s += String.fromCharCode(...bytes.subarray(i, i + 8192));
         return {r, f: btoa(s), isFloat32: f instanceof Float32Array};
     }""", [model, params, base64.b64encode(wi.astype("<f4").tobytes()).decode(),
-           base64.b64encode(wo.astype("<f4").tobytes()).decode()])
+           base64.b64encode(wo.astype("<f4").tobytes()).decode(), diffuse])
     if not r["r"]["ok"]:
         return None, r["r"]
     assert r["isFloat32"], "evalPairs did not return a Float32Array"
@@ -183,6 +187,36 @@ class Numbers(unittest.TestCase):
     def tearDown(self):
         print("[%.1f s] " % (time.monotonic() - self.t0), end="", flush=True)
 
+    def assert_within(self, label, lobes, got, ref, wi, wo, n, rng):
+        """got (float batch) against ref (double, the sum over lobes = [(model, params)])
+        within the batch path's tolerance; S is the sum of the lobes' sensitivities."""
+        self.assertEqual(got.shape, ref.shape)
+        self.assertTrue(np.isfinite(got).all(), "%s: non-finite f_r" % label)
+        peak = ref.max()
+        floor = (FB_ABS + (4.0 * n * 2.0 ** -24 if n is not None else 0.0)) * peak
+        err = np.abs(got - ref)
+        bad = (err > FB_REL * ref + floor).any(axis=1)
+        if not bad.any():
+            return
+        k = np.flatnonzero(bad)
+        Numbers.sens_used += len(k)
+        s = 0.0
+        for name, params in lobes:
+            f0, msg = cli_eval(name, params, wi[k], wo[k])
+            self.assertIsNone(msg)
+            s = s + sensitivity(name, params, wi[k], wo[k], f0, rng)
+        ui = wi[k] / np.linalg.norm(wi[k], axis=1, keepdims=True)
+        uo = wo[k] / np.linalg.norm(wo[k], axis=1, keepdims=True)
+        kappa = np.maximum(1.0, 2.0 / np.linalg.norm(ui + uo, axis=1))
+        tol = FB_REL * ref[k] + floor + (4.0 * s * kappa)[:, None]
+        outside = (err[k] > tol).any(axis=1)
+        if outside.any():
+            j = np.flatnonzero(outside)[0]
+            self.fail("%s: %d of %d pairs outside the float tolerance; first: wi=%s wo=%s page "
+                      "%s command %s (tol %s)"
+                      % (label, outside.sum(), len(wi), wi[k[j]].tolist(), wo[k[j]].tolist(),
+                         got[k[j]].tolist(), ref[k[j]].tolist(), tol[j].tolist()))
+
     def check_pairs(self, model, params, label):
         name = model["name"]
         rng = np.random.default_rng(20261129)
@@ -195,29 +229,8 @@ class Numbers(unittest.TestCase):
                              "%s %s: the command says %r, setModel says %r"
                              % (name, label, cli_err, answer))
             return 0
-        self.assertEqual(got.shape, ref.shape)
-        self.assertTrue(np.isfinite(got).all(), "%s %s: non-finite f_r" % (name, label))
-        peak = ref.max()
         n = params.get("n", next((p["def"] for p in model["params"] if p["name"] == "n"), None))
-        floor = (FB_ABS + (4.0 * n * 2.0 ** -24 if n is not None else 0.0)) * peak
-        err = np.abs(got - ref)
-        bad = (err > FB_REL * ref + floor).any(axis=1)
-        if bad.any():
-            k = np.flatnonzero(bad)
-            Numbers.sens_used += len(k)
-            s = sensitivity(name, params, wi[k], wo[k], ref[k], rng)
-            ui = wi[k] / np.linalg.norm(wi[k], axis=1, keepdims=True)
-            uo = wo[k] / np.linalg.norm(wo[k], axis=1, keepdims=True)
-            kappa = np.maximum(1.0, 2.0 / np.linalg.norm(ui + uo, axis=1))
-            tol = FB_REL * ref[k] + floor + (4.0 * s * kappa)[:, None]
-            outside = (err[k] > tol).any(axis=1)
-            if outside.any():
-                j = np.flatnonzero(outside)[0]
-                self.fail("%s %s: %d of %d pairs outside the float tolerance; first: wi=%s "
-                          "wo=%s page %s command %s (tol %s)"
-                          % (name, label, outside.sum(), count, wi[k[j]].tolist(),
-                             wo[k[j]].tolist(), got[k[j]].tolist(), ref[k[j]].tolist(),
-                             tol[j].tolist()))
+        self.assert_within("%s %s" % (name, label), [(name, params)], got, ref, wi, wo, n, rng)
         return count
 
     def test_every_model_against_the_command(self):
@@ -234,6 +247,28 @@ class Numbers(unittest.TestCase):
                     total += self.check_pairs(model, params, label)
         print("%d models, %d pairs compared, %d needed the sensitivity term"
               % (len(models), total, Numbers.sens_used))
+
+    def test_diffuse_specular_pairs(self):
+        # a material's choice in one slot (setModel's diffuse): the sum of the two lobes
+        names = {m["name"]: m for m in page.evaluate("api.models()")}
+        for mat, goal in PAIR_CHOICES:
+            with self.subTest(material=mat, goal=goal):
+                sel = page.evaluate("([m, g]) => api.select(m, g)", [mat, goal])
+                d, sp = sel["diffuse"], sel["specular"]
+                self.assertTrue(d and sp, "%s %s: not a pair: %r + %r" % (mat, goal, d, sp))
+                own = lambda m: {p["name"]: sel["params"][p["name"]]  # noqa: E731
+                                 for p in names[m]["params"] if p["name"] in sel["params"]}
+                params = dict(own(d), **own(sp))
+                rng = np.random.default_rng(7)
+                wi, wo = directions(rng, PAIRS), directions(rng, PAIRS)
+                fd, e1 = cli_eval(d, own(d), wi, wo)
+                fs, e2 = cli_eval(sp, own(sp), wi, wo)
+                self.assertIsNone(e1 or e2)
+                got, answer = web_eval(sp, params, wi, wo, diffuse=d)
+                self.assertIsNotNone(got, answer)
+                self.assert_within("%s %s: %s + %s" % (mat, goal, d, sp),
+                                   [(d, own(d)), (sp, own(sp))], got, fd + fs, wi, wo,
+                                   params.get("n"), rng)
 
     def test_selection_both_goals(self):
         for mat in SELECT_MATERIALS:
