@@ -5,7 +5,9 @@
 # bindings, pytest, matplotlib, Mitsuba 3 (the oracle of the RGL .bsdf reader,
 # tests/cli/test_rgl_mitsuba.py; its scalar variants need no LLVM) and dask.distributed
 # (abrdf.sweep's cluster, tests/python/test_py_sweep.py) and MaterialX (abrdf.load_materialx,
-# tests/python/test_py_materialx.py), pinned. Kept apart from .venv, whose bpy pins NumPy < 2
+# tests/python/test_py_materialx.py) and Playwright (the explorer page's browser tests,
+# tests/web/: its wheel brings its own driver; the browser is Debian's chromium, scripts/setup.sh),
+# pinned. Kept apart from .venv, whose bpy pins NumPy < 2
 # and brings its own OpenImageIO bindings (oslquery needs those, not PyPI's).
 # Idempotent: does nothing when .venv-python already has these versions.
 #   scripts/setup_python.sh
@@ -14,7 +16,7 @@ cd "$(dirname "$0")/.."
 
 venv=.venv-python
 pins=(numpy==2.4.6 scikit-build-core==1.1.2 OpenImageIO==3.2.2.0 pytest==9.2.0 matplotlib==3.11.2
-      mitsuba==3.9.1 dask==2026.8.0 distributed==2026.8.0 materialx==1.39.5)
+      mitsuba==3.9.1 dask==2026.8.0 distributed==2026.8.0 materialx==1.39.5 playwright==1.65.2)
 
 if [ -x "$venv/bin/python" ] && "$venv/bin/python" - "${pins[@]}" <<'PY'
 import sys
