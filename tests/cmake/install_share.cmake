@@ -5,6 +5,8 @@
 #   share/abrdf/osl/     every osl/*.h and *.osl
 #   share/abrdf/python/  abrdf-VERSION.tar.gz, from which pip builds a wheel that imports and
 #                        selects (PACKAGES only: the build made it)
+#   share/abrdf/web/     the browser explorer: every tools/web/static file and the WebAssembly
+#                        module, a folder `abrdf explore` serves (ABRDF_WEB_DIR pointing there)
 #   share/abrdf/blender/ abrdf-blender-VERSION.zip, the file the build made (PACKAGES only;
 #                        tests/ports/test_blender_extension.py installs it in Blender)
 #   cmake -DBUILD_DIR= -DSRC= -DWORK= -DVERSION= -DPACKAGES=ON|OFF -DPYTHON= -DPOVRAY=
@@ -37,6 +39,23 @@ foreach(f ${osl_want})
     message(FATAL_ERROR "install_share: ${share}/osl/${f} is missing")
   endif()
 endforeach()
+
+# The browser explorer: the page's files and the module, recognised by abrdf explore.
+file(GLOB web_want RELATIVE "${SRC}/tools/web/static" "${SRC}/tools/web/static/*")
+list(APPEND web_want abrdf_wasm.js abrdf_wasm.wasm)
+foreach(f ${web_want})
+  if(NOT EXISTS "${share}/web/${f}")
+    message(FATAL_ERROR "install_share: ${share}/web/${f} is missing")
+  endif()
+endforeach()
+execute_process(COMMAND "${CMAKE_COMMAND}" -E env "ABRDF_WEB_DIR=${share}/web"
+                        "${prefix}/bin/abrdf" explore --dir
+                OUTPUT_VARIABLE web_dir RESULT_VARIABLE rc ERROR_VARIABLE web_err)
+string(STRIP "${web_dir}" web_dir)
+if(NOT rc EQUAL 0 OR NOT web_dir STREQUAL "${share}/web")
+  message(FATAL_ERROR "install_share: abrdf explore --dir with the installed explorer: "
+                      "'${web_dir}' (${rc}) ${web_err}")
+endif()
 
 # POV-Ray: the example scene with the installed includes only.
 set(SCENE "${SRC}/examples/povray_scene.pov")
