@@ -87,10 +87,10 @@ END_TEST
 /* A diffuse + specular pair in one slot is the sum of the two lobes on one parameter block. */
 START_TEST(pair_is_the_sum)
 {
-    const char *spec = "kd=0.6,0.2,0.1;r=0.4;f0=0.04";
-    ck_assert_int_eq(aw_set_model(0, "disney_diffuse", spec), 0);
-    ck_assert_int_eq(aw_set_model(1, "disney_specular", spec), 0);
-    ck_assert_int_eq(aw_set_pair(2, "disney_diffuse", "disney_specular", spec), 0);
+    ck_assert_int_eq(aw_set_model(0, "disney_diffuse", "kd=0.6,0.2,0.1;r=0.4"), 0);
+    ck_assert_int_eq(aw_set_model(1, "disney_specular", "r=0.4;f0=0.04"), 0);
+    ck_assert_int_eq(
+        aw_set_pair(2, "disney_diffuse", "disney_specular", "kd=0.6,0.2,0.1;r=0.4;f0=0.04"), 0);
     for (int i = 0; i < 10; ++i) {
         double wi[3], wo[3];
         tu_dir(3.0 + 8.0 * i, 20.0 * i, wi);
@@ -123,7 +123,14 @@ START_TEST(refusals_keep_the_slot)
         {"disney_specular", "r=abc", "r", "not a"},
         {"disney_specular", "r=nan", "r", "finite"},
         {"disney_specular", "r=1e400", "r", "finite"},
-        {"disney_specular", "kd=0.5,0.5", "kd", "kd"},
+        {"lambert", "kd=0.5,0.5", "kd", "one value or three"},
+        {"lambert", "kd=0.5,0.5,0.5,0.5", "kd", "at most three"},
+        {"lambert", "kd=0.5,0.5,1.5", "kd", "kd = 1.5 is outside [0, 1]"},
+        {"disney_specular", "r=0.1,0.2", "r", "r takes one value"},
+        {"disney_specular", "r=0x1", "r", "decimal"},
+        {"disney_specular", "r= 0.5", "r", "decimal"},
+        {"lambert", "r=0.3", "r", "not a parameter of lambert"},
+        {"cook_torrance", "kd=0.1", "kd", "not a parameter of cook_torrance"},
         {"disney_specular", "roughness=0.3", "roughness", "unknown parameter"},
         {"disney_specular", "r", "", "NAME=VALUE"},
         {"no_such_model", "", "", "unknown model"},
@@ -191,12 +198,98 @@ START_TEST(sphere_closed_form)
             ck_assert_msg(got == want || (got == 0.0f && !mask[cy * S + cx]),
                           "(%d, %d): %g vs block %g", x, y, got, want);
         }
+    /* a refusal says why, and never repeats an earlier call's message */
+    ck_assert_int_eq(aw_set_model(1, "oren_nayar", "sigma=9"), -1);
+    ck_assert_int_eq(aw_sphere_rows(0, S, 0, 0, 1, 0, S, 1000, full), -1);
+    ck_assert_ptr_nonnull(strstr(aw_error(), "step 1000 is outside [1, 64]"));
+    ck_assert_int_eq(aw_sphere_rows(0, 1 << 20, 0, 0, 1, 0, 1, 1, full), -1);
+    ck_assert_ptr_nonnull(strstr(aw_error(), "size 1048576 is outside [1, 4096]"));
     ck_assert_int_eq(aw_sphere_rows(0, S, 0, 0, 0, 0, S, 1, full), -1);
+    ck_assert_ptr_nonnull(strstr(aw_error(), "light direction"));
     ck_assert_int_eq(aw_sphere_rows(0, S, NAN, 0, 1, 0, S, 1, full), -1);
     ck_assert_int_eq(aw_sphere_rows(0, S, 0, 0, 1, 0, S + 1, 1, full), -1);
     ck_assert_int_eq(aw_sphere_rows(0, S, 0, 0, 1, 5, 5, 1, full), -1);
     ck_assert_int_eq(aw_sphere_rows(0, S, 0, 0, 1, 0, S, 0, full), -1);
     ck_assert_int_eq(aw_sphere_rows(0, 0, 0, 0, 1, 0, 0, 1, full), -1);
+}
+END_TEST
+
+/* Every parameter of every model takes the ends of the range aw_models advertises (as text
+ * read back from its JSON, as the page's sliders send them). */
+START_TEST(advertised_ranges_are_taken)
+{
+    const char *m = aw_models();
+    ck_assert_ptr_nonnull(m);
+    char *json = malloc(strlen(m) + 1);
+    ck_assert_ptr_nonnull(json);
+    strcpy(json, m);
+    int checked = 0;
+    for (char *model = strstr(json, "{\"name\": \""); model;) {
+        char name[64];
+        ck_assert_int_eq(sscanf(model, "{\"name\": \"%63[^\"]\"", name), 1);
+        char *next = strstr(model + 1, "\n{\"name\": \"");
+        char *params = strstr(model, "\"params\": [");
+        for (char *p = params ? strstr(params, "{\"name\": \"") : NULL; p && (!next || p < next);
+             p = strstr(p + 1, "{\"name\": \"")) {
+            char pname[64], lo[64], hi[64];
+            ck_assert_int_eq(sscanf(p, "{\"name\": \"%63[^\"]\"", pname), 1);
+            char *kmin = strstr(p, "\"min\": "), *kmax = strstr(p, "\"max\": ");
+            ck_assert_int_eq(sscanf(kmin, "\"min\": %63[^,]", lo), 1);
+            ck_assert_int_eq(sscanf(kmax, "\"max\": %63[^,]", hi), 1);
+            if (!strcmp(name, "measured")) continue; /* needs a measured table */
+            for (int end = 0; end < 2; ++end) {
+                char spec[200];
+                snprintf(spec, sizeof spec, "%s=%s", pname, end ? hi : lo);
+                ck_assert_msg(aw_set_model(3, name, spec) == 0, "%s %s: %s", name, spec,
+                              aw_error());
+                ++checked;
+            }
+        }
+        model = next ? next + 1 : NULL;
+    }
+    free(json);
+    ck_assert_int_gt(checked, 100);
+}
+END_TEST
+
+/* The sphere's shading frame: tangent around +y, view +z; a pixel of an anisotropic, a fibre
+ * and a Fresnel lobe equals abrdf_eval with that frame in world space. */
+START_TEST(sphere_frame)
+{
+    enum { S = 32 };
+    static float img[3 * S * S];
+    static const char *const models[] = {"disney_specular_aniso", "kajiya_kay", "cook_torrance"};
+    double l[3] = {-0.4, 0.6, 0.7}, wo[3] = {0.0, 0.0, 1.0};
+    for (int k = 0; k < 3; ++k) {
+        abrdf_model id;
+        abrdf_params p;
+        ck_assert_int_eq(abrdf_model_find(models[k], &id), ABRDF_OK);
+        abrdf_params_init(id, &p);
+        ck_assert_int_eq(aw_set_model(0, models[k], ""), 0);
+        ck_assert_int_eq(aw_sphere_rows(0, S, l[0], l[1], l[2], 0, S, 1, img), 0);
+        int compared = 0;
+        for (int y = 3; y < S; y += 5)
+            for (int x = 2; x < S; x += 5) {
+                double u = 2.0 * (x + 0.5) / S - 1.0, v = -(2.0 * (y + 0.5) / S - 1.0);
+                if (u * u + v * v >= 0.95) continue;
+                double n[3] = {u, v, sqrt(1.0 - u * u - v * v)};
+                double ll = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+                double cosl = (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) / ll;
+                if (cosl <= 0.05) continue;
+                double t[3] = {n[2], 0.0, -n[0]}, f[3];
+                abrdf_frame fr;
+                ck_assert_int_eq(abrdf_frame_make(n, t, &fr), ABRDF_OK);
+                ck_assert_int_eq(abrdf_eval(id, &p, &fr, l, wo, f), ABRDF_OK);
+                for (int c = 0; c < 3; ++c) {
+                    double want = f[c] * cosl * 3.14159265358979323846;
+                    ck_assert_msg(tu_close(img[3 * (y * S + x) + c], want, 2e-3, 1e-6),
+                                  "%s (%d, %d): %g vs %g", models[k], x, y,
+                                  img[3 * (y * S + x) + c], want);
+                }
+                ++compared;
+            }
+        ck_assert_int_gt(compared, 10);
+    }
 }
 END_TEST
 
@@ -213,7 +306,18 @@ START_TEST(plane_and_hemisphere)
         if (f[3 * k] > f[3 * peak]) peak = k;
     ck_assert_msg(fabs(t[peak] + 30.0) < 1e-9, "peak at %g", t[peak]); /* the mirror */
     ck_assert_int_eq(aw_plane(0, 30.0, 1, t, f), -1);
+    ck_assert_int_eq(aw_set_model(1, "oren_nayar", "sigma=9"), -1);
     ck_assert_int_eq(aw_plane(0, 30.0, 5000, t, f), -1);
+    ck_assert_ptr_nonnull(strstr(aw_error(), "plane: 5000 samples is outside [2, 1024]"));
+    ck_assert_int_eq(aw_plane(0, NAN, 5, t, f), -1);
+    ck_assert_int_eq(aw_hemisphere(0, 30.0, 0.0, 70000, 70000, h), -1);
+    ck_assert_ptr_nonnull(strstr(aw_error(), "hemisphere: a 70000 x 70000 grid"));
+    ck_assert_int_eq(aw_hemisphere(0, 30.0, 0.0, 1024, 1025, h), -1);
+    ck_assert_int_eq(aw_eval(0, NULL, NULL, -1, NULL), -1);
+    ck_assert_ptr_nonnull(strstr(aw_error(), "-1 direction pairs"));
+    unsigned char mk[1];
+    ck_assert_int_eq(aw_mask(70000, mk), -1);
+    ck_assert(isnan(aw_nmse(NULL, NULL, -4)));
     ck_assert_int_eq(aw_hemisphere(0, 30.0, 0.0, 8, 16, h), 0);
     for (int i = 0; i < 3 * 8 * 16; ++i) ck_assert(isfinite(h[i]) && h[i] >= 0.0f);
     ck_assert_int_eq(aw_hemisphere(0, 30.0, 0.0, 0, 16, h), -1);
@@ -258,7 +362,11 @@ START_TEST(selection_json)
         {"type=metal", "photoreal", "type", "unknown surface type 'metal'"},
         {"r=0.2;name=gold", "photoreal", "name", "before its values"},
         {"colour=red", "photoreal", "colour", "unknown material value"},
-        {"name=gold;r=5", "photoreal", "", "r"},
+        {"name=gold;r=5", "photoreal", "r", "r = 5 is outside [0, 1]"},
+        {"type=general;n=-5;r=-1", "photoreal", "n", "n = -5 is outside [0, 1e+06]"},
+        {"name=gold;eta=0.5", "photoreal", "eta", "eta = 0.5 is outside [1, 4]"},
+        {"name=gold;kd=0.5,0.5,2", "photoreal", "kd", "kd = 2 is outside [0, 1]"},
+        {"name=gold;r=0x0.1", "photoreal", "r", "not a finite number"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         ck_assert_msg(aw_select(bad[i].spec, bad[i].goal) == NULL, "%s accepted", bad[i].spec);
@@ -293,6 +401,8 @@ static Suite *suite(void)
     tcase_add_test(tc, pair_is_the_sum);
     tcase_add_test(tc, refusals_keep_the_slot);
     tcase_add_test(tc, sphere_closed_form);
+    tcase_add_test(tc, advertised_ranges_are_taken);
+    tcase_add_test(tc, sphere_frame);
     tcase_add_test(tc, plane_and_hemisphere);
     tcase_add_test(tc, nmse_and_classes);
     tcase_add_test(tc, selection_json);

@@ -14,6 +14,7 @@
 #define EMSCRIPTEN_KEEPALIVE
 #endif
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -58,6 +59,21 @@ static void fail(const char *param, const char *fmt, const char *a, double v)
     snprintf(err_param, sizeof err_param, "%s", param ? param : "");
 }
 
+/* A refused argument: the message, no parameter named. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+static int
+refuse(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, sizeof err, fmt, ap);
+    va_end(ap);
+    err_param[0] = '\0';
+    return -1;
+}
+
 EMSCRIPTEN_KEEPALIVE const char *aw_error(void) { return err; }
 EMSCRIPTEN_KEEPALIVE const char *aw_error_param(void) { return err_param; }
 EMSCRIPTEN_KEEPALIVE const char *aw_version(void) { return abrdf_version(); }
@@ -80,9 +96,19 @@ static const char *text_end(FILE *f)
     return text;
 }
 
+/* A number as JSON that reads back to the same double (a slider's end must be a value the
+ * library takes: pi/2 printed to 10 digits lies past it), or null when not finite. */
+static void json_exact(FILE *f, double v)
+{
+    if (isfinite(v))
+        fprintf(f, "%.17g", v);
+    else
+        fprintf(f, "null");
+}
+
 static void json_rgb(FILE *f, const double v[3])
 {
-    fprintf(f, "[%.10g, %.10g, %.10g]", v[0], v[1], v[2]);
+    fprintf(f, "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
 }
 
 /* ---- the registry ----------------------------------------------------------------------- */
@@ -130,10 +156,10 @@ EMSCRIPTEN_KEEPALIVE const char *aw_models(void)
         fprintf(f, ", \"props\": ");
         json_flags(f, i->props, props, props_name, 4);
         fprintf(f, ", \"paperCycles\": ");
-        cli_json_number(f, i->paper_cycles >= 0 ? i->paper_cycles : NAN);
+        json_exact(f, i->paper_cycles >= 0 ? i->paper_cycles : NAN);
         double c = abrdf_costs_get(&costs, (abrdf_model)m);
         fprintf(f, ", \"costNs\": ");
-        cli_json_number(f, c >= 0.0 ? c : NAN);
+        json_exact(f, c >= 0.0 ? c : NAN);
         fprintf(f, ", \"closedForm\": %s, \"params\": [",
                 i->needs & (ABRDF_NEEDS_INTEGRATION | ABRDF_NEEDS_TABLE) ? "false" : "true");
         for (int p = 0; p < i->param_count; ++p) {
@@ -143,11 +169,11 @@ EMSCRIPTEN_KEEPALIVE const char *aw_models(void)
             fprintf(f, ", \"help\": ");
             cli_json_string(f, pi->help);
             fprintf(f, ", \"kind\": \"%s\", \"min\": ", kind[pi->kind]);
-            cli_json_number(f, i->params[p].min);
+            json_exact(f, i->params[p].min);
             fprintf(f, ", \"max\": ");
-            cli_json_number(f, i->params[p].max);
+            json_exact(f, i->params[p].max);
             fprintf(f, ", \"def\": ");
-            cli_json_number(f, i->params[p].def);
+            json_exact(f, i->params[p].def);
             fprintf(f, "}");
         }
         fprintf(f, "]}");
@@ -191,9 +217,9 @@ EMSCRIPTEN_KEEPALIVE const char *aw_materials(void)
         fprintf(f, "%s\n{\"name\": ", i ? "," : "");
         cli_json_string(f, table.items[i].name);
         fprintf(f, ", \"surface\": \"%s\", \"n\": ", abrdf_surface_name(m->type));
-        cli_json_number(f, m->n);
+        json_exact(f, m->n);
         fprintf(f, ", \"r\": ");
-        cli_json_number(f, m->r);
+        json_exact(f, m->r);
         fprintf(f, ", \"kd\": ");
         json_rgb(f, m->kd);
         fprintf(f, ", \"ks\": ");
@@ -201,13 +227,13 @@ EMSCRIPTEN_KEEPALIVE const char *aw_materials(void)
         fprintf(f, ", \"f0\": ");
         json_rgb(f, m->f0);
         fprintf(f, ", \"eta\": ");
-        cli_json_number(f, m->eta);
+        json_exact(f, m->eta);
         fprintf(f, ", \"anisotropy\": ");
-        cli_json_number(f, m->anisotropy);
+        json_exact(f, m->anisotropy);
         fprintf(f, ", \"melanin\": ");
-        cli_json_number(f, m->melanin);
+        json_exact(f, m->melanin);
         fprintf(f, ", \"redness\": ");
-        cli_json_number(f, m->redness);
+        json_exact(f, m->redness);
         fprintf(f, ", \"layers\": %d, \"source\": ", m->layer_count);
         cli_json_string(f, table.items[i].source);
         fprintf(f, "}");
@@ -218,8 +244,30 @@ EMSCRIPTEN_KEEPALIVE const char *aw_materials(void)
 
 /* ---- a model in a slot ------------------------------------------------------------------ */
 
-/* "name=v;name=v,v,v;..." onto p; a bad name or value: -1 with the message. */
-static int params_apply(abrdf_model model, abrdf_params *p, const char *spec)
+/* A decimal number at s (no hexadecimal, no inf or nan, no leading space), *end after it;
+ * 0, or -1 when there is none. */
+static int decimal(const char *s, char **end, double *v)
+{
+    const char *d = s + (*s == '+' || *s == '-');
+    if (!((*d >= '0' && *d <= '9') || (*d == '.' && d[1] >= '0' && d[1] <= '9'))) return -1;
+    if (d[0] == '0' && (d[1] == 'x' || d[1] == 'X')) return -1;
+    *v = strtod(s, end);
+    return *end != s && isfinite(*v) ? 0 : -1;
+}
+
+/* 1 if `id` is one of the parameters `model` reads. */
+static int model_reads(abrdf_model model, int id)
+{
+    const abrdf_model_info *i = abrdf_model_get(model);
+    for (int k = 0; i && k < i->param_count; ++k)
+        if (i->params[k].id == id) return 1;
+    return 0;
+}
+
+/* "name=v;name=v,v,v;..." onto p for the models m[0..n) (a diffuse + specular pair reads one
+ * block): every name one they read, one value (or three for a colour) each, in range; a bad
+ * name or value: -1 with the message. */
+static int params_apply(const abrdf_model *m, int n, abrdf_params *p, const char *spec)
 {
     char buf[2048];
     if (strlen(spec) >= sizeof buf) {
@@ -235,42 +283,66 @@ static int params_apply(abrdf_model model, abrdf_params *p, const char *spec)
             return -1;
         }
         *eq = '\0';
-        int id;
+        int id, reads = 0;
         if (abrdf_param_find(tok, &id) != ABRDF_OK) {
             fail(tok, "unknown parameter '%s'", tok, 0.0);
             return -1;
         }
+        for (int k = 0; k < n; ++k) reads |= model_reads(m[k], id);
+        if (!reads) {
+            snprintf(err, sizeof err, "%s: not a parameter of %s%s%s", tok,
+                     abrdf_model_get(m[0])->name, n > 1 ? " + " : "",
+                     n > 1 ? abrdf_model_get(m[1])->name : "");
+            snprintf(err_param, sizeof err_param, "%s", tok);
+            return -1;
+        }
+        const abrdf_param_info *pi = abrdf_param_get(id);
         double v[3];
         int count = 0;
-        for (char *s = eq + 1; count < 3;) {
+        for (char *s = eq + 1;;) {
             char *end;
-            v[count] = strtod(s, &end);
-            if (end == s || !isfinite(v[count])) {
-                fail(tok, "%s: the value is not a finite number", tok, 0.0);
+            if (count == 3 || decimal(s, &end, &v[count])) {
+                fail(tok,
+                     count == 3 ? "%s: at most three values (R,G,B)"
+                                : "%s: the value is not a finite decimal number",
+                     tok, 0.0);
                 return -1;
             }
             ++count;
             if (*end == '\0') break;
             if (*end != ',') {
-                fail(tok, "%s: the value is not a number", tok, 0.0);
+                fail(tok, "%s: the value is not a finite decimal number", tok, 0.0);
                 return -1;
             }
             s = end + 1;
         }
+        if (pi->kind == ABRDF_PARAM_RGB ? count == 2 : count != 1) {
+            fail(tok,
+                 pi->kind == ABRDF_PARAM_RGB ? "%s: one value or three (R,G,B)"
+                                             : "%s takes one value",
+                 tok, 0.0);
+            return -1;
+        }
         if (abrdf_param_set(p, id, v, count) != ABRDF_OK) {
-            const abrdf_param_info *pi = abrdf_param_get(id);
-            snprintf(err, sizeof err, "%s = %g is outside [%g, %g]", tok, v[0], pi->min, pi->max);
+            int bad = 0;
+            for (int k = 1; k < count; ++k)
+                if (!(v[k] >= pi->min && v[k] <= pi->max)) bad = k;
+            snprintf(err, sizeof err, "%s = %.17g is outside [%.17g, %.17g]", tok, v[bad], pi->min,
+                     pi->max);
             snprintf(err_param, sizeof err_param, "%s", tok);
             return -1;
         }
     }
-    char msg[512];
-    if (abrdf_params_check(model, p, msg, sizeof msg) != ABRDF_OK) {
-        snprintf(err, sizeof err, "%s", msg);
-        /* the message names the parameter first ("r = 7 is outside ..."): keep that name */
-        size_t n = strcspn(msg, " =:");
-        snprintf(err_param, sizeof err_param, "%.*s", (int)(n < 63 ? n : 63), msg);
-        return -1;
+    for (int k = 0; k < n; ++k) {
+        abrdf_model model = m[k];
+        char msg[512];
+        if (abrdf_params_check(model, p, msg, sizeof msg) != ABRDF_OK) {
+            snprintf(err, sizeof err, "%s", msg);
+            /* the message names the parameter first ("r = 7 is outside ..."): keep that name */
+            size_t len = strcspn(msg, " =:");
+            snprintf(err_param, sizeof err_param, "%.*s", (int)(len < 63 ? len : 63), msg);
+            return -1;
+        }
     }
     return 0;
 }
@@ -297,7 +369,8 @@ EMSCRIPTEN_KEEPALIVE int aw_set_pair(int slot, const char *diffuse, const char *
     }
     abrdf_params p;
     abrdf_params_init(m, &p);
-    if (params_apply(m, &p, spec) || (*diffuse && params_apply(d, &p, ""))) return -1;
+    abrdf_model both[2] = {m, d};
+    if (params_apply(both, *diffuse ? 2 : 1, &p, spec)) return -1;
     web_slot next;
     memset(&next, 0, sizeof next);
     next.set = 1, next.model = m, next.params = p, next.has_diffuse = *diffuse != '\0';
@@ -315,8 +388,11 @@ EMSCRIPTEN_KEEPALIVE int aw_set_model(int slot, const char *model, const char *s
     return aw_set_pair(slot, "", model, spec);
 }
 
+/* The slot's model, or NULL with the message; every evaluating call starts here, so the
+ * message of an earlier call never stays behind. */
 static const web_slot *slot_get(int slot)
 {
+    err[0] = err_param[0] = '\0';
     if (slot < 0 || slot >= WEB_SLOTS || !slots[slot].set) {
         fail(NULL, "%sno model in slot %g", "", slot);
         return NULL;
@@ -351,6 +427,8 @@ EMSCRIPTEN_KEEPALIVE int aw_eval(int slot, const float *wi, const float *wo, int
 {
     const web_slot *s = slot_get(slot);
     if (!s) return -1;
+    if (count < 0 || count > AW_MAX_PAIRS)
+        return refuse("eval: %d direction pairs is outside [0, %d]", count, AW_MAX_PAIRS);
     for (int base = 0; base < count; base += WEB_CHUNK) {
         int n = count - base < WEB_CHUNK ? count - base : WEB_CHUNK;
         for (int k = 0; k < n; ++k) {
@@ -371,7 +449,10 @@ EMSCRIPTEN_KEEPALIVE int aw_eval(int slot, const float *wi, const float *wo, int
 EMSCRIPTEN_KEEPALIVE int aw_plane(int slot, double theta_i, int count, double *theta_o, float *out)
 {
     const web_slot *s = slot_get(slot);
-    if (!s || count < 2 || count > WEB_CHUNK) return -1;
+    if (!s) return -1;
+    if (count < 2 || count > WEB_CHUNK)
+        return refuse("plane: %d samples is outside [2, %d]", count, WEB_CHUNK);
+    if (!isfinite(theta_i)) return refuse("plane: the light's angle is not a finite number");
     double ti = theta_i * PI / 180.0;
     for (int k = 0; k < count; ++k) {
         double to = -90.0 + 180.0 * k / (count - 1);
@@ -392,7 +473,12 @@ EMSCRIPTEN_KEEPALIVE int aw_hemisphere(int slot, double theta_i, double phi_i, i
                                        float *out)
 {
     const web_slot *s = slot_get(slot);
-    if (!s || nt < 1 || np < 1) return -1;
+    if (!s) return -1;
+    if (nt < 1 || np < 1 || nt > AW_MAX_GRID || np > AW_MAX_GRID || nt * np > AW_MAX_GRID_CELLS)
+        return refuse("hemisphere: a %d x %d grid is outside 1 to %d per side and %d views", nt, np,
+                      AW_MAX_GRID, AW_MAX_GRID_CELLS);
+    if (!isfinite(theta_i) || !isfinite(phi_i))
+        return refuse("hemisphere: the light's angles are not finite numbers");
     double ti = theta_i * PI / 180.0, pi = phi_i * PI / 180.0;
     float wi[3] = {(float)(sin(ti) * cos(pi)), (float)(sin(ti) * sin(pi)), (float)cos(ti)};
     int total = nt * np;
@@ -449,9 +535,15 @@ EMSCRIPTEN_KEEPALIVE int aw_sphere_rows(int slot, int size, double lx, double ly
                                         int y1, int step, float *out)
 {
     const web_slot *s = slot_get(slot);
-    if (!s || size < 1 || y0 < 0 || y1 > size || y0 >= y1 || step < 1) return -1;
+    if (!s) return -1;
+    if (size < 1 || size > AW_MAX_SIZE)
+        return refuse("sphere: size %d is outside [1, %d]", size, AW_MAX_SIZE);
+    if (y0 < 0 || y1 > size || y0 >= y1)
+        return refuse("sphere: rows [%d, %d) are not within [0, %d)", y0, y1, size);
+    if (step < 1 || step > size) return refuse("sphere: step %d is outside [1, %d]", step, size);
     double ll = sqrt(lx * lx + ly * ly + lz * lz);
-    if (!(ll > 0.0) || !isfinite(ll)) return -1;
+    if (!(ll > 0.0) || !isfinite(ll))
+        return refuse("sphere: the light direction is zero or not finite");
     double l[3] = {lx / ll, ly / ll, lz / ll};
     memset(out, 0, sizeof(float) * 3 * (size_t)size * (size_t)(y1 - y0));
     int idx[WEB_CHUNK], n = 0;
@@ -485,6 +577,9 @@ EMSCRIPTEN_KEEPALIVE int aw_sphere_rows(int slot, int size, double lx, double ly
 /* 1 inside the sphere's disk, 0 outside (size x size). */
 EMSCRIPTEN_KEEPALIVE int aw_mask(int size, unsigned char *out)
 {
+    err[0] = err_param[0] = '\0';
+    if (size < 1 || size > AW_MAX_SIZE)
+        return refuse("mask: size %d is outside [1, %d]", size, AW_MAX_SIZE);
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             double n[3];
@@ -496,6 +591,11 @@ EMSCRIPTEN_KEEPALIVE int aw_mask(int size, unsigned char *out)
 /* NMSE of img against ref over n floats (metrics.h), its Table-8 class by aw_nmse_class. */
 EMSCRIPTEN_KEEPALIVE double aw_nmse(const float *img, const float *ref, int n)
 {
+    err[0] = err_param[0] = '\0';
+    if (n < 0) {
+        refuse("nmse: %d values", n);
+        return NAN;
+    }
     double num = 0.0, den = 0.0;
     for (int i = 0; i < n; ++i) {
         double d = (double)img[i] - ref[i];
@@ -514,13 +614,18 @@ static int rgb_value(const char *key, const char *s, double v[3])
     int count = 0;
     for (const char *p = s; count < 3;) {
         char *end;
-        v[count] = strtod(p, &end);
-        if (end == p || !isfinite(v[count])) break;
+        if (decimal(p, &end, &v[count])) break;
         ++count;
         if (*end == '\0') {
             if (count == 1) v[1] = v[2] = v[0];
-            if (count == 1 || count == 3) return 0;
-            break;
+            if (count == 2) break;
+            for (int c = 0; c < 3; ++c)
+                if (!(v[c] >= 0.0 && v[c] <= 1.0)) {
+                    snprintf(err, sizeof err, "%s = %.17g is outside [0, 1]", key, v[c]);
+                    snprintf(err_param, sizeof err_param, "%s", key);
+                    return -1;
+                }
+            return 0;
         }
         if (*end != ',') break;
         p = end + 1;
@@ -551,8 +656,8 @@ static int material_parse(const char *spec, abrdf_material *m, const mat_entry *
         }
         *v++ = '\0';
         char *end;
-        double x = strtod(v, &end);
-        int number = end != v && *end == '\0' && isfinite(x);
+        double x = 0.0;
+        int number = !decimal(v, &end, &x) && *end == '\0';
         if (!strcmp(tok, "name")) {
             if (materials_load()) return -1;
             *e = mat_table_find(&table, v);
@@ -583,6 +688,17 @@ static int material_parse(const char *spec, abrdf_material *m, const mat_entry *
             return -1;
         } else if (!number) {
             fail(tok, "%s: the value is not a finite number", tok, 0.0);
+            return -1;
+        } else if (!(x >= 0.0 && x <= (!strcmp(tok, "n")     ? 1e6
+                                       : !strcmp(tok, "eta") ? 4.0
+                                                             : 1.0)) ||
+                   (!strcmp(tok, "eta") && x < 1.0)) {
+            snprintf(err, sizeof err, "%s = %.17g is outside [%g, %g]", tok, x,
+                     !strcmp(tok, "eta") ? 1.0 : 0.0,
+                     !strcmp(tok, "n")     ? 1e6
+                     : !strcmp(tok, "eta") ? 4.0
+                                           : 1.0);
+            snprintf(err_param, sizeof err_param, "%s", tok);
             return -1;
         } else if (!strcmp(tok, "n"))
             m->n = x;

@@ -7,6 +7,11 @@
 #define ABRDF_WEB_H
 
 #define AW_SLOTS 4 /* model slots: 0 and 1 are the page's A and B */
+/* The largest arguments taken (larger ones are refused with a message): */
+#define AW_MAX_PAIRS (1 << 24)      /* direction pairs of one aw_eval */
+#define AW_MAX_SIZE 4096            /* sphere and mask images, pixels per side */
+#define AW_MAX_GRID 1024            /* hemisphere grid, views per side */
+#define AW_MAX_GRID_CELLS (1 << 20) /* ... and in all */
 
 const char *aw_error(void);
 const char *aw_error_param(void);
@@ -34,7 +39,8 @@ int aw_sphere_rows(int slot, int size, double lx, double ly, double lz, int y0, 
                    float *out);
 /* 1 inside the sphere's disk (size x size bytes). */
 int aw_mask(int size, unsigned char *out);
-/* NMSE of img against ref (n floats) and the paper's Table-8 class of a value. */
+/* NMSE of img against ref (n floats; NaN for n < 0) and the paper's Table-8 class of a
+ * value. */
 double aw_nmse(const float *img, const float *ref, int n);
 const char *aw_nmse_class(double nmse);
 /* The flowchart's choice as `abrdf advise --json` prints it; the budget mode (pareto 0) or

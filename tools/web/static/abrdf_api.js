@@ -39,7 +39,7 @@
     }
     _str(s) {
       const n = this.m.lengthBytesUTF8(s) + 1;
-      const p = this.m._malloc(n);
+      const p = this._alloc(n, 1);
       this.m.stringToUTF8(s, p, n);
       return p;
     }
@@ -51,8 +51,18 @@
         ptrs.forEach((p) => this.m._free(p));
       }
     }
+    // Module memory for n values of `bytes` each; sizes the 32-bit module cannot address, and
+    // a failed allocation, throw rather than wrap around.
+    _alloc(n, bytes) {
+      const size = bytes * Math.max(1, n);
+      if (!Number.isSafeInteger(size) || size < 0 || size >= 2 ** 31)
+        throw new Error(`${n} values do not fit in the module's memory`);
+      const p = this.m._malloc(size);
+      if (!p) throw new Error(`out of memory for ${n} values`);
+      return p;
+    }
     _floats(n) {
-      return this.m._malloc(4 * Math.max(1, n));
+      return this._alloc(n, 4);
     }
     _readF32(p, n) {
       return new Float32Array(this.m.HEAPF32.buffer, p, n).slice();
@@ -102,87 +112,103 @@
       return { ok: false, param: param || null, message: this._error() };
     }
 
+    // Calls fn(pointers...) with blocks of [count, bytes] each, freed afterwards whatever
+    // happens (an allocation that fails frees the ones before it).
+    _blocks(sizes, fn) {
+      const ptrs = [];
+      try {
+        for (const [n, bytes] of sizes) ptrs.push(this._alloc(n, bytes));
+        return fn(...ptrs);
+      } finally {
+        ptrs.forEach((p) => this.m._free(p));
+      }
+    }
+    _whole(what, v) {
+      if (!Number.isInteger(v)) throw new Error(`${what} ${v} is not a whole number`);
+      return v;
+    }
+
     evalPairs(slot, wi, wo) {
       const count = Math.floor(Math.min(wi.length, wo.length) / 3);
-      const pi = this._floats(3 * count), po = this._floats(3 * count),
-            pf = this._floats(3 * count);
-      try {
+      return this._blocks([[3 * count, 4], [3 * count, 4], [3 * count, 4]], (pi, po, pf) => {
         this.m.HEAPF32.set(wi.subarray(0, 3 * count), pi >> 2);
         this.m.HEAPF32.set(wo.subarray(0, 3 * count), po >> 2);
         if (this.m._aw_eval(slot, pi, po, count, pf) !== 0) throw new Error(this._error());
         return this._readF32(pf, 3 * count);
-      } finally {
-        [pi, po, pf].forEach((p) => this.m._free(p));
-      }
+      });
     }
 
     plane(slot, thetaIDeg, count) {
-      const pt = this.m._malloc(8 * count), pf = this._floats(3 * count);
-      try {
-        if (this.m._aw_plane(slot, thetaIDeg, count, pt, pf) !== 0)
-          throw new Error(this._error() || 'plane: bad arguments');
+      this._whole('plane: count', count);
+      return this._blocks([[count, 8], [3 * count, 4]], (pt, pf) => {
+        if (this.m._aw_plane(slot, thetaIDeg, count, pt, pf) !== 0) throw new Error(this._error());
         const thetaO = new Float64Array(this.m.HEAPF64.buffer, pt, count).slice();
         return { thetaO, f: this._readF32(pf, 3 * count) };
-      } finally {
-        this.m._free(pt);
-        this.m._free(pf);
-      }
+      });
     }
 
     hemisphere(slot, thetaIDeg, phiIDeg, nTheta, nPhi) {
-      const n = 3 * nTheta * nPhi, pf = this._floats(n);
-      try {
+      this._whole('hemisphere: nTheta', nTheta);
+      this._whole('hemisphere: nPhi', nPhi);
+      if (nTheta < 1 || nPhi < 1 || nTheta * nPhi > 1 << 20)
+        throw new Error(`hemisphere: a ${nTheta} x ${nPhi} grid is outside 1 to 1024 per side ` +
+                        `and ${1 << 20} views`);
+      const n = 3 * nTheta * nPhi;
+      return this._blocks([[n, 4]], (pf) => {
         if (this.m._aw_hemisphere(slot, thetaIDeg, phiIDeg, nTheta, nPhi, pf) !== 0)
-          throw new Error(this._error() || 'hemisphere: bad arguments');
+          throw new Error(this._error());
         return this._readF32(pf, n);
-      } finally {
-        this.m._free(pf);
-      }
+      });
     }
 
     sphereRows(slot, size, light, y0, y1, step) {
-      const n = 3 * size * (y1 - y0), pf = this._floats(n);
-      try {
+      for (const [k, v] of Object.entries({ size, y0, y1, step })) this._whole('sphereRows: ' + k, v);
+      if (size < 1 || size > 4096) throw new Error(`sphere: size ${size} is outside [1, 4096]`);
+      if (y0 < 0 || y1 > size || y0 >= y1)
+        throw new Error(`sphere: rows [${y0}, ${y1}) are not within [0, ${size})`);
+      const n = 3 * size * (y1 - y0);
+      return this._blocks([[n, 4]], (pf) => {
         if (this.m._aw_sphere_rows(slot, size, light[0], light[1], light[2], y0, y1, step, pf) !== 0)
-          throw new Error(this._error() || 'sphereRows: bad arguments');
+          throw new Error(this._error());
         return this._readF32(pf, n);
-      } finally {
-        this.m._free(pf);
-      }
+      });
     }
 
     mask(size) {
-      const p = this.m._malloc(size * size);
-      try {
-        this.m._aw_mask(size, p);
+      this._whole('mask: size', size);
+      if (size < 1 || size > 4096) throw new Error(`mask: size ${size} is outside [1, 4096]`);
+      return this._blocks([[size * size, 1]], (p) => {
+        if (this.m._aw_mask(size, p) !== 0) throw new Error(this._error());
         return new Uint8Array(this.m.HEAPU8.buffer, p, size * size).slice();
-      } finally {
-        this.m._free(p);
-      }
+      });
     }
 
     nmse(img, ref) {
       const n = Math.min(img.length, ref.length);
-      const pa = this._floats(n), pb = this._floats(n);
-      try {
+      return this._blocks([[n, 4], [n, 4]], (pa, pb) => {
         this.m.HEAPF32.set(img.subarray(0, n), pa >> 2);
         this.m.HEAPF32.set(ref.subarray(0, n), pb >> 2);
         const v = this.m._aw_nmse(pa, pb, n);
         return { nmse: v, cls: this.m.UTF8ToString(this.m._aw_nmse_class(v)) };
-      } finally {
-        this.m._free(pa);
-        this.m._free(pb);
-      }
+      });
     }
 
     // ---- the selection ----
     // material: a table name ("gold"), or {base: "gold", r: 0.1, ...}, or explicit values
     // {type: "general", n: 300, kd: [..], ks: [..], f0: [..], eta, anisotropy, melanin,
     // redness} ("surface" is taken for "type").
+    // The material as the module's text ("name=gold;r=0.1"), or {error} naming a key the
+    // material has not (a misspelt key must not pass unnoticed).
     _materialSpec(material) {
-      if (typeof material === 'string') return `name=${material}`;
-      const parts = [];
+      if (typeof material === 'string') return { spec: `name=${material}` };
+      const known = ['base', 'name', 'surface', 'type', 'n', 'r', 'kd', 'ks', 'f0', 'eta',
+                     'anisotropy', 'melanin', 'redness'];
       const m = Object.assign({}, material);
+      for (const k of Object.keys(m))
+        if (!known.includes(k))
+          return { error: { ok: false, param: k, message:
+                            `unknown material value '${k}' (${known.join(', ')})` } };
+      const parts = [];
       if (m.base !== undefined) parts.push(`name=${m.base}`);
       else if (m.name !== undefined && m.type === undefined && m.surface === undefined)
         parts.push(`name=${m.name}`);
@@ -192,7 +218,7 @@
         if (m[k] === undefined || m[k] === null) continue;
         parts.push(`${k}=${Array.isArray(m[k]) ? m[k].join(',') : m[k]}`);
       }
-      return parts.join(';');
+      return { spec: parts.join(';') };
     }
     _call(fn) {
       try {
@@ -202,9 +228,14 @@
         return { ok: false, param: param || null, message: e.message };
       }
     }
+    _withMaterial(material, strings, fn) {
+      const m = this._materialSpec(material);
+      if (m.error) return m.error;
+      return this._withStr([m.spec, ...strings], (...ptrs) => this._call(() => fn(...ptrs)));
+    }
     select(material, goal) {
-      return this._withStr([this._materialSpec(material), goal || 'photoreal'], (pm, pg) =>
-        this._call(() => this.m._aw_select(pm, pg)));
+      return this._withMaterial(material, [goal || 'photoreal'], (pm, pg) =>
+        this.m._aw_select(pm, pg));
     }
     budget(material, maxNmseOrClass) {
       let max = maxNmseOrClass;
@@ -215,12 +246,10 @@
       if (!(max > 0 && max <= 1))
         return { ok: false, param: 'budget', message:
                  `budget '${maxNmseOrClass}': none, slight, noticeable or a number in (0, 1]` };
-      return this._withStr([this._materialSpec(material)], (pm) =>
-        this._call(() => this.m._aw_budget(pm, max, 0)));
+      return this._withMaterial(material, [], (pm) => this.m._aw_budget(pm, max, 0));
     }
     pareto(material) {
-      return this._withStr([this._materialSpec(material)], (pm) =>
-        this._call(() => this.m._aw_budget(pm, 1, 1)));
+      return this._withMaterial(material, [], (pm) => this.m._aw_budget(pm, 1, 1));
     }
     free() {}
   }

@@ -274,35 +274,51 @@
         const sw = box.querySelector('.param:nth-child(' + (list.indexOf(p) + 1) + ") .colour");
         if (sw) sw.style.background = cssColour(v);
       }
-      fieldError(slot, p.name, "");
+      fieldError(slot, p.name, "all", "");
     }
   }
   function cssColour(rgb) {
     const c = rgb.map((x) => Math.round(255 * srgb(Math.min(1, Math.max(0, x)))));
     return "rgb(" + c.join(",") + ")";
   }
-  function fieldError(slot, param, message) {
+  /* Field errors per slot, parameter and component (null for a one-value parameter): a
+   * colour's R can hold a bad value while G is fixed, and keeps its message. comp "all"
+   * clears every component. */
+  const fieldErrors = [{}, {}];
+  function fieldError(slot, param, comp, message) {
+    const errs = (fieldErrors[slot][param] = fieldErrors[slot][param] || {});
+    if (comp === "all") for (const k of Object.keys(errs)) delete errs[k];
+    else if (message) errs[comp] = message;
+    else delete errs[comp];
     const box = $(slot === 0 ? "params-a" : "params-b");
     const el = box.querySelector('.field-error[data-param="' + param + '"]');
-    if (el) el.textContent = message;
-    for (const f of box.querySelectorAll('input.num[data-param="' + param + '"]')) f.classList.toggle("bad", !!message);
+    if (el) el.textContent = Object.values(errs).join("; ");
+    for (const f of box.querySelectorAll('input.num[data-param="' + param + '"]')) {
+      const k = f.dataset.comp === undefined ? "null" : f.dataset.comp;
+      f.classList.toggle("bad", k in errs);
+    }
+  }
+  /* A decimal number as typed ("0.5", "-2", "1e-3"); anything else (hexadecimal, "Infinity",
+   * spaces inside) is NaN. */
+  function decimalValue(raw) {
+    return /^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$/.test(raw) ? Number(raw) : NaN;
   }
 
   function onTyped(slot, p, c, text) {
     const raw = text.value.trim();
-    const v = raw === "" ? NaN : Number(raw);
+    const v = decimalValue(raw);
     const range = "[" + fmt(p.min) + ", " + fmt(p.max) + "]";
     const what = p.name + (c === null ? "" : "[" + "RGB"[c] + "]");
     if (!isFinite(v)) {
-      fieldError(slot, p.name, what + ": '" + raw + "' is not a number (range " + range + ")");
+      fieldError(slot, p.name, c, what + ": '" + raw + "' is not a number (range " + range + ")");
       return;
     }
     if (v < p.min || v > p.max) {
-      fieldError(slot, p.name, what + " = " + raw + " is out of range " + range);
+      fieldError(slot, p.name, c, what + " = " + raw + " is out of range " + range);
       return;
     }
     if (p.kind === "int" && !Number.isInteger(v)) {
-      fieldError(slot, p.name, what + " = " + raw + " is not an integer (range " + range + ")");
+      fieldError(slot, p.name, c, what + " = " + raw + " is not an integer (range " + range + ")");
       return;
     }
     applyField(slot, p, c, v, text);
@@ -319,12 +335,11 @@
     }
     const r = api.setModel(slot, state.models[slot], next, state.diffuse[slot]);
     if (!r.ok) {
-      fieldError(slot, r.param || p.name, r.message);
-      if (text) text.classList.add("bad");
+      fieldError(slot, r.param || p.name, !r.param || r.param === p.name ? c : null, r.message);
       return false;
     }
     state.params[slot] = next;
-    fieldError(slot, p.name, "");
+    fieldError(slot, p.name, c, "");
     if (c !== null) {
       const sw = text && text.closest(".param").querySelector(".colour");
       if (sw) sw.style.background = cssColour(next[p.name]);
