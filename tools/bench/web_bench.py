@@ -7,6 +7,8 @@ headless, on build/web served from loopback:
   sphere   a full 256x256 sphere in the worker, the step-1 pass only (explorer.timings.sphereMs,
            timed in the worker), for every closed-form model at its defaults, median of
            --rounds renders (the light moved between them);
+  whole    the whole progressive render of that change (explorer.timings.renderMs: steps 8,
+           4, 2 and 1, the transfers from the worker and the drawing), the same renders;
   polar    the plane-of-incidence curve of model A (explorer.timings.polarMs: api.plane, 181
            angles, on the page's thread), median of the same renders.
 
@@ -61,30 +63,35 @@ def bench(browser, url, rounds):
     for name in models:
         page.select_option("#model-a", name)
         page.evaluate("() => explorer.idle()")
-        sphere, polar = [], []
+        sphere, whole, polar = [], [], []
         for k in range(rounds):
             page.evaluate("(t) => explorer.setLight(t, 0)", 30 + 5 * k)
             page.evaluate("() => explorer.idle()")
             t = page.evaluate("explorer.timings")
             sphere.append(t["sphereMs"][name])
+            whole.append(t["renderMs"])
             polar.append(t["polarMs"])
-        rows.append((name, statistics.median(sphere), statistics.median(polar)))
+        rows.append((name, statistics.median(sphere), statistics.median(whole),
+                     statistics.median(polar)))
     page.close()
     return statistics.median(loads), rows
 
 
 def report(load, rows, rounds, chromium):
     print("abrdf explorer speed: %s, headless, median of %d (ms)" % (chromium, rounds))
-    print("%-24s %9s %9s" % ("model", "sphere", "polar"))
-    for name, s, p in rows:
-        marks = "".join(" " + w for w, v in (("sphere>50", s > TARGETS["sphere"]),
+    print("%-24s %9s %9s %9s" % ("model", "sphere", "whole", "polar"))
+    for name, s, w, p in rows:
+        marks = "".join(" " + k for k, v in (("sphere>50", s > TARGETS["sphere"]),
                                              ("polar>5", p > TARGETS["polar"])) if v)
-        print("%-24s %9.1f %9.2f%s" % (name, s, p, marks))
-    sph = [s for _, s, _ in rows]
-    pol = [p for _, _, p in rows]
+        print("%-24s %9.1f %9.1f %9.2f%s" % (name, s, w, p, marks))
+    sph = [s for _, s, _, _ in rows]
+    who = [w for _, _, w, _ in rows]
+    pol = [p for _, _, _, p in rows]
     print("sphere 256x256 (step 1, worker): median %.1f, max %.1f; %d of %d models over %g"
           % (statistics.median(sph), max(sph), sum(s > TARGETS["sphere"] for s in sph),
              len(sph), TARGETS["sphere"]))
+    print("whole progressive render (steps 8, 4, 2, 1, transfers, drawing): median %.1f, "
+          "max %.1f" % (statistics.median(who), max(who)))
     print("polar (page thread): median %.2f, max %.2f; %d of %d models over %g"
           % (statistics.median(pol), max(pol), sum(p > TARGETS["polar"] for p in pol),
              len(pol), TARGETS["polar"]))

@@ -111,7 +111,8 @@ def main():
         browser.close()
     print(f"# fastest of {args.runs} runs, Chromium {version}: the 256x256 lit sphere (ms) and "
           f"f_r of 65536 direction pairs (aw_eval, ns per pair)")
-    print(f"# {' '.join(['tools/bench/web_simd.py'] + sys.argv[1:])}")
+    # the command, less the scratch directory (where the second module was built)
+    print(f"# tools/bench/web_simd.py {args.web} --runs {args.runs}")
     print(f"{'model':24s} {'sphere simd128':>14s} {'scalar':>7s} {'ratio':>6s}   "
           f"{'eval simd128':>12s} {'scalar':>7s} {'ratio':>6s}")
     for m, (ts, es) in times["simd128"].items():

@@ -31,7 +31,10 @@
     logPlot: false,
   };
   const last = { plane: null, nmse: null, cls: null, advise: null };
-  const timings = { loadMs: null, sphereMs: {}, polarMs: null };
+  /* sphereMs: the step-1 pass of a slot's sphere in the worker; renderMs: the whole progressive
+   * render of the last change (every pass and slot, transfers and drawing included). */
+  const timings = { loadMs: null, sphereMs: {}, renderMs: null, polarMs: null };
+  let renderStart = 0;
   let api = null;
   let models = [];
   const byName = {};
@@ -489,6 +492,7 @@
 
   function requestRender() {
     gen++;
+    renderStart = performance.now();
     const slots = [0, 1]
       .filter((k) => k === 0 || state.models[1] !== "none")
       .map((k) => ({ slot: k, model: state.models[k], params: state.params[k], diffuse: state.diffuse[k], label: slotLabel(k) }));
@@ -537,6 +541,7 @@
 
   function sphereComplete() {
     drawDiff();
+    timings.renderMs = performance.now() - renderStart;
     if (state.models[1] !== "none") {
       const r = api.nmse(images[0], images[1]);
       showNmse(r);
