@@ -30,9 +30,17 @@ const loaded = AbrdfApi.load().then(
   (err) => postMessage({ type: "error", gen: 0, message: "worker: the wasm module did not load: " + err })
 );
 
-/* Lets messages queued meanwhile (a newer render) run before the next band. */
+/* Lets messages queued meanwhile (a newer render) run before the next band. A message to
+ * ourselves, not setTimeout(0): chained timeouts are clamped to 4 ms each, which cost a
+ * progressive render more than its arithmetic. */
+const tick = new MessageChannel();
+const ticks = [];
+tick.port1.onmessage = () => ticks.shift()();
 function yieldToEvents() {
-  return new Promise((resolve) => setTimeout(resolve, 0));
+  return new Promise((resolve) => {
+    ticks.push(resolve);
+    tick.port2.postMessage(null);
+  });
 }
 
 function* bands(job, size) {
@@ -58,7 +66,8 @@ async function render(m) {
     }
     let total = 0;
     for (const step of STEPS) total += Math.ceil(size / step) * Math.ceil(size / step);
-    jobs.push({ slot: s.slot, model: s.label || s.model, rows: 2, done: 0, total, ms1: 0, it: null });
+    /* rows: sample rows per band; the coarsest pass (32 x 32 samples) is one band */
+    jobs.push({ slot: s.slot, model: s.label || s.model, rows: 32, done: 0, total, ms1: 0, it: null });
   }
   for (const j of jobs) j.it = bands(j, size);
   /* Round robin over the slots, one band each: a fast model is not held back by a slow one. */
