@@ -802,13 +802,17 @@
     return state.useCos ? "f\u1d63 cos \u03b8\u2092 (1/sr)" : "f\u1d63 (1/sr)";
   }
 
-  function drawPolar() {
-    const cv = $("polar");
+  /* A plot's canvas cleared to the background: {g (its 2-D context), W, H}. */
+  function plotCanvas(id) {
+    const cv = $(id);
     const g = cv.getContext("2d");
-    const W = cv.width;
-    const H = cv.height;
     g.fillStyle = BG;
-    g.fillRect(0, 0, W, H);
+    g.fillRect(0, 0, cv.width, cv.height);
+    return { g, W: cv.width, H: cv.height };
+  }
+
+  function drawPolar() {
+    const { g, W, H } = plotCanvas("polar");
     const cx = W / 2;
     const cy = H - 24;
     const R = Math.min(W / 2 - 30, H - 44);
@@ -879,12 +883,7 @@
   }
 
   function drawCartesian() {
-    const cv = $("cartesian");
-    const g = cv.getContext("2d");
-    const W = cv.width;
-    const H = cv.height;
-    g.fillStyle = BG;
-    g.fillRect(0, 0, W, H);
+    const { g, W, H } = plotCanvas("cartesian");
     const L = 56;
     const Rm = 12;
     const T = 22;
@@ -970,12 +969,7 @@
   /* 3-D lobe: f_r over the hemisphere as a radial surface, wireframe, orthographic view */
   const view = { yaw: -35, pitch: 25 };
   function drawLobe3d() {
-    const cv = $("lobe3d");
-    const g = cv.getContext("2d");
-    const W = cv.width;
-    const H = cv.height;
-    g.fillStyle = BG;
-    g.fillRect(0, 0, W, H);
+    const { g, W, H } = plotCanvas("lobe3d");
     const nT = plotData.nT;
     const nP = plotData.nP;
     let max = 0;
@@ -1239,12 +1233,7 @@
 
   /* r: an object with candidates (budget or pareto); chosen: {diffuse, specular} to ring */
   function drawPareto(r, chosen) {
-    const cv = $("pareto");
-    const g = cv.getContext("2d");
-    const W = cv.width;
-    const H = cv.height;
-    g.fillStyle = BG;
-    g.fillRect(0, 0, W, H);
+    const { g, W, H } = plotCanvas("pareto");
     g.font = "11px sans-serif";
     g.fillStyle = LABEL;
     if (!r || !r.candidates || !r.candidates.length) {
