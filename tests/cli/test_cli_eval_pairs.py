@@ -131,6 +131,33 @@ class BadLines(TempDirCase):
             self.assertTrue(err.startswith("abrdf eval: %s: " % path), err)
             self.assertEqual(err.count("\n"), 1, err)
 
+    def check_pair_limit(self):
+        """One pair past the limit (2^24) is refused on its line before more memory is taken;
+        the stream arrives through a pipe, in chunks, so the test holds only one chunk. The
+        Release build runs it (tests/cli/CMakeLists.txt): 0.9 GB of pairs take a minute under
+        the sanitizers, for a comparison and a message."""
+        limit = 1 << 24
+        p = subprocess.Popen([ABRDF, "eval", "lambert", "--pairs", "-"], stdin=subprocess.PIPE,
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        chunk = b"0 0 1 0 0 1\n" * (1 << 16)
+        try:
+            for _ in range(limit // (1 << 16)):
+                p.stdin.write(chunk)
+            p.stdin.write(b"0 0 1 0 0 1\n")
+            p.stdin.close()
+        except BrokenPipeError:
+            pass
+        out, err = p.stdout.read(), p.stderr.read().decode()  # written only at its end
+        p.wait(timeout=300)
+        p.stdout.close()
+        p.stderr.close()
+        self.assertEqual(p.returncode, 1, err)
+        self.assertEqual(out, b"")
+        self.assertIn(f"stdin:{limit + 1}: more than {limit} direction pairs", err)
+
+    if os.environ.get("ABRDF_SANITIZE") != "1":
+        test_pair_limit = check_pair_limit
+
     def test_usage_errors(self):
         path = self.put("ok.txt", "0 0 1 0 0 1\n")
         for args, why in [

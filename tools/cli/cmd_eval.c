@@ -26,6 +26,10 @@ static int usage(void)
     return 0;
 }
 
+/* The most pairs one --pairs run takes (their doubles and line numbers: 0.9 GB), so that the
+ * memory a file can ask for is bounded before it is allocated. */
+#define EVAL_MAX_PAIRS (1 << 24)
+
 /* The direction pairs of a --pairs file, 6 doubles each. */
 typedef struct pair_list {
     double *v;  /* 6 per pair: wi, wo */
@@ -110,6 +114,13 @@ static int pairs_read(const char *path, pair_list *list)
             break;
         }
         if (got == 0) continue;
+        if (list->count == EVAL_MAX_PAIRS) {
+            path_msg(err, sizeof err, shown, ":%ld: more than %d direction pairs (split the file)",
+                     lineno, EVAL_MAX_PAIRS);
+            fprintf(stderr, "abrdf eval: %s\n", err);
+            rc = 1;
+            break;
+        }
         if (list->count == list->cap) {
             size_t ncap = list->cap ? 2 * list->cap : 256;
             double *nv = realloc(list->v, ncap * 6 * sizeof *nv);
