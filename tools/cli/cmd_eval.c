@@ -22,7 +22,8 @@ static int usage(void)
            "--pairs reads many pairs from FILE (- for standard input), one a line as six\n"
            "numbers 'wix wiy wiz wox woy woz' (blank lines and # comments allowed), and\n"
            "prints one line 'r g b' per pair, or with --json one array of [r, g, b].\n"
-           "A bad line stops the run with FILE:LINE and nothing printed.\n");
+           "At most 16777216 pairs a run. A bad line stops the run with FILE:LINE and\n"
+           "nothing printed.\n");
     return 0;
 }
 
