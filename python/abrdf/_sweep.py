@@ -97,18 +97,21 @@ def _candidate_name(c: Candidate) -> str:
 
 
 @functools.lru_cache(maxsize=_LOADED_MAX)
-def _loaded_version(path: str, mtime_ns: int, size: int) -> Measured:
+def _loaded_version(path: str, version: tuple[int, ...]) -> Measured:
     return load_measured(path)
 
 
 def _loaded(path: str) -> Measured:
     """The file read, or the copy read before if it has not changed since (a worker that
-    outlives one sweep sees a rewritten file anew)."""
+    outlives one sweep sees a rewritten file anew). A file's version is its inode with its
+    change and modification times and size: abrdf writes a file whole by renaming a new one
+    over it, so a rewrite within one tick of the file system's clock is still seen."""
     try:
         st = os.stat(path)
     except OSError:
         return load_measured(path)  # raises abrdf.Error with the reader's words
-    return _loaded_version(path, st.st_mtime_ns, st.st_size)
+    return _loaded_version(path, (st.st_dev, st.st_ino, st.st_ctime_ns, st.st_mtime_ns,
+                                  st.st_size))
 
 
 def _shippable(m: object) -> tuple[Any, ...]:
