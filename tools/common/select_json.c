@@ -17,6 +17,9 @@ static void json_opt(FILE *f, double v)
         json_num(f, v);
 }
 
+/* A threshold: null where the step has none (infinite) or it is unknown (negative). */
+static void json_limit(FILE *f, double v) { json_opt(f, isinf(v) ? -1.0 : v); }
+
 static void json_rgb(FILE *f, const double v[3])
 {
     fprintf(f, "[%.10g, %.10g, %.10g]", v[0], v[1], v[2]);
@@ -95,17 +98,11 @@ void select_json(FILE *f, const abrdf_selection *s, const abrdf_params *p,
         fprintf(f, ", \"value\": ");
         json_opt(f, t->value);
         fprintf(f, ", \"threshold\": ");
-        if (isinf(t->threshold))
-            fprintf(f, "null");
-        else
-            json_opt(f, t->threshold);
+        json_limit(f, t->threshold);
         fprintf(f, ", \"value2\": ");
         json_opt(f, t->value2);
         fprintf(f, ", \"threshold2\": ");
-        if (isinf(t->threshold2))
-            fprintf(f, "null");
-        else
-            json_opt(f, t->threshold2);
+        json_limit(f, t->threshold2);
         fprintf(f, ", \"cost\": ");
         json_opt(f, t->cost);
         fprintf(f, ", \"passed\": %s, \"text\": ", t->passed ? "true" : "false");

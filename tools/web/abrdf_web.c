@@ -7,7 +7,7 @@
  * path. The selection and the budget print what `abrdf advise --json` prints (select_json,
  * budget_json), so the page and the command line give the same object. Texts returned to
  * JavaScript stay valid until the next call that returns a text. */
-#define _POSIX_C_SOURCE 200809L /* open_memstream, strtok_r */
+#define _POSIX_C_SOURCE 200809L /* open_memstream */
 #ifdef __EMSCRIPTEN__
 #include <emscripten.h>
 #else /* the host build, which tests these functions under the sanitizers (test_web_glue) */
@@ -264,25 +264,50 @@ static int model_reads(abrdf_model model, int id)
     return 0;
 }
 
+/* The text of "NAME=VALUE;NAME=VALUE;..." blocks, copied to be cut in place. */
+#define SPEC_MAX 2048
+
+/* spec copied into buf: 0, or -1 with "WHAT text too long". */
+static int spec_copy(char buf[SPEC_MAX], const char *spec, const char *what)
+{
+    if (strlen(spec) >= SPEC_MAX) {
+        fail(NULL, "%s text too long", what, 0.0);
+        return -1;
+    }
+    strcpy(buf, spec);
+    return 0;
+}
+
+/* The next NAME=VALUE of the copied text at *cursor (empty tokens skipped): 1 with *name and
+ * *value cut at the '=', 0 at the end, -1 with the message for a token without '='. */
+static int spec_next(char **cursor, char **name, char **value)
+{
+    char *tok = *cursor;
+    while (*tok == ';') ++tok;
+    if (!*tok) return 0;
+    char *stop = strchr(tok, ';');
+    *cursor = stop ? stop + 1 : tok + strlen(tok);
+    if (stop) *stop = '\0';
+    char *eq = strchr(tok, '=');
+    if (!eq) {
+        fail(NULL, "'%s' is not NAME=VALUE", tok, 0.0);
+        return -1;
+    }
+    *eq = '\0';
+    *name = tok;
+    *value = eq + 1;
+    return 1;
+}
+
 /* "name=v;name=v,v,v;..." onto p for the models m[0..n) (a diffuse + specular pair reads one
  * block): every name one they read, one value (or three for a colour) each, in range; a bad
  * name or value: -1 with the message. */
 static int params_apply(const abrdf_model *m, int n, abrdf_params *p, const char *spec)
 {
-    char buf[2048];
-    if (strlen(spec) >= sizeof buf) {
-        fail(NULL, "%sparameter text too long", "", 0.0);
-        return -1;
-    }
-    strcpy(buf, spec);
-    for (char *save = NULL, *tok = strtok_r(buf, ";", &save); tok;
-         tok = strtok_r(NULL, ";", &save)) {
-        char *eq = strchr(tok, '=');
-        if (!eq) {
-            fail(NULL, "'%s' is not NAME=VALUE", tok, 0.0);
-            return -1;
-        }
-        *eq = '\0';
+    char buf[SPEC_MAX], *cursor = buf, *tok, *value;
+    if (spec_copy(buf, spec, "parameter")) return -1;
+    for (int got; (got = spec_next(&cursor, &tok, &value));) {
+        if (got < 0) return -1;
         int id, reads = 0;
         if (abrdf_param_find(tok, &id) != ABRDF_OK) {
             fail(tok, "unknown parameter '%s'", tok, 0.0);
@@ -299,7 +324,7 @@ static int params_apply(const abrdf_model *m, int n, abrdf_params *p, const char
         const abrdf_param_info *pi = abrdf_param_get(id);
         double v[3];
         int count = 0;
-        for (char *s = eq + 1;;) {
+        for (char *s = value;;) {
             char *end;
             if (count == 3 || decimal(s, &end, &v[count])) {
                 fail(tok,
@@ -638,23 +663,13 @@ static int rgb_value(const char *key, const char *s, double v[3])
  * values over it, as `abrdf advise NAME --r ...` takes them). */
 static int material_parse(const char *spec, abrdf_material *m, const mat_entry **e)
 {
-    char buf[2048];
+    char buf[SPEC_MAX], *cursor = buf, *tok, *v;
     *e = NULL;
     abrdf_material_init(m);
-    if (strlen(spec) >= sizeof buf) {
-        fail(NULL, "%smaterial text too long", "", 0.0);
-        return -1;
-    }
-    strcpy(buf, spec);
+    if (spec_copy(buf, spec, "material")) return -1;
     int has_value = 0;
-    for (char *save = NULL, *tok = strtok_r(buf, ";", &save); tok;
-         tok = strtok_r(NULL, ";", &save)) {
-        char *v = strchr(tok, '=');
-        if (!v) {
-            fail(NULL, "'%s' is not NAME=VALUE", tok, 0.0);
-            return -1;
-        }
-        *v++ = '\0';
+    for (int got; (got = spec_next(&cursor, &tok, &v));) {
+        if (got < 0) return -1;
         char *end;
         double x = 0.0;
         int number = !decimal(v, &end, &x) && *end == '\0';
