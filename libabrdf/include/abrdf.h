@@ -83,6 +83,7 @@
  *   abrdf_eval_prepared_unit the same for unit local-frame directions: a renderer's
  *                            per-sample call, with nothing to normalise
  *   abrdf_eval_prepared_batch  abrdf_eval_batch of a prepared model (float, structure of arrays)
+ *   abrdf_eval_prepared_rows   the same over interleaved (x, y, z) rows in, (r, g, b) rows out
  *   abrdf_measured_init      fill a measured-table descriptor, set its struct_size (static inline)
  *   abrdf_measured_init_sized  the same for a block of struct_size bytes
  *   abrdf_prepare_measured   prepare the `measured` model on a caller's table of measured f_r
@@ -406,6 +407,14 @@ ABRDF_API int abrdf_eval_prepared_unit(const abrdf_prepared *prepared, const dou
  * supports (AVX2 + FMA, AVX-512 on x86-64), chosen per call from the CPU alone; results
  * agree with the double path within the batch path's float tolerance (docs/MODELS.md). */
 ABRDF_API int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const abrdf_batch *batch);
+/* abrdf_eval_prepared_batch over interleaved rows: wi, wo hold `count` rows (x, y, z) of unit
+ * local-frame directions (not renormalised), f receives `count` rows (r, g, b) of f_r; f may
+ * not overlap wi or wo. Bit for bit abrdf_eval_prepared_batch's values on the same
+ * directions, without laying them out as a structure of arrays first: the rows are read by
+ * the models' loops themselves. Same status codes (ABRDF_E_NULL; ABRDF_E_MODEL with f = 0).
+ * Added after 0.2.0 (CHANGELOG). */
+ABRDF_API int abrdf_eval_prepared_rows(const abrdf_prepared *prepared, size_t count,
+                                       const float *wi, const float *wo, float *f);
 
 /* ---- measured materials (added after 0.2.0) -------------------------------------------- *
  * The `measured` model (ABRDF_MEASURED) evaluates a table of measured f_r that the caller

@@ -1,9 +1,11 @@
 /* py_eval.c - f_r over arrays of direction pairs, the GIL released while the library works:
- *   eval_float   the float batch path (abrdf_prepare once, abrdf_eval_prepared_batch): rows
- *                of (N, 3) directions are laid out as the batch's structure of arrays and
- *                normalised in vector registers, CHUNK at a time on the stack, and the results
- *                written back as rows; large arrays are split over the machine's cores, one
- *                thread per range of rows (the library itself has no threads);
+ *   eval_float   the float batch path (abrdf_prepare once), CHUNK pairs at a time: float32
+ *                rows that are unit go to abrdf_eval_prepared_rows as they are; other rows
+ *                (float64, or a chunk with a row that is not unit) are laid out as the batch's
+ *                structure of arrays on the stack, normalised in vector registers, evaluated
+ *                by abrdf_eval_prepared_batch and written back as rows: the same values either
+ *                way. Large arrays are split over the machine's cores, one thread per range of
+ *                rows (the library itself has no threads);
  *   eval_double  the double-precision scalar reference (abrdf_eval with the local frame), one
  *                pair at a time; a Table (a measured table) by abrdf_eval_prepared, the
  *                model's only double path.
@@ -16,6 +18,7 @@
 #include <math.h>
 #include <pthread.h>
 #include <sched.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <time.h>
 #include <unistd.h>
@@ -78,6 +81,21 @@ static void load_row_exact(const void *buf, abrdf_py_real kind, Py_ssize_t k, fl
 #define ROW_LOOPS
 #endif
 
+/* A squared length in float, the same expression wherever a row is tested. */
+static inline float len2f(float x, float y, float z) { return x * x + y * y + z * z; }
+
+/* 1 if every one of the n float rows of both p and q is unit to float precision (is
+ * normalised as it is). */
+ROW_LOOPS static int unit_rows(const float *restrict p, const float *restrict q, int n)
+{
+    int scaled = 0;
+    for (int k = 0; k < n; ++k) {
+        scaled |= !(fabsf(len2f(p[3 * k], p[3 * k + 1], p[3 * k + 2]) - 1.0f) <= UNIT_TOL);
+        scaled |= !(fabsf(len2f(q[3 * k], q[3 * k + 1], q[3 * k + 2]) - 1.0f) <= UNIT_TOL);
+    }
+    return !scaled;
+}
+
 /* Rows [start, start + n) laid out in x, y, z and normalised. The loops have no calls and no
  * branches; rows outside [LEN2F_MIN, LEN2F_MAX] are redone exactly. */
 ROW_LOOPS static void load(const void *buf, abrdf_py_real kind, Py_ssize_t start, int n, float *x,
@@ -91,16 +109,20 @@ ROW_LOOPS static void load(const void *buf, abrdf_py_real kind, Py_ssize_t start
         for (int k = 0; k < n; ++k)
             x[k] = (float)p[3 * k], y[k] = (float)p[3 * k + 1], z[k] = (float)p[3 * k + 2];
     }
+    /* unit rows (the usual input) need no scaling: compares, not sqrtf and a division */
+    int scaled = 0;
+    for (int k = 0; k < n; ++k) scaled |= !(fabsf(len2f(x[k], y[k], z[k]) - 1.0f) <= UNIT_TOL);
+    if (!scaled) return;
     int rare = 0;
     for (int k = 0; k < n; ++k) {
-        float len2 = x[k] * x[k] + y[k] * y[k] + z[k] * z[k];
+        float len2 = len2f(x[k], y[k], z[k]);
         float inv = fabsf(len2 - 1.0f) <= UNIT_TOL ? 1.0f : 1.0f / sqrtf(len2);
         rare |= !(len2 >= LEN2F_MIN && len2 <= LEN2F_MAX);
         x[k] *= inv, y[k] *= inv, z[k] *= inv;
     }
     if (!rare) return;
     for (int k = 0; k < n; ++k) {
-        float len2 = x[k] * x[k] + y[k] * y[k] + z[k] * z[k];
+        float len2 = len2f(x[k], y[k], z[k]);
         if (!(fabsf(len2 - 1.0f) <= 16.0f * UNIT_TOL)) /* not a row the pass normalised */
             load_row_exact(buf, kind, start + k, x + k, y + k, z + k);
     }
@@ -176,6 +198,13 @@ ROW_LOOPS static void store(float *restrict o, const float *restrict fr, const f
     for (int k = 0; k < n; ++k) o[3 * k] = fr[k], o[3 * k + 1] = fg[k], o[3 * k + 2] = fb[k];
 }
 
+/* 1 if two buffers share a byte. */
+static int overlap(const Py_buffer *a, const Py_buffer *b)
+{
+    uintptr_t p = (uintptr_t)a->buf, q = (uintptr_t)b->buf;
+    return p < q + (uintptr_t)b->len && q < p + (uintptr_t)a->len;
+}
+
 static void *eval_rows(void *arg)
 {
     eval_range *r = arg;
@@ -184,8 +213,22 @@ static void *eval_rows(void *arg)
     float fr[CHUNK], fg[CHUNK], fb[CHUNK];
     float *out = a->out.buf;
     r->status = ABRDF_OK;
+    /* (out over wi or wo, which only the module function allows, takes the layout: the
+     * library's rows may not overlap its output) */
+    int f32 = a->wi_kind == ABRDF_PY_F32 && a->wo_kind == ABRDF_PY_F32 &&
+              !overlap(&a->out, &a->wi) && !overlap(&a->out, &a->wo);
     for (Py_ssize_t start = r->start; start < r->end && r->status == ABRDF_OK; start += CHUNK) {
         int n = r->end - start < CHUNK ? (int)(r->end - start) : CHUNK;
+        if (f32) {
+            /* float rows straight into the library's loops; the rows, now in cache, are then
+             * tested, and a chunk with a row that is not unit is done again below (the same
+             * values as a unit chunk through the layout: load leaves unit rows as they are) */
+            const float *pi = (const float *)a->wi.buf + 3 * start;
+            const float *po = (const float *)a->wo.buf + 3 * start;
+            r->status = abrdf_eval_prepared_rows(r->prep, (size_t)n, pi, po, out + 3 * start);
+            if (r->status != ABRDF_OK) break;
+            if (unit_rows(pi, po, n)) continue;
+        }
         load(a->wi.buf, a->wi_kind, start, n, ix, iy, iz);
         load(a->wo.buf, a->wo_kind, start, n, ox, oy, oz);
         abrdf_batch b = {(size_t)n, ix, iy, iz, ox, oy, oz, fr, fg, fb};
@@ -353,7 +396,8 @@ PyMethodDef abrdf_py_eval_methods[] = {
     {"eval_float", py_eval_float, METH_VARARGS,
      "eval_float(params, wi, wo, out, threads=0) -> None: f_r of every row pair (params: a "
      "Params or a Table) by the float "
-     "batch path (abrdf_eval_prepared_batch) into out; wi, wo: C-contiguous (N, 3) float32 or "
+     "batch path (abrdf_eval_prepared_rows on unit float32 rows, else "
+     "abrdf_eval_prepared_batch) into out; wi, wo: C-contiguous (N, 3) float32 or "
      "float64 local-frame directions (normalised here); out: writable (N, 3) float32; threads: "
      "0 = one per usable core for large arrays (32768 rows or more per thread), else that "
      "many (at most 64). "

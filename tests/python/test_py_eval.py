@@ -112,6 +112,32 @@ def test_threads_give_the_same_result_as_one():
             b.eval(wi[:4], wo[:4], threads=bad)
 
 
+# unit float32 rows go to abrdf_eval_prepared_rows as they are; float64 rows, and a chunk (256
+# rows) with a row that is not unit, are laid out and normalised for abrdf_eval_prepared_batch
+@pytest.mark.parametrize("model", [m.name for m in abrdf.models() if "table" not in m.needs])
+def test_float32_rows_give_the_layouts_values(model):
+    """The same values bit for bit whichever way the rows go: unit float32 rows (straight into
+    the library's loops) against the same numbers as float64 rows (laid out and normalised),
+    with one chunk holding a row of length 2 and one a zero row, and a last partial chunk."""
+    n = 2 * 256 + 45
+    wi, wo = directions(n, 7).astype(np.float32), directions(n, 8).astype(np.float32)
+    wi[0, 2] = -wi[0, 2]  # below the surface: 0 both ways
+    wi[300] *= 2.0
+    wo[400] = 0.0
+    b = abrdf.BRDF(model)
+    f32 = b.eval(wi, wo, threads=1)
+    f64 = b.eval(wi.astype(np.float64), wo.astype(np.float64), threads=1)
+    np.testing.assert_array_equal(f32, f64)
+    assert np.any(f32 > 0)
+    # the module function may write over its input: then the rows are laid out first
+    w = wi.copy()
+    _abrdf.eval_float(b.block, w, wo, w, 1)
+    np.testing.assert_array_equal(w, f32)
+    # the row of length 2 gives what its unit row gives
+    unit = b.eval(wi[300] / np.float32(2.0), wo[300])
+    np.testing.assert_array_equal(f32[300], unit)
+
+
 def test_errors_carry_the_librarys_message():
     with pytest.raises(abrdf.Error) as e:
         abrdf.BRDF("f_2e", n=0.5)  # inside n's own range, outside f_2e's

@@ -5,10 +5,10 @@ In one process, interleaved round by round (the median of ROUNDS rounds is repor
   C batch    abrdf_eval_batch alone on structure-of-arrays copies of the directions, timed
              inside the extension module (abrdf._abrdf._time_eval_batch);
   binding    abrdf.BRDF.eval(wi, wo, threads=1): NumPy in, NumPy out (shape checks,
-             broadcasting, conversion to C-contiguous rows, the GIL released around the C loop,
-             which lays the rows out in chunks and normalises them for
-             abrdf_eval_prepared_batch); one thread, as the C column (the binding's threads for
-             large arrays: tools/bench/peer_mitsuba.py);
+             broadcasting, conversion to C-contiguous rows, the GIL released around the C loop:
+             unit float32 rows straight into abrdf_eval_prepared_rows, other rows laid out in
+             chunks and normalised for abrdf_eval_prepared_batch); one thread, as the C column
+             (the binding's threads for large arrays: tools/bench/peer_mitsuba.py);
   raw        abrdf._abrdf.eval_float on ready float32 rows and a preallocated output: the C
              binding without the package's Python layer.
 Per call: one direction pair (the binding's fixed cost). Per element: N pairs, float64 rows

@@ -260,6 +260,19 @@ int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const abrdf_batch 
     return ABRDF_OK;
 }
 
+int abrdf_eval_prepared_rows(const abrdf_prepared *prepared, size_t count, const float *wi,
+                             const float *wo, float *f)
+{
+    if (!prepared || (count && (!wi || !wo || !f))) return ABRDF_E_NULL;
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
+    if (!pr) {
+        for (size_t i = 0; i < 3 * count; ++i) f[i] = 0.0f;
+        return ABRDF_E_MODEL;
+    }
+    abrdf__eval_prepared_rows(pr, count, wi, wo, f);
+    return ABRDF_OK;
+}
+
 int abrdf_eval_batch(abrdf_model model, const abrdf_params *params, const abrdf_batch *b)
 {
     if (!params || !b) return ABRDF_E_NULL;

@@ -68,8 +68,9 @@ const char *abrdf__isa_name(int level)
 /* THE GENERATED NAMES. ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, L) defines batch_<KERNEL>_<L>, the
  * batch loop of kernel KERNEL at instruction-set level L, for every model of
  * ABRDF__KERNEL_MODELS and every level of ABRDF__ISA_LEVELS: batch_k_f8_2 is k_f8's loop at
- * level 2, batch_k_lambert_0 is k_lambert's at level 0 (the only level off x86). They are the
- * only generated function names of the library; ABRDF__BATCH_CASE_ISA calls them. */
+ * level 2, batch_k_lambert_0 is k_lambert's at level 0 (the only level off x86). With the
+ * rows_<KERNEL>_<L> below (ABRDF__ROWS_LOOP_ISA) they are the only generated function names
+ * of the library; ABRDF__BATCH_CASE_ISA and ABRDF__ROWS_CASE_ISA call them. */
 #define ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, L)                                                     \
     ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void batch_##KERNEL##_##L(ABRDF__BATCH_ARGS)        \
     {                                                                                              \
@@ -79,14 +80,50 @@ const char *abrdf__isa_name(int level)
             ABRDF__STORE_##FORM(KERNEL, i, fr, fg, fb);                                            \
         }                                                                                          \
     }
+/* ABRDF__ROWS_LOOP_ISA(KERNEL, FORM, L) defines rows_<KERNEL>_<L>, the same kernel over
+ * interleaved rows (abrdf_eval_prepared_rows: x, y, z of a pair's directions in, r, g, b out)
+ * for a multiple of ROWS_VEC pairs. The rows are laid out ROWS_VEC at a time in registers'
+ * worth of stack, so they are read from memory while the previous pairs are evaluated (a
+ * pass of its own over arrays out of cache would stall on them). ROWS_VEC is two AVX-512
+ * vectors: short enough for that overlap, long enough that GCC keeps the three inner loops
+ * as vector loops (at 16 it unrolls them into scalar shuffles, 4x slower). */
+#define ABRDF__ROWS_VEC 32
+#define ABRDF__ROWS_ARGS                                                                           \
+    const abrdf__kp *restrict k, size_t n, const float *restrict wi, const float *restrict wo,     \
+        float *restrict f
+#define ABRDF__ROWS_LOOP_ISA(KERNEL, FORM, L)                                                      \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void rows_##KERNEL##_##L(ABRDF__ROWS_ARGS)          \
+    {                                                                                              \
+        for (size_t s = 0; s < n; s += ABRDF__ROWS_VEC) {                                          \
+            const float *pi = wi + 3 * s, *po = wo + 3 * s;                                        \
+            float *pf = f + 3 * s;                                                                 \
+            float d[9][ABRDF__ROWS_VEC]; /* wi x y z, wo x y z, f r g b */                         \
+            for (int j = 0; j < ABRDF__ROWS_VEC; ++j) {                                            \
+                d[0][j] = pi[3 * j], d[1][j] = pi[3 * j + 1], d[2][j] = pi[3 * j + 2];             \
+                d[3][j] = po[3 * j], d[4][j] = po[3 * j + 1], d[5][j] = po[3 * j + 2];             \
+            }                                                                                      \
+            for (int j = 0; j < ABRDF__ROWS_VEC; ++j) {                                            \
+                abrdf__geo g;                                                                      \
+                geo_make(&g, d[0][j], d[1][j], d[2][j], d[3][j], d[4][j], d[5][j]);                \
+                ABRDF__STORE_##FORM(KERNEL, j, d[6], d[7], d[8]);                                  \
+            }                                                                                      \
+            for (int j = 0; j < ABRDF__ROWS_VEC; ++j)                                              \
+                pf[3 * j] = d[6][j], pf[3 * j + 1] = d[7][j], pf[3 * j + 2] = d[8][j];             \
+        }                                                                                          \
+    }
 #if ABRDF__ISA_X86
 #define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL, FORM)                                                 \
     ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, 0)                                                         \
     ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, 1) ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, 2)
+#define ABRDF__ROWS_LOOP(ID, SETUP, KERNEL, FORM)                                                  \
+    ABRDF__ROWS_LOOP_ISA(KERNEL, FORM, 0)                                                          \
+    ABRDF__ROWS_LOOP_ISA(KERNEL, FORM, 1) ABRDF__ROWS_LOOP_ISA(KERNEL, FORM, 2)
 #else
 #define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL, FORM) ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, 0)
+#define ABRDF__ROWS_LOOP(ID, SETUP, KERNEL, FORM) ABRDF__ROWS_LOOP_ISA(KERNEL, FORM, 0)
 #endif
 ABRDF__KERNEL_MODELS(ABRDF__BATCH_LOOP)
+ABRDF__KERNEL_MODELS(ABRDF__ROWS_LOOP)
 
 #define ABRDF__SETUP_CASE(ID, SETUP, KERNEL, FORM)                                                 \
     case ID: SETUP(&pr->kf, &pr->params); break;
@@ -195,4 +232,59 @@ int abrdf__eval_prepared_f_isa(const abrdf__prep *pr, const abrdf_batch *b, int 
 void abrdf__eval_prepared_f(const abrdf__prep *pr, const abrdf_batch *b)
 {
     abrdf__eval_prepared_f_isa(pr, b, abrdf__isa_best());
+}
+
+/* abrdf_eval_prepared_rows at a given level: the closed-form models' rows loops on the
+ * multiple of ROWS_VEC pairs, and the rest (the last pairs; every pair of a measured table or
+ * a double-only model) through the batch path, ROWS_BLOCK pairs at a time laid out on the
+ * stack (9 KiB). Every pair's value is the batch path's, bit for bit (tests/unit/test_rows.c). */
+#define ABRDF__ROWS_BLOCK 256
+#define ABRDF__ROWS_CASE_ISA(ID, KERNEL, L)                                                        \
+    case ID:                                                                                       \
+        done = n - n % ABRDF__ROWS_VEC;                                                            \
+        rows_##KERNEL##_##L(&pr->kf, done, wi, wo, f);                                             \
+        break;
+#define ABRDF__ROWS_CASE_0(ID, SETUP, KERNEL, FORM) ABRDF__ROWS_CASE_ISA(ID, KERNEL, 0)
+#define ABRDF__ROWS_CASE_1(ID, SETUP, KERNEL, FORM) ABRDF__ROWS_CASE_ISA(ID, KERNEL, 1)
+#define ABRDF__ROWS_CASE_2(ID, SETUP, KERNEL, FORM) ABRDF__ROWS_CASE_ISA(ID, KERNEL, 2)
+#define ABRDF__ROWS_SWITCH(L)                                                                      \
+    case L:                                                                                        \
+        switch (pr->model) {                                                                       \
+            ABRDF__KERNEL_MODELS(ABRDF__ROWS_CASE_##L)                                             \
+        default: break;                                                                            \
+        }                                                                                          \
+        break;
+
+int abrdf__eval_prepared_rows_isa(const abrdf__prep *pr, size_t n, const float *wi, const float *wo,
+                                  float *f, int level)
+{
+    if (level < 0 || level > abrdf__isa_best()) return -1;
+    size_t done = 0;
+    if (pr->model != ABRDF_MEASURED && !abrdf__is_double_only(pr->model)) {
+        switch (level) {
+            ABRDF__ISA_LEVELS(ABRDF__ROWS_SWITCH)
+        default: break;
+        }
+    }
+    float d[9][ABRDF__ROWS_BLOCK];
+    for (size_t start = done; start < n; start += ABRDF__ROWS_BLOCK) {
+        size_t m = n - start < ABRDF__ROWS_BLOCK ? n - start : ABRDF__ROWS_BLOCK;
+        const float *pi = wi + 3 * start, *po = wo + 3 * start;
+        float *pf = f + 3 * start;
+        for (size_t j = 0; j < m; ++j) {
+            d[0][j] = pi[3 * j], d[1][j] = pi[3 * j + 1], d[2][j] = pi[3 * j + 2];
+            d[3][j] = po[3 * j], d[4][j] = po[3 * j + 1], d[5][j] = po[3 * j + 2];
+        }
+        abrdf_batch b = {m, d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8]};
+        abrdf__eval_prepared_f_isa(pr, &b, level);
+        for (size_t j = 0; j < m; ++j)
+            pf[3 * j] = d[6][j], pf[3 * j + 1] = d[7][j], pf[3 * j + 2] = d[8][j];
+    }
+    return 0;
+}
+
+void abrdf__eval_prepared_rows(const abrdf__prep *pr, size_t n, const float *wi, const float *wo,
+                               float *f)
+{
+    abrdf__eval_prepared_rows_isa(pr, n, wi, wo, f, abrdf__isa_best());
 }

@@ -102,6 +102,11 @@ void abrdf__eval_prepared_f(const abrdf__prep *pr, const abrdf_batch *b);
 int abrdf__isa_best(void);
 const char *abrdf__isa_name(int level);
 int abrdf__eval_prepared_f_isa(const abrdf__prep *pr, const abrdf_batch *b, int level);
+/* The same over interleaved rows (abrdf_eval_prepared_rows), bit for bit the batch's values. */
+void abrdf__eval_prepared_rows(const abrdf__prep *pr, size_t n, const float *wi, const float *wo,
+                               float *f);
+int abrdf__eval_prepared_rows_isa(const abrdf__prep *pr, size_t n, const float *wi, const float *wo,
+                                  float *f, int level);
 
 /* Special-surface models (special.c), from their prepared setup: f = 0 for another model. */
 void abrdf__eval_special_prepared(const abrdf__prep *pr, const double wi[3], const double wo[3],

@@ -1,0 +1,157 @@
+/* test_rows.c - abrdf_eval_prepared_rows (interleaved rows) against abrdf_eval_prepared_batch
+ * (structure of arrays): the same values bit for bit, for every model (a measured table too),
+ * at every instruction-set level this CPU runs, for counts around the loops' block sizes
+ * (32 pairs a vector block, 256 a stack block); degenerate and non-finite rows included; the
+ * status codes of bad calls. */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "abrdf.h"
+#include "abrdf_internal.h"
+#include "measured_cases.h"
+#include "prepared.h"
+#include "test_grid.h"
+#include "test_util.h"
+
+#define MAXN 600 /* more than two stack blocks */
+
+static float wi[3 * MAXN], wo[3 * MAXN], rows[3 * MAXN + 3]; /* one row more: untouched */
+static float ix[MAXN], iy[MAXN], iz[MAXN], ox[MAXN], oy[MAXN], oz[MAXN], fr[MAXN], fg[MAXN],
+    fb[MAXN];
+
+/* n pairs: unit directions over the whole sphere (a third below the horizon), runs of pairs
+ * sharing wo (the lights of one shading point, which huang groups) that straddle the block
+ * edges, and a few degenerate rows: zero, NaN, Inf, tiny, not unit. */
+static void make_pairs(int n)
+{
+    tg_rng rng = {777};
+    double o[3] = {0, 0, 1};
+    for (int k = 0; k < n; ++k) {
+        double i[3];
+        tg_sphere(&rng, i);
+        if (k % 5 == 0) tg_hemisphere(&rng, o); /* a new view every 5 pairs */
+        for (int c = 0; c < 3; ++c) wi[3 * k + c] = (float)i[c], wo[3 * k + c] = (float)o[c];
+    }
+    static const float odd[][3] = {{0, 0, 0},      {NAN, 0, 1},        {0, INFINITY, 1},
+                                   {0, 0, 1e-30f}, {0.3f, 0.2f, 2.0f}, {0, 0, -1}};
+    int n_odd = (int)(sizeof odd / sizeof odd[0]);
+    for (int j = 0; j < n_odd && 7 * j + 3 < n; ++j) {
+        memcpy(wi + 3 * (7 * j + 3), odd[j], sizeof odd[j]);
+        memcpy(wo + 3 * (7 * j + 5 < n ? 7 * j + 5 : 7 * j + 3), odd[n_odd - 1 - j], sizeof odd[j]);
+    }
+    for (int k = 0; k < n; ++k) {
+        ix[k] = wi[3 * k], iy[k] = wi[3 * k + 1], iz[k] = wi[3 * k + 2];
+        ox[k] = wo[3 * k], oy[k] = wo[3 * k + 1], oz[k] = wo[3 * k + 2];
+    }
+}
+
+/* rows against batch for a prepared model at every level, for every count; returns the
+ * number of differing values (0 expected). */
+static long compare(const abrdf_prepared *pr, const char *name)
+{
+    static const int counts[] = {0, 1, 31, 32, 33, 64, 255, 256, 257, 300, 513, MAXN};
+    const abrdf__prep *p = abrdf__prep_of(pr);
+    ck_assert_ptr_nonnull(p);
+    long differ = 0;
+    for (int level = 0; level <= abrdf__isa_best(); ++level) {
+        for (size_t c = 0; c < sizeof counts / sizeof counts[0]; ++c) {
+            int n = counts[c];
+            make_pairs(n);
+            abrdf_batch b = {(size_t)n, ix, iy, iz, ox, oy, oz, fr, fg, fb};
+            ck_assert_int_eq(abrdf__eval_prepared_f_isa(p, &b, level), 0);
+            memset(rows, 0xff, sizeof rows); /* NaN: every value must be written */
+            ck_assert_int_eq(abrdf__eval_prepared_rows_isa(p, (size_t)n, wi, wo, rows, level), 0);
+            for (int k = 0; k < n; ++k) {
+                float want[3] = {fr[k], fg[k], fb[k]};
+                if (memcmp(want, rows + 3 * k, sizeof want) == 0) continue;
+                if (differ++ < 5)
+                    printf("ROWS %s (%s) n=%d pair %d: rows (%.9g %.9g %.9g) batch (%.9g %.9g "
+                           "%.9g)\n",
+                           name, abrdf__isa_name(level), n, k, rows[3 * k], rows[3 * k + 1],
+                           rows[3 * k + 2], want[0], want[1], want[2]);
+            }
+            ck_assert(isnan(rows[3 * n])); /* nothing written past the last row */
+        }
+    }
+    return differ;
+}
+
+START_TEST(rows_equal_batch_every_model)
+{
+    static tg_set sets[2];
+    long differ = 0;
+    int models = 0;
+    for (int mi = 0; mi < abrdf_model_count(); ++mi) {
+        const abrdf_model_info *m = tu_param_model(mi);
+        if (!m) continue;
+        int ns = tg_param_sets(m->id, TG_TYPICAL, sets, 2);
+        for (int s = 0; s < ns; ++s) {
+            abrdf_prepared pr;
+            ck_assert_int_eq(abrdf_prepare(m->id, &sets[s].p, &pr), ABRDF_OK);
+            differ += compare(&pr, m->name);
+        }
+        ++models;
+    }
+    printf("rows == batch: %d models, %ld values differ\n", models, differ);
+    ck_assert_msg(differ == 0, "%ld values of abrdf_eval_prepared_rows differ from the batch",
+                  differ);
+}
+END_TEST
+
+START_TEST(rows_equal_batch_measured)
+{
+    abrdf_params p;
+    abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
+    p.r = 0.3;
+    mc_table t;
+    mc_table_of(&t, 16, 12, 24, ABRDF_LAMBERT, ABRDF_DISNEY_SPECULAR, &p);
+    abrdf_prepared pr;
+    ck_assert_int_eq(abrdf_prepare_measured(&t.desc, &pr), ABRDF_OK);
+    ck_assert_int_eq(compare(&pr, "measured"), 0);
+    free(t.data);
+}
+END_TEST
+
+/* The public call runs the best level: the batch's values, and its status codes. */
+START_TEST(rows_public_call)
+{
+    abrdf_params p;
+    abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
+    abrdf_prepared pr;
+    ck_assert_int_eq(abrdf_prepare(ABRDF_DISNEY_SPECULAR, &p, &pr), ABRDF_OK);
+    make_pairs(MAXN);
+    abrdf_batch b = {MAXN, ix, iy, iz, ox, oy, oz, fr, fg, fb};
+    ck_assert_int_eq(abrdf_eval_prepared_batch(&pr, &b), ABRDF_OK);
+    ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, MAXN, wi, wo, rows), ABRDF_OK);
+    for (int k = 0; k < MAXN; ++k) {
+        float want[3] = {fr[k], fg[k], fb[k]};
+        ck_assert(memcmp(want, rows + 3 * k, sizeof want) == 0);
+    }
+    ck_assert_int_eq(abrdf_eval_prepared_rows(NULL, 1, wi, wo, rows), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 1, NULL, wo, rows), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 1, wi, NULL, rows), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 1, wi, wo, NULL), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 0, NULL, NULL, NULL), ABRDF_OK);
+    /* an object abrdf_prepare never filled: ABRDF_E_MODEL and f = 0 */
+    abrdf_prepared junk;
+    memset(&junk, 0xa5, sizeof junk);
+    rows[0] = rows[1] = rows[2] = 1.0f;
+    ck_assert_int_eq(abrdf_eval_prepared_rows(&junk, 1, wi, wo, rows), ABRDF_E_MODEL);
+    ck_assert(rows[0] == 0.0f && rows[1] == 0.0f && rows[2] == 0.0f);
+}
+END_TEST
+
+int main(void)
+{
+    Suite *s = suite_create("rows");
+    TCase *tc = tcase_create("rows");
+    tcase_set_timeout(tc, 120);
+    tcase_add_test(tc, rows_equal_batch_every_model);
+    tcase_add_test(tc, rows_equal_batch_measured);
+    tcase_add_test(tc, rows_public_call);
+    suite_add_tcase(s, tc);
+    return tu_run(s);
+}
