@@ -20,6 +20,7 @@
  *   abrdf__kp      the prepared parameters: abrdf__kp_d or abrdf__kp_f (prepared.h)
  *   abrdf__geo     the local-frame geometry
  *   batch_k_f8_1   the batch loop of k_f8 at instruction-set level 1 (eval_float.c)
+ *   scalar_k_f8    the double scalar evaluation of k_f8, one pair (eval_double.c)
  *
  * Provides, in the translation unit's precision:
  *   abrdf__real, ABRDF__K(x)  the real type and the constant x in it
