@@ -94,6 +94,48 @@ END_TEST
 
 /* abrdf_eval_prepared_unit against abrdf_eval_prepared for model m with parameters p on
  * wi, wo: within rel (hair and layered models: the same bits). Counts same-bit results. */
+/* The prepared object carries the choice of its model's evaluation: objects of every model,
+ * byte-copied in reverse order into other memory with the originals overwritten, evaluate
+ * as abrdf_eval of their own model (abrdf_eval_prepared bit for bit, the unit entry up to
+ * rounding), and give 0 for a back-facing pair. */
+START_TEST(copies_keep_their_model)
+{
+    enum { N = ABRDF_MODEL_COUNT };
+    abrdf_prepared *orig = malloc(N * sizeof *orig), *copy = malloc(N * sizeof *copy);
+    abrdf_params *par = malloc(N * sizeof *par);
+    ck_assert(orig && copy && par);
+    int ids[N], n = 0;
+    for (int mi = 0; mi < abrdf_model_count() && mi < N; ++mi) {
+        if (!tu_param_model(mi)) continue;
+        abrdf_params_init((abrdf_model)mi, &par[n]);
+        ck_assert_int_eq(abrdf_prepare((abrdf_model)mi, &par[n], &orig[n]), ABRDF_OK);
+        ids[n++] = mi;
+    }
+    ck_assert_int_gt(n, 20);
+    for (int k = 0; k < n; ++k) memcpy(&copy[n - 1 - k], &orig[k], sizeof orig[k]);
+    memset(orig, 0xff, (size_t)n * sizeof *orig);
+    const double s = 1.0 / sqrt(3.0);
+    const double wi[3] = {0.6, 0.0, 0.8}, wo[3] = {-s, s, s}, back[3] = {0.0, 0.6, -0.8};
+    for (int k = 0; k < n; ++k) {
+        const abrdf_prepared *c = &copy[n - 1 - k];
+        ck_assert_int_eq(abrdf_prepared_model(c), ids[k]);
+        double want[3], got[3], got_u[3], zero[3];
+        ck_assert_int_eq(abrdf_eval((abrdf_model)ids[k], &par[k], NULL, wi, wo, want), ABRDF_OK);
+        ck_assert_int_eq(abrdf_eval_prepared(c, NULL, wi, wo, got), ABRDF_OK);
+        ck_assert_int_eq(abrdf_eval_prepared_unit(c, wi, wo, got_u), ABRDF_OK);
+        ck_assert_msg(memcmp(want, got, sizeof want) == 0, "%s", abrdf_model_get(ids[k])->name);
+        for (int ch = 0; ch < 3; ++ch) /* the unit entry: up to rounding (abrdf.h) */
+            ck_assert_msg(fabs(got_u[ch] - want[ch]) <= 1e-12 * want[ch], "%s",
+                          abrdf_model_get(ids[k])->name);
+        ck_assert_int_eq(abrdf_eval_prepared_unit(c, back, wo, zero), ABRDF_OK);
+        ck_assert(zero[0] == 0.0 && zero[1] == 0.0 && zero[2] == 0.0);
+    }
+    free(orig);
+    free(copy);
+    free(par);
+}
+END_TEST
+
 static void unit_vs_prepared(abrdf_model m, const abrdf_params *p, const double wi[3],
                              const double wo[3], double rel, long *compared, long *exact)
 {
@@ -243,6 +285,7 @@ static Suite *suite(void)
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, layout_is_frozen);
     tcase_add_test(tc, owns_a_copy_of_its_parameters);
+    tcase_add_test(tc, copies_keep_their_model);
     tcase_add_test(tc, not_prepared_evaluates_to_zero);
     tcase_add_test(tc, unit_entry_is_the_prepared_value);
     tcase_add_test(tc, special_models_keep_their_values);

@@ -71,6 +71,7 @@ void abrdf__prep_make(abrdf__prep *pr, abrdf_model model, const abrdf_params *p,
     pr->model = model;
     pr->params = *p;
     pr->params.struct_size = sizeof(abrdf_params);
+    abrdf__prep_set_eval(pr);
     if (abrdf__is_double_only(model)) {
         abrdf__prep_setup_special(pr, what);
         return;
@@ -130,6 +131,7 @@ int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared *prepared
         return ABRDF_E_TABLE;
     abrdf__prep *pr = (abrdf__prep *)(void *)prepared;
     pr->model = ABRDF_MEASURED;
+    abrdf__prep_set_eval(pr);
     abrdf_params_init(ABRDF_MEASURED, &pr->params);
     abrdf__measured_setup(table, &pr->special.measured);
     pr->magic = ABRDF__PREP_MAGIC;
@@ -216,10 +218,8 @@ int abrdf_eval_prepared_unit(const abrdf_prepared *prepared, const double wi[3],
     /* NaN and infinities fail the comparisons and take the checked path; huang normalises
      * every direction, the other models take unit ones as given (direction_special) */
     if (fabs(abrdf__dot3(wi, wi) - 1.0) <= UNIT_LEN2_TOL &&
-        fabs(abrdf__dot3(wo, wo) - 1.0) <= UNIT_LEN2_TOL && pr->model != ABRDF_HUANG) {
-        abrdf__eval_prepared_d(pr, wi, wo, f);
-        return ABRDF_OK;
-    }
+        fabs(abrdf__dot3(wo, wo) - 1.0) <= UNIT_LEN2_TOL && pr->model != ABRDF_HUANG)
+        return pr->eval_d(pr, wi, wo, f); /* ABRDF_OK, and a tail call */
     f[0] = f[1] = f[2] = 0.0;
     return eval_prep(pr, NULL, wi, wo, f);
 }

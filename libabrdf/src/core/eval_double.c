@@ -1,5 +1,7 @@
 /* eval_double.c - the double-precision scalar reference path: the closed-form models' setups
- * in double and their kernels, one direction pair per call. */
+ * in double and their evaluations, one direction pair per call. */
+#include <float.h>
+
 #include "k_dispatch.h"
 #include "prepared.h"
 
@@ -14,28 +16,62 @@ void abrdf__prep_setup_d(abrdf__prep *pr)
     }
 }
 
-/* One case per model, each making the geometry itself: with geo_make inlined into the case,
- * the compiler drops what that model's kernel does not read (a Lambert term needs only the
- * two cosines, not the half vector's square root and division), so a per-sample call costs
- * what its model reads. */
-#define ABRDF__EVAL_CASE(ID, SETUP, KERNEL, FORM)                                                  \
-    case ID:                                                                                       \
-        geo_make(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);                                    \
-        if (geo_front(&g)) KERNEL(&pr->kd, &g, v);                                                 \
-        break;
+/* A result that is not a finite non-negative number is a bug, but it must never reach the
+ * caller (abrdf.h promise). finite_or_zero per channel, with one test for the usual case:
+ * three numbers >= 0 whose sum is <= DBL_MAX are each finite (NaN fails a compare), and
+ * finite_or_zero returns such a number unchanged; anything else is guarded per channel. */
+static inline void guard_out(const double v[3], double f[3])
+{
+    if (v[0] >= 0.0 && v[1] >= 0.0 && v[2] >= 0.0 && v[0] + v[1] + v[2] <= DBL_MAX) {
+        f[0] = v[0];
+        f[1] = v[1];
+        f[2] = v[2];
+        return;
+    }
+    for (int c = 0; c < 3; ++c) f[c] = finite_or_zero(v[c]);
+}
 
-void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const double wo[3],
-                            double f[3])
+/* THE GENERATED NAMES. ABRDF__SCALAR_FN defines scalar_<KERNEL>, the double scalar evaluation
+ * of kernel KERNEL, for every model of ABRDF__KERNEL_MODELS (scalar_k_lambert is lambert's);
+ * abrdf__prep_set_eval stores it in the prepared object. Each makes its own geometry: with
+ * geo_make inlined, the compiler drops what that model's kernel does not read (a Lambert
+ * term needs only the signs of the two cosines, not the half vector's square root and
+ * division), so a per-sample call costs what its model reads. It returns ABRDF_OK so that a
+ * public entry point can end in a tail call. */
+#define ABRDF__SCALAR_FN(ID, SETUP, KERNEL, FORM)                                                  \
+    static int scalar_##KERNEL(const abrdf__prep *pr, const double wi[3], const double wo[3],      \
+                               double f[3])                                                        \
+    {                                                                                              \
+        abrdf__geo g;                                                                              \
+        geo_make(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);                                    \
+        if (!geo_front(&g)) {                                                                      \
+            f[0] = f[1] = f[2] = 0.0;                                                              \
+            return ABRDF_OK;                                                                       \
+        }                                                                                          \
+        double v[3];                                                                               \
+        KERNEL(&pr->kd, &g, v);                                                                    \
+        guard_out(v, f);                                                                           \
+        return ABRDF_OK;                                                                           \
+    }
+ABRDF__KERNEL_MODELS(ABRDF__SCALAR_FN)
+
+/* The double-only models (hair, layered, measured): special.c. */
+static int scalar_special(const abrdf__prep *pr, const double wi[3], const double wo[3],
+                          double f[3])
 {
     double v[3] = {0.0, 0.0, 0.0};
-    abrdf__geo g;
+    abrdf__eval_special_prepared(pr, wi, wo, v);
+    guard_out(v, f);
+    return ABRDF_OK;
+}
+
+#define ABRDF__SCALAR_CASE(ID, SETUP, KERNEL, FORM)                                                \
+    case ID: pr->eval_d = scalar_##KERNEL; break;
+
+void abrdf__prep_set_eval(abrdf__prep *pr)
+{
     switch (pr->model) {
-        ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
-    default: /* the double-only models (hair, layered): special.c */
-        abrdf__eval_special_prepared(pr, wi, wo, v);
-        break;
+        ABRDF__KERNEL_MODELS(ABRDF__SCALAR_CASE)
+    default: pr->eval_d = scalar_special; break;
     }
-    /* A result that is not a finite non-negative number is a bug, but it must never reach
-     * the caller (abrdf.h promise). */
-    for (int c = 0; c < 3; ++c) f[c] = finite_or_zero(v[c]);
 }

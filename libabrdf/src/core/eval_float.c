@@ -69,8 +69,9 @@ const char *abrdf__isa_name(int level)
  * batch loop of kernel KERNEL at instruction-set level L, for every model of
  * ABRDF__KERNEL_MODELS and every level of ABRDF__ISA_LEVELS: batch_k_f8_2 is k_f8's loop at
  * level 2, batch_k_lambert_0 is k_lambert's at level 0 (the only level off x86). With the
- * rows_<KERNEL>_<L> below (ABRDF__ROWS_LOOP_ISA) they are the only generated function names
- * of the library; ABRDF__BATCH_CASE_ISA and ABRDF__ROWS_CASE_ISA call them. */
+ * rows_<KERNEL>_<L> below (ABRDF__ROWS_LOOP_ISA) and scalar_<KERNEL> of eval_double.c they
+ * are the only generated function names of the library; ABRDF__BATCH_CASE_ISA and
+ * ABRDF__ROWS_CASE_ISA call them. */
 #define ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, L)                                                     \
     ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void batch_##KERNEL##_##L(ABRDF__BATCH_ARGS)        \
     {                                                                                              \

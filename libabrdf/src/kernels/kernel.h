@@ -20,6 +20,7 @@
  *   abrdf__kp      the prepared parameters: abrdf__kp_d or abrdf__kp_f (prepared.h)
  *   abrdf__geo     the local-frame geometry
  *   batch_k_f8_1   the batch loop of k_f8 at instruction-set level 1 (eval_float.c)
+ *   scalar_k_f8    the double scalar evaluation of k_f8, one pair (eval_double.c)
  *
  * Provides, in the translation unit's precision:
  *   abrdf__real, ABRDF__K(x)  the real type and the constant x in it
@@ -199,10 +200,13 @@ static inline ABRDF__ALWAYS_INLINE void geo_make(abrdf__geo *g, abrdf__real ix, 
     g->rv = clampg(-ix * ox - iy * oy + iz * oz, ABRDF__K(-1), ABRDF__K(1));
 }
 
-/* Both directions strictly above the surface: the only pairs with a non-zero BRDF. */
+/* Both directions strictly above the surface: the only pairs with a non-zero BRDF. The
+ * clamped cosine ci is > 0 exactly when wi's z is (clampg keeps a positive z or lowers it to
+ * 1; z <= 0 and NaN stay <= 0 or fail), so the test reads z and a model that reads no cosine
+ * (lambert) is not made to clamp it. */
 static inline int geo_front(const abrdf__geo *g)
 {
-    return g->ci > ABRDF__K(0) && g->co > ABRDF__K(0);
+    return g->iz > ABRDF__K(0) && g->oz > ABRDF__K(0);
 }
 
 #endif /* ABRDF_KERNEL_H */

@@ -2,8 +2,10 @@
  * reads: the layout behind the public abrdf_prepared's opaque bytes (abrdf.h, "prepared
  * evaluation").
  *
- * A prepared object is plain data: no pointer into itself or to the caller's memory, so a
- * copy (struct assignment, memcpy) is as good as the original, and a const one may be read by
+ * A prepared object is plain data: no pointer into itself or to the caller's memory (its one
+ * pointer is to the library's evaluation of the model, valid in the process that prepared it,
+ * as abrdf.h says of the object), so a copy (struct assignment, memcpy) is as good as the
+ * original, and a const one may be read by
  * any number of threads. It holds the validated parameters in this library's layout, the
  * closed-form kernels' parameters in both precisions (filled by each model's setup, the
  * functions k_dispatch.h lists) and the setup of the models evaluated in double only. Other
@@ -48,12 +50,18 @@ typedef struct abrdf__kp_f {
 #else
 #define ABRDF__MAY_ALIAS
 #endif
+struct abrdf__prep;
+/* The double scalar evaluation of one model (eval_double.c): f_r for unit local-frame wi, wo,
+ * finite and >= 0. Returns ABRDF_OK. */
+typedef int (*abrdf__eval_d_fn)(const struct abrdf__prep *pr, const double wi[3],
+                                const double wo[3], double f[3]);
 typedef struct ABRDF__MAY_ALIAS abrdf__prep {
-    unsigned magic;      /* ABRDF__PREP_MAGIC */
-    abrdf_model model;   /* the prepared model */
-    abrdf_params params; /* the validated parameters, this library's layout (struct_size) */
-    abrdf__kp_d kd;      /* the closed-form kernels' parameters, double (scalar path) */
-    abrdf__kp_f kf;      /* ... float (batch path) */
+    unsigned magic;          /* ABRDF__PREP_MAGIC */
+    abrdf_model model;       /* the prepared model */
+    abrdf__eval_d_fn eval_d; /* its double scalar evaluation, chosen once (abrdf__prep_set_eval) */
+    abrdf_params params;     /* the validated parameters, this library's layout (struct_size) */
+    abrdf__kp_d kd;          /* the closed-form kernels' parameters, double (scalar path) */
+    abrdf__kp_f kf;          /* ... float (batch path) */
     union {
         abrdf__marschner marschner;
         abrdf__huang huang;
@@ -86,10 +94,17 @@ void abrdf__prep_setup_d(abrdf__prep *pr);
 void abrdf__prep_setup_f(abrdf__prep *pr);
 void abrdf__prep_setup_special(abrdf__prep *pr, unsigned what);
 
+/* Choose pr->eval_d for pr->model (eval_double.c): every prepared object gets it, whatever
+ * precisions it was prepared for (the batch path evaluates the double-only models through it). */
+void abrdf__prep_set_eval(abrdf__prep *pr);
+
 /* Local-frame evaluation of a prepared model; wi, wo unit (the scalar path normalises before
- * calling). f is finite and >= 0 (eval_double.c). */
-void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const double wo[3],
-                            double f[3]);
+ * calling). f is finite and >= 0. One indirect call: the model was dispatched at prepare time. */
+static inline void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3],
+                                          const double wo[3], double f[3])
+{
+    pr->eval_d(pr, wi, wo, f);
+}
 /* The float batch (eval_float.c), with the batch loops of the instruction-set level the CPU
  * supports (abrdf__isa_best). */
 void abrdf__eval_prepared_f(const abrdf__prep *pr, const abrdf_batch *b);
