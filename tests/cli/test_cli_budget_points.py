@@ -68,6 +68,21 @@ class Points(unittest.TestCase):
         self.assertIn("prediction: on the sphere", lines[hidden + 1])
         self.assertIn("no point or directional light reaches", lines[hidden + 1])
 
+    def test_sampled_lights_fall_back_to_the_sphere(self):
+        # lit by a sphere and a rectangle light only: no term, the sphere stands in, and its
+        # view takes each light from its centre (a zero direction was an invalid view)
+        with tempfile.TemporaryDirectory() as tmp:
+            scene = os.path.join(tmp, "a.scene")
+            with open(scene, "w") as f:
+                f.write("camera position=0,0,4 look_at=0,0,0 resolution=24,24\n"
+                        "light sphere center=-2,2,2 radius=0.5 intensity=30\n"
+                        "light rect center=2,1,2 u=0,1,0 v=0.7071,0,-0.7071 intensity=10\n"
+                        "material m adaptive budget=slight table=gold\n"
+                        "sphere material=m radius=1\n")
+            out = run(ABRDF, "render", scene, "-o", os.path.join(tmp, "a.exr"), "--no-preview",
+                      "--explain").stdout
+        self.assertIn("prediction: on the sphere", out)
+
     def test_bad_arguments(self):
         p = run(BUDGET_POINTS, SCENE, "--budget", "huge", code=2)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)

@@ -178,16 +178,25 @@ void scene_budget_view(const scene *s, int spp, abrdf_view *v, abrdf_light_dir *
     int n = 0;
     for (int l = 0; l < s->light_count && n < SCENE_MAX_LIGHTS; ++l) {
         const scene_light *L = &s->lights[l];
-        double d[3], d2 = 1.0;
-        if (L->kind == SCENE_LIGHT_POINT) {
+        double d[3], d2 = 1.0, area = 1.0; /* area: a sampled light's radiance -> E at d = 1 */
+        if (L->kind == SCENE_LIGHT_ENVIRONMENT) continue; /* no direction to stand for it */
+        if (L->kind == SCENE_LIGHT_DIRECTIONAL) {
+            memcpy(d, L->direction, sizeof d);
+        } else { /* point, sphere, rectangle: from its centre, over d^2 */
             for (int k = 0; k < 3; ++k) d[k] = L->position[k] - c->look_at[k];
             d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             if (!(d2 > 0.0)) continue;
-        } else {
-            memcpy(d, L->direction, sizeof d);
+        }
+        if (L->kind == SCENE_LIGHT_SPHERE) area = 3.14159265358979323846 * L->radius * L->radius;
+        if (L->kind == SCENE_LIGHT_RECT) { /* its area seen from the target, one-sided */
+            const double *u = L->edge_u, *v = L->edge_v;
+            double nrm[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                             u[0] * v[1] - u[1] * v[0]};
+            area = -(nrm[0] * d[0] + nrm[1] * d[1] + nrm[2] * d[2]) / sqrt(d2);
+            if (!(area > 0.0)) continue; /* the target is behind it */
         }
         memcpy(lights[n].dir, d, sizeof d);
-        for (int k = 0; k < 3; ++k) lights[n].e[k] = L->color[k] * L->intensity / d2;
+        for (int k = 0; k < 3; ++k) lights[n].e[k] = L->color[k] * L->intensity * area / d2;
         ++n;
     }
     v->light_count = n;
@@ -443,15 +452,16 @@ static const abrdf_view *view_for(const scene *s, int i, const scene_points *pts
         snprintf(pred, pred_size, "%s, per value of its roughness map", sph);
         return sphere;
     }
-    if (!scene_points_view(pts, i, own)) {
-        snprintf(pred, pred_size,
-                 "%s: no point or directional light reaches a point of it the camera sees", sph);
-        return sphere;
-    }
     char left[96] = "", every[64] = "every pixel";
     if (pts->sampled_lights)
-        snprintf(left, sizeof left, "; its %d sampled light%s left out", pts->sampled_lights,
-                 pts->sampled_lights > 1 ? "s" : "");
+        snprintf(left, sizeof left, "; the scene's %d sampled light%s left out",
+                 pts->sampled_lights, pts->sampled_lights > 1 ? "s" : "");
+    if (!scene_points_view(pts, i, own)) {
+        snprintf(pred, pred_size,
+                 "%s: no point or directional light reaches a point of it the camera sees%s", sph,
+                 left);
+        return sphere;
+    }
     if (pts->stride[i] > 1)
         snprintf(every, sizeof every, "one pixel in each %d x %d block", pts->stride[i],
                  pts->stride[i]);
