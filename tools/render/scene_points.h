@@ -39,9 +39,9 @@ typedef struct scene_points {
 } scene_points;
 
 /* Trace s's camera at its resolution: the material of every pixel centre, then, for each
- * material, every stride-th pixel's spp camera samples (strata centres) that hit it, with one
- * term per lighting point or directional light, its irradiance divided by spp (the pixel's
- * box filter). Returns 0, or -1 with one line in err (out is then empty). */
+ * material, in every pixel of its stride's grid whose centre sees it, the spp camera samples
+ * (strata centres) that hit it, with one term per lighting point or directional light, its
+ * irradiance divided by spp (the pixel's box filter). Returns 0, or -1 with one line in err (out is then empty). */
 int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, size_t err_size);
 
 /* v (initialised here) as material m's terms: 1, or 0 if m has none (v is then the default
