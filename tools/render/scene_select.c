@@ -1,7 +1,7 @@
 /* scene_select.c - material-table and adaptive scene materials -> explicit models through
- * abrdf_select (the paper's Fig. 2) or its budget mode (abrdf_select_budget, with the
- * scene's lights and camera as the prediction's view). The selection's trace is what
- * --explain prints. */
+ * abrdf_select (the paper's Fig. 2) or its budget mode (abrdf_select_budget, predicted on
+ * each material's own shading points in the scene, scene_points.h, or on a sphere under the
+ * scene's lights and camera). The selection's trace is what --explain prints. */
 #include <math.h>
 #include <string.h>
 
