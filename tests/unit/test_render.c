@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "render.h"
+#include "scene_points.h"
 #include "scene_select.h"
 #include "test_util.h"
 
@@ -463,6 +464,120 @@ START_TEST(unresolvable_materials_are_refused)
 }
 END_TEST
 
+/* A scene's shading points (scene_points.h) are the render's: the prediction on them of a
+ * candidate against a reference is the NMSE of their two renders over the material's
+ * pixels (those whose centre sees it, as budget_points measures), shadows and tangents
+ * included (a single material, no ambient term: nothing the
+ * terms leave out). The occluder above the sphere, outside the camera's view, shadows part
+ * of it from the point light. */
+static const char *points_scene(const char *material)
+{
+    static char text[1024];
+    snprintf(text, sizeof text,
+             "camera position=0,0,6 look_at=0,0,0 fov=25 resolution=24,24\n"
+             "ambient 0\n"
+             "light directional direction=-1,0.5,1 intensity=2\n"
+             "light point position=0.3,6,0.5 intensity=40\n"
+             "material m %s\n"
+             "material o model=lambert kd=0.5\n"
+             "sphere material=m radius=1\n"
+             "box material=o size=1,0.1,1 translate=0,3,0\n",
+             material);
+    return text;
+}
+
+START_TEST(scene_points_predict_the_render)
+{
+    precision = RENDER_DOUBLE;
+    const char *ref = "diffuse=disney_diffuse specular=disney_specular_aniso kd=0.4,0.3,0.2 "
+                      "ks=1 f0=0.04 r=0.35 anisotropic=0.7";
+    const char *cand = "diffuse=lambert specular=blinn_phong kd=0.45,0.3,0.2 ks=0.05 n=40";
+    result a = render_text(points_scene(ref), 4, 1), b = render_text(points_scene(cand), 4, 1);
+    scene s;
+    char err[512];
+    const char *text = points_scene(ref);
+    ck_assert_msg(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
+    scene_points p;
+    ck_assert_msg(scene_points_trace(&s, 4, &p, err, sizeof err) == 0, "%s", err);
+    ck_assert_int_eq(p.width, 24);
+    ck_assert_int_eq(p.spp, 4);
+    ck_assert_int_eq(p.stride[0], 1);
+    ck_assert_int_eq(p.pixels[1], 0); /* the occluder is out of view */
+    double num = 0, den = 0;
+    int covered = 0;
+    for (int q = 0; q < 24 * 24; ++q) {
+        if (p.pixel_material[q] != 0) continue; /* the material's pixels: their centre sees it */
+        ++covered;
+        for (int c = 0; c < 3; ++c) {
+            double d = (double)b.rgb[3 * q + c] - a.rgb[3 * q + c];
+            num += d * d, den += (double)a.rgb[3 * q + c] * a.rgb[3 * q + c];
+        }
+    }
+    ck_assert_int_eq(covered, p.pixels[0]);
+    int shadowed = 0;
+    for (int k = 0; k < p.term_count[0]; ++k) {
+        const abrdf_view_term *t = &p.terms[0][k];
+        ck_assert(fabs(geom_dot(t->n, t->t)) < 1e-12);
+        ck_assert(t->sample >= 0 && t->sample < p.samples[0]);
+        shadowed += t->wi[1] > 0.9; /* the point light, above */
+    }
+    ck_assert_int_lt(shadowed, p.term_count[0] / 2);
+    abrdf_view v;
+    ck_assert(scene_points_view(&p, 0, &v));
+    abrdf_params pr, pc;
+    abrdf_params_init(ABRDF_DISNEY_SPECULAR_ANISO, &pr);
+    pr.kd[0] = 0.4, pr.kd[1] = 0.3, pr.kd[2] = 0.2, pr.r = 0.35, pr.anisotropic = 0.7;
+    for (int c = 0; c < 3; ++c) pr.ks[c] = 1, pr.f0[c] = 0.04;
+    abrdf_params_init(ABRDF_BLINN_PHONG, &pc);
+    pc.kd[0] = 0.45, pc.kd[1] = 0.3, pc.kd[2] = 0.2, pc.n = 40;
+    for (int c = 0; c < 3; ++c) pc.ks[c] = 0.05;
+    size_t size = abrdf_fit_workspace_size(NULL, &v);
+    void *work = malloc(size);
+    double nmse = -1;
+    ck_assert_int_eq(abrdf_predict_nmse(ABRDF_DISNEY_DIFFUSE, ABRDF_DISNEY_SPECULAR_ANISO, &pr,
+                                        ABRDF_LAMBERT, ABRDF_BLINN_PHONG, &pc, &v, &nmse, work,
+                                        size),
+                     ABRDF_OK);
+    ck_assert_msg(nmse > 1e-3, "the candidate must differ: %g", nmse);
+    /* the images are stored in float: 1e-5 of relative rounding */
+    ck_assert_msg(fabs(nmse - num / den) < 1e-5 * (num / den), "points %.9g, image %.9g", nmse,
+                  num / den);
+    free(work);
+    scene_points_free(&p);
+    scene_free(&s);
+    free(a.rgb);
+    free(b.rgb);
+}
+END_TEST
+
+/* A material covering more pixels than SCENE_POINTS_MAX_TERMS allows is sampled on one pixel
+ * of each k x k block; each term carries the light's irradiance over the samples per pixel. */
+START_TEST(scene_points_keep_a_bounded_sample)
+{
+    const char *text = "camera position=0,0,3 look_at=0,0,0 fov=50 resolution=200,200\n"
+                       "light directional direction=0,0,1 intensity=2\n"
+                       "material m diffuse=lambert specular=disney_specular r=0.4\n"
+                       "sphere material=m radius=1\n";
+    scene s;
+    char err[512];
+    ck_assert_msg(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
+    scene_points p;
+    ck_assert_msg(scene_points_trace(&s, 4, &p, err, sizeof err) == 0, "%s", err);
+    ck_assert_int_gt(p.stride[0], 1);
+    double per = (double)p.pixels[0] / ((double)p.stride[0] * p.stride[0]);
+    ck_assert_msg(p.samples[0] > 0.9 * per && p.samples[0] < 1.1 * per + 8, "%d of %g",
+                  p.samples[0], per);
+    ck_assert_int_le(p.term_count[0], SCENE_POINTS_MAX_TERMS * 11 / 10);
+    for (int k = 0; k < p.term_count[0]; ++k) {
+        const abrdf_view_term *t = &p.terms[0][k];
+        for (int c = 0; c < 3; ++c) ck_assert(fabs(t->e[c] - 0.5) < 1e-12);
+        ck_assert(fabs(t->wi[2] - 1.0) < 1e-12);
+    }
+    scene_points_free(&p);
+    scene_free(&s);
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("render");
@@ -476,6 +591,8 @@ static Suite *suite(void)
     tcase_add_loop_test(tv, strata_centres_equal_block_average_of_larger_image, RENDER_FLOAT,
                         RENDER_DOUBLE + 1);
     tcase_add_test(tv, fast_path_within_nmse_1e8_of_double);
+    tcase_add_test(tv, scene_points_predict_the_render);
+    tcase_add_test(tv, scene_points_keep_a_bounded_sample);
     tcase_set_timeout(tv, 300);
     suite_add_tcase(s, tv);
     TCase *tp = tcase_create("plan");

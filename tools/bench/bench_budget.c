@@ -53,6 +53,7 @@ static int variant_scene(int v, int spp, scene *s, double *select_s, char *err, 
     scene_selection how = SCENE_SELECTION_INIT;
     how.forced = 1;
     how.spp = spp;
+    how.points = 1; /* predicted as abrdf render --adaptive --budget predicts */
     if (v != B_PHOTO) {
         how.all.by_budget = 1;
         how.all.max_nmse = abrdf_select_rules_get()->nmse_class_max[v - 1];
@@ -158,8 +159,8 @@ int bench_budget_report(FILE *out, int json, int size, int spp, int reps, int th
         fprintf(out,
                 "Mixed scene %dx%d, %d spp, %d thread(s), median of %d renders per variant "
                 "(interleaved).\nReference: every material by the flowchart's photoreal choice; "
-                "budget: abrdf_select_budget per material,\npredicted on the scene's lights and "
-                "camera (scene_budget_view).\n\n",
+                "budget: abrdf_select_budget per material,\npredicted on its own shading points in "
+                "the scene (scene_points.h), as abrdf render predicts.\n\n",
                 w, h, spp, threads, reps);
         fprintf(out, "%-18s %10s %10s %12s %-12s %10s\n", "variant", "render s", "time/photo",
                 "image NMSE", "class", "select s");

@@ -13,6 +13,7 @@ void scene_choice_init(scene_choice *c)
     c->how = (scene_selection)SCENE_SELECTION_INIT;
     c->how.tables = c->mats;
     c->how.map_range = map_range_read; /* a roughness map's values (map_range.h) */
+    c->how.points = 1;                 /* a budget predicts on the scene's shading points */
 }
 
 int scene_choice_option(scene_choice *c, const char *cmd, int argc, char **argv, int *i)

@@ -502,13 +502,32 @@ static int light_at(const render_scene *rs, int l, const render_hit *h, const do
     return 1;
 }
 
+int render_hit_light(const render_scene *rs, int l, const render_hit *h, double wi[3], double e[3],
+                     render_stats *st)
+{
+    double o[3], w[3];
+    for (int c = 0; c < 3; ++c) o[c] = h->p[c] + rs->eps * h->n[c];
+    if (!light_at(rs, l, h, o, wi, w, st)) return 0;
+    double ci = geom_dot(h->n, wi); /* > 0: light_at lit the point */
+    for (int c = 0; c < 3; ++c) e[c] = w[c] / ci;
+    return 1;
+}
+
+void render_hit_tangent(const render_scene *rs, const render_hit *h, double t[3])
+{
+    const scene_object *so = &rs->src->objects[h->obj];
+    if (so->tangent == SCENE_TANGENT_UV && h->triangle >= 0)
+        geom_tangent_uv(&rs->objects[h->obj], h->triangle, t);
+    else
+        geom_tangent(so, &rs->objects[h->obj].xf, h->p, t);
+}
+
 /* The ambient term, the shadow-ray origin and (for a material with a tangent rule) the
  * shading frame of a hit with material m; 0 if the hit is seen from behind (no direct
  * light). */
 static int hit_begin(const render_scene *rs, const render_material *m, const render_hit *h,
                      double L[3], double o[3], abrdf_frame *frame, render_stats *st)
 {
-    const scene_object *so = &rs->src->objects[h->obj];
     L[0] = L[1] = L[2] = 0;
     if (m->use_ambient || m->full) {
         for (int c = 0; c < 3; ++c) L[c] = m->ambient[c];
@@ -518,10 +537,7 @@ static int hit_begin(const render_scene *rs, const render_material *m, const ren
     for (int c = 0; c < 3; ++c) o[c] = h->p[c] + rs->eps * h->n[c];
     if (m->use_tangent || m->full) {
         double t[3];
-        if (so->tangent == SCENE_TANGENT_UV && h->triangle >= 0)
-            geom_tangent_uv(&rs->objects[h->obj], h->triangle, t);
-        else
-            geom_tangent(so, &rs->objects[h->obj].xf, h->p, t);
+        render_hit_tangent(rs, h, t);
         abrdf_frame_make(h->n, t, frame);
         ++st->tangent_frames;
     }

@@ -19,6 +19,8 @@
  *   render_explain      print the effect plan and the reason for every decision
  *   render_image        render linear RGB into a caller's buffer (threads, deterministic)
  *   render_shade_hits   the radiance of a batch of camera-ray hits (direct light, both precisions)
+ *   render_hit_light    one point or directional light as a hit sees it (direction, irradiance)
+ *   render_hit_tangent  the tangent of a hit by its object's tangent rule
  *   render_precision_name  "double" / "float" for --explain
  *   render_stats_print  print the work counters
  *   render_textures_print  the texture system's statistics (nothing without textures)
@@ -191,6 +193,14 @@ int render_image(const render_scene *rs, const render_options *opt, float *rgb,
  * on the thread count). Separate from ray casting: whatever finds the hits can shade them. */
 void render_shade_hits(const render_scene *rs, const render_options *opt, const render_hit *hits,
                        int count, double (*L)[3], render_shade_scratch *sc, render_stats *st);
+/* Point or directional light l as render_shade_hits lights camera-ray hit h: 1 with the unit
+ * direction wi toward it and e, its irradiance on a surface facing it (E, over d^2 for a
+ * point light; the cosine left out), if it lights h (in front, not shadowed as the plan
+ * says); 0 otherwise and for a sampled light. */
+int render_hit_light(const render_scene *rs, int l, const render_hit *h, double wi[3], double e[3],
+                     render_stats *st);
+/* The tangent of hit h by its object's tangent rule (not orthogonalised against h->n). */
+void render_hit_tangent(const render_scene *rs, const render_hit *h, double t[3]);
 const char *render_precision_name(int precision);
 void render_stats_print(const render_stats *st, FILE *f);
 /* The texture cache's bound and use (OpenImageIO's statistics: peak and current tile memory,

@@ -1,7 +1,7 @@
 /* scene_select.c - material-table and adaptive scene materials -> explicit models through
- * abrdf_select (the paper's Fig. 2) or its budget mode (abrdf_select_budget, with the
- * scene's lights and camera as the prediction's view). The selection's trace is what
- * --explain prints. */
+ * abrdf_select (the paper's Fig. 2) or its budget mode (abrdf_select_budget, predicted on
+ * each material's own shading points in the scene, scene_points.h, or on a sphere under the
+ * scene's lights and camera). The selection's trace is what --explain prints. */
 #include <math.h>
 #include <string.h>
 
@@ -12,6 +12,7 @@
 #include "render.h"
 #include "budget_run.h"
 #include "param_effect.h"
+#include "scene_points.h"
 #include "select_trace.h"
 
 int scene_needs_table(const scene *s)
@@ -177,16 +178,25 @@ void scene_budget_view(const scene *s, int spp, abrdf_view *v, abrdf_light_dir *
     int n = 0;
     for (int l = 0; l < s->light_count && n < SCENE_MAX_LIGHTS; ++l) {
         const scene_light *L = &s->lights[l];
-        double d[3], d2 = 1.0;
-        if (L->kind == SCENE_LIGHT_POINT) {
+        double d[3], d2 = 1.0, area = 1.0; /* area: a sampled light's radiance -> E at d = 1 */
+        if (L->kind == SCENE_LIGHT_ENVIRONMENT) continue; /* no direction to stand for it */
+        if (L->kind == SCENE_LIGHT_DIRECTIONAL) {
+            memcpy(d, L->direction, sizeof d);
+        } else { /* point, sphere, rectangle: from its centre, over d^2 */
             for (int k = 0; k < 3; ++k) d[k] = L->position[k] - c->look_at[k];
             d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             if (!(d2 > 0.0)) continue;
-        } else {
-            memcpy(d, L->direction, sizeof d);
+        }
+        if (L->kind == SCENE_LIGHT_SPHERE) area = 3.14159265358979323846 * L->radius * L->radius;
+        if (L->kind == SCENE_LIGHT_RECT) { /* its area seen from the target, one-sided */
+            const double *u = L->edge_u, *v = L->edge_v;
+            double nrm[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                             u[0] * v[1] - u[1] * v[0]};
+            area = -(nrm[0] * d[0] + nrm[1] * d[1] + nrm[2] * d[2]) / sqrt(d2);
+            if (!(area > 0.0)) continue; /* the target is behind it */
         }
         memcpy(lights[n].dir, d, sizeof d);
-        for (int k = 0; k < 3; ++k) lights[n].e[k] = L->color[k] * L->intensity / d2;
+        for (int k = 0; k < 3; ++k) lights[n].e[k] = L->color[k] * L->intensity * area / d2;
         ++n;
     }
     v->light_count = n;
@@ -252,7 +262,7 @@ static void ambient_of(scene_material *sm, const select_request *rq, const budge
 }
 
 static void explain_choice(FILE *f, const scene_material *sm, const select_request *rq,
-                           const mat_entry *e, const budget_result *c)
+                           const mat_entry *e, const budget_result *c, const char *pred)
 {
     char asked[64];
     if (rq->by_budget)
@@ -264,6 +274,7 @@ static void explain_choice(FILE *f, const scene_material *sm, const select_reque
             e ? ", table entry " : "", e ? e->name : "",
             d != ABRDF_MODEL_NONE ? abrdf_model_get(d)->name : "",
             d != ABRDF_MODEL_NONE ? " + " : "", abrdf_model_get(c->sel.specular)->name);
+    if (rq->by_budget) fprintf(f, "  prediction: %s\n", pred);
     for (int k = 0; k < c->trace.count; ++k)
         fprintf(f, "  %2d. %s\n", k + 1, c->trace.steps[k].text);
 }
@@ -271,8 +282,8 @@ static void explain_choice(FILE *f, const scene_material *sm, const select_reque
 /* The choice over sm's roughness map (pbr_select.h) as rq asks, into sm. 0, or -1 with the
  * reason in msg. */
 static int select_pbr_range(scene_material *sm, const select_request *rq,
-                            const scene_selection *how, const abrdf_view *view, FILE *explain,
-                            char *msg, size_t msg_size)
+                            const scene_selection *how, const abrdf_view *view, const char *pred,
+                            FILE *explain, char *msg, size_t msg_size)
 {
     if (!how->map_range) {
         snprintf(msg, msg_size,
@@ -316,6 +327,7 @@ static int select_pbr_range(scene_material *sm, const select_request *rq,
         fprintf(explain, "selection: material '%s' (line %d), %s over its roughness map: %s%s%s\n",
                 sm->name, sm->line, asked, d != ABRDF_MODEL_NONE ? abrdf_model_get(d)->name : "",
                 d != ABRDF_MODEL_NONE ? " + " : "", abrdf_model_get(sp)->name);
+        if (rq->by_budget) fprintf(explain, "  prediction: %s\n", pred);
         for (int k = 0; k < trace.count; ++k)
             fprintf(explain, "  %2d. %s\n", k + 1, trace.steps[k].text);
     }
@@ -327,15 +339,15 @@ static int select_pbr_range(scene_material *sm, const select_request *rq,
  * abrdf_pbr_material makes of its factors, or, with a roughness map, of each value of the
  * map (select_pbr_range). 0, or -1 with the message in err. */
 static int select_pbr(scene_material *sm, const char *scene_name, const select_request *rq,
-                      const scene_selection *how, const abrdf_view *view, FILE *explain, char *err,
-                      size_t err_size)
+                      const scene_selection *how, const abrdf_view *view, const char *pred,
+                      FILE *explain, char *err, size_t err_size)
 {
     abrdf_material am;
     abrdf_material_init(&am);
     char msg[512];
     budget_result c;
     if (sm->maps[SCENE_MAP_ROUGHNESS].path) {
-        if (select_pbr_range(sm, rq, how, view, explain, msg, sizeof msg)) goto fail;
+        if (select_pbr_range(sm, rq, how, view, pred, explain, msg, sizeof msg)) goto fail;
         return 0;
     }
     if (abrdf_pbr_material(&sm->pbr_in, &am) != ABRDF_OK) {
@@ -350,7 +362,7 @@ static int select_pbr(scene_material *sm, const char *scene_name, const select_r
     sm->lobes[sm->lobe_count++] = c.sel.specular;
     sm->params = c.params;
     ambient_of(sm, rq, &c);
-    if (explain) explain_choice(explain, sm, rq, NULL, &c);
+    if (explain) explain_choice(explain, sm, rq, NULL, &c, pred);
     budget_result_free(&c);
     return 0;
 fail:
@@ -361,7 +373,8 @@ fail:
 /* Material sm as rq asks (scene_select): 0, or -1 with the message in err. */
 static int select_material(scene_material *sm, const char *scene_name, const select_request *rq,
                            const scene_selection *how, const mat_table *table,
-                           const abrdf_view *view, FILE *explain, char *err, size_t err_size)
+                           const abrdf_view *view, const char *pred, FILE *explain, char *err,
+                           size_t err_size)
 {
     const mat_entry *e;
     if (sm->measured >= 0) {
@@ -371,7 +384,7 @@ static int select_material(scene_material *sm, const char *scene_name, const sel
                  sm->line, sm->name);
         return -1;
     }
-    if (sm->pbr) return select_pbr(sm, scene_name, rq, how, view, explain, err, err_size);
+    if (sm->pbr) return select_pbr(sm, scene_name, rq, how, view, pred, explain, err, err_size);
     if (entry_of(sm, table, scene_name, &e, err, err_size)) return -1;
     if (!e && !described(sm, "r") && !described(sm, "n")) {
         path_msg(err, err_size, scene_name,
@@ -400,7 +413,7 @@ static int select_material(scene_material *sm, const char *scene_name, const sel
     }
     sm->params = c.params;
     ambient_of(sm, rq, &c);
-    if (explain) explain_choice(explain, sm, rq, e, &c);
+    if (explain) explain_choice(explain, sm, rq, e, &c, pred);
     budget_result_free(&c);
     return 0;
 fail:
@@ -408,23 +421,87 @@ fail:
     return -1;
 }
 
+/* The request that chooses material sm (NULL: it keeps its models). */
+static const select_request *request_of(const scene_material *sm, const scene_selection *how)
+{
+    static const select_request photoreal = {0, ABRDF_GOAL_PHOTOREAL, 0.0};
+    return how->forced                      ? &how->all
+           : sm->kind == SCENE_MAT_ADAPTIVE ? &sm->request
+           : sm->kind == SCENE_MAT_TABLE    ? &photoreal /* a bare table= */
+                                            : NULL;
+}
+
+/* A budget over a roughness map predicts per value of the map on the sphere (pbr_select.h). */
+static int by_map(const scene_material *sm)
+{
+    return sm->pbr && sm->maps[SCENE_MAP_ROUGHNESS].path;
+}
+
+/* The view material i's budget is predicted on, and what it is in words (pred): its shading
+ * points when how->points and it has some, else the sphere. */
+static const abrdf_view *view_for(const scene *s, int i, const scene_points *pts,
+                                  const abrdf_view *sphere, abrdf_view *own, char *pred,
+                                  size_t pred_size)
+{
+    const char *sph = "on the sphere (scene_budget_view: the scene's camera and lights)";
+    if (!pts) {
+        snprintf(pred, pred_size, "%s", sph);
+        return sphere;
+    }
+    if (by_map(&s->materials[i])) {
+        snprintf(pred, pred_size, "%s, per value of its roughness map", sph);
+        return sphere;
+    }
+    char left[96] = "", every[64] = "every pixel";
+    if (pts->sampled_lights)
+        snprintf(left, sizeof left, "; the scene's %d sampled light%s left out",
+                 pts->sampled_lights, pts->sampled_lights > 1 ? "s" : "");
+    if (!scene_points_view(pts, i, own)) {
+        snprintf(pred, pred_size,
+                 "%s: no point or directional light reaches a point of it the camera sees%s", sph,
+                 left);
+        return sphere;
+    }
+    if (pts->stride[i] > 1)
+        snprintf(every, sizeof every, "one pixel in each %d x %d block", pts->stride[i],
+                 pts->stride[i]);
+    snprintf(pred, pred_size,
+             "on the scene's shading points: %d of the %d pixels it covers at %d x %d (%s, %d "
+             "samples each), %d light terms%s",
+             pts->samples[i], pts->pixels[i], pts->width, pts->height, every, pts->spp,
+             pts->term_count[i], left);
+    return own;
+}
+
 int scene_select(scene *s, const char *scene_name, const scene_selection *how,
                  const mat_table *table, FILE *explain, char *err, size_t err_size)
 {
     abrdf_light_dir lights[SCENE_MAX_LIGHTS];
-    abrdf_view view;
+    abrdf_view view, own;
     scene_budget_view(s, how->spp, &view, lights);
-    const select_request photoreal = {0, ABRDF_GOAL_PHOTOREAL, 0.0};
-    for (int i = 0; i < s->material_count; ++i) {
-        scene_material *sm = &s->materials[i];
-        const select_request *rq = how->forced                      ? &how->all
-                                   : sm->kind == SCENE_MAT_ADAPTIVE ? &sm->request
-                                   : sm->kind == SCENE_MAT_TABLE    ? &photoreal /* a bare table= */
-                                                                    : NULL;
-        if (rq && select_material(sm, scene_name, rq, how, table, &view, explain, err, err_size))
-            return -1;
+    scene_points pts;
+    int traced = 0, rc = 0;
+    for (int i = 0; i < s->material_count && how->points && !traced; ++i) {
+        const select_request *rq = request_of(&s->materials[i], how);
+        if (rq && rq->by_budget && !by_map(&s->materials[i])) {
+            char msg[512];
+            if (scene_points_trace(s, how->spp, &pts, msg, sizeof msg)) {
+                path_msg(err, err_size, scene_name, ": the shading points of the budget: %s", msg);
+                return -1;
+            }
+            traced = 1;
+        }
     }
-    return 0;
+    for (int i = 0; i < s->material_count && !rc; ++i) {
+        scene_material *sm = &s->materials[i];
+        const select_request *rq = request_of(sm, how);
+        char pred[512];
+        const abrdf_view *v = view_for(s, i, traced ? &pts : NULL, &view, &own, pred, sizeof pred);
+        if (rq && select_material(sm, scene_name, rq, how, table, v, pred, explain, err, err_size))
+            rc = -1;
+    }
+    if (traced) scene_points_free(&pts);
+    return rc;
 }
 
 int scene_resolve(scene *s, const char *scene_name, const scene_selection *how, FILE *explain,

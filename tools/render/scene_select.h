@@ -29,21 +29,27 @@ typedef struct scene_selection {
      * through this; NULL: such a material is refused (the selection cannot see its texels). */
     scene_map_range_fn map_range;
     void *map_user;
+    /* 1: predict a budget on the scene's own shading points (scene_points.h: a pass over the
+     * camera's pixels, each material's visible hits and the lights that reach them), falling
+     * back to scene_budget_view's sphere for a material with none; 0: on the sphere */
+    int points;
 } scene_selection;
 
-/* A selection that forces nothing, reads no extra table, predicts at 4 samples/pixel and
- * reads no texture. */
+/* A selection that forces nothing, reads no extra table, predicts on the sphere at 4
+ * samples/pixel and reads no texture. */
 #define SCENE_SELECTION_INIT                                                                       \
     {                                                                                              \
-        0, {0, ABRDF_GOAL_PHOTOREAL, 0.0}, NULL, 0, 4, NULL, NULL                                  \
+        0, {0, ABRDF_GOAL_PHOTOREAL, 0.0}, NULL, 0, 4, NULL, NULL, 0                               \
     }
 
 /* Every SCENE_MAT_TABLE / SCENE_MAT_ADAPTIVE material of s (every material, forced) becomes
  * SCENE_MAT_MODELS with the selection's diffuse + specular models and parameters: the
  * flowchart's (abrdf_select) for a goal, the budget mode's (abrdf_select_budget, predicted on
- * scene_budget_view; the ambient reflectance stays the reference's) for a budget. `table`
+ * the scene's shading points with how->points, else on scene_budget_view; the ambient
+ * reflectance stays the reference's) for a budget. `table`
  * (how->tables are not read here) may be NULL if no material names an entry. If explain is
- * not NULL, each choice is printed with the selection's trace. Returns 0, or -1 with
+ * not NULL, each choice is printed with the selection's trace (a budget's with a line naming
+ * the prediction's view). Returns 0, or -1 with
  * "SCENE:LINE: problem" in err. */
 int scene_select(scene *s, const char *scene_name, const scene_selection *how,
                  const mat_table *table, FILE *explain, char *err, size_t err_size);

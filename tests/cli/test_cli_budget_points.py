@@ -1,0 +1,99 @@
+"""The budget mode's prediction on a scene's own shading points (docs/SELECTION.md, "2. The
+prediction"), run by CTest with the paths of the abrdf binary, of budget_points and of
+tests/data/scenes/grazing.scene: a floor of wool seen only at grazing angles, where the
+sphere's prediction and the image disagree. The points' prediction must be within a factor of
+1.5 of the NMSE measured over the floor's pixels; the sphere's, more than 1.5x off, so that
+the test can tell the two apart. `abrdf render --explain` must name the prediction used."""
+import subprocess
+import sys
+import tempfile
+import os
+import unittest
+
+ABRDF = BUDGET_POINTS = SCENE = None
+FACTOR = 1.5
+NOTICEABLE = 1e-3
+
+
+def run(*cmd, code=0):
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    if p.returncode != code:
+        raise AssertionError(f"{' '.join(cmd)}: exit {p.returncode} (expected {code})\n"
+                             f"stdout: {p.stdout}\nstderr: {p.stderr}")
+    return p
+
+
+def rows(out):
+    """{(material, chosen): (models, pred sphere, pred points, measured)} of the table."""
+    table, inside = {}, False
+    for line in out.splitlines():
+        if line.startswith("material "):
+            inside = True
+            continue
+        if not inside or not line.strip() or line.startswith("check:"):
+            inside = inside and bool(line.strip())
+            continue
+        f = line.split()
+        table[(f[0], f[1])] = (" ".join(f[2:-4]), float(f[-4]), float(f[-3]), float(f[-2]))
+    return table
+
+
+class Points(unittest.TestCase):
+    def test_points_predict_the_image_where_the_sphere_does_not(self):
+        out = run(BUDGET_POINTS, SCENE, "--budget", "noticeable", "--check", str(FACTOR)).stdout
+        t = rows(out)
+        models, sphere_pred, _, sphere_meas = t[("floor", "sphere")]
+        # the sphere's choice: predicted within the class, measured outside it
+        self.assertLess(sphere_pred, NOTICEABLE, out)
+        self.assertGreater(sphere_meas, NOTICEABLE, out)
+        self.assertGreater(sphere_meas / sphere_pred, FACTOR, out)
+        models, _, points_pred, points_meas = t[("floor", "points")]
+        self.assertLess(points_meas, NOTICEABLE, out)
+        self.assertLess(max(points_pred, points_meas) / min(points_pred, points_meas), FACTOR,
+                        out)
+        self.assertIn("check: 0 material(s)", out)
+        # the hidden sphere has no shading point: both choose on the sphere, alike
+        self.assertEqual(t[("hidden", "sphere")][0], t[("hidden", "points")][0], out)
+
+    def test_render_explain_names_the_prediction(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = run(ABRDF, "render", SCENE, "-o", os.path.join(tmp, "g.exr"), "--no-preview",
+                      "--explain").stdout
+        lines = out.splitlines()
+        floor = lines.index(next(x for x in lines if "material 'floor'" in x))
+        self.assertIn("table entry wool: lambert", lines[floor])
+        self.assertIn("prediction: on the scene's shading points: 1728 of the 1728 pixels",
+                      lines[floor + 1])
+        hidden = lines.index(next(x for x in lines if "material 'hidden'" in x))
+        self.assertIn("prediction: on the sphere", lines[hidden + 1])
+        self.assertIn("no point or directional light reaches", lines[hidden + 1])
+
+    def test_sampled_lights_fall_back_to_the_sphere(self):
+        # lit by a sphere and a rectangle light only: no term, the sphere stands in, and its
+        # view takes each light from its centre (a zero direction was an invalid view)
+        with tempfile.TemporaryDirectory() as tmp:
+            scene = os.path.join(tmp, "a.scene")
+            with open(scene, "w") as f:
+                f.write("camera position=0,0,4 look_at=0,0,0 resolution=24,24\n"
+                        "light sphere center=-2,2,2 radius=0.5 intensity=30\n"
+                        "light rect center=2,1,2 u=0,1,0 v=0.7071,0,-0.7071 intensity=10\n"
+                        "material m adaptive budget=slight table=gold\n"
+                        "sphere material=m radius=1\n")
+            out = run(ABRDF, "render", scene, "-o", os.path.join(tmp, "a.exr"), "--no-preview",
+                      "--explain").stdout
+        self.assertIn("prediction: on the sphere", out)
+
+    def test_bad_arguments(self):
+        p = run(BUDGET_POINTS, SCENE, "--budget", "huge", code=2)
+        self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+        self.assertIn("--budget", p.stderr)
+        p = run(BUDGET_POINTS, SCENE, "--check", "0.5", code=2)
+        self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+        p = run(BUDGET_POINTS, SCENE + ".missing", code=1)
+        self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+
+
+if __name__ == "__main__":
+    ABRDF, BUDGET_POINTS, SCENE = sys.argv[1:4]
+    del sys.argv[1:4]
+    unittest.main(verbosity=2)
