@@ -92,9 +92,7 @@ END_TEST
 
 /* ---- the expensive references keep their values ---------------------------------------- */
 
-/* abrdf_eval_prepared_unit against abrdf_eval_prepared for model m with parameters p on
- * wi, wo: within rel (hair and layered models: the same bits). Counts same-bit results. */
-/* The prepared object carries the choice of its model's evaluation: objects of every model,
+/* A prepared object is plain data that names its model: objects of every model,
  * byte-copied in reverse order into other memory with the originals overwritten, evaluate
  * as abrdf_eval of their own model (abrdf_eval_prepared bit for bit, the unit entry up to
  * rounding), and give 0 for a back-facing pair. */
@@ -136,6 +134,33 @@ START_TEST(copies_keep_their_model)
 }
 END_TEST
 
+/* A block whose head (the library's mark and model id, its first 8 bytes) is a prepared
+ * object's and whose rest is stale never makes the library jump or read outside it: it
+ * evaluates to a finite f >= 0, and a model id beyond the library's is "not prepared". */
+START_TEST(stale_blocks_are_safe)
+{
+    abrdf_params p;
+    abrdf_params_init(ABRDF_LAMBERT, &p);
+    abrdf_prepared good, stale;
+    ck_assert_int_eq(abrdf_prepare(ABRDF_LAMBERT, &p, &good), ABRDF_OK);
+    const double wi[3] = {0.0, 0.6, 0.8}, wo[3] = {0.6, 0.0, 0.8};
+    double f[3];
+    memset(&stale, 0x41, sizeof stale);
+    memcpy(&stale, &good, 8);
+    ck_assert_int_eq(abrdf_prepared_model(&stale), ABRDF_LAMBERT);
+    ck_assert_int_eq(abrdf_eval_prepared_unit(&stale, wi, wo, f), ABRDF_OK);
+    ck_assert_int_eq(abrdf_eval_prepared(&stale, NULL, wi, wo, f), ABRDF_OK);
+    for (int c = 0; c < 3; ++c) ck_assert(isfinite(f[c]) && f[c] >= 0.0);
+    memset(&stale, 0x41, sizeof stale);
+    memcpy(&stale, &good, 4); /* the mark, then an id of no model */
+    ck_assert_int_eq(abrdf_prepared_model(&stale), ABRDF_MODEL_NONE);
+    ck_assert_int_eq(abrdf_eval_prepared_unit(&stale, wi, wo, f), ABRDF_E_MODEL);
+    ck_assert(f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0);
+}
+END_TEST
+
+/* abrdf_eval_prepared_unit against abrdf_eval_prepared for model m with parameters p on
+ * wi, wo: within rel (hair and layered models: the same bits). Counts same-bit results. */
 static void unit_vs_prepared(abrdf_model m, const abrdf_params *p, const double wi[3],
                              const double wo[3], double rel, long *compared, long *exact)
 {
@@ -286,6 +311,7 @@ static Suite *suite(void)
     tcase_add_test(tc, layout_is_frozen);
     tcase_add_test(tc, owns_a_copy_of_its_parameters);
     tcase_add_test(tc, copies_keep_their_model);
+    tcase_add_test(tc, stale_blocks_are_safe);
     tcase_add_test(tc, not_prepared_evaluates_to_zero);
     tcase_add_test(tc, unit_entry_is_the_prepared_value);
     tcase_add_test(tc, special_models_keep_their_values);

@@ -71,7 +71,6 @@ void abrdf__prep_make(abrdf__prep *pr, abrdf_model model, const abrdf_params *p,
     pr->model = model;
     pr->params = *p;
     pr->params.struct_size = sizeof(abrdf_params);
-    abrdf__prep_set_eval(pr);
     if (abrdf__is_double_only(model)) {
         abrdf__prep_setup_special(pr, what);
         return;
@@ -93,7 +92,10 @@ int abrdf__prep_checked(abrdf_model model, const abrdf_params *params, abrdf__pr
 const abrdf__prep *abrdf__prep_of(const abrdf_prepared *prepared)
 {
     const abrdf__prep *pr = (const abrdf__prep *)(const void *)prepared;
-    return prepared && pr->magic == ABRDF__PREP_MAGIC ? pr : NULL;
+    return prepared && pr->magic == ABRDF__PREP_MAGIC && pr->model >= 0 &&
+                   pr->model < ABRDF_MODEL_COUNT
+               ? pr
+               : NULL;
 }
 
 int abrdf_prepare(abrdf_model model, const abrdf_params *params, abrdf_prepared *prepared)
@@ -131,7 +133,6 @@ int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared *prepared
         return ABRDF_E_TABLE;
     abrdf__prep *pr = (abrdf__prep *)(void *)prepared;
     pr->model = ABRDF_MEASURED;
-    abrdf__prep_set_eval(pr);
     abrdf_params_init(ABRDF_MEASURED, &pr->params);
     abrdf__measured_setup(table, &pr->special.measured);
     pr->magic = ABRDF__PREP_MAGIC;
@@ -219,7 +220,7 @@ int abrdf_eval_prepared_unit(const abrdf_prepared *prepared, const double wi[3],
      * every direction, the other models take unit ones as given (direction_special) */
     if (fabs(abrdf__dot3(wi, wi) - 1.0) <= UNIT_LEN2_TOL &&
         fabs(abrdf__dot3(wo, wo) - 1.0) <= UNIT_LEN2_TOL && pr->model != ABRDF_HUANG)
-        return pr->eval_d(pr, wi, wo, f); /* ABRDF_OK, and a tail call */
+        return abrdf__eval_prepared_d(pr, wi, wo, f); /* ABRDF_OK, and a tail call */
     f[0] = f[1] = f[2] = 0.0;
     return eval_prep(pr, NULL, wi, wo, f);
 }

@@ -33,7 +33,7 @@ static inline void guard_out(const double v[3], double f[3])
 
 /* THE GENERATED NAMES. ABRDF__SCALAR_FN defines scalar_<KERNEL>, the double scalar evaluation
  * of kernel KERNEL, for every model of ABRDF__KERNEL_MODELS (scalar_k_lambert is lambert's);
- * abrdf__prep_set_eval stores it in the prepared object. Each makes its own geometry: with
+ * abrdf__scalar_of holds it at the model's index. Each makes its own geometry: with
  * geo_make inlined, the compiler drops what that model's kernel does not read (a Lambert
  * term needs only the signs of the two cosines, not the half vector's square root and
  * division), so a per-sample call costs what its model reads. It returns ABRDF_OK so that a
@@ -65,13 +65,9 @@ static int scalar_special(const abrdf__prep *pr, const double wi[3], const doubl
     return ABRDF_OK;
 }
 
-#define ABRDF__SCALAR_CASE(ID, SETUP, KERNEL, FORM)                                                \
-    case ID: pr->eval_d = scalar_##KERNEL; break;
+#define ABRDF__SCALAR_ENTRY(ID, SETUP, KERNEL, FORM) [ID] = scalar_##KERNEL,
 
-void abrdf__prep_set_eval(abrdf__prep *pr)
-{
-    switch (pr->model) {
-        ABRDF__KERNEL_MODELS(ABRDF__SCALAR_CASE)
-    default: pr->eval_d = scalar_special; break;
-    }
-}
+const abrdf__eval_d_fn abrdf__scalar_of[ABRDF_MODEL_COUNT] = {
+    ABRDF__KERNEL_MODELS(ABRDF__SCALAR_ENTRY)[ABRDF_MARSCHNER] = scalar_special,
+    [ABRDF_HUANG] = scalar_special, [ABRDF_WEIDLICH_WILKIE] = scalar_special,
+    [ABRDF_BELCOUR] = scalar_special, [ABRDF_MEASURED] = scalar_special};

@@ -56,12 +56,11 @@ struct abrdf__prep;
 typedef int (*abrdf__eval_d_fn)(const struct abrdf__prep *pr, const double wi[3],
                                 const double wo[3], double f[3]);
 typedef struct ABRDF__MAY_ALIAS abrdf__prep {
-    unsigned magic;          /* ABRDF__PREP_MAGIC */
-    abrdf_model model;       /* the prepared model */
-    abrdf__eval_d_fn eval_d; /* its double scalar evaluation, chosen once (abrdf__prep_set_eval) */
-    abrdf_params params;     /* the validated parameters, this library's layout (struct_size) */
-    abrdf__kp_d kd;          /* the closed-form kernels' parameters, double (scalar path) */
-    abrdf__kp_f kf;          /* ... float (batch path) */
+    unsigned magic;      /* ABRDF__PREP_MAGIC */
+    abrdf_model model;   /* the prepared model */
+    abrdf_params params; /* the validated parameters, this library's layout (struct_size) */
+    abrdf__kp_d kd;      /* the closed-form kernels' parameters, double (scalar path) */
+    abrdf__kp_f kf;      /* ... float (batch path) */
     union {
         abrdf__marschner marschner;
         abrdf__huang huang;
@@ -94,16 +93,19 @@ void abrdf__prep_setup_d(abrdf__prep *pr);
 void abrdf__prep_setup_f(abrdf__prep *pr);
 void abrdf__prep_setup_special(abrdf__prep *pr, unsigned what);
 
-/* Choose pr->eval_d for pr->model (eval_double.c): every prepared object gets it, whatever
- * precisions it was prepared for (the batch path evaluates the double-only models through it). */
-void abrdf__prep_set_eval(abrdf__prep *pr);
+/* Each model's double scalar evaluation, indexed by model id (eval_double.c): constant data,
+ * so the prepared object itself holds no pointer (abrdf.h); abrdf__prep_of admits only
+ * objects whose model indexes it. The closed-form models have one each, the double-only
+ * models share the dispatch of special.c. */
+extern const abrdf__eval_d_fn abrdf__scalar_of[ABRDF_MODEL_COUNT];
 
 /* Local-frame evaluation of a prepared model; wi, wo unit (the scalar path normalises before
- * calling). f is finite and >= 0. One indirect call: the model was dispatched at prepare time. */
-static inline void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3],
-                                          const double wo[3], double f[3])
+ * calling). f is finite and >= 0; returns ABRDF_OK. One indirect call through the table: no
+ * switch over the models per sample. */
+static inline int abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3],
+                                         const double wo[3], double f[3])
 {
-    pr->eval_d(pr, wi, wo, f);
+    return abrdf__scalar_of[pr->model](pr, wi, wo, f);
 }
 /* The float batch (eval_float.c), with the batch loops of the instruction-set level the CPU
  * supports (abrdf__isa_best). */
