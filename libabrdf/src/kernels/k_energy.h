@@ -50,7 +50,7 @@ static inline void k_f_be_setup(abrdf__kp *k, const abrdf_params *p)
 
 static inline abrdf__real k_f_be_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return p->norm * pow_pos(g->ch, p->n);
+    return p->norm * pow_ch(g, p->n);
 }
 static inline void k_f_be(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
@@ -95,7 +95,7 @@ static inline void k_f_ge_setup(abrdf__kp *k, const abrdf_params *p)
 
 static inline void k_f_ge(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    abrdf__real lobe = p->norm * pow_pos(g->ch, p->n) / (g->ci > g->co ? g->ci : g->co);
+    abrdf__real lobe = p->norm * pow_ch(g, p->n) / (g->ci > g->co ? g->ci : g->co);
     for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * lobe;
 }
 
@@ -111,7 +111,7 @@ static inline void ct_no_g(const abrdf__kp *p, const abrdf__geo *g, abrdf__real 
 
 static inline void k_f_ctphe(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ct_no_g(p, g, p->norm * pow_pos(g->ch, p->n), f);
+    ct_no_g(p, g, p->norm * pow_ch(g, p->n), f);
 }
 static inline void k_f_ct2e(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
