@@ -139,6 +139,8 @@ static inline void kp_base(abrdf__kp *k, const abrdf_params *p)
         k->kd[c] = (abrdf__real)p->kd[c];
         k->ks[c] = (abrdf__real)p->ks[c];
         k->f0[c] = (abrdf__real)p->f0[c];
+        k->ks_f0[c] = (abrdf__real)(p->ks[c] * p->f0[c]);
+        k->ks_f1[c] = (abrdf__real)(p->ks[c] * (1.0 - p->f0[c]));
     }
     k->n = (abrdf__real)p->n;
     k->r = (abrdf__real)p->r;
