@@ -211,8 +211,9 @@ static inline ABRDF__ALWAYS_INLINE void geo_make(abrdf__geo *g, abrdf__real ix, 
  * never formed, so a loop that needs nothing else of H does without the square root and
  * the reciprocal of |wi + wo| (one division by |wi + wo|^2 instead), and ch2 rounds twice
  * (the square, the division) where ch rounded three times (square root, reciprocal,
- * product). ch2 is 0 where N.H < 2^-75 (the square underflows): c^e is then taken as 0,
- * which it is to within 2^-75 of the lobe's peak for e >= 1. */
+ * product). Where N.H < 2^-63, ch2 is subnormal or 0 (the square underflows), and
+ * abrdf__powf_pos raises it as 2^-126 or gives 0^e: c^e is then off by less than 2^-63 e,
+ * nothing next to the lobe's peak for e >= 1. */
 static inline abrdf__real pow_ch(const abrdf__geo *g, abrdf__real e)
 {
 #if ABRDF__KERNEL_IS_FLOAT
