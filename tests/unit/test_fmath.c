@@ -29,7 +29,7 @@ static void note(worst *w, double e, float x)
 
 START_TEST(exp2_and_log2_within_their_bounds)
 {
-    worst e2 = {0.0, 0.0f}, l2 = {0.0, 0.0f}, ex = {0.0, 0.0f};
+    worst e2 = {0.0, 0.0f}, l2 = {0.0, 0.0f}, ln = {0.0, 0.0f}, ex = {0.0, 0.0f};
     for (uint64_t u = 0; u <= 0xFFFFFFFFu; u += 1021) {
         float x = abrdf__bitsf((uint32_t)u);
         if (!isfinite(x)) continue;
@@ -39,12 +39,19 @@ START_TEST(exp2_and_log2_within_their_bounds)
         double we = exp((double)x);
         if (we >= 1.17549435e-38 && x < 88.375f) note(&ex, ulps(abrdf__expf(x), we), x);
         if (x > 0.0f) note(&l2, ulps(abrdf__log2f(x), log2((double)x)), x);
+        if (x >= 1.17549435e-38f) note(&ln, ulps(abrdf__log2f_normal(x, 0.0f), log2((double)x)), x);
     }
+    /* both sides of the reduction's switch at sqrt(2) and sqrt(1/2), and binades' tops */
+    static const float edge[] = {0x1.6a09e6p0f, 0x1.6a09e8p0f,  0x1.6a09e6p-1f,  0x1.6a09e8p-1f,
+                                 0x1.fffffep0f, 0x1.fffffep-1f, 0x1.6a09e6p100f, 0x1.6a09e8p-100f};
+    for (size_t k = 0; k < sizeof edge / sizeof *edge; ++k)
+        note(&ln, ulps(abrdf__log2f_normal(edge[k], 0.0f), log2((double)edge[k])), edge[k]);
     printf("fmath: abrdf__exp2f max error %.2f ulp (at %a), abrdf__log2f %.2f ulp (at %a), "
-           "abrdf__expf %.2f ulp (at %a)\n",
-           e2.ulp, e2.at, l2.ulp, l2.at, ex.ulp, ex.at);
+           "abrdf__log2f_normal %.2f ulp (at %a), abrdf__expf %.2f ulp (at %a)\n",
+           e2.ulp, e2.at, l2.ulp, l2.at, ln.ulp, ln.at, ex.ulp, ex.at);
     ck_assert_msg(e2.ulp <= 2.0, "exp2 %.3g ulp at %a", e2.ulp, e2.at);
     ck_assert_msg(l2.ulp <= 3.5, "log2 %.3g ulp at %a", l2.ulp, l2.at);
+    ck_assert_msg(ln.ulp <= 3.5, "log2_normal %.3g ulp at %a", ln.ulp, ln.at);
     ck_assert_msg(ex.ulp <= 2.0, "exp %.3g ulp at %a", ex.ulp, ex.at);
 }
 END_TEST
@@ -93,6 +100,13 @@ START_TEST(special_values)
     ck_assert(abrdf__powf_pos(0.0f, 3.0f) == 0.0f);
     ck_assert(abrdf__powf_pos(-0.5f, 2.0f) == 0.0f); /* the base is clamped, no spurious lobe */
     ck_assert(abrdf__powf_pos(NAN, 2.0f) == 0.0f);
+    /* a subnormal base is raised as FLT_MIN = 2^-126 */
+    ck_assert(abrdf__powf_pos(0x1p-140f, 0.5f) == 0x1p-63f);
+    ck_assert(abrdf__powf_pos(0x1p-149f, 2.0f) == 0.0f);
+    ck_assert(abrdf__powf_pos(0x1p-149f, 0.0f) == 1.0f);
+    for (int k = -126; k <= 127; ++k) /* a power of 2 has m = 1, t = 0: exact */
+        ck_assert(abrdf__log2f_normal(ldexpf(1.0f, k), 0.0f) == (float)k);
+    ck_assert(abrdf__log2f_normal(8.0f, 24.0f) == -21.0f);
     ck_assert(abrdf__powf_pos(1.0f, 1e6f) == 1.0f); /* the peak of every lobe exactly */
     ck_assert(abrdf__powf_pos(0.25f, 0.0f) == 1.0f);
     ck_assert(abrdf__powf_pos(0.5f, 2.0f) == 0.25f);

@@ -9,13 +9,17 @@
  *
  *   abrdf__exp2f(y)       2^y; y < -126 gives 0 (no subnormal results), y >= 128 +Inf, NaN 0
  *   abrdf__log2f(x)       log2(x) for x > 0 (subnormals included); the caller excludes x <= 0
- *   abrdf__powf_pos(x, e) max(0, x)^e for e >= 0, with 0^0 = 1 and 0^e = 0 (C's pow)
+ *   abrdf__log2f_normal(x, s)  log2(x) - s for a normal x and an integer-valued s: the core
+ *                         of abrdf__log2f and abrdf__powf_pos
+ *   abrdf__powf_pos(x, e) max(0, x)^e for e >= 0, with 0^0 = 1 and 0^e = 0 (C's pow); a
+ *                         subnormal x is taken as FLT_MIN
  *   abrdf__expf(y)        e^y; y < -87.34 gives 0, y > 88.375 +Inf, NaN 0
  *
  * Errors, measured over every float of the domain by test_fmath (which prints them):
- * abrdf__exp2f within 1.6 ulp of the exact result, abrdf__log2f within 2.8 ulp (near x = 1
- * as well: its polynomial is in t = (m - 1)/(m + 1), so its relative error stays small where
- * log2 vanishes), abrdf__expf within 2 ulp. x^e adds the rounding of y = e log2(x), which
+ * abrdf__exp2f within 1.6 ulp of the exact result, abrdf__log2f and abrdf__log2f_normal
+ * (s = 0, normal x: the same values) within 2.8 ulp (near x = 1 as well: the polynomial is
+ * in t = (m - 1)/(m + 1), so its relative error stays small where log2 vanishes),
+ * abrdf__expf within 2 ulp. x^e adds the rounding of y = e log2(x), which
  * 2^y turns into a relative error of about ln 2 (|y| 2^-24 + e 2.8 ulp(log2 x)): for results
  * down to 1e-6 (|y| < 20) a few 1e-6 at most, inside the batch path's float tolerance (2e-5
  * relative, test_invariants), and the order of the rounding of x itself amplified by e that
@@ -63,21 +67,19 @@ static inline float abrdf__exp2f(float y)
     return p * abrdf__bitsf((uint32_t)e << 23);
 }
 
-/* log2(x) = j + log2(m), m in [sqrt(1/2), sqrt(2)) from the bits (a subnormal x is scaled by
- * 2^24 first), log2(m) = t Q(t^2) with t = (m - 1)/(m + 1), |t| <= 0.1716, Q the degree-3
- * Chebyshev interpolant (relative error 1.2e-9 before rounding). */
-static inline float abrdf__log2f(float x)
+/* log2(x) - s for a normal x (FLT_MIN <= x < Inf) and an integer-valued s: j + log2(m) - s
+ * with x = 2^j m, m in [sqrt(1/2), sqrt(2)), log2(m) = t Q(t^2), t = (m - 1)/(m + 1),
+ * |t| <= 0.1716, Q the degree-3 Chebyshev interpolant (relative error 1.2e-9 before
+ * rounding). j and m come from the bits by integer arithmetic alone, with no compare: adding
+ * 0x004AFB0C carries into the exponent field exactly when the mantissa is at least that of
+ * the smallest float above sqrt(2) (0x3504F4), and the mantissa plus 0x3F3504F4 is then
+ * 0.5 (1.mantissa), else 1.mantissa. A select here made GCC's vectoriser evaluate the
+ * polynomial, division included, once per arm. */
+static inline float abrdf__log2f_normal(float x, float s)
 {
-    /* every select on a float compare with float arms: GCC's vectoriser rejects masks that
-     * mix float compares with integer selects */
-    float tiny = x < 1.17549435e-38f ? 1.0f : 0.0f;
-    x = tiny > 0.0f ? x * 16777216.0f : x;
-    uint32_t u = abrdf__fbits(x);
-    float j = (float)((int32_t)(u >> 23) - 127) - 24.0f * tiny;
-    float m = abrdf__bitsf((u & 0x007FFFFFu) | 0x3F800000u); /* [1, 2) */
-    float big = m > 1.41421356f ? 1.0f : 0.0f;
-    m = big > 0.0f ? 0.5f * m : m;
-    j += big;
+    uint32_t v = abrdf__fbits(x) + 0x004AFB0Cu;
+    float j = (float)(int32_t)(v >> 23) - (127.0f + s);
+    float m = abrdf__bitsf((v & 0x007FFFFFu) + 0x3F3504F4u);
     float t = (m - 1.0f) / (m + 1.0f), t2 = t * t;
     float q = 0.43173302f;
     q = q * t2 + 0.57671451f;
@@ -86,14 +88,27 @@ static inline float abrdf__log2f(float x)
     return j + t * q;
 }
 
-/* max(0, x)^e, e >= 0: 2^(e log2 x); x <= 0 (or NaN) gives 0^e: 1 for e = 0, else 0. */
+/* log2(x) for x > 0, subnormals included: a subnormal x is scaled by 2^24 first. */
+static inline float abrdf__log2f(float x)
+{
+    /* every select on a float compare with float arms: GCC's vectoriser rejects masks that
+     * mix float compares with integer selects */
+    float tiny = x < 1.17549435e-38f ? 1.0f : 0.0f;
+    x = tiny > 0.0f ? x * 16777216.0f : x;
+    return abrdf__log2f_normal(x, 24.0f * tiny);
+}
+
+/* max(0, x)^e, e >= 0: 2^(e log2 x); x <= 0 (or NaN) gives 0^e: 1 for e = 0, else 0. A
+ * subnormal x is raised as FLT_MIN = 2^-126 (so log2 needs no scaling): x^e is then off by
+ * less than 2^-126e, nothing for e >= 1 (the lobes' exponents), and for e < 1 the lobe was
+ * already discontinuous at x = 0. */
 static inline float abrdf__powf_pos(float x, float e)
 {
-    int zero = !(x > 0.0f);
-    float y = e * abrdf__log2f(zero ? 1.0f : x);
+    const float flt_min = 1.17549435e-38f;
+    float y = e * abrdf__log2f_normal(x > flt_min ? x : flt_min, 0.0f);
     float r = abrdf__exp2f(y);
     float at_zero = e == 0.0f ? 1.0f : 0.0f;
-    return zero ? at_zero : r;
+    return x > 0.0f ? r : at_zero;
 }
 
 /* e^y = 2^k e^r with k = round(y log2 e) and r = y - k ln 2 in [-ln2/2, ln2/2], taken in two

@@ -43,7 +43,10 @@ const char *abrdf__isa_name(int level)
 
 /* The store of pair J after the geometry g is made, per form (k_dispatch.h). RGB: the
  * kernel's three channels, each guarded. LOBE: the lobe guarded once, then times ks in
- * [0, 1], which keeps it finite and >= 0 (the same values as guarding each channel). */
+ * [0, 1], which keeps it finite and >= 0 (the same values as guarding each channel).
+ * SCHLICK: the lobe guarded once, then times ks F = ks_f0 + ks_f1 (1 - cos_d)^5, both
+ * products of the setup (kp_base) and >= 0, so ks F is in [0, ks]: one guard and two
+ * operations a channel where RGB's ks F lobe took three and a guard. */
 #define ABRDF__STORE_RGB(KERNEL, J, FR, FG, FB)                                                    \
     do {                                                                                           \
         float v[3];                                                                                \
@@ -59,6 +62,14 @@ const char *abrdf__isa_name(int level)
         (FR)[J] = k->ks[0] * w;                                                                    \
         (FG)[J] = k->ks[1] * w;                                                                    \
         (FB)[J] = k->ks[2] * w;                                                                    \
+    } while (0)
+#define ABRDF__STORE_SCHLICK(KERNEL, J, FR, FG, FB)                                                \
+    do {                                                                                           \
+        float w = abrdf__keep(abrdf__front(g.ci, g.co), KERNEL##_lobe(k, &g));                     \
+        float m5 = schlick_m5(g.cd);                                                               \
+        (FR)[J] = (k->ks_f0[0] + k->ks_f1[0] * m5) * w;                                            \
+        (FG)[J] = (k->ks_f0[1] + k->ks_f1[1] * m5) * w;                                            \
+        (FB)[J] = (k->ks_f0[2] + k->ks_f1[2] * m5) * w;                                            \
     } while (0)
 #define ABRDF__BATCH_ARGS                                                                          \
     const abrdf__kp *restrict k, size_t n, const float *restrict ix, const float *restrict iy,     \

@@ -13,7 +13,9 @@
  * abrdf__kp from abrdf_params once per call; the kernel gives f_r for one direction pair.
  * form RGB: the kernel writes the three channels; form LOBE: the model is ks times one
  * scalar lobe, kernel_lobe (k_terms.h, lobe_out), and ks is in [0, 1] (registry), so the
- * float batch loops guard the lobe once and scale it per channel (eval_float.c). Both are
+ * float batch loops guard the lobe once and scale it per channel (eval_float.c); form
+ * SCHLICK: the same with ks F_Schlick(F0, cos_d) for ks (k_terms.h, schlick_out), in [0, 1]
+ * as well (F0 in [0, 1], registry). Both are
  * defined in the family header named above them, except kp_base (kernel.h), the setup of
  * the models with nothing to precompute. The names are the functions' own, in either
  * precision (kernel.h, naming rule). */
@@ -38,14 +40,15 @@
     X(ABRDF_F_BE, k_f_be_setup, k_f_be, LOBE)                                                      \
     X(ABRDF_F_2E, k_f_2e_setup, k_f_2e, LOBE)                                                      \
     X(ABRDF_F_16E, k_f_16e_setup, k_f_16e, LOBE)                                                   \
-    X(ABRDF_F_GE, k_f_ge_setup, k_f_ge, RGB)                                                       \
-    X(ABRDF_F_CTPHE, k_f_phe_setup, k_f_ctphe, RGB)                                                \
-    X(ABRDF_F_CT2E, k_f_2e_setup, k_f_ct2e, RGB)                                                   \
-    X(ABRDF_F_CT16E, k_f_16e_setup, k_f_ct16e, RGB)                                                \
+    X(ABRDF_F_GE, k_f_ge_setup, k_f_ge, SCHLICK)                                                   \
+    X(ABRDF_F_CTPHE, k_f_phe_setup, k_f_ctphe, SCHLICK)                                            \
+    X(ABRDF_F_CT2E, k_f_2e_setup, k_f_ct2e, SCHLICK)                                               \
+    X(ABRDF_F_CT16E, k_f_16e_setup, k_f_ct16e, SCHLICK)                                            \
     /* k_microfacet.h */                                                                           \
-    X(ABRDF_COOK_TORRANCE, k_microfacet_setup, k_cook_torrance, RGB)                               \
-    X(ABRDF_DISNEY_SPECULAR, k_microfacet_setup, k_disney_specular, RGB)                           \
-    X(ABRDF_DISNEY_SPECULAR_ANISO, k_disney_specular_aniso_setup, k_disney_specular_aniso, RGB)    \
+    X(ABRDF_COOK_TORRANCE, k_microfacet_setup, k_cook_torrance, SCHLICK)                           \
+    X(ABRDF_DISNEY_SPECULAR, k_microfacet_setup, k_disney_specular, SCHLICK)                       \
+    X(ABRDF_DISNEY_SPECULAR_ANISO, k_disney_specular_aniso_setup, k_disney_specular_aniso,         \
+      SCHLICK)                                                                                     \
     X(ABRDF_DISNEY_CLEARCOAT, k_disney_clearcoat_setup, k_disney_clearcoat, RGB)                   \
     /* k_cloth.h */                                                                                \
     X(ABRDF_NEUBELT_PETTINEO, k_neubelt_pettineo_setup, k_neubelt_pettineo, RGB)                   \

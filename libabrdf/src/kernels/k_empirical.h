@@ -36,7 +36,7 @@ static inline void k_phong(const abrdf__kp *p, const abrdf__geo *g, abrdf__real 
 
 static inline abrdf__real k_blinn_phong_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return pow_pos(g->ch, p->n); /* Eq. 4 */
+    return pow_ch(g, p->n); /* Eq. 4 */
 }
 static inline void k_blinn_phong(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {

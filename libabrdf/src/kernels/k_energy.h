@@ -50,7 +50,7 @@ static inline void k_f_be_setup(abrdf__kp *k, const abrdf_params *p)
 
 static inline abrdf__real k_f_be_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return p->norm * pow_pos(g->ch, p->n);
+    return p->norm * pow_ch(g, p->n);
 }
 static inline void k_f_be(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
@@ -93,33 +93,47 @@ static inline void k_f_ge_setup(abrdf__kp *k, const abrdf_params *p)
     k->norm = norm_ge(k->n);
 }
 
+static inline abrdf__real k_f_ge_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    return p->norm * pow_ch(g, p->n) / (g->ci > g->co ? g->ci : g->co);
+}
 static inline void k_f_ge(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    abrdf__real lobe = p->norm * pow_pos(g->ch, p->n) / (g->ci > g->co ? g->ci : g->co);
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * lobe;
+    schlick_out(p, g, k_f_ge_lobe(p, g), f);
 }
 
-/* D F / (4 cos_i cos_o) with G = 1 and clamped cosines. */
-static inline void ct_no_g(const abrdf__kp *p, const abrdf__geo *g, abrdf__real d, abrdf__real f[3])
+/* D / (4 cos_i cos_o) with G = 1 and clamped cosines; times ks F in schlick_out. */
+static inline abrdf__real ct_no_g(const abrdf__geo *g, abrdf__real d)
 {
     const abrdf__real cmin = ABRDF__K(ABRDF__COS_MIN_NO_G);
     abrdf__real ci = g->ci > cmin ? g->ci : cmin;
     abrdf__real co = g->co > cmin ? g->co : cmin;
-    abrdf__real v = d / (ABRDF__K(4) * ci * co); /* Eq. 5 with G = 1 */
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * v;
+    return d / (ABRDF__K(4) * ci * co); /* Eq. 5 with G = 1 */
 }
 
+static inline abrdf__real k_f_ctphe_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    return ct_no_g(g, p->norm * pow_ch(g, p->n));
+}
 static inline void k_f_ctphe(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ct_no_g(p, g, p->norm * pow_pos(g->ch, p->n), f);
+    schlick_out(p, g, k_f_ctphe_lobe(p, g), f);
+}
+static inline abrdf__real k_f_ct2e_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    return ct_no_g(g, p->norm * lobe_fm(p->n, g->ch, 1));
 }
 static inline void k_f_ct2e(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ct_no_g(p, g, p->norm * lobe_fm(p->n, g->ch, 1), f);
+    schlick_out(p, g, k_f_ct2e_lobe(p, g), f);
+}
+static inline abrdf__real k_f_ct16e_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    return ct_no_g(g, p->norm * lobe_fm(p->n, g->ch, 4));
 }
 static inline void k_f_ct16e(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    ct_no_g(p, g, p->norm * lobe_fm(p->n, g->ch, 4), f);
+    schlick_out(p, g, k_f_ct16e_lobe(p, g), f);
 }
 
 #endif /* ABRDF_K_ENERGY_H */

@@ -28,18 +28,24 @@ static inline void k_microfacet_setup(abrdf__kp *k, const abrdf_params *p)
     k->ag = kp_alpha(p->r * p->r);
 }
 
-static inline void k_cook_torrance(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+static inline abrdf__real k_cook_torrance_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
     abrdf__real dg = d_beckmann(g->ch, g->sh2, p->ag) * g_cook_torrance(g);
-    abrdf__real v = safe_div(dg, ABRDF__K(4) * g->ci * g->co); /* Eq. 5 */
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * v;
+    return safe_div(dg, ABRDF__K(4) * g->ci * g->co); /* Eq. 5 */
+}
+static inline void k_cook_torrance(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
+{
+    schlick_out(p, g, k_cook_torrance_lobe(p, g), f);
 }
 
+static inline abrdf__real k_disney_specular_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    return d_ggx(g->ch, g->sh2, p->ag) * v1_smith_ggx(g->ci, p->ag) *
+           v1_smith_ggx(g->co, p->ag); /* Eq. 5 with Eqs. 6 and 9 */
+}
 static inline void k_disney_specular(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    abrdf__real dv = d_ggx(g->ch, g->sh2, p->ag) * v1_smith_ggx(g->ci, p->ag) *
-                     v1_smith_ggx(g->co, p->ag); /* Eq. 5 with Eqs. 6 and 9 */
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * dv;
+    schlick_out(p, g, k_disney_specular_lobe(p, g), f);
 }
 
 /* alpha_x = r^2 / aspect, alpha_y = r^2 aspect (Eq. 7), each floored. */
@@ -52,14 +58,17 @@ static inline void k_disney_specular_aniso_setup(abrdf__kp *k, const abrdf_param
     k->ay = kp_alpha(ag * aspect);
 }
 
+static inline abrdf__real k_disney_specular_aniso_lobe(const abrdf__kp *p, const abrdf__geo *g)
+{
+    /* Eq. 5 with Eqs. 7 and 9 */
+    return d_ggx_aniso(g->hx, g->hy, g->hz, p->ax, p->ay) *
+           v1_smith_ggx_aniso(g->ix, g->iy, g->ci, p->ax, p->ay) *
+           v1_smith_ggx_aniso(g->ox, g->oy, g->co, p->ax, p->ay);
+}
 static inline void k_disney_specular_aniso(const abrdf__kp *p, const abrdf__geo *g,
                                            abrdf__real f[3])
 {
-    /* Eq. 5 with Eqs. 7 and 9 */
-    abrdf__real dv = d_ggx_aniso(g->hx, g->hy, g->hz, p->ax, p->ay) *
-                     v1_smith_ggx_aniso(g->ix, g->iy, g->ci, p->ax, p->ay) *
-                     v1_smith_ggx_aniso(g->ox, g->oy, g->co, p->ax, p->ay);
-    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * dv;
+    schlick_out(p, g, k_disney_specular_aniso_lobe(p, g), f);
 }
 
 /* GTR1 alpha = mix(0.1, 0.001, clearcoat_gloss). */

@@ -22,12 +22,18 @@
 
 /* ---- Fresnel ------------------------------------------------------------------------ */
 
-/* Schlick's Fresnel, Eq. 8: F0 + (1 - F0)(1 - cos_d)^5, cos_d clamped to [0, 1]. */
-static inline abrdf__real f_schlick(abrdf__real f0, abrdf__real cos_d)
+/* (1 - cos_d)^5, cos_d clamped to [0, 1]: Schlick's weight, in [0, 1] (NaN -> 1). */
+static inline abrdf__real schlick_m5(abrdf__real cos_d)
 {
     abrdf__real m = ABRDF__K(1) - clampr(cos_d, ABRDF__K(0), ABRDF__K(1));
     abrdf__real m2 = m * m;
-    return f0 + (ABRDF__K(1) - f0) * (m2 * m2 * m); /* Eq. 8 */
+    return m2 * m2 * m;
+}
+
+/* Schlick's Fresnel, Eq. 8: F0 + (1 - F0)(1 - cos_d)^5, cos_d clamped to [0, 1]. */
+static inline abrdf__real f_schlick(abrdf__real f0, abrdf__real cos_d)
+{
+    return f0 + (ABRDF__K(1) - f0) * schlick_m5(cos_d); /* Eq. 8 */
 }
 
 /* ---- distributions D ------------------------------------------------------------------ */
@@ -131,6 +137,16 @@ static inline abrdf__real v_neubelt(abrdf__real ci, abrdf__real co)
 static inline void lobe_out(const abrdf__kp *p, abrdf__real lobe, abrdf__real f[3])
 {
     for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * lobe;
+}
+
+/* f = ks F_Schlick(F0, cos_d) * lobe, per channel: the kernel of a model whose value is that
+ * (form SCHLICK in k_dispatch.h), k_f_ge say, is schlick_out of its k_f_ge_lobe. The float
+ * batch loops call the _lobe function, guard it once per pair and write ks F as
+ * ks_f0 + ks_f1 (1 - cos_d)^5 (kp_base), which is in [0, ks] for F0 in [0, 1] (eval_float.c). */
+static inline void schlick_out(const abrdf__kp *p, const abrdf__geo *g, abrdf__real lobe,
+                               abrdf__real f[3])
+{
+    for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * f_schlick(p->f0[c], g->cd) * lobe;
 }
 
 /* ((n/m)(c - 1) + 1)^m with m = 2^k, Table 1: the limit form of (1 + x/m)^m, the base

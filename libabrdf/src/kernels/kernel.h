@@ -32,6 +32,7 @@
  *                             with (Cycles' "setup" step; each model's setup is beside its
  *                             kernel, k_dispatch.h lists them)
  *   abrdf__geo, geo_make      the geometry every kernel reads (cosines, H, R.V)
+ *   pow_ch                    (N.H)^e, the lobe on N.H (in float without N.H's square root)
  * The thresholds are named in guards.h. */
 #ifndef ABRDF_KERNEL_H
 #define ABRDF_KERNEL_H
@@ -138,6 +139,8 @@ static inline void kp_base(abrdf__kp *k, const abrdf_params *p)
         k->kd[c] = (abrdf__real)p->kd[c];
         k->ks[c] = (abrdf__real)p->ks[c];
         k->f0[c] = (abrdf__real)p->f0[c];
+        k->ks_f0[c] = (abrdf__real)(p->ks[c] * p->f0[c]);
+        k->ks_f1[c] = (abrdf__real)(p->ks[c] * (1.0 - p->f0[c]));
     }
     k->n = (abrdf__real)p->n;
     k->r = (abrdf__real)p->r;
@@ -156,6 +159,7 @@ typedef struct abrdf__geo {
     abrdf__real ci, co;     /* cos_i = N.wi, cos_o = N.wo, clamped to [-1, 1] (clampg) */
     abrdf__real hx, hy, hz; /* H; +z when wi ~ -wo (then the pair is rejected as back-facing) */
     abrdf__real ch;         /* N.H */
+    abrdf__real ch2;        /* (N.H)^2 = max(0, h_z)^2 / |wi + wo|^2, no square root (pow_ch) */
     abrdf__real sh2;        /* |N x H|^2 = sin^2(theta_h), without the cancellation of 1 - ch^2 */
     abrdf__real cd;         /* wi.H = wo.H = |wi + wo|/2 in [0, 1] */
     abrdf__real rv;         /* R.wo, R the mirror of wi: cos(gamma) of Phong */
@@ -191,6 +195,8 @@ static inline ABRDF__ALWAYS_INLINE void geo_make(abrdf__geo *g, abrdf__real ix, 
     g->hy = len2 > min2 ? hy * inv : ABRDF__K(0);
     g->hz = len2 > min2 ? hz * inv : ABRDF__K(1);
     g->ch = clampg(g->hz, ABRDF__K(-1), ABRDF__K(1));
+    abrdf__real hzp = pos(hz);
+    g->ch2 = len2 > min2 ? hzp * hzp / len2 : ABRDF__K(1);
     g->sh2 = clampg(g->hx * g->hx + g->hy * g->hy, ABRDF__K(0), ABRDF__K(1));
     /* cos(theta_d) = wi.H = |wi + wo| / 2 for unit vectors. The norm form is bitwise
      * symmetric in wi and wo (reciprocity to the last bit), and it does not cancel when
@@ -198,6 +204,23 @@ static inline ABRDF__ALWAYS_INLINE void geo_make(abrdf__geo *g, abrdf__real ix, 
      * float precision. */
     g->cd = len2 > min2 ? clampg(ABRDF__K(0.5) * len, ABRDF__K(0), ABRDF__K(1)) : ABRDF__K(0);
     g->rv = clampg(-ix * ox - iy * oy + iz * oz, ABRDF__K(-1), ABRDF__K(1));
+}
+
+/* (N.H)^e, e >= 0: the Blinn-Phong lobe (Eq. 4) and every lobe on N.H, with N.H <= 0 giving
+ * 0^e. In double, pow of the clamped cosine (the reference). In float, ch2^(e/2): N.H is
+ * never formed, so a loop that needs nothing else of H does without the square root and
+ * the reciprocal of |wi + wo| (one division by |wi + wo|^2 instead), and ch2 rounds twice
+ * (the square, the division) where ch rounded three times (square root, reciprocal,
+ * product). Where N.H < 2^-63, ch2 is subnormal or 0 (the square underflows), and
+ * abrdf__powf_pos raises it as 2^-126 or gives 0^e: c^e is then off by less than 2^-63 e,
+ * nothing next to the lobe's peak for e >= 1. */
+static inline abrdf__real pow_ch(const abrdf__geo *g, abrdf__real e)
+{
+#if ABRDF__KERNEL_IS_FLOAT
+    return abrdf__powf_pos(g->ch2, ABRDF__K(0.5) * e);
+#else
+    return pow(pos(g->ch), e);
+#endif
 }
 
 /* Both directions strictly above the surface: the only pairs with a non-zero BRDF. The

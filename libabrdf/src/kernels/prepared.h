@@ -22,6 +22,7 @@
 /* The kernels' parameters, one field list for both precisions (kernel.h: abrdf__kp). */
 #define ABRDF__KP_FIELDS(REAL)                                                                     \
     REAL kd[3], ks[3], f0[3]; /* kp_base */                                                        \
+    REAL ks_f0[3], ks_f1[3];  /* ks F0 and ks (1 - F0): ks F_Schlick (kp_base, schlick_out) */     \
     REAL n;                   /* exponent (kp_base) */                                             \
     REAL r;                   /* perceptual roughness (kp_base) */                                 \
     REAL ag;                  /* alpha_g = max(r^2, ABRDF__ALPHA_G_MIN) */                         \
