@@ -65,88 +65,103 @@ void abrdf__ww_setup(const abrdf_params *p, abrdf__ww *w)
  *     = (g - c)^2 (c^2 g^2 + s^4) / ((g + c)^2 (c g + s^2)^2),
  * one root where the complex formula takes two and two divisions. No g (g^2 <= 0): total
  * internal reflection, F = 1. The matched and conductor interfaces give F over 1. c is in
- * [0, 1]. */
-static inline void ww_fresnel(const abrdf__ww *w, int k, double c, double *num, double *den)
+ * [0, 1], c2 = c^2 (known without c's root, so that g's root need not wait for it).
+ * Returns g^2 (> 0: light is transmitted; c^2 for a matched interface) and g in *g: the
+ * refracted cosine is g / eta (Snell: 1 - (1 - c^2) / eta^2 = g^2 / eta^2), no root of its
+ * own. */
+static inline double ww_fresnel(const abrdf__ww *w, int k, double c, double c2, double *num,
+                                double *den, double *g)
 {
+    *num = 0.0, *den = 1.0, *g = c;
     if (w->kind[k] == ABRDF__WW_DIELECTRIC) {
-        double s2 = 1.0 - c * c, g2 = w->eta2[k] - s2;
+        double s2 = 1.0 - c2, g2 = w->eta2[k] - s2;
         if (g2 > 0.0) {
-            double g = sqrt(g2), cg = c * g, gm = g - c, gp = g + c, q = cg + s2;
+            double gg = sqrt(g2), cg = c * gg, gm = gg - c, dp = (gg + c) * (cg + s2);
+            *g = gg;
             *num = gm * gm * (cg * cg + s2 * s2);
-            *den = gp * gp * q * q;
-            if (*den > 0.0) return; /* 0 only at g = c = 0, eta = 1 */
+            *den = dp * dp;
+            if (*den > 0.0) return g2; /* 0 only at g = c = 0, eta = 1 */
         }
         *num = *den = 1.0;
-        return;
+        return 0.0;
     }
-    *num = w->kind[k] == ABRDF__WW_MATCHED ? 0.0 : abrdf__fresnel_exact(c, w->eta[k], w->kappa[k]);
-    *den = 1.0;
+    if (w->kind[k] == ABRDF__WW_CONDUCTOR) *num = abrdf__fresnel_exact(c, w->eta[k], w->kappa[k]);
+    return c2;
 }
 
 /* Eq. 15 from the top down: f = top_0 + W_1 (top_1 + W_2 (... + base)), each interface's
  * weight W = T a t taken into the product of those above it. Refraction at H keeps H the
  * half vector of every pair below (L' + V' = 2 cos_t H, cos_t the refracted cosine, which is
  * L'.H = V'.H), so H, D's arguments and the next incidence cosine need no renormalisation:
- * only the z components of L' and V' are followed. Per interface: F (one root), the two
- * Smith terms (two roots), the refraction (one root) and one division for F, D and V
- * together; the absorption's exp and division only below an absorbing layer. */
+ * only the z components of L' and V' are followed. L.H = |L + V| / 2 for unit L and V. Per
+ * interface: F (one root, which gives the refraction too), the two Smith terms (two roots)
+ * and one division for F, D and V together (on the top interface for 1 / |L + V| as well);
+ * the absorption's exp and division only below an absorbing layer. The products are grouped
+ * so that little waits for the roots and the division: a renderer's call is one such chain. */
 void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const double wi[3], const double wo[3],
                                  double f[3])
 {
     f[0] = f[1] = f[2] = 0.0;
     double ci = wi[2], co = wo[2];
     if (!(ci > 0.0 && co > 0.0)) return;
-    double h[3] = {wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]};
-    double len2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+    double sx = wi[0] + wo[0], sy = wi[1] + wo[1], sz = wi[2] + wo[2];
+    double len2 = sx * sx + sy * sy + sz * sz;
     if (!(len2 > ABRDF__HALF_LEN2_MIN)) return;
-    double inv = 1.0 / sqrt(len2);
-    for (int c = 0; c < 3; ++c) h[c] *= inv;
-    double cd = wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2], sh2 = h[0] * h[0] + h[1] * h[1];
-    cd = cd < 1.0 ? cd : 1.0;       /* cd > 0: ci, co > 0 */
-    double wt[3] = {1.0, 1.0, 1.0}; /* the product of the weights W above */
-    for (int k = 0; k < w->count; ++k) {
-        double a2 = w->a2[k], nf, df;
-        ww_fresnel(w, k, cd, &nf, &df);
+    double len = sqrt(len2), cd = 0.5 * len, cd2 = 0.25 * len2;
+    cd = cd < 1.0 ? cd : 1.0; /* > 0: ci, co > 0 */
+    cd2 = cd2 < 1.0 ? cd2 : 1.0;
+    /* D's t = |N x H|^2 + a2 (N.H)^2 is (sxy + a2 z^2) u with, on the top interface, the
+     * unnormalised sum L + V (u = 1 / len2), and the unit H below it (u = 1); m = len folds
+     * 1 / len into the top interface's division. */
+    double sxy = sx * sx + sy * sy, z = sz, u = len2, m = len;
+    double wt0 = 1.0, wt1 = 1.0, wt2 = 1.0; /* the product of the weights W above */
+    double f0 = 0.0, f1 = 0.0, f2 = 0.0;
+    int k = 0;
+    for (; k < w->count; ++k) {
+        double a2 = w->a2[k], nf, df, g;
+        double g2 = ww_fresnel(w, k, cd, cd2, &nf, &df, &g);
         /* Smith visibility V1(c) = 1 / (c + sqrt(a2 + (1 - a2) c^2)) (Eq. 9), GGX D (Eq. 6)
-         * a2 / (pi t^2), t = |N x H|^2 + a2 (N.H)^2: top = F D V1(ci) V1(co) */
+         * a2 / (pi t^2): top = F D V1(ci) V1(co) */
         double vd = (ci + sqrt(a2 + (1.0 - a2) * ci * ci)) * (co + sqrt(a2 + (1.0 - a2) * co * co));
-        double t = sh2 + a2 * h[2] * h[2], tt = t * t;
-        double r = 1.0 / (df * vd * tt);
-        double F = nf * (vd * tt) * r, vv = df * tt * r;
-        double top = nf * (a2 * ABRDF__INV_PI) * r;
-        for (int c = 0; c < 3; ++c) f[c] += wt[c] * top;
-        if (w->kind[k] == ABRDF__WW_CONDUCTOR) return; /* nothing below is seen */
-        double T = 1.0 - F;
+        double tn = sxy + a2 * z * z, tnm = tn * tn * m, pd = vd * tnm; /* pd df m = 1 / r */
+        double r = 1.0 / (df * pd);
+        double top = (nf * ((a2 * ABRDF__INV_PI) * (u * u) * m)) * r;
+        f0 += wt0 * top, f1 += wt1 * top, f2 += wt2 * top;
+        if (w->kind[k] == ABRDF__WW_CONDUCTOR) break; /* nothing below is seen */
+        double F = (nf * pd) * r, G = (4.0 * ci * co * df * tnm) * r, T = 1.0 - F;
+        double im = (df * vd * tn * tn) * r, hz = z * im; /* 1 / m, N.H */
+        if (!(T > 0.0 && g2 > 0.0)) break;                /* total internal reflection */
         /* abrdf__lo_refract of L and V at H (L.H = V.H = cd) */
-        double ie = w->inv_eta[k], s2t = (1.0 - cd * cd) * (ie * ie);
-        if (!(T > 0.0 && s2t < 1.0)) return; /* total internal reflection */
-        double ct = sqrt(1.0 - s2t), kk = cd * ie - ct;
-        double li = ci * ie - kk * h[2], vi = co * ie - kk * h[2];
-        if (!(li > 0.0 && vi > 0.0)) return; /* refracted below the base's horizon */
+        double ie = w->inv_eta[k], ct = g * ie, kk = cd * ie - ct;
+        double li = ci * ie - kk * hz, vi = co * ie - kk * hz;
+        if (!(li > 0.0 && vi > 0.0)) break; /* refracted below the base's horizon */
         /* the next interface's half vector L' + V' has length 2 ct */
-        if (k + 1 < w->count && !(4.0 * ct * ct > ABRDF__HALF_LEN2_MIN)) return;
-        double G = 4.0 * ci * co * vv;
-        double tw = T * ((1.0 - G) + T * G); /* T t */
-        if (!w->absorbs[k]) {
-            for (int c = 0; c < 3; ++c) wt[c] *= tw; /* Eq. 15, a = 1 */
-        } else {
+        if (k + 1 < w->count && !(4.0 * ct * ct > ABRDF__HALF_LEN2_MIN)) break;
+        double tw = T * (1.0 - G * F); /* T t, t = (1 - G) + T G = 1 - G F */
+        double a0 = 1.0, a1 = 1.0, a2c = 1.0;
+        if (w->absorbs[k]) {
             double path = (li + vi) / (li * vi); /* 1 / li + 1 / vi */
             if (w->grey[k]) {                    /* one exp for the three channels */
-                double a = exp(-w->sd[k][0] * path);
-                for (int c = 0; c < 3; ++c) wt[c] *= tw * a;
+                a0 = a1 = a2c = exp(-w->sd[k][0] * path);
             } else {
-                for (int c = 0; c < 3; ++c) {
-                    double sd = w->sd[k][c];
-                    double a = sd > 0.0 ? exp(-sd * path) : 1.0;
-                    wt[c] *= tw * a; /* Eq. 15 */
-                }
+                a0 = w->sd[k][0] > 0.0 ? exp(-w->sd[k][0] * path) : 1.0;
+                a1 = w->sd[k][1] > 0.0 ? exp(-w->sd[k][1] * path) : 1.0;
+                a2c = w->sd[k][2] > 0.0 ? exp(-w->sd[k][2] * path) : 1.0;
             }
         }
+        wt0 *= tw * a0, wt1 *= tw * a1, wt2 *= tw * a2c; /* Eq. 15 */
         ci = li;
         co = vi;
         cd = ct;
+        cd2 = g2 * (ie * ie);
+        z = hz;
+        sxy *= im * im;
+        u *= im * im;
+        m = 1.0;
     }
-    for (int c = 0; c < 3; ++c) f[c] += wt[c] * w->base[c];
+    if (k == w->count) /* the light went through every interface */
+        f0 += wt0 * w->base[0], f1 += wt1 * w->base[1], f2 += wt2 * w->base[2];
+    f[0] = f0, f[1] = f1, f[2] = f2;
 }
 
 /* THE BATCH PATH, vectorised over the pairs in blocks of WW_BLOCK: the layer loop outside,
@@ -168,6 +183,7 @@ void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const double wi[3], const d
 
 typedef struct ww_lanes {
     double ci[WW_BLOCK], co[WW_BLOCK], cd[WW_BLOCK]; /* N.L, N.V, L.H at the interface */
+    double cd2[WW_BLOCK];                            /* (L.H)^2, as the double path has it */
     double hz[WW_BLOCK], sh2[WW_BLOCK];              /* N.H, |N x H|^2 */
     double wt[3][WW_BLOCK];                          /* the weight above, 0 once stopped */
     double f[3][WW_BLOCK];                           /* the sum so far */
@@ -195,13 +211,15 @@ static inline ABRDF__WW_INLINE void ww_start(int n, const float *restrict ix,
         double live = az > 0.0 ? 1.0 : 0.0;
         live = bz > 0.0 ? live : 0.0;
         live = len2 > ABRDF__HALF_LEN2_MIN ? live : 0.0;
-        double il = 1.0 / sqrt(live > 0.0 ? len2 : 1.0);
+        len2 = live > 0.0 ? len2 : 1.0;
+        double len = sqrt(len2), il = 1.0 / len, cd = 0.5 * len, cd2 = 0.25 * len2;
         hx *= il, hy *= il, hz *= il;
-        double cd = ax * hx + ay * hy + az * hz;
         cd = cd < 1.0 ? cd : 1.0;
+        cd2 = cd2 < 1.0 ? cd2 : 1.0;
         s->ci[j] = live > 0.0 ? az : 1.0;
         s->co[j] = live > 0.0 ? bz : 1.0;
         s->cd[j] = live > 0.0 ? cd : 1.0;
+        s->cd2[j] = live > 0.0 ? cd2 : 1.0;
         s->hz[j] = live > 0.0 ? hz : 1.0;
         s->sh2[j] = live > 0.0 ? hx * hx + hy * hy : 0.0;
         for (int c = 0; c < 3; ++c) s->wt[c][j] = live, s->f[c][j] = 0.0;
@@ -218,14 +236,16 @@ static inline ABRDF__WW_INLINE void ww_layer(const abrdf__ww *restrict w, int k,
     const double sd0 = w->sd[k][0], sd1 = w->sd[k][1], sd2 = w->sd[k][2];
     const double min4 = last ? -1.0 : ABRDF__HALF_LEN2_MIN; /* the next half vector's length */
     for (int j = 0; j < n; ++j) {
-        double ci = s->ci[j], co = s->co[j], cd = s->cd[j], hz = s->hz[j];
-        double nf = 0.0, df = 1.0;
+        double ci = s->ci[j], co = s->co[j], cd = s->cd[j], cd2 = s->cd2[j], hz = s->hz[j];
+        double nf = 0.0, df = 1.0, g = cd, g2 = cd2, through = 1.0;
         if (kind == ABRDF__WW_DIELECTRIC) { /* ww_fresnel, the selects for its branches */
-            double s2 = 1.0 - cd * cd, g2 = eta2 - s2;
-            double g = sqrt(g2 > 0.0 ? g2 : 0.0), cg = cd * g, gm = g - cd, gp = g + cd;
+            double s2 = 1.0 - cd2;
+            g2 = eta2 - s2;
+            g = sqrt(g2 > 0.0 ? g2 : 0.0);
+            double cg = cd * g, gm = g - cd, gp = g + cd;
             double q = cg + s2, num = gm * gm * (cg * cg + s2 * s2), den = gp * gp * q * q;
-            double ok = g2 > 0.0 ? 1.0 : 0.0;
-            ok = den > 0.0 ? ok : 0.0;
+            through = g2 > 0.0 ? 1.0 : 0.0;
+            double ok = den > 0.0 ? through : 0.0;
             nf = ok > 0.0 ? num : 1.0;
             df = ok > 0.0 ? den : 1.0;
         } else if (kind == ABRDF__WW_CONDUCTOR) {
@@ -238,10 +258,8 @@ static inline ABRDF__WW_INLINE void ww_layer(const abrdf__ww *restrict w, int k,
         for (int c = 0; c < 3; ++c) s->f[c][j] += s->wt[c][j] * top;
         if (kind == ABRDF__WW_CONDUCTOR) continue; /* the caller adds no base */
         double F = nf * (vd * tt) * r, vv = df * tt * r, T = 1.0 - F;
-        double s2t = (1.0 - cd * cd) * (ie * ie);
-        double ok = T > 0.0 ? 1.0 : 0.0;
-        ok = s2t < 1.0 ? ok : 0.0;
-        double ct = sqrt(ok > 0.0 ? 1.0 - s2t : 1.0), kk = cd * ie - ct;
+        double ok = T > 0.0 ? through : 0.0;
+        double ct = ok > 0.0 ? g * ie : 1.0, kk = cd * ie - ct;
         double li = ci * ie - kk * hz, vi = co * ie - kk * hz;
         ok = li > 0.0 ? ok : 0.0;
         ok = vi > 0.0 ? ok : 0.0;
@@ -249,7 +267,7 @@ static inline ABRDF__WW_INLINE void ww_layer(const abrdf__ww *restrict w, int k,
         li = ok > 0.0 ? li : 1.0;
         vi = ok > 0.0 ? vi : 1.0;
         double G = 4.0 * ci * co * vv;
-        double tw = ok > 0.0 ? T * ((1.0 - G) + T * G) : 0.0;
+        double tw = ok > 0.0 ? T * (1.0 - G * F) : 0.0;
         double a0 = 1.0, a1 = 1.0, a2c = 1.0;
         if (absorbs) {
             double path = (li + vi) / (li * vi);
@@ -263,6 +281,7 @@ static inline ABRDF__WW_INLINE void ww_layer(const abrdf__ww *restrict w, int k,
         s->ci[j] = li;
         s->co[j] = vi;
         s->cd[j] = ok > 0.0 ? ct : 1.0;
+        s->cd2[j] = ok > 0.0 ? g2 * (ie * ie) : 1.0;
     }
 }
 
