@@ -31,7 +31,10 @@ void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const dou
     abrdf__geo g;
     switch (pr->model) {
         ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
-    default: /* the double-only models (hair, layered): special.c */
+    case ABRDF_WEIDLICH_WILKIE: /* a closed form too: no second dispatch */
+        abrdf__eval_weidlich_wilkie(&pr->special.ww, wi, wo, v);
+        break;
+    default: /* the other double-only models (hair, layered): special.c */
         abrdf__eval_special_prepared(pr, wi, wo, v);
         break;
     }

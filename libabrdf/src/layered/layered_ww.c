@@ -89,6 +89,65 @@ static inline double ww_fresnel(const abrdf__ww *w, int k, double c, double c2, 
     return c2;
 }
 
+#if defined(__GNUC__)
+#define ABRDF__WW_INLINE __attribute__((always_inline)) /* one specialised copy per variant */
+#else
+#define ABRDF__WW_INLINE
+#endif
+
+/* What the recursion carries from one interface to the next. */
+typedef struct ww_state {
+    double ci, co, cd, cd2; /* N.L, N.V, L.H and (L.H)^2 at the interface */
+    double sxy, z;          /* |N x H|^2 and N.H, up to the scale of ww_interface's u */
+    double wt[3], f[3];     /* the product of the weights W above; the sum so far */
+} ww_state;
+
+/* Interface k: its top term added to st->f, then (return 1) the state below it, or 0 where
+ * nothing goes through (a conductor, total internal reflection, refraction below the
+ * horizon). D's t = |N x H|^2 + a2 (N.H)^2 is (sxy + a2 z^2) u: on the top interface sxy and
+ * z are those of the unnormalised sum L + V (u = 1 / len2) and m = len folds 1 / len into
+ * the interface's division; below it H is unit (u = m = 1, a constant in that call). */
+static inline ABRDF__WW_INLINE int ww_interface(const abrdf__ww *w, int k, ww_state *st, double u,
+                                                double m)
+{
+    const double ci = st->ci, co = st->co, cd = st->cd, a2 = w->a2[k];
+    double nf, df, g;
+    double g2 = ww_fresnel(w, k, cd, st->cd2, &nf, &df, &g);
+    /* Smith visibility V1(c) = 1 / (c + sqrt(a2 + (1 - a2) c^2)) (Eq. 9), GGX D (Eq. 6)
+     * a2 / (pi t^2): top = F D V1(ci) V1(co) */
+    double vd = (ci + sqrt(a2 + (1.0 - a2) * ci * ci)) * (co + sqrt(a2 + (1.0 - a2) * co * co));
+    double tn = st->sxy + a2 * st->z * st->z, tnm = tn * tn * m, pd = vd * tnm;
+    double r = 1.0 / (df * pd); /* pd df m = 1 / r */
+    double top = (nf * ((a2 * ABRDF__INV_PI) * (u * u) * m)) * r;
+    for (int c = 0; c < 3; ++c) st->f[c] += st->wt[c] * top;
+    if (w->kind[k] == ABRDF__WW_CONDUCTOR) return 0;    /* nothing below is seen */
+    double fr = nf * pd, gr = 4.0 * ci * co * df * tnm; /* F / r, G / r */
+    double F = fr * r, T = 1.0 - F, GF = (fr * gr) * (r * r);
+    double im = (df * vd * tn * tn) * r, hz = st->z * im; /* 1 / m, N.H */
+    if (!(T > 0.0 && g2 > 0.0)) return 0;                 /* total internal reflection */
+    /* abrdf__lo_refract of L and V at H (L.H = V.H = cd) */
+    double ie = w->inv_eta[k], ct = g * ie, kk = cd * ie - ct;
+    double li = ci * ie - kk * hz, vi = co * ie - kk * hz;
+    if (!(li > 0.0 && vi > 0.0)) return 0; /* refracted below the base's horizon */
+    /* the next interface's half vector L' + V' has length 2 ct */
+    if (k + 1 < w->count && !(4.0 * ct * ct > ABRDF__HALF_LEN2_MIN)) return 0;
+    double tw = T * (1.0 - GF); /* T t, t = (1 - G) + T G = 1 - G F */
+    if (!w->absorbs[k]) {
+        for (int c = 0; c < 3; ++c) st->wt[c] *= tw; /* Eq. 15, a = 1 */
+    } else {
+        double path = (li + vi) / (li * vi); /* 1 / li + 1 / vi */
+        double a = exp(-w->sd[k][0] * path); /* one exp when the channels absorb alike */
+        for (int c = 0; c < 3; ++c) {
+            double sd = w->sd[k][c];
+            double ac = w->grey[k] ? a : sd > 0.0 ? exp(-sd * path) : 1.0;
+            st->wt[c] *= tw * ac; /* Eq. 15 */
+        }
+    }
+    st->ci = li, st->co = vi, st->cd = ct, st->cd2 = g2 * (ie * ie);
+    st->sxy *= im * im, st->z = hz;
+    return 1;
+}
+
 /* Eq. 15 from the top down: f = top_0 + W_1 (top_1 + W_2 (... + base)), each interface's
  * weight W = T a t taken into the product of those above it. Refraction at H keeps H the
  * half vector of every pair below (L' + V' = 2 cos_t H, cos_t the refracted cosine, which is
@@ -103,65 +162,22 @@ void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const double wi[3], const d
 {
     f[0] = f[1] = f[2] = 0.0;
     double ci = wi[2], co = wo[2];
-    if (!(ci > 0.0 && co > 0.0)) return;
+    if (!(ci > 0.0 && co > 0.0) || w->count < 1) return;
     double sx = wi[0] + wo[0], sy = wi[1] + wo[1], sz = wi[2] + wo[2];
     double len2 = sx * sx + sy * sy + sz * sz;
     if (!(len2 > ABRDF__HALF_LEN2_MIN)) return;
     double len = sqrt(len2), cd = 0.5 * len, cd2 = 0.25 * len2;
-    cd = cd < 1.0 ? cd : 1.0; /* > 0: ci, co > 0 */
-    cd2 = cd2 < 1.0 ? cd2 : 1.0;
-    /* D's t = |N x H|^2 + a2 (N.H)^2 is (sxy + a2 z^2) u with, on the top interface, the
-     * unnormalised sum L + V (u = 1 / len2), and the unit H below it (u = 1); m = len folds
-     * 1 / len into the top interface's division. */
-    double sxy = sx * sx + sy * sy, z = sz, u = len2, m = len;
-    double wt0 = 1.0, wt1 = 1.0, wt2 = 1.0; /* the product of the weights W above */
-    double f0 = 0.0, f1 = 0.0, f2 = 0.0;
-    int k = 0;
-    for (; k < w->count; ++k) {
-        double a2 = w->a2[k], nf, df, g;
-        double g2 = ww_fresnel(w, k, cd, cd2, &nf, &df, &g);
-        /* Smith visibility V1(c) = 1 / (c + sqrt(a2 + (1 - a2) c^2)) (Eq. 9), GGX D (Eq. 6)
-         * a2 / (pi t^2): top = F D V1(ci) V1(co) */
-        double vd = (ci + sqrt(a2 + (1.0 - a2) * ci * ci)) * (co + sqrt(a2 + (1.0 - a2) * co * co));
-        double tn = sxy + a2 * z * z, tnm = tn * tn * m, pd = vd * tnm; /* pd df m = 1 / r */
-        double r = 1.0 / (df * pd);
-        double top = (nf * ((a2 * ABRDF__INV_PI) * (u * u) * m)) * r;
-        f0 += wt0 * top, f1 += wt1 * top, f2 += wt2 * top;
-        if (w->kind[k] == ABRDF__WW_CONDUCTOR) break; /* nothing below is seen */
-        double F = (nf * pd) * r, G = (4.0 * ci * co * df * tnm) * r, T = 1.0 - F;
-        double im = (df * vd * tn * tn) * r, hz = z * im; /* 1 / m, N.H */
-        if (!(T > 0.0 && g2 > 0.0)) break;                /* total internal reflection */
-        /* abrdf__lo_refract of L and V at H (L.H = V.H = cd) */
-        double ie = w->inv_eta[k], ct = g * ie, kk = cd * ie - ct;
-        double li = ci * ie - kk * hz, vi = co * ie - kk * hz;
-        if (!(li > 0.0 && vi > 0.0)) break; /* refracted below the base's horizon */
-        /* the next interface's half vector L' + V' has length 2 ct */
-        if (k + 1 < w->count && !(4.0 * ct * ct > ABRDF__HALF_LEN2_MIN)) break;
-        double tw = T * (1.0 - G * F); /* T t, t = (1 - G) + T G = 1 - G F */
-        double a0 = 1.0, a1 = 1.0, a2c = 1.0;
-        if (w->absorbs[k]) {
-            double path = (li + vi) / (li * vi); /* 1 / li + 1 / vi */
-            if (w->grey[k]) {                    /* one exp for the three channels */
-                a0 = a1 = a2c = exp(-w->sd[k][0] * path);
-            } else {
-                a0 = w->sd[k][0] > 0.0 ? exp(-w->sd[k][0] * path) : 1.0;
-                a1 = w->sd[k][1] > 0.0 ? exp(-w->sd[k][1] * path) : 1.0;
-                a2c = w->sd[k][2] > 0.0 ? exp(-w->sd[k][2] * path) : 1.0;
-            }
-        }
-        wt0 *= tw * a0, wt1 *= tw * a1, wt2 *= tw * a2c; /* Eq. 15 */
-        ci = li;
-        co = vi;
-        cd = ct;
-        cd2 = g2 * (ie * ie);
-        z = hz;
-        sxy *= im * im;
-        u *= im * im;
-        m = 1.0;
-    }
-    if (k == w->count) /* the light went through every interface */
-        f0 += wt0 * w->base[0], f1 += wt1 * w->base[1], f2 += wt2 * w->base[2];
-    f[0] = f0, f[1] = f1, f[2] = f2;
+    ww_state st = {ci,
+                   co,
+                   cd < 1.0 ? cd : 1.0,
+                   cd2 < 1.0 ? cd2 : 1.0, /* cd > 0: ci, co > 0 */
+                   sx * sx + sy * sy,
+                   sz,
+                   {1.0, 1.0, 1.0},
+                   {0.0, 0.0, 0.0}};
+    int k = 0, through = ww_interface(w, 0, &st, len2, len);
+    while (through && ++k < w->count) through = ww_interface(w, k, &st, 1.0, 1.0);
+    for (int c = 0; c < 3; ++c) f[c] = st.f[c] + (through ? st.wt[c] * w->base[c] : 0.0);
 }
 
 /* THE BATCH PATH, vectorised over the pairs in blocks of WW_BLOCK: the layer loop outside,
@@ -175,11 +191,6 @@ void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const double wi[3], const d
  * tolerance. Lanes whose float directions are far from unit length (|w|^2 outside
  * [0.25, 4], NaN) are evaluated again by the double path. */
 #define WW_BLOCK 64
-#if defined(__GNUC__)
-#define ABRDF__WW_INLINE __attribute__((always_inline)) /* one specialised copy per variant */
-#else
-#define ABRDF__WW_INLINE
-#endif
 
 typedef struct ww_lanes {
     double ci[WW_BLOCK], co[WW_BLOCK], cd[WW_BLOCK]; /* N.L, N.V, L.H at the interface */
