@@ -66,14 +66,15 @@ static void set_layer(abrdf_params *p, int k, double eta, double kappa, double r
 
 /* ---- Weidlich-Wilkie ------------------------------------------------------------------ */
 
-/* eta = 1 at every interface, zero depth: no interface at all, f is the Lambert base. */
+/* eta = 1 at every interface, zero depth: no interface at all, f is the Lambert base; so it
+ * is without any layer. */
 START_TEST(ww_index_matched_is_base)
 {
     abrdf_params p;
     abrdf_params_init(ABRDF_WEIDLICH_WILKIE, &p);
     p.kd[0] = 0.7;
     unsigned s = 5u;
-    for (int n = 1; n <= ABRDF_MAX_LAYERS; ++n) {
+    for (int n = 0; n <= ABRDF_MAX_LAYERS; ++n) {
         p.layer_count = n;
         for (int k = 0; k < n; ++k) set_layer(&p, k, 1.0, 0.0, 0.1 + 0.2 * k, 0.0, 0.0);
         for (int i = 0; i < 2000; ++i) {
@@ -495,7 +496,7 @@ START_TEST(ww_batch_levels_match_double)
     abrdf_params p;
     abrdf_params_init(ABRDF_WEIDLICH_WILKIE, &p);
     for (int cfg = 0; cfg < 300; ++cfg) {
-        p.layer_count = 1 + cfg % ABRDF_MAX_LAYERS;
+        p.layer_count = cfg % (ABRDF_MAX_LAYERS + 1); /* 0: the base alone */
         for (int l = 0; l < ABRDF_MAX_LAYERS; ++l) {
             unsigned u = (unsigned)(cfg * 7 + l * 13);
             set_layer(&p, l, etas[u % 5], kappas[(u / 5) % 4], rs[(u / 3) % 4], sig[(u / 2) % 3],

@@ -162,7 +162,7 @@ void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const double wi[3], const d
 {
     f[0] = f[1] = f[2] = 0.0;
     double ci = wi[2], co = wo[2];
-    if (!(ci > 0.0 && co > 0.0) || w->count < 1) return;
+    if (!(ci > 0.0 && co > 0.0)) return;
     double sx = wi[0] + wo[0], sy = wi[1] + wo[1], sz = wi[2] + wo[2];
     double len2 = sx * sx + sy * sy + sz * sz;
     if (!(len2 > ABRDF__HALF_LEN2_MIN)) return;
@@ -175,7 +175,7 @@ void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const double wi[3], const d
                    sz,
                    {1.0, 1.0, 1.0},
                    {0.0, 0.0, 0.0}};
-    int k = 0, through = ww_interface(w, 0, &st, len2, len);
+    int k = 0, through = w->count > 0 ? ww_interface(w, 0, &st, len2, len) : 1;
     while (through && ++k < w->count) through = ww_interface(w, k, &st, 1.0, 1.0);
     for (int c = 0; c < 3; ++c) f[c] = st.f[c] + (through ? st.wt[c] * w->base[c] : 0.0);
 }
