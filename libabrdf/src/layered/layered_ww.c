@@ -167,14 +167,9 @@ void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const double wi[3], const d
     double len2 = sx * sx + sy * sy + sz * sz;
     if (!(len2 > ABRDF__HALF_LEN2_MIN)) return;
     double len = sqrt(len2), cd = 0.5 * len, cd2 = 0.25 * len2;
-    ww_state st = {ci,
-                   co,
-                   cd < 1.0 ? cd : 1.0,
-                   cd2 < 1.0 ? cd2 : 1.0, /* cd > 0: ci, co > 0 */
-                   sx * sx + sy * sy,
-                   sz,
-                   {1.0, 1.0, 1.0},
-                   {0.0, 0.0, 0.0}};
+    cd = cd < 1.0 ? cd : 1.0; /* > 0: ci, co > 0 */
+    cd2 = cd2 < 1.0 ? cd2 : 1.0;
+    ww_state st = {ci, co, cd, cd2, sx * sx + sy * sy, sz, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}};
     int k = 0, through = w->count > 0 ? ww_interface(w, 0, &st, len2, len) : 1;
     while (through && ++k < w->count) through = ww_interface(w, k, &st, 1.0, 1.0);
     for (int c = 0; c < 3; ++c) f[c] = st.f[c] + (through ? st.wt[c] * w->base[c] : 0.0);
@@ -208,6 +203,8 @@ static inline double ww_len2(double d)
     return x <= 4.0 ? x : 1.0;
 }
 
+/* The block's directions normalised in double (as abrdf__batch_special did), its half
+ * vectors and the state above the top interface. */
 static inline ABRDF__WW_INLINE void ww_start(int n, const float *restrict ix,
                                              const float *restrict iy, const float *restrict iz,
                                              const float *restrict ox, const float *restrict oy,
