@@ -31,7 +31,7 @@ void abrdf__eval_prepared_d(const abrdf__prep *pr, const double wi[3], const dou
     abrdf__geo g;
     switch (pr->model) {
         ABRDF__KERNEL_MODELS(ABRDF__EVAL_CASE)
-    case ABRDF_WEIDLICH_WILKIE: /* a closed form too: no second dispatch */
+    case ABRDF_WEIDLICH_WILKIE: /* a closed form too: no second dispatch (setup: special.c) */
         abrdf__eval_weidlich_wilkie(&pr->special.ww, wi, wo, v);
         break;
     default: /* the other double-only models (hair, layered): special.c */

@@ -7,8 +7,7 @@
 /* What Weidlich-Wilkie's evaluation takes from the parameters alone (abrdf__ww_setup). */
 enum { ABRDF__WW_MATCHED, ABRDF__WW_DIELECTRIC, ABRDF__WW_CONDUCTOR }; /* abrdf__ww.kind */
 typedef struct abrdf__ww {
-    int count;                    /* interfaces used: min(layer_count, ABRDF_MAX_LAYERS),
-                                         and none below the first conductor */
+    int count; /* interfaces used: min(layer_count, ABRDF_MAX_LAYERS), none below a conductor */
     int kind[ABRDF_MAX_LAYERS];   /* eta = 1 and kappa = 0 (F = 0), kappa = 0, kappa > 0 */
     double eta[ABRDF_MAX_LAYERS]; /* eta and kappa per interface */
     double kappa[ABRDF_MAX_LAYERS];
@@ -22,8 +21,8 @@ typedef struct abrdf__ww {
 } abrdf__ww;
 void abrdf__ww_setup(const abrdf_params *p, abrdf__ww *w);
 
-/* Local-frame f_r of the Weidlich-Wilkie (Eq. 15) and Belcour (Eq. 16) layer stacks
- * described by p->layer_count and p->layers[]; f = 0 for back-facing pairs. */
+/* Local-frame f_r of the Weidlich-Wilkie stack set up in w (Eq. 15), and of the Belcour stack
+ * (Eq. 16) described by p->layer_count and p->layers[]; f = 0 for back-facing pairs. */
 void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const double wi[3], const double wo[3],
                                  double f[3]);
 /* The float batch b (abrdf_eval_prepared_batch's contract) at instruction-set level `level`
