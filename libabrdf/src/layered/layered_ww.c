@@ -277,11 +277,12 @@ static inline ABRDF__WW_INLINE void ww_layer(const abrdf__ww *restrict w, int k,
         double G = 4.0 * ci * co * vv;
         double tw = ok > 0.0 ? T * (1.0 - G * F) : 0.0;
         double a0 = 1.0, a1 = 1.0, a2c = 1.0;
-        if (absorbs) {
-            double path = (li + vi) / (li * vi);
-            a0 = abrdf__expf((float)(-sd0 * path));
-            a1 = abrdf__expf((float)(-sd1 * path));
-            a2c = abrdf__expf((float)(-sd2 * path));
+        if (absorbs) { /* exponents below -100 (-inf too) give 0 like -100: in float's range */
+            double path = (li + vi) / (li * vi), y0 = -sd0 * path, y1 = -sd1 * path;
+            double y2 = -sd2 * path;
+            a0 = abrdf__expf((float)(y0 > -100.0 ? y0 : -100.0));
+            a1 = abrdf__expf((float)(y1 > -100.0 ? y1 : -100.0));
+            a2c = abrdf__expf((float)(y2 > -100.0 ? y2 : -100.0));
         }
         s->wt[0][j] *= tw * a0;
         s->wt[1][j] *= tw * a1;
