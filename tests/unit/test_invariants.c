@@ -332,7 +332,8 @@ static double sensitivity(abrdf_model model, const abrdf_params *p, const double
 }
 
 /* The batch path at instruction-set level `level` (prepared.h: every level this CPU runs is
- * tested; the double-only models do not depend on the level and run at level 0 only). */
+ * tested; the double-only models do not depend on the level and run at level 0 only, except
+ * weidlich_wilkie, which has vector loops of its own). */
 static void float_batch_level(int level)
 {
     static tg_set sets[MAX_SETS];
@@ -344,7 +345,8 @@ static void float_batch_level(int level)
     grid_make();
     for (int mi = 0; mi < abrdf_model_count(); ++mi) {
         const abrdf_model_info *m = tu_param_model(mi);
-        if (!m || (level > 0 && abrdf__is_double_only(m->id))) continue;
+        if (!m || (level > 0 && abrdf__is_double_only(m->id) && m->id != ABRDF_WEIDLICH_WILKIE))
+            continue;
         int np = 0;
         for (int j = 0; j < grid.count; j += grid_stride(m), ++np) {
             ix[np] = (float)grid.wi[j][0];

@@ -3,6 +3,7 @@
 #include <float.h>
 
 #include "k_dispatch.h"
+#include "layered.h"
 #include "prepared.h"
 
 #define ABRDF__SETUP_CASE(ID, SETUP, KERNEL, FORM)                                                 \
@@ -65,9 +66,18 @@ static int scalar_special(const abrdf__prep *pr, const double wi[3], const doubl
     return ABRDF_OK;
 }
 
+/* weidlich_wilkie is a closed form too: called directly (its setup: special.c). */
+static int scalar_ww(const abrdf__prep *pr, const double wi[3], const double wo[3], double f[3])
+{
+    double v[3] = {0.0, 0.0, 0.0};
+    abrdf__eval_weidlich_wilkie(&pr->special.ww, wi, wo, v);
+    guard_out(v, f);
+    return ABRDF_OK;
+}
+
 #define ABRDF__SCALAR_ENTRY(ID, SETUP, KERNEL, FORM) [ID] = scalar_##KERNEL,
 
 const abrdf__eval_d_fn abrdf__scalar_of[ABRDF_MODEL_COUNT] = {
     ABRDF__KERNEL_MODELS(ABRDF__SCALAR_ENTRY)[ABRDF_MARSCHNER] = scalar_special,
-    [ABRDF_HUANG] = scalar_special, [ABRDF_WEIDLICH_WILKIE] = scalar_special,
+    [ABRDF_HUANG] = scalar_special, [ABRDF_WEIDLICH_WILKIE] = scalar_ww,
     [ABRDF_BELCOUR] = scalar_special, [ABRDF_MEASURED] = scalar_special};

@@ -228,6 +228,10 @@ int abrdf__eval_prepared_f_isa(const abrdf__prep *pr, const abrdf_batch *b, int 
         abrdf__measured_batch(&pr->special.measured, b, level);
         return 0;
     }
+    if (pr->model == ABRDF_WEIDLICH_WILKIE) { /* its own vector loops (layered_ww.c) */
+        abrdf__ww_batch(&pr->special.ww, b, level);
+        return 0;
+    }
     if (abrdf__is_double_only(pr->model)) {
         abrdf__batch_special(pr, b);
         return 0;

@@ -35,9 +35,6 @@ void abrdf__eval_special_prepared(const abrdf__prep *pr, const double wi[3], con
     switch (pr->model) {
     case ABRDF_MARSCHNER: abrdf__marschner_eval(&pr->special.marschner, wi, wo, f); break;
     case ABRDF_HUANG: abrdf__huang_eval(&pr->special.huang, wi, wo, f); break;
-    case ABRDF_WEIDLICH_WILKIE:
-        abrdf__eval_weidlich_wilkie(&pr->special.ww, &pr->params, wi, wo, f);
-        break;
     case ABRDF_BELCOUR: abrdf__eval_belcour(&pr->special.belcour, &pr->params, wi, wo, f); break;
     case ABRDF_MEASURED: abrdf__measured_eval(&pr->special.measured, wi, wo, f); break;
     default: break;

@@ -5,20 +5,29 @@
 #include "belcour_tables.h"
 
 /* What Weidlich-Wilkie's evaluation takes from the parameters alone (abrdf__ww_setup). */
+enum { ABRDF__WW_MATCHED, ABRDF__WW_DIELECTRIC, ABRDF__WW_CONDUCTOR }; /* abrdf__ww.kind */
 typedef struct abrdf__ww {
-    int count;                        /* interfaces used, min(layer_count, ABRDF_MAX_LAYERS) */
-    double ag[ABRDF_MAX_LAYERS];      /* alpha_g = max(r^2, ABRDF__ALPHA_G_MIN) per interface */
+    int count; /* interfaces used: min(layer_count, ABRDF_MAX_LAYERS), none below a conductor */
+    int kind[ABRDF_MAX_LAYERS];   /* eta = 1 and kappa = 0 (F = 0), kappa = 0, kappa > 0 */
+    double eta[ABRDF_MAX_LAYERS]; /* eta and kappa per interface */
+    double kappa[ABRDF_MAX_LAYERS];
+    double eta2[ABRDF_MAX_LAYERS];    /* eta^2 */
+    double a2[ABRDF_MAX_LAYERS];      /* alpha_g^2, alpha_g = max(r^2, ABRDF__ALPHA_G_MIN) */
     double inv_eta[ABRDF_MAX_LAYERS]; /* 1 / eta per interface */
     double sd[ABRDF_MAX_LAYERS][3];   /* sigma_a depth of the medium below each interface */
+    int absorbs[ABRDF_MAX_LAYERS];    /* some channel of sd is > 0 */
     int grey[ABRDF_MAX_LAYERS];       /* its three channels are equal: one exp serves them */
     double base[3];                   /* the Lambert base kd / pi */
 } abrdf__ww;
 void abrdf__ww_setup(const abrdf_params *p, abrdf__ww *w);
 
-/* Local-frame f_r of the Weidlich-Wilkie (Eq. 15) and Belcour (Eq. 16) layer stacks
- * described by p->layer_count and p->layers[]; f = 0 for back-facing pairs. */
-void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const abrdf_params *p, const double wi[3],
-                                 const double wo[3], double f[3]);
+/* Local-frame f_r of the Weidlich-Wilkie stack set up in w (Eq. 15), and of the Belcour stack
+ * (Eq. 16) described by p->layer_count and p->layers[]; f = 0 for back-facing pairs. */
+void abrdf__eval_weidlich_wilkie(const abrdf__ww *w, const double wi[3], const double wo[3],
+                                 double f[3]);
+/* The float batch b (abrdf_eval_prepared_batch's contract) at instruction-set level `level`
+ * (isa.h), vectorised over the pairs; the double path's values to float rounding. */
+void abrdf__ww_batch(const abrdf__ww *w, const abrdf_batch *b, int level);
 /* A value's place on a table axis: the lower node i and the weight t of node i + 1. */
 typedef struct abrdf__belcour_cell {
     int i;
