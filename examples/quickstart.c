@@ -32,13 +32,13 @@ int main(void)
     /* Many pairs at once, in float on the vector unit: interleaved (x, y, z) rows of unit
      * local directions in, (r, g, b) rows out (abrdf_eval_prepared_rows; abrdf_eval_prepared_batch
      * takes one array per axis). Here the pair above and a light straight overhead. */
-    const float rows_wi[2][3] = {{0.28734789f, 0.0f, 0.95782629f}, {0.0f, 0.0f, 1.0f}};
-    const float rows_wo[2][3] = {{-0.19518001f, 0.09759001f, 0.97590007f},
-                                 {-0.19518001f, 0.09759001f, 0.97590007f}};
-    float rows_f[2][3];
-    if (abrdf_eval_prepared_rows(&mat, 2, rows_wi[0], rows_wo[0], rows_f[0]) != ABRDF_OK) return 1;
-    printf("in float, as rows: %.6f %.6f %.6f; light overhead: %.6f %.6f %.6f\n", rows_f[0][0],
-           rows_f[0][1], rows_f[0][2], rows_f[1][0], rows_f[1][1], rows_f[1][2]);
+    const float rows_wi[6] = {0.28734789f, 0.0f, 0.95782629f, 0.0f, 0.0f, 1.0f};
+    const float rows_wo[6] = {-0.19518001f, 0.09759001f, 0.97590007f,
+                              -0.19518001f, 0.09759001f, 0.97590007f};
+    float rows_f[6];
+    if (abrdf_eval_prepared_rows(&mat, 2, rows_wi, rows_wo, rows_f) != ABRDF_OK) return 1;
+    printf("in float, as rows: %.6f %.6f %.6f; light overhead: %.6f %.6f %.6f\n", rows_f[0],
+           rows_f[1], rows_f[2], rows_f[3], rows_f[4], rows_f[5]);
 
     /* Importance sampling: light directions for the view direction wo, with pdf and weight
      * f_r cos / pdf; their mean weight estimates the directional albedo (docs/RENDERER.md,

@@ -408,7 +408,8 @@ ABRDF_API int abrdf_eval_prepared_unit(const abrdf_prepared *prepared, const dou
  * agree with the double path within the batch path's float tolerance (docs/MODELS.md). */
 ABRDF_API int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const abrdf_batch *batch);
 /* abrdf_eval_prepared_batch over interleaved rows: wi, wo hold `count` rows (x, y, z) of unit
- * local-frame directions (not renormalised), f receives `count` rows (r, g, b) of f_r; f may
+ * local-frame directions (the closed-form models use them as given, the others renormalise
+ * in double as abrdf_eval_prepared_batch does), f receives `count` rows (r, g, b) of f_r; f may
  * not overlap wi or wo. Bit for bit abrdf_eval_prepared_batch's values on the same
  * directions, without laying them out as a structure of arrays first: the rows are read by
  * the models' loops themselves. Same status codes (ABRDF_E_NULL; ABRDF_E_MODEL with f = 0).

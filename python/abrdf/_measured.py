@@ -99,7 +99,8 @@ class Measured:
              threads: int = 0) -> np.ndarray:
         """f_r(wi, wo) per RGB channel, 1/sr, without the cosine: BRDF.eval's arguments and
         result. precision "float": the library's float batch path on the prepared table
-        (abrdf_eval_prepared_batch), float32; "double": abrdf_eval_prepared, float64. The
+        (abrdf_eval_prepared_rows for unit float32 rows, else abrdf_eval_prepared_batch),
+        float32; "double": abrdf_eval_prepared, float64. The
         GIL is released while the library works."""
         return eval_block(self._block, wi, wo, precision, threads)
 

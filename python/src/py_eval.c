@@ -302,7 +302,7 @@ static PyObject *py_eval_float(PyObject *self, PyObject *args)
     for (int i = 0; i < t; ++i)
         if (range[i].status != ABRDF_OK) st = range[i].status;
     if (st != ABRDF_OK)
-        return abrdf_py_fail(st, "abrdf_eval_prepared_batch: %s", abrdf_strerror(st));
+        return abrdf_py_fail(st, "the float batch evaluation: %s", abrdf_strerror(st));
     Py_RETURN_NONE;
 }
 

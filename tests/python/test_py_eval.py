@@ -118,7 +118,8 @@ def test_threads_give_the_same_result_as_one():
 def test_float32_rows_give_the_layouts_values(model):
     """The same values bit for bit whichever way the rows go: unit float32 rows (straight into
     the library's loops) against the same numbers as float64 rows (laid out and normalised),
-    with one chunk holding a row of length 2 and one a zero row, and a last partial chunk."""
+    with a chunk holding a row of length 2 and a zero row, a chunk of unit rows only, and a
+    last partial chunk."""
     n = 2 * 256 + 45
     wi, wo = directions(n, 7).astype(np.float32), directions(n, 8).astype(np.float32)
     wi[0, 2] = -wi[0, 2]  # below the surface: 0 both ways
