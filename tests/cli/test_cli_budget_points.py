@@ -87,8 +87,26 @@ class Points(unittest.TestCase):
         p = run(BUDGET_POINTS, SCENE, "--budget", "huge", code=2)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
         self.assertIn("--budget", p.stderr)
-        p = run(BUDGET_POINTS, SCENE, "--check", "0.5", code=2)
+        for bad in (["--check", "0.5"], ["--check", "2x"], ["--check", ""], ["--spp", "2"],
+                    ["--spp", "65"], ["--spp", "4.0"], ["--threads", "0"]):
+            p = run(BUDGET_POINTS, SCENE, *bad, code=2)
+            self.assertEqual(len(p.stderr.strip().splitlines()), 1, (bad, p.stderr))
+            self.assertNotIn("memory", p.stderr, bad)
+        p = run(BUDGET_POINTS, SCENE, "--spp", "2", code=2)
+        self.assertIn("--spp 2: not a square", p.stderr)
+        p = run(BUDGET_POINTS, SCENE, "--check", "2x", code=2)
+        self.assertIn("'--check'", p.stderr)
+        self.assertIn("K (a square, 1-64)", p.stderr)
+        # a material table the loader refuses: its own reason (FILE:LINE: problem), one line
+        with tempfile.TemporaryDirectory() as tmp:
+            with open(os.path.join(tmp, "materials.csv"), "w") as f:
+                f.write("no table here\n")
+            env = dict(os.environ, ABRDF_DATA_DIR=tmp)
+            p = subprocess.run([BUDGET_POINTS, SCENE], capture_output=True, text=True,
+                               timeout=300, env=env)
+        self.assertEqual(p.returncode, 1, p.stderr)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+        self.assertIn("materials.csv:1:", p.stderr)
         p = run(BUDGET_POINTS, SCENE + ".missing", code=1)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
 
