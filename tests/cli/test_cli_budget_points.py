@@ -66,7 +66,7 @@ class Points(unittest.TestCase):
                       lines[floor + 1])
         hidden = lines.index(next(x for x in lines if "material 'hidden'" in x))
         self.assertIn("prediction: on the sphere", lines[hidden + 1])
-        self.assertIn("no point or directional light reaches", lines[hidden + 1])
+        self.assertIn("the camera sees it at no pixel centre", lines[hidden + 1])
 
     def test_sampled_lights_fall_back_to_the_sphere(self):
         # lit by a sphere and a rectangle light only: no term, the sphere stands in, and its
