@@ -1,7 +1,8 @@
 /* scene_points.c - a scene's own shading points per material (scene_points.h). The pass
  * renders nothing: it casts the camera's rays and the shadow rays of render.c
  * (render_hit_light), on a copy of the scene whose materials are all a black Lambert, so that
- * adaptive and table materials need no resolving first. */
+ * adaptive and table materials need no resolving first. A normal map is left out (the copy
+ * has no maps): the terms carry the hit's own normal, not the mapped one the render shades. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <math.h>
 #include <stdlib.h>

@@ -452,10 +452,14 @@ static const abrdf_view *view_for(const scene *s, int i, const scene_points *pts
         snprintf(pred, pred_size, "%s, per value of its roughness map", sph);
         return sphere;
     }
-    char left[96] = "", every[64] = "every pixel";
+    char left[128] = "", every[64] = "every pixel";
+    int nmap = s->materials[i].maps[SCENE_MAP_NORMAL].path != NULL;
     if (pts->sampled_lights)
-        snprintf(left, sizeof left, "; the scene's %d sampled light%s left out",
-                 pts->sampled_lights, pts->sampled_lights > 1 ? "s" : "");
+        snprintf(left, sizeof left, "; the scene's %d sampled light%s%s left out",
+                 pts->sampled_lights, pts->sampled_lights > 1 ? "s" : "",
+                 nmap ? " and its normal map" : "");
+    else if (nmap) /* the pass shades the geometric normal (scene_points.c) */
+        snprintf(left, sizeof left, "; its normal map left out");
     if (!scene_points_view(pts, i, own)) {
         char why[160];
         if (pts->pixels[i] == 0)
