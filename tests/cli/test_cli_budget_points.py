@@ -8,7 +8,9 @@ import subprocess
 import sys
 import tempfile
 import os
+import struct
 import unittest
+import zlib
 
 ABRDF = BUDGET_POINTS = SCENE = None
 FACTOR = 1.5
@@ -66,7 +68,7 @@ class Points(unittest.TestCase):
                       lines[floor + 1])
         hidden = lines.index(next(x for x in lines if "material 'hidden'" in x))
         self.assertIn("prediction: on the sphere", lines[hidden + 1])
-        self.assertIn("no point or directional light reaches", lines[hidden + 1])
+        self.assertIn("the camera sees it at no pixel centre", lines[hidden + 1])
 
     def test_sampled_lights_fall_back_to_the_sphere(self):
         # lit by a sphere and a rectangle light only: no term, the sphere stands in, and its
@@ -83,12 +85,61 @@ class Points(unittest.TestCase):
                       "--explain").stdout
         self.assertIn("prediction: on the sphere", out)
 
+    def test_explain_says_a_normal_map_is_left_out(self):
+        # the pass shades the surface's own normal: the prediction line must say so
+        with tempfile.TemporaryDirectory() as tmp:
+            raw = b"".join(b"\x00" + bytes((128, 128, 255)) * 4 for _ in range(4))
+
+            def chunk(tag, data):
+                return (struct.pack(">I", len(data)) + tag + data +
+                        struct.pack(">I", zlib.crc32(tag + data)))
+            with open(os.path.join(tmp, "n.png"), "wb") as f:
+                f.write(b"\x89PNG\r\n\x1a\n" +
+                        chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 2, 0, 0, 0)) +
+                        chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+            with open(os.path.join(tmp, "quad.obj"), "w") as f:
+                f.write("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                        "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+            scene = os.path.join(tmp, "n.scene")
+            with open(scene, "w") as f:
+                f.write("camera position=0,0,4 look_at=0,0,0 resolution=24,24\n"
+                        "light directional direction=0,0.3,1 intensity=2\n"
+                        "material m pbr metallic=1 roughness=0.3 normal_map=n.png budget=slight\n"
+                        "material p pbr metallic=1 roughness=0.3 budget=slight\n"
+                        "mesh file=quad.obj material=m translate=-1.1,0,0\n"
+                        "mesh file=quad.obj material=p translate=1.1,0,0\n")
+            out = run(ABRDF, "render", scene, "-o", os.path.join(tmp, "n.exr"), "--no-preview",
+                      "--explain").stdout
+        pred = [x for x in out.splitlines() if "prediction:" in x]
+        self.assertEqual(len(pred), 2, out)
+        self.assertIn("on the scene's shading points", pred[0], out)
+        self.assertIn("its normal map left out", pred[0], out)
+        self.assertNotIn("normal map", pred[1], out)
+
     def test_bad_arguments(self):
         p = run(BUDGET_POINTS, SCENE, "--budget", "huge", code=2)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
         self.assertIn("--budget", p.stderr)
-        p = run(BUDGET_POINTS, SCENE, "--check", "0.5", code=2)
+        for bad in (["--check", "0.5"], ["--check", "2x"], ["--check", ""], ["--spp", "2"],
+                    ["--spp", "65"], ["--spp", "4.0"], ["--threads", "0"]):
+            p = run(BUDGET_POINTS, SCENE, *bad, code=2)
+            self.assertEqual(len(p.stderr.strip().splitlines()), 1, (bad, p.stderr))
+            self.assertNotIn("memory", p.stderr, bad)
+        p = run(BUDGET_POINTS, SCENE, "--spp", "2", code=2)
+        self.assertIn("--spp 2: not a square", p.stderr)
+        p = run(BUDGET_POINTS, SCENE, "--check", "2x", code=2)
+        self.assertIn("'--check'", p.stderr)
+        self.assertIn("K (a square, 1-64)", p.stderr)
+        # a material table the loader refuses: its own reason (FILE:LINE: problem), one line
+        with tempfile.TemporaryDirectory() as tmp:
+            with open(os.path.join(tmp, "materials.csv"), "w") as f:
+                f.write("no table here\n")
+            env = dict(os.environ, ABRDF_DATA_DIR=tmp)
+            p = subprocess.run([BUDGET_POINTS, SCENE], capture_output=True, text=True,
+                               timeout=300, env=env)
+        self.assertEqual(p.returncode, 1, p.stderr)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
+        self.assertIn("materials.csv:1:", p.stderr)
         p = run(BUDGET_POINTS, SCENE + ".missing", code=1)
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
 

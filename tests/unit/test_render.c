@@ -550,8 +550,8 @@ START_TEST(scene_points_predict_the_render)
 }
 END_TEST
 
-/* A material covering more pixels than SCENE_POINTS_MAX_TERMS allows is sampled on one pixel
- * of each k x k block; each term carries the light's irradiance over the samples per pixel. */
+/* A material covering more pixels than SCENE_POINTS_MAX_TERMS allows is sampled on every
+ * k^2-th of its pixels; each term carries the light's irradiance over the samples per pixel. */
 START_TEST(scene_points_keep_a_bounded_sample)
 {
     const char *text = "camera position=0,0,3 look_at=0,0,0 fov=50 resolution=200,200\n"
@@ -578,6 +578,42 @@ START_TEST(scene_points_keep_a_bounded_sample)
 }
 END_TEST
 
+/* A material thinner than its stride keeps pixels: a bar one pixel row tall on an odd row,
+ * sampled every stride^2-th pixel of its own, not on a grid of even rows and columns. */
+START_TEST(scene_points_keep_a_thin_material)
+{
+    char text[2048];
+    int n = snprintf(text, sizeof text,
+                     "camera position=0,0,10 look_at=0,0,0 fov=40 resolution=200,120\n"
+                     "material bar diffuse=lambert\n"
+                     "box material=bar size=10.3,0.05,0.05 translate=0,-0.091,0\n");
+    for (int l = 0; l < 16; ++l) /* 16 lights x 4 samples: 64 terms a pixel */
+        n += snprintf(text + n, sizeof text - (size_t)n,
+                      "light directional direction=%g,%g,1 intensity=0.1\n", -0.3 + 0.2 * (l % 4),
+                      -0.3 + 0.2 * (l / 4));
+    scene s;
+    char err[512];
+    ck_assert_msg(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
+    scene_points p;
+    ck_assert_msg(scene_points_trace(&s, 4, &p, err, sizeof err) == 0, "%s", err);
+    for (int j = 0; j < p.height; ++j) /* the bar's pixels: all on row 61, off the even grid */
+        for (int i = 0; i < p.width; ++i)
+            ck_assert(p.pixel_material[(size_t)j * p.width + i] < 0 || j == 61);
+    ck_assert_int_gt(p.pixels[0], 100);
+    ck_assert_int_eq(p.stride[0], 2);
+    ck_assert_int_eq(p.kept[0], (p.pixels[0] + 3) / 4);
+    ck_assert_int_eq(p.hits[0], p.kept[0]);
+    ck_assert_int_eq(p.samples[0], p.kept[0]);
+    ck_assert_int_eq(p.term_count[0], p.kept[0] * 4 * 16);
+    ck_assert_int_le(p.term_count[0], SCENE_POINTS_MAX_TERMS);
+    scene_points_free(&p);
+    /* a non-square spp is refused, as render_image refuses it */
+    ck_assert_int_eq(scene_points_trace(&s, 2, &p, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "not a square") != NULL, "%s", err);
+    scene_free(&s);
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("render");
@@ -593,6 +629,7 @@ static Suite *suite(void)
     tcase_add_test(tv, fast_path_within_nmse_1e8_of_double);
     tcase_add_test(tv, scene_points_predict_the_render);
     tcase_add_test(tv, scene_points_keep_a_bounded_sample);
+    tcase_add_test(tv, scene_points_keep_a_thin_material);
     tcase_set_timeout(tv, 300);
     suite_add_tcase(s, tv);
     TCase *tp = tcase_create("plan");

@@ -10,6 +10,8 @@
  *
  *   budget_points SCENE [--budget CLASS|NMSE] [--spp K] [--threads T] [--check FACTOR]
  *
+ * K is a square (1, 4, 9, ..., 64): the render's strata form a k x k grid.
+ *
  * --check exits 1 unless, for every material the points see, the points' prediction of the
  * points' choice is within FACTOR of the measurement (values under 1e-8 compared as 1e-8). */
 #define _POSIX_C_SOURCE 200809L
@@ -75,8 +77,14 @@ static float *render(const scene *s, int spp, int threads)
         return NULL;
     }
     float *rgb = malloc((size_t)rs.width * (size_t)rs.height * 3 * sizeof *rgb);
-    if (!rgb || render_image(&rs, &ro, rgb, NULL)) {
+    if (!rgb)
         fprintf(stderr, "budget_points: out of memory for the image\n");
+    else if (render_image(&rs, &ro, rgb, NULL)) {
+        /* spp is a square (checked with the arguments): the lock could not be made */
+        fprintf(stderr,
+                "budget_points: the image cannot be rendered (render_image refused "
+                "%d samples per pixel or could not make its lock)\n",
+                spp);
         free(rgb);
         rgb = NULL;
     }
@@ -104,20 +112,26 @@ static void lobes_of(const scene_material *m, abrdf_model *d, abrdf_model *sp)
     *sp = m->lobes[m->lobe_count - 1];
 }
 
-/* The predicted NMSE of material mi of c against the same material of ref on view. */
-static double predicted(const scene_material *ref, const scene_material *c, const abrdf_view *view)
+/* The predicted NMSE of material c against the same material ref on view, into *nmse (NaN if
+ * abrdf_predict_nmse refuses the pair). 0, or -1 out of memory, with the message on stderr. */
+static int predicted(const scene_material *ref, const scene_material *c, const abrdf_view *view,
+                     double *nmse)
 {
     abrdf_model rd, rs, cd, cs;
     lobes_of(ref, &rd, &rs);
     lobes_of(c, &cd, &cs);
     size_t size = abrdf_fit_workspace_size(NULL, view);
     void *work = malloc(size);
-    double nmse = NAN;
-    if (work && abrdf_predict_nmse(rd, rs, &ref->params, cd, cs, &c->params, view, &nmse, work,
-                                   size) != ABRDF_OK)
-        nmse = NAN;
+    if (!work) {
+        fprintf(stderr, "budget_points: %s: out of memory for the prediction's workspace\n",
+                c->name);
+        return -1;
+    }
+    if (abrdf_predict_nmse(rd, rs, &ref->params, cd, cs, &c->params, view, nmse, work, size) !=
+        ABRDF_OK)
+        *nmse = NAN; /* a pair the prediction does not cover: NaN in the table */
     free(work);
-    return nmse;
+    return 0;
 }
 
 static double floored(double x) { return x > NMSE_FLOOR ? x : NMSE_FLOOR; }
@@ -131,19 +145,26 @@ int main(int argc, char **argv)
         const char *a = argv[i];
         if (!strcmp(a, "--budget") && i + 1 < argc)
             budget = argv[++i];
-        else if (!strcmp(a, "--spp") && i + 1 < argc && cli_parse_int(argv[i + 1], 1, 64, &spp))
+        else if (!strcmp(a, "--spp") && i + 1 < argc && cli_parse_int(argv[i + 1], 1, 64, &spp)) {
+            long k = lround(sqrt((double)spp));
+            if (k * k != spp) {
+                fprintf(stderr, "budget_points: --spp %ld: not a square (1, 4, 9, ..., 64)\n", spp);
+                return 2;
+            }
             ++i;
-        else if (!strcmp(a, "--threads") && i + 1 < argc &&
-                 cli_parse_int(argv[i + 1], 1, 64, &threads))
+        } else if (!strcmp(a, "--threads") && i + 1 < argc &&
+                   cli_parse_int(argv[i + 1], 1, 64, &threads))
             ++i;
-        else if (!strcmp(a, "--check") && i + 1 < argc && (factor = atof(argv[++i])) > 1.0)
-            ;
+        else if (!strcmp(a, "--check") && i + 1 < argc && cli_parse_double(argv[i + 1], &factor) &&
+                 factor > 1.0)
+            ++i;
         else if (a[0] != '-' && !path)
             path = a;
         else {
             fprintf(stderr,
                     "budget_points: bad argument '%s'; usage: budget_points SCENE [--budget "
-                    "CLASS|NMSE] [--spp K (1-64)] [--threads T] [--check FACTOR (> 1)]\n",
+                    "CLASS|NMSE] [--spp K (a square, 1-64)] [--threads T (1-64)] [--check FACTOR "
+                    "(> 1)]\n",
                     a);
             return 2;
         }
@@ -160,9 +181,10 @@ int main(int argc, char **argv)
     }
     char tpath[4096];
     mat_table table = {NULL, 0, 0};
-    if (data_path_find("materials.csv", tpath, sizeof tpath) ||
-        mat_table_load(&table, tpath, err, sizeof err)) {
-        fprintf(stderr, "budget_points: %s: the material table cannot be read\n", tpath);
+    /* not found: tpath is the source tree's path, and the loader says what is wrong with it */
+    data_path_find("materials.csv", tpath, sizeof tpath);
+    if (mat_table_load(&table, tpath, err, sizeof err)) {
+        fprintf(stderr, "budget_points: the material table: %s\n", err);
         return 1;
     }
     scene sv[V_COUNT], base;
@@ -206,7 +228,11 @@ int main(int argc, char **argv)
             lobes_of(c, &d, &sp);
             char name[128];
             budget_pair_name(d, sp, &c->params, name, sizeof name);
-            double ps = predicted(r, c, &sphere), pp = seen ? predicted(r, c, &own) : NAN;
+            double ps, pp = NAN;
+            if (predicted(r, c, &sphere, &ps) || (seen && predicted(r, c, &own, &pp))) {
+                rc = 1;
+                goto out;
+            }
             double me = measured(img[v], img[V_REF], &pts, m);
             printf("%-10s %-7s %-46s %11.3g %11.3g %11.3g %7d\n", c->name, variant_name[v], name,
                    ps, pp, me, pts.term_count[m]);

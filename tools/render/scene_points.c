@@ -1,7 +1,8 @@
 /* scene_points.c - a scene's own shading points per material (scene_points.h). The pass
  * renders nothing: it casts the camera's rays and the shadow rays of render.c
  * (render_hit_light), on a copy of the scene whose materials are all a black Lambert, so that
- * adaptive and table materials need no resolving first. */
+ * adaptive and table materials need no resolving first. A normal map is left out (the copy
+ * has no maps): the terms carry the hit's own normal, not the mapped one the render shades. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <math.h>
 #include <stdlib.h>
@@ -26,6 +27,8 @@ void scene_points_free(scene_points *p)
     free(p->term_count);
     free(p->samples);
     free(p->stride);
+    free(p->kept);
+    free(p->hits);
     free(p->pixels);
     free(p->pixel_material);
     memset(p, 0, sizeof *p);
@@ -66,9 +69,10 @@ static int push(scene_points *p, int *cap, int m, const abrdf_view_term *t)
 }
 
 /* The camera sample through (x, y) if it hits material m: its terms, into sample *sample
- * (taken from p->samples[m] at the first term). 0, or -1 out of memory. */
+ * (taken from p->samples[m] at the first term); *hit set if it sees m's front. 0, or -1 out
+ * of memory. */
 static int sample_terms(scene_points *p, int *cap, const render_scene *rs, int m, double x,
-                        double y, double weight, int *sample, render_stats *st)
+                        double y, double weight, int *sample, int *hit, render_stats *st)
 {
     double d[3];
     camera_ray(rs, x, y, d);
@@ -80,6 +84,7 @@ static int sample_terms(scene_points *p, int *cap, const render_scene *rs, int m
     memcpy(h.n, ah.n, sizeof h.n);
     for (int k = 0; k < 3; ++k) h.p[k] = rs->eye[k] + ah.t * d[k], h.wo[k] = -d[k];
     if (!(geom_dot(h.n, h.wo) > 0)) return 0; /* seen from behind: unlit, as render.c has it */
+    *hit = 1;
     abrdf_view_term t;
     memcpy(t.n, h.n, sizeof t.n);
     memcpy(t.wo, h.wo, sizeof t.wo);
@@ -121,7 +126,12 @@ int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, si
     double t0 = wall_seconds();
     memset(out, 0, sizeof *out);
     int k = (int)lround(sqrt(spp > 0 ? (double)spp : 1.0));
-    int nm = s->material_count, rc = -1, *cap = NULL;
+    if (spp < 1 || k * k != spp) { /* the render's strata form a k x k grid */
+        snprintf(err, err_size, "%d samples per pixel: not a square (1, 4, 9, ...)", spp);
+        return -1;
+    }
+    int nm = s->material_count, rc = -1, *cap = NULL, *seen = NULL; /* seen: per material, its
+                                                                      pixels scanned so far */
     scene copy;
     scene_material *mats = calloc((size_t)nm + 1, sizeof *mats);
     render_scene rs;
@@ -146,9 +156,12 @@ int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, si
     out->samples = calloc((size_t)nm + 1, sizeof *out->samples);
     out->term_count = calloc((size_t)nm + 1, sizeof *out->term_count);
     out->terms = calloc((size_t)nm + 1, sizeof *out->terms);
+    out->kept = calloc((size_t)nm + 1, sizeof *out->kept);
+    out->hits = calloc((size_t)nm + 1, sizeof *out->hits);
     cap = calloc((size_t)nm + 1, sizeof *cap);
+    seen = calloc((size_t)nm + 1, sizeof *seen);
     if (!out->pixel_material || !out->pixels || !out->stride || !out->samples || !out->term_count ||
-        !out->terms || !cap)
+        !out->terms || !out->kept || !out->hits || !cap || !seen)
         goto oom;
     /* the material at every pixel centre */
     for (int j = 0; j < rs.height; ++j)
@@ -170,22 +183,26 @@ int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, si
     for (int m = 0; m < nm; ++m) {
         int st_m = 1;
         double per_pixel = (double)out->spp * (lights > 0 ? lights : 1);
-        while ((double)out->pixels[m] / ((double)st_m * st_m) * per_pixel > SCENE_POINTS_MAX_TERMS)
+        while ((double)st_m * st_m < out->pixels[m] &&
+               ceil(out->pixels[m] / ((double)st_m * st_m)) * per_pixel > SCENE_POINTS_MAX_TERMS)
             ++st_m;
         out->stride[m] = st_m;
     }
-    /* each material's terms, pixel by pixel over its stride's grid */
+    /* each material's terms: every stride^2-th of its pixels in scan order, its first
+     * included, so that a material thinner than the stride keeps pixels too */
     double inv_k = 1.0 / k, weight = 1.0 / (k * k);
     for (int j = 0; j < rs.height; ++j)
         for (int i = 0; i < rs.width; ++i) {
             int m = out->pixel_material[(size_t)j * rs.width + i];
-            if (m < 0 || i % out->stride[m] || j % out->stride[m]) continue;
-            int sample = -1;
+            if (m < 0 || seen[m]++ % (out->stride[m] * out->stride[m])) continue;
+            ++out->kept[m];
+            int sample = -1, hit = 0;
             for (int sy = 0; sy < k; ++sy)
                 for (int sx = 0; sx < k; ++sx)
                     if (sample_terms(out, cap, &rs, m, i + (sx + 0.5) * inv_k,
-                                     j + (sy + 0.5) * inv_k, weight, &sample, &st))
+                                     j + (sy + 0.5) * inv_k, weight, &sample, &hit, &st))
                         goto oom;
+            out->hits[m] += hit;
         }
     out->seconds = wall_seconds() - t0;
     rc = 0;
@@ -195,6 +212,7 @@ oom:
     scene_points_free(out);
 done:
     free(cap);
+    free(seen);
     render_release(&rs);
     free(mats);
     return rc;

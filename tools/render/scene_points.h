@@ -17,9 +17,9 @@
 #include "abrdf_fit.h"
 #include "scene.h"
 
-/* Terms kept per material at most: a material covering more pixels is sampled on every k-th
- * pixel of every k-th row, k the smallest that keeps its terms (pixels x spp x lights)
- * under this. 8192 terms cost about what the sphere's 24 x 24 grids under four lights cost
+/* Terms kept per material at most: a material covering more pixels is sampled on every
+ * k^2-th of its pixels in scan order (its first included), k the smallest that keeps its terms
+ * (ceil(pixels / k^2) x spp x lights) under this, or 1 pixel. 8192 terms cost about what the sphere's 24 x 24 grids under four lights cost
  * a numerically integrated lobe (hair, ~1 ms an evaluation). */
 #define SCENE_POINTS_MAX_TERMS 8192
 
@@ -31,6 +31,9 @@ typedef struct scene_points {
                                 centre, -1 for the background */
     int *pixels;             /* per material: pixels whose centre sees it */
     int *stride;             /* per material: the k of SCENE_POINTS_MAX_TERMS */
+    int *kept;               /* per material: pixels sampled, ceil(pixels / stride^2) */
+    int *hits;               /* per material: of those, pixels a camera sample of which sees
+                                its front */
     int *samples;            /* per material: pixels that gave terms */
     int *term_count;         /* per material */
     abrdf_view_term **terms; /* per material: term_count terms (NULL: none) */
@@ -39,9 +42,10 @@ typedef struct scene_points {
 } scene_points;
 
 /* Trace s's camera at its resolution: the material of every pixel centre, then, for each
- * material, in every pixel of its stride's grid whose centre sees it, the spp camera samples
+ * material, in every stride^2-th pixel whose centre sees it, the spp camera samples
  * (strata centres) that hit it, with one term per lighting point or directional light, its
- * irradiance divided by spp (the pixel's box filter). Returns 0, or -1 with one line in err (out is then empty). */
+ * irradiance divided by spp (the pixel's box filter). spp must be a square, as render_image asks. Returns 0,
+ * or -1 with one line in err (out is then empty). */
 int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, size_t err_size);
 
 /* v (initialised here) as material m's terms: 1, or 0 if m has none (v is then the default

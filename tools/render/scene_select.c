@@ -452,19 +452,33 @@ static const abrdf_view *view_for(const scene *s, int i, const scene_points *pts
         snprintf(pred, pred_size, "%s, per value of its roughness map", sph);
         return sphere;
     }
-    char left[96] = "", every[64] = "every pixel";
+    char left[128] = "", every[64] = "every pixel";
+    int nmap = s->materials[i].maps[SCENE_MAP_NORMAL].path != NULL;
     if (pts->sampled_lights)
-        snprintf(left, sizeof left, "; the scene's %d sampled light%s left out",
-                 pts->sampled_lights, pts->sampled_lights > 1 ? "s" : "");
+        snprintf(left, sizeof left, "; the scene's %d sampled light%s%s left out",
+                 pts->sampled_lights, pts->sampled_lights > 1 ? "s" : "",
+                 nmap ? " and its normal map" : "");
+    else if (nmap) /* the pass shades the geometric normal (scene_points.c) */
+        snprintf(left, sizeof left, "; its normal map left out");
     if (!scene_points_view(pts, i, own)) {
-        snprintf(pred, pred_size,
-                 "%s: no point or directional light reaches a point of it the camera sees%s", sph,
-                 left);
+        char why[160];
+        if (pts->pixels[i] == 0)
+            snprintf(why, sizeof why, "the camera sees it at no pixel centre");
+        else if (pts->hits[i] == 0)
+            snprintf(why, sizeof why,
+                     "no camera sample of the %d of its %d pixels the pass kept sees its front",
+                     pts->kept[i], pts->pixels[i]);
+        else
+            snprintf(why, sizeof why,
+                     "no point or directional light reaches its points the camera sees in the %d "
+                     "of its %d pixels the pass kept",
+                     pts->kept[i], pts->pixels[i]);
+        snprintf(pred, pred_size, "%s: %s%s", sph, why, left);
         return sphere;
     }
     if (pts->stride[i] > 1)
-        snprintf(every, sizeof every, "one pixel in each %d x %d block", pts->stride[i],
-                 pts->stride[i]);
+        snprintf(every, sizeof every, "one in every %d of its pixels, in scan order",
+                 pts->stride[i] * pts->stride[i]);
     snprintf(pred, pred_size,
              "on the scene's shading points: %d of the %d pixels it covers at %d x %d (%s, %d "
              "samples each), %d light terms%s",
