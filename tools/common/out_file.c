@@ -2,6 +2,7 @@
 #define _GNU_SOURCE /* fopencookie */
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -28,23 +29,39 @@ static void on_signal(int sig)
     raise(sig);
 }
 
-static void live_add(char *path)
+static const int live_signals[] = {SIGINT, SIGTERM, SIGHUP};
+
+static void live_install(void)
 {
     static int installed;
-    if (!installed) {
-        installed = 1;
-        const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
-        for (int i = 0; i < 3; ++i) {
-            struct sigaction sa, old;
-            memset(&sa, 0, sizeof sa);
-            sa.sa_handler = on_signal;
-            sigemptyset(&sa.sa_mask);
-            /* A signal the caller ignores (nohup) stays ignored. */
-            if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_DFL)
-                sigaction(sigs[i], &sa, NULL);
-        }
-        signal(SIGXFSZ, SIG_IGN); /* write(2) then fails with EFBIG, which is reported */
+    if (installed) return;
+    installed = 1;
+    for (int i = 0; i < 3; ++i) {
+        struct sigaction sa, old;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_signal;
+        sigemptyset(&sa.sa_mask);
+        /* A signal the caller ignores (nohup) stays ignored. */
+        if (sigaction(live_signals[i], NULL, &old) == 0 && old.sa_handler == SIG_DFL)
+            sigaction(live_signals[i], &sa, NULL);
     }
+    signal(SIGXFSZ, SIG_IGN); /* write(2) then fails with EFBIG, which is reported */
+}
+
+/* Blocks the three signals from before a temporary file is created until it is in live[], so
+ * that a signal arriving in between cannot leave the file behind; restore unblocks them, and a
+ * signal held meanwhile is handled then, with the file listed. Outputs are opened before any
+ * worker thread starts, so the calling thread is the one the signal would reach. */
+static void live_block(sigset_t *saved)
+{
+    sigset_t block;
+    sigemptyset(&block);
+    for (int i = 0; i < 3; ++i) sigaddset(&block, live_signals[i]);
+    pthread_sigmask(SIG_BLOCK, &block, saved);
+}
+
+static void live_add(char *path)
+{
     for (int i = 0; i < LIVE_MAX; ++i)
         if (!live[i]) {
             live[i] = path;
@@ -192,21 +209,29 @@ int out_file_open(out_file *o, const char *target, char *err, size_t err_size)
     unsigned long long salt = (unsigned long long)now.tv_nsec ^
                               ((unsigned long long)now.tv_sec << 20) ^
                               ((unsigned long long)getpid() << 40) ^ (uintptr_t)o;
+    live_install();
+    sigset_t saved;
+    live_block(&saved);
     for (int attempt = 0; attempt < 100 && o->fd < 0; ++attempt) {
         free(o->temp);
-        if (!(o->temp = temp_name(o->path, salt + 0x9e3779b97f4a7c15ull * (unsigned)attempt)))
-            goto nomem;
+        o->temp = temp_name(o->path, salt + 0x9e3779b97f4a7c15ull * (unsigned)attempt);
+        if (!o->temp) {
+            errno = ENOMEM;
+            break;
+        }
         o->fd = open(o->temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (o->fd < 0 && errno != EEXIST) break;
     }
+    if (o->fd >= 0) live_add(o->temp);
+    int code = errno;
+    pthread_sigmask(SIG_SETMASK, &saved, NULL);
+    if (!o->temp) goto nomem;
     if (o->fd < 0) {
-        int code = errno;
         free(o->temp);
         o->temp = NULL;
         fail(o, err, err_size, "cannot create a file beside it", code);
         goto bad;
     }
-    live_add(o->temp);
     if (exists) fchmod(o->fd, st.st_mode & 07777); /* the replaced file's permissions */
 stream:;
     cookie_io_functions_t io = {NULL, checked_write, NULL, NULL};
