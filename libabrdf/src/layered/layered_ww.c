@@ -64,27 +64,32 @@ void abrdf__ww_setup(const abrdf_params *p, abrdf__ww *w)
  *   F = 1/2 (g - c)^2 / (g + c)^2 (1 + (c g - s^2)^2 / (c g + s^2)^2)
  *     = (g - c)^2 (c^2 g^2 + s^4) / ((g + c)^2 (c g + s^2)^2),
  * one root where the complex formula takes two and two divisions. No g (g^2 <= 0): total
- * internal reflection, F = 1. The matched and conductor interfaces give F over 1. c is in
- * [0, 1], c2 = c^2 (known without c's root, so that g's root need not wait for it).
- * Returns g^2 (> 0: light is transmitted; c^2 for a matched interface) and g in *g: the
- * refracted cosine is g / eta (Snell: 1 - (1 - c^2) / eta^2 = g^2 / eta^2), no root of its
- * own. */
+ * internal reflection, F = 1 and 0 is returned. c is in [0, 1], c2 = c^2 (known without c's
+ * root, so that g's root need not wait for it). Returns g^2 where light is transmitted (> 0),
+ * else 0, and g in *g: the refracted cosine is g / eta (Snell: 1 - (1 - c^2) / eta^2 =
+ * g^2 / eta^2), no root of its own. Selects, no branch: the double path calls it per pair,
+ * the batch path inside its vectorised loop over a block's lanes. */
+static inline double ww_dielectric(double c, double c2, double eta2, double *num, double *den,
+                                   double *g)
+{
+    double s2 = 1.0 - c2, g2 = eta2 - s2;
+    double gg = sqrt(g2 > 0.0 ? g2 : 0.0), cg = c * gg, gm = gg - c, dp = (gg + c) * (cg + s2);
+    double n = gm * gm * (cg * cg + s2 * s2), d = dp * dp;
+    double ok = g2 > 0.0 ? 1.0 : 0.0;
+    ok = d > 0.0 ? ok : 0.0; /* d is 0 only at g = c = 0, eta = 1 */
+    *num = ok > 0.0 ? n : 1.0;
+    *den = ok > 0.0 ? d : 1.0;
+    *g = gg;
+    return ok > 0.0 ? g2 : 0.0;
+}
+
+/* Interface k's Fresnel term as ww_dielectric's fraction: F over 1 for the matched (0) and
+ * conductor interfaces, which transmit along the cosine itself (g = c, g^2 = c2). */
 static inline double ww_fresnel(const abrdf__ww *w, int k, double c, double c2, double *num,
                                 double *den, double *g)
 {
+    if (w->kind[k] == ABRDF__WW_DIELECTRIC) return ww_dielectric(c, c2, w->eta2[k], num, den, g);
     *num = 0.0, *den = 1.0, *g = c;
-    if (w->kind[k] == ABRDF__WW_DIELECTRIC) {
-        double s2 = 1.0 - c2, g2 = w->eta2[k] - s2;
-        if (g2 > 0.0) {
-            double gg = sqrt(g2), cg = c * gg, gm = gg - c, dp = (gg + c) * (cg + s2);
-            *g = gg;
-            *num = gm * gm * (cg * cg + s2 * s2);
-            *den = dp * dp;
-            if (*den > 0.0) return g2; /* 0 only at g = c = 0, eta = 1 */
-        }
-        *num = *den = 1.0;
-        return 0.0;
-    }
     if (w->kind[k] == ABRDF__WW_CONDUCTOR) *num = abrdf__fresnel_exact(c, w->eta[k], w->kappa[k]);
     return c2;
 }
@@ -246,16 +251,9 @@ static inline ABRDF__WW_INLINE void ww_layer(const abrdf__ww *restrict w, int k,
     for (int j = 0; j < n; ++j) {
         double ci = s->ci[j], co = s->co[j], cd = s->cd[j], cd2 = s->cd2[j], hz = s->hz[j];
         double nf = 0.0, df = 1.0, g = cd, g2 = cd2, through = 1.0;
-        if (kind == ABRDF__WW_DIELECTRIC) { /* ww_fresnel, the selects for its branches */
-            double s2 = 1.0 - cd2;
-            g2 = eta2 - s2;
-            g = sqrt(g2 > 0.0 ? g2 : 0.0);
-            double cg = cd * g, gm = g - cd, gp = g + cd;
-            double q = cg + s2, num = gm * gm * (cg * cg + s2 * s2), den = gp * gp * q * q;
+        if (kind == ABRDF__WW_DIELECTRIC) {
+            g2 = ww_dielectric(cd, cd2, eta2, &nf, &df, &g);
             through = g2 > 0.0 ? 1.0 : 0.0;
-            double ok = den > 0.0 ? through : 0.0;
-            nf = ok > 0.0 ? num : 1.0;
-            df = ok > 0.0 ? den : 1.0;
         } else if (kind == ABRDF__WW_CONDUCTOR) {
             nf = abrdf__fresnel_exact(cd, eta, kappa);
         }
