@@ -10,6 +10,7 @@ finiteness and values that do not depend on the machine's speed.
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -17,6 +18,7 @@ import unittest
 import xml.etree.ElementTree as ET
 
 ABRDF = None
+COST_OF = None  # build/bin/cost_of: one model's cost at given parameters
 
 APPROX = ["f2", "f4", "f8", "f16", "fs", "fkv", "fkub"]
 TABLE5 = ["f_phe", "f_be", "f_2e", "f_16e", "f_ge", "f_ctphe", "f_ct2e", "f_ct16e"]
@@ -177,6 +179,41 @@ class Errors(unittest.TestCase):
         self.assertEqual(rc, 2)
 
 
+class CostOf(unittest.TestCase):
+    """cost_of MODEL --set ...: one line with finite, positive costs; bad arguments get one
+    line naming what is wrong and exit 2."""
+
+    def cost_of(self, *args):
+        p = subprocess.run([COST_OF] + list(args), stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, universal_newlines=True, timeout=120)
+        return p.returncode, p.stdout, p.stderr
+
+    def test_a_conductor_stack(self):
+        rc, out, err = self.cost_of("weidlich_wilkie", "--reps", "1", "--set", "layer_count=1",
+                                    "--set", "layer0_kappa=3")
+        self.assertEqual(rc, 0, err)
+        m = re.match(r"weidlich_wilkie: float batch (\S+) ns/eval \((\S+) units\), per call "
+                     r"\(abrdf_eval_prepared_unit\) (\S+) ns \((\S+) units\); unit .* (\S+) ns, "
+                     r"median of 1\n$", out)
+        self.assertIsNotNone(m, out)
+        for v in m.groups():
+            self.assertTrue(math.isfinite(float(v)) and float(v) > 0.0, out)
+
+    def test_bad_arguments(self):
+        for args, needle in ((["nope"], "unknown model 'nope'"),
+                             (["lambert", "--set", "r=7"], "'r'"),
+                             (["weidlich_wilkie", "--set", "layer0_r=7"], "'layer0_r' = 7"),
+                             (["lambert", "--reps", "0"], "--reps"),
+                             (["lambert", "--fast"], "unknown argument '--fast'"),
+                             ([], "usage")):
+            rc, out, err = self.cost_of(*args)
+            self.assertEqual(rc, 2, args)
+            self.assertEqual(out, "", args)
+            self.assertEqual(err.count("\n"), 1, err)
+            self.assertIn(needle, err)
+
+
 if __name__ == "__main__":
     ABRDF = sys.argv.pop(1)
+    COST_OF = sys.argv.pop(1)
     unittest.main()

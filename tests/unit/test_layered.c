@@ -8,6 +8,7 @@
 #include "cl_quad.h"
 #include "isa.h"
 #include "layered.h"
+#include "layered_optics.h"
 #include "prepared.h"
 #include "test_util.h"
 
@@ -89,6 +90,33 @@ START_TEST(ww_index_matched_is_base)
 END_TEST
 
 /* A conductor interface on top is a plain GGX lobe with exact conductor Fresnel. */
+/* The real-arithmetic Fresnel the layered models share (layered_optics.h), written with
+ * selects so that Weidlich-Wilkie's conductor lanes vectorise: the complex amplitudes' value
+ * over dielectrics (total internal reflection included), absorbing dielectrics and metals, and
+ * its guards: index-matched 0 at every cosine, grazing incidence and a NaN cosine 1, cosines
+ * outside [0, 1] clamped. */
+START_TEST(fresnel_exact_values_and_guards)
+{
+    const double etas[] = {0.25, 0.7, 1.0, 1.5, 4.0}, kappas[] = {0.0, 1e-3, 3.0, 10.0};
+    for (int i = 0; i < 5; ++i)
+        for (int k = 0; k < 4; ++k)
+            for (int j = 1; j <= 50; ++j) {
+                double c = j / 50.0, e = etas[i], kk = kappas[k];
+                if (e == 1.0 && kk == 0.0) continue;
+                double got = abrdf__fresnel_exact(c, e, kk), want = fresnel_complex(c, e, kk);
+                ck_assert_msg(tu_close(got, want, 1e-12, 1e-15), "F(%g, %g, %g) = %.17g, not %.17g",
+                              c, e, kk, got, want);
+            }
+    const double cs[] = {0.0, 0.3, 1.0, -0.5, 2.0, NAN};
+    for (int j = 0; j < 6; ++j) ck_assert(abrdf__fresnel_exact(cs[j], 1.0, 0.0) == 0.0);
+    ck_assert(abrdf__fresnel_exact(0.0, 1.5, 0.0) == 1.0);
+    ck_assert(abrdf__fresnel_exact(0.0, 0.2, 3.0) == 1.0);
+    ck_assert(abrdf__fresnel_exact(NAN, 1.5, 0.0) == 1.0);
+    ck_assert(abrdf__fresnel_exact(-0.5, 1.5, 0.0) == 1.0);
+    ck_assert(abrdf__fresnel_exact(2.0, 1.5, 3.0) == abrdf__fresnel_exact(1.0, 1.5, 3.0));
+}
+END_TEST
+
 START_TEST(ww_conductor_is_ggx)
 {
     abrdf_params p;
@@ -559,6 +587,7 @@ static Suite *suite(void)
     Suite *s = suite_create("layered");
     TCase *tc = tcase_create("layered");
     tcase_set_timeout(tc, 300);
+    tcase_add_test(tc, fresnel_exact_values_and_guards);
     tcase_add_test(tc, ww_index_matched_is_base);
     tcase_add_test(tc, ww_conductor_is_ggx);
     tcase_add_test(tc, ww_coat_by_hand);

@@ -14,22 +14,27 @@
 
 #define ABRDF__LO_PI 3.14159265358979323846
 
-/* Reflectance of an interface of relative index eta + i kappa at incidence cosine c. */
+/* Reflectance of an interface of relative index eta + i kappa at incidence cosine c. Selects,
+ * no branch, so that a loop over lanes calling it vectorises (Weidlich-Wilkie's conductor
+ * interface); every value is that of the guarded form: index-matched (eta 1, kappa 0) 0,
+ * grazing incidence (or a NaN) 1, a vanishing p denominator rs. */
 static inline double abrdf__fresnel_exact(double c, double eta, double kappa)
 {
-    if (eta == 1.0 && kappa == 0.0) return 0.0; /* index-matched: no interface at all */
     c = c < 0.0 ? 0.0 : (c > 1.0 ? 1.0 : c);
     double c2 = c * c, s2 = 1.0 - c2;
     double t0 = eta * eta - kappa * kappa - s2;
     double a2pb2 = sqrt(t0 * t0 + 4.0 * eta * eta * kappa * kappa);
     double a = abrdf__safe_sqrt(0.5 * (a2pb2 + t0));
-    double t1 = a2pb2 + c2, t2 = 2.0 * c * a;
-    if (!(t1 + t2 > 0.0)) return 1.0; /* grazing incidence */
-    double rs = (t1 - t2) / (t1 + t2);
-    double t3 = c2 * a2pb2 + s2 * s2, t4 = t2 * s2;
-    double rp = (t3 + t4 > 0.0) ? rs * (t3 - t4) / (t3 + t4) : rs;
+    double t1 = a2pb2 + c2, t2 = 2.0 * c * a, ds = t1 + t2;
+    double rs = (t1 - t2) / (ds > 0.0 ? ds : 1.0);
+    double t3 = c2 * a2pb2 + s2 * s2, t4 = t2 * s2, dp = t3 + t4;
+    double rp = dp > 0.0 ? rs * (t3 - t4) / (dp > 0.0 ? dp : 1.0) : rs;
     double f = 0.5 * (rs + rp);
-    return f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
+    f = f < 0.0 ? 0.0 : (f > 1.0 ? 1.0 : f);
+    f = ds > 0.0 ? f : 1.0; /* grazing incidence: finite from here on */
+    /* index-matched: no interface at all; a factor, not a select on a condition that a loop
+     * over lanes holds constant, which GCC's vectoriser does not take */
+    return f * (eta == 1.0 && kappa == 0.0 ? 0.0 : 1.0);
 }
 
 /* GGX D (Eq. 6) with ch = N.H and sh2 = |N x H|^2; ag the microfacet roughness. */
