@@ -85,8 +85,9 @@ class Points(unittest.TestCase):
                       "--explain").stdout
         self.assertIn("prediction: on the sphere", out)
 
-    def test_explain_says_a_normal_map_is_left_out(self):
-        # the pass shades the surface's own normal: the prediction line must say so
+    def test_explain_says_the_points_carry_the_normal_map(self):
+        # the pass shades the normals the map gives, as the render does: the prediction line
+        # says so, and no longer that the map is left out
         with tempfile.TemporaryDirectory() as tmp:
             raw = b"".join(b"\x00" + bytes((128, 128, 255)) * 4 for _ in range(4))
 
@@ -113,7 +114,8 @@ class Points(unittest.TestCase):
         pred = [x for x in out.splitlines() if "prediction:" in x]
         self.assertEqual(len(pred), 2, out)
         self.assertIn("on the scene's shading points", pred[0], out)
-        self.assertIn("its normal map left out", pred[0], out)
+        self.assertIn("light terms, on the normals of its normal map", pred[0], out)
+        self.assertNotIn("left out", pred[0], out)
         self.assertNotIn("normal map", pred[1], out)
 
     def test_bad_arguments(self):

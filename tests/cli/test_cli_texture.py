@@ -126,6 +126,9 @@ class TextureTest(unittest.TestCase):
             ("base_color_map=rgb.png", "mesh file=nouv.obj material=m",
              "but the mesh at line 5 has no texture coordinates"),
             ("base_color_map=cut.exr", None, "cut.exr: "),
+            # the budget's shading points read the normal map first: its pass stops there
+            ("normal_map=cut.exr budget=slight", None,
+             "the shading points of the budget: " + self.path("cut.exr") + ": "),
         ]
         for material, obj, want in cases:
             with self.subTest(material=material, obj=obj):

@@ -9,8 +9,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "abrdf_fit.h"
 #include "image_io.h"
 #include "render.h"
+#include "scene_points.h"
 #include "test_util.h"
 
 static char dir[512]; /* the test's directory, made by setup() */
@@ -343,6 +345,127 @@ START_TEST(normal_map_flat_and_tilted)
 }
 END_TEST
 
+/* The budget's shading points (scene_points.h) see a normal map as the render shades it:
+ * on a quad under a strong one (bumps tilting the normal up to ~50 degrees), the prediction
+ * on the points of a pbr candidate against a pbr reference is the NMSE of their two renders
+ * over the material's pixels, as scene_points_predict_the_render (test_render.c) has it
+ * without a map. The points traced with the map left out predict another number: the
+ * map matters here, so the test can fail. */
+#define NM_SCENE                                                                                   \
+    "camera position=0,-1.3,1.5 look_at=0,0,0 fov=60 resolution=32,32\n"                           \
+    "ambient 0\n"                                                                                  \
+    "light directional direction=-0.5,0.4,1 intensity=2\n"                                         \
+    "light point position=0.6,0.8,1.5 intensity=3\n"                                               \
+    "material m pbr base_color=0.8,0.5,0.3 metallic=0.2 %s %s\n"                                   \
+    "mesh file=quad.obj material=m\n"
+
+/* NMSE of b against a over the pixels whose centre sees material m (budget_points'). */
+static double nmse_over(const result *a, const result *b, const scene_points *p, int m)
+{
+    double num = 0, den = 0;
+    for (int q = 0; q < a->w * a->h; ++q) {
+        if (p->pixel_material[q] != m) continue;
+        for (int c = 0; c < 3; ++c) {
+            double d = (double)b->rgb[3 * q + c] - a->rgb[3 * q + c];
+            num += d * d, den += (double)a->rgb[3 * q + c] * a->rgb[3 * q + c];
+        }
+    }
+    return num / den;
+}
+
+/* Material 0 of scene file `name`: its lobes and the parameters a textured hit shades with. */
+static void lobes_params(const char *name, abrdf_model *d, abrdf_model *sp, abrdf_params *p)
+{
+    scene s;
+    char err[1024];
+    ck_assert_msg(scene_parse_file(in_dir(name), &s, err, sizeof err) == 0, "%s", err);
+    const scene_material *m = &s.materials[0];
+    *d = m->lobe_count == 2 ? m->lobes[0] : ABRDF_MODEL_NONE;
+    *sp = m->lobes[m->lobe_count - 1];
+    ck_assert_int_eq(scene_pbr_params(m, &m->pbr_in, p), 0);
+    scene_free(&s);
+}
+
+/* The points of scene file `name` at 4 spp and the prediction on them of cand against ref. */
+static double points_predict(const char *name, const char *ref, const char *cand, scene_points *p)
+{
+    scene s;
+    char err[1024];
+    ck_assert_msg(scene_parse_file(in_dir(name), &s, err, sizeof err) == 0, "%s", err);
+    ck_assert_msg(scene_points_trace(&s, 4, p, err, sizeof err) == 0, "%s", err);
+    scene_free(&s);
+    abrdf_model rd, rsp, cd, csp;
+    abrdf_params pr, pc;
+    lobes_params(ref, &rd, &rsp, &pr);
+    lobes_params(cand, &cd, &csp, &pc);
+    abrdf_view v;
+    ck_assert(scene_points_view(p, 0, &v));
+    size_t size = abrdf_fit_workspace_size(NULL, &v);
+    void *work = malloc(size);
+    ck_assert_ptr_nonnull(work);
+    double nmse = -1;
+    ck_assert_int_eq(abrdf_predict_nmse(rd, rsp, &pr, cd, csp, &pc, &v, &nmse, work, size),
+                     ABRDF_OK);
+    free(work);
+    return nmse;
+}
+
+START_TEST(scene_points_see_the_normal_map)
+{
+    enum { N = 16 };
+    float bumps[N * N * 3];
+    const double pi = 3.14159265358979323846, a = 1.2; /* slope amplitude: tilts up to ~50 deg */
+    for (int j = 0; j < N; ++j)
+        for (int i = 0; i < N; ++i) { /* the gradient of sin(2 pi 2 u) sin(2 pi 2 v), v up */
+            double u = (i + 0.5) / N, v = 1 - (j + 0.5) / N;
+            double n[3] = {-a * cos(4 * pi * u) * sin(4 * pi * v),
+                           -a * sin(4 * pi * u) * cos(4 * pi * v), 1};
+            double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (int c = 0; c < 3; ++c) bumps[3 * (j * N + i) + c] = (float)(0.5 * (n[c] / l + 1));
+        }
+    write_exr("bumps.exr", N, N, bumps);
+    write_quad("quad.obj", "");
+    const char *names[4] = {"ref.scene", "cand.scene", "ref_flat.scene", "cand_flat.scene"};
+    const char *rough[2] = {"roughness=0.45", "roughness=0.2"};
+    for (int k = 0; k < 4; ++k) {
+        char text[1024];
+        snprintf(text, sizeof text, NM_SCENE, rough[k % 2], k < 2 ? "normal_map=bumps.exr" : "");
+        write_text(names[k], text);
+    }
+    result r[2];
+    for (int k = 0; k < 2; ++k) {
+        scene s;
+        char err[1024];
+        ck_assert_msg(scene_parse_file(in_dir(names[k]), &s, err, sizeof err) == 0, "%s", err);
+        render_options opt = {0, 0, 4, 0, 2, 0, RENDER_DOUBLE, 0, 0, 0, 8};
+        render_scene rs;
+        ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
+        r[k] = (result){
+            rs.width, rs.height, malloc((size_t)rs.width * rs.height * 3 * sizeof(float)), {0}};
+        ck_assert_ptr_nonnull(r[k].rgb);
+        ck_assert_int_eq(render_image(&rs, &opt, r[k].rgb, &r[k].st), 0);
+        ck_assert(r[k].st.textured_hits > 0);
+        render_release(&rs);
+        scene_free(&s);
+    }
+    scene_points p, flat;
+    double mapped = points_predict(names[0], names[0], names[1], &p);
+    double measured = nmse_over(&r[0], &r[1], &p, 0);
+    ck_assert_msg(measured > 1e-3, "the candidate must differ: %g", measured);
+    /* the images are stored in float: 1e-5 of relative rounding */
+    ck_assert_msg(fabs(mapped - measured) < 1e-5 * measured, "points %.9g, image %.9g", mapped,
+                  measured);
+    /* the same points with the map left out: the prediction is off by more than 10% */
+    double unmapped = points_predict(names[2], names[0], names[1], &flat);
+    ck_assert_int_eq(flat.pixels[0], p.pixels[0]);
+    ck_assert_msg(fabs(unmapped - measured) > 0.1 * measured, "unmapped %.9g, image %.9g", unmapped,
+                  measured);
+    scene_points_free(&p);
+    scene_points_free(&flat);
+    free(r[0].rgb), free(r[1].rgb);
+}
+END_TEST
+
 /* texture_channel_stats on an image of known values: channel 1 holds k / 3072 at pixel k,
  * so each of 8 bins holds 384 values. */
 START_TEST(channel_stats_known_values)
@@ -472,6 +595,7 @@ int main(void)
     tcase_add_test(tr, texture_transform_moves_texels);
     tcase_add_test(tr, footprint_filters_a_fine_checker);
     tcase_add_test(tr, refusals_at_prepare);
+    tcase_add_test(tr, scene_points_see_the_normal_map);
     suite_add_tcase(s, tr);
     TCase *tt = tcase_create("texture");
     tcase_add_checked_fixture(tt, setup, teardown);

@@ -314,6 +314,50 @@ static void map_transform(const scene_map *mp, const double in[2], double out[2]
 
 static double clamp01(double v) { return v > 0 ? (v < 1 ? v : 1) : 0; /* NaN -> 0 */ }
 
+/* The filtered texels of map mp (its file f, channels first to first + n - 1) at texture
+ * coordinates uv with footprint derivatives dx, dy (hit_uv), through mp's transform. */
+static void map_texel(const render_scene *rs, texture_thread *th, const scene_map *mp,
+                      texture_file *f, int first, int n, const double uv[2], const double dx[2],
+                      const double dy[2], float v[4], render_stats *st)
+{
+    double q[2], qx[2], qy[2];
+    map_transform(mp, uv, q, 0);
+    map_transform(mp, dx, qx, 1);
+    map_transform(mp, dy, qy, 1);
+    texture_lookup(rs->textures, th, f, first, n, q[0], q[1], qx[0], qx[1], qy[0], qy[1], v);
+    ++st->texture_lookups;
+}
+
+/* The shading normal of hit h under its material's normal map, into n (which may be h->n):
+ * the map's texel at uv (footprint dx, dy; hit_uv) in glTF's tangent space, x along dP/du,
+ * y along dP/dv (the image's up), z the normal; h->n where the map's normal or the tangent
+ * degenerates. */
+static void normal_map_at(const render_scene *rs, const render_hit *h, const double uv[2],
+                          const double dx[2], const double dy[2], const double dpdu[3],
+                          const double dpdv[3], texture_thread *th, double n[3], render_stats *st)
+{
+    int mi = rs->src->objects[h->obj].material;
+    const scene_map *mp = &rs->src->materials[mi].maps[SCENE_MAP_NORMAL];
+    float texel[4];
+    map_texel(rs, th, mp, rs->materials[mi].maps[SCENE_MAP_NORMAL], 0, 3, uv, dx, dy, texel, st);
+    const double *hn = h->n;
+    double s = mp->strength, t[3], b[3], nb[3];
+    double x = (2.0 * texel[0] - 1.0) * s;
+    double y = (2.0 * texel[1] - 1.0) * s;
+    double z = 2.0 * texel[2] - 1.0;
+    double tn = geom_dot(dpdu, hn);
+    for (int k = 0; k < 3; ++k) t[k] = dpdu[k] - tn * hn[k];
+    normalize(t);
+    cross(hn, t, b);
+    if (geom_dot(b, dpdv) < 0) /* mirrored texture coordinates */
+        for (int k = 0; k < 3; ++k) b[k] = -b[k];
+    for (int k = 0; k < 3; ++k) nb[k] = x * t[k] + y * b[k] + z * hn[k];
+    if (geom_dot(nb, nb) > 0 && geom_dot(t, t) > 0) {
+        normalize(nb);
+        memcpy(n, nb, sizeof nb);
+    }
+}
+
 /* Prepare the textured material of hit h (tp->m and tp->h); the texture thread th is the
  * caller's. */
 static void texture_point(const render_scene *rs, const render_options *opt, const render_hit *h,
@@ -335,11 +379,8 @@ static void texture_point(const render_scene *rs, const render_options *opt, con
     for (int k = 0; k < SCENE_MAP_COUNT; ++k) {
         const scene_map *mp = &sm->maps[k];
         if (!base->maps[k] || (packed && k == SCENE_MAP_ROUGHNESS)) continue;
-        double q[2], qx[2], qy[2];
-        map_transform(mp, uv, q, 0);
-        map_transform(mp, dx, qx, 1);
-        map_transform(mp, dy, qy, 1);
-        int rgb = k == SCENE_MAP_BASE_COLOR || k == SCENE_MAP_NORMAL;
+        if (k == SCENE_MAP_NORMAL) continue; /* normal_map_at, below (the last slot: same order) */
+        int rgb = k == SCENE_MAP_BASE_COLOR;
         int first = rgb ? 0 : mp->channel;
         int n = rgb ? (base->map_channels[k] < 3 ? 1 : 3) : 1;
         if (packed && k == SCENE_MAP_METALLIC) {
@@ -347,9 +388,7 @@ static void texture_point(const render_scene *rs, const render_options *opt, con
             n = abs(mm->channel - mr->channel) + 1;
         }
         float v[4];
-        texture_lookup(rs->textures, th, base->maps[k], first, n, q[0], q[1], qx[0], qx[1], qy[0],
-                       qy[1], v);
-        ++st->texture_lookups;
+        map_texel(rs, th, mp, base->maps[k], first, n, uv, dx, dy, v, st);
         if (packed && k == SCENE_MAP_METALLIC) {
             texel[SCENE_MAP_METALLIC][0] = v[mm->channel - first];
             texel[SCENE_MAP_ROUGHNESS][0] = v[mr->channel - first];
@@ -380,25 +419,17 @@ static void texture_point(const render_scene *rs, const render_options *opt, con
             (sm->ka_given ? sm->ka[c] : tp->m.params.kd[c]) * rs->src->ambient[c] * occ;
     tp->m.use_ambient = tp->m.ambient[0] > 0 || tp->m.ambient[1] > 0 || tp->m.ambient[2] > 0;
     tp->h = *h;
-    if (base->maps[SCENE_MAP_NORMAL]) {
-        /* tangent space (glTF): x along dP/du, y along dP/dv (the image's up), z the normal */
-        const double *n = h->n;
-        double s = sm->maps[SCENE_MAP_NORMAL].strength, t[3], b[3], nb[3];
-        double x = (2.0 * texel[SCENE_MAP_NORMAL][0] - 1.0) * s;
-        double y = (2.0 * texel[SCENE_MAP_NORMAL][1] - 1.0) * s;
-        double z = 2.0 * texel[SCENE_MAP_NORMAL][2] - 1.0;
-        double tn = geom_dot(dpdu, n);
-        for (int k = 0; k < 3; ++k) t[k] = dpdu[k] - tn * n[k];
-        normalize(t);
-        cross(n, t, b);
-        if (geom_dot(b, dpdv) < 0) /* mirrored texture coordinates */
-            for (int k = 0; k < 3; ++k) b[k] = -b[k];
-        for (int k = 0; k < 3; ++k) nb[k] = x * t[k] + y * b[k] + z * n[k];
-        if (geom_dot(nb, nb) > 0 && geom_dot(t, t) > 0) {
-            normalize(nb);
-            memcpy(tp->h.n, nb, sizeof nb);
-        }
-    }
+    if (base->maps[SCENE_MAP_NORMAL]) normal_map_at(rs, h, uv, dx, dy, dpdu, dpdv, th, tp->h.n, st);
+}
+
+int render_hit_normal_map(const render_scene *rs, const render_options *opt, texture_thread *th,
+                          render_hit *h, render_stats *st)
+{
+    if (!rs->materials[rs->src->objects[h->obj].material].maps[SCENE_MAP_NORMAL]) return 0;
+    double uv[2], dx[2], dy[2], dpdu[3], dpdv[3];
+    hit_uv(rs, opt, h, uv, dx, dy, dpdu, dpdv);
+    normal_map_at(rs, h, uv, dx, dy, dpdu, dpdv, th, h->n, st);
+    return 1;
 }
 
 /* ---- shading ----------------------------------------------------------------------- */

@@ -21,6 +21,7 @@
  *   render_shade_hits   the radiance of a batch of camera-ray hits (direct light, both precisions)
  *   render_hit_light    one point or directional light as a hit sees it (direction, irradiance)
  *   render_hit_tangent  the tangent of a hit by its object's tangent rule
+ *   render_hit_normal_map  a hit's shading normal under its material's normal map
  *   render_precision_name  "double" / "float" for --explain
  *   render_stats_print  print the work counters
  *   render_textures_print  the texture system's statistics (nothing without textures)
@@ -201,6 +202,13 @@ int render_hit_light(const render_scene *rs, int l, const render_hit *h, double 
                      render_stats *st);
 /* The tangent of hit h by its object's tangent rule (not orthogonalised against h->n). */
 void render_hit_tangent(const render_scene *rs, const render_hit *h, double t[3]);
+/* Camera-ray hit h with h->n replaced by the normal render_shade_hits shades it with under
+ * its material's normal map: the same lookup (texture coordinates, the footprint of
+ * opt->spp samples per pixel, the map's transform and scale). th: the caller's texture
+ * thread (texture_thread_new(rs->textures)). 1, or 0 (h unchanged) if the material has no
+ * normal map. */
+int render_hit_normal_map(const render_scene *rs, const render_options *opt, texture_thread *th,
+                          render_hit *h, render_stats *st);
 const char *render_precision_name(int precision);
 void render_stats_print(const render_stats *st, FILE *f);
 /* The texture cache's bound and use (OpenImageIO's statistics: peak and current tile memory,

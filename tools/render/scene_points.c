@@ -1,8 +1,10 @@
 /* scene_points.c - a scene's own shading points per material (scene_points.h). The pass
  * renders nothing: it casts the camera's rays and the shadow rays of render.c
  * (render_hit_light), on a copy of the scene whose materials are all a black Lambert, so that
- * adaptive and table materials need no resolving first. A normal map is left out (the copy
- * has no maps): the terms carry the hit's own normal, not the mapped one the render shades. */
+ * adaptive and table materials need no resolving first. The copy keeps the normal maps: a
+ * hit's normal is the one the render shades (render_hit_normal_map, at the render's
+ * footprint), so the terms' frames, the side they face and the lights that reach them are
+ * the render's. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <math.h>
 #include <stdlib.h>
@@ -71,8 +73,9 @@ static int push(scene_points *p, int *cap, int m, const abrdf_view_term *t)
 /* The camera sample through (x, y) if it hits material m: its terms, into sample *sample
  * (taken from p->samples[m] at the first term); *hit set if it sees m's front. 0, or -1 out
  * of memory. */
-static int sample_terms(scene_points *p, int *cap, const render_scene *rs, int m, double x,
-                        double y, double weight, int *sample, int *hit, render_stats *st)
+static int sample_terms(scene_points *p, int *cap, const render_scene *rs, const render_options *ro,
+                        texture_thread *th, int m, double x, double y, double weight, int *sample,
+                        int *hit, render_stats *st)
 {
     double d[3];
     camera_ray(rs, x, y, d);
@@ -83,6 +86,7 @@ static int sample_terms(scene_points *p, int *cap, const render_scene *rs, int m
     h.obj = ah.object, h.triangle = ah.triangle, h.b1 = ah.b1, h.b2 = ah.b2;
     memcpy(h.n, ah.n, sizeof h.n);
     for (int k = 0; k < 3; ++k) h.p[k] = rs->eye[k] + ah.t * d[k], h.wo[k] = -d[k];
+    render_hit_normal_map(rs, ro, th, &h, st);
     if (!(geom_dot(h.n, h.wo) > 0)) return 0; /* seen from behind: unlit, as render.c has it */
     *hit = 1;
     abrdf_view_term t;
@@ -101,8 +105,9 @@ static int sample_terms(scene_points *p, int *cap, const render_scene *rs, int m
     return 0;
 }
 
-/* The copy of s the pass traces: every material a black Lambert (no table, texture or
- * measured file to read); the rest is s's, shared. materials: room for s's materials. */
+/* The copy of s the pass traces: every material a black Lambert (no table or measured file
+ * to read) with s's normal map, if any (its only texture); the rest is s's, shared.
+ * materials: room for s's materials. */
 static void black_copy(const scene *s, scene *t, scene_material *materials)
 {
     *t = *s;
@@ -116,8 +121,10 @@ static void black_copy(const scene *s, scene *t, scene_material *materials)
         abrdf_params_init(ABRDF_LAMBERT, &m->params);
         for (int c = 0; c < 3; ++c) m->params.kd[c] = 0.0;
         m->measured = -1;
-        m->pbr = 0, m->textured = 0, m->fit_count = 0;
+        m->pbr = 0, m->fit_count = 0;
         memset(m->maps, 0, sizeof m->maps);
+        m->maps[SCENE_MAP_NORMAL] = s->materials[i].maps[SCENE_MAP_NORMAL];
+        m->textured = m->maps[SCENE_MAP_NORMAL].path != NULL;
     }
 }
 
@@ -132,6 +139,7 @@ int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, si
     }
     int nm = s->material_count, rc = -1, *cap = NULL, *seen = NULL; /* seen: per material, its
                                                                       pixels scanned so far */
+    texture_thread *th = NULL;
     scene copy;
     scene_material *mats = calloc((size_t)nm + 1, sizeof *mats);
     render_scene rs;
@@ -142,7 +150,7 @@ int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, si
     black_copy(s, &copy, mats);
     render_options ro;
     memset(&ro, 0, sizeof ro);
-    ro.spp = 1, ro.threads = 1;
+    ro.spp = k * k, ro.threads = 1; /* spp: a normal map's footprint is the render's */
     if (render_prepare(&copy, &ro, &rs, err, err_size)) {
         free(mats);
         return -1;
@@ -163,6 +171,7 @@ int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, si
     if (!out->pixel_material || !out->pixels || !out->stride || !out->samples || !out->term_count ||
         !out->terms || !out->kept || !out->hits || !cap || !seen)
         goto oom;
+    if (rs.textures && !(th = texture_thread_new(rs.textures))) goto oom;
     /* the material at every pixel centre */
     for (int j = 0; j < rs.height; ++j)
         for (int i = 0; i < rs.width; ++i) {
@@ -199,11 +208,15 @@ int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, si
             int sample = -1, hit = 0;
             for (int sy = 0; sy < k; ++sy)
                 for (int sx = 0; sx < k; ++sx)
-                    if (sample_terms(out, cap, &rs, m, i + (sx + 0.5) * inv_k,
+                    if (sample_terms(out, cap, &rs, &ro, th, m, i + (sx + 0.5) * inv_k,
                                      j + (sy + 0.5) * inv_k, weight, &sample, &hit, &st))
                         goto oom;
             out->hits[m] += hit;
         }
+    if (render_texture_error(&rs, err, err_size)) { /* a normal map read as 0: not the render's */
+        scene_points_free(out);
+        goto done;
+    }
     out->seconds = wall_seconds() - t0;
     rc = 0;
     goto done;
@@ -213,6 +226,7 @@ oom:
 done:
     free(cap);
     free(seen);
+    texture_thread_free(rs.textures, th);
     render_release(&rs);
     free(mats);
     return rc;

@@ -3,7 +3,8 @@
  * pixels and records, at each visible hit, one term per point or directional light that
  * lights it (normal, tangent, wi, wo, irradiance: abrdf_view_term, abrdf_fit.h), grouped by
  * pixel as the render's box filter groups its samples. The materials need not be resolved:
- * only geometry, lights and shadows are traced, none of which depends on the BRDFs.
+ * only geometry, normal maps (the normal a term carries is the one the render shades),
+ * lights and shadows are traced, none of which depends on the BRDFs.
  *
  * PUBLIC FUNCTIONS
  *   scene_points_trace  trace the pass (every material of the scene)
@@ -44,8 +45,11 @@ typedef struct scene_points {
 /* Trace s's camera at its resolution: the material of every pixel centre, then, for each
  * material, in every stride^2-th pixel whose centre sees it, the spp camera samples
  * (strata centres) that hit it, with one term per lighting point or directional light, its
- * irradiance divided by spp (the pixel's box filter). spp must be a square, as render_image asks. Returns 0,
- * or -1 with one line in err (out is then empty). */
+ * irradiance divided by spp (the pixel's box filter); a hit on a material with a normal map
+ * takes the mapped normal (render_hit_normal_map, the footprint of spp samples per pixel).
+ * spp must be a square, as render_image asks. Returns 0, or -1 with one line in err (out is
+ * then empty): a non-square spp, a scene render_prepare refuses, a normal map that cannot be
+ * read. */
 int scene_points_trace(const scene *s, int spp, scene_points *out, char *err, size_t err_size);
 
 /* v (initialised here) as material m's terms: 1, or 0 if m has none (v is then the default

@@ -455,11 +455,8 @@ static const abrdf_view *view_for(const scene *s, int i, const scene_points *pts
     char left[128] = "", every[64] = "every pixel";
     int nmap = s->materials[i].maps[SCENE_MAP_NORMAL].path != NULL;
     if (pts->sampled_lights)
-        snprintf(left, sizeof left, "; the scene's %d sampled light%s%s left out",
-                 pts->sampled_lights, pts->sampled_lights > 1 ? "s" : "",
-                 nmap ? " and its normal map" : "");
-    else if (nmap) /* the pass shades the geometric normal (scene_points.c) */
-        snprintf(left, sizeof left, "; its normal map left out");
+        snprintf(left, sizeof left, "; the scene's %d sampled light%s left out",
+                 pts->sampled_lights, pts->sampled_lights > 1 ? "s" : "");
     if (!scene_points_view(pts, i, own)) {
         char why[160];
         if (pts->pixels[i] == 0)
@@ -473,7 +470,8 @@ static const abrdf_view *view_for(const scene *s, int i, const scene_points *pts
                      "no point or directional light reaches its points the camera sees in the %d "
                      "of its %d pixels the pass kept",
                      pts->kept[i], pts->pixels[i]);
-        snprintf(pred, pred_size, "%s: %s%s", sph, why, left);
+        snprintf(pred, pred_size, "%s: %s%s%s", sph, why, left,
+                 nmap ? "; its normal map left out (the sphere's own normals)" : "");
         return sphere;
     }
     if (pts->stride[i] > 1)
@@ -481,9 +479,9 @@ static const abrdf_view *view_for(const scene *s, int i, const scene_points *pts
                  pts->stride[i] * pts->stride[i]);
     snprintf(pred, pred_size,
              "on the scene's shading points: %d of the %d pixels it covers at %d x %d (%s, %d "
-             "samples each), %d light terms%s",
+             "samples each), %d light terms%s%s",
              pts->samples[i], pts->pixels[i], pts->width, pts->height, every, pts->spp,
-             pts->term_count[i], left);
+             pts->term_count[i], nmap ? ", on the normals of its normal map" : "", left);
     return own;
 }
 
