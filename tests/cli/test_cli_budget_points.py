@@ -57,6 +57,18 @@ class Points(unittest.TestCase):
         # the hidden sphere has no shading point: both choose on the sphere, alike
         self.assertEqual(t[("hidden", "sphere")][0], t[("hidden", "points")][0], out)
 
+    def test_a_normal_mapped_stand_in_renders_as_predicted(self):
+        """bumps.scene: a pbr plate whose only map is a normal map; the points' choice is a
+        fitted stand-in, and the render shades it with its fitted block (scene_pbr_params),
+        so the measurement is the prediction (it was 4x on the pbr mapping's block)."""
+        bumps = os.path.join(os.path.dirname(SCENE), "bumps.scene")
+        out = run(BUDGET_POINTS, bumps, "--budget", "slight", "--check", str(FACTOR)).stdout
+        models, _, points_pred, points_meas = rows(out)[("plate", "points")]
+        self.assertNotIn("disney_specular", models, out)  # a stand-in, not the reference
+        self.assertLess(points_meas, SLIGHT, out)
+        self.assertLess(abs(points_meas - points_pred), 0.01 * points_pred, out)
+        self.assertIn("check: 0 material(s)", out)
+
     def test_render_explain_names_the_prediction(self):
         with tempfile.TemporaryDirectory() as tmp:
             out = run(ABRDF, "render", SCENE, "-o", os.path.join(tmp, "g.exr"), "--no-preview",

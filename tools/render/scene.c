@@ -782,6 +782,13 @@ int scene_pbr_params(const scene_material *sm, const abrdf_pbr *q, abrdf_params 
         return 0;
     }
     *out = sm->params;
+    /* No map changes a factor here (a normal or occlusion map only, or texels of 1): the block
+     * is the one chosen and predicted for the factors, a fitted stand-in's fit included. */
+    if (q->metallic == sm->pbr_in.metallic && q->roughness == sm->pbr_in.roughness &&
+        q->base_color[0] == sm->pbr_in.base_color[0] &&
+        q->base_color[1] == sm->pbr_in.base_color[1] &&
+        q->base_color[2] == sm->pbr_in.base_color[2])
+        return 0;
     memcpy(out->kd, mapped.kd, sizeof out->kd);
     memcpy(out->ks, mapped.ks, sizeof out->ks);
     memcpy(out->f0, mapped.f0, sizeof out->f0);
