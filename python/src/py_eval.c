@@ -4,7 +4,9 @@
  *                (float64, or a chunk with a row that is not unit) are laid out as the batch's
  *                structure of arrays on the stack, normalised in vector registers, evaluated
  *                by abrdf_eval_prepared_batch and written back as rows: the same values either
- *                way. Large arrays are split over the machine's cores, one thread per range of
+ *                way. Several lobes (a material: a sequence of Params/Tables) are evaluated in
+ *                the same pass, each chunk read and normalised once, and summed in their order.
+ *                Large arrays are split over the machine's cores, one thread per range of
  *                rows (the library itself has no threads);
  *   eval_double  the double-precision scalar reference (abrdf_eval with the local frame), one
  *                pair at a time; a Table (a measured table) by abrdf_eval_prepared, the
@@ -182,10 +184,13 @@ static void release(eval_args *a)
  * about what 10^4 pairs of the cheapest model do). */
 #define ROWS_PER_THREAD 32768
 #define MAX_THREADS 64
+/* Lobes of one material at most (2 KiB of prepared model each, allocated per call). */
+#define MAX_LOBES 4096
 
-/* One thread's share of eval_float: rows [start, end). */
+/* One thread's share of eval_float: rows [start, end) of the sum of `lobes` prepared models. */
 typedef struct eval_range {
     const abrdf_prepared *prep;
+    int lobes;
     const eval_args *a;
     Py_ssize_t start, end;
     int status;
@@ -196,6 +201,12 @@ ROW_LOOPS static void store(float *restrict o, const float *restrict fr, const f
                             const float *restrict fb, int n)
 {
     for (int k = 0; k < n; ++k) o[3 * k] = fr[k], o[3 * k + 1] = fg[k], o[3 * k + 2] = fb[k];
+}
+
+/* o[k] += t[k] for n floats: a further lobe's values added to the sum so far. */
+ROW_LOOPS static void add(float *restrict o, const float *restrict t, int n)
+{
+    for (int k = 0; k < n; ++k) o[k] += t[k];
 }
 
 /* 1 if two buffers share a byte. */
@@ -210,32 +221,46 @@ static void *eval_rows(void *arg)
     eval_range *r = arg;
     const eval_args *a = r->a;
     float ix[CHUNK], iy[CHUNK], iz[CHUNK], ox[CHUNK], oy[CHUNK], oz[CHUNK];
-    float fr[CHUNK], fg[CHUNK], fb[CHUNK];
+    float fr[CHUNK], fg[CHUNK], fb[CHUNK], more[3 * CHUNK];
     float *out = a->out.buf;
-    r->status = ABRDF_OK;
+    int st = ABRDF_OK;
     /* (out over wi or wo, which only the module function allows, takes the layout: the
      * library's rows may not overlap its output) */
     int f32 = a->wi_kind == ABRDF_PY_F32 && a->wo_kind == ABRDF_PY_F32 &&
               !overlap(&a->out, &a->wi) && !overlap(&a->out, &a->wo);
-    for (Py_ssize_t start = r->start; start < r->end && r->status == ABRDF_OK; start += CHUNK) {
+    for (Py_ssize_t start = r->start; start < r->end && st == ABRDF_OK; start += CHUNK) {
         int n = r->end - start < CHUNK ? (int)(r->end - start) : CHUNK;
+        float *o = out + 3 * start;
         if (f32) {
             /* float rows straight into the library's loops; the rows, now in cache, are then
              * tested, and a chunk with a row that is not unit is done again below (the same
-             * values as a unit chunk through the layout: load leaves unit rows as they are) */
+             * values as a unit chunk through the layout: load leaves unit rows as they are).
+             * Further lobes read the rows from cache and are added. */
             const float *pi = (const float *)a->wi.buf + 3 * start;
             const float *po = (const float *)a->wo.buf + 3 * start;
-            r->status = abrdf_eval_prepared_rows(r->prep, (size_t)n, pi, po, out + 3 * start);
-            if (r->status != ABRDF_OK) break;
-            if (unit_rows(pi, po, n)) continue;
+            st = abrdf_eval_prepared_rows(&r->prep[0], (size_t)n, pi, po, o);
+            if (st != ABRDF_OK) break;
+            if (unit_rows(pi, po, n)) {
+                for (int l = 1; l < r->lobes && st == ABRDF_OK; ++l) {
+                    st = abrdf_eval_prepared_rows(&r->prep[l], (size_t)n, pi, po, more);
+                    add(o, more, 3 * n);
+                }
+                continue;
+            }
         }
         load(a->wi.buf, a->wi_kind, start, n, ix, iy, iz);
         load(a->wo.buf, a->wo_kind, start, n, ox, oy, oz);
         abrdf_batch b = {(size_t)n, ix, iy, iz, ox, oy, oz, fr, fg, fb};
-        r->status = abrdf_eval_prepared_batch(r->prep, &b);
-        if (r->status != ABRDF_OK) break; /* the caller raises; out is discarded */
-        store(out + 3 * start, fr, fg, fb, n);
+        st = abrdf_eval_prepared_batch(&r->prep[0], &b);
+        abrdf_batch c = {(size_t)n, ix, iy, iz, ox, oy, oz, more, more + CHUNK, more + 2 * CHUNK};
+        for (int l = 1; l < r->lobes && st == ABRDF_OK; ++l) {
+            st = abrdf_eval_prepared_batch(&r->prep[l], &c);
+            add(fr, c.f_r, n), add(fg, c.f_g, n), add(fb, c.f_b, n);
+        }
+        if (st != ABRDF_OK) break; /* the caller raises; out is discarded */
+        store(o, fr, fg, fb, n);
     }
+    r->status = st;
     return NULL;
 }
 
@@ -262,6 +287,19 @@ static int thread_count(Py_ssize_t rows, int asked)
     return t < 1 ? 1 : (int)t;
 }
 
+/* The lobes of eval_float's first argument, as a new tuple: a Params or a Table alone, or a
+ * tuple or list of them (copied: the tuple holds every lobe while the GIL is released). */
+static PyObject *lobes_arg(PyObject *p)
+{
+    PyObject *t = PyTuple_Check(p) || PyList_Check(p) ? PySequence_Tuple(p) : PyTuple_Pack(1, p);
+    if (t && PyTuple_GET_SIZE(t) == 0) {
+        Py_DECREF(t);
+        PyErr_SetString(PyExc_ValueError, "eval_float: a material needs at least one lobe");
+        return NULL;
+    }
+    return t;
+}
+
 static PyObject *py_eval_float(PyObject *self, PyObject *args)
 {
     (void)self;
@@ -271,16 +309,29 @@ static PyObject *py_eval_float(PyObject *self, PyObject *args)
     if (threads < 0 || threads > MAX_THREADS)
         return PyErr_Format(PyExc_ValueError, "threads must be in [0, %d], got %d", MAX_THREADS,
                             threads);
-    PyObject *four = Py_BuildValue("(OOOO)", p, wi, wo, out);
-    if (!four) return NULL;
+    PyObject *lobes = lobes_arg(p);
+    if (!lobes) return NULL;
+    Py_ssize_t nl = PyTuple_GET_SIZE(lobes);
+    PyObject *four = Py_BuildValue("(OOOO)", PyTuple_GET_ITEM(lobes, 0), wi, wo, out);
     eval_args a;
-    int bad = get_args(four, "eval_float", ABRDF_PY_F32, &a);
-    Py_DECREF(four);
-    if (bad) return NULL;
-    abrdf_prepared prep;
-    int st = abrdf_py_prepared_arg(p, "eval_float", &prep) ? ABRDF_E_NULL : ABRDF_OK;
-    if (st != ABRDF_OK) {
+    int bad = !four || get_args(four, "eval_float", ABRDF_PY_F32, &a);
+    Py_XDECREF(four);
+    if (bad) {
+        Py_DECREF(lobes);
+        return NULL;
+    }
+    abrdf_prepared *prep = NULL;
+    if (nl > MAX_LOBES)
+        PyErr_Format(PyExc_ValueError, "eval_float: at most %d lobes, got %zd", MAX_LOBES, nl);
+    else if (!(prep = PyMem_Malloc((size_t)nl * sizeof *prep)))
+        PyErr_NoMemory();
+    bad = !prep;
+    for (Py_ssize_t i = 0; i < nl && !bad; ++i)
+        bad = abrdf_py_prepared_arg(PyTuple_GET_ITEM(lobes, i), "eval_float", &prep[i]) != 0;
+    if (bad) {
+        PyMem_Free(prep);
         release(&a);
+        Py_DECREF(lobes);
         return NULL;
     }
     int t = thread_count(a.rows, threads);
@@ -289,7 +340,7 @@ static PyObject *py_eval_float(PyObject *self, PyObject *args)
     int started[MAX_THREADS] = {0};
     Py_BEGIN_ALLOW_THREADS;
     for (int i = 0; i < t; ++i) {
-        range[i] = (eval_range){&prep, &a, a.rows * i / t, a.rows * (i + 1) / t, ABRDF_OK};
+        range[i] = (eval_range){prep, (int)nl, &a, a.rows * i / t, a.rows * (i + 1) / t, ABRDF_OK};
         /* the calling thread takes the last range, and any a thread could not be started for */
         if (i + 1 < t) started[i] = pthread_create(&tid[i], NULL, eval_rows, &range[i]) == 0;
     }
@@ -299,6 +350,9 @@ static PyObject *py_eval_float(PyObject *self, PyObject *args)
         if (started[i]) pthread_join(tid[i], NULL);
     Py_END_ALLOW_THREADS;
     release(&a);
+    PyMem_Free(prep);
+    Py_DECREF(lobes);
+    int st = ABRDF_OK;
     for (int i = 0; i < t; ++i)
         if (range[i].status != ABRDF_OK) st = range[i].status;
     if (st != ABRDF_OK)
@@ -395,7 +449,8 @@ static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
 PyMethodDef abrdf_py_eval_methods[] = {
     {"eval_float", py_eval_float, METH_VARARGS,
      "eval_float(params, wi, wo, out, threads=0) -> None: f_r of every row pair (params: a "
-     "Params or a Table) by the float "
+     "Params or a Table, or a tuple or list of them: a material, its lobes evaluated in one "
+     "pass over the rows and summed in their order) by the float "
      "batch path (abrdf_eval_prepared_rows on unit float32 rows, else "
      "abrdf_eval_prepared_batch) into out; wi, wo: C-contiguous (N, 3) float32 or "
      "float64 local-frame directions (normalised here); out: writable (N, 3) float32; threads: "
