@@ -287,51 +287,58 @@ static int thread_count(Py_ssize_t rows, int asked)
     return t < 1 ? 1 : (int)t;
 }
 
-/* The lobes of eval_float's first argument, as a new tuple: a Params or a Table alone, or a
- * tuple or list of them (copied: the tuple holds every lobe while the GIL is released). */
-static PyObject *lobes_arg(PyObject *p)
+/* Lobes prepared on the stack; more are allocated. */
+#define STACK_LOBES 4
+
+/* The lobes of eval_float's first argument: a Params or a Table alone (*lobes NULL), or a
+ * tuple or list of them, copied into a new tuple *lobes (which holds every lobe while the GIL
+ * is released). Their count, or -1 with an exception. */
+static Py_ssize_t lobes_arg(PyObject *p, PyObject **lobes)
 {
-    PyObject *t = PyTuple_Check(p) || PyList_Check(p) ? PySequence_Tuple(p) : PyTuple_Pack(1, p);
-    if (t && PyTuple_GET_SIZE(t) == 0) {
-        Py_DECREF(t);
+    *lobes = NULL;
+    if (!PyTuple_Check(p) && !PyList_Check(p)) return 1;
+    if (!(*lobes = PySequence_Tuple(p))) return -1;
+    Py_ssize_t n = PyTuple_GET_SIZE(*lobes);
+    if (n >= 1 && n <= MAX_LOBES) return n;
+    if (n < 1)
         PyErr_SetString(PyExc_ValueError, "eval_float: a material needs at least one lobe");
-        return NULL;
-    }
-    return t;
+    else
+        PyErr_Format(PyExc_ValueError, "eval_float: at most %d lobes, got %zd", MAX_LOBES, n);
+    Py_CLEAR(*lobes);
+    return -1;
 }
 
 static PyObject *py_eval_float(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *p, *wi, *wo, *out;
+    PyObject *p, *wi, *wo, *out, *lobes;
     int threads = 0;
     if (!PyArg_ParseTuple(args, "OOOO|i", &p, &wi, &wo, &out, &threads)) return NULL;
     if (threads < 0 || threads > MAX_THREADS)
         return PyErr_Format(PyExc_ValueError, "threads must be in [0, %d], got %d", MAX_THREADS,
                             threads);
-    PyObject *lobes = lobes_arg(p);
-    if (!lobes) return NULL;
-    Py_ssize_t nl = PyTuple_GET_SIZE(lobes);
-    PyObject *four = Py_BuildValue("(OOOO)", PyTuple_GET_ITEM(lobes, 0), wi, wo, out);
+    Py_ssize_t nl = lobes_arg(p, &lobes);
+    if (nl < 0) return NULL;
+    PyObject *first = lobes ? PyTuple_GET_ITEM(lobes, 0) : p;
+    PyObject *four = Py_BuildValue("(OOOO)", first, wi, wo, out);
     eval_args a;
     int bad = !four || get_args(four, "eval_float", ABRDF_PY_F32, &a);
     Py_XDECREF(four);
     if (bad) {
-        Py_DECREF(lobes);
+        Py_XDECREF(lobes);
         return NULL;
     }
-    abrdf_prepared *prep = NULL;
-    if (nl > MAX_LOBES)
-        PyErr_Format(PyExc_ValueError, "eval_float: at most %d lobes, got %zd", MAX_LOBES, nl);
-    else if (!(prep = PyMem_Malloc((size_t)nl * sizeof *prep)))
-        PyErr_NoMemory();
+    abrdf_prepared small[STACK_LOBES];
+    abrdf_prepared *prep = nl <= STACK_LOBES ? small : PyMem_Malloc((size_t)nl * sizeof *prep);
+    if (!prep) PyErr_NoMemory();
     bad = !prep;
     for (Py_ssize_t i = 0; i < nl && !bad; ++i)
-        bad = abrdf_py_prepared_arg(PyTuple_GET_ITEM(lobes, i), "eval_float", &prep[i]) != 0;
+        bad = abrdf_py_prepared_arg(lobes ? PyTuple_GET_ITEM(lobes, i) : p, "eval_float",
+                                    &prep[i]) != 0;
     if (bad) {
-        PyMem_Free(prep);
+        if (prep != small) PyMem_Free(prep);
         release(&a);
-        Py_DECREF(lobes);
+        Py_XDECREF(lobes);
         return NULL;
     }
     int t = thread_count(a.rows, threads);
@@ -350,8 +357,8 @@ static PyObject *py_eval_float(PyObject *self, PyObject *args)
         if (started[i]) pthread_join(tid[i], NULL);
     Py_END_ALLOW_THREADS;
     release(&a);
-    PyMem_Free(prep);
-    Py_DECREF(lobes);
+    if (prep != small) PyMem_Free(prep);
+    Py_XDECREF(lobes);
     int st = ABRDF_OK;
     for (int i = 0; i < t; ++i)
         if (range[i].status != ABRDF_OK) st = range[i].status;
