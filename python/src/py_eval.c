@@ -6,8 +6,10 @@
  *                by abrdf_eval_prepared_batch and written back as rows: the same values either
  *                way. Several lobes (a material: a sequence of Params/Tables) are evaluated in
  *                the same pass, each chunk read and normalised once, and summed in their order.
- *                Large arrays are split over the machine's cores, one thread per range of
- *                rows (the library itself has no threads);
+ *                Large arrays are spread over the machine's cores: the threads (the caller's
+ *                among them) take blocks of BLOCK_ROWS rows in turn until none is left, so
+ *                a thread that starts late, or whose core is busy, takes fewer (the library
+ *                itself has no threads);
  *   eval_double  the double-precision scalar reference (abrdf_eval with the local frame), one
  *                pair at a time; a Table (a measured table) by abrdf_eval_prepared, the
  *                model's only double path.
@@ -187,14 +189,20 @@ static void release(eval_args *a)
 /* Lobes of one material at most (2 KiB of prepared model each, allocated per call). */
 #define MAX_LOBES 4096
 
-/* One thread's share of eval_float: rows [start, end) of the sum of `lobes` prepared models. */
-typedef struct eval_range {
+/* Rows a thread takes at a time: long enough that taking one (a lock) costs nothing, short
+ * enough that a thread left without a core holds back little (a 10^6-row call has 62). */
+#define BLOCK_ROWS 16384
+
+/* The work of one eval_float call, shared by its threads: the sum of `lobes` prepared models
+ * over a's rows; `next` (the first row no thread has taken) and `status` under `lock`. */
+typedef struct eval_work {
     const abrdf_prepared *prep;
     int lobes;
     const eval_args *a;
-    Py_ssize_t start, end;
+    pthread_mutex_t lock;
+    Py_ssize_t next;
     int status;
-} eval_range;
+} eval_work;
 
 /* f_r of n pairs back as rows of out. */
 ROW_LOOPS static void store(float *restrict o, const float *restrict fr, const float *restrict fg,
@@ -216,9 +224,9 @@ static int overlap(const Py_buffer *a, const Py_buffer *b)
     return p < q + (uintptr_t)b->len && q < p + (uintptr_t)a->len;
 }
 
-static void *eval_rows(void *arg)
+/* Rows [begin, end) of the work into a->out: ABRDF_OK or the library's status. */
+static int eval_rows(const eval_work *r, Py_ssize_t begin, Py_ssize_t end)
 {
-    eval_range *r = arg;
     const eval_args *a = r->a;
     float ix[CHUNK], iy[CHUNK], iz[CHUNK], ox[CHUNK], oy[CHUNK], oz[CHUNK];
     float fr[CHUNK], fg[CHUNK], fb[CHUNK], more[3 * CHUNK];
@@ -228,8 +236,8 @@ static void *eval_rows(void *arg)
      * library's rows may not overlap its output) */
     int f32 = a->wi_kind == ABRDF_PY_F32 && a->wo_kind == ABRDF_PY_F32 &&
               !overlap(&a->out, &a->wi) && !overlap(&a->out, &a->wo);
-    for (Py_ssize_t start = r->start; start < r->end && st == ABRDF_OK; start += CHUNK) {
-        int n = r->end - start < CHUNK ? (int)(r->end - start) : CHUNK;
+    for (Py_ssize_t start = begin; start < end && st == ABRDF_OK; start += CHUNK) {
+        int n = end - start < CHUNK ? (int)(end - start) : CHUNK;
         float *o = out + 3 * start;
         if (f32) {
             /* float rows straight into the library's loops; the rows, now in cache, are then
@@ -260,7 +268,36 @@ static void *eval_rows(void *arg)
         if (st != ABRDF_OK) break; /* the caller raises; out is discarded */
         store(o, fr, fg, fb, n);
     }
-    r->status = st;
+    return st;
+}
+
+/* The next block of rows not yet taken, into [*begin, *end): 0 when none is left or a block
+ * has failed. */
+static int take_block(eval_work *w, Py_ssize_t *begin, Py_ssize_t *end)
+{
+    pthread_mutex_lock(&w->lock);
+    int more = w->status == ABRDF_OK && w->next < w->a->rows;
+    if (more) {
+        *begin = w->next;
+        *end = w->a->rows - w->next > BLOCK_ROWS ? w->next + BLOCK_ROWS : w->a->rows;
+        w->next = *end;
+    }
+    pthread_mutex_unlock(&w->lock);
+    return more;
+}
+
+/* One thread of eval_float: blocks until none is left; the first failure stops every thread. */
+static void *eval_blocks(void *arg)
+{
+    eval_work *w = arg;
+    Py_ssize_t begin, end;
+    while (take_block(w, &begin, &end)) {
+        int st = eval_rows(w, begin, end);
+        if (st == ABRDF_OK) continue;
+        pthread_mutex_lock(&w->lock);
+        if (w->status == ABRDF_OK) w->status = st;
+        pthread_mutex_unlock(&w->lock);
+    }
     return NULL;
 }
 
@@ -342,26 +379,22 @@ static PyObject *py_eval_float(PyObject *self, PyObject *args)
         return NULL;
     }
     int t = thread_count(a.rows, threads);
-    eval_range range[MAX_THREADS];
+    eval_work w = {prep, (int)nl, &a, PTHREAD_MUTEX_INITIALIZER, 0, ABRDF_OK};
     pthread_t tid[MAX_THREADS];
     int started[MAX_THREADS] = {0};
     Py_BEGIN_ALLOW_THREADS;
-    for (int i = 0; i < t; ++i) {
-        range[i] = (eval_range){prep, (int)nl, &a, a.rows * i / t, a.rows * (i + 1) / t, ABRDF_OK};
-        /* the calling thread takes the last range, and any a thread could not be started for */
-        if (i + 1 < t) started[i] = pthread_create(&tid[i], NULL, eval_rows, &range[i]) == 0;
-    }
-    for (int i = 0; i < t; ++i)
-        if (!started[i]) eval_rows(&range[i]);
-    for (int i = 0; i < t; ++i)
+    /* the calling thread works too (and does all the work if no thread could be started) */
+    for (int i = 0; i + 1 < t; ++i)
+        started[i] = pthread_create(&tid[i], NULL, eval_blocks, &w) == 0;
+    eval_blocks(&w);
+    for (int i = 0; i + 1 < t; ++i)
         if (started[i]) pthread_join(tid[i], NULL);
     Py_END_ALLOW_THREADS;
+    pthread_mutex_destroy(&w.lock);
     release(&a);
     if (prep != small) PyMem_Free(prep);
     Py_XDECREF(lobes);
-    int st = ABRDF_OK;
-    for (int i = 0; i < t; ++i)
-        if (range[i].status != ABRDF_OK) st = range[i].status;
+    int st = w.status;
     if (st != ABRDF_OK)
         return abrdf_py_fail(st, "the float batch evaluation: %s", abrdf_strerror(st));
     Py_RETURN_NONE;
