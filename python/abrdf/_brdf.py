@@ -209,9 +209,9 @@ class BRDF:
         (abrdf_eval_batch), result float32; "double": the double-precision scalar reference
         (abrdf_eval), float64. The result has the
         broadcast shape (..., 3). The C loop runs without the GIL; on the float path a large
-        array is split over the machine's cores (threads=0: one thread per core, each with at
-        least 32768 pairs; threads=N: N threads, at most 64), the same result as one
-        thread. out: an array to write the result into and return, instead of a new one:
+        array is spread over the machine's cores (threads=0: one thread per core, each with at
+        least 32768 pairs; threads=N: N threads, at most 64 and one per 16384 pairs; the
+        threads take blocks of 16384 pairs in turn), the same result as one thread. out: an array to write the result into and return, instead of a new one:
         an ndarray of the result's shape, float32 ("float") or float64 ("double"),
         C-contiguous, writable, sharing no memory with wi or wo (else TypeError or
         ValueError)."""

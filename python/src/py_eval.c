@@ -186,7 +186,8 @@ static void release(eval_args *a)
  * about what 10^4 pairs of the cheapest model do). */
 #define ROWS_PER_THREAD 32768
 #define MAX_THREADS 64
-/* Lobes of one material at most (2 KiB of prepared model each, allocated per call). */
+/* Lobes of one material at most (2 KiB of prepared model each: STACK_LOBES on the stack,
+ * more allocated per call). */
 #define MAX_LOBES 4096
 
 /* Rows a thread takes at a time: long enough that taking one (a lock) costs nothing, short
@@ -313,13 +314,14 @@ static long usable_cores(void)
 }
 
 /* How many threads for `rows` pairs: `asked` if > 0 (at most MAX_THREADS, checked by the
- * caller), else one per usable core, as long as each gets ROWS_PER_THREAD rows. */
+ * caller), else one per usable core, as long as each gets ROWS_PER_THREAD rows; never more
+ * than there are blocks of BLOCK_ROWS rows to take. */
 static int thread_count(Py_ssize_t rows, int asked)
 {
     long cores = usable_cores();
     long t = asked > 0 ? asked : (cores > 0 ? cores : 1);
     if (asked <= 0 && rows / ROWS_PER_THREAD < t) t = (long)(rows / ROWS_PER_THREAD);
-    if (t > rows) t = (long)rows;
+    if (t > (rows + BLOCK_ROWS - 1) / BLOCK_ROWS) t = (long)((rows + BLOCK_ROWS - 1) / BLOCK_ROWS);
     if (t > MAX_THREADS) t = MAX_THREADS;
     return t < 1 ? 1 : (int)t;
 }
@@ -495,7 +497,7 @@ PyMethodDef abrdf_py_eval_methods[] = {
      "abrdf_eval_prepared_batch) into out; wi, wo: C-contiguous (N, 3) float32 or "
      "float64 local-frame directions (normalised here); out: writable (N, 3) float32; threads: "
      "0 = one per usable core for large arrays (32768 rows or more per thread), else that "
-     "many (at most 64). "
+     "many (at most 64, and one per block of 16384 rows: the threads take blocks in turn). "
      "Releases the GIL."},
     {"eval_double", py_eval_double, METH_VARARGS,
      "eval_double(params, wi, wo, out) -> None: the same by the double-precision scalar "
