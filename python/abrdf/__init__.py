@@ -17,7 +17,9 @@ Functions:
     models(), model(name)        the registry: every model, its formula, parameters, ranges
     BRDF(model, **params)        a validated parameter block; .eval(wi, wo, precision=)
     eval(model, wi, wo, **p)     f_r over arrays of directions (the C batch path, or the
-                                 double scalar reference with precision="double")
+                                 double scalar reference with precision="double"); out=
+    Lobes([brdf, ...])           a material of several lobes: .eval(wi, wo) their sum, in one
+                                 pass over the rows
     materials(), material(name)  the material table (data/materials.csv, shipped here)
     select(material, goal=...)   the paper's flowchart, with its trace
     select(material, budget=...) the budget mode: the cheapest candidate fitted to the
@@ -47,7 +49,7 @@ from __future__ import annotations
 
 from ._abrdf import MAX_LAYERS, Error, Params
 from ._brdf import BRDF, Model, Parameter, model, models
-from ._eval import eval
+from ._eval import Lobes, eval
 from ._compare import Comparison, compare, read_image
 from ._fit import Fit, fit
 from ._measured import Measured, load_measured, measured_from_array
@@ -68,6 +70,7 @@ __all__ = [
     "Error",
     "Fit",
     "Layer",
+    "Lobes",
     "MAX_LAYERS",
     "Material",
     "Measured",

@@ -89,10 +89,34 @@ def _rows(v: npt.ArrayLike, what: str) -> np.ndarray:
     return a
 
 
-def eval_block(block: _abrdf.Params | _abrdf.Table, wi: npt.ArrayLike, wo: npt.ArrayLike,
-               precision: Precision, threads: int) -> np.ndarray:
-    """f_r of a C block (a Params, or a measured Table) over broadcast direction arrays: what
-    BRDF.eval and Measured.eval share."""
+Block = Union[_abrdf.Params, _abrdf.Table]
+
+
+def _out(out: object, shape: tuple[int, ...], dtype: type, precision: str,
+         inputs: tuple[np.ndarray, ...]) -> np.ndarray:
+    """The caller's `out`, checked: an ndarray of the result's shape and dtype, C-contiguous,
+    writable, sharing no memory with the directions."""
+    if not isinstance(out, np.ndarray):
+        raise TypeError("out: a NumPy array is needed, got %s" % type(out).__name__)
+    if out.dtype != dtype:
+        raise TypeError("out: %s is needed for precision=%r, got %s"
+                        % (np.dtype(dtype).name, precision, out.dtype))
+    if out.shape != shape:
+        raise ValueError("out: shape %s is needed, got %s" % (shape, out.shape))
+    if not out.flags.c_contiguous:
+        raise ValueError("out: a C-contiguous array is needed")
+    if not out.flags.writeable:
+        raise ValueError("out: the array is read-only")
+    if any(np.may_share_memory(out, x) for x in inputs):
+        raise ValueError("out: shares memory with wi or wo")
+    return out
+
+
+def eval_block(block: Block | tuple[Block, ...], wi: npt.ArrayLike, wo: npt.ArrayLike,
+               precision: Precision, threads: int, out: np.ndarray | None = None) -> np.ndarray:
+    """f_r of a C block (a Params, or a measured Table), or the sum of a tuple of them (one
+    pass over the rows on the float path), over broadcast direction arrays, into `out` when
+    given: what BRDF.eval, Measured.eval and Lobes.eval share."""
     try:
         t = -1 if isinstance(threads, bool) else operator.index(threads)
     except TypeError:
@@ -100,21 +124,27 @@ def eval_block(block: _abrdf.Params | _abrdf.Table, wi: npt.ArrayLike, wo: npt.A
     if not 0 <= t <= 64:
         raise ValueError("threads: an int in [0, 64] (0 = one per core), got %r" % (threads,))
     threads = t
+    if precision not in ("float", "double"):
+        raise ValueError("precision: 'float' or 'double', got %r" % (precision,))
     a, b = np.broadcast_arrays(_rows(wi, "wi"), _rows(wo, "wo"))
     shape = a.shape
-    if precision == "double":
-        a = np.ascontiguousarray(a.reshape(-1, 3), dtype=np.float64)
-        b = np.ascontiguousarray(b.reshape(-1, 3), dtype=np.float64)
-        out = np.empty(a.shape, np.float64)
-        _abrdf.eval_double(block, a, b, out)
-    elif precision == "float":
-        a = np.ascontiguousarray(a.reshape(-1, 3))
-        b = np.ascontiguousarray(b.reshape(-1, 3))
-        out = np.empty(a.shape, np.float32)
-        _abrdf.eval_float(block, a, b, out, threads)
+    double = precision == "double"
+    dtype = np.float64 if double else np.float32
+    a = np.ascontiguousarray(a.reshape(-1, 3), dtype=np.float64 if double else None)
+    b = np.ascontiguousarray(b.reshape(-1, 3), dtype=np.float64 if double else None)
+    res = np.empty(shape, dtype) if out is None else _out(out, shape, dtype, precision, (a, b))
+    flat = res.reshape(-1, 3)  # a view: res is C-contiguous
+    if double:
+        blocks = block if isinstance(block, tuple) else (block,)
+        _abrdf.eval_double(blocks[0], a, b, flat)
+        if len(blocks) > 1:
+            more = np.empty_like(flat)
+            for x in blocks[1:]:
+                _abrdf.eval_double(x, a, b, more)
+                flat += more
     else:
-        raise ValueError("precision: 'float' or 'double', got %r" % (precision,))
-    return out.reshape(shape)
+        _abrdf.eval_float(block, a, b, flat, threads)
+    return res
 
 
 class BRDF:
@@ -168,8 +198,8 @@ class BRDF:
         return "BRDF(%r, %s)" % (self.model, ", ".join(
             "%s=%r" % kv for kv in self.params.items()))
 
-    def eval(self, wi: npt.ArrayLike, wo: npt.ArrayLike,
-             precision: Precision = "float", threads: int = 0) -> np.ndarray:
+    def eval(self, wi: npt.ArrayLike, wo: npt.ArrayLike, precision: Precision = "float",
+             threads: int = 0, out: np.ndarray | None = None) -> np.ndarray:
         """f_r(wi, wo) per RGB channel, 1/sr, without the cosine.
 
         wi, wo: local-frame directions, arrays of shape (..., 3) broadcast against each
@@ -179,10 +209,13 @@ class BRDF:
         (abrdf_eval_batch), result float32; "double": the double-precision scalar reference
         (abrdf_eval), float64. The result has the
         broadcast shape (..., 3). The C loop runs without the GIL; on the float path a large
-        array is split over the machine's cores (threads=0: one thread per core, each with at
-        least 32768 pairs; threads=N: N threads, at most 64), the same result as one
-        thread."""
-        return eval_block(self._p, wi, wo, precision, threads)
+        array is spread over the machine's cores (threads=0: one thread per core, each with at
+        least 32768 pairs; threads=N: N threads, at most 64 and one per 16384 pairs; the
+        threads take blocks of 16384 pairs in turn), the same result as one thread. out: an array to write the result into and return, instead of a new one:
+        an ndarray of the result's shape, float32 ("float") or float64 ("double"),
+        C-contiguous, writable, sharing no memory with wi or wo (else TypeError or
+        ValueError)."""
+        return eval_block(self._p, wi, wo, precision, threads, out)
 
 
 def _brdf_from(model: str, params: dict[str, ParamValue]) -> BRDF:

@@ -4,8 +4,12 @@
  *                (float64, or a chunk with a row that is not unit) are laid out as the batch's
  *                structure of arrays on the stack, normalised in vector registers, evaluated
  *                by abrdf_eval_prepared_batch and written back as rows: the same values either
- *                way. Large arrays are split over the machine's cores, one thread per range of
- *                rows (the library itself has no threads);
+ *                way. Several lobes (a material: a sequence of Params/Tables) are evaluated in
+ *                the same pass, each chunk read and normalised once, and summed in their order.
+ *                Large arrays are spread over the machine's cores: the threads (the caller's
+ *                among them) take blocks of BLOCK_ROWS rows in turn until none is left, so
+ *                a thread that starts late, or whose core is busy, takes fewer (the library
+ *                itself has no threads);
  *   eval_double  the double-precision scalar reference (abrdf_eval with the local frame), one
  *                pair at a time; a Table (a measured table) by abrdf_eval_prepared, the
  *                model's only double path.
@@ -182,20 +186,36 @@ static void release(eval_args *a)
  * about what 10^4 pairs of the cheapest model do). */
 #define ROWS_PER_THREAD 32768
 #define MAX_THREADS 64
+/* Lobes of one material at most (2 KiB of prepared model each: STACK_LOBES on the stack,
+ * more allocated per call). */
+#define MAX_LOBES 4096
 
-/* One thread's share of eval_float: rows [start, end). */
-typedef struct eval_range {
+/* Rows a thread takes at a time: long enough that taking one (a lock) costs nothing, short
+ * enough that a thread left without a core holds back little (a 10^6-row call has 62). */
+#define BLOCK_ROWS 16384
+
+/* The work of one eval_float call, shared by its threads: the sum of `lobes` prepared models
+ * over a's rows; `next` (the first row no thread has taken) and `status` under `lock`. */
+typedef struct eval_work {
     const abrdf_prepared *prep;
+    int lobes;
     const eval_args *a;
-    Py_ssize_t start, end;
+    pthread_mutex_t lock;
+    Py_ssize_t next;
     int status;
-} eval_range;
+} eval_work;
 
 /* f_r of n pairs back as rows of out. */
 ROW_LOOPS static void store(float *restrict o, const float *restrict fr, const float *restrict fg,
                             const float *restrict fb, int n)
 {
     for (int k = 0; k < n; ++k) o[3 * k] = fr[k], o[3 * k + 1] = fg[k], o[3 * k + 2] = fb[k];
+}
+
+/* o[k] += t[k] for n floats: a further lobe's values added to the sum so far. */
+ROW_LOOPS static void add(float *restrict o, const float *restrict t, int n)
+{
+    for (int k = 0; k < n; ++k) o[k] += t[k];
 }
 
 /* 1 if two buffers share a byte. */
@@ -205,36 +225,79 @@ static int overlap(const Py_buffer *a, const Py_buffer *b)
     return p < q + (uintptr_t)b->len && q < p + (uintptr_t)a->len;
 }
 
-static void *eval_rows(void *arg)
+/* Rows [begin, end) of the work into a->out: ABRDF_OK or the library's status. */
+static int eval_rows(const eval_work *r, Py_ssize_t begin, Py_ssize_t end)
 {
-    eval_range *r = arg;
     const eval_args *a = r->a;
     float ix[CHUNK], iy[CHUNK], iz[CHUNK], ox[CHUNK], oy[CHUNK], oz[CHUNK];
-    float fr[CHUNK], fg[CHUNK], fb[CHUNK];
+    float fr[CHUNK], fg[CHUNK], fb[CHUNK], more[3 * CHUNK];
     float *out = a->out.buf;
-    r->status = ABRDF_OK;
+    int st = ABRDF_OK;
     /* (out over wi or wo, which only the module function allows, takes the layout: the
      * library's rows may not overlap its output) */
     int f32 = a->wi_kind == ABRDF_PY_F32 && a->wo_kind == ABRDF_PY_F32 &&
               !overlap(&a->out, &a->wi) && !overlap(&a->out, &a->wo);
-    for (Py_ssize_t start = r->start; start < r->end && r->status == ABRDF_OK; start += CHUNK) {
-        int n = r->end - start < CHUNK ? (int)(r->end - start) : CHUNK;
+    for (Py_ssize_t start = begin; start < end && st == ABRDF_OK; start += CHUNK) {
+        int n = end - start < CHUNK ? (int)(end - start) : CHUNK;
+        float *o = out + 3 * start;
         if (f32) {
             /* float rows straight into the library's loops; the rows, now in cache, are then
              * tested, and a chunk with a row that is not unit is done again below (the same
-             * values as a unit chunk through the layout: load leaves unit rows as they are) */
+             * values as a unit chunk through the layout: load leaves unit rows as they are).
+             * Further lobes read the rows from cache and are added. */
             const float *pi = (const float *)a->wi.buf + 3 * start;
             const float *po = (const float *)a->wo.buf + 3 * start;
-            r->status = abrdf_eval_prepared_rows(r->prep, (size_t)n, pi, po, out + 3 * start);
-            if (r->status != ABRDF_OK) break;
-            if (unit_rows(pi, po, n)) continue;
+            st = abrdf_eval_prepared_rows(&r->prep[0], (size_t)n, pi, po, o);
+            if (st != ABRDF_OK) break;
+            if (unit_rows(pi, po, n)) {
+                for (int l = 1; l < r->lobes && st == ABRDF_OK; ++l) {
+                    st = abrdf_eval_prepared_rows(&r->prep[l], (size_t)n, pi, po, more);
+                    add(o, more, 3 * n);
+                }
+                continue;
+            }
         }
         load(a->wi.buf, a->wi_kind, start, n, ix, iy, iz);
         load(a->wo.buf, a->wo_kind, start, n, ox, oy, oz);
         abrdf_batch b = {(size_t)n, ix, iy, iz, ox, oy, oz, fr, fg, fb};
-        r->status = abrdf_eval_prepared_batch(r->prep, &b);
-        if (r->status != ABRDF_OK) break; /* the caller raises; out is discarded */
-        store(out + 3 * start, fr, fg, fb, n);
+        st = abrdf_eval_prepared_batch(&r->prep[0], &b);
+        abrdf_batch c = {(size_t)n, ix, iy, iz, ox, oy, oz, more, more + CHUNK, more + 2 * CHUNK};
+        for (int l = 1; l < r->lobes && st == ABRDF_OK; ++l) {
+            st = abrdf_eval_prepared_batch(&r->prep[l], &c);
+            add(fr, c.f_r, n), add(fg, c.f_g, n), add(fb, c.f_b, n);
+        }
+        if (st != ABRDF_OK) break; /* the caller raises; out is discarded */
+        store(o, fr, fg, fb, n);
+    }
+    return st;
+}
+
+/* The next block of rows not yet taken, into [*begin, *end): 0 when none is left or a block
+ * has failed. */
+static int take_block(eval_work *w, Py_ssize_t *begin, Py_ssize_t *end)
+{
+    pthread_mutex_lock(&w->lock);
+    int more = w->status == ABRDF_OK && w->next < w->a->rows;
+    if (more) {
+        *begin = w->next;
+        *end = w->a->rows - w->next > BLOCK_ROWS ? w->next + BLOCK_ROWS : w->a->rows;
+        w->next = *end;
+    }
+    pthread_mutex_unlock(&w->lock);
+    return more;
+}
+
+/* One thread of eval_float: blocks until none is left; the first failure stops every thread. */
+static void *eval_blocks(void *arg)
+{
+    eval_work *w = arg;
+    Py_ssize_t begin, end;
+    while (take_block(w, &begin, &end)) {
+        int st = eval_rows(w, begin, end);
+        if (st == ABRDF_OK) continue;
+        pthread_mutex_lock(&w->lock);
+        if (w->status == ABRDF_OK) w->status = st;
+        pthread_mutex_unlock(&w->lock);
     }
     return NULL;
 }
@@ -251,56 +314,89 @@ static long usable_cores(void)
 }
 
 /* How many threads for `rows` pairs: `asked` if > 0 (at most MAX_THREADS, checked by the
- * caller), else one per usable core, as long as each gets ROWS_PER_THREAD rows. */
+ * caller), else one per usable core, as long as each gets ROWS_PER_THREAD rows; never more
+ * than there are blocks of BLOCK_ROWS rows to take. */
 static int thread_count(Py_ssize_t rows, int asked)
 {
     long cores = usable_cores();
     long t = asked > 0 ? asked : (cores > 0 ? cores : 1);
     if (asked <= 0 && rows / ROWS_PER_THREAD < t) t = (long)(rows / ROWS_PER_THREAD);
-    if (t > rows) t = (long)rows;
+    if (t > (rows + BLOCK_ROWS - 1) / BLOCK_ROWS) t = (long)((rows + BLOCK_ROWS - 1) / BLOCK_ROWS);
     if (t > MAX_THREADS) t = MAX_THREADS;
     return t < 1 ? 1 : (int)t;
+}
+
+/* Lobes prepared on the stack; more are allocated. */
+#define STACK_LOBES 4
+
+/* The lobes of eval_float's first argument: a Params or a Table alone (*lobes NULL), or a
+ * tuple or list of them, copied into a new tuple *lobes (which holds every lobe while the GIL
+ * is released). Their count, or -1 with an exception. */
+static Py_ssize_t lobes_arg(PyObject *p, PyObject **lobes)
+{
+    *lobes = NULL;
+    if (!PyTuple_Check(p) && !PyList_Check(p)) return 1;
+    if (!(*lobes = PySequence_Tuple(p))) return -1;
+    Py_ssize_t n = PyTuple_GET_SIZE(*lobes);
+    if (n >= 1 && n <= MAX_LOBES) return n;
+    if (n < 1)
+        PyErr_SetString(PyExc_ValueError, "eval_float: a material needs at least one lobe");
+    else
+        PyErr_Format(PyExc_ValueError, "eval_float: at most %d lobes, got %zd", MAX_LOBES, n);
+    Py_CLEAR(*lobes);
+    return -1;
 }
 
 static PyObject *py_eval_float(PyObject *self, PyObject *args)
 {
     (void)self;
-    PyObject *p, *wi, *wo, *out;
+    PyObject *p, *wi, *wo, *out, *lobes;
     int threads = 0;
     if (!PyArg_ParseTuple(args, "OOOO|i", &p, &wi, &wo, &out, &threads)) return NULL;
     if (threads < 0 || threads > MAX_THREADS)
         return PyErr_Format(PyExc_ValueError, "threads must be in [0, %d], got %d", MAX_THREADS,
                             threads);
-    PyObject *four = Py_BuildValue("(OOOO)", p, wi, wo, out);
-    if (!four) return NULL;
+    Py_ssize_t nl = lobes_arg(p, &lobes);
+    if (nl < 0) return NULL;
+    PyObject *first = lobes ? PyTuple_GET_ITEM(lobes, 0) : p;
+    PyObject *four = Py_BuildValue("(OOOO)", first, wi, wo, out);
     eval_args a;
-    int bad = get_args(four, "eval_float", ABRDF_PY_F32, &a);
-    Py_DECREF(four);
-    if (bad) return NULL;
-    abrdf_prepared prep;
-    int st = abrdf_py_prepared_arg(p, "eval_float", &prep) ? ABRDF_E_NULL : ABRDF_OK;
-    if (st != ABRDF_OK) {
+    int bad = !four || get_args(four, "eval_float", ABRDF_PY_F32, &a);
+    Py_XDECREF(four);
+    if (bad) {
+        Py_XDECREF(lobes);
+        return NULL;
+    }
+    abrdf_prepared small[STACK_LOBES];
+    abrdf_prepared *prep = nl <= STACK_LOBES ? small : PyMem_Malloc((size_t)nl * sizeof *prep);
+    if (!prep) PyErr_NoMemory();
+    bad = !prep;
+    for (Py_ssize_t i = 0; i < nl && !bad; ++i)
+        bad = abrdf_py_prepared_arg(lobes ? PyTuple_GET_ITEM(lobes, i) : p, "eval_float",
+                                    &prep[i]) != 0;
+    if (bad) {
+        if (prep != small) PyMem_Free(prep);
         release(&a);
+        Py_XDECREF(lobes);
         return NULL;
     }
     int t = thread_count(a.rows, threads);
-    eval_range range[MAX_THREADS];
+    eval_work w = {prep, (int)nl, &a, PTHREAD_MUTEX_INITIALIZER, 0, ABRDF_OK};
     pthread_t tid[MAX_THREADS];
     int started[MAX_THREADS] = {0};
     Py_BEGIN_ALLOW_THREADS;
-    for (int i = 0; i < t; ++i) {
-        range[i] = (eval_range){&prep, &a, a.rows * i / t, a.rows * (i + 1) / t, ABRDF_OK};
-        /* the calling thread takes the last range, and any a thread could not be started for */
-        if (i + 1 < t) started[i] = pthread_create(&tid[i], NULL, eval_rows, &range[i]) == 0;
-    }
-    for (int i = 0; i < t; ++i)
-        if (!started[i]) eval_rows(&range[i]);
-    for (int i = 0; i < t; ++i)
+    /* the calling thread works too (and does all the work if no thread could be started) */
+    for (int i = 0; i + 1 < t; ++i)
+        started[i] = pthread_create(&tid[i], NULL, eval_blocks, &w) == 0;
+    eval_blocks(&w);
+    for (int i = 0; i + 1 < t; ++i)
         if (started[i]) pthread_join(tid[i], NULL);
     Py_END_ALLOW_THREADS;
+    pthread_mutex_destroy(&w.lock);
     release(&a);
-    for (int i = 0; i < t; ++i)
-        if (range[i].status != ABRDF_OK) st = range[i].status;
+    if (prep != small) PyMem_Free(prep);
+    Py_XDECREF(lobes);
+    int st = w.status;
     if (st != ABRDF_OK)
         return abrdf_py_fail(st, "the float batch evaluation: %s", abrdf_strerror(st));
     Py_RETURN_NONE;
@@ -395,12 +491,13 @@ static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
 PyMethodDef abrdf_py_eval_methods[] = {
     {"eval_float", py_eval_float, METH_VARARGS,
      "eval_float(params, wi, wo, out, threads=0) -> None: f_r of every row pair (params: a "
-     "Params or a Table) by the float "
+     "Params or a Table, or a tuple or list of them: a material, its lobes evaluated in one "
+     "pass over the rows and summed in their order) by the float "
      "batch path (abrdf_eval_prepared_rows on unit float32 rows, else "
      "abrdf_eval_prepared_batch) into out; wi, wo: C-contiguous (N, 3) float32 or "
      "float64 local-frame directions (normalised here); out: writable (N, 3) float32; threads: "
      "0 = one per usable core for large arrays (32768 rows or more per thread), else that "
-     "many (at most 64). "
+     "many (at most 64, and one per block of 16384 rows: the threads take blocks in turn). "
      "Releases the GIL."},
     {"eval_double", py_eval_double, METH_VARARGS,
      "eval_double(params, wi, wo, out) -> None: the same by the double-precision scalar "

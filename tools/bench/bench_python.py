@@ -9,6 +9,8 @@ In one process, interleaved round by round (the median of ROUNDS rounds is repor
              unit float32 rows straight into abrdf_eval_prepared_rows, other rows laid out in
              chunks and normalised for abrdf_eval_prepared_batch); one thread, as the C column
              (the binding's threads for large arrays: tools/bench/peer_mitsuba.py);
+  out=       abrdf.BRDF.eval(wi, wo, threads=1, out=out) on float32 rows: the binding into a
+             reused output array (no allocation, no first touch of new pages);
   raw        abrdf._abrdf.eval_float on ready float32 rows and a preallocated output: the C
              binding without the package's Python layer.
 Per call: one direction pair (the binding's fixed cost). Per element: N pairs, float64 rows
@@ -61,7 +63,7 @@ def main():
     for name, params in MODELS:
         b = abrdf.BRDF(name, **params)
         p = b.block
-        res = {k: [] for k in ("c1", "py1", "raw1", "cn", "py64", "py32", "rawn")}
+        res = {k: [] for k in ("c1", "py1", "raw1", "cn", "py64", "py32", "py32o", "rawn")}
         for _ in range(a.rounds):
             res["c1"].append(_abrdf._time_eval_batch(
                 p, wi1.astype(np.float32), wo1.astype(np.float32), one32, a.calls) * 1e9)
@@ -70,6 +72,8 @@ def main():
             res["cn"].append(_abrdf._time_eval_batch(p, wi32, wo32, out32, 5) * 1e9 / a.n)
             res["py64"].append(per_call(lambda: b.eval(wi, wo, threads=1), 5) / a.n)
             res["py32"].append(per_call(lambda: b.eval(wi32, wo32, threads=1), 5) / a.n)
+            res["py32o"].append(per_call(lambda: b.eval(wi32, wo32, threads=1, out=out32), 5)
+                                / a.n)
             res["rawn"].append(per_call(lambda: _abrdf.eval_float(p, wi32, wo32, out32, 1), 5) / a.n)
         med = {k: statistics.median(v) for k, v in res.items()}
         spread = {k: (max(v) - min(v)) / statistics.median(v) for k, v in res.items()}
@@ -80,11 +84,12 @@ def main():
             name, med["c1"], med["py1"], med["py1"] - med["c1"], med["raw1"],
             med["raw1"] - med["c1"]))
     print("\nper element, %d pairs (ns/pair): C batch | binding float64 rows | binding float32 "
-          "rows | raw float32 (ratio to C)" % a.n)
+          "rows | out= float32 | raw float32 (ratio to C)" % a.n)
     for name, med, spread in rows:
-        print("  %-16s %6.2f | %6.2f (%.2fx) | %6.2f (%.2fx) | %6.2f (%.2fx)" % (
+        print("  %-16s %6.2f | %6.2f (%.2fx) | %6.2f (%.2fx) | %6.2f (%.2fx) | %6.2f (%.2fx)" % (
             name, med["cn"], med["py64"], med["py64"] / med["cn"], med["py32"],
-            med["py32"] / med["cn"], med["rawn"], med["rawn"] / med["cn"]))
+            med["py32"] / med["cn"], med["py32o"], med["py32o"] / med["cn"], med["rawn"],
+            med["rawn"] / med["cn"]))
     worst = max(s for _, _, sp in rows for s in sp.values())
     print("\n%d rounds interleaved, medians; largest (max - min) / median of a cell: %.0f %%"
           % (a.rounds, 100 * worst))

@@ -7,18 +7,24 @@ of the process (every thread's: Mitsuba's one worker included; time spent desche
 busy machine is not counted), the all-threads columns in wall time:
 
   C batch          abrdf_eval_batch alone on structure-of-arrays copies, one thread
-                   (abrdf._abrdf._time_eval_batch: the library without the binding)
-  binding, 1 thread   abrdf.BRDF.eval(wi, wo, threads=1): float32 rows in, rows out
-  binding, all     abrdf.BRDF.eval(wi, wo): the binding's threads, one per core
+                   (abrdf._abrdf._time_eval_batch: the library without the binding; a
+                   material: the sum of its lobes' calls)
+  binding, 1 thread   X.eval(wi, wo, threads=1): float32 rows in, a new array out (np.empty)
+  binding out=, 1 thread   X.eval(wi, wo, threads=1, out=out): into one reused array
+  binding, all     X.eval(wi, wo): the binding's threads, one per core, a new array
+  binding out=, all   the same into the reused array
   Mitsuba, 1 thread   the llvm_ad_rgb variant's compiled kernel, drjit limited to one thread
   Mitsuba, all     the same with drjit's thread pool (one per core)
+X is an abrdf.BRDF, or for a material an abrdf.Lobes (its lobes in one pass over the rows).
 
 Cases: GGX with F = 1 (Mitsuba's `roughconductor`, material "none", alpha = r^2) against
 abrdf's `disney_specular` with ks = f0 = 1, whose values are compared too (median and 99.9th
-percentile relative difference of f_r, Mitsuba's eval divided by its cosine); and Mitsuba's
+percentile relative difference of f_r, Mitsuba's eval divided by its cosine); Mitsuba's
 `principled` (base colour 0.5, roughness r, specular 0.5, metallic 0) against abrdf's
-`disney_diffuse + disney_specular` pair, a cost comparison of two complete materials only (the
-lobes are not the same functions: no agreement is claimed).
+`disney_diffuse + disney_specular` as one abrdf.Lobes, a cost comparison of two complete
+materials only (the lobes are not the same functions: no agreement is claimed); and the same
+material as two BRDF.eval calls whose results are added (`d.eval(wi, wo) + s.eval(wi, wo)`,
+the way before Lobes), for the reader.
 
 Mitsuba comes from PyPI (`pip install mitsuba`); its LLVM variant needs an LLVM of version 16
 or newer: Debian's libllvm19, found through DRJIT_LIBLLVM_PATH (set here when unset and the
@@ -120,25 +126,37 @@ def main():
                               "value": [0.5, 0.5, 0.5]}, "roughness": o.r, "specular": 0.5,
                               "metallic": 0.0}, wi, wo)
     out = np.empty((o.n, 3), np.float32)
+    material = abrdf.Lobes([dif, spec_pair])
 
     def c_batch(brdfs):
-        return sum(_abrdf._time_eval_batch(b._p, wi, wo, out, 1) for b in brdfs)
+        return sum(_abrdf._time_eval_batch(b.block, wi, wo, out, 1) for b in brdfs)
+
+    def ours(x):
+        return {
+            "binding, 1 thread": lambda: cpu(lambda: x.eval(wi, wo, threads=1)),
+            "binding out=, 1 thread": lambda: cpu(lambda: x.eval(wi, wo, threads=1, out=out)),
+            "binding, all": lambda: wall(lambda: x.eval(wi, wo)),
+            "binding out=, all": lambda: wall(lambda: x.eval(wi, wo, out=out)),
+        }
 
     cases = {
         "ggx": {
             "C batch": lambda: c_batch([spec]),
-            "binding, 1 thread": lambda: cpu(lambda: spec.eval(wi, wo, threads=1)),
-            "binding, all": lambda: wall(lambda: spec.eval(wi, wo)),
+            **ours(spec),
             "Mitsuba, 1 thread": lambda: mitsuba(cpu, 1, ggx),
             "Mitsuba, all": lambda: mitsuba(wall, cores, ggx),
         },
         "principled": {
             "C batch": lambda: c_batch([dif, spec_pair]),
-            "binding, 1 thread": lambda: cpu(lambda: (dif.eval(wi, wo, threads=1),
-                                                      spec_pair.eval(wi, wo, threads=1))),
-            "binding, all": lambda: wall(lambda: (dif.eval(wi, wo), spec_pair.eval(wi, wo))),
+            **ours(material),
             "Mitsuba, 1 thread": lambda: mitsuba(cpu, 1, principled),
             "Mitsuba, all": lambda: mitsuba(wall, cores, principled),
+        },
+        "two calls": {
+            "C batch": lambda: c_batch([dif, spec_pair]),
+            "binding, 1 thread": lambda: cpu(lambda: dif.eval(wi, wo, threads=1)
+                                             + spec_pair.eval(wi, wo, threads=1)),
+            "binding, all": lambda: wall(lambda: dif.eval(wi, wo) + spec_pair.eval(wi, wo)),
         },
     }
     # warm-up: Mitsuba compiles its kernels on the first call (cached afterwards)
@@ -152,26 +170,29 @@ def main():
                 times[c][k].append(fn() / o.n)
 
     dr.set_thread_count(cores)
-    ours = spec.eval(wi, wo).astype(np.float64)
+    mine = spec.eval(wi, wo).astype(np.float64)
     theirs = ggx.values()
-    rel = np.abs(ours - theirs) / np.maximum(np.abs(theirs), 1e-30)
+    rel = np.abs(mine - theirs) / np.maximum(np.abs(theirs), 1e-30)
     rel = rel[theirs > 1e-6]
 
     print(f"# abrdf {abrdf.__version__} against Mitsuba {mi.__version__} (llvm_ad_rgb), "
           f"{platform.processor() or platform.machine()}, {cores} cores, "
           f"{o.n} float32 pairs, median of {o.rounds} rounds; 1 thread: process CPU time, "
-          "all: wall time")
+          f"all: wall time; load average at the end {os.getloadavg()[0]:.1f}")
     print(f"# command: python tools/bench/peer_mitsuba.py --n {o.n} --rounds {o.rounds} --r {o.r}")
     print()
     cols = list(cases["ggx"])
     print("| case | " + " | ".join(f"{c}, ns/pair" for c in cols) + " |")
     print("|---|" + "---:|" * len(cols))
     labels = {"ggx": f"GGX r {o.r}, F = 1 (disney_specular / roughconductor)",
-              "principled": f"material r {o.r} (disney_diffuse + disney_specular / principled)"}
+              "principled": f"material r {o.r} (Lobes([disney_diffuse, disney_specular]) / "
+                            "principled)",
+              "two calls": "the material as two BRDF.eval calls, added"}
     for c in cases:
         med = {k: 1e9 * statistics.median(v) for k, v in times[c].items()}
         base = med["C batch"]
         print(f"| {labels[c]} | " + " | ".join(
+            "-" if k not in med else
             f"{med[k]:.2f}" + ("" if k == "C batch" else f" ({med[k] / base:.2f}x)")
             for k in cols) + " |")
         spread = max((max(v) - min(v)) / statistics.median(v) for v in times[c].values())
