@@ -442,6 +442,30 @@ class WholeOrNothing(Base):
         self.assertEqual(p.returncode, -signal.SIGTERM)
         self.assert_untouched(before)
 
+    def test_a_signal_while_a_temporary_file_is_created_leaves_none(self):
+        """The preview's temporary file is held at its creation (slow_create); SIGTERM comes
+        then, and may be handled on any thread (OpenImageIO's and Embree's pools exist by
+        then): the file is removed all the same."""
+        env = dict(os.environ, LD_PRELOAD=os.environ["SLOW_CREATE"], SLOW_CREATE_PREFIX=".x.",
+                   SLOW_CREATE_SUFFIX=".png", SLOW_CREATE_SECONDS="1.5")
+        if SANITIZED:  # the preload comes before the sanitizer's runtime
+            env["ASAN_OPTIONS"] = env.get("ASAN_OPTIONS", "") + ":verify_asan_link_order=0"
+        for _ in range(3):
+            before = snapshot(self.dir)
+            p = subprocess.Popen([ABRDF, "render", SPHERE, "-o", self.path("x.exr"),
+                                  "--threads", "1"] + SMALL, stderr=subprocess.DEVNULL, env=env)
+            for _ in range(1200):
+                if any(n.startswith(".x.") and n.endswith(".png") for n in os.listdir(self.dir)):
+                    break
+                if p.poll() is not None:
+                    break
+                threading.Event().wait(0.01)
+            self.assertIsNone(p.poll(), "the render ended before its preview file was created")
+            p.send_signal(signal.SIGTERM)
+            p.wait()
+            self.assertEqual(p.returncode, -signal.SIGTERM)
+            self.assert_untouched(before)
+
 
 if __name__ == "__main__":
     unittest.main()

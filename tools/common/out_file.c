@@ -21,15 +21,34 @@
 #define LIVE_MAX 32
 static char *volatile live[LIVE_MAX]; /* temporary files of this process, not yet renamed */
 
+/* Who holds live[]: 0 nobody, 1 a thread of this process changing it (live_lock), 2 the signal
+ * handler, which removes the files listed and ends the process. The process has threads it did
+ * not start (OpenImageIO's and Embree's pools) on which a signal may be handled, so a signal
+ * arriving while a temporary file is created and listed, or unlisted and freed, is held off by
+ * the lock rather than by a thread's signal mask alone: the handler takes the list only when
+ * no change is under way, and no change starts once it has. */
+static int live_owner;
+static const int live_signals[] = {SIGINT, SIGTERM, SIGHUP};
+
+static void live_pause(void)
+{
+    struct timespec ms = {0, 1000000};
+    nanosleep(&ms, NULL); /* async-signal-safe */
+}
+
 static void on_signal(int sig)
 {
+    int free_ = 0;
+    while (!__atomic_compare_exchange_n(&live_owner, &free_, 2, 0, __ATOMIC_SEQ_CST,
+                                        __ATOMIC_SEQ_CST)) {
+        free_ = 0; /* a change under way ends in microseconds; another handler ends us */
+        live_pause();
+    }
     for (int i = 0; i < LIVE_MAX; ++i)
         if (live[i]) unlink(live[i]); /* async-signal-safe */
     signal(sig, SIG_DFL);
     raise(sig);
 }
-
-static const int live_signals[] = {SIGINT, SIGTERM, SIGHUP};
 
 static void live_install(void)
 {
@@ -40,7 +59,8 @@ static void live_install(void)
         struct sigaction sa, old;
         memset(&sa, 0, sizeof sa);
         sa.sa_handler = on_signal;
-        sigemptyset(&sa.sa_mask);
+        sigemptyset(&sa.sa_mask); /* the three held while one is handled: none waits on it */
+        for (int k = 0; k < 3; ++k) sigaddset(&sa.sa_mask, live_signals[k]);
         /* A signal the caller ignores (nohup) stays ignored. */
         if (sigaction(live_signals[i], NULL, &old) == 0 && old.sa_handler == SIG_DFL)
             sigaction(live_signals[i], &sa, NULL);
@@ -48,16 +68,29 @@ static void live_install(void)
     signal(SIGXFSZ, SIG_IGN); /* write(2) then fails with EFBIG, which is reported */
 }
 
-/* Blocks the three signals from before a temporary file is created until it is in live[], so
- * that a signal arriving in between cannot leave the file behind; restore unblocks them, and a
- * signal held meanwhile is handled then, with the file listed. Outputs are opened before any
- * worker thread starts, so the calling thread is the one the signal would reach. */
-static void live_block(sigset_t *saved)
+/* Takes live[] for a change: the three signals blocked in this thread first (their previous
+ * mask into *saved), so that a handler running on it cannot wait for its own change. If the
+ * handler holds the list, the process is ending: wait for it. */
+static void live_lock(sigset_t *saved)
 {
     sigset_t block;
     sigemptyset(&block);
     for (int i = 0; i < 3; ++i) sigaddset(&block, live_signals[i]);
     pthread_sigmask(SIG_BLOCK, &block, saved);
+    int free_ = 0;
+    while (!__atomic_compare_exchange_n(&live_owner, &free_, 1, 0, __ATOMIC_SEQ_CST,
+                                        __ATOMIC_SEQ_CST)) {
+        free_ = 0;
+        live_pause();
+    }
+}
+
+/* Gives live[] back; a signal held by this thread meanwhile is handled now, with the list as
+ * the change left it. */
+static void live_unlock(const sigset_t *saved)
+{
+    __atomic_store_n(&live_owner, 0, __ATOMIC_SEQ_CST);
+    pthread_sigmask(SIG_SETMASK, saved, NULL);
 }
 
 static void live_add(char *path)
@@ -69,10 +102,14 @@ static void live_add(char *path)
         }
 }
 
+/* path out of live[], under the lock: the caller may free it then. */
 static void live_remove(const char *path)
 {
+    sigset_t saved;
+    live_lock(&saved);
     for (int i = 0; i < LIVE_MAX; ++i)
         if (live[i] == path) live[i] = NULL;
+    live_unlock(&saved);
 }
 
 /* ---- the checked stream ------------------------------------------------------------------ */
@@ -211,7 +248,7 @@ int out_file_open(out_file *o, const char *target, char *err, size_t err_size)
                               ((unsigned long long)getpid() << 40) ^ (uintptr_t)o;
     live_install();
     sigset_t saved;
-    live_block(&saved);
+    live_lock(&saved); /* from before the file exists until it is listed */
     for (int attempt = 0; attempt < 100 && o->fd < 0; ++attempt) {
         free(o->temp);
         o->temp = temp_name(o->path, salt + 0x9e3779b97f4a7c15ull * (unsigned)attempt);
@@ -224,7 +261,7 @@ int out_file_open(out_file *o, const char *target, char *err, size_t err_size)
     }
     if (o->fd >= 0) live_add(o->temp);
     int code = errno;
-    pthread_sigmask(SIG_SETMASK, &saved, NULL);
+    live_unlock(&saved);
     if (!o->temp) goto nomem;
     if (o->fd < 0) {
         free(o->temp);
