@@ -63,6 +63,28 @@ class TextureTest(unittest.TestCase):
         self.assertNotIn("Sanitizer", p.stderr)
         return p
 
+    def test_a_texel_of_one_takes_the_mapping_like_its_neighbours(self):
+        """A roughness map whose left quarter is 1 (255), the rest 0.2: the chosen models
+        get the mapped parameters at every hit. Changing the 1 to 254/255 moves the image by
+        what a 0.4 % rougher surface moves it, not by a switch to another block at the texels
+        that happen to be exactly 1 (for every way a pbr material is chosen)."""
+        for how in ("", " goal=photoreal", " goal=performance", " budget=slight"):
+            images = []
+            for top in (255, 254):
+                tex = np.full((16, 16, 3), 51, np.uint8)  # glTF: roughness in G
+                tex[:, :4, :] = top  # a quarter: the map's median texel is 0.2
+                write_image(self.path("r.png"), tex, oiio.UINT8)
+                self.scene("base_color=0.8,0.5,0.3 metallic=1 roughness=0.8 roughness_map=r.png"
+                           + how)
+                p = self.render("--no-preview")
+                self.assertEqual(p.returncode, 0, p.stderr)
+                inp = oiio.ImageInput.open(self.path("out.exr"))  # no cache: a new file each time
+                images.append(inp.read_image(oiio.FLOAT))
+                inp.close()
+            a, b = images
+            nmse = float(((a - b) ** 2).sum() / (b ** 2).sum())
+            self.assertLess(nmse, 1e-3, how)
+
     def test_cache_bound_holds_on_a_large_texture(self):
         # 4096^2 8-bit RGB noise, made into a tiled MIP-mapped file
         rng = np.random.default_rng(29)

@@ -782,12 +782,11 @@ int scene_pbr_params(const scene_material *sm, const abrdf_pbr *q, abrdf_params 
         return 0;
     }
     *out = sm->params;
-    /* No map changes a factor here (a normal or occlusion map only, or texels of 1): the block
-     * is the one chosen and predicted for the factors, a fitted stand-in's fit included. */
-    if (q->metallic == sm->pbr_in.metallic && q->roughness == sm->pbr_in.roughness &&
-        q->base_color[0] == sm->pbr_in.base_color[0] &&
-        q->base_color[1] == sm->pbr_in.base_color[1] &&
-        q->base_color[2] == sm->pbr_in.base_color[2])
+    /* No map of the material changes a factor (a normal or occlusion map only): its block is
+     * the one chosen and predicted for its factors, a fitted stand-in's fit included. Decided
+     * per material, not per hit: a texel of 1 must not switch blocks. */
+    if (!sm->maps[SCENE_MAP_BASE_COLOR].path && !sm->maps[SCENE_MAP_METALLIC].path &&
+        !sm->maps[SCENE_MAP_ROUGHNESS].path)
         return 0;
     memcpy(out->kd, mapped.kd, sizeof out->kd);
     memcpy(out->ks, mapped.ks, sizeof out->ks);
