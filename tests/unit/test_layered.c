@@ -89,7 +89,6 @@ START_TEST(ww_index_matched_is_base)
 }
 END_TEST
 
-/* A conductor interface on top is a plain GGX lobe with exact conductor Fresnel. */
 /* The real-arithmetic Fresnel the layered models share (layered_optics.h), written with
  * selects so that Weidlich-Wilkie's conductor lanes vectorise: the complex amplitudes' value
  * over dielectrics (total internal reflection included), absorbing dielectrics and metals, and
@@ -117,6 +116,7 @@ START_TEST(fresnel_exact_values_and_guards)
 }
 END_TEST
 
+/* A conductor interface on top is a plain GGX lobe with exact conductor Fresnel. */
 START_TEST(ww_conductor_is_ggx)
 {
     abrdf_params p;
