@@ -782,11 +782,15 @@ int scene_pbr_params(const scene_material *sm, const abrdf_pbr *q, abrdf_params 
         return 0;
     }
     *out = sm->params;
-    /* No map of the material changes a factor (a normal or occlusion map only): its block is
-     * the one chosen and predicted for its factors, a fitted stand-in's fit included. Decided
-     * per material, not per hit: a texel of 1 must not switch blocks. */
+    /* No map of the material changes a factor (a normal or occlusion map only), so q is its
+     * own factors: its block is the one chosen and predicted for them, a fitted stand-in's fit
+     * included. Decided per material (a texel of 1 must not switch blocks), and only for the
+     * material's own factors (a caller's other q is mapped). */
     if (!sm->maps[SCENE_MAP_BASE_COLOR].path && !sm->maps[SCENE_MAP_METALLIC].path &&
-        !sm->maps[SCENE_MAP_ROUGHNESS].path)
+        !sm->maps[SCENE_MAP_ROUGHNESS].path && q->metallic == sm->pbr_in.metallic &&
+        q->roughness == sm->pbr_in.roughness && q->base_color[0] == sm->pbr_in.base_color[0] &&
+        q->base_color[1] == sm->pbr_in.base_color[1] &&
+        q->base_color[2] == sm->pbr_in.base_color[2])
         return 0;
     memcpy(out->kd, mapped.kd, sizeof out->kd);
     memcpy(out->ks, mapped.ks, sizeof out->ks);

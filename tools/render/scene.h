@@ -233,8 +233,9 @@ int scene_outputs_distinct(const scene *s, const char *const *outputs,
 /* The parameters of material sm at a shading point whose pbr inputs (its factors times the
  * texels there) are q: sm's block with what abrdf_pbr_lobes maps q to (kd, ks, f0, r,
  * anisotropic), and n from r (abrdf_alpha_g_to_n of r^2) where sm's lobes read n (the
- * performance goal's Blinn-Phong); sm's block itself where sm has no base colour, metallic
- * or roughness map (a normal or occlusion map only: a budget's fitted stand-in as chosen). A
+ * performance goal's Blinn-Phong); sm's block itself for sm's own factors where sm has no
+ * base colour, metallic or roughness map (a normal or occlusion map only: a budget's fitted
+ * stand-in as chosen). A
  * budget choice over a roughness map (fit_count > 0) takes instead the fitted blocks of the
  * two groups around q's roughness, interpolated (linearly; an exponent n geometrically), its
  * kd scaled by the ratio of q's mapped kd to the groups', its ks by the ratio of the mapped
