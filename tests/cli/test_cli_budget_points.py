@@ -40,6 +40,12 @@ def rows(out):
     return table
 
 
+def explain(scene, tmp):
+    """What `abrdf render SCENE --explain` prints (its image into tmp, no preview)."""
+    return run(ABRDF, "render", scene, "-o", os.path.join(tmp, "x.exr"), "--no-preview",
+               "--explain").stdout
+
+
 class Points(unittest.TestCase):
     def test_points_predict_the_image_where_the_sphere_does_not(self):
         out = run(BUDGET_POINTS, SCENE, "--budget", "slight", "--check", str(FACTOR)).stdout
@@ -71,8 +77,7 @@ class Points(unittest.TestCase):
 
     def test_render_explain_names_the_prediction(self):
         with tempfile.TemporaryDirectory() as tmp:
-            out = run(ABRDF, "render", SCENE, "-o", os.path.join(tmp, "g.exr"), "--no-preview",
-                      "--explain").stdout
+            out = explain(SCENE, tmp)
         lines = out.splitlines()
         floor = lines.index(next(x for x in lines if "material 'floor'" in x))
         self.assertIn("table entry wool: lambert", lines[floor])
@@ -93,8 +98,7 @@ class Points(unittest.TestCase):
                         "light rect center=2,1,2 u=0,1,0 v=0.7071,0,-0.7071 intensity=10\n"
                         "material m adaptive budget=slight table=gold\n"
                         "sphere material=m radius=1\n")
-            out = run(ABRDF, "render", scene, "-o", os.path.join(tmp, "a.exr"), "--no-preview",
-                      "--explain").stdout
+            out = explain(scene, tmp)
         self.assertIn("prediction: on the sphere", out)
 
     def test_explain_says_the_points_carry_the_normal_map(self):
@@ -121,8 +125,7 @@ class Points(unittest.TestCase):
                         "material p pbr metallic=1 roughness=0.3 budget=slight\n"
                         "mesh file=quad.obj material=m translate=-1.1,0,0\n"
                         "mesh file=quad.obj material=p translate=1.1,0,0\n")
-            out = run(ABRDF, "render", scene, "-o", os.path.join(tmp, "n.exr"), "--no-preview",
-                      "--explain").stdout
+            out = explain(scene, tmp)
         pred = [x for x in out.splitlines() if "prediction:" in x]
         self.assertEqual(len(pred), 2, out)
         self.assertIn("on the scene's shading points", pred[0], out)
