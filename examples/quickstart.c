@@ -29,9 +29,10 @@ int main(void)
     abrdf_eval_prepared_unit(&mat, li, lo, fu);
     printf("the same from unit local directions: %.6f %.6f %.6f\n", fu[0], fu[1], fu[2]);
 
-    /* Many pairs at once, in float on the vector unit: interleaved (x, y, z) rows of unit
-     * local directions in, (r, g, b) rows out (abrdf_eval_prepared_rows; abrdf_eval_prepared_batch
-     * takes one array per axis). Here the pair above and a light straight overhead. */
+    /* Many pairs at once, in float on the vector unit: interleaved (x, y, z) rows of local
+     * directions in (made unit by the call; a zero row gives 0), (r, g, b) rows out
+     * (abrdf_eval_prepared_rows; abrdf_eval_prepared_batch takes one array per axis of unit
+     * directions). Here the pair above and a light straight overhead. */
     const float rows_wi[6] = {0.28734789f, 0.0f, 0.95782629f, 0.0f, 0.0f, 1.0f};
     const float rows_wo[6] = {-0.19518001f, 0.09759001f, 0.97590007f,
                               -0.19518001f, 0.09759001f, 0.97590007f};

@@ -407,13 +407,18 @@ ABRDF_API int abrdf_eval_prepared_unit(const abrdf_prepared *prepared, const dou
  * supports (AVX2 + FMA, AVX-512 on x86-64), chosen per call from the CPU alone; results
  * agree with the double path within the batch path's float tolerance (docs/MODELS.md). */
 ABRDF_API int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const abrdf_batch *batch);
-/* abrdf_eval_prepared_batch over interleaved rows: wi, wo hold `count` rows (x, y, z) of unit
- * local-frame directions (the closed-form models use them as given, the others renormalise
- * in double as abrdf_eval_prepared_batch does), f receives `count` rows (r, g, b) of f_r; f may
- * not overlap wi or wo. Bit for bit abrdf_eval_prepared_batch's values on the same
- * directions, without laying them out as a structure of arrays first: the rows are read by
- * the models' loops themselves. Same status codes (ABRDF_E_NULL; ABRDF_E_MODEL with f = 0).
- * Added after 0.2.0 (CHANGELOG). */
+/* abrdf_eval_prepared_batch over interleaved rows: wi, wo hold `count` rows (x, y, z) of
+ * local-frame directions of any length, f receives `count` rows (r, g, b) of f_r; f may not
+ * overlap wi or wo. Each row is made unit first: a row whose squared length (computed in
+ * double) is within 5e-7 of 1 is used as given, any other is scaled by 1 / sqrt(squared
+ * length) in double and rounded to float, and a pair with a zero or non-finite row gets
+ * f = 0. The rule gives the same directions at every instruction-set level. The result is
+ * abrdf_eval_prepared_batch's, bit for bit, on the directions so made unit, without laying
+ * them out as a structure of arrays first: the rows are read by the models' loops themselves,
+ * and unit rows cost only a test in those loops (a call whose rows are not all unit takes the
+ * general path for the 256 pairs around each such row). Same status codes (ABRDF_E_NULL;
+ * ABRDF_E_MODEL with f = 0). Added after 0.2.0 (CHANGELOG); rows of any length since the
+ * change listed there. */
 ABRDF_API int abrdf_eval_prepared_rows(const abrdf_prepared *prepared, size_t count,
                                        const float *wi, const float *wo, float *f);
 

@@ -60,11 +60,11 @@ class Lobes:
     def eval(self, wi: npt.ArrayLike, wo: npt.ArrayLike, precision: Precision = "float",
              threads: int = 0, out: np.ndarray | None = None) -> np.ndarray:
         """f_r(wi, wo) of the material: the sum of its lobes' f_r, with BRDF.eval's arguments
-        and result. precision "float": one pass over the rows, each block of rows read and
-        normalised once, every lobe evaluated on it (abrdf_eval_prepared_rows or
-        abrdf_eval_prepared_batch) and added in the lobes' order: the float32 sum of the
-        lobes' own evals, bit for bit, whatever `threads`; "double": each lobe's double
-        reference, summed in float64."""
+        and result. precision "float": one pass over the rows, every lobe evaluated on each
+        block of rows while it is in cache (abrdf_eval_prepared_rows, which makes the rows
+        unit) and added in the lobes' order: the float32 sum of the lobes' own evals, bit for
+        bit, whatever `threads`; "double": each lobe's double reference, summed in
+        float64."""
         return eval_block(self._blocks, wi, wo, precision, threads, out)
 
 

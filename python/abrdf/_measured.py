@@ -99,7 +99,7 @@ class Measured:
              threads: int = 0, out: np.ndarray | None = None) -> np.ndarray:
         """f_r(wi, wo) per RGB channel, 1/sr, without the cosine: BRDF.eval's arguments and
         result. precision "float": the library's float batch path on the prepared table
-        (abrdf_eval_prepared_rows for unit float32 rows, else abrdf_eval_prepared_batch),
+        (abrdf_eval_prepared_rows; float64 rows converted to float rows first),
         float32; "double": abrdf_eval_prepared, float64; out: as BRDF.eval's. The
         GIL is released while the library works."""
         return eval_block(self._block, wi, wo, precision, threads, out)

@@ -1,20 +1,23 @@
 /* py_eval.c - f_r over arrays of direction pairs, the GIL released while the library works:
- *   eval_float   the float batch path (abrdf_prepare once), CHUNK pairs at a time: float32
- *                rows that are unit go to abrdf_eval_prepared_rows as they are; other rows
- *                (float64, or a chunk with a row that is not unit) are laid out as the batch's
- *                structure of arrays on the stack, normalised in vector registers, evaluated
- *                by abrdf_eval_prepared_batch and written back as rows: the same values either
- *                way. Several lobes (a material: a sequence of Params/Tables) are evaluated in
- *                the same pass, each chunk read and normalised once, and summed in their order.
- *                Large arrays are spread over the machine's cores: the threads (the caller's
- *                among them) take blocks of BLOCK_ROWS rows in turn until none is left, so
- *                a thread that starts late, or whose core is busy, takes fewer (the library
- *                itself has no threads);
+ *   eval_float   the float batch path (abrdf_prepare once), CHUNK pairs at a time through
+ *                abrdf_eval_prepared_rows, which makes every row unit itself (abrdf.h: rows
+ *                of unit length are used as given, others are scaled, zero or non-finite
+ *                ones give f_r = 0): float32 rows are handed over as they are; float64 rows
+ *                (and rows that out overlaps) are first converted into float rows on the
+ *                stack, a row whose length float cannot hold (tiny, huge) normalised in
+ *                double first. Several lobes (a material: a sequence of Params/Tables) are
+ *                evaluated in the same pass over each chunk, the rows read from cache, and
+ *                summed in their order. Large arrays are spread over the machine's cores:
+ *                the threads (the caller's among them) take blocks of BLOCK_ROWS rows in turn
+ *                until none is left, so a thread that starts late, or whose core is busy,
+ *                takes fewer (the library itself has no threads);
  *   eval_double  the double-precision scalar reference (abrdf_eval with the local frame), one
  *                pair at a time; a Table (a measured table) by abrdf_eval_prepared, the
  *                model's only double path.
  *   _time_eval_batch  the C batch path alone on the same directions, timed here, so that the
- *                binding's cost is measured against it in one process (docs/BENCHMARKS.md).
+ *                binding's cost is measured against it in one process (docs/BENCHMARKS.md):
+ *                abrdf_eval_batch on structure-of-arrays copies, or abrdf_eval_prepared_rows
+ *                on float rows.
  * Directions are in the local frame (N = +z, T = +x); wi toward the light, wo toward the
  * viewer; f_r is without the cosine (abrdf.h). Zero or non-finite vectors give f_r = 0. */
 #include "abrdf_py.h" /* first: Python.h sets the feature macros */
@@ -27,8 +30,8 @@
 #include <time.h>
 #include <unistd.h>
 
-/* Pairs per call of abrdf_eval_batch: 9 arrays of CHUNK floats on the stack (9 KiB), long
- * enough for the batch loop to run at its vector speed. */
+/* Pairs per call of abrdf_eval_prepared_rows: three buffers of CHUNK rows on the stack (9 KiB),
+ * long enough for the batch loop to run at its vector speed. */
 #define CHUNK 256
 
 /* Row k of a (N, 3) buffer of `kind` as doubles. */
@@ -67,68 +70,56 @@ static void load_row_exact(const void *buf, abrdf_py_real kind, Py_ssize_t k, fl
     *x = (float)(v[0] * inv), *y = (float)(v[1] * inv), *z = (float)(v[2] * inv);
 }
 
-/* Float squared lengths the pass below normalises; outside them (or NaN) the row takes the
- * exact path. A squared length within UNIT_TOL of 1 is unit to float precision (a float's
- * rounding is 6e-8): such a row is only converted, not scaled. */
-#define LEN2F_MIN 1e-30f
-#define LEN2F_MAX 1e30f
-#define UNIT_TOL 1.2e-7f
+/* Squared lengths (in double) of the float64 rows that are converted to float as they are:
+ * their largest component stays far inside float's normal range. Others (and zero or
+ * non-finite rows) take load_row_exact: normalised in double first. */
+#define LEN2F_MIN 1e-60
+#define LEN2F_MAX 1e60
 
 /* The row loops run in vector registers: this file is built with -O3 -fno-math-errno
- * -fno-trapping-math (sqrtf an instruction, a division in a select allowed), and, where GCC
- * builds for x86-64 with glibc, each loop function is compiled for AVX-512, AVX2 and the
- * baseline, the best the CPU has chosen by glibc's ifunc when the module loads (the library,
- * which must link anywhere, dispatches its batch loops itself instead). */
+ * -fno-trapping-math, and, where GCC builds for x86-64 with glibc, each loop function is
+ * compiled for AVX-512, AVX2 and the baseline, the best the CPU has chosen by glibc's ifunc
+ * when the module loads (the library, which must link anywhere, dispatches its batch loops
+ * itself instead). */
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__)
 #define ROW_LOOPS __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define ROW_LOOPS
 #endif
 
-/* A squared length in float, the same expression wherever a row is tested. */
-static inline float len2f(float x, float y, float z) { return x * x + y * y + z * z; }
-
-/* 1 if every one of the n float rows of both p and q is unit to float precision (is
- * normalised as it is). */
-ROW_LOOPS static int unit_rows(const float *restrict p, const float *restrict q, int n)
+/* n float64 rows of p converted to float rows in dst; 1 if a row's squared length is outside
+ * [LEN2F_MIN, LEN2F_MAX] (or not a number). The flag is a double select kept as its bits: an
+ * integer flag from double compares would keep the loop from vectorising. */
+ROW_LOOPS static int convert_rows(const double *restrict p, int n, float *restrict dst)
 {
-    int scaled = 0;
+    uint64_t rare = 0;
     for (int k = 0; k < n; ++k) {
-        scaled |= !(fabsf(len2f(p[3 * k], p[3 * k + 1], p[3 * k + 2]) - 1.0f) <= UNIT_TOL);
-        scaled |= !(fabsf(len2f(q[3 * k], q[3 * k + 1], q[3 * k + 2]) - 1.0f) <= UNIT_TOL);
+        double x = p[3 * k], y = p[3 * k + 1], z = p[3 * k + 2];
+        dst[3 * k] = (float)x, dst[3 * k + 1] = (float)y, dst[3 * k + 2] = (float)z;
+        double len2 = x * x + y * y + z * z;
+        double t = len2 >= LEN2F_MIN && len2 <= LEN2F_MAX ? 0.0 : 1.0;
+        uint64_t u;
+        memcpy(&u, &t, sizeof u);
+        rare |= u;
     }
-    return !scaled;
+    return rare != 0;
 }
 
-/* Rows [start, start + n) laid out in x, y, z and normalised. The loops have no calls and no
- * branches; rows outside [LEN2F_MIN, LEN2F_MAX] are redone exactly. */
-ROW_LOOPS static void load(const void *buf, abrdf_py_real kind, Py_ssize_t start, int n, float *x,
-                           float *y, float *z)
+/* Rows [start, start + n) of buf as float rows in dst, for abrdf_eval_prepared_rows: float32
+ * copied, float64 converted (rows whose length float cannot hold by the exact path). */
+static void to_rows(const void *buf, abrdf_py_real kind, Py_ssize_t start, int n, float *dst)
 {
     if (kind == ABRDF_PY_F32) {
-        const float *p = (const float *)buf + 3 * start;
-        for (int k = 0; k < n; ++k) x[k] = p[3 * k], y[k] = p[3 * k + 1], z[k] = p[3 * k + 2];
-    } else {
-        const double *p = (const double *)buf + 3 * start;
-        for (int k = 0; k < n; ++k)
-            x[k] = (float)p[3 * k], y[k] = (float)p[3 * k + 1], z[k] = (float)p[3 * k + 2];
+        memcpy(dst, (const float *)buf + 3 * start, (size_t)n * 3 * sizeof *dst);
+        return;
     }
-    /* unit rows (the usual input) need no scaling: compares, not sqrtf and a division */
-    int scaled = 0;
-    for (int k = 0; k < n; ++k) scaled |= !(fabsf(len2f(x[k], y[k], z[k]) - 1.0f) <= UNIT_TOL);
-    if (!scaled) return;
-    int rare = 0;
+    const double *p = (const double *)buf + 3 * start;
+    if (!convert_rows(p, n, dst)) return;
     for (int k = 0; k < n; ++k) {
-        float len2 = len2f(x[k], y[k], z[k]);
-        float inv = fabsf(len2 - 1.0f) <= UNIT_TOL ? 1.0f : 1.0f / sqrtf(len2);
-        rare |= !(len2 >= LEN2F_MIN && len2 <= LEN2F_MAX);
-        x[k] *= inv, y[k] *= inv, z[k] *= inv;
-    }
-    if (!rare) return;
-    for (int k = 0; k < n; ++k) {
-        float len2 = len2f(x[k], y[k], z[k]);
-        if (!(fabsf(len2 - 1.0f) <= 16.0f * UNIT_TOL)) /* not a row the pass normalised */
-            load_row_exact(buf, kind, start + k, x + k, y + k, z + k);
+        double len2 =
+            p[3 * k] * p[3 * k] + p[3 * k + 1] * p[3 * k + 1] + p[3 * k + 2] * p[3 * k + 2];
+        if (!(len2 >= LEN2F_MIN && len2 <= LEN2F_MAX))
+            load_row_exact(buf, kind, start + k, dst + 3 * k, dst + 3 * k + 1, dst + 3 * k + 2);
     }
 }
 
@@ -205,13 +196,6 @@ typedef struct eval_work {
     int status;
 } eval_work;
 
-/* f_r of n pairs back as rows of out. */
-ROW_LOOPS static void store(float *restrict o, const float *restrict fr, const float *restrict fg,
-                            const float *restrict fb, int n)
-{
-    for (int k = 0; k < n; ++k) o[3 * k] = fr[k], o[3 * k + 1] = fg[k], o[3 * k + 2] = fb[k];
-}
-
 /* o[k] += t[k] for n floats: a further lobe's values added to the sum so far. */
 ROW_LOOPS static void add(float *restrict o, const float *restrict t, int n)
 {
@@ -229,47 +213,32 @@ static int overlap(const Py_buffer *a, const Py_buffer *b)
 static int eval_rows(const eval_work *r, Py_ssize_t begin, Py_ssize_t end)
 {
     const eval_args *a = r->a;
-    float ix[CHUNK], iy[CHUNK], iz[CHUNK], ox[CHUNK], oy[CHUNK], oz[CHUNK];
-    float fr[CHUNK], fg[CHUNK], fb[CHUNK], more[3 * CHUNK];
+    float more[3 * CHUNK], bi[3 * CHUNK], bo[3 * CHUNK];
     float *out = a->out.buf;
     int st = ABRDF_OK;
-    /* (out over wi or wo, which only the module function allows, takes the layout: the
-     * library's rows may not overlap its output) */
-    int f32 = a->wi_kind == ABRDF_PY_F32 && a->wo_kind == ABRDF_PY_F32 &&
-              !overlap(&a->out, &a->wi) && !overlap(&a->out, &a->wo);
+    /* float32 rows straight into the library's loops, unless out is over them (which only
+     * the module function allows: the library's rows may not overlap its output) */
+    int direct_i = a->wi_kind == ABRDF_PY_F32 && !overlap(&a->out, &a->wi);
+    int direct_o = a->wo_kind == ABRDF_PY_F32 && !overlap(&a->out, &a->wo);
     for (Py_ssize_t start = begin; start < end && st == ABRDF_OK; start += CHUNK) {
         int n = end - start < CHUNK ? (int)(end - start) : CHUNK;
+        const float *pi = bi, *po = bo;
+        if (direct_i)
+            pi = (const float *)a->wi.buf + 3 * start;
+        else
+            to_rows(a->wi.buf, a->wi_kind, start, n, bi);
+        if (direct_o)
+            po = (const float *)a->wo.buf + 3 * start;
+        else
+            to_rows(a->wo.buf, a->wo_kind, start, n, bo);
         float *o = out + 3 * start;
-        if (f32) {
-            /* float rows straight into the library's loops; the rows, now in cache, are then
-             * tested, and a chunk with a row that is not unit is done again below (the same
-             * values as a unit chunk through the layout: load leaves unit rows as they are).
-             * Further lobes read the rows from cache and are added. */
-            const float *pi = (const float *)a->wi.buf + 3 * start;
-            const float *po = (const float *)a->wo.buf + 3 * start;
-            st = abrdf_eval_prepared_rows(&r->prep[0], (size_t)n, pi, po, o);
-            if (st != ABRDF_OK) break;
-            if (unit_rows(pi, po, n)) {
-                for (int l = 1; l < r->lobes && st == ABRDF_OK; ++l) {
-                    st = abrdf_eval_prepared_rows(&r->prep[l], (size_t)n, pi, po, more);
-                    add(o, more, 3 * n);
-                }
-                continue;
-            }
-        }
-        load(a->wi.buf, a->wi_kind, start, n, ix, iy, iz);
-        load(a->wo.buf, a->wo_kind, start, n, ox, oy, oz);
-        abrdf_batch b = {(size_t)n, ix, iy, iz, ox, oy, oz, fr, fg, fb};
-        st = abrdf_eval_prepared_batch(&r->prep[0], &b);
-        abrdf_batch c = {(size_t)n, ix, iy, iz, ox, oy, oz, more, more + CHUNK, more + 2 * CHUNK};
+        st = abrdf_eval_prepared_rows(&r->prep[0], (size_t)n, pi, po, o);
         for (int l = 1; l < r->lobes && st == ABRDF_OK; ++l) {
-            st = abrdf_eval_prepared_batch(&r->prep[l], &c);
-            add(fr, c.f_r, n), add(fg, c.f_g, n), add(fb, c.f_b, n);
+            st = abrdf_eval_prepared_rows(&r->prep[l], (size_t)n, pi, po, more);
+            add(o, more, 3 * n);
         }
-        if (st != ABRDF_OK) break; /* the caller raises; out is discarded */
-        store(o, fr, fg, fb, n);
     }
-    return st;
+    return st; /* not ABRDF_OK: the caller raises; out is discarded */
 }
 
 /* The next block of rows not yet taken, into [*begin, *end): 0 when none is left or a block
@@ -434,17 +403,20 @@ static double now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* _time_eval_batch(params, wi, wo, out, calls) -> seconds per call of abrdf_eval_batch over all
- * rows, `calls` calls between two reads of the clock (a read costs about as much as a call on
- * a few pairs), on structure-of-arrays copies made before the clock starts, after one untimed
- * call (the output arrays' first touch is not the model's cost). */
+/* _time_eval_batch(params, wi, wo, out, calls, layout=0) -> seconds per call over all rows,
+ * `calls` calls between two reads of the clock (a read costs about as much as a call on a few
+ * pairs), after one untimed call (the output's first touch is not the model's cost), on
+ * copies made before the clock starts: layout 0 abrdf_eval_batch on structure-of-arrays
+ * copies normalised in double, layout 1 abrdf_eval_prepared_rows (prepared before the clock)
+ * on float rows as eval_float hands them over. */
 static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
 {
     (void)self;
     PyObject *p, *wi, *wo, *out;
-    int calls;
-    if (!PyArg_ParseTuple(args, "OOOOi", &p, &wi, &wo, &out, &calls)) return NULL;
+    int calls, layout = 0;
+    if (!PyArg_ParseTuple(args, "OOOOi|i", &p, &wi, &wo, &out, &calls, &layout)) return NULL;
     if (calls < 1) return PyErr_Format(PyExc_ValueError, "calls must be >= 1");
+    if (layout != 0 && layout != 1) return PyErr_Format(PyExc_ValueError, "layout must be 0 or 1");
     PyObject *tuple = Py_BuildValue("(OOOO)", p, wi, wo, out);
     if (!tuple) return NULL;
     eval_args a;
@@ -461,30 +433,49 @@ static PyObject *py_time_eval_batch(PyObject *self, PyObject *args)
         release(&a);
         return PyErr_NoMemory();
     }
-    int st = ABRDF_OK;
-    double seconds;
-    Py_BEGIN_ALLOW_THREADS;
-    for (size_t start = 0; start < n; start += CHUNK) {
-        int m = n - start < CHUNK ? (int)(n - start) : CHUNK;
-        load(a.wi.buf, a.wi_kind, (Py_ssize_t)start, m, mem + start, mem + n + start,
-             mem + 2 * n + start);
-        load(a.wo.buf, a.wo_kind, (Py_ssize_t)start, m, mem + 3 * n + start, mem + 4 * n + start,
-             mem + 5 * n + start);
-    }
-    abrdf_batch b = {n,           mem,         mem + n,     mem + 2 * n, mem + 3 * n,
-                     mem + 4 * n, mem + 5 * n, mem + 6 * n, mem + 7 * n, mem + 8 * n};
-    st = abrdf_eval_batch(a.params->model, &a.params->params, &b); /* untimed: first touch */
-    double t0 = now();
-    for (int r = 0; r < calls && st == ABRDF_OK; ++r)
-        st = abrdf_eval_batch(a.params->model, &a.params->params, &b);
-    seconds = (now() - t0) / calls;
+    abrdf_prepared prep;
+    int st = abrdf_prepare(a.params->model, &a.params->params, &prep);
+    double seconds = 0.0;
     float *o = a.out.buf;
-    for (size_t k = 0; k < n; ++k)
-        o[3 * k] = b.f_r[k], o[3 * k + 1] = b.f_g[k], o[3 * k + 2] = b.f_b[k];
+    Py_BEGIN_ALLOW_THREADS;
+    if (st == ABRDF_OK && layout == 1) {
+        for (size_t start = 0; start < n; start += CHUNK) {
+            int m = n - start < CHUNK ? (int)(n - start) : CHUNK;
+            to_rows(a.wi.buf, a.wi_kind, (Py_ssize_t)start, m, mem + 3 * start);
+            to_rows(a.wo.buf, a.wo_kind, (Py_ssize_t)start, m, mem + 3 * n + 3 * start);
+        }
+        st = abrdf_eval_prepared_rows(&prep, n, mem, mem + 3 * n, mem + 6 * n); /* untimed */
+        double t0 = now();
+        for (int r = 0; r < calls && st == ABRDF_OK; ++r)
+            st = abrdf_eval_prepared_rows(&prep, n, mem, mem + 3 * n, mem + 6 * n);
+        seconds = (now() - t0) / calls;
+        memcpy(o, mem + 6 * n, 3 * n * sizeof *o);
+    } else if (st == ABRDF_OK) {
+        for (size_t k = 0; k < n; ++k) {
+            for (int d = 0; d < 2; ++d) {
+                double v[3];
+                row(d ? a.wo.buf : a.wi.buf, d ? a.wo_kind : a.wi_kind, (Py_ssize_t)k, v);
+                double len = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                double s = len > 0.0 && isfinite(len) ? 1.0 / len : 0.0;
+                for (int c = 0; c < 3; ++c) mem[(3 * d + c) * n + k] = (float)(v[c] * s);
+            }
+        }
+        abrdf_batch b = {n,           mem,         mem + n,     mem + 2 * n, mem + 3 * n,
+                         mem + 4 * n, mem + 5 * n, mem + 6 * n, mem + 7 * n, mem + 8 * n};
+        st = abrdf_eval_batch(a.params->model, &a.params->params, &b); /* untimed: first touch */
+        double t0 = now();
+        for (int r = 0; r < calls && st == ABRDF_OK; ++r)
+            st = abrdf_eval_batch(a.params->model, &a.params->params, &b);
+        seconds = (now() - t0) / calls;
+        for (size_t k = 0; k < n; ++k)
+            o[3 * k] = b.f_r[k], o[3 * k + 1] = b.f_g[k], o[3 * k + 2] = b.f_b[k];
+    }
     Py_END_ALLOW_THREADS;
     release(&a);
     free(mem);
-    if (st != ABRDF_OK) return abrdf_py_fail(st, "abrdf_eval_batch: %s", abrdf_strerror(st));
+    if (st != ABRDF_OK)
+        return abrdf_py_fail(st, "%s: %s", layout ? "abrdf_eval_prepared_rows" : "abrdf_eval_batch",
+                             abrdf_strerror(st));
     return PyFloat_FromDouble(seconds);
 }
 
@@ -493,9 +484,9 @@ PyMethodDef abrdf_py_eval_methods[] = {
      "eval_float(params, wi, wo, out, threads=0) -> None: f_r of every row pair (params: a "
      "Params or a Table, or a tuple or list of them: a material, its lobes evaluated in one "
      "pass over the rows and summed in their order) by the float "
-     "batch path (abrdf_eval_prepared_rows on unit float32 rows, else "
-     "abrdf_eval_prepared_batch) into out; wi, wo: C-contiguous (N, 3) float32 or "
-     "float64 local-frame directions (normalised here); out: writable (N, 3) float32; threads: "
+     "batch path (abrdf_eval_prepared_rows; float64 rows converted to float first) into "
+     "out; wi, wo: C-contiguous (N, 3) float32 or float64 local-frame directions (made unit "
+     "by the library: zero or non-finite ones give 0); out: writable (N, 3) float32; threads: "
      "0 = one per usable core for large arrays (32768 rows or more per thread), else that "
      "many (at most 64, and one per block of 16384 rows: the threads take blocks in turn). "
      "Releases the GIL."},
@@ -504,8 +495,9 @@ PyMethodDef abrdf_py_eval_methods[] = {
      "reference (abrdf_eval, local frame; a Table: abrdf_eval_prepared); out: writable (N, 3) "
      "float64. Releases the GIL."},
     {"_time_eval_batch", py_time_eval_batch, METH_VARARGS,
-     "_time_eval_batch(params, wi, wo, out, calls) -> float: seconds of thread CPU time per "
-     "call of abrdf_eval_batch over all rows, `calls` calls timed together, on "
-     "structure-of-arrays copies made before timing (the C batch path alone, for the "
-     "binding's benchmark); out receives the result."},
+     "_time_eval_batch(params, wi, wo, out, calls, layout=0) -> float: seconds of thread CPU "
+     "time per call over all rows, `calls` calls timed together, on copies made before timing "
+     "(the C batch path alone, for the binding's benchmark): layout 0 abrdf_eval_batch on "
+     "structure-of-arrays copies, 1 abrdf_eval_prepared_rows on float rows; out receives the "
+     "result."},
     {NULL, NULL, 0, NULL}};

@@ -112,24 +112,33 @@ def test_threads_give_the_same_result_as_one():
             b.eval(wi[:4], wo[:4], threads=bad)
 
 
-# unit float32 rows go to abrdf_eval_prepared_rows as they are; float64 rows, and a chunk (256
-# rows) with a row that is not unit, are laid out and normalised for abrdf_eval_prepared_batch
+# float32 rows go to abrdf_eval_prepared_rows as they are (the library makes them unit);
+# float64 rows are converted to float rows first (normalised in double where float cannot hold
+# their length), then take the same call
 @pytest.mark.parametrize("model", [m.name for m in abrdf.models() if "table" not in m.needs])
-def test_float32_rows_give_the_layouts_values(model):
-    """The same values bit for bit whichever way the rows go: unit float32 rows (straight into
-    the library's loops) against the same numbers as float64 rows (laid out and normalised),
-    with a chunk holding a row of length 2 and a zero row, a chunk of unit rows only, and a
-    last partial chunk."""
+def test_float32_rows_give_the_float64_rows_values(model):
+    """The same values bit for bit whichever way the rows go: float32 rows (straight into the
+    library's loops) against the same numbers as float64 rows (converted), with a chunk holding
+    rows of length 2, 3, 1e-20, 1e20 and 1 + 4e-7 and a zero row, a chunk of unit rows only,
+    and a last partial chunk; rows not of unit length give their unit row's values, a zero
+    row gives 0."""
     n = 2 * 256 + 45
     wi, wo = directions(n, 7).astype(np.float32), directions(n, 8).astype(np.float32)
+    unit_wi = wi.copy()
     wi[0, 2] = -wi[0, 2]  # below the surface: 0 both ways
-    wi[300] *= 2.0
+    scaled = {300: 2.0, 301: 3.0, 302: 1e-20, 303: 1e20, 304: 1.0 + 4e-7}
+    for k, scale in scaled.items():
+        wi[k] = (wi[k].astype(np.float64) * scale).astype(np.float32)
     wo[400] = 0.0
     b = abrdf.BRDF(model)
     f32 = b.eval(wi, wo, threads=1)
     f64 = b.eval(wi.astype(np.float64), wo.astype(np.float64), threads=1)
     np.testing.assert_array_equal(f32, f64)
     assert np.any(f32 > 0)
+    assert np.all(f32[400] == 0)
+    ks = list(scaled)
+    np.testing.assert_allclose(f32[ks], b.eval(unit_wi[ks], wo[ks], threads=1), rtol=2e-5,
+                               atol=1e-30)
     # the module function may write over its input: then the rows are laid out first
     w = wi.copy()
     _abrdf.eval_float(b.block, w, wo, w, 1)

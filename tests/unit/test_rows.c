@@ -1,8 +1,10 @@
 /* test_rows.c - abrdf_eval_prepared_rows (interleaved rows) against abrdf_eval_prepared_batch
- * (structure of arrays): the same values bit for bit, for every model (a measured table too),
- * at every instruction-set level this CPU runs, for counts around the loops' block sizes
- * (32 pairs a vector block, 256 a stack block); degenerate and non-finite rows included; the
- * status codes of bad calls. */
+ * (structure of arrays): the same values bit for bit on the directions made unit by the rows
+ * entry's rule (abrdf.h; written out again here as unit_rule), for every model (a measured
+ * table too), at every instruction-set level this CPU runs, for counts around the loops' block
+ * sizes (32 pairs a vector block, 256 a stack block); degenerate, non-finite and not quite
+ * unit rows (on both sides of the rule's tolerance) included, which give f = 0 or their unit
+ * row's value; the status codes of bad calls. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -21,6 +23,24 @@
 static float wi[3 * MAXN], wo[3 * MAXN], rows[3 * MAXN + 3]; /* one row more: untouched */
 static float ix[MAXN], iy[MAXN], iz[MAXN], ox[MAXN], oy[MAXN], oz[MAXN], fr[MAXN], fg[MAXN],
     fb[MAXN];
+static int bad[MAXN]; /* pairs with a zero or non-finite direction: f = 0 */
+
+/* The rule of abrdf.h: a squared length (in double) within 5e-7 of 1 is kept, a zero or
+ * non-finite vector is bad (returns 1), any other is scaled by 1 / sqrt(len2) in double and
+ * rounded to float. */
+static int unit_rule(float *x, float *y, float *z)
+{
+    double v[3] = {*x, *y, *z};
+    double len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (fabs(len2 - 1.0) <= 5e-7) return 0;
+    if (!(len2 > 0.0) || !isfinite(len2)) {
+        *x = *y = *z = 0.0f;
+        return 1;
+    }
+    double s = 1.0 / sqrt(len2);
+    *x = (float)(v[0] * s), *y = (float)(v[1] * s), *z = (float)(v[2] * s);
+    return 0;
+}
 
 /* n pairs: unit directions over the whole sphere (a third below the horizon), runs of pairs
  * sharing wo (the lights of one shading point, which huang groups) that straddle the block
@@ -35,21 +55,31 @@ static void make_pairs(int n)
         if (k % 5 == 0) tg_hemisphere(&rng, o); /* a new view every 5 pairs */
         for (int c = 0; c < 3; ++c) wi[3 * k + c] = (float)i[c], wo[3 * k + c] = (float)o[c];
     }
-    static const float odd[][3] = {{0, 0, 0},      {NAN, 0, 1},        {0, INFINITY, 1},
-                                   {0, 0, 1e-30f}, {0.3f, 0.2f, 2.0f}, {0, 0, -1}};
+    static const float odd[][3] = {{0, 0, 0},         {NAN, 0, 1},        {0, INFINITY, 1},
+                                   {0, 0, 1e-30f},    {0.3f, 0.2f, 2.0f}, {0, 0, -1},
+                                   {1e30f, 0, 1e30f}, {0, -1e-40f, 0}};
     int n_odd = (int)(sizeof odd / sizeof odd[0]);
     for (int j = 0; j < n_odd && 7 * j + 3 < n; ++j) {
         memcpy(wi + 3 * (7 * j + 3), odd[j], sizeof odd[j]);
         memcpy(wo + 3 * (7 * j + 5 < n ? 7 * j + 5 : 7 * j + 3), odd[n_odd - 1 - j], sizeof odd[j]);
     }
+    /* lengths 1 + e: squared lengths on both sides of the rule's 5e-7, and of the loops'
+     * float test (3e-7) */
+    static const double e[] = {1e-7, -1e-7, 1.6e-7, 2.4e-7, -2.4e-7, 2.6e-7, -2.6e-7, 1e-6, -4e-6};
+    for (int j = 0; j < (int)(sizeof e / sizeof e[0]) && 11 * j + 2 < n; ++j) {
+        float *v = (j % 2 ? wo : wi) + 3 * (11 * j + 2);
+        for (int c = 0; c < 3; ++c) v[c] = (float)(v[c] * (1.0 + e[j]));
+    }
     for (int k = 0; k < n; ++k) {
         ix[k] = wi[3 * k], iy[k] = wi[3 * k + 1], iz[k] = wi[3 * k + 2];
         ox[k] = wo[3 * k], oy[k] = wo[3 * k + 1], oz[k] = wo[3 * k + 2];
+        bad[k] = unit_rule(&ix[k], &iy[k], &iz[k]) | unit_rule(&ox[k], &oy[k], &oz[k]);
     }
 }
 
-/* rows against batch for a prepared model at every level, for every count; returns the
- * number of differing values (0 expected). */
+/* rows against batch (on the directions made unit by the rule; f = 0 where one is bad) for a
+ * prepared model at every level, for every count; returns the number of differing values (0
+ * expected). */
 static long compare(const abrdf_prepared *pr, const char *name)
 {
     static const int counts[] = {0, 1, 31, 32, 33, 64, 255, 256, 257, 300, 513, MAXN};
@@ -66,6 +96,7 @@ static long compare(const abrdf_prepared *pr, const char *name)
             ck_assert_int_eq(abrdf__eval_prepared_rows_isa(p, (size_t)n, wi, wo, rows, level), 0);
             for (int k = 0; k < n; ++k) {
                 float want[3] = {fr[k], fg[k], fb[k]};
+                if (bad[k]) want[0] = want[1] = want[2] = 0.0f;
                 if (memcmp(want, rows + 3 * k, sizeof want) == 0) continue;
                 if (differ++ < 5)
                     printf("ROWS %s (%s) n=%d pair %d: rows (%.9g %.9g %.9g) batch (%.9g %.9g "
@@ -126,10 +157,13 @@ START_TEST(rows_public_call)
     abrdf_batch b = {MAXN, ix, iy, iz, ox, oy, oz, fr, fg, fb};
     ck_assert_int_eq(abrdf_eval_prepared_batch(&pr, &b), ABRDF_OK);
     ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, MAXN, wi, wo, rows), ABRDF_OK);
+    int n_bad = 0;
     for (int k = 0; k < MAXN; ++k) {
         float want[3] = {fr[k], fg[k], fb[k]};
+        if (bad[k]) want[0] = want[1] = want[2] = 0.0f, ++n_bad;
         ck_assert(memcmp(want, rows + 3 * k, sizeof want) == 0);
     }
+    ck_assert_int_eq(n_bad, 6); /* zero, NaN and Inf on either side */
     ck_assert_int_eq(abrdf_eval_prepared_rows(NULL, 1, wi, wo, rows), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 1, NULL, wo, rows), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 1, wi, NULL, rows), ABRDF_E_NULL);

@@ -6,8 +6,8 @@ In one process, interleaved round by round (the median of ROUNDS rounds is repor
              inside the extension module (abrdf._abrdf._time_eval_batch);
   binding    abrdf.BRDF.eval(wi, wo, threads=1): NumPy in, NumPy out (shape checks,
              broadcasting, conversion to C-contiguous rows, the GIL released around the C loop:
-             unit float32 rows straight into abrdf_eval_prepared_rows, other rows laid out in
-             chunks and normalised for abrdf_eval_prepared_batch); one thread, as the C column
+             float32 rows straight into abrdf_eval_prepared_rows, which makes them unit,
+             float64 rows converted to float rows in chunks first); one thread, as the C column
              (the binding's threads for large arrays: tools/bench/peer_mitsuba.py);
   out=       abrdf.BRDF.eval(wi, wo, threads=1, out=out) on float32 rows: the binding into a
              reused output array (no allocation, no first touch of new pages);

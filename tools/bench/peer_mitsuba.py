@@ -9,6 +9,9 @@ busy machine is not counted), the all-threads columns in wall time:
   C batch          abrdf_eval_batch alone on structure-of-arrays copies, one thread
                    (abrdf._abrdf._time_eval_batch: the library without the binding; a
                    material: the sum of its lobes' calls)
+  C rows           abrdf_eval_prepared_rows alone on the float32 rows, one thread (the same
+                   timer, layout=1): the entry the binding calls, which reads interleaved rows
+                   and makes them unit
   binding, 1 thread   X.eval(wi, wo, threads=1): float32 rows in, a new array out (np.empty)
   binding out=, 1 thread   X.eval(wi, wo, threads=1, out=out): into one reused array
   binding, all     X.eval(wi, wo): the binding's threads, one per core, a new array
@@ -128,8 +131,8 @@ def main():
     out = np.empty((o.n, 3), np.float32)
     material = abrdf.Lobes([dif, spec_pair])
 
-    def c_batch(brdfs):
-        return sum(_abrdf._time_eval_batch(b.block, wi, wo, out, 1) for b in brdfs)
+    def c_batch(brdfs, layout=0):
+        return sum(_abrdf._time_eval_batch(b.block, wi, wo, out, 1, layout) for b in brdfs)
 
     def ours(x):
         return {
@@ -142,12 +145,14 @@ def main():
     cases = {
         "ggx": {
             "C batch": lambda: c_batch([spec]),
+            "C rows": lambda: c_batch([spec], 1),
             **ours(spec),
             "Mitsuba, 1 thread": lambda: mitsuba(cpu, 1, ggx),
             "Mitsuba, all": lambda: mitsuba(wall, cores, ggx),
         },
         "principled": {
             "C batch": lambda: c_batch([dif, spec_pair]),
+            "C rows": lambda: c_batch([dif, spec_pair], 1),
             **ours(material),
             "Mitsuba, 1 thread": lambda: mitsuba(cpu, 1, principled),
             "Mitsuba, all": lambda: mitsuba(wall, cores, principled),

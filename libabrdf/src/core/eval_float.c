@@ -6,6 +6,8 @@
 #include "prepared.h"
 #include "vec.h"
 
+#include <float.h>
+#include <math.h>
 #include <stdint.h>
 #include <string.h>
 
@@ -100,28 +102,78 @@ const char *abrdf__isa_name(int level)
  * vectors: short enough for that overlap, long enough that GCC keeps the three inner loops
  * as vector loops (at 16 it unrolls them into scalar shuffles, 4x slower). */
 #define ABRDF__ROWS_VEC 32
+
+/* ROWS OF ANY LENGTH (abrdf_eval_prepared_rows). A direction whose squared length, in double,
+ * is within ROWS_UNIT_TOL of 1 is used as given; any other is scaled by 1 / sqrt(len2) in
+ * double and rounded to float, and a zero or non-finite one gives f = 0. The rule is decided
+ * in double, where the squared length of floats is exact up to one rounding whether or not
+ * the compiler fuses it, so it makes the same directions at every instruction-set level.
+ * The vector loops' test (rows_test) is in float: its squared length is within 3 roundings
+ * (1.8e-7) of the exact one, so rows it passes are unit by the rule. A loop stops before the
+ * first ROWS_CHECK pairs with a row it does not pass, and the general path (rows_general)
+ * takes them: there rows_normalise applies the rule to every row (rows the float test could
+ * not decide included). Nothing but the test is added to the loops: a call, or the rule's
+ * code, in a loop made GCC keep the kernels' values on the stack (1.2-1.6x the time), and a
+ * reduction per block cost twice what the test does now (docs/BENCHMARKS.md, section 4). */
+#define ABRDF__ROWS_UNIT_TOL 5e-7
+#define ABRDF__ROWS_UNIT_TOL_F 3e-7f
+/* The test's flag is a float select kept as its bits: an int flag from float compares is a
+ * mixed mask GCC's vectoriser rejects (abrdf__front). rows_test ORs a block's flags into
+ * off, lane by lane (no reduction in the block); rows_passed reduces off once per
+ * ROWS_CHECK pairs, and a loop stops before the first ROWS_CHECK pairs it does not pass. */
+static inline ABRDF__ALWAYS_INLINE float rows_off(float x, float y, float z)
+{
+    return fabsf(x * x + y * y + z * z - 1.0f) <= ABRDF__ROWS_UNIT_TOL_F ? 0.0f : 1.0f;
+}
+static inline ABRDF__ALWAYS_INLINE void
+rows_test(const float *restrict ix, const float *restrict iy, const float *restrict iz,
+          const float *restrict ox, const float *restrict oy, const float *restrict oz,
+          uint32_t *restrict off)
+{
+    for (int j = 0; j < ABRDF__ROWS_VEC; ++j) {
+        float t = rows_off(ix[j], iy[j], iz[j]) + rows_off(ox[j], oy[j], oz[j]);
+        uint32_t u;
+        memcpy(&u, &t, sizeof u);
+        off[j] |= u;
+    }
+}
+static inline ABRDF__ALWAYS_INLINE int rows_passed(const uint32_t *off)
+{
+    uint32_t any = 0;
+    for (int j = 0; j < ABRDF__ROWS_VEC; ++j) any |= off[j];
+    return any == 0;
+}
+#define ABRDF__ROWS_CHECK 256 /* = ROWS_BLOCK: what the general path takes at once */
+
 #define ABRDF__ROWS_ARGS                                                                           \
     const abrdf__kp *restrict k, size_t n, const float *restrict wi, const float *restrict wo,     \
         float *restrict f
 #define ABRDF__ROWS_LOOP_ISA(KERNEL, FORM, L)                                                      \
-    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void rows_##KERNEL##_##L(ABRDF__ROWS_ARGS)          \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static size_t rows_##KERNEL##_##L(ABRDF__ROWS_ARGS)        \
     {                                                                                              \
-        for (size_t s = 0; s < n; s += ABRDF__ROWS_VEC) {                                          \
-            const float *pi = wi + 3 * s, *po = wo + 3 * s;                                        \
-            float *pf = f + 3 * s;                                                                 \
-            float d[9][ABRDF__ROWS_VEC]; /* wi x y z, wo x y z, f r g b */                         \
-            for (int j = 0; j < ABRDF__ROWS_VEC; ++j) {                                            \
-                d[0][j] = pi[3 * j], d[1][j] = pi[3 * j + 1], d[2][j] = pi[3 * j + 2];             \
-                d[3][j] = po[3 * j], d[4][j] = po[3 * j + 1], d[5][j] = po[3 * j + 2];             \
+        for (size_t c = 0; c < n; c += ABRDF__ROWS_CHECK) {                                        \
+            uint32_t off[ABRDF__ROWS_VEC] = {0};                                                   \
+            size_t c_end = n - c < ABRDF__ROWS_CHECK ? n : c + ABRDF__ROWS_CHECK;                  \
+            for (size_t s = c; s < c_end; s += ABRDF__ROWS_VEC) {                                  \
+                const float *pi = wi + 3 * s, *po = wo + 3 * s;                                    \
+                float *pf = f + 3 * s;                                                             \
+                float d[9][ABRDF__ROWS_VEC]; /* wi x y z, wo x y z, f r g b */                     \
+                for (int j = 0; j < ABRDF__ROWS_VEC; ++j) {                                        \
+                    d[0][j] = pi[3 * j], d[1][j] = pi[3 * j + 1], d[2][j] = pi[3 * j + 2];         \
+                    d[3][j] = po[3 * j], d[4][j] = po[3 * j + 1], d[5][j] = po[3 * j + 2];         \
+                }                                                                                  \
+                rows_test(d[0], d[1], d[2], d[3], d[4], d[5], off);                                \
+                for (int j = 0; j < ABRDF__ROWS_VEC; ++j) {                                        \
+                    abrdf__geo g;                                                                  \
+                    geo_make(&g, d[0][j], d[1][j], d[2][j], d[3][j], d[4][j], d[5][j]);            \
+                    ABRDF__STORE_##FORM(KERNEL, j, d[6], d[7], d[8]);                              \
+                }                                                                                  \
+                for (int j = 0; j < ABRDF__ROWS_VEC; ++j)                                          \
+                    pf[3 * j] = d[6][j], pf[3 * j + 1] = d[7][j], pf[3 * j + 2] = d[8][j];         \
             }                                                                                      \
-            for (int j = 0; j < ABRDF__ROWS_VEC; ++j) {                                            \
-                abrdf__geo g;                                                                      \
-                geo_make(&g, d[0][j], d[1][j], d[2][j], d[3][j], d[4][j], d[5][j]);                \
-                ABRDF__STORE_##FORM(KERNEL, j, d[6], d[7], d[8]);                                  \
-            }                                                                                      \
-            for (int j = 0; j < ABRDF__ROWS_VEC; ++j)                                              \
-                pf[3 * j] = d[6][j], pf[3 * j + 1] = d[7][j], pf[3 * j + 2] = d[8][j];             \
+            if (!rows_passed(off)) return c;                                                       \
         }                                                                                          \
+        return n;                                                                                  \
     }
 #if ABRDF__ISA_X86
 #define ABRDF__BATCH_LOOP(ID, SETUP, KERNEL, FORM)                                                 \
@@ -250,15 +302,75 @@ void abrdf__eval_prepared_f(const abrdf__prep *pr, const abrdf_batch *b)
     abrdf__eval_prepared_f_isa(pr, b, abrdf__isa_best());
 }
 
-/* abrdf_eval_prepared_rows at a given level: the closed-form models' rows loops on the
- * multiple of ROWS_VEC pairs, and the rest (the last pairs; every pair of a measured table or
- * a double-only model) through the batch path, ROWS_BLOCK pairs at a time laid out on the
- * stack (9 KiB). Every pair's value is the batch path's, bit for bit (tests/unit/test_rows.c). */
+/* The rule applied to the m floats of x, y, z (a direction per row); rows that are zero or
+ * not finite become (0, 0, 0) and are marked in bad. */
+static void rows_normalise(float *restrict x, float *restrict y, float *restrict z, size_t m,
+                           unsigned char *restrict bad)
+{
+    for (size_t j = 0; j < m; ++j) {
+        double a = x[j], b = y[j], c = z[j];
+        double len2 = a * a + b * b + c * c; /* floats: no overflow, no underflow to 0 */
+        if (fabs(len2 - 1.0) <= ABRDF__ROWS_UNIT_TOL) continue;
+        if (!(len2 > 0.0 && len2 <= DBL_MAX)) { /* zero, Inf or NaN */
+            x[j] = y[j] = z[j] = 0.0f;
+            bad[j] = 1;
+            continue;
+        }
+        double s = 1.0 / sqrt(len2);
+        x[j] = (float)(a * s), y[j] = (float)(b * s), z[j] = (float)(c * s);
+    }
+}
+
+/* The general path: m <= ROWS_BLOCK pairs laid out on the stack (9 KiB), made unit by the
+ * rule, evaluated by the batch path at the level, f = 0 where a direction was zero or not
+ * finite, and written back as rows. */
 #define ABRDF__ROWS_BLOCK 256
+static void rows_general(const abrdf__prep *pr, size_t m, const float *pi, const float *po,
+                         float *pf, int level)
+{
+    float d[9][ABRDF__ROWS_BLOCK];
+    for (size_t j = 0; j < m; ++j) {
+        d[0][j] = pi[3 * j], d[1][j] = pi[3 * j + 1], d[2][j] = pi[3 * j + 2];
+        d[3][j] = po[3 * j], d[4][j] = po[3 * j + 1], d[5][j] = po[3 * j + 2];
+    }
+    unsigned char bad[ABRDF__ROWS_BLOCK];
+    uint32_t off = 0;
+    for (size_t j = 0; j < m; ++j) {
+        float t = rows_off(d[0][j], d[1][j], d[2][j]) + rows_off(d[3][j], d[4][j], d[5][j]);
+        uint32_t u;
+        memcpy(&u, &t, sizeof u);
+        off |= u;
+    }
+    int unit = off == 0;
+    if (!unit) {
+        memset(bad, 0, m);
+        rows_normalise(d[0], d[1], d[2], m, bad);
+        rows_normalise(d[3], d[4], d[5], m, bad);
+    }
+    abrdf_batch b = {m, d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8]};
+    abrdf__eval_prepared_f_isa(pr, &b, level);
+    for (size_t j = 0; j < m; ++j) {
+        if (!unit && bad[j]) d[6][j] = d[7][j] = d[8][j] = 0.0f;
+        pf[3 * j] = d[6][j], pf[3 * j + 1] = d[7][j], pf[3 * j + 2] = d[8][j];
+    }
+}
+
+/* abrdf_eval_prepared_rows at a given level: the closed-form models' rows loops on the
+ * multiple of ROWS_VEC pairs, a block they stop at (one not unit) and the rest (the last
+ * pairs; every pair of a measured table or a double-only model) through the general path,
+ * ROWS_BLOCK pairs at a time. Every pair's value is the batch path's on the directions made
+ * unit by the rule (f = 0 where one is zero or not finite), bit for bit
+ * (tests/unit/test_rows.c). */
 #define ABRDF__ROWS_CASE_ISA(ID, KERNEL, L)                                                        \
     case ID:                                                                                       \
-        done = n - n % ABRDF__ROWS_VEC;                                                            \
-        rows_##KERNEL##_##L(&pr->kf, done, wi, wo, f);                                             \
+        while (done < vec) {                                                                       \
+            done += rows_##KERNEL##_##L(&pr->kf, vec - done, wi + 3 * done, wo + 3 * done,         \
+                                        f + 3 * done);                                             \
+            if (done == vec) break;                                                                \
+            size_t m = vec - done < ABRDF__ROWS_CHECK ? vec - done : ABRDF__ROWS_CHECK;            \
+            rows_general(pr, m, wi + 3 * done, wo + 3 * done, f + 3 * done, level);                \
+            done += m;                                                                             \
+        }                                                                                          \
         break;
 #define ABRDF__ROWS_CASE_0(ID, SETUP, KERNEL, FORM) ABRDF__ROWS_CASE_ISA(ID, KERNEL, 0)
 #define ABRDF__ROWS_CASE_1(ID, SETUP, KERNEL, FORM) ABRDF__ROWS_CASE_ISA(ID, KERNEL, 1)
@@ -275,26 +387,16 @@ int abrdf__eval_prepared_rows_isa(const abrdf__prep *pr, size_t n, const float *
                                   float *f, int level)
 {
     if (level < 0 || level > abrdf__isa_best()) return -1;
-    size_t done = 0;
+    size_t done = 0, vec = n - n % ABRDF__ROWS_VEC;
     if (pr->model != ABRDF_MEASURED && !abrdf__is_double_only(pr->model)) {
         switch (level) {
             ABRDF__ISA_LEVELS(ABRDF__ROWS_SWITCH)
         default: break;
         }
     }
-    float d[9][ABRDF__ROWS_BLOCK];
     for (size_t start = done; start < n; start += ABRDF__ROWS_BLOCK) {
         size_t m = n - start < ABRDF__ROWS_BLOCK ? n - start : ABRDF__ROWS_BLOCK;
-        const float *pi = wi + 3 * start, *po = wo + 3 * start;
-        float *pf = f + 3 * start;
-        for (size_t j = 0; j < m; ++j) {
-            d[0][j] = pi[3 * j], d[1][j] = pi[3 * j + 1], d[2][j] = pi[3 * j + 2];
-            d[3][j] = po[3 * j], d[4][j] = po[3 * j + 1], d[5][j] = po[3 * j + 2];
-        }
-        abrdf_batch b = {m, d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8]};
-        abrdf__eval_prepared_f_isa(pr, &b, level);
-        for (size_t j = 0; j < m; ++j)
-            pf[3 * j] = d[6][j], pf[3 * j + 1] = d[7][j], pf[3 * j + 2] = d[8][j];
+        rows_general(pr, m, wi + 3 * start, wo + 3 * start, f + 3 * start, level);
     }
     return 0;
 }
