@@ -41,6 +41,12 @@ int main(void)
     printf("in float, as rows: %.6f %.6f %.6f; light overhead: %.6f %.6f %.6f\n", rows_f[0],
            rows_f[1], rows_f[2], rows_f[3], rows_f[4], rows_f[5]);
 
+    /* A renderer that shades one sample at a time in float: the same float path on one pair
+     * (abrdf_eval_prepared_float), bit for bit the rows' first value. */
+    float f1[3];
+    if (abrdf_eval_prepared_float(&mat, rows_wi, rows_wo, f1) != ABRDF_OK) return 1;
+    printf("in float, one pair: %.6f %.6f %.6f\n", f1[0], f1[1], f1[2]);
+
     /* Importance sampling: light directions for the view direction wo, with pdf and weight
      * f_r cos / pdf; their mean weight estimates the directional albedo (docs/RENDERER.md,
      * "Importance sampling"). */

@@ -84,6 +84,7 @@
  *                            per-sample call, with nothing to normalise
  *   abrdf_eval_prepared_batch  abrdf_eval_batch of a prepared model (float, structure of arrays)
  *   abrdf_eval_prepared_rows   the same over interleaved (x, y, z) rows in, (r, g, b) rows out
+ *   abrdf_eval_prepared_float  one pair on that float path (a renderer's per-sample call)
  *   abrdf_measured_init      fill a measured-table descriptor, set its struct_size (static inline)
  *   abrdf_measured_init_sized  the same for a block of struct_size bytes
  *   abrdf_prepare_measured   prepare the `measured` model on a caller's table of measured f_r
@@ -421,6 +422,14 @@ ABRDF_API int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const ab
  * change listed there. */
 ABRDF_API int abrdf_eval_prepared_rows(const abrdf_prepared *prepared, size_t count,
                                        const float *wi, const float *wo, float *f);
+/* One pair on the float batch path, for a renderer that shades one sample at a time in float:
+ * abrdf_eval_prepared_rows with count 1, bit for bit, without its loops' set-up: the model's
+ * float kernel at the instruction set the batch path runs, on local-frame directions made
+ * unit by the rows rule (a zero or non-finite one gives f = 0). A measured table and the
+ * hair and layered models take their batch path for the pair. Same status codes
+ * (ABRDF_E_NULL; ABRDF_E_MODEL with f = 0). Added after 0.2.0 (CHANGELOG). */
+ABRDF_API int abrdf_eval_prepared_float(const abrdf_prepared *prepared, const float wi[3],
+                                        const float wo[3], float f[3]);
 
 /* ---- measured materials (added after 0.2.0) -------------------------------------------- *
  * The `measured` model (ABRDF_MEASURED) evaluates a table of measured f_r that the caller

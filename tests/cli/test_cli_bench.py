@@ -57,7 +57,8 @@ class QuickBench(unittest.TestCase):
     def test_ratios_finite_and_positive(self):
         self.assertTrue(math.isfinite(self.data["unit_ns"]) and self.data["unit_ns"] > 0)
         for r in self.data["models"]:
-            for k in ("float_ratio", "double_ratio", "float_speedup"):
+            for k in ("float_ratio", "double_ratio", "prepared_ratio", "prepared_unit_ratio",
+                      "prepared_float_ratio", "float_speedup"):
                 v = r[k]
                 self.assertTrue(isinstance(v, (int, float)) and math.isfinite(v) and v > 0,
                                 "%s %s = %r" % (r["name"], k, v))

@@ -4,7 +4,8 @@
  * table too), at every instruction-set level this CPU runs, for counts around the loops' block
  * sizes (32 pairs a vector block, 256 a stack block); degenerate, non-finite and not quite
  * unit rows (on both sides of the rule's tolerance) included, which give f = 0 or their unit
- * row's value; the status codes of bad calls. */
+ * row's value; one pair at a time (abrdf_eval_prepared_float) gives the rows' values bit for
+ * bit; the status codes of bad calls. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -105,8 +106,21 @@ static long compare(const abrdf_prepared *pr, const char *name)
                            rows[3 * k + 2], want[0], want[1], want[2]);
             }
             ck_assert(isnan(rows[3 * n])); /* nothing written past the last row */
+            /* one pair at a time (abrdf_eval_prepared_float's path): the rows' values */
+            for (int k = 0; k < n; ++k) {
+                float one[3] = {NAN, NAN, NAN};
+                ck_assert_int_eq(abrdf__eval_prepared_one_f(p, wi + 3 * k, wo + 3 * k, one, level),
+                                 0);
+                if (memcmp(one, rows + 3 * k, sizeof one) == 0) continue;
+                if (differ++ < 5)
+                    printf("ONE %s (%s) pair %d: one (%.9g %.9g %.9g) rows (%.9g %.9g %.9g)\n",
+                           name, abrdf__isa_name(level), k, one[0], one[1], one[2], rows[3 * k],
+                           rows[3 * k + 1], rows[3 * k + 2]);
+            }
         }
     }
+    float one[3];
+    ck_assert_int_eq(abrdf__eval_prepared_one_f(p, wi, wo, one, abrdf__isa_best() + 1), -1);
     return differ;
 }
 
@@ -169,12 +183,25 @@ START_TEST(rows_public_call)
     ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 1, wi, NULL, rows), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 1, wi, wo, NULL), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 0, NULL, NULL, NULL), ABRDF_OK);
+    /* one pair: the rows' value, bit for bit (the best level); its status codes */
+    for (int k = 0; k < MAXN; ++k) {
+        float one[3];
+        ck_assert_int_eq(abrdf_eval_prepared_float(&pr, wi + 3 * k, wo + 3 * k, one), ABRDF_OK);
+        ck_assert(memcmp(one, rows + 3 * k, sizeof one) == 0);
+    }
+    float one[3] = {1, 1, 1};
+    ck_assert_int_eq(abrdf_eval_prepared_float(NULL, wi, wo, one), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_eval_prepared_float(&pr, NULL, wo, one), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_eval_prepared_float(&pr, wi, NULL, one), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_eval_prepared_float(&pr, wi, wo, NULL), ABRDF_E_NULL);
     /* an object abrdf_prepare never filled: ABRDF_E_MODEL and f = 0 */
     abrdf_prepared junk;
     memset(&junk, 0xa5, sizeof junk);
     rows[0] = rows[1] = rows[2] = 1.0f;
     ck_assert_int_eq(abrdf_eval_prepared_rows(&junk, 1, wi, wo, rows), ABRDF_E_MODEL);
     ck_assert(rows[0] == 0.0f && rows[1] == 0.0f && rows[2] == 0.0f);
+    ck_assert_int_eq(abrdf_eval_prepared_float(&junk, wi, wo, one), ABRDF_E_MODEL);
+    ck_assert(one[0] == 0.0f && one[1] == 0.0f && one[2] == 0.0f);
 }
 END_TEST
 

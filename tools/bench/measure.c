@@ -149,6 +149,27 @@ static int run_prepared(const model_ctx *c, const abrdf_batch *b, int unit)
 
 static int run_model_prepared(void *ctx, const abrdf_batch *b) { return run_prepared(ctx, b, 0); }
 
+/* The float per-sample call: abrdf_eval_prepared_float per pair on the float directions of
+ * the batch (prepared once), as a renderer shading in float calls it. */
+static int run_model_prepared_float(void *ctx, const abrdf_batch *b)
+{
+    const model_ctx *c = ctx;
+    abrdf_prepared prep;
+    if (c->table)
+        prep = *c->table;
+    else if (abrdf_prepare(c->model, &c->params, &prep) != ABRDF_OK)
+        return -1;
+    float f[3], acc = 0.0f;
+    for (size_t i = 0; i < b->count; ++i) {
+        const float wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
+        const float wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
+        abrdf_eval_prepared_float(&prep, wi, wo, f);
+        acc += f[0];
+    }
+    measure_sink = acc;
+    return 0;
+}
+
 static int run_model_prepared_unit(void *ctx, const abrdf_batch *b)
 {
     return run_prepared(ctx, b, 1);
@@ -267,7 +288,8 @@ double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_pa
     size_t pairs = s->pairs;
     if ((m->needs & ABRDF_NEEDS_INTEGRATION) && pairs > o->integrating_pairs)
         pairs = o->integrating_pairs;
-    batch_fn fn = double_path == 3   ? run_model_prepared_unit
+    batch_fn fn = double_path == 4   ? run_model_prepared_float
+                  : double_path == 3 ? run_model_prepared_unit
                   : double_path == 2 ? run_model_prepared
                   : double_path      ? run_model_double
                                      : run_model;

@@ -29,7 +29,8 @@ double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o
 /* The same for parameters p, on the float batch path (double_path 0), the double scalar
  * reference path abrdf_eval in the local frame (double_path 1, one call per pair), or the
  * same prepared once per batch (double_path 2, abrdf_eval_prepared per pair; double_path 3,
- * abrdf_eval_prepared_unit per pair). */
+ * abrdf_eval_prepared_unit per pair; double_path 4, the float per-sample call
+ * abrdf_eval_prepared_float per pair). */
 double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
                                int double_path, const measure_opts *o);
 /* Median ns per pair of `model` (parameters p) on the float batch path when the pairs come

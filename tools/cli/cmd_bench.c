@@ -47,6 +47,7 @@ typedef struct row {
     double f_def, d_def;     /* at the model's default parameters */
     double p_def;            /* ... on the prepared double path (abrdf_eval_prepared) */
     double u_def;            /* ... through abrdf_eval_prepared_unit */
+    double o_def;            /* ... through abrdf_eval_prepared_float (one pair in float) */
     ref_kind ref;
     double nmse;           /* robot NMSE vs the reference, NAN if none */
     double best_n;         /* argmin n of the search (Table-5 lobes), NAN otherwise */
@@ -60,7 +61,8 @@ static int usage(void)
            "For every model: ns/eval of the float batch path (abrdf_eval_batch) and of the\n"
            "double scalar path (abrdf_eval, local frame; 'prepared': abrdf_eval_prepared after\n"
            "one abrdf_prepare; 'unit': abrdf_eval_prepared_unit on the same unit local\n"
-           "directions), as ratios to a powf Blinn-Phong loop on the\n"
+           "directions; 'float1': abrdf_eval_prepared_float, one pair in float), as ratios\n"
+           "to a powf Blinn-Phong loop on the\n"
            "same structure-of-arrays data timed in the same run (warm cache, median of the\n"
            "repetitions, swept over n or r where the model reads them), and the accuracy\n"
            "against the model it replaces: NMSE on a robot render (Table-1 approximations vs\n"
@@ -292,10 +294,10 @@ static void print_json(FILE *f, const row *rows, int count, double unit_ns, doub
         const row *r = &rows[i];
         fprintf(f,
                 "%s\n  {\"name\": \"%s\", \"float_ratio\": %.6g, \"double_ratio\": %.6g, "
-                "\"prepared_ratio\": %.6g, \"prepared_unit_ratio\": %.6g, \"float_speedup\": %.6g, "
-                "\"sweep\": ",
+                "\"prepared_ratio\": %.6g, \"prepared_unit_ratio\": %.6g, "
+                "\"prepared_float_ratio\": %.6g, \"float_speedup\": %.6g, \"sweep\": ",
                 i ? "," : "", r->m->name, r->f_def / unit_ns, r->d_def / unit_ns,
-                r->p_def / unit_ns, r->u_def / unit_ns, unit_ns / r->f_def);
+                r->p_def / unit_ns, r->u_def / unit_ns, r->o_def / unit_ns, unit_ns / r->f_def);
         if (r->vary) {
             fprintf(f, "{\"param\": \"%c\", \"values\": [", r->vary);
             for (int k = 0; k < r->nvals; ++k) fprintf(f, "%s%g", k ? ", " : "", r->vals[k]);
@@ -343,14 +345,14 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
         "timed just before it (spread of the unit's timings (max - min) / median: %.1f%%),\n"
         "%zu pairs, median of %d. 'speedup' = unit / float cost; 'double' = abrdf_eval per pair,\n"
         "'prepared' = abrdf_eval_prepared per pair (prepared once), 'unit' = "
-        "abrdf_eval_prepared_unit.\n"
+        "abrdf_eval_prepared_unit, 'float1' = abrdf_eval_prepared_float.\n"
         "Accuracy: robot %dx%d NMSE vs the reference; Table 2 = max rel. error %% in the "
         "highlight\n"
         "zone, Table 3 = max abs. error, both at n = %g.\n\n",
         100 * drift, mo->pairs, mo->reps, size, size, APPROX_N);
-    fprintf(f, "%-22s %8s %8s %8s %8s %8s %-14s %-16s %10s %6s %8s %8s\n", "model", "float",
-            "speedup", "double", "prepared", "unit", "float range", "reference", "robot NMSE", "n",
-            "Table 2", "Table 3");
+    fprintf(f, "%-22s %8s %8s %8s %8s %8s %8s %-14s %-16s %10s %6s %8s %8s\n", "model", "float",
+            "speedup", "double", "prepared", "unit", "float1", "float range", "reference",
+            "robot NMSE", "n", "Table 2", "Table 3");
     for (int i = 0; i < count; ++i) {
         const row *r = &rows[i];
         char range[32] = "", nm[16] = "", bn[16] = "", t2[16] = "", t3[16] = "";
@@ -363,9 +365,10 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
         if (isfinite(r->best_n)) snprintf(bn, sizeof bn, "%g", r->best_n);
         if (isfinite(r->t2_rel)) snprintf(t2, sizeof t2, "%.3g", r->t2_rel);
         if (isfinite(r->t3_abs)) snprintf(t3, sizeof t3, "%.3g", r->t3_abs);
-        fprintf(f, "%-22s %8.3f %8.2f %8.3f %8.3f %8.3f %-14s %-16s %10s %6s %8s %8s\n", r->m->name,
-                r->f_def / unit_ns, unit_ns / r->f_def, r->d_def / unit_ns, r->p_def / unit_ns,
-                r->u_def / unit_ns, range, ref_name[r->ref], nm, bn, t2, t3);
+        fprintf(f, "%-22s %8.3f %8.2f %8.3f %8.3f %8.3f %8.3f %-14s %-16s %10s %6s %8s %8s\n",
+                r->m->name, r->f_def / unit_ns, unit_ns / r->f_def, r->d_def / unit_ns,
+                r->p_def / unit_ns, r->u_def / unit_ns, r->o_def / unit_ns, range, ref_name[r->ref],
+                nm, bn, t2, t3);
     }
     targets t = compute_targets(rows, count, unit_ns);
     fprintf(f,
@@ -588,6 +591,7 @@ static int time_models(row *rows, int count, measure_set *set, const measure_opt
         r->d_def = measure_model_params_ns(set, r->m->id, &p, 1, mo) / u;
         r->p_def = measure_model_params_ns(set, r->m->id, &p, 2, mo) / u;
         r->u_def = measure_model_params_ns(set, r->m->id, &p, 3, mo) / u;
+        r->o_def = measure_model_params_ns(set, r->m->id, &p, 4, mo) / u;
         for (int k = 0; k < r->nvals; ++k) {
             set_vary(&p, r->vary, r->vals[k]);
             r->f_ns[k] = measure_model_params_ns(set, r->m->id, &p, 0, mo) / u;
@@ -603,7 +607,7 @@ static int time_models(row *rows, int count, measure_set *set, const measure_opt
     free(units);
     for (int i = 0; i < count; ++i) { /* back to ns of the median unit */
         row *r = &rows[i];
-        r->f_def *= u, r->d_def *= u, r->p_def *= u, r->u_def *= u;
+        r->f_def *= u, r->d_def *= u, r->p_def *= u, r->u_def *= u, r->o_def *= u;
         for (int k = 0; k < r->nvals; ++k) r->f_ns[k] *= u, r->d_ns[k] *= u;
     }
     return 0;

@@ -274,6 +274,19 @@ int abrdf_eval_prepared_rows(const abrdf_prepared *prepared, size_t count, const
     return ABRDF_OK;
 }
 
+int abrdf_eval_prepared_float(const abrdf_prepared *prepared, const float wi[3], const float wo[3],
+                              float f[3])
+{
+    if (!prepared || !wi || !wo || !f) return ABRDF_E_NULL;
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
+    if (!pr) {
+        f[0] = f[1] = f[2] = 0.0f;
+        return ABRDF_E_MODEL;
+    }
+    abrdf__eval_prepared_one(pr, wi, wo, f);
+    return ABRDF_OK;
+}
+
 int abrdf_eval_batch(abrdf_model model, const abrdf_params *params, const abrdf_batch *b)
 {
     if (!params || !b) return ABRDF_E_NULL;

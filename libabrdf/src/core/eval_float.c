@@ -82,9 +82,10 @@ const char *abrdf__isa_name(int level)
  * batch loop of kernel KERNEL at instruction-set level L, for every model of
  * ABRDF__KERNEL_MODELS and every level of ABRDF__ISA_LEVELS: batch_k_f8_2 is k_f8's loop at
  * level 2, batch_k_lambert_0 is k_lambert's at level 0 (the only level off x86). With the
- * rows_<KERNEL>_<L> below (ABRDF__ROWS_LOOP_ISA) and scalar_<KERNEL> of eval_double.c they
- * are the only generated function names of the library; ABRDF__BATCH_CASE_ISA and
- * ABRDF__ROWS_CASE_ISA call them. */
+ * rows_<KERNEL>_<L> below (ABRDF__ROWS_LOOP_ISA), one_<KERNEL>_<L> (ABRDF__ONE_FN_ISA: the
+ * kernel on one pair) and scalar_<KERNEL> of eval_double.c they are the only generated
+ * function names of the library; ABRDF__BATCH_CASE_ISA, ABRDF__ROWS_CASE_ISA and the table
+ * one_of call them. */
 #define ABRDF__BATCH_LOOP_ISA(KERNEL, FORM, L)                                                     \
     ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void batch_##KERNEL##_##L(ABRDF__BATCH_ARGS)        \
     {                                                                                              \
@@ -399,6 +400,68 @@ int abrdf__eval_prepared_rows_isa(const abrdf__prep *pr, size_t n, const float *
         rows_general(pr, m, wi + 3 * start, wo + 3 * start, f + 3 * start, level);
     }
     return 0;
+}
+
+/* ONE PAIR IN FLOAT (abrdf_eval_prepared_float): the batch loops' kernels on one pair, at
+ * the level the batch path runs, so that a renderer shading one sample at a time pays what
+ * the formula costs in float. one_<KERNEL>_<L> is kernel KERNEL on one pair at level L (its
+ * geometry made for what that kernel reads), held in one_of at [level][model]: a sample
+ * costs one indirect call, no switch. A pair whose rows the loops' test does not pass, and a
+ * model without a kernel here (a measured table, a double-only model: NULL in one_of), take
+ * the general path for one pair. */
+typedef void (*abrdf__one_fn)(const abrdf__kp *restrict k, const float *restrict wi,
+                              const float *restrict wo, float *restrict f);
+#define ABRDF__ONE_FN_ISA(KERNEL, FORM, L)                                                         \
+    ABRDF__ISA_ATTR_##L static void one_##KERNEL##_##L(                                            \
+        const abrdf__kp *restrict k, const float *restrict wi, const float *restrict wo,           \
+        float *restrict f)                                                                         \
+    {                                                                                              \
+        abrdf__geo g;                                                                              \
+        geo_make(&g, wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]);                                    \
+        ABRDF__STORE_##FORM(KERNEL, 0, f, f + 1, f + 2);                                           \
+    }
+#define ABRDF__ONE_ENTRY_0(ID, SETUP, KERNEL, FORM) [ID] = one_##KERNEL##_0,
+#if ABRDF__ISA_X86
+#define ABRDF__ONE_FN(ID, SETUP, KERNEL, FORM)                                                     \
+    ABRDF__ONE_FN_ISA(KERNEL, FORM, 0)                                                             \
+    ABRDF__ONE_FN_ISA(KERNEL, FORM, 1) ABRDF__ONE_FN_ISA(KERNEL, FORM, 2)
+#define ABRDF__ONE_ENTRY_1(ID, SETUP, KERNEL, FORM) [ID] = one_##KERNEL##_1,
+#define ABRDF__ONE_ENTRY_2(ID, SETUP, KERNEL, FORM) [ID] = one_##KERNEL##_2,
+ABRDF__KERNEL_MODELS(ABRDF__ONE_FN)
+static const abrdf__one_fn one_of[ABRDF__ISA_COUNT][ABRDF_MODEL_COUNT] = {
+    {ABRDF__KERNEL_MODELS(ABRDF__ONE_ENTRY_0)},
+    {ABRDF__KERNEL_MODELS(ABRDF__ONE_ENTRY_1)},
+    {ABRDF__KERNEL_MODELS(ABRDF__ONE_ENTRY_2)}};
+#else
+#define ABRDF__ONE_FN(ID, SETUP, KERNEL, FORM) ABRDF__ONE_FN_ISA(KERNEL, FORM, 0)
+ABRDF__KERNEL_MODELS(ABRDF__ONE_FN)
+static const abrdf__one_fn one_of[ABRDF__ISA_COUNT][ABRDF_MODEL_COUNT] = {
+    {ABRDF__KERNEL_MODELS(ABRDF__ONE_ENTRY_0)}};
+#endif
+
+/* One pair at `level`, which the caller has checked. */
+static inline void one_at(const abrdf__prep *pr, const float wi[3], const float wo[3], float f[3],
+                          int level)
+{
+    abrdf__one_fn fn = one_of[level][pr->model];
+    if (fn && rows_off(wi[0], wi[1], wi[2]) + rows_off(wo[0], wo[1], wo[2]) == 0.0f)
+        fn(&pr->kf, wi, wo, f);
+    else
+        rows_general(pr, 1, wi, wo, f, level);
+}
+
+int abrdf__eval_prepared_one_f(const abrdf__prep *pr, const float wi[3], const float wo[3],
+                               float f[3], int level)
+{
+    if (level < 0 || level > abrdf__isa_best()) return -1;
+    one_at(pr, wi, wo, f, level);
+    return 0;
+}
+
+void abrdf__eval_prepared_one(const abrdf__prep *pr, const float wi[3], const float wo[3],
+                              float f[3])
+{
+    one_at(pr, wi, wo, f, abrdf__isa_best());
 }
 
 void abrdf__eval_prepared_rows(const abrdf__prep *pr, size_t n, const float *wi, const float *wo,

@@ -125,6 +125,12 @@ void abrdf__eval_prepared_rows(const abrdf__prep *pr, size_t n, const float *wi,
                                float *f);
 int abrdf__eval_prepared_rows_isa(const abrdf__prep *pr, size_t n, const float *wi, const float *wo,
                                   float *f, int level);
+/* One pair on the float path (abrdf_eval_prepared_float) at a given level: the rows entry's
+ * value for that pair, bit for bit; -1, writing nothing, if the CPU cannot run the level. */
+int abrdf__eval_prepared_one_f(const abrdf__prep *pr, const float wi[3], const float wo[3],
+                               float f[3], int level);
+void abrdf__eval_prepared_one(const abrdf__prep *pr, const float wi[3], const float wo[3],
+                              float f[3]); /* at the best level */
 
 /* Special-surface models (special.c), from their prepared setup: f = 0 for another model. */
 void abrdf__eval_special_prepared(const abrdf__prep *pr, const double wi[3], const double wo[3],
