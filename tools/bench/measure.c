@@ -127,13 +127,20 @@ static int run_model(void *ctx, const abrdf_batch *b)
 /* The double scalar path prepared once (abrdf_prepare), one abrdf_eval_prepared call (local
  * frame) per pair, or (unit) one abrdf_eval_prepared_unit call on the same directions, which
  * are unit vectors already: what a renderer pays per sample. */
+/* The context's model prepared (the measured model: its table's prepared object); 0 or -1. */
+static int ctx_prepare(const model_ctx *c, abrdf_prepared *prep)
+{
+    if (c->table) {
+        *prep = *c->table;
+        return 0;
+    }
+    return abrdf_prepare(c->model, &c->params, prep) == ABRDF_OK ? 0 : -1;
+}
+
 static int run_prepared(const model_ctx *c, const abrdf_batch *b, int unit)
 {
     abrdf_prepared prep;
-    if (c->table)
-        prep = *c->table;
-    else if (abrdf_prepare(c->model, &c->params, &prep) != ABRDF_OK)
-        return -1;
+    if (ctx_prepare(c, &prep)) return -1;
     double f[3], acc = 0.0;
     for (size_t i = 0; i < b->count; ++i) {
         const double *wi = c->dir + 6 * i, *wo = wi + 3;
@@ -153,12 +160,8 @@ static int run_model_prepared(void *ctx, const abrdf_batch *b) { return run_prep
  * the batch (prepared once), as a renderer shading in float calls it. */
 static int run_model_prepared_float(void *ctx, const abrdf_batch *b)
 {
-    const model_ctx *c = ctx;
     abrdf_prepared prep;
-    if (c->table)
-        prep = *c->table;
-    else if (abrdf_prepare(c->model, &c->params, &prep) != ABRDF_OK)
-        return -1;
+    if (ctx_prepare(ctx, &prep)) return -1;
     float f[3], acc = 0.0f;
     for (size_t i = 0; i < b->count; ++i) {
         const float wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
