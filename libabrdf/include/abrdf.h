@@ -411,13 +411,14 @@ ABRDF_API int abrdf_eval_prepared_batch(const abrdf_prepared *prepared, const ab
 /* abrdf_eval_prepared_batch over interleaved rows: wi, wo hold `count` rows (x, y, z) of
  * local-frame directions of any length, f receives `count` rows (r, g, b) of f_r; f may not
  * overlap wi or wo. Each row is made unit first: a row whose squared length (computed in
- * double) is within 5e-7 of 1 is used as given, any other is scaled by 1 / sqrt(squared
- * length) in double and rounded to float, and a pair with a zero or non-finite row gets
- * f = 0. The rule gives the same directions at every instruction-set level. The result is
- * abrdf_eval_prepared_batch's, bit for bit, on the directions so made unit, without laying
- * them out as a structure of arrays first: the rows are read by the models' loops themselves,
- * and unit rows cost only a test in those loops (a call whose rows are not all unit takes the
- * general path for the 256 pairs around each such row). Same status codes (ABRDF_E_NULL;
+ * double) is within 1e-6 of 1 (a vector normalised in float: a few roundings off) is used as
+ * given, any other is scaled by 1 / sqrt(squared length) in double and rounded to float, and
+ * a pair with a zero or non-finite row gets f = 0. The rule gives the same directions at
+ * every instruction-set level. The result is abrdf_eval_prepared_batch's, bit for bit, on the
+ * directions so made unit, without laying them out as a structure of arrays first: the rows
+ * are read by the models' loops themselves, and unit rows cost only a test in those loops;
+ * the 256 pairs around a row that is not unit take a general path that costs about 3-4 times
+ * as much (docs/BENCHMARKS.md, section 4). Same status codes (ABRDF_E_NULL;
  * ABRDF_E_MODEL with f = 0). Added after 0.2.0 (CHANGELOG); rows of any length since the
  * change listed there. */
 ABRDF_API int abrdf_eval_prepared_rows(const abrdf_prepared *prepared, size_t count,
@@ -425,8 +426,9 @@ ABRDF_API int abrdf_eval_prepared_rows(const abrdf_prepared *prepared, size_t co
 /* One pair on the float batch path, for a renderer that shades one sample at a time in float:
  * abrdf_eval_prepared_rows with count 1, bit for bit, without its loops' set-up: the model's
  * float kernel at the instruction set the batch path runs, on local-frame directions made
- * unit by the rows rule (a zero or non-finite one gives f = 0). A measured table and the
- * hair and layered models take their batch path for the pair. Same status codes
+ * unit by the rows rule (a zero or non-finite one gives f = 0); f may not overlap wi or wo.
+ * A measured table and the hair and layered models take their batch path for the pair
+ * (abrdf_eval_prepared_unit is their cheaper per-sample call). Same status codes
  * (ABRDF_E_NULL; ABRDF_E_MODEL with f = 0). Added after 0.2.0 (CHANGELOG). */
 ABRDF_API int abrdf_eval_prepared_float(const abrdf_prepared *prepared, const float wi[3],
                                         const float wo[3], float f[3]);

@@ -349,7 +349,9 @@ static PyObject *py_eval_float(PyObject *self, PyObject *args)
         Py_XDECREF(lobes);
         return NULL;
     }
-    int t = thread_count(a.rows, threads);
+    /* out over the rows (only this module function allows it) is written as the rows are
+     * read: one thread, in order, so that no thread reads a row another has overwritten */
+    int t = overlap(&a.out, &a.wi) || overlap(&a.out, &a.wo) ? 1 : thread_count(a.rows, threads);
     eval_work w = {prep, (int)nl, &a, PTHREAD_MUTEX_INITIALIZER, 0, ABRDF_OK};
     pthread_t tid[MAX_THREADS];
     int started[MAX_THREADS] = {0};

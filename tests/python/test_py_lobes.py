@@ -24,9 +24,10 @@ def directions(n, seed, odd=True):
     v[:, 2] = np.abs(v[:, 2]) + 0.05  # above the surface
     v /= np.linalg.norm(v, axis=1, keepdims=True)
     if odd and n > 40:
-        v[3::37] *= 2.5  # not unit: the chunk is laid out and normalised
+        v[3::37] *= 2.5  # not unit: the library's general path makes the chunk unit
         v[7::41] = 0.0   # zero: f_r = 0
-        v[11::43] *= 1e25  # beyond the float pass: redone exactly
+        v[11::43] *= 1e25  # float64: converted as it is (1e50 squared is within its range)
+        v[13::47] *= 1e35  # float64: normalised in double before the conversion to float
     return v
 
 

@@ -24,16 +24,17 @@
 static float wi[3 * MAXN], wo[3 * MAXN], rows[3 * MAXN + 3]; /* one row more: untouched */
 static float ix[MAXN], iy[MAXN], iz[MAXN], ox[MAXN], oy[MAXN], oz[MAXN], fr[MAXN], fg[MAXN],
     fb[MAXN];
-static int bad[MAXN]; /* pairs with a zero or non-finite direction: f = 0 */
+static int bad[MAXN];           /* pairs with a zero or non-finite direction: f = 0 */
+static int n_between, n_scaled; /* boundary rows kept though the loops' test fails, and scaled */
 
-/* The rule of abrdf.h: a squared length (in double) within 5e-7 of 1 is kept, a zero or
+/* The rule of abrdf.h: a squared length (in double) within 1e-6 of 1 is kept, a zero or
  * non-finite vector is bad (returns 1), any other is scaled by 1 / sqrt(len2) in double and
  * rounded to float. */
 static int unit_rule(float *x, float *y, float *z)
 {
     double v[3] = {*x, *y, *z};
     double len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if (fabs(len2 - 1.0) <= 5e-7) return 0;
+    if (fabs(len2 - 1.0) <= 1e-6) return 0;
     if (!(len2 > 0.0) || !isfinite(len2)) {
         *x = *y = *z = 0.0f;
         return 1;
@@ -41,6 +42,11 @@ static int unit_rule(float *x, float *y, float *z)
     double s = 1.0 / sqrt(len2);
     *x = (float)(v[0] * s), *y = (float)(v[1] * s), *z = (float)(v[2] * s);
     return 0;
+}
+
+static double len2_of(const float *v)
+{
+    return (double)v[0] * v[0] + (double)v[1] * v[1] + (double)v[2] * v[2];
 }
 
 /* n pairs: unit directions over the whole sphere (a third below the horizon), runs of pairs
@@ -64,12 +70,24 @@ static void make_pairs(int n)
         memcpy(wi + 3 * (7 * j + 3), odd[j], sizeof odd[j]);
         memcpy(wo + 3 * (7 * j + 5 < n ? 7 * j + 5 : 7 * j + 3), odd[n_odd - 1 - j], sizeof odd[j]);
     }
-    /* lengths 1 + e: squared lengths on both sides of the rule's 5e-7, and of the loops'
-     * float test (3e-7) */
-    static const double e[] = {1e-7, -1e-7, 1.6e-7, 2.4e-7, -2.4e-7, 2.6e-7, -2.6e-7, 1e-6, -4e-6};
-    for (int j = 0; j < (int)(sizeof e / sizeof e[0]) && 11 * j + 2 < n; ++j) {
+    /* the same odd rows again past the first stack block, on a block's edge and in the last
+     * pairs (the tail the vector loops leave) */
+    const int later[] = {300, 511, 512, n - 40, n - 5};
+    for (int j = 0; j < (int)(sizeof later / sizeof later[0]); ++j)
+        if (later[j] > 256 && later[j] < n)
+            memcpy((j % 2 ? wo : wi) + 3 * later[j], odd[j % n_odd], sizeof odd[0]);
+    /* squared lengths 1 + t around the loops' float test (8e-7) and the rule's 1e-6: rows the
+     * test cannot pass that the rule keeps, and rows the rule scales (counted; the test
+     * rows_make_the_boundary_cases checks that both kinds occur) */
+    static const double t[] = {5e-7, -5e-7, 9e-7, -9e-7, 9.5e-7, -9.5e-7, 1.1e-6, -1.1e-6, 3e-6};
+    n_between = n_scaled = 0;
+    for (int j = 0; j < (int)(sizeof t / sizeof t[0]) && 11 * j + 2 < n; ++j) {
         float *v = (j % 2 ? wo : wi) + 3 * (11 * j + 2);
-        for (int c = 0; c < 3; ++c) v[c] = (float)(v[c] * (1.0 + e[j]));
+        double u[3] = {v[0], v[1], v[2]}, r = sqrt((1.0 + t[j]) / len2_of(v));
+        for (int c = 0; c < 3; ++c) v[c] = (float)(u[c] * r);
+        double d = fabs(len2_of(v) - 1.0);
+        n_between += d > 8e-7 + 1.8e-7 - 1e-12 && d <= 1e-6; /* the float test fails them */
+        n_scaled += d > 1e-6;
     }
     for (int k = 0; k < n; ++k) {
         ix[k] = wi[3 * k], iy[k] = wi[3 * k + 1], iz[k] = wi[3 * k + 2];
@@ -124,6 +142,15 @@ static long compare(const abrdf_prepared *pr, const char *name)
     return differ;
 }
 
+START_TEST(rows_make_the_boundary_cases)
+{
+    make_pairs(MAXN);
+    printf("boundary rows: %d kept where the float test fails, %d scaled\n", n_between, n_scaled);
+    ck_assert_int_ge(n_between, 1);
+    ck_assert_int_ge(n_scaled, 2);
+}
+END_TEST
+
 START_TEST(rows_equal_batch_every_model)
 {
     static tg_set sets[2];
@@ -177,7 +204,7 @@ START_TEST(rows_public_call)
         if (bad[k]) want[0] = want[1] = want[2] = 0.0f, ++n_bad;
         ck_assert(memcmp(want, rows + 3 * k, sizeof want) == 0);
     }
-    ck_assert_int_eq(n_bad, 6); /* zero, NaN and Inf on either side */
+    ck_assert_int_ge(n_bad, 9); /* zero, NaN and Inf on either side, early and late */
     ck_assert_int_eq(abrdf_eval_prepared_rows(NULL, 1, wi, wo, rows), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 1, NULL, wo, rows), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_eval_prepared_rows(&pr, 1, wi, NULL, rows), ABRDF_E_NULL);
@@ -210,6 +237,7 @@ int main(void)
     Suite *s = suite_create("rows");
     TCase *tc = tcase_create("rows");
     tcase_set_timeout(tc, 120);
+    tcase_add_test(tc, rows_make_the_boundary_cases);
     tcase_add_test(tc, rows_equal_batch_every_model);
     tcase_add_test(tc, rows_equal_batch_measured);
     tcase_add_test(tc, rows_public_call);

@@ -124,9 +124,6 @@ static int run_model(void *ctx, const abrdf_batch *b)
     return abrdf_eval_batch(c->model, &c->params, b);
 }
 
-/* The double scalar path prepared once (abrdf_prepare), one abrdf_eval_prepared call (local
- * frame) per pair, or (unit) one abrdf_eval_prepared_unit call on the same directions, which
- * are unit vectors already: what a renderer pays per sample. */
 /* The context's model prepared (the measured model: its table's prepared object); 0 or -1. */
 static int ctx_prepare(const model_ctx *c, abrdf_prepared *prep)
 {
@@ -137,6 +134,9 @@ static int ctx_prepare(const model_ctx *c, abrdf_prepared *prep)
     return abrdf_prepare(c->model, &c->params, prep) == ABRDF_OK ? 0 : -1;
 }
 
+/* The double scalar path prepared once (abrdf_prepare), one abrdf_eval_prepared call (local
+ * frame) per pair, or (unit) one abrdf_eval_prepared_unit call on the same directions, which
+ * are unit vectors already: what a renderer pays per sample. */
 static int run_prepared(const model_ctx *c, const abrdf_batch *b, int unit)
 {
     abrdf_prepared prep;

@@ -106,18 +106,19 @@ const char *abrdf__isa_name(int level)
 
 /* ROWS OF ANY LENGTH (abrdf_eval_prepared_rows). A direction whose squared length, in double,
  * is within ROWS_UNIT_TOL of 1 is used as given; any other is scaled by 1 / sqrt(len2) in
- * double and rounded to float, and a zero or non-finite one gives f = 0. The rule is decided
- * in double, where the squared length of floats is exact up to one rounding whether or not
- * the compiler fuses it, so it makes the same directions at every instruction-set level.
- * The vector loops' test (rows_test) is in float: its squared length is within 3 roundings
- * (1.8e-7) of the exact one, so rows it passes are unit by the rule. A loop stops before the
+ * double and rounded to float, and a zero or non-finite one gives f = 0. The tolerance
+ * keeps rows normalised in float (a few roundings off) as they are. The rule is decided in
+ * double, where the products of floats are exact, so a fused sum rounds as the plain one and
+ * the rule makes the same directions at every instruction-set level. The vector loops' test
+ * (rows_test) is in float: its squared length is within 3 roundings (1.8e-7) of the exact
+ * one, so rows it passes (within 8e-7) are unit by the rule. A loop stops before the
  * first ROWS_CHECK pairs with a row it does not pass, and the general path (rows_general)
  * takes them: there rows_normalise applies the rule to every row (rows the float test could
  * not decide included). Nothing but the test is added to the loops: a call, or the rule's
  * code, in a loop made GCC keep the kernels' values on the stack (1.2-1.6x the time), and a
  * reduction per block cost twice what the test does now (docs/BENCHMARKS.md, section 4). */
-#define ABRDF__ROWS_UNIT_TOL 5e-7
-#define ABRDF__ROWS_UNIT_TOL_F 3e-7f
+#define ABRDF__ROWS_UNIT_TOL 1e-6
+#define ABRDF__ROWS_UNIT_TOL_F 8e-7f
 /* The test's flag is a float select kept as its bits: an int flag from float compares is a
  * mixed mask GCC's vectoriser rejects (abrdf__front). rows_test ORs a block's flags into
  * off, lane by lane (no reduction in the block); rows_passed reduces off once per
@@ -303,56 +304,98 @@ void abrdf__eval_prepared_f(const abrdf__prep *pr, const abrdf_batch *b)
     abrdf__eval_prepared_f_isa(pr, b, abrdf__isa_best());
 }
 
-/* The rule applied to the m floats of x, y, z (a direction per row); rows that are zero or
- * not finite become (0, 0, 0) and are marked in bad. */
-static void rows_normalise(float *restrict x, float *restrict y, float *restrict z, size_t m,
-                           unsigned char *restrict bad)
-{
-    for (size_t j = 0; j < m; ++j) {
-        double a = x[j], b = y[j], c = z[j];
-        double len2 = a * a + b * b + c * c; /* floats: no overflow, no underflow to 0 */
-        if (fabs(len2 - 1.0) <= ABRDF__ROWS_UNIT_TOL) continue;
-        if (!(len2 > 0.0 && len2 <= DBL_MAX)) { /* zero, Inf or NaN */
-            x[j] = y[j] = z[j] = 0.0f;
-            bad[j] = 1;
-            continue;
-        }
-        double s = 1.0 / sqrt(len2);
-        x[j] = (float)(a * s), y[j] = (float)(b * s), z[j] = (float)(c * s);
+/* The rule on the m directions x, y, z, with no branch, so that it vectorises: one function
+ * per level, whose results are the same at every level (the products of floats are exact in
+ * double, so a fused sum rounds as the plain one; the square root and the division are
+ * correctly rounded). A row within the tolerance is kept as it is (times 1.0), a zero or
+ * non-finite one becomes (0, 0, 0). */
+#define ABRDF__NORMALISE_ISA(L)                                                                    \
+    ABRDF__ISA_ATTR_##L static void rows_normalise_##L(float *restrict x, float *restrict y,       \
+                                                       float *restrict z, size_t m)                \
+    {                                                                                              \
+        for (size_t j = 0; j < m; ++j) {                                                           \
+            double a = x[j], b = y[j], c = z[j];                                                   \
+            double len2 = a * a + b * b + c * c; /* floats: no overflow, no underflow to 0 */      \
+            double ok = len2 > 0.0 ? 1.0 : 0.0;                                                    \
+            ok = len2 <= DBL_MAX ? ok : 0.0; /* NaN fails both compares */                         \
+            double s = fabs(len2 - 1.0) <= ABRDF__ROWS_UNIT_TOL                                    \
+                           ? 1.0                                                                   \
+                           : 1.0 / sqrt(ok > 0.0 ? len2 : 1.0);                                    \
+            x[j] = ok > 0.0 ? (float)(a * s) : 0.0f;                                               \
+            y[j] = ok > 0.0 ? (float)(b * s) : 0.0f;                                               \
+            z[j] = ok > 0.0 ? (float)(c * s) : 0.0f;                                               \
+        }                                                                                          \
     }
+#if ABRDF__ISA_X86
+#define ABRDF__NORMALISE_LEVELS                                                                    \
+    ABRDF__NORMALISE_ISA(0) ABRDF__NORMALISE_ISA(1) ABRDF__NORMALISE_ISA(2)
+#else
+#define ABRDF__NORMALISE_LEVELS ABRDF__NORMALISE_ISA(0)
+#endif
+ABRDF__NORMALISE_LEVELS
+
+/* 1 for a direction that is not (0, 0, 0), else 0: a float select (abrdf__front). */
+static inline ABRDF__ALWAYS_INLINE float rows_nonzero(float x, float y, float z)
+{
+    float k = z != 0.0f ? 1.0f : 0.0f;
+    k = y != 0.0f ? 1.0f : k;
+    return x != 0.0f ? 1.0f : k;
 }
 
 /* The general path: m <= ROWS_BLOCK pairs laid out on the stack (9 KiB), made unit by the
  * rule, evaluated by the batch path at the level, f = 0 where a direction was zero or not
- * finite, and written back as rows. */
+ * finite (made (0, 0, 0) by the rule: a scaled row keeps a component of at least 1/sqrt(3)),
+ * and written back as rows. */
 #define ABRDF__ROWS_BLOCK 256
+typedef char abrdf__rows_check_fits
+    [ABRDF__ROWS_CHECK <= ABRDF__ROWS_BLOCK && ABRDF__ROWS_CHECK % ABRDF__ROWS_VEC == 0 ? 1 : -1];
+#define ABRDF__GENERAL_ISA(L)                                                                      \
+    ABRDF__ISA_ATTR_##L static void rows_general_##L(const abrdf__prep *pr, size_t m,              \
+                                                     const float *pi, const float *po, float *pf)  \
+    {                                                                                              \
+        float d[9][ABRDF__ROWS_BLOCK];                                                             \
+        for (size_t j = 0; j < m; ++j) {                                                           \
+            d[0][j] = pi[3 * j], d[1][j] = pi[3 * j + 1], d[2][j] = pi[3 * j + 2];                 \
+            d[3][j] = po[3 * j], d[4][j] = po[3 * j + 1], d[5][j] = po[3 * j + 2];                 \
+        }                                                                                          \
+        uint32_t off = 0;                                                                          \
+        for (size_t j = 0; j < m; ++j) {                                                           \
+            float t = rows_off(d[0][j], d[1][j], d[2][j]) + rows_off(d[3][j], d[4][j], d[5][j]);   \
+            uint32_t u;                                                                            \
+            memcpy(&u, &t, sizeof u);                                                              \
+            off |= u;                                                                              \
+        }                                                                                          \
+        if (off) {                                                                                 \
+            rows_normalise_##L(d[0], d[1], d[2], m);                                               \
+            rows_normalise_##L(d[3], d[4], d[5], m);                                               \
+        }                                                                                          \
+        abrdf_batch b = {m, d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8]};                 \
+        abrdf__eval_prepared_f_isa(pr, &b, L);                                                     \
+        if (off)                                                                                   \
+            for (size_t j = 0; j < m; ++j) {                                                       \
+                float k = rows_nonzero(d[0][j], d[1][j], d[2][j]) *                                \
+                          rows_nonzero(d[3][j], d[4][j], d[5][j]);                                 \
+                d[6][j] *= k, d[7][j] *= k, d[8][j] *= k;                                          \
+            }                                                                                      \
+        for (size_t j = 0; j < m; ++j)                                                             \
+            pf[3 * j] = d[6][j], pf[3 * j + 1] = d[7][j], pf[3 * j + 2] = d[8][j];                 \
+    }
+#if ABRDF__ISA_X86
+#define ABRDF__GENERAL_LEVELS ABRDF__GENERAL_ISA(0) ABRDF__GENERAL_ISA(1) ABRDF__GENERAL_ISA(2)
+#else
+#define ABRDF__GENERAL_LEVELS ABRDF__GENERAL_ISA(0)
+#endif
+ABRDF__GENERAL_LEVELS
+
 static void rows_general(const abrdf__prep *pr, size_t m, const float *pi, const float *po,
                          float *pf, int level)
 {
-    float d[9][ABRDF__ROWS_BLOCK];
-    for (size_t j = 0; j < m; ++j) {
-        d[0][j] = pi[3 * j], d[1][j] = pi[3 * j + 1], d[2][j] = pi[3 * j + 2];
-        d[3][j] = po[3 * j], d[4][j] = po[3 * j + 1], d[5][j] = po[3 * j + 2];
-    }
-    unsigned char bad[ABRDF__ROWS_BLOCK];
-    uint32_t off = 0;
-    for (size_t j = 0; j < m; ++j) {
-        float t = rows_off(d[0][j], d[1][j], d[2][j]) + rows_off(d[3][j], d[4][j], d[5][j]);
-        uint32_t u;
-        memcpy(&u, &t, sizeof u);
-        off |= u;
-    }
-    int unit = off == 0;
-    if (!unit) {
-        memset(bad, 0, m);
-        rows_normalise(d[0], d[1], d[2], m, bad);
-        rows_normalise(d[3], d[4], d[5], m, bad);
-    }
-    abrdf_batch b = {m, d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8]};
-    abrdf__eval_prepared_f_isa(pr, &b, level);
-    for (size_t j = 0; j < m; ++j) {
-        if (!unit && bad[j]) d[6][j] = d[7][j] = d[8][j] = 0.0f;
-        pf[3 * j] = d[6][j], pf[3 * j + 1] = d[7][j], pf[3 * j + 2] = d[8][j];
+    switch (level) {
+#if ABRDF__ISA_X86
+    case 2: rows_general_2(pr, m, pi, po, pf); break;
+    case 1: rows_general_1(pr, m, pi, po, pf); break;
+#endif
+    default: rows_general_0(pr, m, pi, po, pf); break;
     }
 }
 
