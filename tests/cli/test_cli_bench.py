@@ -194,7 +194,8 @@ class CostOf(unittest.TestCase):
                                     "--set", "layer0_kappa=3")
         self.assertEqual(rc, 0, err)
         m = re.match(r"weidlich_wilkie: float batch (\S+) ns/eval \((\S+) units\), per call "
-                     r"\(abrdf_eval_prepared_unit\) (\S+) ns \((\S+) units\); unit .* (\S+) ns, "
+                     r"\(abrdf_eval_prepared_unit\) (\S+) ns \((\S+) units\), per float call "
+                     r"\(abrdf_eval_prepared_float\) (\S+) ns \((\S+) units\); unit .* (\S+) ns, "
                      r"median of 1\n$", out)
         self.assertIsNotNone(m, out)
         for v in m.groups():
