@@ -127,17 +127,22 @@ static inline ABRDF__ALWAYS_INLINE float rows_off(float x, float y, float z)
 {
     return fabsf(x * x + y * y + z * z - 1.0f) <= ABRDF__ROWS_UNIT_TOL_F ? 0.0f : 1.0f;
 }
+/* The pair's flag as its bits: 0 when both directions pass the test. */
+static inline ABRDF__ALWAYS_INLINE uint32_t rows_off_bits(float ix, float iy, float iz, float ox,
+                                                          float oy, float oz)
+{
+    float t = rows_off(ix, iy, iz) + rows_off(ox, oy, oz);
+    uint32_t u;
+    memcpy(&u, &t, sizeof u);
+    return u;
+}
 static inline ABRDF__ALWAYS_INLINE void
 rows_test(const float *restrict ix, const float *restrict iy, const float *restrict iz,
           const float *restrict ox, const float *restrict oy, const float *restrict oz,
           uint32_t *restrict off)
 {
-    for (int j = 0; j < ABRDF__ROWS_VEC; ++j) {
-        float t = rows_off(ix[j], iy[j], iz[j]) + rows_off(ox[j], oy[j], oz[j]);
-        uint32_t u;
-        memcpy(&u, &t, sizeof u);
-        off[j] |= u;
-    }
+    for (int j = 0; j < ABRDF__ROWS_VEC; ++j)
+        off[j] |= rows_off_bits(ix[j], iy[j], iz[j], ox[j], oy[j], oz[j]);
 }
 static inline ABRDF__ALWAYS_INLINE int rows_passed(const uint32_t *off)
 {
@@ -359,12 +364,8 @@ typedef char abrdf__rows_check_fits
             d[3][j] = po[3 * j], d[4][j] = po[3 * j + 1], d[5][j] = po[3 * j + 2];                 \
         }                                                                                          \
         uint32_t off = 0;                                                                          \
-        for (size_t j = 0; j < m; ++j) {                                                           \
-            float t = rows_off(d[0][j], d[1][j], d[2][j]) + rows_off(d[3][j], d[4][j], d[5][j]);   \
-            uint32_t u;                                                                            \
-            memcpy(&u, &t, sizeof u);                                                              \
-            off |= u;                                                                              \
-        }                                                                                          \
+        for (size_t j = 0; j < m; ++j)                                                             \
+            off |= rows_off_bits(d[0][j], d[1][j], d[2][j], d[3][j], d[4][j], d[5][j]);            \
         if (off) {                                                                                 \
             rows_normalise_##L(d[0], d[1], d[2], m);                                               \
             rows_normalise_##L(d[3], d[4], d[5], m);                                               \
@@ -487,7 +488,7 @@ static inline void one_at(const abrdf__prep *pr, const float wi[3], const float 
                           int level)
 {
     abrdf__one_fn fn = one_of[level][pr->model];
-    if (fn && rows_off(wi[0], wi[1], wi[2]) + rows_off(wo[0], wo[1], wo[2]) == 0.0f)
+    if (fn && !rows_off_bits(wi[0], wi[1], wi[2], wo[0], wo[1], wo[2]))
         fn(&pr->kf, wi, wo, f);
     else
         rows_general(pr, 1, wi, wo, f, level);
