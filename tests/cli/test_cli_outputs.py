@@ -425,22 +425,28 @@ class WholeOrNothing(Base):
                 self.assertEqual(p.returncode, 0, err)
             self.assertEqual(exr_size(out), png_size(png))
 
-    def test_interrupted_render_leaves_no_temporary_file(self):
-        self.put("x.exr", b"old")
+    def interrupt(self, args, ready, tries, step, message, env=None):
+        """`abrdf render ARGS` sent SIGTERM once a file of the directory is `ready` (polled
+        `tries` times, `step` seconds apart): it dies of the signal and leaves the directory
+        as it was."""
         before = snapshot(self.dir)
-        p = subprocess.Popen([ABRDF, "render", os.path.join(SCENES, "robot.scene"), "-o",
-                              self.path("x.exr"), "--spp", "64", "--threads", "1"],
-                             stderr=subprocess.DEVNULL)
-        # The temporary files exist from before the render starts.
-        for _ in range(600):
-            if any(n.startswith(".x.") for n in os.listdir(self.dir)) or p.poll() is not None:
+        p = subprocess.Popen([ABRDF, "render"] + args, stderr=subprocess.DEVNULL, env=env)
+        for _ in range(tries):
+            if any(ready(n) for n in os.listdir(self.dir)) or p.poll() is not None:
                 break
-            threading.Event().wait(0.05)
-        self.assertIsNone(p.poll(), "the render ended before it could be interrupted")
+            threading.Event().wait(step)
+        self.assertIsNone(p.poll(), message)
         p.send_signal(signal.SIGTERM)
         p.wait()
         self.assertEqual(p.returncode, -signal.SIGTERM)
         self.assert_untouched(before)
+
+    def test_interrupted_render_leaves_no_temporary_file(self):
+        self.put("x.exr", b"old")
+        # The temporary files exist from before the render starts.
+        self.interrupt([os.path.join(SCENES, "robot.scene"), "-o", self.path("x.exr"), "--spp",
+                        "64", "--threads", "1"], lambda n: n.startswith(".x."), 600, 0.05,
+                       "the render ended before it could be interrupted")
 
     def test_a_signal_while_a_temporary_file_is_created_leaves_none(self):
         """The preview's temporary file is held at its creation (slow_create); SIGTERM comes
@@ -451,20 +457,9 @@ class WholeOrNothing(Base):
         if SANITIZED:  # the preload comes before the sanitizer's runtime
             env["ASAN_OPTIONS"] = env.get("ASAN_OPTIONS", "") + ":verify_asan_link_order=0"
         for _ in range(3):
-            before = snapshot(self.dir)
-            p = subprocess.Popen([ABRDF, "render", SPHERE, "-o", self.path("x.exr"),
-                                  "--threads", "1"] + SMALL, stderr=subprocess.DEVNULL, env=env)
-            for _ in range(1200):
-                if any(n.startswith(".x.") and n.endswith(".png") for n in os.listdir(self.dir)):
-                    break
-                if p.poll() is not None:
-                    break
-                threading.Event().wait(0.01)
-            self.assertIsNone(p.poll(), "the render ended before its preview file was created")
-            p.send_signal(signal.SIGTERM)
-            p.wait()
-            self.assertEqual(p.returncode, -signal.SIGTERM)
-            self.assert_untouched(before)
+            self.interrupt([SPHERE, "-o", self.path("x.exr"), "--threads", "1"] + SMALL,
+                           lambda n: n.startswith(".x.") and n.endswith(".png"), 1200, 0.01,
+                           "the render ended before its preview file was created", env)
 
 
 if __name__ == "__main__":
