@@ -303,6 +303,51 @@ START_TEST(special_models_keep_their_values)
 }
 END_TEST
 
+/* The float batch of marschner and belcour normalises a block's directions in one loop with
+ * abrdf__normalise3_unit's arithmetic (eval_float.c): every pair's float result is the one it
+ * gets alone (a batch of one pair takes the one-by-one path), bit for bit, in full blocks, in
+ * the tail, for rows of length 0.5-2 (the block's), outside it, zero and NaN. (A change of
+ * 1e-6 in the block's normalisation fails it; one of a few ulp of double does not reach the
+ * float results.) */
+START_TEST(special_batch_blocks_equal_single_pairs)
+{
+    enum { N = 150 }; /* two blocks of 64 and a tail of 22 */
+    static const double len[] = {1.0, 1.0 + 1e-7, 0.6, 1.9, 0.45, 2.2, 1.0, 0.0};
+    float d[6][N], f[3][N], g[3];
+    unsigned s = 12345u;
+    for (int i = 0; i < N; ++i)
+        for (int v = 0; v < 2; ++v) {
+            double th = 1.5 * (double)((s = s * 1103515245u + 12345u) >> 8) / 16777216.0;
+            double ph = 6.2831853 * (double)((s = s * 1103515245u + 12345u) >> 8) / 16777216.0;
+            double l = len[(i + v) % 8];
+            d[3 * v][i] = (float)(l * sin(th) * cos(ph));
+            d[3 * v + 1][i] = (float)(l * sin(th) * sin(ph));
+            d[3 * v + 2][i] = (float)(l * cos(th));
+        }
+    d[0][77] = NAN;
+    d[5][130] = -0.5f; /* below the surface */
+    static const abrdf_model models[] = {ABRDF_MARSCHNER, ABRDF_BELCOUR};
+    for (int k = 0; k < 2; ++k) {
+        abrdf_params p;
+        abrdf_params_init(models[k], &p);
+        abrdf_batch b = {N, d[0], d[1], d[2], d[3], d[4], d[5], f[0], f[1], f[2]};
+        ck_assert_int_eq(abrdf_eval_batch(models[k], &p, &b), ABRDF_OK);
+        int nonzero = 0;
+        for (int i = 0; i < N; ++i) {
+            abrdf_batch one = {1,        d[0] + i, d[1] + i, d[2] + i, d[3] + i,
+                               d[4] + i, d[5] + i, g,        g + 1,    g + 2};
+            ck_assert_int_eq(abrdf_eval_batch(models[k], &p, &one), ABRDF_OK);
+            for (int c = 0; c < 3; ++c)
+                ck_assert_msg(memcmp(&f[c][i], &g[c], sizeof g[c]) == 0,
+                              "model %d pair %d channel %d: %.9g in the batch, %.9g alone",
+                              (int)models[k], i, c, f[c][i], g[c]);
+            nonzero += f[0][i] > 0.0f;
+        }
+        ck_assert_int_gt(nonzero, N / 2);
+    }
+}
+END_TEST
+
 static Suite *suite(void)
 {
     Suite *s = suite_create("prepared");
@@ -315,6 +360,7 @@ static Suite *suite(void)
     tcase_add_test(tc, not_prepared_evaluates_to_zero);
     tcase_add_test(tc, unit_entry_is_the_prepared_value);
     tcase_add_test(tc, special_models_keep_their_values);
+    tcase_add_test(tc, special_batch_blocks_equal_single_pairs);
     suite_add_tcase(s, tc);
     return s;
 }

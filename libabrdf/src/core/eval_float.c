@@ -246,21 +246,54 @@ static void abrdf__batch_huang(const abrdf__prep *pr, const abrdf_batch *b)
     }
 }
 
+/* The double-only models' float batch (marschner, belcour) in blocks: one loop normalises a
+ * block's directions in double, as abrdf__normalise3_unit does for a squared length in
+ * [0.25, 4] (the same arithmetic, so the same bits), with the square roots and divisions of
+ * many pairs in flight; a pair at a time waited for their latency before its model began
+ * (belcour: 124 -> 111 ns a pair). Other pairs, and blocks of fewer than SPECIAL_MIN pairs,
+ * take abrdf__normalise3_unit one by one. */
+#define SPECIAL_BLOCK 64
+#define SPECIAL_MIN 8
 static void abrdf__batch_special(const abrdf__prep *pr, const abrdf_batch *b)
 {
     if (pr->model == ABRDF_HUANG) {
         abrdf__batch_huang(pr, b);
         return;
     }
-    for (size_t i = 0; i < b->count; ++i) {
-        double wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
-        double wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
-        double ui[3], uo[3], f[3] = {0.0, 0.0, 0.0};
-        if (abrdf__normalise3_unit(wi, ui) && abrdf__normalise3_unit(wo, uo))
-            abrdf__eval_prepared_d(pr, ui, uo, f);
-        b->f_r[i] = abrdf__to_float(f[0]);
-        b->f_g[i] = abrdf__to_float(f[1]);
-        b->f_b[i] = abrdf__to_float(f[2]);
+    double u[6][SPECIAL_BLOCK], near[SPECIAL_BLOCK];
+    for (size_t i0 = 0; i0 < b->count; i0 += SPECIAL_BLOCK) {
+        const int n = b->count - i0 < SPECIAL_BLOCK ? (int)(b->count - i0) : SPECIAL_BLOCK;
+        /* a few pairs (the per-sample float call's one) go one by one: near = 0 */
+        const int m = n >= SPECIAL_MIN ? n : 0;
+        for (int j = m; j < n; ++j) near[j] = 0.0;
+        for (int j = 0; j < m; ++j) { /* abrdf__normalise3_unit's arithmetic, so its bits */
+            const size_t i = i0 + (size_t)j;
+            double ax = b->wi_x[i], ay = b->wi_y[i], az = b->wi_z[i];
+            double bx = b->wo_x[i], by = b->wo_y[i], bz = b->wo_z[i];
+            double di = ax * ax + ay * ay + az * az, dn = bx * bx + by * by + bz * bz;
+            double ni = di >= 0.25 ? (di <= 4.0 ? 1.0 : 0.0) : 0.0; /* NaN: 0 */
+            double no = dn >= 0.25 ? (dn <= 4.0 ? 1.0 : 0.0) : 0.0;
+            double ia = 1.0 / sqrt(ni > 0.0 ? di : 1.0), ib = 1.0 / sqrt(no > 0.0 ? dn : 1.0);
+            u[0][j] = ax * ia, u[1][j] = ay * ia, u[2][j] = az * ia;
+            u[3][j] = bx * ib, u[4][j] = by * ib, u[5][j] = bz * ib;
+            near[j] = ni * no;
+        }
+        for (int j = 0; j < n; ++j) {
+            const size_t i = i0 + (size_t)j;
+            double ui[3] = {u[0][j], u[1][j], u[2][j]}, uo[3] = {u[3][j], u[4][j], u[5][j]};
+            double f[3] = {0.0, 0.0, 0.0};
+            if (near[j] > 0.0) {
+                abrdf__eval_prepared_d(pr, ui, uo, f);
+            } else {
+                double wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
+                double wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
+                if (abrdf__normalise3_unit(wi, ui) && abrdf__normalise3_unit(wo, uo))
+                    abrdf__eval_prepared_d(pr, ui, uo, f);
+            }
+            b->f_r[i] = abrdf__to_float(f[0]);
+            b->f_g[i] = abrdf__to_float(f[1]);
+            b->f_b[i] = abrdf__to_float(f[2]);
+        }
     }
 }
 

@@ -38,10 +38,20 @@ static inline void k_cook_torrance(const abrdf__kp *p, const abrdf__geo *g, abrd
     schlick_out(p, g, k_cook_torrance_lobe(p, g), f);
 }
 
+/* D V_i V_o (Eq. 5 with Eqs. 6 and 9) over one denominator: with h = wi + wo unnormalised,
+ * GGX's t = sin^2 + a2 cos^2 of theta_h is (hxy2 + a2 hz2) / |h|^2, so
+ *   D V_i V_o = a2 |h|^4 / (pi (hxy2 + a2 hz2)^2 (c_i + s_i) (c_o + s_o)),
+ * s_u = sqrt(a2 + (1 - a2) c_u^2) as in v1_smith_ggx: one division and no normalised H
+ * where the three terms took four (a per-sample call's cost is its divisions and square
+ * roots; docs/BENCHMARKS.md, "The per-sample call"). vi vo is one product, so swapping wi
+ * and wo gives the same bits. */
 static inline abrdf__real k_disney_specular_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    return d_ggx(g->ch, g->sh2, p->ag) * v1_smith_ggx(g->ci, p->ag) *
-           v1_smith_ggx(g->co, p->ag); /* Eq. 5 with Eqs. 6 and 9 */
+    abrdf__real a2 = p->ag * p->ag, b2 = ABRDF__K(1) - a2;
+    abrdf__real t = g->hxy2 + a2 * g->hz2;
+    abrdf__real vi = g->ci + sqrt(a2 + b2 * g->ci * g->ci);
+    abrdf__real vo = g->co + sqrt(a2 + b2 * g->co * g->co);
+    return safe_div(a2 * g->hl2 * g->hl2, ABRDF__K(ABRDF__PI) * t * t * (vi * vo));
 }
 static inline void k_disney_specular(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
@@ -60,10 +70,11 @@ static inline void k_disney_specular_aniso_setup(abrdf__kp *k, const abrdf_param
 
 static inline abrdf__real k_disney_specular_aniso_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
-    /* Eq. 5 with Eqs. 7 and 9 */
+    /* Eq. 5 with Eqs. 7 and 9; the two visibility terms multiplied first, so swapping wi and
+     * wo gives the same bits */
     return d_ggx_aniso(g->hx, g->hy, g->hz, p->ax, p->ay) *
-           v1_smith_ggx_aniso(g->ix, g->iy, g->ci, p->ax, p->ay) *
-           v1_smith_ggx_aniso(g->ox, g->oy, g->co, p->ax, p->ay);
+           (v1_smith_ggx_aniso(g->ix, g->iy, g->ci, p->ax, p->ay) *
+            v1_smith_ggx_aniso(g->ox, g->oy, g->co, p->ax, p->ay));
 }
 static inline void k_disney_specular_aniso(const abrdf__kp *p, const abrdf__geo *g,
                                            abrdf__real f[3])
@@ -80,8 +91,8 @@ static inline void k_disney_clearcoat_setup(abrdf__kp *k, const abrdf_params *p)
 
 static inline void k_disney_clearcoat(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    abrdf__real dv = d_gtr1(g->ch, g->sh2, p->cc_alpha) * v1_smith_ggx(g->ci, ABRDF__K(0.25)) *
-                     v1_smith_ggx(g->co, ABRDF__K(0.25));
+    abrdf__real dv = d_gtr1(g->ch, g->sh2, p->cc_alpha) *
+                     (v1_smith_ggx(g->ci, ABRDF__K(0.25)) * v1_smith_ggx(g->co, ABRDF__K(0.25)));
     abrdf__real v = ABRDF__K(0.25) * f_schlick(ABRDF__K(0.04), g->cd) * dv;
     for (int c = 0; c < 3; ++c) f[c] = p->ks[c] * v;
 }

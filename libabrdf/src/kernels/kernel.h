@@ -163,6 +163,10 @@ typedef struct abrdf__geo {
     abrdf__real sh2;        /* |N x H|^2 = sin^2(theta_h), without the cancellation of 1 - ch^2 */
     abrdf__real cd;         /* wi.H = wo.H = |wi + wo|/2 in [0, 1] */
     abrdf__real rv;         /* R.wo, R the mirror of wi: cos(gamma) of Phong */
+    /* wi + wo before normalising (0, 0, 1 when wi ~ -wo): |wi + wo|^2, its xy part squared and
+     * h_z^2, so that a kernel can divide once by a product instead of normalising H
+     * (k_disney_specular_lobe); sh2 = hxy2 / hl2 and ch^2 = hz2 / hl2 */
+    abrdf__real hl2, hxy2, hz2;
 } abrdf__geo;
 
 /* Always inlined, so that each caller keeps only the fields its kernel reads (the scalar
@@ -204,6 +208,9 @@ static inline ABRDF__ALWAYS_INLINE void geo_make(abrdf__geo *g, abrdf__real ix, 
      * float precision. */
     g->cd = len2 > min2 ? clampg(ABRDF__K(0.5) * len, ABRDF__K(0), ABRDF__K(1)) : ABRDF__K(0);
     g->rv = clampg(-ix * ox - iy * oy + iz * oz, ABRDF__K(-1), ABRDF__K(1));
+    g->hl2 = len2 > min2 ? len2 : ABRDF__K(1);
+    g->hxy2 = len2 > min2 ? hx * hx + hy * hy : ABRDF__K(0);
+    g->hz2 = len2 > min2 ? hz * hz : ABRDF__K(1);
 }
 
 /* (N.H)^e, e >= 0: the Blinn-Phong lobe (Eq. 4) and every lobe on N.H, with N.H <= 0 giving
