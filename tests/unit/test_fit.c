@@ -353,6 +353,36 @@ END_TEST
 
 /* Every registered model has a built-in cost (the budget ranks every candidate by it; the
  * measured model's is a lookup in a MERL-size table, what `abrdf calibrate` times). */
+/* A lobe at the end of its range: against cotton's Neubelt-Pettineo sheen (the material table's
+ * parameters), Oren-Nayar plus a GGX lobe at r = 1 with a small ks fits better than Oren-Nayar
+ * alone. The search's grid has no point at a range's end, and where the solve switches the
+ * lobe off (ks = 0) r is flat for Nelder-Mead; the scan of each parameter from the best point
+ * (fit.c, search) finds the lobe. Both the L2 and the log metric. */
+START_TEST(fit_finds_a_lobe_at_the_range_end)
+{
+    abrdf_params np = block(ABRDF_NEUBELT_PETTINEO);
+    np.kd[0] = np.kd[1] = 0.7, np.kd[2] = 0.68;
+    np.ks[0] = np.ks[1] = np.ks[2] = 1.0;
+    np.f0[0] = np.f0[1] = np.f0[2] = 0.04652056901;
+    np.r = 0.8, np.k_amp = 4.0;
+    const abrdf_fit_metric metrics[] = {ABRDF_FIT_L2, ABRDF_FIT_LOG};
+    for (int k = 0; k < 2; ++k) {
+        fit_out alone = fit(ABRDF_MODEL_NONE, ABRDF_NEUBELT_PETTINEO, &np, ABRDF_MODEL_NONE,
+                            ABRDF_OREN_NAYAR, metrics[k]);
+        fit_out both = fit(ABRDF_MODEL_NONE, ABRDF_NEUBELT_PETTINEO, &np, ABRDF_OREN_NAYAR,
+                           ABRDF_DISNEY_SPECULAR, metrics[k]);
+        ck_assert_int_eq(alone.status, ABRDF_OK);
+        ck_assert_int_eq(both.status, ABRDF_OK);
+        ck_assert_msg(both.p.r > 0.99 && both.p.ks[0] > 0.01,
+                      "metric %d: r %g, ks %g (the lobe at r = 1 not found)", k, both.p.r,
+                      both.p.ks[0]);
+        ck_assert_msg(both.r.objective < 0.99 * alone.r.objective,
+                      "metric %d: objective %.9g with the lobe, %.9g without", k, both.r.objective,
+                      alone.r.objective);
+    }
+}
+END_TEST
+
 START_TEST(builtin_costs_cover_every_model)
 {
     abrdf_costs c;
@@ -377,6 +407,7 @@ int main(void)
     tcase_add_test(tc, deterministic);
     tcase_add_test(tc, bad_input);
     tcase_add_test(tc, shared_lobe_is_kept);
+    tcase_add_test(tc, fit_finds_a_lobe_at_the_range_end);
     tcase_add_test(tc, builtin_costs_cover_every_model);
     suite_add_tcase(s, tc);
     return tu_run(s);

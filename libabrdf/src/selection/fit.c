@@ -878,6 +878,24 @@ static void search(fit_work *w)
     nelder_mead(w, start, h);
     nelder_mead(w, first, h);
     if (isfinite(second_f)) nelder_mead(w, second, h);
+    /* Each parameter scanned over its whole range from the best point, the others held: the
+     * grid is cell-centred (no point at a range's end), and a lobe whose weight the solve
+     * sets to 0 leaves its own parameters flat, where Nelder-Mead stops anywhere (r of a
+     * specular lobe the fit switched off). A better point found starts a last Nelder-Mead. */
+    double e0 = w->best_e;
+    for (int k = 0; k < w->ns; ++k) {
+        double y[SEARCH_MAX];
+        memcpy(y, w->best_x, sizeof y);
+        for (int i = 0; i < SCAN_1D; ++i) {
+            y[k] = (double)i / (SCAN_1D - 1);
+            objective(w, y);
+        }
+    }
+    if (w->best_e < e0) {
+        double b[SEARCH_MAX];
+        memcpy(b, w->best_x, sizeof b);
+        nelder_mead(w, b, h);
+    }
 }
 
 /* ---- running a fit ------------------------------------------------------------------------- */
