@@ -44,14 +44,20 @@ static inline void k_cook_torrance(const abrdf__kp *p, const abrdf__geo *g, abrd
  * s_u = sqrt(a2 + (1 - a2) c_u^2) as in v1_smith_ggx: one division and no normalised H
  * where the three terms took four (a per-sample call's cost is its divisions and square
  * roots; docs/BENCHMARKS.md, "The per-sample call"). vi vo is one product, so swapping wi
- * and wo gives the same bits. */
+ * and wo gives the same bits. Both sides are scaled by 2^100 (exact): near the mirror at
+ * grazing angles with a2 at its floor, the denominator goes as a2^2 cos^6 and would underflow
+ * in float (to 0, and safe_div to f = 0, from cos ~ 1e-4 at r = 1e-3; sooner with flush to
+ * zero) while the value is large and finite; scaled, neither side leaves float's range (the
+ * numerator stays below 2^100 16, the denominator below pi 2^100 64). */
+#define ABRDF__GGX_SCALE 0x1p100
 static inline abrdf__real k_disney_specular_lobe(const abrdf__kp *p, const abrdf__geo *g)
 {
     abrdf__real a2 = p->ag * p->ag, b2 = ABRDF__K(1) - a2;
     abrdf__real t = g->hxy2 + a2 * g->hz2;
     abrdf__real vi = g->ci + sqrt(a2 + b2 * g->ci * g->ci);
     abrdf__real vo = g->co + sqrt(a2 + b2 * g->co * g->co);
-    return safe_div(a2 * g->hl2 * g->hl2, ABRDF__K(ABRDF__PI) * t * t * (vi * vo));
+    abrdf__real num = a2 * ABRDF__K(ABRDF__GGX_SCALE) * g->hl2 * g->hl2;
+    return safe_div(num, ABRDF__K(ABRDF__PI * ABRDF__GGX_SCALE) * t * t * (vi * vo));
 }
 static inline void k_disney_specular(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
