@@ -36,4 +36,17 @@
  * highest level this CPU runs. */
 int abrdf__isa_best(void);
 
+/* The same, inlined where a call costs a visible share: the per-sample float call
+ * (abrdf_eval_prepared_float: 12.55 -> 12.35 ns for disney_specular, docs/BENCHMARKS.md). */
+static inline int abrdf__isa_best_inline(void)
+{
+#if ABRDF__ISA_X86
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq"))
+        return 2;
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return 1;
+#endif
+    return 0;
+}
+
 #endif /* ABRDF_ISA_H */

@@ -280,9 +280,9 @@ static void abrdf__batch_special(const abrdf__prep *pr, const abrdf_batch *b)
         }
         for (int j = 0; j < n; ++j) {
             const size_t i = i0 + (size_t)j;
-            double ui[3] = {u[0][j], u[1][j], u[2][j]}, uo[3] = {u[3][j], u[4][j], u[5][j]};
-            double f[3] = {0.0, 0.0, 0.0};
+            double ui[3], uo[3], f[3] = {0.0, 0.0, 0.0};
             if (near[j] > 0.0) {
+                for (int c = 0; c < 3; ++c) ui[c] = u[c][j], uo[c] = u[3 + c][j];
                 abrdf__eval_prepared_d(pr, ui, uo, f);
             } else {
                 double wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
@@ -538,7 +538,7 @@ int abrdf__eval_prepared_one_f(const abrdf__prep *pr, const float wi[3], const f
 void abrdf__eval_prepared_one(const abrdf__prep *pr, const float wi[3], const float wo[3],
                               float f[3])
 {
-    one_at(pr, wi, wo, f, abrdf__isa_best());
+    one_at(pr, wi, wo, f, abrdf__isa_best_inline());
 }
 
 void abrdf__eval_prepared_rows(const abrdf__prep *pr, size_t n, const float *wi, const float *wo,
