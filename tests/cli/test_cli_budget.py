@@ -61,6 +61,17 @@ class Fit(unittest.TestCase):
         self.assertIsNone(d["nmse_pred"])
         self.assertEqual(d["class"], "significant")
 
+    def test_a_lobe_switched_off_has_weight_zero_not_minus_zero(self):
+        # cotton's sheen: the Cook-Torrance lobe beside Oren-Nayar fits best switched off;
+        # its ks is written 0 (it printed "-0, -0, -0")
+        out = run("fit", "--material", "cotton", "--candidate", "oren_nayar+cook_torrance").stdout
+        ks = next(line for line in out.splitlines() if line.split()[:1] == ["ks"])
+        self.assertNotIn("-0", ks, out)
+        raw = run("fit", "--material", "cotton", "--candidate", "oren_nayar+cook_torrance",
+                  "--json").stdout
+        seg = raw[raw.index('"ks"'):]
+        self.assertNotIn("-0", seg[:seg.index("]")], raw)
+
     def test_fit_material_reference(self):
         out = run("fit", "--material", "gold", "--candidate", "f_ge").stdout
         self.assertIn("reference   disney_diffuse+disney_specular", out)

@@ -351,8 +351,6 @@ START_TEST(shared_lobe_is_kept)
 }
 END_TEST
 
-/* Every registered model has a built-in cost (the budget ranks every candidate by it; the
- * measured model's is a lookup in a MERL-size table, what `abrdf calibrate` times). */
 /* A lobe at the end of its range: against cotton's Neubelt-Pettineo sheen (the material table's
  * parameters), Oren-Nayar plus a GGX lobe at r = 1 with a small ks fits better than Oren-Nayar
  * alone. The search's grid has no point at a range's end, and where the solve switches the
@@ -383,6 +381,8 @@ START_TEST(fit_finds_a_lobe_at_the_range_end)
 }
 END_TEST
 
+/* Every registered model has a built-in cost (the budget ranks every candidate by it; the
+ * measured model's is a lookup in a MERL-size table, what `abrdf calibrate` times). */
 START_TEST(builtin_costs_cover_every_model)
 {
     abrdf_costs c;

@@ -891,7 +891,7 @@ static void search(fit_work *w)
             objective(w, y);
         }
     }
-    if (w->best_e < e0) {
+    if (w->best_e < e0 * (1.0 - 1e-9)) { /* not on rounding alone (a lobe switched off) */
         double b[SEARCH_MAX];
         memcpy(b, w->best_x, sizeof b);
         nelder_mead(w, b, h);
@@ -1047,13 +1047,13 @@ void abrdf__fit_run(const abrdf__fit_set *s, const abrdf__brdf *ref, abrdf__brdf
             lobe_columns(&w, &lu, j, (double(*)[3])(w.cconst + (size_t)j * COLS * 3));
     }
     search(&w);
-    /* the best trial's parameters */
+    /* the best trial's parameters (+ 0.0: a weight the solve left at -0 is written as 0) */
     set_search(&w, w.best_x);
     for (int c = 0; c < 3; ++c) {
         if (w.idx[COL_KD] >= 0)
-            cand->p.kd[c] = clampd(w.best_c[c][w.idx[COL_KD]], w.kd_lo, w.kd_hi);
+            cand->p.kd[c] = clampd(w.best_c[c][w.idx[COL_KD]], w.kd_lo, w.kd_hi) + 0.0;
         if (w.idx[COL_KS] >= 0) {
-            double ks = clampd(w.best_c[c][w.idx[COL_KS]], w.ks_lo, w.ks_hi);
+            double ks = clampd(w.best_c[c][w.idx[COL_KS]], w.ks_lo, w.ks_hi) + 0.0;
             cand->p.ks[c] = ks;
             if (w.idx[COL_B] >= 0 && ks > 0.0)
                 cand->p.f0[c] = clampd(w.best_c[c][w.idx[COL_B]] / ks, w.f0_lo, w.f0_hi);
