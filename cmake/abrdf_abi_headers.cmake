@@ -24,7 +24,7 @@ function(abrdf_abi_headers out_dir mode)
   set(inc ${PROJECT_SOURCE_DIR}/libabrdf/include)
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
                ${inc}/abrdf.h ${inc}/abrdf_select.h ${inc}/abrdf_fit.h ${inc}/abrdf_pbr.h
-               ${CMAKE_CURRENT_FUNCTION_LIST_FILE})
+               ${inc}/abrdf_inline.h ${CMAKE_CURRENT_FUNCTION_LIST_FILE})
   file(READ ${inc}/abrdf.h abrdf_h)
   file(READ ${inc}/abrdf_select.h select_h)
   file(READ ${inc}/abrdf_fit.h fit_h)
@@ -72,4 +72,6 @@ function(abrdf_abi_headers out_dir mode)
   configure_file(${out_dir}/abrdf_select.h.new ${out_dir}/abrdf_select.h COPYONLY)
   configure_file(${out_dir}/abrdf_fit.h.new ${out_dir}/abrdf_fit.h COPYONLY)
   configure_file(${out_dir}/abrdf_pbr.h.new ${out_dir}/abrdf_pbr.h COPYONLY)
+  # abrdf_inline.h's struct is frozen: the same header in every mode
+  configure_file(${inc}/abrdf_inline.h ${out_dir}/abrdf_inline.h COPYONLY)
 endfunction()

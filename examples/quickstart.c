@@ -2,6 +2,7 @@
  *   cc quickstart.c $(pkg-config --cflags --libs abrdf) -o quickstart   (or CMake: see CMakeLists.txt) */
 #include <stdio.h>
 #include <abrdf.h>
+#include <abrdf_inline.h>
 
 int main(void)
 {
@@ -46,6 +47,13 @@ int main(void)
     float f1[3];
     if (abrdf_eval_prepared_float(&mat, rows_wi, rows_wo, f1) != ABRDF_OK) return 1;
     printf("in float, one pair: %.6f %.6f %.6f\n", f1[0], f1[1], f1[2]);
+
+    /* The same lobe inlined into the caller (abrdf_inline.h, disney_specular only): no call
+     * and no test per sample, for directions that are unit vectors; the same bits. */
+    abrdf_ggx_float lobe;
+    if (abrdf_prepared_ggx_float(&mat, &lobe) != ABRDF_OK) return 1;
+    abrdf_ggx_float_eval(&lobe, rows_wi, rows_wo, f1);
+    printf("in float, inlined: %.6f %.6f %.6f\n", f1[0], f1[1], f1[2]);
 
     /* Importance sampling: light directions for the view direction wo, with pdf and weight
      * f_r cos / pdf; their mean weight estimates the directional albedo (docs/RENDERER.md,

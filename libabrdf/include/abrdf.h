@@ -85,6 +85,8 @@
  *   abrdf_eval_prepared_batch  abrdf_eval_batch of a prepared model (float, structure of arrays)
  *   abrdf_eval_prepared_rows   the same over interleaved (x, y, z) rows in, (r, g, b) rows out
  *   abrdf_eval_prepared_float  one pair on that float path (a renderer's per-sample call)
+ *   abrdf_prepared_ggx_float, abrdf_ggx_float_eval (abrdf_inline.h)  disney_specular's lobe
+ *                            as an inline function: no call per sample, unit directions
  *   abrdf_measured_init      fill a measured-table descriptor, set its struct_size (static inline)
  *   abrdf_measured_init_sized  the same for a block of struct_size bytes
  *   abrdf_prepare_measured   prepare the `measured` model on a caller's table of measured f_r

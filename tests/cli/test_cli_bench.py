@@ -63,6 +63,11 @@ class QuickBench(unittest.TestCase):
                 self.assertTrue(isinstance(v, (int, float)) and math.isfinite(v) and v > 0,
                                 "%s %s = %r" % (r["name"], k, v))
             self.assertAlmostEqual(r["float_ratio"] * r["float_speedup"], 1.0, places=4)
+            # disney_specular inlined (abrdf_inline.h); no other model has an inline form
+            if r["name"] == "disney_specular":
+                self.assertTrue(math.isfinite(r["inline_ratio"]) and r["inline_ratio"] > 0)
+            else:
+                self.assertIsNone(r["inline_ratio"], r["name"])
             if r["sweep"] is not None:
                 s = r["sweep"]
                 self.assertIn(s["param"], ("n", "r"))

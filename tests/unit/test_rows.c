@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "abrdf.h"
+#include "abrdf_inline.h"
 #include "abrdf_internal.h"
 #include "measured_cases.h"
 #include "prepared.h"
@@ -232,6 +233,72 @@ START_TEST(rows_public_call)
 }
 END_TEST
 
+/* abrdf_inline.h: the inlined GGX lobe is abrdf_eval_prepared_float's value, bit for bit, on
+ * unit directions (this file is compiled without FMA contraction, as the library): random
+ * pairs, back-facing ones, wi = -wo, the mirror at grazing angles, at the roughness floor and
+ * in between, colours of F0; and its status codes. */
+START_TEST(inline_ggx_equals_the_float_call)
+{
+    static const double rs[] = {0.0, 1e-3, 0.05, 0.3, 0.7, 1.0};
+    unsigned s = 777u;
+    long same = 0, nonzero = 0;
+    for (int ri = 0; ri < 6; ++ri) {
+        abrdf_params p;
+        abrdf_params_init(ABRDF_DISNEY_SPECULAR, &p);
+        p.r = rs[ri];
+        p.ks[0] = 0.9, p.ks[1] = 0.5, p.ks[2] = 0.2;
+        p.f0[0] = 0.04, p.f0[1] = 0.5, p.f0[2] = 1.0;
+        abrdf_prepared pr;
+        ck_assert_int_eq(abrdf_prepare(ABRDF_DISNEY_SPECULAR, &p, &pr), ABRDF_OK);
+        abrdf_ggx_float lobe;
+        ck_assert_int_eq(abrdf_prepared_ggx_float(&pr, &lobe), ABRDF_OK);
+        for (int k = 0; k < 20000; ++k) {
+            float w[2][3];
+            for (int v = 0; v < 2; ++v) {
+                double u1 = (double)((s = s * 1103515245u + 12345u) >> 8) / 16777216.0;
+                double u2 = (double)((s = s * 1103515245u + 12345u) >> 8) / 16777216.0;
+                double z = 1.9 * u1 - 0.9, q = sqrt(1.0 - z * z);
+                w[v][0] = (float)(q * cos(6.283185307179586 * u2));
+                w[v][1] = (float)(q * sin(6.283185307179586 * u2));
+                w[v][2] = (float)z;
+            }
+            if (k % 5 == 0) { /* the mirror pair, down to grazing */
+                double c = pow(10.0, -6.0 * (double)((k / 5) % 100) / 99.0);
+                w[0][0] = (float)sqrt(1.0 - c * c), w[0][1] = 0.0f, w[0][2] = (float)c;
+                w[1][0] = -w[0][0], w[1][1] = 0.0f, w[1][2] = w[0][2];
+            }
+            if (k % 97 == 0) /* wi = -wo */
+                w[1][0] = -w[0][0], w[1][1] = -w[0][1], w[1][2] = -w[0][2];
+            float want[3], got[3];
+            ck_assert_int_eq(abrdf_eval_prepared_float(&pr, w[0], w[1], want), ABRDF_OK);
+            abrdf_ggx_float_eval(&lobe, w[0], w[1], got);
+            if (memcmp(want, got, sizeof got) != 0)
+                ck_abort_msg("r %g pair %d: inline (%.9g, %.9g, %.9g), float call (%.9g, %.9g, "
+                             "%.9g)",
+                             rs[ri], k, got[0], got[1], got[2], want[0], want[1], want[2]);
+            ++same;
+            nonzero += got[0] > 0.0f;
+        }
+    }
+    ck_assert_int_gt(nonzero, same / 4);
+    abrdf_ggx_float lobe;
+    abrdf_prepared pr;
+    ck_assert_int_eq(abrdf_prepared_ggx_float(NULL, &lobe), ABRDF_E_NULL);
+    abrdf_params p;
+    abrdf_params_init(ABRDF_COOK_TORRANCE, &p);
+    ck_assert_int_eq(abrdf_prepare(ABRDF_COOK_TORRANCE, &p, &pr), ABRDF_OK);
+    ck_assert_int_eq(abrdf_prepared_ggx_float(&pr, NULL), ABRDF_E_NULL);
+    lobe.ks_f0[0] = 1.0f;
+    ck_assert_int_eq(abrdf_prepared_ggx_float(&pr, &lobe), ABRDF_E_MODEL);
+    const float up[3] = {0.0f, 0.0f, 1.0f};
+    float f[3];
+    abrdf_ggx_float_eval(&lobe, up, up, f); /* a zeroed lobe evaluates to 0 */
+    ck_assert(f[0] == 0.0f && f[1] == 0.0f && f[2] == 0.0f);
+    memset(&pr, 0xa5, sizeof pr);
+    ck_assert_int_eq(abrdf_prepared_ggx_float(&pr, &lobe), ABRDF_E_MODEL);
+}
+END_TEST
+
 int main(void)
 {
     Suite *s = suite_create("rows");
@@ -241,6 +308,7 @@ int main(void)
     tcase_add_test(tc, rows_equal_batch_every_model);
     tcase_add_test(tc, rows_equal_batch_measured);
     tcase_add_test(tc, rows_public_call);
+    tcase_add_test(tc, inline_ggx_equals_the_float_call);
     suite_add_tcase(s, tc);
     return tu_run(s);
 }

@@ -1,6 +1,7 @@
 /* cost_of.c - the cost of one model at the parameters a material gives it, on this machine:
  * ns per evaluation on the float batch path (abrdf_eval_batch) and per call through
- * abrdf_eval_prepared_unit (double) and abrdf_eval_prepared_float, each beside the powf Blinn-Phong unit timed in the same run
+ * abrdf_eval_prepared_unit (double) and abrdf_eval_prepared_float (and, for disney_specular,
+ * abrdf_inline.h's abrdf_ggx_float_eval), each beside the powf Blinn-Phong unit timed in the same run
  * (measure.h: 4096 fixed-seed front-facing pairs warm in cache, median of the repetitions).
  * `abrdf calibrate` and `abrdf bench` time the models at their defaults only; a layered
  * stack, a hair colour or a roughness is measured here.
@@ -46,12 +47,16 @@ int main(int argc, char **argv)
     double fl = measure_model_params_ns(s, m, &p, 0, &o);
     double per = measure_model_params_ns(s, m, &p, 3, &o);
     double per_f = measure_model_params_ns(s, m, &p, 4, &o);
+    double inl = m == ABRDF_DISNEY_SPECULAR ? measure_model_params_ns(s, m, &p, 5, &o) : 0.0;
     measure_set_free(s);
-    if (unit <= 0.0 || fl < 0.0 || per < 0.0 || per_f < 0.0) return cli_fail(cmd, "timing failed");
+    if (unit <= 0.0 || fl < 0.0 || per < 0.0 || per_f < 0.0 || inl < 0.0)
+        return cli_fail(cmd, "timing failed");
     printf("%s: float batch %.4g ns/eval (%.3g units), per call (abrdf_eval_prepared_unit) "
            "%.4g ns (%.3g units), per float call (abrdf_eval_prepared_float) %.4g ns (%.3g "
-           "units); unit (powf Blinn-Phong loop) %.4g ns, median of %d\n",
-           abrdf_model_get(m)->name, fl, fl / unit, per, per / unit, per_f, per_f / unit, unit,
-           o.reps);
+           "units)",
+           abrdf_model_get(m)->name, fl, fl / unit, per, per / unit, per_f, per_f / unit);
+    if (m == ABRDF_DISNEY_SPECULAR)
+        printf(", inlined (abrdf_ggx_float_eval) %.4g ns (%.3g units)", inl, inl / unit);
+    printf("; unit (powf Blinn-Phong loop) %.4g ns, median of %d\n", unit, o.reps);
     return 0;
 }

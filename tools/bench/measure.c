@@ -9,6 +9,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "abrdf_inline.h"
 #include "cost_file.h"
 #include "measure.h"
 #include "measured_table.h"
@@ -173,6 +174,24 @@ static int run_model_prepared_float(void *ctx, const abrdf_batch *b)
     return 0;
 }
 
+/* The inlined GGX lobe (abrdf_inline.h) per pair, for disney_specular: the per-sample cost
+ * with no call; -1 for another model. */
+static int run_model_inline_ggx(void *ctx, const abrdf_batch *b)
+{
+    abrdf_prepared prep;
+    abrdf_ggx_float lobe;
+    if (ctx_prepare(ctx, &prep) || abrdf_prepared_ggx_float(&prep, &lobe) != ABRDF_OK) return -1;
+    float f[3], acc = 0.0f;
+    for (size_t i = 0; i < b->count; ++i) {
+        const float wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
+        const float wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
+        abrdf_ggx_float_eval(&lobe, wi, wo, f);
+        acc += f[0];
+    }
+    measure_sink = acc;
+    return 0;
+}
+
 static int run_model_prepared_unit(void *ctx, const abrdf_batch *b)
 {
     return run_prepared(ctx, b, 1);
@@ -291,7 +310,8 @@ double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_pa
     size_t pairs = s->pairs;
     if ((m->needs & ABRDF_NEEDS_INTEGRATION) && pairs > o->integrating_pairs)
         pairs = o->integrating_pairs;
-    batch_fn fn = double_path == 4   ? run_model_prepared_float
+    batch_fn fn = double_path == 5   ? run_model_inline_ggx
+                  : double_path == 4 ? run_model_prepared_float
                   : double_path == 3 ? run_model_prepared_unit
                   : double_path == 2 ? run_model_prepared
                   : double_path      ? run_model_double

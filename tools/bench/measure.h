@@ -30,7 +30,8 @@ double measure_model_ns(measure_set *s, abrdf_model model, const measure_opts *o
  * reference path abrdf_eval in the local frame (double_path 1, one call per pair), or the
  * same prepared once per batch (double_path 2, abrdf_eval_prepared per pair; double_path 3,
  * abrdf_eval_prepared_unit per pair; double_path 4, the float per-sample call
- * abrdf_eval_prepared_float per pair). */
+ * abrdf_eval_prepared_float per pair; double_path 5, abrdf_inline.h's abrdf_ggx_float_eval
+ * per pair, disney_specular only: < 0 for another model). */
 double measure_model_params_ns(measure_set *s, abrdf_model model, const abrdf_params *p,
                                int double_path, const measure_opts *o);
 /* Median ns per pair of `model` (parameters p) on the float batch path when the pairs come

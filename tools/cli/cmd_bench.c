@@ -48,6 +48,7 @@ typedef struct row {
     double p_def;            /* ... on the prepared double path (abrdf_eval_prepared) */
     double u_def;            /* ... through abrdf_eval_prepared_unit */
     double o_def;            /* ... through abrdf_eval_prepared_float (one pair in float) */
+    double i_def;            /* ... inlined (abrdf_inline.h): disney_specular only, else NAN */
     ref_kind ref;
     double nmse;           /* robot NMSE vs the reference, NAN if none */
     double best_n;         /* argmin n of the search (Table-5 lobes), NAN otherwise */
@@ -61,7 +62,8 @@ static int usage(void)
            "For every model: ns/eval of the float batch path (abrdf_eval_batch) and of the\n"
            "double scalar path (abrdf_eval, local frame; 'prepared': abrdf_eval_prepared after\n"
            "one abrdf_prepare; 'unit': abrdf_eval_prepared_unit on the same unit local\n"
-           "directions; 'float1': abrdf_eval_prepared_float, one pair in float), as ratios\n"
+           "directions; 'float1': abrdf_eval_prepared_float, one pair in float; disney_specular\n"
+           "also inlined, abrdf_inline.h's abrdf_ggx_float_eval), as ratios\n"
            "to a powf Blinn-Phong loop on the\n"
            "same structure-of-arrays data timed in the same run (warm cache, median of the\n"
            "repetitions, swept over n or r where the model reads them), and the accuracy\n"
@@ -295,9 +297,13 @@ static void print_json(FILE *f, const row *rows, int count, double unit_ns, doub
         fprintf(f,
                 "%s\n  {\"name\": \"%s\", \"float_ratio\": %.6g, \"double_ratio\": %.6g, "
                 "\"prepared_ratio\": %.6g, \"prepared_unit_ratio\": %.6g, "
-                "\"prepared_float_ratio\": %.6g, \"float_speedup\": %.6g, \"sweep\": ",
+                "\"prepared_float_ratio\": %.6g, \"float_speedup\": %.6g, ",
                 i ? "," : "", r->m->name, r->f_def / unit_ns, r->d_def / unit_ns,
                 r->p_def / unit_ns, r->u_def / unit_ns, r->o_def / unit_ns, unit_ns / r->f_def);
+        if (isfinite(r->i_def))
+            fprintf(f, "\"inline_ratio\": %.6g, \"sweep\": ", r->i_def / unit_ns);
+        else
+            fprintf(f, "\"inline_ratio\": null, \"sweep\": ");
         if (r->vary) {
             fprintf(f, "{\"param\": \"%c\", \"values\": [", r->vary);
             for (int k = 0; k < r->nvals; ++k) fprintf(f, "%s%g", k ? ", " : "", r->vals[k]);
@@ -370,6 +376,10 @@ static void print_table(FILE *f, const row *rows, int count, double unit_ns, dou
                 r->p_def / unit_ns, r->u_def / unit_ns, r->o_def / unit_ns, range, ref_name[r->ref],
                 nm, bn, t2, t3);
     }
+    for (int i = 0; i < count; ++i)
+        if (isfinite(rows[i].i_def))
+            fprintf(f, "%s inlined (abrdf_inline.h, abrdf_ggx_float_eval per pair): %.3f\n",
+                    rows[i].m->name, rows[i].i_def / unit_ns);
     targets t = compute_targets(rows, count, unit_ns);
     fprintf(f,
             "\nTargets (float batch path vs the unit):\n"
@@ -592,6 +602,9 @@ static int time_models(row *rows, int count, measure_set *set, const measure_opt
         r->p_def = measure_model_params_ns(set, r->m->id, &p, 2, mo) / u;
         r->u_def = measure_model_params_ns(set, r->m->id, &p, 3, mo) / u;
         r->o_def = measure_model_params_ns(set, r->m->id, &p, 4, mo) / u;
+        r->i_def = r->m->id == ABRDF_DISNEY_SPECULAR
+                       ? measure_model_params_ns(set, r->m->id, &p, 5, mo) / u
+                       : NAN;
         for (int k = 0; k < r->nvals; ++k) {
             set_vary(&p, r->vary, r->vals[k]);
             r->f_ns[k] = measure_model_params_ns(set, r->m->id, &p, 0, mo) / u;
@@ -607,7 +620,7 @@ static int time_models(row *rows, int count, measure_set *set, const measure_opt
     free(units);
     for (int i = 0; i < count; ++i) { /* back to ns of the median unit */
         row *r = &rows[i];
-        r->f_def *= u, r->d_def *= u, r->p_def *= u, r->u_def *= u, r->o_def *= u;
+        r->f_def *= u, r->d_def *= u, r->p_def *= u, r->u_def *= u, r->o_def *= u, r->i_def *= u;
         for (int k = 0; k < r->nvals; ++k) r->f_ns[k] *= u, r->d_ns[k] *= u;
     }
     return 0;

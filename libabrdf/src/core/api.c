@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "abrdf_inline.h"
 #include "abrdf_internal.h"
 #include "prepared.h"
 #include "vec.h"
@@ -284,6 +285,20 @@ int abrdf_eval_prepared_float(const abrdf_prepared *prepared, const float wi[3],
         return ABRDF_E_MODEL;
     }
     abrdf__eval_prepared_one(pr, wi, wo, f);
+    return ABRDF_OK;
+}
+
+int abrdf_prepared_ggx_float(const abrdf_prepared *prepared, abrdf_ggx_float *lobe)
+{
+    if (!prepared || !lobe) return ABRDF_E_NULL;
+    memset(lobe, 0, sizeof *lobe);
+    const abrdf__prep *pr = abrdf__prep_of(prepared);
+    if (!pr || pr->model != ABRDF_DISNEY_SPECULAR) return ABRDF_E_MODEL;
+    lobe->alpha_g = pr->kf.ag; /* the float kernel's parameters (k_microfacet_setup, kp_base) */
+    for (int c = 0; c < 3; ++c) {
+        lobe->ks_f0[c] = pr->kf.ks_f0[c];
+        lobe->ks_f1[c] = pr->kf.ks_f1[c];
+    }
     return ABRDF_OK;
 }
 
