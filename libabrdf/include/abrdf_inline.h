@@ -18,8 +18,16 @@
  *     8e-7 of 1, which a direction normalised in float or in double and stored in float
  *     meets. Anything else gives a value, but not the model's;
  *   - for such directions the result is abrdf_eval_prepared_float's, bit for bit, where the
- *     compiler does not contract a * b + c into a fused multiply-add (GCC in ISO C mode,
- *     -ffp-contract=off); to rounding otherwise (test_inline holds it).
+ *     caller's compiler does not contract a * b + c into a fused multiply-add: GCC's ISO C
+ *     modes (-std=c99, c11, ...) imply -ffp-contract=off; its GNU C modes and g++ (ISO C++
+ *     modes too) contract when the target has FMA (-march=native, AArch64), and then values
+ *     differ by up to ~11 ulp (7.6e-7 relative measured), never between zero and non-zero;
+ *     pass -ffp-contract=off for the same bits. test_rows holds the bits (the library and
+ *     the test are compiled with -ffp-contract=off);
+ *   - -ffast-math, -fassociative-math or -Ofast are not supported in a caller of this
+ *     function: reassociating the products undoes the scaling that keeps the denominator
+ *     from underflowing, and the lobe then gives 0 (or errors of tens of percent) near the
+ *     mirror at grazing angles and low roughness, where its value is large.
  * Cost on the machine of docs/BENCHMARKS.md: "The per-sample call", fifth pass.
  *
  * It calls sqrtf: link the C math library (`pkg-config --libs abrdf` and the CMake target
@@ -45,8 +53,8 @@ typedef struct abrdf_ggx_float {
 } abrdf_ggx_float;
 
 /* The lobe of a prepared disney_specular: ABRDF_OK; ABRDF_E_NULL for a NULL argument;
- * ABRDF_E_MODEL for an object not prepared or prepared for another model (lobe zeroed: it
- * evaluates to 0). */
+ * ABRDF_E_MODEL for an object not prepared or prepared for another model. On every failure
+ * a non-NULL lobe is zeroed: it evaluates to 0. */
 ABRDF_API int abrdf_prepared_ggx_float(const abrdf_prepared *prepared, abrdf_ggx_float *lobe);
 
 /* f_r (1/sr, three channels) of the lobe for unit local-frame directions wi, wo (above). f
@@ -68,7 +76,7 @@ static inline void abrdf_ggx_float_eval(const abrdf_ggx_float *lobe, const float
     const float num = a2 * 1267650600228229401496703205376.0f * hl2 * hl2;
     const float den =
         (float)(3.14159265358979323846 * 1267650600228229401496703205376.0) * t * t * (vi * vo);
-    float w = den != 0.0f ? num / den : 0.0f;
+    float w = den > 0.0f || den < 0.0f ? num / den : 0.0f; /* NaN: 0 as well, after the guard */
     uint32_t bits;
     memcpy(&bits, &w, sizeof bits);
     w = bits <= 0x7F7FFFFFu ? w : 0.0f; /* NaN, infinite or negative: 0 */

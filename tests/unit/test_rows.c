@@ -283,7 +283,9 @@ START_TEST(inline_ggx_equals_the_float_call)
     ck_assert_int_gt(nonzero, same / 4);
     abrdf_ggx_float lobe;
     abrdf_prepared pr;
+    lobe.ks_f0[0] = 1.0f;
     ck_assert_int_eq(abrdf_prepared_ggx_float(NULL, &lobe), ABRDF_E_NULL);
+    ck_assert(lobe.ks_f0[0] == 0.0f && lobe.alpha_g == 0.0f); /* zeroed on every failure */
     abrdf_params p;
     abrdf_params_init(ABRDF_COOK_TORRANCE, &p);
     ck_assert_int_eq(abrdf_prepare(ABRDF_COOK_TORRANCE, &p, &pr), ABRDF_OK);

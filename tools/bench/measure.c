@@ -168,7 +168,7 @@ static int run_model_prepared_float(void *ctx, const abrdf_batch *b)
         const float wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
         const float wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
         abrdf_eval_prepared_float(&prep, wi, wo, f);
-        acc += f[0];
+        acc += f[0] + f[1] + f[2]; /* every channel: an inlined lobe could drop unread ones */
     }
     measure_sink = acc;
     return 0;
@@ -186,7 +186,7 @@ static int run_model_inline_ggx(void *ctx, const abrdf_batch *b)
         const float wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
         const float wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
         abrdf_ggx_float_eval(&lobe, wi, wo, f);
-        acc += f[0];
+        acc += f[0] + f[1] + f[2]; /* every channel, as above */
     }
     measure_sink = acc;
     return 0;

@@ -290,8 +290,8 @@ int abrdf_eval_prepared_float(const abrdf_prepared *prepared, const float wi[3],
 
 int abrdf_prepared_ggx_float(const abrdf_prepared *prepared, abrdf_ggx_float *lobe)
 {
+    if (lobe) memset(lobe, 0, sizeof *lobe); /* every failure leaves a lobe giving 0 */
     if (!prepared || !lobe) return ABRDF_E_NULL;
-    memset(lobe, 0, sizeof *lobe);
     const abrdf__prep *pr = abrdf__prep_of(prepared);
     if (!pr || pr->model != ABRDF_DISNEY_SPECULAR) return ABRDF_E_MODEL;
     lobe->alpha_g = pr->kf.ag; /* the float kernel's parameters (k_microfacet_setup, kp_base) */
