@@ -157,39 +157,44 @@ static int run_prepared(const model_ctx *c, const abrdf_batch *b, int unit)
 
 static int run_model_prepared(void *ctx, const abrdf_batch *b) { return run_prepared(ctx, b, 0); }
 
-/* The float per-sample call: abrdf_eval_prepared_float per pair on the float directions of
- * the batch (prepared once), as a renderer shading in float calls it. */
-static int run_model_prepared_float(void *ctx, const abrdf_batch *b)
+/* The float per-sample paths on the float directions of the batch (prepared once), as a
+ * renderer shading in float calls them: abrdf_eval_prepared_float per pair, or with `inlined`
+ * the GGX lobe of abrdf_inline.h compiled into the loop (disney_specular only: -1 for another
+ * model). Every channel is summed: an inlined lobe's unread channels would be dropped. Always
+ * inlined into its two callers, so that `inlined` is a constant there and the loop has no
+ * branch on it. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline int
+run_float_pairs(void *ctx, const abrdf_batch *b, int inlined)
 {
     abrdf_prepared prep;
+    abrdf_ggx_float lobe;
     if (ctx_prepare(ctx, &prep)) return -1;
+    if (inlined && abrdf_prepared_ggx_float(&prep, &lobe) != ABRDF_OK) return -1;
     float f[3], acc = 0.0f;
     for (size_t i = 0; i < b->count; ++i) {
         const float wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
         const float wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
-        abrdf_eval_prepared_float(&prep, wi, wo, f);
-        acc += f[0] + f[1] + f[2]; /* every channel: an inlined lobe could drop unread ones */
+        if (inlined)
+            abrdf_ggx_float_eval(&lobe, wi, wo, f);
+        else
+            abrdf_eval_prepared_float(&prep, wi, wo, f);
+        acc += f[0] + f[1] + f[2];
     }
     measure_sink = acc;
     return 0;
 }
 
-/* The inlined GGX lobe (abrdf_inline.h) per pair, for disney_specular: the per-sample cost
- * with no call; -1 for another model. */
+static int run_model_prepared_float(void *ctx, const abrdf_batch *b)
+{
+    return run_float_pairs(ctx, b, 0);
+}
+
 static int run_model_inline_ggx(void *ctx, const abrdf_batch *b)
 {
-    abrdf_prepared prep;
-    abrdf_ggx_float lobe;
-    if (ctx_prepare(ctx, &prep) || abrdf_prepared_ggx_float(&prep, &lobe) != ABRDF_OK) return -1;
-    float f[3], acc = 0.0f;
-    for (size_t i = 0; i < b->count; ++i) {
-        const float wi[3] = {b->wi_x[i], b->wi_y[i], b->wi_z[i]};
-        const float wo[3] = {b->wo_x[i], b->wo_y[i], b->wo_z[i]};
-        abrdf_ggx_float_eval(&lobe, wi, wo, f);
-        acc += f[0] + f[1] + f[2]; /* every channel, as above */
-    }
-    measure_sink = acc;
-    return 0;
+    return run_float_pairs(ctx, b, 1);
 }
 
 static int run_model_prepared_unit(void *ctx, const abrdf_batch *b)
