@@ -1,7 +1,10 @@
 """abrdf.eval and abrdf.BRDF: f_r over arrays, the float batch path and the double scalar
 reference, against each other and against `abrdf eval`."""
 import math
+import os
+import signal
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -110,6 +113,60 @@ def test_threads_give_the_same_result_as_one():
     for bad in (-1, 65, 2**40, 1.5, True, "2"):
         with pytest.raises(ValueError):
             b.eval(wi[:4], wo[:4], threads=bad)
+
+
+def test_the_kept_threads_serve_concurrent_calls_and_a_forked_child():
+    """The binding's threads are kept between calls: calls from several Python threads at once
+    (one owns the threads, the others work alone) each give the one-thread result, and so does
+    a child of fork() made after the threads were started (it starts with none, and starts
+    its own: it must neither wait for nor count on threads that only its parent has)."""
+    n = 4 * 16384 + 5
+    wi, wo = directions(n, 9).astype(np.float32), directions(n, 10).astype(np.float32)
+    b = abrdf.BRDF("disney_specular", r=0.3)
+    one = b.eval(wi, wo, threads=1)
+    np.testing.assert_array_equal(b.eval(wi, wo, threads=4), one)  # the threads now exist
+    results, errors = [], []
+
+    def worker():
+        try:
+            for _ in range(5):
+                results.append(b.eval(wi, wo, threads=3))
+        except Exception as e:  # pragma: no cover - reported below
+            errors.append(e)
+
+    pool = [threading.Thread(target=worker) for _ in range(4)]
+    for t in pool:
+        t.start()
+    for t in pool:
+        t.join()
+    assert not errors and len(results) == 20
+    for r in results:
+        np.testing.assert_array_equal(r, one)
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: report through the pipe, never return into pytest
+        ok = 0
+        try:
+            same = np.array_equal(b.eval(wi, wo, threads=4), one)
+            # its own three workers beside its one thread: the parent's count was not inherited
+            ok = int(same) + 2 * int(len(os.listdir("/proc/self/task")) == 4)
+        finally:
+            os.write(write, bytes([ok]))
+            os._exit(0)
+    os.close(write)
+    status = None
+    for _ in range(600):  # up to 60 s: a child stuck on its parent's threads never answers
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            break
+        time.sleep(0.1)
+    else:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        pytest.fail("the forked child did not finish: it waited for its parent's threads")
+    assert os.read(read, 1) == b"\x03" and status == 0, "1: the values, 2: the child's threads"
+    os.close(read)
+    np.testing.assert_array_equal(b.eval(wi, wo, threads=4), one)  # the parent's still serve
 
 
 # float32 rows go to abrdf_eval_prepared_rows as they are (the library makes them unit);

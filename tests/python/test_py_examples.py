@@ -40,3 +40,9 @@ def test_binding_benchmark_runs(source_dir):
     text = run_script(source_dir, "tools/bench/bench_python.py", "--n", "512", "--rounds", "1",
                       "--calls", "20")
     assert "per call" in text and "per element" in text and "disney_specular" in text
+
+
+def test_threads_benchmark_runs(source_dir):
+    text = run_script(source_dir, "tools/bench/threads_python.py", "--sizes", "512,40000",
+                      "--rounds", "1", "--idle", "0.001")
+    assert "| 512 |" in text and "| 40000 |" in text and "threads in a row" in text
