@@ -174,8 +174,8 @@ static void release(eval_args *a)
     PyBuffer_Release(&a->out);
 }
 
-/* Rows per thread below which another thread does not pay for itself (starting one costs
- * about what 10^4 pairs of the cheapest model do). */
+/* Rows per thread below which another thread does not pay for itself (waking one, after a
+ * pause, costs about what 10^4-10^5 pairs of the cheapest model do: docs/BENCHMARKS.md). */
 #define ROWS_PER_THREAD 32768
 #define MAX_THREADS 64
 /* Lobes of one material at most (2 KiB of prepared model each: STACK_LOBES on the stack,
@@ -277,10 +277,12 @@ static void *eval_blocks(void *arg)
  * between calls, so that a call pays a wake-up rather than a thread's start (about 60 us each
  * when every call started its own: a 65536-pair call took longer on two threads than on one).
  * Workers are started when a call first wants them (never more than MAX_THREADS - 1), with
- * every signal blocked (signals stay with Python's threads), and they only run eval_blocks.
- * One call at a time owns the pool: a call made while another Python thread's call owns it
- * runs on its own thread. In a child of fork() the workers are gone: the child starts with an
- * empty pool. The library itself has no threads and no state; this pool is the binding's. */
+ * the asynchronous signals blocked (those stay with Python's threads; a fault in a worker
+ * still reaches its handler), and they only run eval_blocks, on the cores the calling thread
+ * may use (the owner's affinity, given to every worker when it changes). One call at a time owns the pool: a call
+ * made while another Python thread's call owns it runs on its own thread. fork() takes the
+ * pool's lock first, and the child starts with an empty pool (its workers are gone). The
+ * library itself has no threads and no state; this pool is the binding's. */
 typedef struct eval_pool {
     pthread_mutex_t lock; /* guards every field below */
     pthread_cond_t wake;  /* to the workers: tickets are up */
@@ -290,11 +292,17 @@ typedef struct eval_pool {
     int tickets;          /* workers the work still wants: each that wakes takes one */
     int busy;             /* workers in the work */
     int owned;            /* a call owns the pool */
-    int at_fork;          /* the fork handler is registered */
+    int spinners;         /* workers that watch for the next call: one per core but the caller's */
+    pthread_t tid[MAX_THREADS]; /* the workers */
+#ifdef __linux__
+    cpu_set_t cores; /* the last owner's affinity, which every worker was given */
+#endif
 } eval_pool;
 static eval_pool pool = {.lock = PTHREAD_MUTEX_INITIALIZER,
                          .wake = PTHREAD_COND_INITIALIZER,
                          .idle = PTHREAD_COND_INITIALIZER};
+static pthread_once_t pool_once = PTHREAD_ONCE_INIT;
+static int pool_usable; /* the fork handlers are registered: workers may be started */
 
 /* A worker that has just finished looks for the next call's tickets for SPIN_NS before it
  * sleeps: calls that follow each other closely (a loop over chunks) then pay no wake-up. */
@@ -308,6 +316,8 @@ static void spin_for_tickets(void)
             if (__atomic_load_n(&pool.tickets, __ATOMIC_RELAXED) > 0) return;
 #if defined(__x86_64__) || defined(__i386__)
             __builtin_ia32_pause();
+#elif defined(__aarch64__)
+            __asm__ __volatile__("yield");
 #endif
         }
         clock_gettime(CLOCK_MONOTONIC, &t);
@@ -317,10 +327,10 @@ static void spin_for_tickets(void)
 
 static void *pool_worker(void *arg)
 {
-    (void)arg;
+    const int spins = (int)(intptr_t)arg; /* this worker watches for the next call */
     pthread_mutex_lock(&pool.lock);
     for (;;) {
-        if (pool.tickets == 0) {
+        if (pool.tickets == 0 && spins) {
             pthread_mutex_unlock(&pool.lock);
             spin_for_tickets();
             pthread_mutex_lock(&pool.lock);
@@ -337,32 +347,56 @@ static void *pool_worker(void *arg)
     return NULL;
 }
 
-/* In the child of fork(): only the thread that forked exists, so the pool is empty. */
-static void pool_after_fork(void)
+/* fork(): the parent takes the pool's lock, so that no other thread holds it while the
+ * process is copied; the child, where only the forking thread exists, starts an empty pool. */
+static void pool_before_fork(void) { pthread_mutex_lock(&pool.lock); }
+static void pool_parent_after_fork(void) { pthread_mutex_unlock(&pool.lock); }
+static void pool_child_after_fork(void)
 {
     pthread_mutex_init(&pool.lock, NULL);
     pthread_cond_init(&pool.wake, NULL);
     pthread_cond_init(&pool.idle, NULL);
     pool.work = NULL;
-    pool.workers = pool.tickets = pool.busy = pool.owned = 0;
+    pool.workers = pool.tickets = pool.busy = pool.owned = pool.spinners = 0;
+#ifdef __linux__
+    CPU_ZERO(&pool.cores);
+#endif
 }
+/* Once, before the pool's lock is first taken (registering under it could race a fork). */
+static void pool_register(void)
+{
+    pool_usable =
+        pthread_atfork(pool_before_fork, pool_parent_after_fork, pool_child_after_fork) == 0;
+}
+
+static long usable_cores(void);
 
 /* One more worker (pool.lock held): 0 if the system would not start it. */
 static int pool_grow(void)
 {
-    if (!pool.at_fork) pool.at_fork = pthread_atfork(NULL, NULL, pool_after_fork) == 0;
-    if (!pool.at_fork) return 0; /* a worker a child would think it had: none at all */
-    sigset_t all, old;
-    sigfillset(&all);
-    pthread_sigmask(SIG_SETMASK, &all, &old);
-    pthread_t tid;
+    if (!pool_usable) return 0; /* workers a child would think it had: none at all */
+    sigset_t async, old;
+    sigfillset(&async);
+    const int faults[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS, SIGABRT};
+    for (size_t i = 0; i < sizeof faults / sizeof faults[0]; ++i) sigdelset(&async, faults[i]);
+    pthread_sigmask(SIG_SETMASK, &async, &old);
+    /* one worker per core but the caller's watches for the next call; more (threads=N above
+     * the cores) would take the cores from the caller while they watch */
+    int spins = pool.spinners + 1 < usable_cores();
+    pthread_t *tid = &pool.tid[pool.workers];
     pthread_attr_t attr;
     int ok = pthread_attr_init(&attr) == 0;
-    ok = ok && pthread_attr_setdetachstate(&attr, PTHREAD_CREATE_DETACHED) == 0;
-    ok = ok && pthread_create(&tid, &attr, pool_worker, NULL) == 0;
-    pthread_attr_destroy(&attr);
+    if (ok) {
+        ok = pthread_attr_setdetachstate(&attr, PTHREAD_CREATE_DETACHED) == 0 &&
+             pthread_create(tid, &attr, pool_worker, (void *)(intptr_t)spins) == 0;
+        pthread_attr_destroy(&attr);
+    }
+#ifdef __linux__
+    if (ok) pthread_setname_np(*tid, "abrdf-eval"); /* as top and debuggers show it */
+#endif
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     pool.workers += ok;
+    pool.spinners += ok && spins;
     return ok;
 }
 
@@ -373,12 +407,25 @@ static void run_work(eval_work *w, int t)
 {
     int helpers = 0, owner = 0;
     if (t > 1) {
+        pthread_once(&pool_once, pool_register);
+#ifdef __linux__
+        cpu_set_t cores;
+        int have_cores = sched_getaffinity(0, sizeof cores, &cores) == 0;
+#endif
         pthread_mutex_lock(&pool.lock);
         if (!pool.owned) {
             pool.owned = owner = 1;
             while (pool.workers < t - 1 && pool_grow()) continue;
             helpers = pool.workers < t - 1 ? pool.workers : t - 1;
             pool.work = w;
+#ifdef __linux__
+            /* every worker on the owner's cores (a worker started now has them already) */
+            if (have_cores && !CPU_EQUAL(&cores, &pool.cores)) {
+                pool.cores = cores;
+                for (int i = 0; i < pool.workers; ++i)
+                    pthread_setaffinity_np(pool.tid[i], sizeof cores, &cores);
+            }
+#endif
             __atomic_store_n(&pool.tickets, helpers, __ATOMIC_RELAXED);
             if (helpers == pool.workers)
                 pthread_cond_broadcast(&pool.wake);

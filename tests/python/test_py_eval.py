@@ -142,14 +142,24 @@ def test_the_kept_threads_serve_concurrent_calls_and_a_forked_child():
     assert not errors and len(results) == 20
     for r in results:
         np.testing.assert_array_equal(r, one)
+    # the call returns only when every thread is done with it: an output filled with NaN is
+    # whole when the call returns (a 32-lobe material keeps the threads busy for a while)
+    mat = abrdf.Lobes([abrdf.BRDF("disney_specular", r=0.1 + 0.02 * k) for k in range(32)])
+    whole = mat.eval(wi, wo, threads=1)
+    out = np.empty((n, 3), np.float32)
+    for _ in range(20):
+        out.fill(np.nan)
+        mat.eval(wi, wo, threads=4, out=out)
+        np.testing.assert_array_equal(out, whole)
     read, write = os.pipe()
     pid = os.fork()
     if pid == 0:  # the child: report through the pipe, never return into pytest
         ok = 0
         try:
+            tasks = len(os.listdir("/proc/self/task"))  # Linux: the child's threads
             same = np.array_equal(b.eval(wi, wo, threads=4), one)
-            # its own three workers beside its one thread: the parent's count was not inherited
-            ok = int(same) + 2 * int(len(os.listdir("/proc/self/task")) == 4)
+            # three workers of its own: the parent's count was not inherited
+            ok = int(same) + 2 * int(len(os.listdir("/proc/self/task")) == tasks + 3)
         finally:
             os.write(write, bytes([ok]))
             os._exit(0)
@@ -167,6 +177,43 @@ def test_the_kept_threads_serve_concurrent_calls_and_a_forked_child():
     assert os.read(read, 1) == b"\x03" and status == 0, "1: the values, 2: the child's threads"
     os.close(read)
     np.testing.assert_array_equal(b.eval(wi, wo, threads=4), one)  # the parent's still serve
+
+
+def test_the_kept_threads_follow_the_callers_cores():
+    """The binding's threads run on the cores the calling thread may use: after a call from a
+    thread pinned to one core the workers (threads named abrdf-eval) are on that core, and
+    after a call from a thread with every core they are on every core again."""
+    if not hasattr(os, "sched_setaffinity") or len(os.sched_getaffinity(0)) < 2:
+        pytest.fail("needs Linux and two usable cores")
+    n = 4 * 16384
+    wi, wo = directions(n, 11).astype(np.float32), directions(n, 12).astype(np.float32)
+    b = abrdf.BRDF("lambert")
+    b.eval(wi, wo, threads=4)  # the workers exist, whoever started them
+    mine = os.sched_getaffinity(0)
+    pinned = {min(mine)}
+
+    def cores_of_the_workers():  # they are named abrdf-eval
+        found = []
+        for task in os.listdir("/proc/self/task"):
+            with open(f"/proc/self/task/{task}/comm") as f:
+                if f.read().strip() == "abrdf-eval":
+                    found.append(os.sched_getaffinity(int(task)))
+        return found
+
+    seen = []
+
+    def first():
+        os.sched_setaffinity(0, pinned)
+        b.eval(wi, wo, threads=4)
+        seen.extend(cores_of_the_workers())
+
+    t = threading.Thread(target=first)
+    t.start()
+    t.join()
+    assert len(seen) >= 3 and all(c == pinned for c in seen), seen
+    b.eval(wi, wo, threads=4)  # from this thread, with every core
+    workers = cores_of_the_workers()
+    assert len(workers) >= 3 and all(c == mine for c in workers), workers
 
 
 # float32 rows go to abrdf_eval_prepared_rows as they are (the library makes them unit);
