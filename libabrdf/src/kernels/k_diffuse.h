@@ -33,7 +33,11 @@ static inline void k_lambert_fresnel(const abrdf__kp *p, const abrdf__geo *g, ab
 
 static inline void k_disney_diffuse(const abrdf__kp *p, const abrdf__geo *g, abrdf__real f[3])
 {
-    abrdf__real fd90 = ABRDF__K(0.5) + ABRDF__K(2) * p->r * g->cd * g->cd;
+    /* 2 r cos_d^2 = r |wi + wo|^2 / 2: no square root (cos_d = |wi + wo| / 2); the clamp
+     * keeps it <= 2 r (cos_d <= 1) where rounding puts |wi + wo|^2 above 4 */
+    abrdf__real cd2 = ABRDF__K(0.25) * g->hl2;
+    cd2 = cd2 < ABRDF__K(1) ? cd2 : ABRDF__K(1);
+    abrdf__real fd90 = ABRDF__K(0.5) + ABRDF__K(2) * p->r * cd2;
     abrdf__real mi = ABRDF__K(1) - g->ci, mo = ABRDF__K(1) - g->co;
     abrdf__real mi5 = mi * mi * mi * mi * mi, mo5 = mo * mo * mo * mo * mo;
     abrdf__real s = (ABRDF__K(1) + (fd90 - ABRDF__K(1)) * mi5) *
