@@ -33,13 +33,16 @@ for arg in sys.argv[1:]:
         print("read %dx%d" % img.shape[:2])
     except abrdf.Error as e:
         print(e)
-print("maxrss %d" % resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+# the peak RSS of this process's own image (VmHWM, KiB): getrusage's ru_maxrss is kept across
+# the exec that started it, so it also counts the pages of the parent it was forked from
+with open("/proc/self/status") as f:
+    print("maxrss %d" % next(int(l.split()[1]) for l in f if l.startswith("VmHWM:")))
 """
 
 
 def run_child(*calls):
-    """The child's lines for these calls ("read:PATH", "compare:PATH") and its peak RSS in
-    KiB; a call that blocks fails the test at the timeout instead of hanging it."""
+    """The child's lines for these calls ("read:PATH", "compare:PATH") and its own peak RSS
+    in KiB; a call that blocks fails the test at the timeout instead of hanging it."""
     r = subprocess.run([sys.executable, "-c", CHILD, *calls], capture_output=True, text=True,
                        timeout=60)
     assert r.returncode == 0, r.stderr
