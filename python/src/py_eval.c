@@ -279,10 +279,11 @@ static void *eval_blocks(void *arg)
  * Workers are started when a call first wants them (never more than MAX_THREADS - 1), with
  * the asynchronous signals blocked (those stay with Python's threads; a fault in a worker
  * still reaches its handler), and they only run eval_blocks, on the cores the calling thread
- * may use (the owner's affinity, given to every worker when it changes). One call at a time owns the pool: a call
- * made while another Python thread's call owns it runs on its own thread. fork() takes the
- * pool's lock first, and the child starts with an empty pool (its workers are gone). The
- * library itself has no threads and no state; this pool is the binding's. */
+ * may use (the owner's affinity, given to every worker when it changes). One call at a time
+ * owns the pool: a call made while another Python thread's call owns it runs on its own
+ * thread. fork() takes the pool's lock first, and the child starts with an empty pool (its
+ * workers are gone). The library itself has no threads and no state; this pool is the
+ * binding's. */
 typedef struct eval_pool {
     pthread_mutex_t lock; /* guards every field below */
     pthread_cond_t wake;  /* to the workers: tickets are up */
