@@ -362,6 +362,16 @@ float abrdf_huang_ggx_go(float alpha2, float ci, float co)
 }
 
 // Heitz 2018's VNDF sampling map as a change of variables (hair_huang.c vndf_map).
+// The shift of VNDF grid k (hair_huang.c grid_shift): the k-th point of the R2 sequence minus
+// 1/2, its steps in units of 2^-16 and k modulo 2^15, so that 32-bit integers give the C
+// library's values exactly.
+void abrdf_huang_grid_shift(int k, output float d1, output float d2)
+{
+    int kk = k % 32768;
+    d1 = float((32768 + kk * 49472) % 65536) / 65536.0 - 0.5;
+    d2 = float((32768 + kk * 37345) % 65536) / 65536.0 - 0.5;
+}
+
 vector abrdf_huang_vndf_map(float alpha, vector wi, vector wm, float u1, float u2)
 {
     float sg = wm[2] >= 0.0 ? 1.0 : -1.0;
@@ -559,7 +569,7 @@ float abrdf_huang_lobe_r(abrdf_huang_m m, float te[], float tie[], vector wi, ve
     return 0.25 * abrdf_huang_fresnel(dot(wi, wh), m.eta, unused) * sum; // Eq. 12
 }
 
-// TT + TRT + TRRT+ (RGB): Simpson over gamma, nested midpoint rules over the VNDF squares.
+// TT + TRT + TRRT+ (RGB): Simpson over gamma, nested shifted grids over the VNDF squares.
 color abrdf_huang_lobes_residual(abrdf_huang_m m, float te[], float tie[], vector wi, vector wo,
                                  float g0, float gr, float sp_i, float cp_i)
 {
@@ -578,9 +588,11 @@ color abrdf_huang_lobes_residual(abrdf_huang_m m, float te[], float tie[], vecto
         float weight = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         // projected width of this element seen from wi: the light TRRT+ receives here
         float proj = fabs(cp_i * cos(gmi) + b * sp_i * sin(gmi)) * abrdf_huang_cos_theta(wi);
+        float e1, e2s; // the entry grid's shift: grid i
+        abrdf_huang_grid_shift(i, e1, e2s);
         for (int j1 = 0; j1 < n1 * n1; ++j1) {
-            vector wh1 = abrdf_huang_vndf_map(al, wi, wmi, (j1 / n1 + 0.5) / n1,
-                                              (j1 % n1 + 0.5) / n1);
+            vector wh1 = abrdf_huang_vndf_map(al, wi, wmi, (j1 / n1 + 0.5 + e1) / n1,
+                                              (j1 % n1 + 0.5 + e2s) / n1);
             float cos_hi1 = dot(wi, wh1);
             if (!(cos_hi1 > 0.0)) continue;
             float cos_t1;
@@ -622,10 +634,13 @@ color abrdf_huang_lobes_residual(abrdf_huang_m m, float te[], float tie[], vecto
             }
             if (!(cos_mi2 > 0.0)) continue;
 
-            // TRT: internal reflection at wh2 (n2 x n2 VNDF nodes), exit at wh3 (Eq. 14)
+            // TRT: internal reflection at wh2 (n2 x n2 VNDF nodes, grid i n1^2 + j1), exit at
+            // wh3 (Eq. 14)
+            float d1, d2;
+            abrdf_huang_grid_shift(i * n1 * n1 + j1, d1, d2);
             for (int j2 = 0; j2 < n2 * n2; ++j2) {
-                vector wh2 = abrdf_huang_vndf_map(al, -wt, wmt, (j2 / n2 + 0.5) / n2,
-                                                  (j2 % n2 + 0.5) / n2);
+                vector wh2 = abrdf_huang_vndf_map(al, -wt, wmt, (j2 / n2 + 0.5 + d1) / n2,
+                                                  (j2 % n2 + 0.5 + d2) / n2);
                 float cos_hi2 = dot(-wt, wh2);
                 if (!(cos_hi2 > 0.0)) continue;
                 float r2f = abrdf_huang_fresnel(cos_hi2, inv_eta, unused), r2 = r2f * scale2;

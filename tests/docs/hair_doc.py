@@ -1,7 +1,8 @@
 """hair_doc.py BIN SRC - docs/MODELS.md, "Hair models", quotes what its programs print now
-(BIN holds test_hair_marschner, test_hair_huang, test_invariants, measure_hair, gen_hair_tables): the
-fibre albedos, lobes and reciprocity, Huang's convergence, white furnace and R limit, the
-surface albedos, the continuity and stability figures, the table convergence. The costs are
+(BIN holds test_hair_marschner, test_hair_huang, test_invariants, measure_hair, gen_hair_tables,
+hair_convergence): the fibre albedos, lobes and reciprocity, Huang's convergence (and what a
+converged reference costs), white furnace and R limit, the surface albedos, the continuity and
+stability figures, the table convergence. The costs are
 one-off timings, marked so on the page."""
 import os
 import re
@@ -81,6 +82,10 @@ def body():
     for quoted, got in zip(grab(r"\(24, 12\): S = (%s) / (%s) / (%s)" % ((NUM,) * 3), ft, DOC).groups(),
                            (conv[1], conv[3], conv2[3])):
         require_number(DOC, doc, quoted, got, "VNDF grids", sig=6)
+    pairs = grab(r"over (\d+) pairs: RMS relative error (\S+), largest (\S+)", hu, "test_hair_huang")
+    q = grab(r"[Oo]ver (\d+) direction pairs the default's RMS relative error is (%s) and the largest (%s)" % (NUM, NUM), ft, DOC)
+    for quoted, got in zip(q.groups(), pairs.groups()):
+        require_number(DOC, doc, quoted, got, "convergence over direction pairs", sig=3)
     r = grab(r"alpha 0.05: (\S+) \(90 x 180\), (\S+) \(180 x 360\), Fresnel h-average (\S+)", hu, "test_hair_huang")
     q = grab(r"(%s) \(90 × 180 grid\) / (%s) \(180 × 360\), against its smooth limit, the Fresnel h-average (%s)"
              % (NUM, NUM, NUM), hu_text, DOC)
@@ -104,11 +109,23 @@ def body():
     if len(rows) != len(re.findall(r"image grids ", hu)):
         fail(f"{DOC}: the image convergence table has {len(rows)} rows, test_hair_huang prints "
              f"{len(re.findall(r'image grids ', hu))}")
-    for grid, vs_def, vs_conv, work in rows:
-        n1, n2 = (int(v) for v in re.findall(r"\d+", grid)[:2])
-        m = grab(r"image grids %d,%d: NMSE vs 6,3 (\S+), vs 6,9 (\S+), work (\S+)" % (n1, n2), hu, grid)
-        for quoted, got in zip((vs_def, vs_conv, work), m.groups()):
-            require_number(DOC, doc, quoted, got, f"image convergence ({n1}, {n2})")
+    for grid, vs_def, vs_ref, work in rows:
+        n1, n2, refine = (int(v) for v in re.findall(r"\d+", grid)[:3])
+        m = grab(r"image grids %d,%d, Simpson x%d: NMSE vs the default (\S+), vs the reference (\S+), work (\S+)"
+                 % (n1, n2, refine), hu, grid)
+        for quoted, got in zip((vs_def, vs_ref, work), m.groups()):
+            require_number(DOC, doc, quoted, got, f"image convergence ({n1}, {n2}, x{refine})")
+    conv_out = prog("hair_convergence")
+    _, rows, _ = parse_table(lines, next(i for i, l in enumerate(lines) if l.startswith("| grids (n1, n2), Simpson | work")))
+    if len(rows) != len(re.findall(r"^grids ", conv_out, re.M)):
+        fail(f"{DOC}: the converged-reference table has {len(rows)} rows, hair_convergence prints "
+             f"{len(re.findall(r'^grids ', conv_out, re.M))}")
+    for grid, work, nmse in rows:
+        n1, n2, refine = (int(v) for v in re.findall(r"\d+", grid)[:3])
+        m = grab(r"grids \(%d, %d\), Simpson x%d: work (\S+), NMSE vs the reference (\S+)" % (n1, n2, refine),
+                 conv_out, grid)
+        for quoted, got in zip((work, nmse), m.groups()):
+            require_number(DOC, doc, quoted, got, f"converged reference ({n1}, {n2}, x{refine})")
     cop = grab(r"largest relative change (\S+)", hu, "test_hair_huang")[1]
     require_number(DOC, doc, grab(r"The largest relative change is (%s)" % NUM, ft, DOC)[1], cop, "coplanar continuity", sig=3)
     require_number(DOC, doc, grab(r"The example now gives f_r = (%s)" % NUM, ft, DOC)[1],

@@ -35,16 +35,16 @@ brightest channel:
   M  abrdf, the model (Simpson over gamma, TRRT+ weighted by the projected width, the
      default VNDF grids): `abrdf eval` f_r N.wi, which must equal hair_huang_lobes' total.
      M / C is explained as a product of factors, each computed here from the same integrand:
-       M / Mc     the model's Simpson error over gamma (Mc: --refine 8);
+       M / Mc     the model's quadrature error, its VNDF grids' and its Simpson count's (Mc:
+                  --refine 8 with the VNDF grids REF_GRIDS, converged);
        Mc / Hc    the clip of h to +-0.999 and R's per-node tests (Hc: --h-nodes --refine 8,
-                  converged over h); within CLIP_TOL of 1: the two quadratures integrate
-                  one integrand, which this checks;
+                  REF_GRIDS, converged over h); within CLIP_TOL of 1: the two quadratures
+                  integrate one integrand, which this checks;
        Hc / Hk    the TRRT+ weight, projected width against 2/pi (Hk: Hc + --trrt-const);
-       Hk / Q6    Cycles' Simpson error over h (Q6: Q with the default grids);
-       Q6 / Q     the default VNDF grids against the fine ones;
+       Hk / Q     Cycles' Simpson error over h, and FINE_GRIDS' against REF_GRIDS';
        Q / C      the energy tables and Cycles' noise (the oracle above).
-     M / Mc must stay within MODEL_TOL (abrdf's own quadrature error, docs/MODELS.md,
-     "Convergence").
+     M / Mc must stay within MODEL_TOL (abrdf's own quadrature error at one direction pair,
+     docs/MODELS.md, "Convergence").
 
 usage: test_hair_cycles_oracle.py ABRDF HAIR_HUANG_LOBES WORK_DIR  (the Python with bpy)
 Fails, never skips, when bpy is missing: scripts/setup_bpy.sh installs it.
@@ -70,7 +70,8 @@ N_FIBRES = 8          # fibres, one band of BAND rows each
 BAND = 6
 RADIUS = 0.002        # fibre radius: 0.19 pixel across, far field (0.5 dP / radius = 5.2)
 SPP = 256             # Cycles samples per pixel
-FINE_GRIDS = (24, 24)  # VNDF grids of Q: TRRT+ converges slowly (first order) in them
+FINE_GRIDS = (24, 24)  # VNDF grids of Q
+REF_GRIDS = (16, 16)   # VNDF grids of the converged quadratures Mc, Hc, Hk (with --refine 8)
 # C against Q, relative, per lobe and in total, beyond 4 standard errors: the energy tables
 # (Cycles' Monte Carlo ones and abrdf's quadrature; R, one interaction, measures them) and
 # FINE_GRIDS' remaining error (TRRT+ moves by up to 20% from 16 x 12 to 24 x 24). Measured
@@ -78,14 +79,16 @@ FINE_GRIDS = (24, 24)  # VNDF grids of Q: TRRT+ converges slowly (first order) i
 # "Cycles as an oracle").
 ORACLE_TOL = {"R": 0.015, "TT": 0.03, "TRT": 0.08, "TRRT+": 0.15, "total": 0.03}
 # Mc / Hc: converged over gamma and over h differ by the clip (the 0.045 rad of gamma next to
-# each silhouette that |h| > 0.999 holds) and, in R, by what Cycles decides per node (its D
-# is blind to the sign of wm.wh where abrdf cuts R's range at wm.wh = 0). Measured: R 4.2%
-# (forward scattering), the others 2.4%.
-CLIP_TOL = {"R": 0.06, "TT": 0.03, "TRT": 0.03, "TRRT+": 0.03, "total": 0.03}
-# M / Mc: the model's own Simpson error over gamma at Cycles' steps. Measured: R 0.9%, TT
-# 4.5%, TRT 4.8%, total 4.1%, and TRRT+ 23% on the elliptical fibre (its projected-width
-# weight is steep where the section is flat).
-MODEL_TOL = {"R": 0.03, "TT": 0.08, "TRT": 0.10, "TRRT+": 0.30, "total": 0.08}
+# each silhouette that |h| > 0.999 holds), in R by what Cycles decides per node (its D is
+# blind to the sign of wm.wh where abrdf cuts R's range at wm.wh = 0), and by what REF_GRIDS
+# leave at one pair (the two quadratures' Simpson nodes differ, so do their grids' shifts).
+# Measured: R 4.2% (forward scattering), TRT 3.9% (grazing), the others 2.4% at most.
+CLIP_TOL = {"R": 0.06, "TT": 0.03, "TRT": 0.05, "TRRT+": 0.03, "total": 0.03}
+# M / Mc: the model's own quadrature error at one direction pair, its shifted VNDF grids'
+# and its Simpson count's (docs/MODELS.md, "Convergence": 8.1% RMS over 48 pairs, in total).
+# Measured: R 0.9%, TT 6.1%, TRT 24% (TRT's exit is the narrowest peak in the VNDF squares),
+# TRRT+ 7.2%, total 7.0%.
+MODEL_TOL = {"R": 0.03, "TT": 0.08, "TRT": 0.30, "TRRT+": 0.30, "total": 0.10}
 # Lobes carrying less than this share of the total are reported, not judged (their ratio is
 # noise over a tiny number).
 MIN_SHARE = 0.02
@@ -311,10 +314,11 @@ def main():
     t0 = time.time()
     failures = check_units()
     fine = ["entry_grid=%d" % FINE_GRIDS[0], "internal_grid=%d" % FINE_GRIDS[1]]
+    ref = ["entry_grid=%d" % REF_GRIDS[0], "internal_grid=%d" % REF_GRIDS[1]]
     print("\nper lobe, brightest channel: C (Cycles, its noise), Q, M, and the factors of M/C")
-    print("%-11s %-8s %-5s %11s %9s %11s %7s %11s %7s | %6s %6s %6s %6s %6s %6s" %
+    print("%-11s %-8s %-5s %11s %9s %11s %7s %11s %7s | %6s %6s %6s %6s %6s" %
           ("set", "config", "lobe", "C", "noise", "Q", "C/Q", "M", "M/C", "M/Mc", "Mc/Hc",
-           "Hc/Hk", "Hk/Q6", "Q6/Q", "Q/C"))
+           "Hc/Hk", "Hk/Q", "Q/C"))
     for set_name, inputs, params in PARAM_SETS:
         for cname, theta_v, theta_l, phi_l in CONFIGS:
             t, v, l = geometry(theta_v, theta_l, phi_l)
@@ -328,10 +332,10 @@ def main():
             cyc = cycles_lobes(inputs, t, major, l, "%s_%s" % (set_name, cname))
             wi, wo = local(l, t, major), local(v, t, major)
             s = {"Q": abrdf_lobes(params, wi, wo, "--h-nodes", "--trrt-const", *fine),
-                 "Q6": abrdf_lobes(params, wi, wo, "--h-nodes", "--trrt-const"),
-                 "Hk": abrdf_lobes(params, wi, wo, "--h-nodes", "--trrt-const", "--refine", "8"),
-                 "Hc": abrdf_lobes(params, wi, wo, "--h-nodes", "--refine", "8"),
-                 "Mc": abrdf_lobes(params, wi, wo, "--refine", "8"),
+                 "Hk": abrdf_lobes(params, wi, wo, "--h-nodes", "--trrt-const", "--refine", "8",
+                                   *ref),
+                 "Hc": abrdf_lobes(params, wi, wo, "--h-nodes", "--refine", "8", *ref),
+                 "Mc": abrdf_lobes(params, wi, wo, "--refine", "8", *ref),
                  "M": abrdf_lobes(params, wi, wo)}
             if wi[2] > 0.0:  # the light above the ribbon too: the public f_r applies
                 pub = abrdf_eval_s(params, wi, wo)
@@ -343,12 +347,11 @@ def main():
                 k = int(np.argmax(s["Q"]["total"]))  # the brightest channel
                 v_ = {key: val[lobe][k] for key, val in s.items()}
                 print("%-11s %-8s %-5s %11.4e %9.2e %11.4e %7.4f %11.4e %7.4f | %6.3f %6.3f "
-                      "%6.3f %6.3f %6.3f %6.3f" %
+                      "%6.3f %6.3f %6.3f" %
                       (set_name, cname, lobe, c[k], sem[k], v_["Q"], ratio(c[k], v_["Q"]),
                        v_["M"], ratio(v_["M"], c[k]), ratio(v_["M"], v_["Mc"]),
                        ratio(v_["Mc"], v_["Hc"]), ratio(v_["Hc"], v_["Hk"]),
-                       ratio(v_["Hk"], v_["Q6"]), ratio(v_["Q6"], v_["Q"]),
-                       ratio(v_["Q"], c[k])))
+                       ratio(v_["Hk"], v_["Q"]), ratio(v_["Q"], c[k])))
                 if v_["Q"] < MIN_SHARE * s["Q"]["total"][k]:
                     continue
                 where = "%s %s %s" % (set_name, cname, lobe)

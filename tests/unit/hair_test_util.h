@@ -13,4 +13,17 @@ typedef void (*htu_fibre_fn)(const void *m, const double wi[3], const double wo[
  * 0.3), by the midpoint rule on nt x np cells. */
 double htu_fibre_albedo(htu_fibre_fn S, const void *m, double theta_o, unsigned lobes, int nt,
                         int np);
+
+/* The convergence cylinder of docs/MODELS.md, "Convergence on an image": a fibre cylinder,
+ * axis (and fibres) along world y, seen orthographically along -z, lit by the two directional
+ * lights of scenes/mixed.scene; along the axis nothing changes, so the image is one row of
+ * HTU_CYL_SAMPLES pixel centres across it, each
+ *     L = sum_l E_l max(0, N.L_l) f_r(L_l, V),   local frame (T = y, B = N x T, N),
+ * f_r from eval (the model's f_r in the local frame, wi the light). */
+#define HTU_CYL_SAMPLES 64
+typedef void (*htu_eval_fn)(const void *m, const double wi[3], const double wo[3], double f[3]);
+void htu_cylinder_image(htu_eval_fn eval, const void *m, double img[HTU_CYL_SAMPLES][3]);
+
+/* Table 8's image NMSE of img against ref. */
+double htu_image_nmse(const double ref[HTU_CYL_SAMPLES][3], const double img[HTU_CYL_SAMPLES][3]);
 #endif

@@ -58,8 +58,12 @@ START_TEST(r_smooth_limit)
 }
 END_TEST
 
-/* Deterministic quadrature converges: Simpson refinement 1 vs 2 and VNDF grids (6, 3) vs
- * (12, 6) agree at default parameters within 3% and 5% (measured 2.0% and 1.0%). */
+/* The quadrature converges. At one direction pair (default parameters) the Simpson count and
+ * the VNDF grids are refined, printed for docs/MODELS.md, "Convergence". The shifted grids
+ * make a pair's error vary with the pair, so the check is over 48 pairs, grazing ones among
+ * them: the default's relative error against the reference with every grid and the Simpson
+ * count doubled, RMS within 12% and the largest within 40% (measured 8.1% and 28%; the
+ * unshifted grids of the same size gave 19% and 63%). */
 START_TEST(quadrature_convergence)
 {
     abrdf__huang m;
@@ -67,121 +71,107 @@ START_TEST(quadrature_convergence)
     double wi[3], wo[3];
     htu_fdir(0.3, 2.2, wi);
     htu_fdir(-0.1, 0.2, wo);
-    double a[3], b[3], c[3];
-    abrdf__huang_fibre(&m, wi, wo, 15u, a);
-    m.refine = 2;
-    abrdf__huang_fibre(&m, wi, wo, 15u, b);
-    m.refine = 1;
-    m.n1 = 2 * ABRDF__HUANG_N1;
-    m.n2 = 2 * ABRDF__HUANG_N2;
-    abrdf__huang_fibre(&m, wi, wo, 15u, c);
-    printf("huang convergence: S %.6g, Simpson x2 %.6g, VNDF grids x2 %.6g\n", a[0], b[0], c[0]);
-    /* Further refinements, printed for docs/MODELS.md, "Convergence". */
-    double d[3], e[3], g[3];
-    m.n1 = ABRDF__HUANG_N1;
-    m.n2 = ABRDF__HUANG_N2;
-    m.refine = 4;
-    abrdf__huang_fibre(&m, wi, wo, 15u, d);
-    m.refine = 8;
-    abrdf__huang_fibre(&m, wi, wo, 15u, e);
-    m.refine = 1;
-    m.n1 = 4 * ABRDF__HUANG_N1;
-    m.n2 = 4 * ABRDF__HUANG_N2;
-    abrdf__huang_fibre(&m, wi, wo, 15u, g);
-    printf("huang convergence: Simpson x4 %.6g, Simpson x8 %.6g, VNDF grids x4 %.6g\n", d[0], e[0],
-           g[0]);
-    ck_assert_msg(tu_close(a[0], b[0], 3e-2, 0), "h refinement %.6g vs %.6g", a[0], b[0]);
-    ck_assert_msg(tu_close(a[0], c[0], 5e-2, 0), "VNDF grids %.6g vs %.6g", a[0], c[0]);
+    double s[6][3];
+    static const int rf[6][3] = {{1, 1, 1}, {2, 1, 1}, {1, 2, 2}, {4, 1, 1}, {8, 1, 1}, {1, 4, 4}};
+    for (int k = 0; k < 6; ++k) {
+        m.refine = rf[k][0];
+        m.n1 = rf[k][1] * ABRDF__HUANG_N1;
+        m.n2 = rf[k][2] * ABRDF__HUANG_N2;
+        abrdf__huang_fibre(&m, wi, wo, 15u, s[k]);
+    }
+    printf("huang convergence: S %.6g, Simpson x2 %.6g, VNDF grids x2 %.6g\n", s[0][0], s[1][0],
+           s[2][0]);
+    printf("huang convergence: Simpson x4 %.6g, Simpson x8 %.6g, VNDF grids x4 %.6g\n", s[3][0],
+           s[4][0], s[5][0]);
+    double sum2 = 0.0, worst = 0.0;
+    int count = 0;
+    for (int k = 0; k < 48; ++k) {
+        htu_fdir(-1.2 + 2.4 * ((k * 7) % 48 + 0.5) / 48, 2.0 * PI * (k + 0.5) / 48, wi);
+        htu_fdir(-0.9 + 1.8 * ((k * 13) % 48 + 0.5) / 48, 0.7, wo);
+        double a[3], r[3];
+        m.refine = 1, m.n1 = ABRDF__HUANG_N1, m.n2 = ABRDF__HUANG_N2;
+        abrdf__huang_fibre(&m, wi, wo, 15u, a);
+        m.refine = 2, m.n1 = 2 * ABRDF__HUANG_N1, m.n2 = 2 * ABRDF__HUANG_N2;
+        abrdf__huang_fibre(&m, wi, wo, 15u, r);
+        if (!(r[0] > 1e-4)) continue;
+        double e = fabs(a[0] - r[0]) / r[0];
+        sum2 += e * e, ++count;
+        if (e > worst) worst = e;
+    }
+    double rms = sqrt(sum2 / count);
+    printf("huang convergence over %d pairs: RMS relative error %.4f, largest %.4f\n", count, rms,
+           worst);
+    ck_assert_msg(count >= 24 && rms <= 0.12 && worst <= 0.4, "%d pairs, RMS %.4f, largest %.4f",
+                  count, rms, worst);
 }
 END_TEST
 
 /* ---- convergence on an image ---------------------------------------------------------
  * One S value (above) does not say what a grid's error looks like in a render. This renders
- * the default hair (the melanin of data/materials.csv's hair_brown) on a fibre cylinder:
- * axis (and fibres) along world y, seen orthographically along -z, lit by the two directional
- * lights of scenes/mixed.scene; along the axis nothing changes, so the image is one row of
- * CYL_SAMPLES pixel centres across the cylinder, each
- *     L = sum_l E_l max(0, N.L_l) f_r(L_l, V),   local frame (T = y, B = N x T, N).
- * Per grid (n1, n2) it prints the image NMSE (Table 8's measure) against the default grids
- * and against the n2 = 9 grid, and the work per evaluation in VNDF nodes relative to the
- * default, n1^2 (1 + n2^2) / (6^2 (1 + 3^2)) (TT visits n1^2 nodes, TRT n2^2 more per node),
- * beside the CPU time of the image relative to the default's (a one-off timing, not checked). */
-#define CYL_SAMPLES 64
-
-static void cylinder_image(const abrdf__huang *m, double img[CYL_SAMPLES][3])
+ * the default hair (the melanin of data/materials.csv's hair_brown) on the convergence
+ * cylinder (htu_cylinder_image). Per grid (n1, n2) and Simpson refinement it prints the image
+ * NMSE (Table 8's measure) against the default and against the reference, and the work per
+ * evaluation in VNDF nodes relative to the default, n1^2 (1 + n2^2) refine / (6^2 (1 + 3^2))
+ * (TT visits n1^2 nodes, TRT n2^2 more per node), beside the CPU time of the image relative to
+ * the default's (a one-off timing, not checked). tools/bench/hair_convergence measures the
+ * same image against a denser reference. */
+static void eval_fn(const void *m, const double wi[3], const double wo[3], double f[3])
 {
-    static const double dir[2][3] = {{-0.45, 0.75, 0.55}, {0.7, 0.25, 0.45}};
-    static const double irr[2][3] = {{2.5, 2.5, 2.5}, {0.72, 0.76, 0.8}};
-    for (int k = 0; k < CYL_SAMPLES; ++k) {
-        double x = -1.0 + (k + 0.5) * 2.0 / CYL_SAMPLES, z = sqrt(1.0 - x * x);
-        const double n[3] = {x, 0.0, z}, t[3] = {0.0, 1.0, 0.0}, b[3] = {-z, 0.0, x}; /* N x T */
-        const double wo[3] = {0.0, 0.0, z}; /* V = +z: (V.T, V.B, V.N) */
-        img[k][0] = img[k][1] = img[k][2] = 0.0;
-        for (int l = 0; l < 2; ++l) {
-            double d = sqrt(dir[l][0] * dir[l][0] + dir[l][1] * dir[l][1] + dir[l][2] * dir[l][2]);
-            double w[3] = {dir[l][0] / d, dir[l][1] / d, dir[l][2] / d};
-            double wi[3] = {w[0] * t[0] + w[1] * t[1] + w[2] * t[2],
-                            w[0] * b[0] + w[1] * b[1] + w[2] * b[2],
-                            w[0] * n[0] + w[1] * n[1] + w[2] * n[2]};
-            if (!(wi[2] > 0.0)) continue;
-            double f[3];
-            abrdf__huang_eval(m, wi, wo, f);
-            for (int c = 0; c < 3; ++c) img[k][c] += irr[l][c] * wi[2] * f[c];
-        }
-    }
+    abrdf__huang_eval(m, wi, wo, f);
 }
 
-static double image_nmse(const double ref[CYL_SAMPLES][3], const double img[CYL_SAMPLES][3])
+static void cylinder_image(const abrdf__huang *m, double img[HTU_CYL_SAMPLES][3])
 {
-    double num = 0.0, den = 0.0;
-    for (int k = 0; k < CYL_SAMPLES; ++k)
-        for (int c = 0; c < 3; ++c) {
-            num += (img[k][c] - ref[k][c]) * (img[k][c] - ref[k][c]);
-            den += ref[k][c] * ref[k][c];
-        }
-    return num / den;
+    htu_cylinder_image(eval_fn, m, img);
 }
 
-/* The internal-reflection grid n2 dominates the default's error on the image; n1 = 6 is past
- * convergence. Checked: n2 = 6 and n2 = 9 agree within Table 8's "none" (1e-4), and the
- * entry grid n1 = 12 agrees with n1 = 6 within it; the default's distance to n2 = 9 is
- * printed and bounded by 1e-2 (measured figures in docs/MODELS.md, "Convergence on an
- * image"). */
+/* The default's error on the image, against a reference with every grid doubled and the
+ * Simpson count doubled (32 times the work), and what each grid buys. The VNDF grids are
+ * shifted per grid (hair_huang.c, grid_shift), so the error falls roughly as the work grows
+ * in every grid, and its size at one grid depends on where the shifts fall: the test bounds
+ * the default at 5e-4 (measured 1.5e-4, Table 8's "slight") and the entry grid 12 within
+ * "none" of the reference (measured figures in docs/MODELS.md, "Convergence on an image"). */
 START_TEST(image_convergence)
 {
-    static const int grid[][2] = {{6, 3}, {6, 9}, {6, 6}, {12, 3}, {5, 3},
-                                  {4, 3}, {3, 3}, {4, 6}, {3, 6},  {4, 2}};
+    static const int grid[][3] = {{6, 3, 1}, {12, 6, 2}, {6, 3, 2}, {12, 3, 1}, {6, 6, 1},
+                                  {8, 4, 1}, {5, 3, 1},  {4, 3, 1}, {3, 3, 1},  {4, 2, 1}};
     enum { NG = (int)(sizeof grid / sizeof grid[0]) };
-    static double img[NG][CYL_SAMPLES][3];
+    static double img[NG][HTU_CYL_SAMPLES][3];
     double cpu[NG];
     abrdf__huang m;
     setup(&m, 0.73, 0.85);
     for (int g = 0; g < NG; ++g) {
         m.n1 = grid[g][0];
         m.n2 = grid[g][1];
+        m.refine = grid[g][2];
         clock_t t0 = clock();
         cylinder_image(&m, img[g]);
         cpu[g] = (double)(clock() - t0) / CLOCKS_PER_SEC;
     }
     double def_work = 36.0 * 10.0;
     for (int g = 0; g < NG; ++g) {
-        double work = grid[g][0] * grid[g][0] * (1.0 + grid[g][1] * grid[g][1]) / def_work;
-        printf("huang image grids %d,%d: NMSE vs 6,3 %.2e, vs 6,9 %.2e, work %.2f (CPU time %.2f, "
-               "one-off)\n",
-               grid[g][0], grid[g][1], image_nmse(img[0], img[g]), image_nmse(img[1], img[g]), work,
-               cpu[g] / cpu[0]);
+        double work =
+            grid[g][0] * grid[g][0] * (1.0 + grid[g][1] * grid[g][1]) * grid[g][2] / def_work;
+        printf("huang image grids %d,%d, Simpson x%d: NMSE vs the default %.2e, vs the reference "
+               "%.2e, work %.2f (CPU time %.2f, one-off)\n",
+               grid[g][0], grid[g][1], grid[g][2], htu_image_nmse(img[0], img[g]),
+               htu_image_nmse(img[1], img[g]), work, cpu[g] / cpu[0]);
     }
-    ck_assert_msg(image_nmse(img[1], img[2]) < 1e-4, "n2 6 vs 9: %g", image_nmse(img[1], img[2]));
-    ck_assert_msg(image_nmse(img[0], img[3]) < 1e-4, "n1 12 vs 6: %g", image_nmse(img[0], img[3]));
-    ck_assert_msg(image_nmse(img[1], img[0]) < 1e-2, "default vs n2 9: %g",
-                  image_nmse(img[1], img[0]));
+    ck_assert_msg(htu_image_nmse(img[1], img[0]) < 5e-4, "default vs reference: %g",
+                  htu_image_nmse(img[1], img[0]));
+    ck_assert_msg(htu_image_nmse(img[1], img[3]) < 1e-4, "n1 12 vs reference: %g",
+                  htu_image_nmse(img[1], img[3]));
 }
 END_TEST
 
 /* White furnace, melanin 0, WITHOUT energy compensation: R + TT + TRT (the paper's
  * Eqs. 12-14) stay below 1 and lose more energy as the section gets more eccentric; TRRT+
- * takes up part of it; the total stays <= 1 + 2% (quadrature) at every aspect ratio and at
- * theta_o = 0, 45, 80 deg for the default fibre. Printed for docs/MODELS.md, "White furnace". */
+ * takes up part of it. The total stays <= 1 for the round and the default fibre (b = 1 and
+ * 0.85, theta_o = 0, 45, 80 deg) and exceeds 1 for eccentric ones (converged, grids (12, 6):
+ * 1.046 at b = 0.5, 1.039 at b = 0.2; the test's (4, 2) grid gives 1.034 and 1.061): TRRT+ is
+ * Cycles' closed-form estimate of the further bounces, not an integral over their paths, and
+ * nothing bounds it by what the first three lobes leave. Bounded at 1.01 and 1.08. Printed for
+ * docs/MODELS.md, "White furnace". */
 START_TEST(white_furnace_uncompensated)
 {
     const double asp[] = {1.0, 0.85, 0.5, 0.2};
@@ -199,7 +189,8 @@ START_TEST(white_furnace_uncompensated)
         ck_assert_msg(e <= 1.0 && e > 0.2, "R+TT+TRT albedo %.4f", e);
         if (k >= 1) ck_assert_msg(e <= prev + 5e-3, "loss must grow with eccentricity: %.4f", e);
         prev = e;
-        ck_assert_msg(e + t <= 1.02 && e + t > 0.7, "total albedo %.4f", e + t);
+        ck_assert_msg(e + t <= (asp[k] >= 0.85 ? 1.01 : 1.08) && e + t > 0.7, "total albedo %.4f",
+                      e + t);
     }
     const double deg[] = {45.0, 80.0};
     for (int k = 0; k < 2; ++k) {
@@ -211,15 +202,16 @@ START_TEST(white_furnace_uncompensated)
         double a = fibre_albedo(&m, deg[k] * PI / 180, 15u, 12);
         printf("huang white furnace, no compensation, b=0.85 theta_o=%.0f: total %.4f\n", deg[k],
                a);
-        ck_assert_msg(a <= 1.02 && a > 0.6, "total albedo %.4f at %g deg", a, deg[k]);
+        ck_assert_msg(a <= 1.01 && a > 0.6, "total albedo %.4f at %g deg", a, deg[k]);
     }
 }
 END_TEST
 
 /* White furnace of the default model (Cycles' energy compensation on): the compensation
  * lifts TT and TRT but the TRRT+ series is computed from the uncompensated Fresnel terms
- * (as in Cycles), so a lossless fibre returns up to ~12% more than it receives. Bounded
- * here at [0.85, 1.15] and documented. */
+ * (as in Cycles), so a lossless fibre returns more than it receives: 7% for the round fibre
+ * and 6% for the default one, 21% and 20% at b = 0.5 and 0.2 (converged, grids (12, 6)).
+ * Bounded here at [0.85, 1.25] and documented. */
 START_TEST(white_furnace_compensated)
 {
     const double asp[] = {1.0, 0.85, 0.5, 0.2, 0.85, 0.85}, deg[] = {0, 0, 0, 0, 45, 80};
@@ -231,7 +223,7 @@ START_TEST(white_furnace_compensated)
         double a = fibre_albedo(&m, deg[k] * PI / 180, 15u, 12);
         printf("huang white furnace, compensated, b=%.2f theta_o=%.0f: total %.4f\n", asp[k],
                deg[k], a);
-        ck_assert_msg(a <= 1.15 && a > 0.85, "total albedo %.4f", a);
+        ck_assert_msg(a <= 1.25 && a > 0.85, "total albedo %.4f", a);
     }
 }
 END_TEST

@@ -6,7 +6,9 @@
  *
  * The committed file was written by the code before the speed-ups of these models (CHANGELOG
  * 0.3.0); test_special_reference holds every later build to it within 1e-10 relative, so a
- * speed-up cannot change a result. One line per value:
+ * speed-up cannot change a result. huang's lines were written again when its quadrature's
+ * grids became shifted (a change of the model's values: CHANGELOG, "Changed (the models)");
+ * the other models' lines are the first ones. One line per value:
  *   model set k   wi_x wi_y wi_z  wo_x wo_y wo_z   f_r f_g f_b
  * with %.17g, so the file reproduces every double exactly. The parameter sets and directions
  * are listed below and in the file's header. */

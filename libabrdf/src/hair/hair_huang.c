@@ -19,9 +19,9 @@
  * measurements):
  *  - DETERMINISTIC integration. Cycles draws one GGX visible-normal (VNDF) sample per h node
  *    for the entry microfacet and one for the internal reflection. Here the VNDF sampling
- *    map is integrated by an n1 x n1 (entry) and n2 x n2 (internal reflection) midpoint
- *    product rule on its unit square: the expectation Cycles estimates, computed by
- *    quadrature.
+ *    map is integrated on its unit square by an n1 x n1 (entry) and n2 x n2 (internal
+ *    reflection) grid of cells, each grid shifted by its own point of the R2 sequence
+ *    (grid_shift): the expectation Cycles estimates, computed by quadrature.
  *  - Composite Simpson over the surface parameter gamma instead of h (Cycles' steps,
  *    <= 0.7 alpha for R and <= 0.8 alpha for the rest, divided by a refinement factor):
  *    dgamma/dh is singular at the silhouette and Simpson in h over-weights it.
@@ -186,8 +186,7 @@ static void vndf_frame_make(double alpha, v3 wi, v3 wm, vndf_frame *f);
 static v3 vndf_frame_node(const vndf_frame *f, const double p[3]);
 
 /* The disc point of node (u1, u2), r = sqrt(u1) at angle 2 pi u2, and sqrt(1 - p1^2): what
- * vndf_frame_node takes. A quadrature evaluates it once per node (vndf_nodes), not once per
- * use. */
+ * vndf_frame_node takes (the quadrature's grids make theirs in grid_points). */
 static void vndf_disc(double u1, double u2, double p[3])
 {
     double r = sqrt(u1), ph = 2.0 * ABRDF__PI * u2;
@@ -205,10 +204,60 @@ static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
     return vndf_frame_node(&f, p);
 }
 
-/* The disc points of the n x n midpoint grid, node j at ((j / n + 0.5) / n, (j % n + 0.5) / n). */
-static void vndf_nodes(int n, double (*p)[3])
+/* THE VNDF GRIDS, SHIFTED. Each VNDF square is integrated on an n x n grid of cells, node
+ * j at ((j / n + 1/2 + d1) / n, (j % n + 1/2 + d2) / n), and every grid of an evaluation is
+ * shifted by its own (d1, d2): the entry grid of Simpson node i by shift i, the internal
+ * grid of the path through entry node j1 there by shift i n1^2 + j1. The integrand is cut by
+ * total internal reflection and visibility, and TRT's exit is a narrow peak in the square;
+ * on one unshifted grid the nodes of neighbouring paths fall on the same side of a cut or of
+ * the peak and their errors add up (the default's image was 2.9e-3 from the converged one),
+ * on shifted grids they average out (1.5e-4 at the same cost: docs/MODELS.md, "Convergence on
+ * an image"). Shift k is the k-th point of the R2 sequence (M. Roberts 2018: k (1/g, 1/g^2)
+ * modulo 1, g the plastic number) minus 1/2, with the steps in 16-bit fixed point and k
+ * taken modulo 2^15 so that the OSL and POV-Ray twins compute the same shifts exactly (32-bit
+ * integers, doubles). */
+static void grid_shift(long k, double d[2])
 {
-    for (int j = 0; j < n * n; ++j) vndf_disc((j / n + 0.5) / n, (j % n + 0.5) / n, p[j]);
+    unsigned long kk = (unsigned long)(k % 32768);
+    d[0] = (double)((32768ul + kk * ABRDF__HUANG_R2_A1) % 65536ul) / 65536.0 - 0.5;
+    d[1] = (double)((32768ul + kk * ABRDF__HUANG_R2_A2) % 65536ul) / 65536.0 - 0.5;
+}
+
+/* The angles of an n x n grid's columns, 2 pi (b + 1/2) / n, as cosines and sines: a shift
+ * turns them all by 2 pi d2 / n (grid_points). */
+typedef struct grid_angles {
+    int n;
+    double c[ABRDF__HUANG_GRID_MAX], s[ABRDF__HUANG_GRID_MAX];
+} grid_angles;
+
+static void grid_angles_make(int n, grid_angles *a)
+{
+    a->n = n;
+    for (int b = 0; b < n; ++b) {
+        double ph = 2.0 * ABRDF__PI * (b + 0.5) / n;
+        a->c[b] = cos(ph), a->s[b] = sin(ph);
+    }
+}
+
+/* The disc points (vndf_disc) of the grid with shift k: point j in p0[j], p1[j], p2[j] (p2:
+ * sqrt(1 - p0^2), not written if NULL: the internal grids' loop takes it itself). The angle of
+ * a column is its unshifted one turned by 2 pi d2 / n: one sine and cosine per grid, the same
+ * values as vndf_disc's up to rounding. */
+static void grid_points(const grid_angles *a, long k, double *p0, double *p1, double *p2)
+{
+    const int n = a->n;
+    double d[2];
+    grid_shift(k, d);
+    double dph = 2.0 * ABRDF__PI * d[1] / n, cd = cos(dph), sd = sin(dph);
+    for (int i = 0; i < n; ++i) {
+        double r = sqrt((i + 0.5 + d[0]) / n);
+        for (int b = 0; b < n; ++b) {
+            int j = i * n + b;
+            p0[j] = r * (a->c[b] * cd - a->s[b] * sd);
+            p1[j] = r * (a->s[b] * cd + a->c[b] * sd);
+            if (p2) p2[j] = abrdf__safe_sqrt(1.0 - p0[j] * p0[j]);
+        }
+    }
 }
 
 static void vndf_frame_make(double alpha, v3 wi, v3 wm, vndf_frame *f)
@@ -746,10 +795,10 @@ static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3
  * t1 r2^2 tavg a^3 / (1 - a (1 - tavg)) per channel (absorption a), tavg = max(1 - r2, 1e-5);
  * its three channels share one division (each denominator is >= tavg).
  * What every internal node needs before its light-dependent tests, without a branch: its
- * microfacet wh2 (Heitz's map, vndf_frame_node), the cosine to the refracted ray, the
- * reflectance there (fresnel1 at 1/eta), the reflected ray wtr and TRRT+'s three channels
- * (trrt3). The compiler vectorises the loop; it is compiled once per instruction-set level
- * (isa.h). A node with cos_hi2 <= 0 is skipped by the caller. */
+ * microfacet wh2 (Heitz's map from the disc point, vndf_frame_node), the cosine to the
+ * refracted ray, the reflectance there (fresnel1 at 1/eta), the reflected ray wtr and TRRT+'s
+ * three channels (trrt3). The compiler vectorises the loop; it is compiled once per
+ * instruction-set level (isa.h). A node with cos_hi2 <= 0 is skipped by the caller. */
 #define INTERNAL_CHUNK 16
 
 typedef struct internal_nodes {
@@ -771,12 +820,13 @@ typedef struct internal_path {
 #define INTERNAL_BASE(L)                                                                           \
     ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void internal_base_##L(                             \
         const internal_path *restrict q, const double *restrict p1, const double *restrict p2,     \
-        const double *restrict pq, int n, internal_nodes *restrict o)                              \
+        int n, internal_nodes *restrict o)                                                         \
     {                                                                                              \
         const vndf_frame *f = q->f;                                                                \
         const double al = f->alpha, sh = f->sh, e2 = q->e2;                                        \
         for (int j = 0; j < n; ++j) { /* vndf_frame_node */                                        \
-            double a = p1[j], b = (1.0 - sh) * pq[j] + sh * p2[j];                                 \
+            double a = p1[j], qa = 1.0 - a * a, pq = qa > 0.0 ? sqrt(qa) : 0.0; /* vndf_disc */    \
+            double b = (1.0 - sh) * pq + sh * p2[j];                                               \
             double d = 1.0 - a * a - b * b, c3 = d > 0.0 ? sqrt(d) : 0.0;                          \
             double nx = f->t1.x * a + f->t2.x * b + f->vh.x * c3;                                  \
             double ny = f->t1.y * a + f->t2.y * b + f->vh.y * c3;                                  \
@@ -811,8 +861,7 @@ typedef struct internal_path {
 ABRDF__ISA_LEVELS(INTERNAL_BASE)
 
 typedef void (*internal_base_fn)(const internal_path *restrict, const double *restrict,
-                                 const double *restrict, const double *restrict, int,
-                                 internal_nodes *restrict);
+                                 const double *restrict, int, internal_nodes *restrict);
 #define INTERNAL_BASE_ENTRY(L) internal_base_##L,
 static internal_base_fn internal_base_at(int level)
 {
@@ -821,8 +870,8 @@ static internal_base_fn internal_base_at(int level)
     return fns[level < 0 ? 0 : level < n ? level : n - 1];
 }
 
-/* TT + TRT + TRRT+ (RGB) of every light of the run: Simpson over h, nested midpoint rules
- * over the VNDF squares; out[l] for light l. */
+/* TT + TRT + TRRT+ (RGB) of every light of the run: Simpson over gamma, nested shifted grids
+ * over the VNDF squares (grid_points); out[l] for light l. */
 static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, double g0, double gr,
                            double h0, double h1, double sp_i, double cp_i, unsigned lobes,
                            double (*out)[3])
@@ -832,15 +881,13 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
     const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
     for (int l = 0; l < lr->n; ++l) out[l][0] = out[l][1] = out[l][2] = 0.0;
     if (n1 * n1 > ABRDF__HUANG_NODES_MAX || n2 * n2 > ABRDF__HUANG_NODES_MAX) return;
-    /* Per evaluation, not per node: the VNDF grids' disc points; the internal grid's as three
-     * arrays, for the vectorised loop (48 KiB of stack at the largest grids) */
-    double node1[ABRDF__HUANG_NODES_MAX][3], p2s[3][ABRDF__HUANG_NODES_MAX];
-    vndf_nodes(n1, node1);
-    for (int j = 0; j < n2 * n2; ++j) {
-        double p[3];
-        vndf_disc((j / n2 + 0.5) / n2, (j % n2 + 0.5) / n2, p);
-        p2s[0][j] = p[0], p2s[1][j] = p[1], p2s[2][j] = p[2];
-    }
+    /* The VNDF grids' column angles once per evaluation; each grid's disc points (as arrays,
+     * for the vectorised loop: 40 KiB of stack at the largest grids) per Simpson node (entry)
+     * and per path (internal) */
+    double p1s[3][ABRDF__HUANG_NODES_MAX], p2s[2][ABRDF__HUANG_NODES_MAX];
+    grid_angles ang1, ang2;
+    grid_angles_make(n1, &ang1);
+    grid_angles_make(n2, &ang2);
     const internal_base_fn base = internal_base_at(abrdf__isa_best());
     energy_axes ax_in = m->e_in;
     residual_ctx c = {.m = m,
@@ -880,14 +927,17 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
         r.lam1 = ggx_lambda(c.a2, r.cos_mi1);
         vndf_frame f1;
         vndf_frame_make(al, wi, r.wmi, &f1);
+        grid_points(&ang1, i, p1s[0], p1s[1], p1s[2]);
         for (int j1 = 0; j1 < n1 * n1; ++j1) {
             entry_path e;
-            if (!entry_path_make(&c, &r, vndf_frame_node(&f1, node1[j1]), w1, &e)) continue;
+            const double q1[3] = {p1s[0][j1], p1s[1][j1], p1s[2][j1]};
+            if (!entry_path_make(&c, &r, vndf_frame_node(&f1, q1), w1, &e)) continue;
             if (lobes & 2u) tt_add(&c, &e);
             if (!(lobes & 12u) || !(e.cos_mi2 > 0.0)) continue;
             /* TRT and TRRT+: internal reflection at wh2 (n2 x n2 VNDF nodes) */
             vndf_frame f2;
             vndf_frame_make(al, neg(e.wt), e.wmt, &f2);
+            grid_points(&ang2, (long)i * n1 * n1 + j1, p2s[0], p2s[1], NULL);
             internal_path ip = {&f2,
                                 e.wt.x,
                                 e.wt.y,
@@ -899,7 +949,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
             for (int j0 = 0; j0 < n2 * n2; j0 += INTERNAL_CHUNK) {
                 int nc = n2 * n2 - j0 < INTERNAL_CHUNK ? n2 * n2 - j0 : INTERNAL_CHUNK;
                 internal_nodes in;
-                base(&ip, p2s[0] + j0, p2s[1] + j0, p2s[2] + j0, nc, &in);
+                base(&ip, p2s[0] + j0, p2s[1] + j0, nc, &in);
                 for (int j = 0; j < nc; ++j) {
                     if (!(in.ci[j] > 0.0)) continue;
                     double rr[3] = {in.rr[0][j], in.rr[1][j], in.rr[2][j]};
