@@ -361,7 +361,6 @@ float abrdf_huang_ggx_go(float alpha2, float ci, float co)
     return (1.0 + li) / (1.0 + li + lo);
 }
 
-// Heitz 2018's VNDF sampling map as a change of variables (hair_huang.c vndf_map).
 // The shift of VNDF grid k (hair_huang.c grid_shift): the k-th point of the R2 sequence minus
 // 1/2, its steps in units of 2^-16 and k modulo 2^15, so that 32-bit integers give the C
 // library's values exactly.
@@ -372,6 +371,7 @@ void abrdf_huang_grid_shift(int k, output float d1, output float d2)
     d2 = float((32768 + kk * 37345) % 65536) / 65536.0 - 0.5;
 }
 
+// Heitz 2018's VNDF sampling map as a change of variables (hair_huang.c vndf_map).
 vector abrdf_huang_vndf_map(float alpha, vector wi, vector wm, float u1, float u2)
 {
     float sg = wm[2] >= 0.0 ? 1.0 : -1.0;

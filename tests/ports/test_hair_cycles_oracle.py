@@ -86,9 +86,9 @@ ORACLE_TOL = {"R": 0.015, "TT": 0.03, "TRT": 0.08, "TRRT+": 0.15, "total": 0.03}
 CLIP_TOL = {"R": 0.06, "TT": 0.03, "TRT": 0.05, "TRRT+": 0.03, "total": 0.03}
 # M / Mc: the model's own quadrature error at one direction pair, its shifted VNDF grids'
 # and its Simpson count's (docs/MODELS.md, "Convergence": 8.1% RMS over 48 pairs, in total).
-# Measured: R 0.9%, TT 6.1%, TRT 24% (TRT's exit is the narrowest peak in the VNDF squares),
-# TRRT+ 7.2%, total 7.0%.
-MODEL_TOL = {"R": 0.03, "TT": 0.08, "TRT": 0.30, "TRRT+": 0.30, "total": 0.10}
+# Measured on the judged lobes: R 0.9%, TT 6.1%, TRT 21% (TRT's exit is the narrowest peak in
+# the VNDF squares), TRRT+ 2.0%, total 7.0%. With the grids unshifted TRT reached 64%.
+MODEL_TOL = {"R": 0.03, "TT": 0.08, "TRT": 0.30, "TRRT+": 0.05, "total": 0.10}
 # Lobes carrying less than this share of the total are reported, not judged (their ratio is
 # noise over a tiny number).
 MIN_SHARE = 0.02

@@ -7,7 +7,7 @@
  *
  *   hair_convergence [--reference N1,N2,REFINE] [N1,N2,REFINE ...]
  *
- * The reference defaults to 16,8,4 (367 times the default's work, about 10 s here); the grids
+ * The reference defaults to 16,8,4 (185 times the default's work, a few seconds); the grids
  * to the table of the page. REFINE divides the Simpson steps (not a parameter of the model). */
 #include <stdio.h>
 #include <stdlib.h>

@@ -90,12 +90,17 @@ void abrdf__marschner_eval(const abrdf__marschner *m, const double wi[3], const 
 #define ABRDF__HUANG_N2 3
 /* Largest VNDF grid abrdf__huang_fibre takes: n1, n2 <= ABRDF__HUANG_GRID_MAX = 32 (the
  * range of the entry_grid and internal_grid parameters), so the convergence study
- * (docs/MODELS.md, "Convergence", 4x the default grids) fits; the node tables of two grids
- * then take 32 KiB of stack. */
+ * (docs/MODELS.md, "Convergence", 4x the default grids) fits; the grids' disc points then
+ * take 40 KiB of stack. */
 #define ABRDF__HUANG_GRID_MAX 32
 #define ABRDF__HUANG_NODES_MAX (ABRDF__HUANG_GRID_MAX * ABRDF__HUANG_GRID_MAX)
 /* The R2 sequence's steps 1/g and 1/g^2 (g = 1.32471795724474602596, the plastic number) in
- * units of 2^-16, which shift each VNDF grid (hair_huang.c, grid_shift). */
+ * units of 2^-16, which shift each VNDF grid (hair_huang.c, grid_shift). The first,
+ * 49472 = 2^6 773, takes 1024 values modulo 2^16, so d1 repeats every 1024 grids: not within
+ * one evaluation at the default grids and r >= 0.16 (k < 1024), but at r = 0.05 (k up to 2915),
+ * and at entry grids 16 and 32 one entry node's internal grids repeat d1 every 4 Simpson nodes
+ * and every one (d2 still differs). An odd step would not; changing it changes every value of
+ * the model (docs/MODELS.md, "Where abrdf differs from Cycles"). */
 #define ABRDF__HUANG_R2_A1 49472ul
 #define ABRDF__HUANG_R2_A2 37345ul
 
