@@ -120,11 +120,6 @@ static void eval_fn(const void *m, const double wi[3], const double wo[3], doubl
     abrdf__huang_eval(m, wi, wo, f);
 }
 
-static void cylinder_image(const abrdf__huang *m, double img[HTU_CYL_SAMPLES][3])
-{
-    htu_cylinder_image(eval_fn, m, img);
-}
-
 /* The default's error on the image, against a reference with every grid doubled and the
  * Simpson count doubled (32 times the work), and what each grid buys. The VNDF grids are
  * shifted per grid (hair_huang.c, grid_shift), so the error falls roughly as the work grows
@@ -145,7 +140,7 @@ START_TEST(image_convergence)
         m.n2 = grid[g][1];
         m.refine = grid[g][2];
         clock_t t0 = clock();
-        cylinder_image(&m, img[g]);
+        htu_cylinder_image(eval_fn, &m, img[g]);
         cpu[g] = (double)(clock() - t0) / CLOCKS_PER_SEC;
     }
     double def_work = 36.0 * 10.0;
