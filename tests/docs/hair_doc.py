@@ -126,6 +126,11 @@ def body():
                  conv_out, grid)
         for quoted, got in zip((work, nmse), m.groups()):
             require_number(DOC, doc, quoted, got, f"converged reference ({n1}, {n2}, x{refine})")
+    lob = grab(r"R (\S+) \(\d+ %\), TT \S+ \(\d+ %\), TRT (\S+) \(\d+ %\), TRRT\+ (\S+)",
+               prog("hair_convergence", "--lobes", "6,3,1"), "hair_convergence --lobes")
+    q = grab(r"against \(16, 8, ×4\): R (%s), TRT (%s), TRRT\+ (%s)\)" % (NUM, NUM, NUM), ft, DOC)
+    for quoted, got in zip(q.groups(), lob.groups()):
+        require_number(DOC, doc, quoted, got, "the default's error by lobe")
     cop = grab(r"largest relative change (\S+)", hu, "test_hair_huang")[1]
     require_number(DOC, doc, grab(r"The largest relative change is (%s)" % NUM, ft, DOC)[1], cop, "coplanar continuity", sig=3)
     require_number(DOC, doc, grab(r"The example now gives f_r = (%s)" % NUM, ft, DOC)[1],

@@ -35,7 +35,7 @@ void htu_cylinder_image(htu_eval_fn eval, const void *m, double img[HTU_CYL_SAMP
     for (int k = 0; k < HTU_CYL_SAMPLES; ++k) {
         double x = -1.0 + (k + 0.5) * 2.0 / HTU_CYL_SAMPLES, z = sqrt(1.0 - x * x);
         const double n[3] = {x, 0.0, z}, t[3] = {0.0, 1.0, 0.0}, b[3] = {-z, 0.0, x}; /* N x T */
-        const double wo[3] = {0.0, 0.0, z}; /* V = +z: (V.T, V.B, V.N) */
+        const double wo[3] = {0.0, x, z}; /* V = +z: (V.T, V.B, V.N), unit */
         img[k][0] = img[k][1] = img[k][2] = 0.0;
         for (int l = 0; l < 2; ++l) {
             double d = sqrt(dir[l][0] * dir[l][0] + dir[l][1] * dir[l][1] + dir[l][2] * dir[l][2]);

@@ -121,11 +121,14 @@ static void eval_fn(const void *m, const double wi[3], const double wo[3], doubl
 }
 
 /* The default's error on the image, against a reference with every grid doubled and the
- * Simpson count doubled (32 times the work), and what each grid buys. The VNDF grids are
- * shifted per grid (hair_huang.c, grid_shift), so the error falls roughly as the work grows
- * in every grid, and its size at one grid depends on where the shifts fall: the test bounds
- * the default at 5e-4 (measured 1.5e-4, Table 8's "slight") and the entry grid 12 within
- * "none" of the reference (measured figures in docs/MODELS.md, "Convergence on an image"). */
+ * Simpson count doubled (30 times the work), and what each grid buys. The VNDF grids are
+ * shifted per grid (hair_huang.c, grid_shift); at one grid the error depends on where the
+ * shifts fall, and it does not fall steadily with the work below about 30 times it. Checked:
+ * the default and every grid at least as dense in each dimension within Table 8's "slight"
+ * (2.5e-4) of the reference (measured 6.8e-5 and at most 1.9e-4; with every grid unshifted,
+ * the reference's too, the default is 2.2e-2 away), and each coarser grid (the budget mode's
+ * stand-ins) further from the reference than the default (figures in docs/MODELS.md,
+ * "Convergence on an image"). */
 START_TEST(image_convergence)
 {
     static const int grid[][3] = {{6, 3, 1}, {12, 6, 2}, {6, 3, 2}, {12, 3, 1}, {6, 6, 1},
@@ -152,10 +155,18 @@ START_TEST(image_convergence)
                grid[g][0], grid[g][1], grid[g][2], htu_image_nmse(img[0], img[g]),
                htu_image_nmse(img[1], img[g]), work, cpu[g] / cpu[0]);
     }
-    ck_assert_msg(htu_image_nmse(img[1], img[0]) < 5e-4, "default vs reference: %g",
-                  htu_image_nmse(img[1], img[0]));
-    ck_assert_msg(htu_image_nmse(img[1], img[3]) < 1e-4, "n1 12 vs reference: %g",
-                  htu_image_nmse(img[1], img[3]));
+    const double def_err = htu_image_nmse(img[1], img[0]);
+    ck_assert_msg(def_err < 2.5e-4, "default vs reference: %g", def_err);
+    for (int g = 2; g < NG; ++g) {
+        double e = htu_image_nmse(img[1], img[g]);
+        if (grid[g][0] >= 6 && grid[g][1] >= 3)
+            ck_assert_msg(e < 2.5e-4, "grids %d,%d x%d vs reference: %g", grid[g][0], grid[g][1],
+                          grid[g][2], e);
+        else
+            ck_assert_msg(e > def_err,
+                          "coarser grids %d,%d x%d (%g) no further than the default (%g)",
+                          grid[g][0], grid[g][1], grid[g][2], e, def_err);
+    }
 }
 END_TEST
 

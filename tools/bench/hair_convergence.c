@@ -5,10 +5,11 @@
  * test_hair_huang renders the same image). Each grid's image NMSE against a reference grid, and
  * its work per evaluation relative to the default's, n1^2 (1 + n2^2) refine / (6^2 (1 + 3^2)).
  *
- *   hair_convergence [--reference N1,N2,REFINE] [N1,N2,REFINE ...]
+ *   hair_convergence [--lobes] [--reference N1,N2,REFINE] [N1,N2,REFINE ...]
  *
  * The reference defaults to 16,8,4 (185 times the default's work, a few seconds); the grids
- * to the table of the page. REFINE divides the Simpson steps (not a parameter of the model). */
+ * to the table of the page. REFINE divides the Simpson steps (not a parameter of the model).
+ * --lobes adds, under each grid, each lobe's part of its error (R, TT, TRT, TRRT+). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,20 +34,57 @@ static int parse(const char *s, grids *g)
     return 1;
 }
 
-static void eval_fn(const void *m, const double wi[3], const double wo[3], double f[3])
+/* The model of one grid, and the lobes its image keeps (hair.h: R 1, TT 2, TRT 4, TRRT+ 8) */
+typedef struct lobed {
+    abrdf__huang m;
+    unsigned lobes;
+} lobed;
+
+/* f_r = S / cos(theta_i) of the kept lobes, as abrdf__huang_eval gives it for all of them */
+static void eval_fn(const void *l, const double wi[3], const double wo[3], double f[3])
 {
-    abrdf__huang_eval(m, wi, wo, f);
+    const lobed *x = l;
+    f[0] = f[1] = f[2] = 0.0;
+    if (!(wi[2] > 0.0) || !(wo[2] > 0.0)) return;
+    abrdf__huang_fibre(&x->m, wi, wo, x->lobes, f);
+    for (int c = 0; c < 3; ++c) f[c] /= wi[2];
 }
 
-static void image(const grids *g, double img[HTU_CYL_SAMPLES][3])
+static void image(const grids *g, unsigned lobes, double img[HTU_CYL_SAMPLES][3])
 {
     abrdf_params p;
     abrdf_params_init(ABRDF_HUANG, &p);
     p.melanin = 0.73; /* hair_brown */
-    abrdf__huang m;
-    abrdf__huang_setup(&p, &m);
-    m.n1 = g->n1, m.n2 = g->n2, m.refine = g->refine;
-    htu_cylinder_image(eval_fn, &m, img);
+    lobed x;
+    abrdf__huang_setup(&p, &x.m);
+    x.m.n1 = g->n1, x.m.n2 = g->n2, x.m.refine = g->refine;
+    x.lobes = lobes;
+    htu_cylinder_image(eval_fn, &x, img);
+}
+
+/* Each lobe's part of a grid's error: the squared difference of that lobe's image from the
+ * reference's, over the whole reference image's squared sum (so the parts add up to about
+ * the NMSE), and each lobe's share of the reference's squared sum. */
+static void by_lobe(const grids *ref, const grids *g, const double want[HTU_CYL_SAMPLES][3])
+{
+    static const char *name[4] = {"R", "TT", "TRT", "TRRT+"};
+    static double a[HTU_CYL_SAMPLES][3], b[HTU_CYL_SAMPLES][3];
+    double den = 0.0;
+    for (int k = 0; k < HTU_CYL_SAMPLES; ++k)
+        for (int c = 0; c < 3; ++c) den += want[k][c] * want[k][c];
+    printf("  by lobe (error, share of the reference):");
+    for (int l = 0; l < 4; ++l) {
+        image(ref, 1u << l, a);
+        image(g, 1u << l, b);
+        double num = 0.0, own = 0.0;
+        for (int k = 0; k < HTU_CYL_SAMPLES; ++k)
+            for (int c = 0; c < 3; ++c) {
+                num += (b[k][c] - a[k][c]) * (b[k][c] - a[k][c]);
+                own += a[k][c] * a[k][c];
+            }
+        printf("%s %s %.1e (%.0f %%)", l ? "," : "", name[l], num / den, 100.0 * own / den);
+    }
+    printf("\n");
 }
 
 int main(int argc, char **argv)
@@ -54,9 +92,11 @@ int main(int argc, char **argv)
     static const grids table[] = {{6, 3, 1},  {6, 3, 2},  {8, 3, 2},  {10, 3, 2}, {8, 4, 2},
                                   {12, 3, 2}, {10, 4, 2}, {12, 4, 2}, {12, 6, 1}, {12, 6, 2}};
     grids ref = {16, 8, 4}, list[64];
-    int n = 0;
+    int n = 0, lobes = 0;
     for (int i = 1; i < argc; ++i) {
-        if (!strcmp(argv[i], "--reference")) {
+        if (!strcmp(argv[i], "--lobes")) {
+            lobes = 1;
+        } else if (!strcmp(argv[i], "--reference")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "hair_convergence: --reference needs N1,N2,REFINE\n");
                 return 2;
@@ -72,15 +112,16 @@ int main(int argc, char **argv)
     if (n == 0)
         for (n = 0; n < (int)(sizeof table / sizeof table[0]); ++n) list[n] = table[n];
     static double want[HTU_CYL_SAMPLES][3], img[HTU_CYL_SAMPLES][3];
-    image(&ref, want);
+    image(&ref, 15u, want);
     printf("reference: grids (%d, %d), Simpson x%d\n", ref.n1, ref.n2, ref.refine);
     for (int k = 0; k < n; ++k) {
-        image(&list[k], img);
+        image(&list[k], 15u, img);
         double work =
             list[k].n1 * list[k].n1 * (1.0 + list[k].n2 * list[k].n2) * list[k].refine /
             (ABRDF__HUANG_N1 * ABRDF__HUANG_N1 * (1.0 + ABRDF__HUANG_N2 * ABRDF__HUANG_N2));
         printf("grids (%d, %d), Simpson x%d: work %.1f, NMSE vs the reference %.1e\n", list[k].n1,
                list[k].n2, list[k].refine, work, htu_image_nmse(want, img));
+        if (lobes) by_lobe(&ref, &list[k], want);
     }
     return 0;
 }

@@ -96,11 +96,11 @@ void abrdf__marschner_eval(const abrdf__marschner *m, const double wi[3], const 
 #define ABRDF__HUANG_NODES_MAX (ABRDF__HUANG_GRID_MAX * ABRDF__HUANG_GRID_MAX)
 /* The R2 sequence's steps 1/g and 1/g^2 (g = 1.32471795724474602596, the plastic number) in
  * units of 2^-16, which shift each VNDF grid (hair_huang.c, grid_shift). The first,
- * 49472 = 2^6 773, takes 1024 values modulo 2^16, so d1 repeats every 1024 grids: not within
- * one evaluation at the default grids and r >= 0.16 (k < 1024), but at r = 0.05 (k up to 2915),
- * and at entry grids 16 and 32 one entry node's internal grids repeat d1 every 4 Simpson nodes
- * and every one (d2 still differs). An odd step would not; changing it changes every value of
- * the model (docs/MODELS.md, "Where abrdf differs from Cycles"). */
+ * 49472 = 2^6 773, takes 1024 values modulo 2^16, so d1 repeats every 1024 grids (d2 still
+ * differs): not within one evaluation at the default grids and r >= 0.16 (k < 1024), but at
+ * entry grids of 9 and more (15 n1^2 internal grids at r = 0.3) and at r = 0.05 (k up to
+ * 2915). An odd step (49471) measured no better on the convergence cylinder (docs/MODELS.md,
+ * "What a converged reference costs"), and changing it changes every value of the model. */
 #define ABRDF__HUANG_R2_A1 49472ul
 #define ABRDF__HUANG_R2_A2 37345ul
 
