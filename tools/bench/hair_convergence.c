@@ -5,11 +5,12 @@
  * test_hair_huang renders the same image). Each grid's image NMSE against a reference grid, and
  * its work per evaluation relative to the default's, n1^2 (1 + n2^2) refine / (6^2 (1 + 3^2)).
  *
- *   hair_convergence [--lobes] [--reference N1,N2,REFINE] [N1,N2,REFINE ...]
+ *   hair_convergence [--lobes] [--r R] [--reference N1,N2,REFINE] [N1,N2,REFINE ...]
  *
  * The reference defaults to 16,8,4 (185 times the default's work, a few seconds); the grids
  * to the table of the page. REFINE divides the Simpson steps (not a parameter of the model).
- * --lobes adds, under each grid, each lobe's part of its error (R, TT, TRT, TRRT+). */
+ * --lobes adds, under each grid, each lobe's part of its error (R, TT, TRT, TRRT+); --r sets
+ * the fibre's roughness (default 0.3, hair_brown's). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,11 +51,12 @@ static void eval_fn(const void *l, const double wi[3], const double wo[3], doubl
     for (int c = 0; c < 3; ++c) f[c] /= wi[2];
 }
 
-static void image(const grids *g, unsigned lobes, double img[HTU_CYL_SAMPLES][3])
+static void image(const grids *g, double r, unsigned lobes, double img[HTU_CYL_SAMPLES][3])
 {
     abrdf_params p;
     abrdf_params_init(ABRDF_HUANG, &p);
     p.melanin = 0.73; /* hair_brown */
+    p.r = r;
     lobed x;
     abrdf__huang_setup(&p, &x.m);
     x.m.n1 = g->n1, x.m.n2 = g->n2, x.m.refine = g->refine;
@@ -63,24 +65,26 @@ static void image(const grids *g, unsigned lobes, double img[HTU_CYL_SAMPLES][3]
 }
 
 /* Each lobe's part of a grid's error: the squared difference of that lobe's image from the
- * reference's, over the whole reference image's squared sum (so the parts add up to about
- * the NMSE), and each lobe's share of the reference's squared sum. */
-static void by_lobe(const grids *ref, const grids *g, const double want[HTU_CYL_SAMPLES][3])
+ * reference's (ref_lobe[l], lobe bit 1 << l), over the whole reference image's squared sum
+ * (so the parts add up to about the NMSE), and each lobe's share of the reference's squared
+ * sum. */
+static void by_lobe(const grids *g, double r, const double want[HTU_CYL_SAMPLES][3],
+                    double ref_lobe[4][HTU_CYL_SAMPLES][3])
 {
     static const char *name[4] = {"R", "TT", "TRT", "TRRT+"};
-    static double a[HTU_CYL_SAMPLES][3], b[HTU_CYL_SAMPLES][3];
+    static double b[HTU_CYL_SAMPLES][3];
     double den = 0.0;
     for (int k = 0; k < HTU_CYL_SAMPLES; ++k)
         for (int c = 0; c < 3; ++c) den += want[k][c] * want[k][c];
     printf("  by lobe (error, share of the reference):");
     for (int l = 0; l < 4; ++l) {
-        image(ref, 1u << l, a);
-        image(g, 1u << l, b);
+        image(g, r, 1u << l, b);
         double num = 0.0, own = 0.0;
         for (int k = 0; k < HTU_CYL_SAMPLES; ++k)
             for (int c = 0; c < 3; ++c) {
-                num += (b[k][c] - a[k][c]) * (b[k][c] - a[k][c]);
-                own += a[k][c] * a[k][c];
+                double a = ref_lobe[l][k][c];
+                num += (b[k][c] - a) * (b[k][c] - a);
+                own += a * a;
             }
         printf("%s %s %.1e (%.0f %%)", l ? "," : "", name[l], num / den, 100.0 * own / den);
     }
@@ -93,9 +97,17 @@ int main(int argc, char **argv)
                                   {12, 3, 2}, {10, 4, 2}, {12, 4, 2}, {12, 6, 1}, {12, 6, 2}};
     grids ref = {16, 8, 4}, list[64];
     int n = 0, lobes = 0;
+    double r = 0.3; /* hair_brown's, the model's default */
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--lobes")) {
             lobes = 1;
+        } else if (!strcmp(argv[i], "--r")) {
+            char *end = NULL;
+            if (i + 1 < argc) r = strtod(argv[++i], &end);
+            if (!end || *end || end == argv[i] || !(r >= 0.05 && r <= 1.0)) {
+                fprintf(stderr, "hair_convergence: --r needs a roughness in [0.05, 1]\n");
+                return 2;
+            }
         } else if (!strcmp(argv[i], "--reference")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "hair_convergence: --reference needs N1,N2,REFINE\n");
@@ -112,16 +124,18 @@ int main(int argc, char **argv)
     if (n == 0)
         for (n = 0; n < (int)(sizeof table / sizeof table[0]); ++n) list[n] = table[n];
     static double want[HTU_CYL_SAMPLES][3], img[HTU_CYL_SAMPLES][3];
-    image(&ref, 15u, want);
-    printf("reference: grids (%d, %d), Simpson x%d\n", ref.n1, ref.n2, ref.refine);
+    image(&ref, r, 15u, want);
+    static double ref_lobe[4][HTU_CYL_SAMPLES][3];
+    for (int l = 0; lobes && l < 4; ++l) image(&ref, r, 1u << l, ref_lobe[l]);
+    printf("reference: grids (%d, %d), Simpson x%d, r %g\n", ref.n1, ref.n2, ref.refine, r);
     for (int k = 0; k < n; ++k) {
-        image(&list[k], 15u, img);
+        image(&list[k], r, 15u, img);
         double work =
             list[k].n1 * list[k].n1 * (1.0 + list[k].n2 * list[k].n2) * list[k].refine /
             (ABRDF__HUANG_N1 * ABRDF__HUANG_N1 * (1.0 + ABRDF__HUANG_N2 * ABRDF__HUANG_N2));
         printf("grids (%d, %d), Simpson x%d: work %.1f, NMSE vs the reference %.1e\n", list[k].n1,
                list[k].n2, list[k].refine, work, htu_image_nmse(want, img));
-        if (lobes) by_lobe(&ref, &list[k], want);
+        if (lobes) by_lobe(&list[k], r, want, ref_lobe);
     }
     return 0;
 }

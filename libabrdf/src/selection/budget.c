@@ -342,9 +342,10 @@ static double pair_cost(const abrdf_costs *costs, const abrdf_model lobe[2], con
 }
 
 /* The reference computed with a coarser quadrature, the i-th (1, 2, ...): huang with an entry
- * grid i nodes coarser, down to 2 x 2 (docs/MODELS.md: the entry grid converges by 6,
- * and (5, 3), (4, 3) stay within "slight" of the default on an image). Nothing is fitted: the
- * model's parameters stay the reference's. 0 when there is no such variant. */
+ * grid i nodes coarser, down to 2 x 2 (docs/MODELS.md, "Convergence on an image", and
+ * docs/SELECTION.md: on the mixed scene's lock entry grid 5 is within "slight" of the default;
+ * the internal grid 2 was measured there and is not, (5, 2) at 2.6e-4). Nothing is fitted:
+ * the model's parameters stay the reference's. 0 when there is no such variant. */
 static int coarser_quadrature(const abrdf__brdf *ref, int i, abrdf__brdf *out)
 {
     if (ref->lobe[0] != NONE || ref->lobe[1] != ABRDF_HUANG) return 0;
