@@ -247,7 +247,8 @@ typedef struct abrdf_params {
                           the VNDF square, [1, 32], default 6 */
     int internal_grid; /* huang: the same for TRT's internal reflection, [1, 32], default 3
                           (docs/MODELS.md, "Convergence on an image": image error and
-                          work of each grid) */
+                          work of each grid; smoother fibres, r < 0.3, need denser grids
+                          for the same error, "What a converged reference costs") */
 } abrdf_params;
 
 typedef enum abrdf_param_kind {

@@ -126,13 +126,13 @@ def body():
                  conv_out, grid)
         for quoted, got in zip((work, nmse), m.groups()):
             require_number(DOC, doc, quoted, got, f"converged reference ({n1}, {n2}, x{refine})")
-    i = lines.index(next(l for l in lines if l.startswith("  | r | default (6, 3) |")))
+    i = next(i for i, l in enumerate(lines) if l.strip().startswith("| r | default (6, 3) |"))
     _, rows, _ = parse_table([l.strip() for l in lines], i)
     if len(rows) < 3:
         fail(f"{DOC}: the roughness table has {len(rows)} rows")
-    for r, dflt, dense in rows:
-        out = prog("hair_convergence", "--r", r, "6,3,1", "16,6,1")
-        for quoted, grid in ((dflt, "6, 3"), (dense, "16, 6")):
+    for r, dflt, dense, denser in rows:
+        out = prog("hair_convergence", "--r", r, "6,3,1", "16,6,1", "16,7,1")
+        for quoted, grid in ((dflt, "6, 3"), (dense, "16, 6"), (denser, "16, 7")):
             got = grab(r"grids \(%s\), Simpson x1: work \S+, NMSE vs the reference (\S+)" % grid, out, f"r {r}")[1]
             require_number(DOC, doc, quoted, got, f"convergence at r {r}, grids ({grid})")
     lob = grab(r"R (\S+) \(\d+ %\), TT \S+ \(\d+ %\), TRT (\S+) \(\d+ %\), TRRT\+ (\S+)",

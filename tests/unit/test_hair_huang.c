@@ -120,36 +120,53 @@ static void eval_fn(const void *m, const double wi[3], const double wo[3], doubl
     abrdf__huang_eval(m, wi, wo, f);
 }
 
-/* The cylinder's directions, as its pixels hand them to the model: the light and the view
- * unit vectors in the local frame (T, B, N), the view (V.T, V.B, V.N) = (0, x, sqrt(1 - x^2))
- * for the orthographic camera along -z, x going across the cylinder from -1 to 1. */
+/* The cylinder's directions, as its pixels hand them to the model: unit vectors in the
+ * local frame (T, B, N) = ((0, 1, 0), N x T, (x, 0, z)) of the pixel at x, the view
+ * (V.T, V.B, V.N) = (0, x, z) for the orthographic camera along -z, so x = wo[1] is a pixel
+ * centre -1 + (k + 1/2) 2 / HTU_CYL_SAMPLES; the light one of scenes/mixed.scene's two
+ * directional lights L, whose frame-free invariants are wi.wo = L.V = L_z / |L| and
+ * wi[0] = L.T = L_y / |L|. */
 typedef struct frame_probe {
     int calls, bad;
-    double last_x;
+    double lo, hi; /* the pixel centres seen */
 } frame_probe;
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 static void probe_fn(const void *m, const double wi[3], const double wo[3], double f[3])
 {
+    static const double dir[2][3] = {{-0.45, 0.75, 0.55}, {0.7, 0.25, 0.45}};
     frame_probe *p = (frame_probe *)m;
     double li = sqrt(wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2]);
     double lo = sqrt(wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2]);
+    double k = (wo[1] + 1.0) * HTU_CYL_SAMPLES / 2.0 - 0.5, d = dot3(wi, wo);
+    int light = 0;
+    for (int l = 0; l < 2; ++l) {
+        double n = sqrt(dot3(dir[l], dir[l]));
+        if (fabs(d - dir[l][2] / n) < 1e-12 && fabs(wi[0] - dir[l][1] / n) < 1e-12) light = 1;
+    }
     if (fabs(li - 1.0) > 1e-12 || fabs(lo - 1.0) > 1e-12 || wo[0] != 0.0 || !(wo[2] > 0.0) ||
-        wo[1] < p->last_x)
+        fabs(k - floor(k + 0.5)) > 1e-9 || !light)
         ++p->bad;
-    p->last_x = wo[1];
+    p->lo = fmin(p->lo, wo[1]), p->hi = fmax(p->hi, wo[1]);
     ++p->calls;
     f[0] = f[1] = f[2] = 0.0;
 }
 
 START_TEST(cylinder_directions)
 {
-    frame_probe p = {0, 0, -1.0};
+    frame_probe p = {0, 0, 1.0, -1.0};
     static double img[HTU_CYL_SAMPLES][3];
     htu_cylinder_image(probe_fn, &p, img);
-    printf("huang convergence cylinder: %d directions handed over, %d not as the frame gives\n",
-           p.calls, p.bad);
+    printf("huang convergence cylinder: %d directions handed over, %d not as the frame gives, "
+           "views across x in [%.3f, %.3f]\n",
+           p.calls, p.bad, p.lo, p.hi);
     ck_assert_int_gt(p.calls, HTU_CYL_SAMPLES);
     ck_assert_int_eq(p.bad, 0);
+    ck_assert(p.lo < -0.95 && p.hi > 0.95);
 }
 END_TEST
 

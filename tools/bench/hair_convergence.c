@@ -7,10 +7,11 @@
  *
  *   hair_convergence [--lobes] [--r R] [--reference N1,N2,REFINE] [N1,N2,REFINE ...]
  *
- * The reference defaults to 16,8,4 (185 times the default's work, a few seconds); the grids
- * to the table of the page. REFINE divides the Simpson steps (not a parameter of the model).
- * --lobes adds, under each grid, each lobe's part of its error (R, TT, TRT, TRRT+); --r sets
- * the fibre's roughness (default 0.3, hair_brown's). */
+ * The reference defaults to 16,8,4 (185 times the default's work: a few seconds at r = 0.3,
+ * about 15 at r = 0.1, as the Simpson steps shrink with r); the grids to the table of the page.
+ * REFINE divides the Simpson steps (not a parameter of the model). --lobes adds, under each
+ * grid, each lobe's part of its error (R, TT, TRT, TRRT+); --r sets the fibre's roughness, in
+ * [0.05, 1] (default 0.3, hair_brown's). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -102,10 +103,15 @@ int main(int argc, char **argv)
         if (!strcmp(argv[i], "--lobes")) {
             lobes = 1;
         } else if (!strcmp(argv[i], "--r")) {
-            char *end = NULL;
-            if (i + 1 < argc) r = strtod(argv[++i], &end);
-            if (!end || *end || end == argv[i] || !(r >= 0.05 && r <= 1.0)) {
+            if (i + 1 >= argc) {
                 fprintf(stderr, "hair_convergence: --r needs a roughness in [0.05, 1]\n");
+                return 2;
+            }
+            char *end = NULL;
+            r = strtod(argv[++i], &end);
+            if (*end || end == argv[i] || !(r >= 0.05 && r <= 1.0)) {
+                fprintf(stderr, "hair_convergence: --r '%s' is not a roughness in [0.05, 1]\n",
+                        argv[i]);
                 return 2;
             }
         } else if (!strcmp(argv[i], "--reference")) {
