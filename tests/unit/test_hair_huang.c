@@ -140,8 +140,7 @@ static void probe_fn(const void *m, const double wi[3], const double wo[3], doub
 {
     static const double dir[2][3] = {{-0.45, 0.75, 0.55}, {0.7, 0.25, 0.45}};
     frame_probe *p = (frame_probe *)m;
-    double li = sqrt(wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2]);
-    double lo = sqrt(wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2]);
+    double li = sqrt(dot3(wi, wi)), lo = sqrt(dot3(wo, wo));
     double k = (wo[1] + 1.0) * HTU_CYL_SAMPLES / 2.0 - 0.5, d = dot3(wi, wo);
     int light = 0;
     for (int l = 0; l < 2; ++l) {
@@ -177,8 +176,7 @@ END_TEST
  * the default and every grid at least as dense in each dimension within Table 8's "slight"
  * (2.5e-4) of the reference (measured 6.8e-5 and at most 1.9e-4; with every grid unshifted,
  * the reference's too, the default is 2.2e-2 away), and each coarser grid further from the
- * reference than the default (figures in docs/MODELS.md,
- * "Convergence on an image"). */
+ * reference than the default (figures in docs/MODELS.md, "Convergence on an image"). */
 START_TEST(image_convergence)
 {
     static const int grid[][3] = {{6, 3, 1}, {12, 6, 2}, {6, 3, 2}, {12, 3, 1}, {6, 6, 1},
