@@ -1028,7 +1028,7 @@ static int do_object(parser *p, scene_shape shape, word *w, int n)
 static int do_line(parser *p, char *line)
 {
     word w[MAX_WORDS];
-    int n;
+    int n = 0; /* split sets it; gcc -O2 -g cannot see that */
     if (split(p, line, w, &n)) return -1;
     if (n == 0) return 0;
     if (w[0].val) return fail(p, "a line starts with a directive, got '%s=...'", w[0].key);
