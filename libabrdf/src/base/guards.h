@@ -67,11 +67,6 @@
  * 1) is a valid configuration, not a pair at grazing. */
 #define ABRDF__HUANG_HALF_LEN2_MIN 1e-20
 
-/* Below this |cos(gamma)| the normal of the elliptical section x = sin g, z = b cos g is
- * taken as the circle's: the slope b tan(gamma) overflows there, and both normals lie
- * within 1e-6/b rad of +-x. */
-#define ABRDF__HUANG_ELLIPSE_COS_MIN 1e-6
-
 /* Smith's Lambda at a grazing cosine (infinite): a finite stand-in so that G = 1/(1 +
  * Lambda_i + Lambda_o) is 0 without Inf/Inf. */
 #define ABRDF__HUANG_LAMBDA_GRAZING 1e300

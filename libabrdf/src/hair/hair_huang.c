@@ -106,9 +106,12 @@ static sc sc_of(double a)
  * w's azimuth, by its sine and cosine (0 for a direction along the fibre, as atan2(0, 0)). */
 static sc sc_to_phi(v3 w, double b)
 {
-    double x = b * w.x, z = w.z, r = sqrt(x * x + z * z);
+    double x = b * w.x, z = w.z, r2 = x * x + z * z;
     sc a = {0.0, 1.0};
-    if (r > 0.0) a.s = x / r, a.c = z / r;
+    if (r2 > 0.0) {
+        double inv = 1.0 / sqrt(r2);
+        a.s = x * inv, a.c = z * inv;
+    }
     return a;
 }
 
@@ -125,24 +128,22 @@ static v3 to_point(sc g, double b) { return mk(g.s, 0.0, b * g.c); }
 
 /* Unit (meso)normal at ellipse parameter gamma, tilted by theta along the fibre (st = sin
  * theta, ct = cos theta), and, if flat is not NULL, the untilted one: both from one sine and
- * cosine of gamma. */
-static void sphg_pair(double st, double ct, sc gamma, double b, v3 *tilted, v3 *flat)
+ * cosine of gamma. The point at gamma is (sin gamma, b cos gamma), its tangent (cos gamma,
+ * -b sin gamma), so the normal is (b sin gamma, cos gamma) over the tangent's length
+ * sqrt(cos^2 + b^2 sin^2) = sqrt(1 - (1 - b^2) sin^2 gamma), which is also the relative arc
+ * length there: returned, as the integrals weigh each node by it. */
+static double sphg_pair(double st, double ct, sc gamma, double b, v3 *tilted, v3 *flat)
 {
-    double sg = gamma.s, cg = gamma.c;
-    double sp = sg, cp = cg;
-    if (b != 1.0 && fabs(cg) >= ABRDF__HUANG_ELLIPSE_COS_MIN) {
-        double tp = b * sg / cg;
-        cp = (cg > 0.0 ? 1.0 : -1.0) / sqrt(tp * tp + 1.0);
-        sp = cp * tp;
+    double sp = gamma.s, cp = gamma.c, arc = 1.0;
+    if (b != 1.0) {
+        sp *= b;
+        arc = sqrt(sp * sp + cp * cp); /* >= b > 0 */
+        double inv = 1.0 / arc;
+        sp *= inv, cp *= inv;
     }
     *tilted = mk(sp * ct, st, cp * ct);
     if (flat) *flat = mk(sp, 0.0, cp);
-}
-
-/* Relative arc length of the ellipse at gamma (e2 = 1 - b^2). */
-static double arc_length(double e2, sc gamma)
-{
-    return abrdf__safe_sqrt(1.0 - e2 * gamma.s * gamma.s);
+    return arc;
 }
 
 /* ---- GGX pieces (alpha2 = alpha^2), height-correlated Smith ----------------------- */
@@ -464,7 +465,7 @@ static int simpson_intervals(double res, int refine)
  * hence D from the square. */
 static double simpson_r(const abrdf__huang *m, v3 wi, v3 wo, v3 wh, double lo, double hi, int n)
 {
-    double b = m->b, a2 = m->alpha * m->alpha, e2 = 1.0 - b * b;
+    double b = m->b, a2 = m->alpha * m->alpha;
     double res = (hi - lo) / n, sum = 0.0;
     energy_axes ax = m->e_in;
     const double st = sin(m->tilt), ct = cos(m->tilt);
@@ -472,10 +473,10 @@ static double simpson_r(const abrdf__huang *m, v3 wi, v3 wo, v3 wh, double lo, d
         double gm = lo + i * res;
         v3 wm;
         sc g = sc_of(gm);
-        sphg_pair(st, ct, g, b, &wm, NULL);
+        double arc = sphg_pair(st, ct, g, b, &wm, NULL);
         double w = (i == 0 || i == n) ? 0.5 : (i % 2 + 1);
         double c = dot(wm, wh);
-        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc_length(e2, g) *
+        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc *
                energy_scale_at(m, &ax, dot(wm, wi));
     }
     return sum * 2.0 / 3.0 * res;
@@ -550,7 +551,7 @@ static double dgamma_dh(sc g, double b, double sp_i, double cp_i)
 static double lobe_r_cycles(const abrdf__huang *m, v3 wi, v3 wo, double h0, double h1, double sp_i,
                             double cp_i)
 {
-    const double b = m->b, a2 = m->alpha * m->alpha, e2 = 1.0 - b * b;
+    const double b = m->b, a2 = m->alpha * m->alpha;
     v3 wh = add(wi, wo);
     double l = len(wh);
     if (!(l > 0.0)) return 0.0;
@@ -562,12 +563,12 @@ static double lobe_r_cycles(const abrdf__huang *m, v3 wi, v3 wo, double h0, doub
     for (int i = 0; i <= n; ++i) {
         sc g = sc_of(h_to_gamma(h0 + i * res, b, wi));
         v3 wm, flat;
-        sphg_pair(st, ct, g, b, &wm, NULL);
+        double arc = sphg_pair(st, ct, g, b, &wm, NULL);
         flat = mk(wm.x, 0.0, wm.z);
         if (!visible2(wi, wo, flat, wh)) continue;
         double w = ((i == 0 || i == n) ? 0.5 : (i % 2 + 1)) * dgamma_dh(g, b, sp_i, cp_i);
         double c = dot(wm, wh);
-        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc_length(e2, g) *
+        sum += w * ggx_d_sq(a2, c * c) * ggx_g(a2, dot(wm, wi), dot(wm, wo)) * arc *
                energy_scale_at(m, &ax, dot(wm, wi));
     }
     return 0.25 * fresnel(dot(wi, wh), m->eta, NULL) * sum * 2.0 / 3.0 * res;
@@ -616,9 +617,9 @@ typedef struct residual_ctx {
     const abrdf__huang *m;
     v3 wi;
     const light_run *lr;
-    double b, inv_eta, inv_eta2, a2, e2; /* e2 = 1 - b^2 */
-    double st, ct;                       /* sin and cos of the cuticle tilt; the exit's: -st, ct */
-    energy_axes ax_out;                  /* the energy table leaving the fibre (m->e_out) */
+    double b, inv_eta, inv_eta2, a2;
+    double st, ct;      /* sin and cos of the cuticle tilt; the exit's: -st, ct */
+    energy_axes ax_out; /* the energy table leaving the fibre (m->e_out) */
     unsigned lobes;
     double s_tt[ABRDF__HUANG_RUN_MAX][3], s_trt[ABRDF__HUANG_RUN_MAX][3];
     double s_trrt[ABRDF__HUANG_RUN_MAX][3];
@@ -639,7 +640,7 @@ typedef struct entry_path {
     v3 wt, wmt, wmt_; /* refracted direction, exit mesonormals */
     sc gmt;           /* the exit point's ellipse parameter */
     double t1, scale2, g1o, cos_mo1, cos_mi2;
-    double lam2;   /* Smith Lambda of the exit mesonormal seen from inside */
+    double c2, s2; /* |cos_mi2| and sqrt(c2^2 + alpha^2 (1 - c2^2)): its Lambda is (s2/c2 - 1)/2 */
     int flat_seen; /* the refracted ray sees the untilted exit mesonormal */
     double tt_pre; /* TT's factors that do not depend on the light */
     double at[3];  /* absorption along the chord */
@@ -659,7 +660,7 @@ static int entry_path_make(const residual_ctx *c, const ring_node *r, v3 wh1, do
     e->t1 = 1.0 - fresnel1(cos_hi1, m->eta, m->eta * m->eta, &cos_t1);
     v3 wt = e->wt = refract_dir(wi, wh1, cos_t1, c->inv_eta);
     e->gmt = sc_twice_minus(sc_to_phi(wt, b), r->gmi); /* 2 to_phi(phi_t) - gamma_mi */
-    sphg_pair(-c->st, c->ct, e->gmt, b, &e->wmt, &e->wmt_);
+    double arc_t = sphg_pair(-c->st, c->ct, e->gmt, b, &e->wmt, &e->wmt_);
     e->cos_mo1 = dot(neg(wt), r->wmi), e->cos_mi2 = dot(neg(wt), e->wmt);
     /* wi sees wh1 (cos_hi1 > 0) and, on [g0, g0 + gr], both mesonormals: that range
      * is built from them, so testing wi.wmi_ > 0 again only let a 1e-16 rounding drop
@@ -668,37 +669,41 @@ static int entry_path_make(const residual_ctx *c, const ring_node *r, v3 wh1, do
         return 0;
     e->g1o = (1.0 + r->lam1) / (1.0 + r->lam1 + ggx_lambda(c->a2, e->cos_mo1)); /* G2/G1 */
     e->scale2 = energy_scale_at(m, &c->ax_out, e->cos_mi2);
-    e->lam2 = ggx_lambda(c->a2, e->cos_mi2);
+    e->c2 = fabs(e->cos_mi2);
+    e->s2 = sqrt(e->c2 * e->c2 + c->a2 * (1.0 - e->c2 * e->c2));
     e->flat_seen = dot(neg(wt), e->wmt_) > 0.0;
     double ct_t = max_of(cos_theta(wt), ABRDF__HAIR_COS_MIN);
     double chord = len(add(to_point(r->gmi, b), to_point(e->gmt, b))); /* exit at gmt + pi */
     for (int k = 0; k < 3; ++k)
         e->at[k] = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_t * chord) : 1.0;
     e->wgt = r->weight * w1;
-    e->tt_pre = e->wgt * e->t1 * r->scale1 * e->scale2 * e->g1o / e->cos_mo1 * r->cos_mi1 *
-                arc_length(c->e2, e->gmt);
+    e->tt_pre = e->wgt * e->t1 * r->scale1 * e->scale2 * e->g1o / e->cos_mo1 * r->cos_mi1 * arc_t;
     return 1;
 }
 
 /* A light's factors of an exit through the microfacet whose half vector is h / |h| (h not
  * normalised, l = |h|^2), from the cosines of h (not normalised either) to the ray inside
- * (u_i), to the light (u_o) and to the exit mesonormal (u_m > 0): (1 - F) D G cos_i cos_o
+ * (u_i), to the light (u_o) and to the exit mesonormal (u_m > 0): (1 - F) D G2 cos_i cos_o
  * rn^2, the last factor the generalised half vector's Jacobian, at index e2 = (1/eta)^2. Each
  * cosine to h / |h| is u / sqrt(l): the Fresnel ratios are scale-free in (u_i, sqrt(l) eta'
  * cos_t), D = alpha^2 / (pi k^2) with k l = l + (alpha^2 - 1) u_m^2 =: K, and cos_i cos_o
- * rn^2 = u_i u_o / l^2 cancels D's l^2: one root and one division, no normalisation.
- * lam_in: Smith Lambda of the mesonormal seen from inside; cos_om: from the light. 0 when the
- * light is totally reflected there. */
-static double exit_factor(double u_i, double u_o, double u_m, double l, double e2, double a2,
-                          double lam_in, double cos_om)
+ * rn^2 = u_i u_o / l^2 cancels D's l^2: no normalisation. The masking is height-correlated,
+ * G2 = 1 / (1 + Lambda_in + Lambda_o), with Lambda = (s/c - 1)/2 for a cosine c to the
+ * mesonormal and s = sqrt(c^2 + alpha^2 (1 - c^2)): G2 = 2 c_in c_o / (s_in c_o + s_o c_in).
+ * c_in, s_in: the ray inside's (c_in = |cosine|); cos_om: the light's cosine. 0 when the light
+ * is totally reflected there or either direction grazes the mesonormal. Two roots and one
+ * division, and no branch: it is inlined into internal_light's vectorised loop. */
+static inline double exit_factor(double u_i, double u_o, double u_m, double l, double e2, double a2,
+                                 double c_in, double s_in, double cos_om)
 {
     double u = fabs(u_i), q = (e2 - 1.0) * l + u * u;
-    if (!(q > 0.0)) return 0.0; /* 1 - F = 0 */
-    double t = sqrt(q), ds = u + t, dp = e2 * u + t;
+    double t = sqrt(q > 0.0 ? q : 0.0), ds = u + t, dp = e2 * u + t;
     double ns = (u - t) * dp, np = (e2 * u - t) * ds, dd2 = ds * dp * ds * dp;
     double k = l + (a2 - 1.0) * u_m * u_m;
-    return (dd2 - 0.5 * (ns * ns + np * np)) * a2 * u_i * u_o /
-           (ABRDF__PI * k * k * dd2 * (1.0 + lam_in + ggx_lambda(a2, cos_om)));
+    double c = fabs(cos_om), c2 = c * c, s = sqrt(c2 + a2 * (1.0 - c2));
+    double v = (dd2 - 0.5 * (ns * ns + np * np)) * a2 * u_i * u_o * 2.0 * c_in * c /
+               (ABRDF__PI * k * k * dd2 * (s_in * c + s * c_in));
+    return q > 0.0 ? v : 0.0; /* else 1 - F = 0 */
 }
 
 /* TT: each light exits through the microfacet with generalised half vector wh2 (Eq. 13). */
@@ -716,77 +721,9 @@ static void tt_add(residual_ctx *c, const entry_path *e)
         double u_mh = dot(e->wmt, wh2);
         if (!(u_mh > 0.0)) continue; /* D = 0 at 90 degrees and beyond */
         double v = e->tt_pre * exit_factor(dot(neg(wt), wh2), dot(neg(wo), wh2), u_mh, l2,
-                                           c->inv_eta2, a2, e->lam2, dot(neg(wo), e->wmt));
+                                           c->inv_eta2, a2, e->c2, e->s2, dot(neg(wo), e->wmt));
         if (isfinite(v))
             for (int k = 0; k < 3; ++k) c->s_tt[l][k] += v * e->at[k]; /* Eq. 13 */
-    }
-}
-
-/* TRT through the internal microfacet wh2, each light's exit at wh3 (Eq. 14), and TRRT+
- * where the path stays inside; wgt2: the node's weight. */
-static void trt_add(residual_ctx *c, const ring_node *r, const entry_path *e, v3 wh2, double wgt2,
-                    double r2f, v3 wtr, const double rr[3])
-{
-    const abrdf__huang *m = c->m;
-    const double a2 = c->a2, b = c->b, inv_eta = c->inv_eta;
-    double r2 = r2f * e->scale2;
-    /* Total internal reflection toward a light keeps the path inside (TRRT+); the rest of
-     * the exit is built only if some light of the run leaves here. */
-    int leaves[ABRDF__HUANG_RUN_MAX], any = 0;
-    for (int l = 0; l < c->lr->n; ++l) {
-        leaves[l] = !(dot(neg(wtr), c->lr->wo[l]) < inv_eta - ABRDF__HUANG_CRITICAL_TOL);
-        any |= leaves[l];
-        if (!leaves[l])
-            for (int k = 0; k < 3; ++k) c->s_trrt[l][k] += rr[k];
-    }
-    if (!any) return;
-    /* visible2(-wt, -wtr, wmt, wh2) and the same for wmt_: -wt's halves are the node's
-     * cos_hi2 > 0, the path's cos_mi2 > 0 and flat_seen */
-    double cos_mo2 = dot(e->wmt, neg(wtr));
-    if (!e->flat_seen || !(dot(neg(wtr), wh2) > 0.0) || !(cos_mo2 > 0.0) ||
-        !(dot(neg(wtr), e->wmt_) > 0.0))
-        return;
-    /* The view's part of the exit: the exit mesonormals, the second chord, and the factors
-     * of Eq. 14 that do not see the light. */
-    /* gamma_mi - 2 (to_phi(phi_t) - to_phi(phi_tr)) + pi = (2 to_phi(phi_tr) - gmt) + pi */
-    sc gmtr = sc_twice_minus(sc_to_phi(wtr, b), e->gmt);
-    gmtr.s = -gmtr.s, gmtr.c = -gmtr.c;
-    v3 wmtr, wmtr_;
-    sphg_pair(-c->st, c->ct, gmtr, b, &wmtr, &wmtr_);
-    double cos_mi3 = dot(wmtr, wtr);
-    int exit_seen = cos_mi3 > 0.0 && dot(wtr, wmtr_) > 0.0 && (c->lobes & 4u);
-    double pre = 0.0, lam3 = 0.0, att[3] = {0, 0, 0};
-    int pre_made = 0;
-    for (int l = 0; l < c->lr->n; ++l) {
-        if (!leaves[l]) continue;
-        v3 wo = c->lr->wo[l];
-        v3 wh3 = add(wtr, c->lr->wos[l]); /* not normalised: l3 = |wh3|^2 */
-        double l3 = dot(wh3, wh3);
-        if (!(l3 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
-        for (int k = 0; k < 3; ++k) c->s_trrt[l][k] += rr[k];
-        if (!exit_seen) continue;
-        /* visible2(wtr, -wo, wmtr, wh3) and the same for wmtr_ (wtr's half is exit_seen),
-         * on the signs of the unnormalised cosines */
-        double cos_om3 = dot(wmtr, neg(wo));
-        if (!(cos_om3 > 0.0) || !(dot(neg(wo), wmtr_) > 0.0)) continue;
-        double u_mh = dot(wmtr, wh3), u_hi = dot(wh3, wtr), u_ho = dot(wh3, neg(wo));
-        if (!(u_mh > 0.0) || !(u_hi > 0.0) || !(u_ho > 0.0)) continue;
-        if (!pre_made) { /* once per node, for the first light that exits */
-            double ct_tr = max_of(cos_theta(wtr), ABRDF__HAIR_COS_MIN);
-            double chord2 = len(add(to_point(gmtr, b), neg(to_point(e->gmt, b))));
-            lam3 = ggx_lambda(a2, cos_mi3);
-            pre = wgt2 * e->t1 * r->scale1 * r2 * energy_scale_at(m, &c->ax_out, cos_mi3) * e->g1o *
-                  (1.0 + e->lam2) / (1.0 + e->lam2 + ggx_lambda(a2, cos_mo2)) /
-                  (e->cos_mo1 * cos_mo2) * r->cos_mi1 * e->cos_mi2 * arc_length(c->e2, gmtr);
-            for (int k = 0; k < 3; ++k) {
-                double atr = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_tr * chord2) : 1.0;
-                att[k] = e->at[k] * atr;
-            }
-            pre_made = 1;
-        }
-        double v = pre * exit_factor(u_hi, u_ho, u_mh, l3, c->inv_eta2, a2, lam3, cos_om3);
-        if (isfinite(v))
-            for (int k = 0; k < 3; ++k) c->s_trt[l][k] += v * att[k]; /* Eq. 14 */
     }
 }
 
@@ -807,14 +744,33 @@ typedef struct internal_nodes {
     double r2f[INTERNAL_CHUNK];                                        /* F(cos_hi2) at 1/eta */
     double tx[INTERNAL_CHUNK], ty[INTERNAL_CHUNK], tz[INTERNAL_CHUNK]; /* wtr */
     double rr[3][INTERNAL_CHUNK];                                      /* TRRT+ (RGB) */
+    /* TRT's exit, the view's part (internal_exit) */
+    double mx[INTERNAL_CHUNK], my[INTERNAL_CHUNK], mz[INTERNAL_CHUNK]; /* exit mesonormal */
+    double fx[INTERNAL_CHUNK], fz[INTERNAL_CHUNK]; /* the untilted one (y = 0) */
+    double c3[INTERNAL_CHUNK], s3[INTERNAL_CHUNK]; /* wtr's cosine to it, and its s (G2) */
+    double kab[INTERNAL_CHUNK];                    /* the second chord over cos(theta_tr) */
+    double refl[INTERNAL_CHUNK]; /* 1 where -wtr sees wh2 and the mesonormals at gmt */
+    double pre[INTERNAL_CHUNK];  /* Eq. 14's factors without the light; 0: exit not seen */
 } internal_nodes;
 
 /* The path's constants the chunk reads: the frame of the map, the refracted ray, TRRT+'s
- * weight w (node weight times projected width), t1 and absorption, (1/eta)^2. */
+ * weight w (node weight times projected width), t1 and absorption, (1/eta)^2; for TRT's exit
+ * (internal_exit): the exit point gmt and its mesonormals, b (round: 1), the tilt, alpha^2,
+ * the energy table (e_none: no compensation), the path's c2 and s2, and kp, the factors of
+ * Eq. 14 that are the path's; whether the ray sees the untilted exit mesonormal, whether TRT
+ * is wanted. */
+/* E = 1 at every node: energy_scale_at without compensation (16 nodes, checked below) */
+static const double e_none[] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+typedef char e_none_has_every_node[sizeof e_none / sizeof e_none[0] == ABRDF__HAIR_E_N ? 1 : -1];
+
 typedef struct internal_path {
     const vndf_frame *f;
     double wx, wy, wz;
     double w, t1, at[3], e2;
+    double gs, gc, mtx, mty, mtz, mfx, mfz;
+    double b, st, ct, a2, c2, s2, kp;
+    const double *etab;
+    int flat_seen, trt;
 } internal_path;
 
 #define INTERNAL_BASE(L)                                                                           \
@@ -870,6 +826,147 @@ static internal_base_fn internal_base_at(int level)
     return fns[level < 0 ? 0 : level < n ? level : n - 1];
 }
 
+/* TRT's exit, the view's part, for each node of a chunk (after internal_base): whether the
+ * reflected ray wtr leaves through the exit mesonormals (visible2(-wt, -wtr, wmt, wh2) and the
+ * same for wmt_: -wt's halves are the node's cos_hi2 > 0, the path's cos_mi2 > 0 and
+ * flat_seen), where (gamma_mi - 2 (to_phi(phi_t) - to_phi(phi_tr)) + pi = (2 to_phi(phi_tr) -
+ * gmt) + pi), its mesonormals there and whether wtr sees them, the second chord, and Eq. 14's
+ * factors that do not see the light: (1 - F)'s and the masking's inner halves, the exit's
+ * energy scale, the arc length. Written without a branch for every node, as sc_to_phi,
+ * sc_twice_minus and sphg_pair do for one; pre = 0 where the exit is not seen. The
+ * internal masking (1 + Lambda_2) / (1 + Lambda_2 + Lambda_mo2) / cos_mo2 is
+ * (c2 + s2) / (s2 cos_mo2 + s_mo2 c2). */
+#define INTERNAL_EXIT(L)                                                                           \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void internal_exit_##L(                             \
+        const internal_path *restrict q, int n, internal_nodes *restrict o)                        \
+    {                                                                                              \
+        const double b = q->b, a2 = q->a2, st = q->st, ct = q->ct;                                 \
+        const int round_ = b == 1.0, ne = ABRDF__HAIR_E_N;                                         \
+        for (int j = 0; j < n; ++j) {                                                              \
+            double tx = o->tx[j], ty = o->ty[j], tz = o->tz[j];                                    \
+            double cmo2 = -(q->mtx * tx + q->mty * ty + q->mtz * tz);                              \
+            int ok = (-(tx * o->hx[j] + ty * o->hy[j] + tz * o->hz[j]) > 0.0) & (cmo2 > 0.0) &     \
+                     (-(q->mfx * tx + q->mfz * tz) > 0.0);                                         \
+            double x = b * tx, r2 = x * x + tz * tz, ir = 1.0 / sqrt(r2 > 0.0 ? r2 : 1.0);         \
+            double as = r2 > 0.0 ? x * ir : 0.0, ac = r2 > 0.0 ? tz * ir : 1.0; /* sc_to_phi */    \
+            double cc = ac * ac - as * as, ss = 2.0 * as * ac;                                     \
+            double gs = -(ss * q->gc - cc * q->gs), gc = -(cc * q->gc + ss * q->gs);               \
+            double sp = b * gs, cp = gc; /* sphg_pair */                                           \
+            double arc = round_ ? 1.0 : sqrt(sp * sp + cp * cp), ia = 1.0 / arc;                   \
+            sp *= ia, cp *= ia;                                                                    \
+            double mx = sp * ct, my = -st, mz = cp * ct;                                           \
+            o->mx[j] = mx, o->my[j] = my, o->mz[j] = mz, o->fx[j] = sp, o->fz[j] = cp;             \
+            double c3 = mx * tx + my * ty + mz * tz;                                               \
+            double dx = gs - q->gs, dz = b * (gc - q->gc), ctr = sqrt(tx * tx + tz * tz);          \
+            double ka =                                                                            \
+                sqrt(dx * dx + dz * dz) / (ctr > ABRDF__HAIR_COS_MIN ? ctr : ABRDF__HAIR_COS_MIN); \
+            o->kab[j] = ka;                                                                        \
+            o->c3[j] = c3, o->s3[j] = sqrt(c3 * c3 + a2 * (1.0 - c3 * c3));                        \
+            double smo = sqrt(cmo2 * cmo2 + a2 * (1.0 - cmo2 * cmo2));                             \
+            double u = (c3 < 0.0 ? 0.0 : c3 > 1.0 ? 1.0 : c3) * (ne - 1); /* energy_scale_at */    \
+            int i0 = (int)u < ne - 1 ? (int)u : ne - 1, i1 = i0 + 1 < ne ? i0 + 1 : ne - 1;        \
+            double fr = u - i0, ev = (1.0 - fr) * q->etab[i0] + fr * q->etab[i1];                  \
+            double e = ev > ABRDF__HAIR_E_MIN ? ev : ABRDF__HAIR_E_MIN;                            \
+            double pre = q->kp * o->r2f[j] * arc / ((q->s2 * cmo2 + smo * q->c2) * e);             \
+            o->refl[j] = ok & q->flat_seen ? 1.0 : 0.0;                                            \
+            ok = ok & (c3 > 0.0) & (tx * sp + tz * cp > 0.0);                                      \
+            o->pre[j] = ok & q->flat_seen & q->trt ? pre : 0.0;                                    \
+        }                                                                                          \
+    }
+ABRDF__ISA_LEVELS(INTERNAL_EXIT)
+
+typedef void (*internal_exit_fn)(const internal_path *restrict, int, internal_nodes *restrict);
+#define INTERNAL_EXIT_ENTRY(L) internal_exit_##L,
+static internal_exit_fn internal_exit_at(int level)
+{
+    static const internal_exit_fn fns[] = {ABRDF__ISA_LEVELS(INTERNAL_EXIT_ENTRY)};
+    const int n = (int)(sizeof fns / sizeof fns[0]);
+    return fns[level < 0 ? 0 : level < n ? level : n - 1];
+}
+
+/* The light's part of TRT and TRRT+ for each node of a chunk (after internal_exit), one light
+ * at a time, without a branch: fl[j] = 1 where the node's TRRT+ counts for the light, v[j]
+ * Eq. 14's value before absorption (0 where the light does not leave through the node's
+ * exit). TRRT+ counts where the light is totally reflected at the exit (the path stays
+ * inside), and where it is not but the internal reflection is seen (refl) and the exit's
+ * half vector wh3 = wtr + wo / eta has a length. The exit needs visible2(wtr, -wo, wmtr, wh3)
+ * and the same for wmtr_ (wtr's half is in pre), on the signs of the unnormalised cosines. */
+typedef struct light_consts {
+    double wx, wy, wz, sx, sy, sz; /* the light wo, and wo / eta */
+    double cut, e2, a2;            /* the critical cosine (1/eta less a tolerance), (1/eta)^2 */
+} light_consts;
+
+#define INTERNAL_LIGHT(L)                                                                          \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void internal_light_##L(                            \
+        const internal_nodes *restrict o, int n, const light_consts *restrict lc,                  \
+        double *restrict fl, double *restrict v)                                                   \
+    {                                                                                              \
+        const double wx = lc->wx, wy = lc->wy, wz = lc->wz;                                        \
+        for (int j = 0; j < n; ++j) {                                                              \
+            double tx = o->tx[j], ty = o->ty[j], tz = o->tz[j];                                    \
+            int in = o->ci[j] > 0.0, tir = -(tx * wx + ty * wy + tz * wz) < lc->cut;               \
+            double hx = tx + lc->sx, hy = ty + lc->sy, hz = tz + lc->sz;                           \
+            double l3 = hx * hx + hy * hy + hz * hz;                                               \
+            int pass = (o->refl[j] > 0.0) & (l3 > ABRDF__HUANG_HALF_LEN2_MIN);                     \
+            fl[j] = in & (tir | pass) ? 1.0 : 0.0;                                                 \
+            double mx = o->mx[j], my = o->my[j], mz = o->mz[j];                                    \
+            double com = -(mx * wx + my * wy + mz * wz), cof = -(o->fx[j] * wx + o->fz[j] * wz);   \
+            double umh = mx * hx + my * hy + mz * hz, uhi = hx * tx + hy * ty + hz * tz;           \
+            double uho = -(hx * wx + hy * wy + hz * wz);                                           \
+            int ok = in & !tir & pass & (o->pre[j] > 0.0) & (com > 0.0) & (cof > 0.0) &            \
+                     (umh > 0.0) & (uhi > 0.0) & (uho > 0.0);                                      \
+            double f = o->pre[j] *                                                                 \
+                       exit_factor(uhi, uho, umh, l3, lc->e2, lc->a2, o->c3[j], o->s3[j], com);    \
+            v[j] = ok ? f : 0.0;                                                                   \
+        }                                                                                          \
+    }
+ABRDF__ISA_LEVELS(INTERNAL_LIGHT)
+
+typedef void (*internal_light_fn)(const internal_nodes *restrict, int, const light_consts *restrict,
+                                  double *restrict, double *restrict);
+#define INTERNAL_LIGHT_ENTRY(L) internal_light_##L,
+static internal_light_fn internal_light_at(int level)
+{
+    static const internal_light_fn fns[] = {ABRDF__ISA_LEVELS(INTERNAL_LIGHT_ENTRY)};
+    const int n = (int)(sizeof fns / sizeof fns[0]);
+    return fns[level < 0 ? 0 : level < n ? level : n - 1];
+}
+
+/* TRT (Eq. 14) and TRRT+ of a chunk's nodes for every light of the run, in the order of the
+ * nodes; each node's absorption along its second chord is taken once, if some light leaves
+ * through it. */
+static void trt_add(residual_ctx *c, const entry_path *e, const internal_nodes *in, int n,
+                    internal_light_fn light)
+{
+    const int nl = c->lr->n;
+    double fl[ABRDF__HUANG_RUN_MAX][INTERNAL_CHUNK], v[ABRDF__HUANG_RUN_MAX][INTERNAL_CHUNK];
+    for (int l = 0; l < nl; ++l) {
+        v3 wo = c->lr->wo[l], ws = c->lr->wos[l];
+        light_consts lc = {
+            wo.x,        wo.y, wo.z, ws.x, ws.y, ws.z, c->inv_eta - ABRDF__HUANG_CRITICAL_TOL,
+            c->inv_eta2, c->a2};
+        light(in, n, &lc, fl[l], v[l]);
+    }
+    for (int j = 0; j < n; ++j) {
+        double att[3] = {0, 0, 0};
+        int att_made = 0;
+        for (int l = 0; l < nl; ++l) {
+            if (fl[l][j] > 0.0)
+                for (int k = 0; k < 3; ++k) c->s_trrt[l][k] += in->rr[k][j];
+            double vj = v[l][j];
+            if (!(vj != 0.0) || !isfinite(vj)) continue;
+            if (!att_made) { /* once per node, for the first light that leaves */
+                for (int k = 0; k < 3; ++k) {
+                    double s = c->m->sigma_a[k];
+                    att[k] = e->at[k] * (s > 0.0 ? exp(-s * in->kab[j]) : 1.0);
+                }
+                att_made = 1;
+            }
+            for (int k = 0; k < 3; ++k) c->s_trt[l][k] += vj * att[k];
+        }
+    }
+}
+
 /* TT + TRT + TRRT+ (RGB) of every light of the run: Simpson over gamma, nested shifted grids
  * over the VNDF squares (grid_points); out[l] for light l. */
 static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, double g0, double gr,
@@ -889,6 +986,8 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
     grid_angles_make(n1, &ang1);
     grid_angles_make(n2, &ang2);
     const internal_base_fn base = internal_base_at(abrdf__isa_best());
+    const internal_exit_fn exit_view = internal_exit_at(abrdf__isa_best());
+    const internal_light_fn light = internal_light_at(abrdf__isa_best());
     energy_axes ax_in = m->e_in;
     residual_ctx c = {.m = m,
                       .wi = wi,
@@ -897,7 +996,6 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
                       .inv_eta = inv_eta,
                       .inv_eta2 = inv_eta * inv_eta,
                       .a2 = al * al,
-                      .e2 = 1.0 - b * b,
                       .st = sin(m->tilt),
                       .ct = cos(m->tilt),
                       .ax_out = m->e_out,
@@ -938,24 +1036,38 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
             vndf_frame f2;
             vndf_frame_make(al, neg(e.wt), e.wmt, &f2);
             grid_points(&ang2, (long)i * n1 * n1 + j1, p2s[0], p2s[1], NULL);
-            internal_path ip = {&f2,
-                                e.wt.x,
-                                e.wt.y,
-                                e.wt.z,
-                                e.wgt * w2 * r.proj,
-                                e.t1,
-                                {e.at[0], e.at[1], e.at[2]},
-                                c.inv_eta2};
+            internal_path ip = {.f = &f2,
+                                .wx = e.wt.x,
+                                .wy = e.wt.y,
+                                .wz = e.wt.z,
+                                .w = e.wgt * w2 * r.proj,
+                                .t1 = e.t1,
+                                .at = {e.at[0], e.at[1], e.at[2]},
+                                .e2 = c.inv_eta2,
+                                .gs = e.gmt.s,
+                                .gc = e.gmt.c,
+                                .mtx = e.wmt.x,
+                                .mty = e.wmt.y,
+                                .mtz = e.wmt.z,
+                                .mfx = e.wmt_.x,
+                                .mfz = e.wmt_.z,
+                                .b = b,
+                                .st = c.st,
+                                .ct = c.ct,
+                                .a2 = c.a2,
+                                .c2 = e.c2,
+                                .s2 = e.s2,
+                                .kp = e.wgt * w2 * e.t1 * r.scale1 * e.scale2 * e.g1o *
+                                      (e.c2 + e.s2) * r.cos_mi1 * e.cos_mi2 / e.cos_mo1,
+                                .etab = m->compensate ? m->e_out : e_none,
+                                .flat_seen = e.flat_seen,
+                                .trt = (lobes & 4u) != 0};
             for (int j0 = 0; j0 < n2 * n2; j0 += INTERNAL_CHUNK) {
                 int nc = n2 * n2 - j0 < INTERNAL_CHUNK ? n2 * n2 - j0 : INTERNAL_CHUNK;
                 internal_nodes in;
                 base(&ip, p2s[0] + j0, p2s[1] + j0, nc, &in);
-                for (int j = 0; j < nc; ++j) {
-                    if (!(in.ci[j] > 0.0)) continue;
-                    double rr[3] = {in.rr[0][j], in.rr[1][j], in.rr[2][j]};
-                    trt_add(&c, &r, &e, mk(in.hx[j], in.hy[j], in.hz[j]), e.wgt * w2, in.r2f[j],
-                            mk(in.tx[j], in.ty[j], in.tz[j]), rr);
-                }
+                exit_view(&ip, nc, &in);
+                trt_add(&c, &e, &in, nc, light);
             }
         }
     }
