@@ -318,10 +318,10 @@ vector abrdf_huang_sphg_dir(float theta, float gamma, float b)
 {
     float st = sin(theta), ct = cos(theta), sg = sin(gamma), cg = cos(gamma);
     float sp = sg, cp = cg;
-    if (b != 1.0 && fabs(cg) >= 1e-6) {
-        float tp = b * sg / cg;
-        cp = (cg > 0.0 ? 1.0 : -1.0) / sqrt(tp * tp + 1.0);
-        sp = cp * tp;
+    if (b != 1.0) { // (b sin gamma, cos gamma) over its length, >= b
+        float n = sqrt(b * b * sg * sg + cg * cg);
+        sp = b * sg / n;
+        cp = cg / n;
     }
     return vector(sp * ct, st, cp * ct);
 }

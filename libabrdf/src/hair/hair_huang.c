@@ -47,7 +47,6 @@
 /* The larger of x and a floor, the smaller of x and a ceiling; a NaN x gives the bound (as
  * fmax/fmin do, which are library calls on x86-64 without -ffinite-math-only). */
 static double max_of(double x, double floor_) { return x > floor_ ? x : floor_; }
-static double min_of(double x, double ceil_) { return x < ceil_ ? x : ceil_; }
 
 typedef struct v3 {
     double x, y, z;
@@ -102,29 +101,15 @@ static sc sc_of(double a)
     return r;
 }
 
-/* to_phi(dir_phi(w), b) = atan2(b w.x, w.z): the ellipse parameter of the normal that faces
- * w's azimuth, by its sine and cosine (0 for a direction along the fibre, as atan2(0, 0)). */
-static sc sc_to_phi(v3 w, double b)
-{
-    double x = b * w.x, z = w.z, r2 = x * x + z * z;
-    sc a = {0.0, 1.0};
-    if (r2 > 0.0) {
-        double inv = 1.0 / sqrt(r2);
-        a.s = x * inv, a.c = z * inv;
-    }
-    return a;
-}
-
-/* 2a - g: where a path that leaves the surface point g at the normal azimuth a meets it
- * again (the chord's other end). */
-static sc sc_twice_minus(sc a, sc g)
-{
-    double c2 = a.c * a.c - a.s * a.s, s2 = 2.0 * a.s * a.c;
-    sc r = {s2 * g.c - c2 * g.s, c2 * g.c + s2 * g.s};
-    return r;
-}
-
-static v3 to_point(sc g, double b) { return mk(g.s, 0.0, b * g.c); }
+/* Two pieces of the fibre's geometry that the vector loops (entry_base, internal_exit) write
+ * out without a branch, by sines and cosines:
+ *   to_phi(w)        to_phi(dir_phi(w), b) = atan2(b w.x, w.z), the ellipse parameter of the
+ *                    normal that faces w's azimuth: (b w.x, w.z) over its length, (0, 1) for
+ *                    a direction along the fibre (as atan2(0, 0));
+ *   twice_minus(a, g)  2a - g, where a path that leaves the surface point g at the normal
+ *                    azimuth a meets it again (the chord's other end): the double angle of a
+ *                    turned back by g.
+ * The point at gamma is (sin gamma, 0, b cos gamma). */
 
 /* Unit (meso)normal at ellipse parameter gamma, tilted by theta along the fibre (st = sin
  * theta, ct = cos theta), and, if flat is not NULL, the untilted one: both from one sine and
@@ -137,7 +122,7 @@ static double sphg_pair(double st, double ct, sc gamma, double b, v3 *tilted, v3
     double sp = gamma.s, cp = gamma.c, arc = 1.0;
     if (b != 1.0) {
         sp *= b;
-        arc = sqrt(sp * sp + cp * cp); /* >= b > 0 */
+        arc = sqrt(sp * sp + cp * cp); /* >= b >= 0.01 (the registry's bound) */
         double inv = 1.0 / arc;
         sp *= inv, cp *= inv;
     }
@@ -167,8 +152,10 @@ static double ggx_g(double alpha2, double ci, double co)
 }
 
 /* G2 / G1(in), the masking of the outgoing side given the incoming side is visible, is
- * (1 + Lambda_in) / (1 + Lambda_in + Lambda_out); the paths keep Lambda_in of their mesonormals
- * (ring_node.lam1, entry_path.lam2), so it is written out where it is used. */
+ * (1 + Lambda_in) / (1 + Lambda_in + Lambda_out); the entry keeps Lambda_in of its mesonormal
+ * (ring_node.lam1), the exits keep c and s = sqrt(c^2 + alpha^2 (1 - c^2)) of theirs
+ * (Lambda = (s/c - 1)/2: entry_path.c2, s2; internal_nodes.c3, s3), so it is written out
+ * where it is used (entry_base, internal_exit, exit_factor). */
 
 /* Heitz 2018, "Sampling the GGX distribution of visible normals": maps (u1, u2) in the unit
  * square to a microfacet normal distributed as the VNDF of direction wi about normal wm.
@@ -584,25 +571,11 @@ static double lobe_r_cycles(const abrdf__huang *m, v3 wi, v3 wo, double h0, doub
  * longitudinal M. So the paths of one view are built once and every light of a run
  * (abrdf__huang_fibre_run: the lights of one shading point) takes only its exits. */
 
-/* Unpolarised dielectric Fresnel reflectance at cosine c (sign ignored) for relative index
- * eta (eta2 = eta^2), with one square root: t = eta cos(theta_t) = sqrt(eta^2 - sin^2),
- * R_s = ((c - t)/(c + t))^2, R_p = ((eta^2 c - t)/(eta^2 c + t))^2. Total internal
- * reflection gives 1. *cos_t (if not NULL) gets -t / eta, the refracted cosine. */
-static double fresnel1(double c, double eta, double eta2, double *cos_t)
-{
-    c = min_of(fabs(c), 1.0);
-    double q = eta2 - (1.0 - c * c);
-    if (q <= 0.0) {
-        if (cos_t) *cos_t = 0.0;
-        return 1.0;
-    }
-    double t = sqrt(q);
-    if (cos_t) *cos_t = -t / eta;
-    double ds = c + t, dp = eta2 * c + t;
-    if (!(ds > 0.0) || !(dp > 0.0)) return 1.0;
-    double ns = (c - t) * dp, np = (eta2 * c - t) * ds, d = ds * dp; /* R_s + R_p over one d^2 */
-    return 0.5 * (ns * ns + np * np) / (d * d);
-}
+/* fresnel1: the unpolarised dielectric Fresnel reflectance at cosine c (sign ignored, clamped
+ * to 1) for relative index eta, with one square root, as the vector loops write it: t = eta
+ * cos(theta_t) = sqrt(eta^2 - sin^2), R_s = ((c - t)/(c + t))^2, R_p = ((eta^2 c - t)/(eta^2
+ * c + t))^2, over one denominator; total internal reflection gives 1 and the refracted
+ * cosine -t / eta (0 under total internal reflection). */
 
 /* The lights of a run, in the fibre frame, with what their exits reuse. */
 typedef struct light_run {
@@ -647,37 +620,138 @@ typedef struct entry_path {
     double wgt;    /* Simpson weight times the entry node's */
 } entry_path;
 
-/* The path through the entry microfacet wh1: 1, or 0 when light does not enter there. */
-static int entry_path_make(const residual_ctx *c, const ring_node *r, v3 wh1, double w1,
-                           entry_path *e)
+/* The paths through a chunk of an entry grid's nodes, what each needs before its lights, for
+ * every node without a branch (entry_base, compiled per instruction-set level): the entry
+ * microfacet wh1 (Heitz's map from the disc point, as vndf_frame_node), the transmission
+ * (fresnel1), the refracted ray wt (refract_dir), the exit point gmt = twice_minus(to_phi(wt),
+ * gamma_mi) and its mesonormals (sphg_pair, one root for the normal and
+ * the arc length), the masking G2/G1 toward the refracted ray, the exit's energy scale and
+ * Smith terms, the chord over cos(theta_t), TT's factors without the light. ok = 0 where
+ * light does not enter (wi does not see wh1) or the refracted ray does not see wh1 and both
+ * entry mesonormals. wi sees both mesonormals on [g0, g0 + gr]: that range is built from
+ * them, so testing wi.wmi_ > 0 again only let a 1e-16 rounding drop the end nodes, where it
+ * is 0 (S jumped). */
+#define ENTRY_CHUNK 32
+
+typedef struct entry_nodes {
+    double ok[ENTRY_CHUNK], t1[ENTRY_CHUNK], wx[ENTRY_CHUNK], wy[ENTRY_CHUNK], wz[ENTRY_CHUNK];
+    double gs[ENTRY_CHUNK], gc[ENTRY_CHUNK];                                   /* gmt */
+    double mx[ENTRY_CHUNK], mz[ENTRY_CHUNK], fx[ENTRY_CHUNK], fz[ENTRY_CHUNK]; /* y: -st */
+    double cos_mo1[ENTRY_CHUNK], cos_mi2[ENTRY_CHUNK], g1o[ENTRY_CHUNK], scale2[ENTRY_CHUNK];
+    double c2[ENTRY_CHUNK], s2[ENTRY_CHUNK], flat[ENTRY_CHUNK], ka[ENTRY_CHUNK];
+    double tt[ENTRY_CHUNK]; /* tt_pre over the path's weight */
+} entry_nodes;
+
+/* What the chunk reads: the entry VNDF frame, the view, eta, the fibre (b, the exit's tilt
+ * -st, ct), alpha^2, the exit energy table (e_none: no compensation), and the Simpson node's
+ * entry point gmi, mesonormals, Lambda, energy scale and cosine. */
+typedef struct entry_consts {
+    const vndf_frame *f;
+    double wx, wy, wz, eta, eta2, inv_eta, b, st, ct, a2;
+    const double *etab;
+    double gis, gic, mix, miy, miz, mfx, mfz, lam1, scale1, cos_mi1;
+} entry_consts;
+
+#define ENTRY_BASE(L)                                                                              \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void entry_base_##L(                                \
+        const entry_consts *restrict q, const double *restrict p1, const double *restrict p2,      \
+        const double *restrict p3, int n, entry_nodes *restrict o)                                 \
+    {                                                                                              \
+        const vndf_frame *f = q->f;                                                                \
+        const double al = f->alpha, sh = f->sh, b = q->b, a2 = q->a2, eta2 = q->eta2;              \
+        const int round_ = b == 1.0, ne = ABRDF__HAIR_E_N;                                         \
+        /* every constant read before the loop: a read under a condition would be a masked load */ \
+        const double eta = q->eta, inv_eta = q->inv_eta, st = q->st, ct = q->ct;                   \
+        const double vx = q->wx, vy = q->wy, vz = q->wz, gis = q->gis, gic = q->gic;               \
+        const double mix = q->mix, miy = q->miy, miz = q->miz, mfx = q->mfx, mfz = q->mfz;         \
+        const double lam1 = q->lam1, k1 = q->scale1 * q->cos_mi1;                                  \
+        const double *et = q->etab;                                                                \
+        for (int j = 0; j < n; ++j) { /* vndf_frame_node */                                        \
+            double a = p1[j], pb = (1.0 - sh) * p3[j] + sh * p2[j];                                \
+            double d = 1.0 - a * a - pb * pb, c3 = d > 0.0 ? sqrt(d) : 0.0;                        \
+            double nx = f->t1.x * a + f->t2.x * pb + f->vh.x * c3;                                 \
+            double ny = f->t1.y * a + f->t2.y * pb + f->vh.y * c3;                                 \
+            double nz = f->t2.z * pb + f->vh.z * c3;                                               \
+            nz = nz > 0.0 ? nz : 0.0;                                                              \
+            double inv = 1.0 / sqrt(al * al * (nx * nx + ny * ny) + nz * nz);                      \
+            double hx = (f->q1.x * a + f->q2.x * pb + f->q3.x * c3 + f->wm.x * nz) * inv;          \
+            double hy = (f->q1.y * a + f->q2.y * pb + f->q3.y * c3 + f->wm.y * nz) * inv;          \
+            double hz = (f->q1.z * a + f->q2.z * pb + f->q3.z * c3 + f->wm.z * nz) * inv;          \
+            double chi = vx * hx + vy * hy + vz * hz; /* fresnel1(chi, eta) */                     \
+            double c = chi < 1.0 ? chi : 1.0, qq = eta2 - (1.0 - c * c);                           \
+            double t = sqrt(qq > 0.0 ? qq : 0.0), ds = c + t, dp = eta2 * c + t;                   \
+            double ns = (c - t) * dp, np = (eta2 * c - t) * ds, dd = ds * dp;                      \
+            double fr = 0.5 * (ns * ns + np * np) / (dd * dd);                                     \
+            int tr = (qq > 0.0) & (ds > 0.0) & (dp > 0.0);                                         \
+            double t1 = 1.0 - (tr ? fr : 1.0), ct1 = tr ? -t / eta : 0.0;                          \
+            double k = inv_eta * chi + ct1; /* refract_dir */                                      \
+            double wx = hx * k - vx * inv_eta, wy = hy * k - vy * inv_eta;                         \
+            double wz = hz * k - vz * inv_eta;                                                     \
+            double x = b * wx, r2 = x * x + wz * wz, ir = 1.0 / sqrt(r2 > 0.0 ? r2 : 1.0);         \
+            double as = r2 > 0.0 ? x * ir : 0.0, ac = r2 > 0.0 ? wz * ir : 1.0; /* to_phi */       \
+            double cc = ac * ac - as * as, ss = 2.0 * as * ac;                                     \
+            double gs = ss * gic - cc * gis, gc = cc * gic + ss * gis;                             \
+            double sp = b * gs, cp = gc; /* sphg_pair */                                           \
+            double arc = round_ ? 1.0 : sqrt(sp * sp + cp * cp), ia = 1.0 / arc;                   \
+            sp *= ia, cp *= ia;                                                                    \
+            double mx = sp * ct, my = -st, mz = cp * ct;                                           \
+            double cmo1 = -(wx * mix + wy * miy + wz * miz);                                       \
+            double cmi2 = -(wx * mx + wy * my + wz * mz);                                          \
+            int ok = (chi > 0.0) & (-(wx * hx + wy * hy + wz * hz) > 0.0) & (cmo1 > 0.0) &         \
+                     (-(wx * mfx + wz * mfz) > 0.0);                                               \
+            o->ok[j] = ok ? 1.0 : 0.0;                                                             \
+            o->t1[j] = t1, o->wx[j] = wx, o->wy[j] = wy, o->wz[j] = wz, o->gs[j] = gs;             \
+            o->gc[j] = gc, o->mx[j] = mx, o->mz[j] = mz, o->fx[j] = sp;                            \
+            o->fz[j] = cp, o->cos_mo1[j] = cmo1, o->cos_mi2[j] = cmi2;                             \
+            o->flat[j] = -(wx * sp + wz * cp) > 0.0 ? 1.0 : 0.0;                                   \
+            double c1 = cmo1 * cmo1; /* ggx_lambda(a2, cmo1) */                                    \
+            double lam = c1 > 0.0 ? 0.5 * (sqrt(1.0 + a2 * (1.0 - c1) / c1) - 1.0)                 \
+                                  : ABRDF__HUANG_LAMBDA_GRAZING;                                   \
+            double g1o = (1.0 + lam1) / (1.0 + lam1 + lam);                                        \
+            double u = (cmi2 > 0.0 ? (cmi2 < 1.0 ? cmi2 : 1.0) : 0.0) * (ne - 1); /* NaN: 0 */     \
+            int i0 = (int)u < ne - 1 ? (int)u : ne - 1, i1 = i0 + 1 < ne ? i0 + 1 : ne - 1;        \
+            double fe = u - i0, ev = (1.0 - fe) * et[i0] + fe * et[i1];                            \
+            double sc2 = 1.0 / (ev > ABRDF__HAIR_E_MIN ? ev : ABRDF__HAIR_E_MIN);                  \
+            o->g1o[j] = g1o, o->scale2[j] = sc2;                                                   \
+            double c2 = cmi2 < 0.0 ? -cmi2 : cmi2;                                                 \
+            o->c2[j] = c2, o->s2[j] = sqrt(c2 * c2 + a2 * (1.0 - c2 * c2));                        \
+            double ctt = sqrt(wx * wx + wz * wz), dx = gis + gs, dz = b * (gic + gc);              \
+            o->ka[j] = sqrt(dx * dx + dz * dz) /                                                   \
+                       (ctt > ABRDF__HAIR_COS_MIN ? ctt : ABRDF__HAIR_COS_MIN); /* exit: gmt+pi */ \
+            o->tt[j] = t1 * sc2 * g1o / cmo1 * k1 * arc;                                           \
+        }                                                                                          \
+    }
+ABRDF__ISA_LEVELS(ENTRY_BASE)
+
+typedef void (*entry_base_fn)(const entry_consts *restrict, const double *restrict,
+                              const double *restrict, const double *restrict, int,
+                              entry_nodes *restrict);
+#define ENTRY_BASE_ENTRY(L) entry_base_##L,
+static entry_base_fn entry_base_at(int level)
 {
-    const abrdf__huang *m = c->m;
-    const double b = c->b;
-    v3 wi = c->wi;
-    double cos_hi1 = dot(wi, wh1);
-    if (!(cos_hi1 > 0.0)) return 0;
-    double cos_t1;
-    e->t1 = 1.0 - fresnel1(cos_hi1, m->eta, m->eta * m->eta, &cos_t1);
-    v3 wt = e->wt = refract_dir(wi, wh1, cos_t1, c->inv_eta);
-    e->gmt = sc_twice_minus(sc_to_phi(wt, b), r->gmi); /* 2 to_phi(phi_t) - gamma_mi */
-    double arc_t = sphg_pair(-c->st, c->ct, e->gmt, b, &e->wmt, &e->wmt_);
-    e->cos_mo1 = dot(neg(wt), r->wmi), e->cos_mi2 = dot(neg(wt), e->wmt);
-    /* wi sees wh1 (cos_hi1 > 0) and, on [g0, g0 + gr], both mesonormals: that range
-     * is built from them, so testing wi.wmi_ > 0 again only let a 1e-16 rounding drop
-     * the end nodes, where it is 0 (S jumped). The refracted ray is tested here. */
-    if (!(dot(neg(wt), wh1) > 0.0 && dot(neg(wt), r->wmi) > 0.0 && dot(neg(wt), r->wmi_) > 0.0))
-        return 0;
-    e->g1o = (1.0 + r->lam1) / (1.0 + r->lam1 + ggx_lambda(c->a2, e->cos_mo1)); /* G2/G1 */
-    e->scale2 = energy_scale_at(m, &c->ax_out, e->cos_mi2);
-    e->c2 = fabs(e->cos_mi2);
-    e->s2 = sqrt(e->c2 * e->c2 + c->a2 * (1.0 - e->c2 * e->c2));
-    e->flat_seen = dot(neg(wt), e->wmt_) > 0.0;
-    double ct_t = max_of(cos_theta(wt), ABRDF__HAIR_COS_MIN);
-    double chord = len(add(to_point(r->gmi, b), to_point(e->gmt, b))); /* exit at gmt + pi */
-    for (int k = 0; k < 3; ++k)
-        e->at[k] = m->sigma_a[k] > 0.0 ? exp(-m->sigma_a[k] / ct_t * chord) : 1.0;
-    e->wgt = r->weight * w1;
-    e->tt_pre = e->wgt * e->t1 * r->scale1 * e->scale2 * e->g1o / e->cos_mo1 * r->cos_mi1 * arc_t;
+    static const entry_base_fn fns[] = {ABRDF__ISA_LEVELS(ENTRY_BASE_ENTRY)};
+    const int n = (int)(sizeof fns / sizeof fns[0]);
+    return fns[level < 0 ? 0 : level < n ? level : n - 1];
+}
+
+/* Entry node j of the chunk as a path (its absorption along the chord taken here), weight wgt:
+ * 1, or 0 when light does not enter there. */
+static int entry_path_at(const residual_ctx *c, const entry_nodes *o, int j, double wgt,
+                         entry_path *e)
+{
+    if (!(o->ok[j] > 0.0)) return 0;
+    e->wt = mk(o->wx[j], o->wy[j], o->wz[j]);
+    e->wmt = mk(o->mx[j], -c->st, o->mz[j]), e->wmt_ = mk(o->fx[j], 0.0, o->fz[j]);
+    e->gmt.s = o->gs[j], e->gmt.c = o->gc[j];
+    e->t1 = o->t1[j], e->scale2 = o->scale2[j], e->g1o = o->g1o[j];
+    e->cos_mo1 = o->cos_mo1[j], e->cos_mi2 = o->cos_mi2[j], e->c2 = o->c2[j], e->s2 = o->s2[j];
+    e->flat_seen = o->flat[j] > 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double s = c->m->sigma_a[k];
+        e->at[k] = s > 0.0 ? exp(-s * o->ka[j]) : 1.0;
+    }
+    e->wgt = wgt;
+    e->tt_pre = wgt * o->tt[j];
     return 1;
 }
 
@@ -735,7 +809,7 @@ static void tt_add(residual_ctx *c, const entry_path *e)
  * microfacet wh2 (Heitz's map from the disc point, vndf_frame_node), the cosine to the
  * refracted ray, the reflectance there (fresnel1 at 1/eta), the reflected ray wtr and TRRT+'s
  * three channels (trrt3). The compiler vectorises the loop; it is compiled once per
- * instruction-set level (isa.h). A node with cos_hi2 <= 0 is skipped by the caller. */
+ * instruction-set level (isa.h). A node with cos_hi2 <= 0 is masked out by internal_light. */
 #define INTERNAL_CHUNK 16
 
 typedef struct internal_nodes {
@@ -832,8 +906,8 @@ static internal_base_fn internal_base_at(int level)
  * flat_seen), where (gamma_mi - 2 (to_phi(phi_t) - to_phi(phi_tr)) + pi = (2 to_phi(phi_tr) -
  * gmt) + pi), its mesonormals there and whether wtr sees them, the second chord, and Eq. 14's
  * factors that do not see the light: (1 - F)'s and the masking's inner halves, the exit's
- * energy scale, the arc length. Written without a branch for every node, as sc_to_phi,
- * sc_twice_minus and sphg_pair do for one; pre = 0 where the exit is not seen. The
+ * energy scale, the arc length. Written without a branch for every node (to_phi, twice_minus,
+ * sphg_pair); pre = 0 where the exit is not seen. The
  * internal masking (1 + Lambda_2) / (1 + Lambda_2 + Lambda_mo2) / cos_mo2 is
  * (c2 + s2) / (s2 cos_mo2 + s_mo2 c2). */
 #define INTERNAL_EXIT(L)                                                                           \
@@ -848,7 +922,7 @@ static internal_base_fn internal_base_at(int level)
             int ok = (-(tx * o->hx[j] + ty * o->hy[j] + tz * o->hz[j]) > 0.0) & (cmo2 > 0.0) &     \
                      (-(q->mfx * tx + q->mfz * tz) > 0.0);                                         \
             double x = b * tx, r2 = x * x + tz * tz, ir = 1.0 / sqrt(r2 > 0.0 ? r2 : 1.0);         \
-            double as = r2 > 0.0 ? x * ir : 0.0, ac = r2 > 0.0 ? tz * ir : 1.0; /* sc_to_phi */    \
+            double as = r2 > 0.0 ? x * ir : 0.0, ac = r2 > 0.0 ? tz * ir : 1.0; /* to_phi */       \
             double cc = ac * ac - as * as, ss = 2.0 * as * ac;                                     \
             double gs = -(ss * q->gc - cc * q->gs), gc = -(cc * q->gc + ss * q->gs);               \
             double sp = b * gs, cp = gc; /* sphg_pair */                                           \
@@ -863,14 +937,14 @@ static internal_base_fn internal_base_at(int level)
             o->kab[j] = ka;                                                                        \
             o->c3[j] = c3, o->s3[j] = sqrt(c3 * c3 + a2 * (1.0 - c3 * c3));                        \
             double smo = sqrt(cmo2 * cmo2 + a2 * (1.0 - cmo2 * cmo2));                             \
-            double u = (c3 < 0.0 ? 0.0 : c3 > 1.0 ? 1.0 : c3) * (ne - 1); /* energy_scale_at */    \
+            double u = (c3 > 0.0 ? (c3 < 1.0 ? c3 : 1.0) : 0.0) * (ne - 1); /* NaN: 0 */           \
             int i0 = (int)u < ne - 1 ? (int)u : ne - 1, i1 = i0 + 1 < ne ? i0 + 1 : ne - 1;        \
             double fr = u - i0, ev = (1.0 - fr) * q->etab[i0] + fr * q->etab[i1];                  \
             double e = ev > ABRDF__HAIR_E_MIN ? ev : ABRDF__HAIR_E_MIN;                            \
             double pre = q->kp * o->r2f[j] * arc / ((q->s2 * cmo2 + smo * q->c2) * e);             \
-            o->refl[j] = ok & q->flat_seen ? 1.0 : 0.0;                                            \
+            o->refl[j] = (ok & q->flat_seen) ? 1.0 : 0.0;                                          \
             ok = ok & (c3 > 0.0) & (tx * sp + tz * cp > 0.0);                                      \
-            o->pre[j] = ok & q->flat_seen & q->trt ? pre : 0.0;                                    \
+            o->pre[j] = (ok & q->flat_seen & q->trt) ? pre : 0.0;                                  \
         }                                                                                          \
     }
 ABRDF__ISA_LEVELS(INTERNAL_EXIT)
@@ -908,7 +982,7 @@ typedef struct light_consts {
             double hx = tx + lc->sx, hy = ty + lc->sy, hz = tz + lc->sz;                           \
             double l3 = hx * hx + hy * hy + hz * hz;                                               \
             int pass = (o->refl[j] > 0.0) & (l3 > ABRDF__HUANG_HALF_LEN2_MIN);                     \
-            fl[j] = in & (tir | pass) ? 1.0 : 0.0;                                                 \
+            fl[j] = (in & (tir | pass)) ? 1.0 : 0.0;                                               \
             double mx = o->mx[j], my = o->my[j], mz = o->mz[j];                                    \
             double com = -(mx * wx + my * wy + mz * wz), cof = -(o->fx[j] * wx + o->fz[j] * wz);   \
             double umh = mx * hx + my * hy + mz * hz, uhi = hx * tx + hy * ty + hz * tz;           \
@@ -988,6 +1062,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
     const internal_base_fn base = internal_base_at(abrdf__isa_best());
     const internal_exit_fn exit_view = internal_exit_at(abrdf__isa_best());
     const internal_light_fn light = internal_light_at(abrdf__isa_best());
+    const entry_base_fn entry = entry_base_at(abrdf__isa_best());
     energy_axes ax_in = m->e_in;
     residual_ctx c = {.m = m,
                       .wi = wi,
@@ -1026,10 +1101,37 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
         vndf_frame f1;
         vndf_frame_make(al, wi, r.wmi, &f1);
         grid_points(&ang1, i, p1s[0], p1s[1], p1s[2]);
+        const entry_consts ec = {.f = &f1,
+                                 .wx = wi.x,
+                                 .wy = wi.y,
+                                 .wz = wi.z,
+                                 .eta = eta,
+                                 .eta2 = eta * eta,
+                                 .inv_eta = inv_eta,
+                                 .b = b,
+                                 .st = c.st,
+                                 .ct = c.ct,
+                                 .a2 = c.a2,
+                                 .etab = m->compensate ? m->e_out : e_none,
+                                 .gis = r.gmi.s,
+                                 .gic = r.gmi.c,
+                                 .mix = r.wmi.x,
+                                 .miy = r.wmi.y,
+                                 .miz = r.wmi.z,
+                                 .mfx = r.wmi_.x,
+                                 .mfz = r.wmi_.z,
+                                 .lam1 = r.lam1,
+                                 .scale1 = r.scale1,
+                                 .cos_mi1 = r.cos_mi1};
+        entry_nodes en;
         for (int j1 = 0; j1 < n1 * n1; ++j1) {
+            const int jc = j1 % ENTRY_CHUNK;
+            if (jc == 0) {
+                int nc = n1 * n1 - j1 < ENTRY_CHUNK ? n1 * n1 - j1 : ENTRY_CHUNK;
+                entry(&ec, p1s[0] + j1, p1s[1] + j1, p1s[2] + j1, nc, &en);
+            }
             entry_path e;
-            const double q1[3] = {p1s[0][j1], p1s[1][j1], p1s[2][j1]};
-            if (!entry_path_make(&c, &r, vndf_frame_node(&f1, q1), w1, &e)) continue;
+            if (!entry_path_at(&c, &en, jc, r.weight * w1, &e)) continue;
             if (lobes & 2u) tt_add(&c, &e);
             if (!(lobes & 12u) || !(e.cos_mi2 > 0.0)) continue;
             /* TRT and TRRT+: internal reflection at wh2 (n2 x n2 VNDF nodes) */
