@@ -274,19 +274,31 @@ static void vndf_frame_make(double alpha, v3 wi, v3 wm, vndf_frame *f)
     f->q3 = add(scl(as, vh.x), scl(at, vh.y));
 }
 
-/* The microfacet normal of the disc point p (vndf_disc), Heitz's map: the point is warped
- * onto the projected hemisphere of the stretched view vh, lifted, unstretched. */
-static v3 vndf_frame_node(const vndf_frame *f, const double p[3])
+/* The microfacet normal h of the disc point (p1, p2') (vndf_disc: p2' = (1 - sh) sqrt(1 -
+ * p1^2) + sh p2, the warp onto the projected hemisphere of the stretched view vh), Heitz's map:
+ * lifted, unstretched. Without a branch: the vector loops (entry_base, internal_base) inline
+ * it. */
+static inline void vndf_lift(const vndf_frame *f, double p1, double p2, double *hx, double *hy,
+                             double *hz)
 {
-    const double alpha = f->alpha, sh = f->sh, p1 = p[0];
-    double p2 = (1.0 - sh) * p[2] + sh * p[1];
-    double p3 = abrdf__safe_sqrt(1.0 - p1 * p1 - p2 * p2);
+    const double al = f->alpha;
+    double d = 1.0 - p1 * p1 - p2 * p2, p3 = d > 0.0 ? sqrt(d) : 0.0;
     double nx = f->t1.x * p1 + f->t2.x * p2 + f->vh.x * p3;
     double ny = f->t1.y * p1 + f->t2.y * p2 + f->vh.y * p3;
-    double nz = max_of(f->t2.z * p2 + f->vh.z * p3, 0.0); /* t1.z = 0 */
-    double inv = 1.0 / sqrt(alpha * alpha * (nx * nx + ny * ny) + nz * nz);
-    v3 w = add(add(scl(f->q1, p1), scl(f->q2, p2)), add(scl(f->q3, p3), scl(f->wm, nz)));
-    return scl(w, inv);
+    double nz = f->t2.z * p2 + f->vh.z * p3; /* t1.z = 0 */
+    nz = nz > 0.0 ? nz : 0.0;
+    double inv = 1.0 / sqrt(al * al * (nx * nx + ny * ny) + nz * nz);
+    *hx = (f->q1.x * p1 + f->q2.x * p2 + f->q3.x * p3 + f->wm.x * nz) * inv;
+    *hy = (f->q1.y * p1 + f->q2.y * p2 + f->q3.y * p3 + f->wm.y * nz) * inv;
+    *hz = (f->q1.z * p1 + f->q2.z * p2 + f->q3.z * p3 + f->wm.z * nz) * inv;
+}
+
+/* The microfacet normal of the disc point p (vndf_disc). */
+static v3 vndf_frame_node(const vndf_frame *f, const double p[3])
+{
+    v3 h;
+    vndf_lift(f, p[0], (1.0 - f->sh) * p[2] + f->sh * p[1], &h.x, &h.y, &h.z);
+    return h;
 }
 
 /* Fresnel for unpolarised light at cosine c (sign ignored) and relative index eta; the
@@ -622,13 +634,13 @@ typedef struct entry_path {
 
 /* The paths through a chunk of an entry grid's nodes, what each needs before its lights, for
  * every node without a branch (entry_base, compiled per instruction-set level): the entry
- * microfacet wh1 (Heitz's map from the disc point, as vndf_frame_node), the transmission
+ * microfacet wh1 (Heitz's map from the disc point, vndf_lift), the transmission
  * (fresnel1), the refracted ray wt (refract_dir), the exit point gmt = twice_minus(to_phi(wt),
  * gamma_mi) and its mesonormals (sphg_pair, one root for the normal and
  * the arc length), the masking G2/G1 toward the refracted ray, the exit's energy scale and
  * Smith terms, the chord over cos(theta_t), TT's factors without the light. ok = 0 where
- * light does not enter (wi does not see wh1) or the refracted ray does not see wh1 and both
- * entry mesonormals. wi sees both mesonormals on [g0, g0 + gr]: that range is built from
+ * light does not enter (wi does not see wh1) or the refracted ray does not see wh1 or either
+ * entry mesonormal. wi sees both mesonormals on [g0, g0 + gr]: that range is built from
  * them, so testing wi.wmi_ > 0 again only let a 1e-16 rounding drop the end nodes, where it
  * is 0 (S jumped). */
 #define ENTRY_CHUNK 32
@@ -658,7 +670,7 @@ typedef struct entry_consts {
         const double *restrict p3, int n, entry_nodes *restrict o)                                 \
     {                                                                                              \
         const vndf_frame *f = q->f;                                                                \
-        const double al = f->alpha, sh = f->sh, b = q->b, a2 = q->a2, eta2 = q->eta2;              \
+        const double sh = f->sh, b = q->b, a2 = q->a2, eta2 = q->eta2;                             \
         const int round_ = b == 1.0, ne = ABRDF__HAIR_E_N;                                         \
         /* every constant read before the loop: a read under a condition would be a masked load */ \
         const double eta = q->eta, inv_eta = q->inv_eta, st = q->st, ct = q->ct;                   \
@@ -666,17 +678,9 @@ typedef struct entry_consts {
         const double mix = q->mix, miy = q->miy, miz = q->miz, mfx = q->mfx, mfz = q->mfz;         \
         const double lam1 = q->lam1, k1 = q->scale1 * q->cos_mi1;                                  \
         const double *et = q->etab;                                                                \
-        for (int j = 0; j < n; ++j) { /* vndf_frame_node */                                        \
-            double a = p1[j], pb = (1.0 - sh) * p3[j] + sh * p2[j];                                \
-            double d = 1.0 - a * a - pb * pb, c3 = d > 0.0 ? sqrt(d) : 0.0;                        \
-            double nx = f->t1.x * a + f->t2.x * pb + f->vh.x * c3;                                 \
-            double ny = f->t1.y * a + f->t2.y * pb + f->vh.y * c3;                                 \
-            double nz = f->t2.z * pb + f->vh.z * c3;                                               \
-            nz = nz > 0.0 ? nz : 0.0;                                                              \
-            double inv = 1.0 / sqrt(al * al * (nx * nx + ny * ny) + nz * nz);                      \
-            double hx = (f->q1.x * a + f->q2.x * pb + f->q3.x * c3 + f->wm.x * nz) * inv;          \
-            double hy = (f->q1.y * a + f->q2.y * pb + f->q3.y * c3 + f->wm.y * nz) * inv;          \
-            double hz = (f->q1.z * a + f->q2.z * pb + f->q3.z * c3 + f->wm.z * nz) * inv;          \
+        for (int j = 0; j < n; ++j) {                                                              \
+            double hx, hy, hz;                                                                     \
+            vndf_lift(f, p1[j], (1.0 - sh) * p3[j] + sh * p2[j], &hx, &hy, &hz);                   \
             double chi = vx * hx + vy * hy + vz * hz; /* fresnel1(chi, eta) */                     \
             double c = chi < 1.0 ? chi : 1.0, qq = eta2 - (1.0 - c * c);                           \
             double t = sqrt(qq > 0.0 ? qq : 0.0), ds = c + t, dp = eta2 * c + t;                   \
@@ -806,7 +810,7 @@ static void tt_add(residual_ctx *c, const entry_path *e)
  * t1 r2^2 tavg a^3 / (1 - a (1 - tavg)) per channel (absorption a), tavg = max(1 - r2, 1e-5);
  * its three channels share one division (each denominator is >= tavg).
  * What every internal node needs before its light-dependent tests, without a branch: its
- * microfacet wh2 (Heitz's map from the disc point, vndf_frame_node), the cosine to the
+ * microfacet wh2 (Heitz's map from the disc point, vndf_lift), the cosine to the
  * refracted ray, the reflectance there (fresnel1 at 1/eta), the reflected ray wtr and TRRT+'s
  * three channels (trrt3). The compiler vectorises the loop; it is compiled once per
  * instruction-set level (isa.h). A node with cos_hi2 <= 0 is masked out by internal_light. */
@@ -853,19 +857,11 @@ typedef struct internal_path {
         int n, internal_nodes *restrict o)                                                         \
     {                                                                                              \
         const vndf_frame *f = q->f;                                                                \
-        const double al = f->alpha, sh = f->sh, e2 = q->e2;                                        \
-        for (int j = 0; j < n; ++j) { /* vndf_frame_node */                                        \
+        const double sh = f->sh, e2 = q->e2;                                                       \
+        for (int j = 0; j < n; ++j) {                                                              \
             double a = p1[j], qa = 1.0 - a * a, pq = qa > 0.0 ? sqrt(qa) : 0.0; /* vndf_disc */    \
-            double b = (1.0 - sh) * pq + sh * p2[j];                                               \
-            double d = 1.0 - a * a - b * b, c3 = d > 0.0 ? sqrt(d) : 0.0;                          \
-            double nx = f->t1.x * a + f->t2.x * b + f->vh.x * c3;                                  \
-            double ny = f->t1.y * a + f->t2.y * b + f->vh.y * c3;                                  \
-            double nz = f->t2.z * b + f->vh.z * c3;                                                \
-            nz = nz > 0.0 ? nz : 0.0;                                                              \
-            double inv = 1.0 / sqrt(al * al * (nx * nx + ny * ny) + nz * nz);                      \
-            double hx = (f->q1.x * a + f->q2.x * b + f->q3.x * c3 + f->wm.x * nz) * inv;           \
-            double hy = (f->q1.y * a + f->q2.y * b + f->q3.y * c3 + f->wm.y * nz) * inv;           \
-            double hz = (f->q1.z * a + f->q2.z * b + f->q3.z * c3 + f->wm.z * nz) * inv;           \
+            double hx, hy, hz;                                                                     \
+            vndf_lift(f, a, (1.0 - sh) * pq + sh * p2[j], &hx, &hy, &hz);                          \
             o->hx[j] = hx, o->hy[j] = hy, o->hz[j] = hz;                                           \
             double ci = -(q->wx * hx + q->wy * hy + q->wz * hz);                                   \
             o->ci[j] = ci; /* fresnel1(ci, 1/eta) */                                               \
