@@ -139,11 +139,11 @@ static double ggx_d_sq(double alpha2, double c2)
     return alpha2 / (ABRDF__PI * k * k);
 }
 
-static double ggx_lambda(double alpha2, double c)
+/* Without a branch: entry_base's vector loop inlines it. */
+static inline double ggx_lambda(double alpha2, double c)
 {
-    double c2 = c * c;
-    if (!(c2 > 0.0)) return ABRDF__HUANG_LAMBDA_GRAZING; /* grazing: fully shadowed */
-    return 0.5 * (sqrt(1.0 + alpha2 * (1.0 - c2) / c2) - 1.0);
+    double c2 = c * c, l = 0.5 * (sqrt(1.0 + alpha2 * (1.0 - c2) / c2) - 1.0);
+    return c2 > 0.0 ? l : ABRDF__HUANG_LAMBDA_GRAZING; /* grazing: fully shadowed */
 }
 
 static double ggx_g(double alpha2, double ci, double co)
@@ -424,14 +424,21 @@ void abrdf__huang_tables(abrdf__huang *m)
 
 typedef const double *energy_axes; /* the collapsed table: m->e_in or m->e_out */
 
-static double energy_scale_at(const abrdf__huang *m, const energy_axes *a, double mu)
+/* E at cosine mu from a collapsed table t, floored at ABRDF__HAIR_E_MIN; mu clamped to
+ * [0, 1] (NaN to 0). Without a branch: the vector loops (entry_base, internal_exit) inline
+ * it. */
+static inline double energy_e(const double *t, double mu)
 {
-    if (!m->compensate) return 1.0;
     const int n = ABRDF__HAIR_E_N;
     double u = abrdf__clamp(mu, 0.0, 1.0) * (n - 1);
     int i0 = (int)u < n - 1 ? (int)u : n - 1, i1 = i0 + 1 < n ? i0 + 1 : n - 1;
-    double f = u - i0, e = (1.0 - f) * (*a)[i0] + f * (*a)[i1];
-    return 1.0 / max_of(e, ABRDF__HAIR_E_MIN);
+    double f = u - i0, e = (1.0 - f) * t[i0] + f * t[i1];
+    return e > ABRDF__HAIR_E_MIN ? e : ABRDF__HAIR_E_MIN;
+}
+
+static double energy_scale_at(const abrdf__huang *m, const energy_axes *a, double mu)
+{
+    return m->compensate ? 1.0 / energy_e(*a, mu) : 1.0;
 }
 
 /* ---- the model ------------------------------------------------------------------------ */
@@ -671,7 +678,7 @@ typedef struct entry_consts {
     {                                                                                              \
         const vndf_frame *f = q->f;                                                                \
         const double sh = f->sh, b = q->b, a2 = q->a2, eta2 = q->eta2;                             \
-        const int round_ = b == 1.0, ne = ABRDF__HAIR_E_N;                                         \
+        const int round_ = b == 1.0;                                                               \
         /* every constant read before the loop: a read under a condition would be a masked load */ \
         const double eta = q->eta, inv_eta = q->inv_eta, st = q->st, ct = q->ct;                   \
         const double vx = q->wx, vy = q->wy, vz = q->wz, gis = q->gis, gic = q->gic;               \
@@ -708,14 +715,8 @@ typedef struct entry_consts {
             o->gc[j] = gc, o->mx[j] = mx, o->mz[j] = mz, o->fx[j] = sp;                            \
             o->fz[j] = cp, o->cos_mo1[j] = cmo1, o->cos_mi2[j] = cmi2;                             \
             o->flat[j] = -(wx * sp + wz * cp) > 0.0 ? 1.0 : 0.0;                                   \
-            double c1 = cmo1 * cmo1; /* ggx_lambda(a2, cmo1) */                                    \
-            double lam = c1 > 0.0 ? 0.5 * (sqrt(1.0 + a2 * (1.0 - c1) / c1) - 1.0)                 \
-                                  : ABRDF__HUANG_LAMBDA_GRAZING;                                   \
-            double g1o = (1.0 + lam1) / (1.0 + lam1 + lam);                                        \
-            double u = (cmi2 > 0.0 ? (cmi2 < 1.0 ? cmi2 : 1.0) : 0.0) * (ne - 1); /* NaN: 0 */     \
-            int i0 = (int)u < ne - 1 ? (int)u : ne - 1, i1 = i0 + 1 < ne ? i0 + 1 : ne - 1;        \
-            double fe = u - i0, ev = (1.0 - fe) * et[i0] + fe * et[i1];                            \
-            double sc2 = 1.0 / (ev > ABRDF__HAIR_E_MIN ? ev : ABRDF__HAIR_E_MIN);                  \
+            double g1o = (1.0 + lam1) / (1.0 + lam1 + ggx_lambda(a2, cmo1));                       \
+            double sc2 = 1.0 / energy_e(et, cmi2);                                                 \
             o->g1o[j] = g1o, o->scale2[j] = sc2;                                                   \
             double c2 = cmi2 < 0.0 ? -cmi2 : cmi2;                                                 \
             o->c2[j] = c2, o->s2[j] = sqrt(c2 * c2 + a2 * (1.0 - c2 * c2));                        \
@@ -911,7 +912,7 @@ static internal_base_fn internal_base_at(int level)
         const internal_path *restrict q, int n, internal_nodes *restrict o)                        \
     {                                                                                              \
         const double b = q->b, a2 = q->a2, st = q->st, ct = q->ct;                                 \
-        const int round_ = b == 1.0, ne = ABRDF__HAIR_E_N;                                         \
+        const int round_ = b == 1.0;                                                               \
         for (int j = 0; j < n; ++j) {                                                              \
             double tx = o->tx[j], ty = o->ty[j], tz = o->tz[j];                                    \
             double cmo2 = -(q->mtx * tx + q->mty * ty + q->mtz * tz);                              \
@@ -933,10 +934,7 @@ static internal_base_fn internal_base_at(int level)
             o->kab[j] = ka;                                                                        \
             o->c3[j] = c3, o->s3[j] = sqrt(c3 * c3 + a2 * (1.0 - c3 * c3));                        \
             double smo = sqrt(cmo2 * cmo2 + a2 * (1.0 - cmo2 * cmo2));                             \
-            double u = (c3 > 0.0 ? (c3 < 1.0 ? c3 : 1.0) : 0.0) * (ne - 1); /* NaN: 0 */           \
-            int i0 = (int)u < ne - 1 ? (int)u : ne - 1, i1 = i0 + 1 < ne ? i0 + 1 : ne - 1;        \
-            double fr = u - i0, ev = (1.0 - fr) * q->etab[i0] + fr * q->etab[i1];                  \
-            double e = ev > ABRDF__HAIR_E_MIN ? ev : ABRDF__HAIR_E_MIN;                            \
+            double e = energy_e(q->etab, c3);                                                      \
             double pre = q->kp * o->r2f[j] * arc / ((q->s2 * cmo2 + smo * q->c2) * e);             \
             o->refl[j] = (ok & q->flat_seen) ? 1.0 : 0.0;                                          \
             ok = ok & (c3 > 0.0) & (tx * sp + tz * cp > 0.0);                                      \
