@@ -126,6 +126,21 @@ def body():
                  conv_out, grid)
         for quoted, got in zip((work, nmse), m.groups()):
             require_number(DOC, doc, quoted, got, f"converged reference ({n1}, {n2}, x{refine})")
+    # One set of shifts is one draw: each grid over the model's set and seven rotations of it.
+    i = next(i for i, l in enumerate(lines) if l.strip().startswith("| grids (n1, n2), Simpson | work | set 0"))
+    _, rows, _ = parse_table([l.strip() for l in lines], i)
+    grids = [",".join(re.findall(r"\d+", row[0])[:3]) for row in rows]
+    if len(rows) != 6:
+        fail(f"{DOC}: the shift-set table has {len(rows)} rows, not 6")
+    sets = prog("hair_convergence", "--shifts", "8", *grids)
+    for (grid, work, set0, mean, span, of_mean), g in zip(rows, grids):
+        n1, n2, refine = (int(v) for v in g.split(","))
+        m = grab(r"grids \(%d, %d\), Simpson x%d: work (\S+), NMSE vs the reference (\S+)\n"
+                 r"  over 8 shift sets: mean (\S+), from (\S+) to (\S+) \([^)]*\); their mean image (\S+)"
+                 % (n1, n2, refine), sets, grid)
+        lo, hi = (v.strip() for v in span.split("–"))
+        for quoted, got in zip((work, set0, mean, lo, hi, of_mean), m.groups()):
+            require_number(DOC, doc, quoted, got.rstrip(","), f"shift sets ({n1}, {n2}, x{refine})")
     i = next(i for i, l in enumerate(lines) if l.strip().startswith("| r | default (6, 3) |"))
     _, rows, _ = parse_table([l.strip() for l in lines], i)
     if len(rows) < 3:

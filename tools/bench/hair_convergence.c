@@ -5,13 +5,17 @@
  * test_hair_huang renders the same image). Each grid's image NMSE against a reference grid, and
  * its work per evaluation relative to the default's, n1^2 (1 + n2^2) refine / (6^2 (1 + 3^2)).
  *
- *   hair_convergence [--lobes] [--r R] [--reference N1,N2,REFINE] [N1,N2,REFINE ...]
+ *   hair_convergence [--lobes] [--r R] [--shifts K] [--reference N1,N2,REFINE] [N1,N2,REFINE ...]
  *
  * The reference defaults to 16,8,4 (185 times the default's work: a few seconds at r = 0.3,
  * about 15 at r = 0.1, as the Simpson steps shrink with r); the grids to the table of the page.
  * REFINE divides the Simpson steps (not a parameter of the model). --lobes adds, under each
  * grid, each lobe's part of its error (R, TT, TRT, TRRT+); --r sets the fibre's roughness, in
- * [0.05, 1] (default 0.3, hair_brown's). */
+ * [0.05, 1] (default 0.3, hair_brown's). --shifts K adds, under each grid, its NMSE with the
+ * shift sets 0 to K - 1 (hair.h, shift_set; K <= ABRDF__HUANG_SHIFT_SETS), their mean and
+ * their range: the model's grids are shifted by one fixed set (set 0), and its error on one
+ * image depends on where those shifts fall, so the mean over sets is what a grid can be
+ * expected to give on another image; the reference keeps set 0. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,7 +56,7 @@ static void eval_fn(const void *l, const double wi[3], const double wo[3], doubl
     for (int c = 0; c < 3; ++c) f[c] /= wi[2];
 }
 
-static void image(const grids *g, double r, unsigned lobes, double img[HTU_CYL_SAMPLES][3])
+static void image(const grids *g, double r, unsigned lobes, int set, double img[HTU_CYL_SAMPLES][3])
 {
     abrdf_params p;
     abrdf_params_init(ABRDF_HUANG, &p);
@@ -61,6 +65,7 @@ static void image(const grids *g, double r, unsigned lobes, double img[HTU_CYL_S
     lobed x;
     abrdf__huang_setup(&p, &x.m);
     x.m.n1 = g->n1, x.m.n2 = g->n2, x.m.refine = g->refine;
+    x.m.shift_set = set;
     x.lobes = lobes;
     htu_cylinder_image(eval_fn, &x, img);
 }
@@ -79,7 +84,7 @@ static void by_lobe(const grids *g, double r, const double want[HTU_CYL_SAMPLES]
         for (int c = 0; c < 3; ++c) den += want[k][c] * want[k][c];
     printf("  by lobe (error, share of the reference):");
     for (int l = 0; l < 4; ++l) {
-        image(g, r, 1u << l, b);
+        image(g, r, 1u << l, 0, b);
         double num = 0.0, own = 0.0;
         for (int k = 0; k < HTU_CYL_SAMPLES; ++k)
             for (int c = 0; c < 3; ++c) {
@@ -92,12 +97,31 @@ static void by_lobe(const grids *g, double r, const double want[HTU_CYL_SAMPLES]
     printf("\n");
 }
 
+/* A grid's NMSE with each of the shift sets 0 to k - 1, their mean and range. */
+static void by_shifts(const grids *g, double r, int k, const double want[HTU_CYL_SAMPLES][3])
+{
+    static double img[HTU_CYL_SAMPLES][3], avg[HTU_CYL_SAMPLES][3];
+    double e[ABRDF__HUANG_SHIFT_SETS], sum = 0.0, lo = 0.0, hi = 0.0;
+    for (int s = 0; s < k; ++s) {
+        image(g, r, 15u, s, img);
+        e[s] = htu_image_nmse(want, img);
+        for (int p = 0; p < HTU_CYL_SAMPLES; ++p)
+            for (int c = 0; c < 3; ++c) avg[p][c] = (s ? avg[p][c] : 0.0) + img[p][c] / k;
+        sum += e[s];
+        lo = s == 0 || e[s] < lo ? e[s] : lo;
+        hi = s == 0 || e[s] > hi ? e[s] : hi;
+    }
+    printf("  over %d shift sets: mean %.1e, from %.1e to %.1e (", k, sum / k, lo, hi);
+    for (int s = 0; s < k; ++s) printf("%s%.1e", s ? " " : "", e[s]);
+    printf("); their mean image %.1e\n", htu_image_nmse(want, avg));
+}
+
 int main(int argc, char **argv)
 {
     static const grids table[] = {{6, 3, 1},  {6, 3, 2},  {8, 3, 2},  {10, 3, 2}, {8, 4, 2},
                                   {12, 3, 2}, {10, 4, 2}, {12, 4, 2}, {12, 6, 1}, {12, 6, 2}};
     grids ref = {16, 8, 4}, list[64];
-    int n = 0, lobes = 0;
+    int n = 0, lobes = 0, shifts = 0;
     double r = 0.3; /* hair_brown's, the model's default */
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--lobes")) {
@@ -114,6 +138,16 @@ int main(int argc, char **argv)
                         argv[i]);
                 return 2;
             }
+        } else if (!strcmp(argv[i], "--shifts")) {
+            char *end = NULL;
+            long k = i + 1 < argc ? strtol(argv[++i], &end, 10) : 0;
+            if (!end || *end || end == argv[i] || k < 1 || k > ABRDF__HUANG_SHIFT_SETS) {
+                fprintf(stderr,
+                        "hair_convergence: --shifts '%s' is not a count of shift sets, 1-%d\n",
+                        end ? argv[i] : "", ABRDF__HUANG_SHIFT_SETS);
+                return 2;
+            }
+            shifts = (int)k;
         } else if (!strcmp(argv[i], "--reference")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "hair_convergence: --reference needs N1,N2,REFINE\n");
@@ -130,18 +164,19 @@ int main(int argc, char **argv)
     if (n == 0)
         for (n = 0; n < (int)(sizeof table / sizeof table[0]); ++n) list[n] = table[n];
     static double want[HTU_CYL_SAMPLES][3], img[HTU_CYL_SAMPLES][3];
-    image(&ref, r, 15u, want);
+    image(&ref, r, 15u, 0, want);
     static double ref_lobe[4][HTU_CYL_SAMPLES][3];
-    for (int l = 0; lobes && l < 4; ++l) image(&ref, r, 1u << l, ref_lobe[l]);
+    for (int l = 0; lobes && l < 4; ++l) image(&ref, r, 1u << l, 0, ref_lobe[l]);
     printf("reference: grids (%d, %d), Simpson x%d, r %g\n", ref.n1, ref.n2, ref.refine, r);
     for (int k = 0; k < n; ++k) {
-        image(&list[k], r, 15u, img);
+        image(&list[k], r, 15u, 0, img);
         double work =
             list[k].n1 * list[k].n1 * (1.0 + list[k].n2 * list[k].n2) * list[k].refine /
             (ABRDF__HUANG_N1 * ABRDF__HUANG_N1 * (1.0 + ABRDF__HUANG_N2 * ABRDF__HUANG_N2));
         printf("grids (%d, %d), Simpson x%d: work %.1f, NMSE vs the reference %.1e\n", list[k].n1,
                list[k].n2, list[k].refine, work, htu_image_nmse(want, img));
         if (lobes) by_lobe(&list[k], r, want, ref_lobe);
+        if (shifts) by_shifts(&list[k], r, shifts, want);
     }
     return 0;
 }

@@ -136,7 +136,18 @@ typedef struct abrdf__huang {
      * dgamma/dh, R's visibility tested per node (steps divided by refine). ABRDF__HUANG_CYCLES_TRRT:
      * TRRT+ weighted by the constant 2/pi. 0 (setup's value): the model. */
     unsigned cycles_nodes;
+    /* Tests only (tools/bench/hair_convergence.c, --shifts; test_hair_huang, shift_sets):
+     * which set of grid shifts. Set k moves every grid's index into the R2 sequence by
+     * ABRDF__HUANG_SHIFT_SET_STEP k (modulo 2^15). The sequence is additive (shift(i + D) =
+     * shift(i) + shift(D) modulo 1), so this turns every shift of an evaluation by one vector: a
+     * Cranley-Patterson rotation of the whole rule, which tells the error of the rule from the
+     * luck of where its shifts fall. 0 (setup's value): the model. */
+    int shift_set;
 } abrdf__huang;
+/* The step 4111 turns the 8 sets by vectors spread over the unit square (a step of 4096 would
+ * turn d2 alone: 4096 ABRDF__HUANG_R2_A1 is a multiple of 2^16). */
+#define ABRDF__HUANG_SHIFT_SET_STEP 4111L
+#define ABRDF__HUANG_SHIFT_SETS 8
 #define ABRDF__HUANG_CYCLES_H 1u
 #define ABRDF__HUANG_CYCLES_TRRT 2u
 

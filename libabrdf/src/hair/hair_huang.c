@@ -199,8 +199,9 @@ static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
  * total internal reflection and visibility, and TRT's exit is a narrow peak in the square;
  * on one unshifted grid the nodes of neighbouring paths fall on the same side of a cut or of
  * the peak and their errors add up (the default's image was 1.8e-2 from the converged one),
- * on shifted grids they average out (6.8e-5 with the same nodes: docs/MODELS.md,
- * "Convergence on an image"). Shift k is the k-th point of the R2 sequence (M. Roberts 2018:
+ * on shifted grids they average out (6.8e-5 with the same nodes, and 2.2e-4 on average over
+ * rotations of the shifts: docs/MODELS.md, "Convergence on an image" and "One set of shifts is
+ * one draw"). Shift k is the k-th point of the R2 sequence (M. Roberts 2018:
  * k (1/g, 1/g^2) modulo 1, g the plastic number) minus 1/2, with the steps in 16-bit fixed
  * point (hair.h: the first one's period) and k taken modulo 2^15 so that the OSL and POV-Ray
  * twins compute the same shifts exactly (32-bit integers, doubles). */
@@ -454,6 +455,7 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
     m->n2 = p->internal_grid;
     m->compensate = 1;
     m->cycles_nodes = 0;
+    m->shift_set = 0;
     abrdf__huang_tables(m);
 }
 
@@ -1044,6 +1046,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
     const double b = m->b, eta = m->eta, inv_eta = 1.0 / eta, al = m->alpha;
     const int n1 = m->n1, n2 = m->n2;
     const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
+    const long set = ABRDF__HUANG_SHIFT_SET_STEP * m->shift_set; /* 0 but in the tests (hair.h) */
     for (int l = 0; l < lr->n; ++l) out[l][0] = out[l][1] = out[l][2] = 0.0;
     if (n1 * n1 > ABRDF__HUANG_NODES_MAX || n2 * n2 > ABRDF__HUANG_NODES_MAX) return;
     /* The VNDF grids' column angles once per evaluation; each grid's disc points (as arrays,
@@ -1094,7 +1097,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
         r.lam1 = ggx_lambda(c.a2, r.cos_mi1);
         vndf_frame f1;
         vndf_frame_make(al, wi, r.wmi, &f1);
-        grid_points(&ang1, i, p1s[0], p1s[1], p1s[2]);
+        grid_points(&ang1, set + i, p1s[0], p1s[1], p1s[2]);
         const entry_consts ec = {.f = &f1,
                                  .wx = wi.x,
                                  .wy = wi.y,
@@ -1131,7 +1134,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
             /* TRT and TRRT+: internal reflection at wh2 (n2 x n2 VNDF nodes) */
             vndf_frame f2;
             vndf_frame_make(al, neg(e.wt), e.wmt, &f2);
-            grid_points(&ang2, (long)i * n1 * n1 + j1, p2s[0], p2s[1], NULL);
+            grid_points(&ang2, set + (long)i * n1 * n1 + j1, p2s[0], p2s[1], NULL);
             internal_path ip = {.f = &f2,
                                 .wx = e.wt.x,
                                 .wy = e.wt.y,
