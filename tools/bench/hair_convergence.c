@@ -13,9 +13,9 @@
  * grid, each lobe's part of its error (R, TT, TRT, TRRT+); --r sets the fibre's roughness, in
  * [0.05, 1] (default 0.3, hair_brown's). --shifts K adds, under each grid, its NMSE with the
  * shift sets 0 to K - 1 (hair.h, shift_set; K <= ABRDF__HUANG_SHIFT_SETS), their mean and
- * their range: the model's grids are shifted by one fixed set (set 0), and its error on one
- * image depends on where those shifts fall, so the mean over sets is what a grid can be
- * expected to give on another image; the reference keeps set 0. */
+ * their range, and the error of the sets' mean image: the model's grids are shifted by one
+ * fixed set (set 0), and its error on this image depends on where those shifts fall; the mean
+ * over the sets tells the rule's error from that luck. The reference keeps set 0. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -139,12 +139,17 @@ int main(int argc, char **argv)
                 return 2;
             }
         } else if (!strcmp(argv[i], "--shifts")) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "hair_convergence: --shifts needs a count of shift sets, 1-%d\n",
+                        ABRDF__HUANG_SHIFT_SETS);
+                return 2;
+            }
             char *end = NULL;
-            long k = i + 1 < argc ? strtol(argv[++i], &end, 10) : 0;
-            if (!end || *end || end == argv[i] || k < 1 || k > ABRDF__HUANG_SHIFT_SETS) {
+            long k = strtol(argv[++i], &end, 10);
+            if (*end || end == argv[i] || k < 1 || k > ABRDF__HUANG_SHIFT_SETS) {
                 fprintf(stderr,
                         "hair_convergence: --shifts '%s' is not a count of shift sets, 1-%d\n",
-                        end ? argv[i] : "", ABRDF__HUANG_SHIFT_SETS);
+                        argv[i], ABRDF__HUANG_SHIFT_SETS);
                 return 2;
             }
             shifts = (int)k;

@@ -137,15 +137,16 @@ typedef struct abrdf__huang {
      * TRRT+ weighted by the constant 2/pi. 0 (setup's value): the model. */
     unsigned cycles_nodes;
     /* Tests only (tools/bench/hair_convergence.c, --shifts; test_hair_huang, shift_sets):
-     * which set of grid shifts. Set k moves every grid's index into the R2 sequence by
-     * ABRDF__HUANG_SHIFT_SET_STEP k (modulo 2^15). The sequence is additive (shift(i + D) =
-     * shift(i) + shift(D) modulo 1), so this turns every shift of an evaluation by one vector: a
-     * Cranley-Patterson rotation of the whole rule, which tells the error of the rule from the
-     * luck of where its shifts fall. 0 (setup's value): the model. */
+     * which set of grid shifts. Set k adds ABRDF__HUANG_SHIFT_SET_STEP k to every grid's
+     * index into the R2 sequence, after the index's own wrap at 2^15. The sequence is additive
+     * (shift(i + D) = shift(i) + shift(D) modulo 1, exactly in its 16-bit fixed point), so this
+     * turns every shift of an evaluation by one vector: a Cranley-Patterson rotation of the
+     * whole rule, which tells the error of the rule from the luck of where its shifts fall.
+     * 0 (setup's value): the model. */
     int shift_set;
 } abrdf__huang;
-/* The step 4111 turns the 8 sets by vectors spread over the unit square (a step of 4096 would
- * turn d2 alone: 4096 ABRDF__HUANG_R2_A1 is a multiple of 2^16). */
+/* The step 4111 turns the 8 sets by 8 different vectors in both coordinates (a step of 4096
+ * would turn d2 alone: 4096 ABRDF__HUANG_R2_A1 is a multiple of 2^16). */
 #define ABRDF__HUANG_SHIFT_SET_STEP 4111L
 #define ABRDF__HUANG_SHIFT_SETS 8
 #define ABRDF__HUANG_CYCLES_H 1u

@@ -199,15 +199,17 @@ static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
  * total internal reflection and visibility, and TRT's exit is a narrow peak in the square;
  * on one unshifted grid the nodes of neighbouring paths fall on the same side of a cut or of
  * the peak and their errors add up (the default's image was 1.8e-2 from the converged one),
- * on shifted grids they average out (6.8e-5 with the same nodes, and 2.2e-4 on average over
+ * on shifted grids they average out (6.8e-5 with the same nodes, and 2.3e-4 on average over
  * rotations of the shifts: docs/MODELS.md, "Convergence on an image" and "One set of shifts is
  * one draw"). Shift k is the k-th point of the R2 sequence (M. Roberts 2018:
  * k (1/g, 1/g^2) modulo 1, g the plastic number) minus 1/2, with the steps in 16-bit fixed
  * point (hair.h: the first one's period) and k taken modulo 2^15 so that the OSL and POV-Ray
  * twins compute the same shifts exactly (32-bit integers, doubles). */
-static void grid_shift(long k, double d[2])
+static void grid_shift(long k, long set, double d[2])
 {
-    unsigned long kk = (unsigned long)(k % 32768);
+    /* the set's offset after the model's wrap: every shift of the evaluation turns by the
+     * same vector (hair.h, shift_set) */
+    unsigned long kk = (unsigned long)(k % 32768) + (unsigned long)set;
     d[0] = (double)((32768ul + kk * ABRDF__HUANG_R2_A1) % 65536ul) / 65536.0 - 0.5;
     d[1] = (double)((32768ul + kk * ABRDF__HUANG_R2_A2) % 65536ul) / 65536.0 - 0.5;
 }
@@ -228,15 +230,16 @@ static void grid_angles_make(int n, grid_angles *a)
     }
 }
 
-/* The disc points (vndf_disc) of the grid with shift k: point j in p0[j], p1[j], p2[j] (p2:
+/* The disc points (vndf_disc) of the grid with shift k (of the shift set whose offset is set:
+ * 0 in the model): point j in p0[j], p1[j], p2[j] (p2:
  * sqrt(1 - p0^2), not written if NULL: the internal grids' loop takes it itself). The angle of
  * a column is its unshifted one turned by 2 pi d2 / n: one sine and cosine per grid, the same
  * values as vndf_disc's up to rounding. */
-static void grid_points(const grid_angles *a, long k, double *p0, double *p1, double *p2)
+static void grid_points(const grid_angles *a, long k, long set, double *p0, double *p1, double *p2)
 {
     const int n = a->n;
     double d[2];
-    grid_shift(k, d);
+    grid_shift(k, set, d);
     double dph = 2.0 * ABRDF__PI * d[1] / n, cd = cos(dph), sd = sin(dph);
     for (int i = 0; i < n; ++i) {
         double r = sqrt((i + 0.5 + d[0]) / n);
@@ -1097,7 +1100,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
         r.lam1 = ggx_lambda(c.a2, r.cos_mi1);
         vndf_frame f1;
         vndf_frame_make(al, wi, r.wmi, &f1);
-        grid_points(&ang1, set + i, p1s[0], p1s[1], p1s[2]);
+        grid_points(&ang1, i, set, p1s[0], p1s[1], p1s[2]);
         const entry_consts ec = {.f = &f1,
                                  .wx = wi.x,
                                  .wy = wi.y,
@@ -1134,7 +1137,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
             /* TRT and TRRT+: internal reflection at wh2 (n2 x n2 VNDF nodes) */
             vndf_frame f2;
             vndf_frame_make(al, neg(e.wt), e.wmt, &f2);
-            grid_points(&ang2, set + (long)i * n1 * n1 + j1, p2s[0], p2s[1], NULL);
+            grid_points(&ang2, (long)i * n1 * n1 + j1, set, p2s[0], p2s[1], NULL);
             internal_path ip = {.f = &f2,
                                 .wx = e.wt.x,
                                 .wy = e.wt.y,
