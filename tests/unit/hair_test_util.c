@@ -30,7 +30,15 @@ double htu_fibre_albedo(htu_fibre_fn S, const void *m, double theta_o, unsigned 
 
 void htu_cylinder_image(htu_eval_fn eval, const void *m, double img[HTU_CYL_SAMPLES][3])
 {
-    static const double dir[2][3] = {{-0.45, 0.75, 0.55}, {0.7, 0.25, 0.45}};
+    htu_cylinder_image_lit(eval, m, 0, img);
+}
+
+void htu_cylinder_image_lit(htu_eval_fn eval, const void *m, int backlit,
+                            double img[HTU_CYL_SAMPLES][3])
+{
+    static const double front[2][3] = {{-0.45, 0.75, 0.55}, {0.7, 0.25, 0.45}};
+    static const double back[2][3] = {{-0.45, 0.75, 0.55}, {0.7, 0.25, -0.45}};
+    const double(*dir)[3] = backlit ? back : front;
     static const double irr[2][3] = {{2.5, 2.5, 2.5}, {0.72, 0.76, 0.8}};
     for (int k = 0; k < HTU_CYL_SAMPLES; ++k) {
         double x = -1.0 + (k + 0.5) * 2.0 / HTU_CYL_SAMPLES, z = sqrt(1.0 - x * x);

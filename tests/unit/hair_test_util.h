@@ -23,6 +23,11 @@ double htu_fibre_albedo(htu_fibre_fn S, const void *m, double theta_o, unsigned 
 #define HTU_CYL_SAMPLES 64
 typedef void (*htu_eval_fn)(const void *m, const double wi[3], const double wo[3], double f[3]);
 void htu_cylinder_image(htu_eval_fn eval, const void *m, double img[HTU_CYL_SAMPLES][3]);
+/* The same, backlit if backlit is not 0: the second light behind the cylinder (its z negated,
+ * (0.7, 0.25, -0.45)), so that the fibres near the silhouette it lights let it through to the
+ * view (TT, which the front lights never give). */
+void htu_cylinder_image_lit(htu_eval_fn eval, const void *m, int backlit,
+                            double img[HTU_CYL_SAMPLES][3]);
 
 /* Table 8's image NMSE of img against ref. */
 double htu_image_nmse(const double ref[HTU_CYL_SAMPLES][3], const double img[HTU_CYL_SAMPLES][3]);

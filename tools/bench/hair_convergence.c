@@ -5,13 +5,15 @@
  * test_hair_huang renders the same image). Each grid's image NMSE against a reference grid, and
  * its work per evaluation relative to the default's, n1^2 (1 + n2^2) refine / (6^2 (1 + 3^2)).
  *
- *   hair_convergence [--lobes] [--r R] [--shifts K] [--reference N1,N2,REFINE] [N1,N2,REFINE ...]
+ *   hair_convergence [--lobes] [--backlit] [--r R] [--shifts K] [--reference N1,N2,REFINE]
+ *                    [N1,N2,REFINE ...]
  *
  * The reference defaults to 16,8,4 (185 times the default's work: a few seconds at r = 0.3,
  * about 15 at r = 0.1, as the Simpson steps shrink with r); the grids to the table of the page.
  * REFINE divides the Simpson steps (not a parameter of the model). --lobes adds, under each
  * grid, each lobe's part of its error (R, TT, TRT, TRRT+); --r sets the fibre's roughness, in
- * [0.05, 1] (default 0.3, hair_brown's). --shifts K adds, under each grid, its NMSE with the
+ * [0.05, 1] (default 0.3, hair_brown's). --backlit moves the second light behind the cylinder
+ * (hair_test_util.h, htu_cylinder_image_lit), so that TT is in the image. --shifts K adds, under each grid, its NMSE with the
  * shift sets 0 to K - 1 (hair.h, shift_set; K <= ABRDF__HUANG_SHIFT_SETS), their mean and
  * their range, and the error of the sets' mean image: the model's grids are shifted by one
  * fixed set (set 0), and its error on this image depends on where those shifts fall; the mean
@@ -56,6 +58,8 @@ static void eval_fn(const void *l, const double wi[3], const double wo[3], doubl
     for (int c = 0; c < 3; ++c) f[c] /= wi[2];
 }
 
+static int backlit; /* --backlit: the image's second light behind the cylinder */
+
 static void image(const grids *g, double r, unsigned lobes, int set, double img[HTU_CYL_SAMPLES][3])
 {
     abrdf_params p;
@@ -67,7 +71,7 @@ static void image(const grids *g, double r, unsigned lobes, int set, double img[
     x.m.n1 = g->n1, x.m.n2 = g->n2, x.m.refine = g->refine;
     x.m.shift_set = set;
     x.lobes = lobes;
-    htu_cylinder_image(eval_fn, &x, img);
+    htu_cylinder_image_lit(eval_fn, &x, backlit, img);
 }
 
 /* Each lobe's part of a grid's error: the squared difference of that lobe's image from the
@@ -126,6 +130,8 @@ int main(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--lobes")) {
             lobes = 1;
+        } else if (!strcmp(argv[i], "--backlit")) {
+            backlit = 1;
         } else if (!strcmp(argv[i], "--r")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "hair_convergence: --r needs a roughness in [0.05, 1]\n");
