@@ -13,11 +13,12 @@
  * REFINE divides the Simpson steps (not a parameter of the model). --lobes adds, under each
  * grid, each lobe's part of its error (R, TT, TRT, TRRT+); --r sets the fibre's roughness, in
  * [0.05, 1] (default 0.3, hair_brown's). --backlit moves the second light behind the cylinder
- * (hair_test_util.h, htu_cylinder_image_lit), so that TT is in the image. --shifts K adds, under each grid, its NMSE with the
- * shift sets 0 to K - 1 (hair.h, shift_set; K <= ABRDF__HUANG_SHIFT_SETS), their mean and
- * their range, and the error of the sets' mean image: the model's grids are shifted by one
- * fixed set (set 0), and its error on this image depends on where those shifts fall; the mean
- * over the sets tells the rule's error from that luck. The reference keeps set 0. */
+ * (hair_test_util.h, htu_cylinder_image_lit), so that TT is in the image. --shifts K adds,
+ * under each grid, its NMSE with the shift sets 0 to K - 1 (hair.h, shift_set; K <=
+ * ABRDF__HUANG_SHIFT_SETS), their mean and range, the error of the sets' mean image and the
+ * nearest set: the model's grids are shifted by one fixed set (set 0), and its error on this
+ * image depends on where those shifts fall; the mean over the sets tells the rule's error from
+ * that luck. The reference keeps set 0. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -101,23 +102,26 @@ static void by_lobe(const grids *g, double r, const double want[HTU_CYL_SAMPLES]
     printf("\n");
 }
 
-/* A grid's NMSE with each of the shift sets 0 to k - 1, their mean and range. */
+/* A grid's NMSE with each of the shift sets 0 to k - 1, their mean and range, the error of
+ * their mean image, and which set is the nearest (by the full values, not the printed ones). */
 static void by_shifts(const grids *g, double r, int k, const double want[HTU_CYL_SAMPLES][3])
 {
     static double img[HTU_CYL_SAMPLES][3], avg[HTU_CYL_SAMPLES][3];
     double e[ABRDF__HUANG_SHIFT_SETS], sum = 0.0, lo = 0.0, hi = 0.0;
+    int best = 0;
     for (int s = 0; s < k; ++s) {
         image(g, r, 15u, s, img);
         e[s] = htu_image_nmse(want, img);
         for (int p = 0; p < HTU_CYL_SAMPLES; ++p)
             for (int c = 0; c < 3; ++c) avg[p][c] = (s ? avg[p][c] : 0.0) + img[p][c] / k;
         sum += e[s];
+        if (s == 0 || e[s] < lo) best = s;
         lo = s == 0 || e[s] < lo ? e[s] : lo;
         hi = s == 0 || e[s] > hi ? e[s] : hi;
     }
     printf("  over %d shift sets: mean %.1e, from %.1e to %.1e (", k, sum / k, lo, hi);
     for (int s = 0; s < k; ++s) printf("%s%.1e", s ? " " : "", e[s]);
-    printf("); their mean image %.1e\n", htu_image_nmse(want, avg));
+    printf("); their mean image %.1e; nearest: set %d\n", htu_image_nmse(want, avg), best);
 }
 
 int main(int argc, char **argv)
@@ -178,7 +182,8 @@ int main(int argc, char **argv)
     image(&ref, r, 15u, 0, want);
     static double ref_lobe[4][HTU_CYL_SAMPLES][3];
     for (int l = 0; lobes && l < 4; ++l) image(&ref, r, 1u << l, 0, ref_lobe[l]);
-    printf("reference: grids (%d, %d), Simpson x%d, r %g\n", ref.n1, ref.n2, ref.refine, r);
+    printf("reference: grids (%d, %d), Simpson x%d, r %g%s\n", ref.n1, ref.n2, ref.refine, r,
+           backlit ? ", backlit" : "");
     for (int k = 0; k < n; ++k) {
         image(&list[k], r, 15u, 0, img);
         double work =
