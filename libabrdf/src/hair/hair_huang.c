@@ -200,8 +200,8 @@ static v3 vndf_map(double alpha, v3 wi, v3 wm, double u1, double u2)
  * on one unshifted grid the nodes of neighbouring paths fall on the same side of a cut or of
  * the peak and their errors add up (the default's image was 1.8e-2 from the converged one),
  * on shifted grids they average out (6.8e-5 with the same nodes, and 2.3e-4 on average over
- * rotations of the shifts: docs/MODELS.md, "Convergence on an image" and "One set of shifts is
- * one draw"). Shift k is the k-th point of the R2 sequence (M. Roberts 2018:
+ * rotations of the shifts: docs/MODELS.md, "Convergence on an image" and "What a converged
+ * reference costs"). Shift k is the k-th point of the R2 sequence (M. Roberts 2018:
  * k (1/g, 1/g^2) modulo 1, g the plastic number) minus 1/2, with the steps in 16-bit fixed
  * point (hair.h: the first one's period) and k taken modulo 2^15 so that the OSL and POV-Ray
  * twins compute the same shifts exactly (32-bit integers, doubles). */
