@@ -90,6 +90,8 @@
  *   abrdf_measured_init      fill a measured-table descriptor, set its struct_size (static inline)
  *   abrdf_measured_init_sized  the same for a block of struct_size bytes
  *   abrdf_prepare_measured   prepare the `measured` model on a caller's table of measured f_r
+ *   abrdf_huang_table_size, abrdf_huang_table_build, abrdf_prepare_huang_table
+ *                            huang with its residual lobes tabulated once per material
  *   abrdf_shade              the paper's pixel intensity I = ka Ia + Il cos (f_d + f_s)
  *   abrdf_sample             importance sampling: a direction wi for wo, its pdf and the
  *                            weight f_r cos / pdf (double reference)
@@ -480,6 +482,63 @@ static inline int abrdf_measured_init(abrdf_measured *table)
  * size outside [2, 1024], or more than 2^26 cells in all); *prepared is then "not prepared". The prepared object's
  * parameters (abrdf_prepared_params) are the model's defaults: it reads none. */
 ABRDF_API int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared *prepared);
+
+/* ---- huang tabulated (added after 0.2.0) -------------------------------------------- *
+ * huang integrates its fibre by quadrature at every call: thousands of VNDF nodes, about
+ * 0.2 ms, and its error on an image is spread over the rule's shifts like noise
+ * (docs/MODELS.md, "What a converged reference costs"). For a material that many shading
+ * points share, the residual lobes (TT, TRT, TRRT+) can be computed once on a grid of
+ * directions, each node with a denser rule than a call affords (the mean of `sets` rotations
+ * of the material's own entry and internal grids), and read back by cubic interpolation; R
+ * keeps the quadrature. docs/MODELS.md, "A tabulated huang", measures what it costs to build
+ * and to evaluate and how near the converged model it is.
+ *
+ *   int sizes[4] = ABRDF_HUANG_TABLE_SIZES;   // theta nodes, view azimuths, light azimuths, sets
+ *   long n; int rows;
+ *   abrdf_huang_table_size(&params, sizes, &n, &rows);
+ *   double *v = malloc(n * sizeof *v);
+ *   abrdf_huang_table_build(&params, sizes, 0, rows, v);     // rows: split them over threads
+ *   abrdf_prepare_huang_table(&params, sizes, v, &prepared);  // then evaluate as any huang
+ *
+ * THE GRID. The fibre runs along T; theta is a direction's angle to the normal plane of the
+ * fibre, phi its azimuth about it (0 along N). sizes[0] theta nodes (the view's and the
+ * light's, at the centres of equal cells of (-90, 90) degrees), sizes[1] azimuths of the view
+ * on [0, 90] degrees (the elliptical section's mirror symmetries give the rest; 1 only for a
+ * round fibre, aspect_ratio 1), sizes[2] azimuths of the light relative to the view's
+ * (periodic), each node the mean of sizes[3] shift sets. The values are the table's own
+ * format: a header (the sizes and two 32-bit keys of the material's parameters) and then the
+ * nodes, in native doubles. A table is valid only for the parameters it was built from:
+ * abrdf_prepare_huang_table compares the keys and returns ABRDF_E_TABLE for another material
+ * or a table not built (so a table kept in a file cannot be read for the wrong hair).
+ *
+ * LIFETIME as abrdf_prepare_measured: the prepared object points at `values`, which must
+ * stay valid and unchanged while it (or a copy) is evaluated or sampled. Every prepared path
+ * reads the table (eval, batch, sample weights); abrdf_eval and abrdf_prepare of ABRDF_HUANG
+ * keep the quadrature, and so do the OSL and POV-Ray ports (docs/MODELS.md says why). */
+/* clang-format off */
+#define ABRDF_HUANG_TABLE_SIZES {24, 9, 32, 16} /* the sizes docs/MODELS.md measures */
+/* clang-format on */
+
+/* The number of doubles of the table (header included) and its rows (one per view node: the
+ * unit abrdf_huang_table_build fills). ABRDF_E_NULL, an error of abrdf_params_check for
+ * ABRDF_HUANG, or ABRDF_E_TABLE (sizes out of range: theta nodes [4, 256], view azimuths
+ * [2, 256] or 1 for a round fibre, light azimuths [4, 256], sets [1, 64]). */
+ABRDF_API int abrdf_huang_table_size(const abrdf_params *params, const int sizes[4], long *values,
+                                     int *rows);
+/* Fill rows [row0, row1) of the table (and its header when row0 is 0: rows [0, 0) write the
+ * header alone, which a caller that keeps tables in files can name them by). Calls with
+ * disjoint rows may run at once on one table; the rows' values do not depend on how they are
+ * split. A row has sizes[0] sizes[2] nodes, each about 50 us per shift set on one core at
+ * the default grids (about 2 minutes for the default sizes). The errors of
+ * abrdf_huang_table_size, and ABRDF_E_RANGE for rows outside [0, rows]. */
+ABRDF_API int abrdf_huang_table_build(const abrdf_params *params, const int sizes[4], int row0,
+                                      int row1, double *values);
+/* Prepare ABRDF_HUANG at params with its residual read from the table (LIFETIME above): the
+ * errors of abrdf_prepare and abrdf_huang_table_size, ABRDF_E_NULL for values, and
+ * ABRDF_E_TABLE if the table's header does not match params and sizes. *prepared is then
+ * "not prepared". */
+ABRDF_API int abrdf_prepare_huang_table(const abrdf_params *params, const int sizes[4],
+                                        const double *values, abrdf_prepared *prepared);
 
 /* The paper's pixel intensity (Sec. 1), physically based convention (MODELS.md B1):
  *   I = ka*Ia + Il * max(0, N.wi) * (f_diffuse + f_specular)

@@ -50,6 +50,73 @@ class Render(TempDirCase):
         self.assertEqual(d.returncode, 0, d.stdout + d.stderr)
         self.assertEqual(outs[0], outs[1])
 
+    def test_hair_table_cache(self):
+        """--hair-table: the hair read from tables (small ones here: the default takes minutes),
+        not the per-call image; the same image for one and two threads; --hair-table-cache keeps
+        a table per material and reads it back (the same image, no "tabulating"); a file there
+        of another material or cut short is replaced; bad sizes or a missing directory are one
+        line and exit 2, before any output."""
+        hair = self.path("hair.scene")
+        with open(hair, "w") as f:
+            f.write("camera position=0,0,6 look_at=0,0,0 up=0,1,0 fov=30 resolution=24,24\n"
+                    "light directional direction=-0.45,0.75,0.55 color=1,1,1 intensity=2.5\n"
+                    "material brown table=hair_brown\nmaterial blond table=hair_blond\n"
+                    "capsule material=brown radius=0.6 height=1.4 tangent=v translate=-0.7,0,0\n"
+                    "sphere material=blond radius=0.6 tangent=v translate=0.8,0,0\n")
+        sizes = ["--hair-table-sizes", "6,3,8,1"]
+        base = ["--stats", "--precision", "double"]
+        r = run(hair, "-o", self.path("q.exr"), *base)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        imgs = {}
+        for t in ("1", "2"):
+            r = run(hair, "-o", self.path("t%s.exr" % t), "--threads", t, *sizes, *base)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            imgs[t] = r.stdout
+        same = lambda a, b: subprocess.run(["idiff", "-fail", "0", "-failpercent", "0", "-warn", "0",
+                                            self.path(a), self.path(b)], capture_output=True, text=True)
+        self.assertEqual(same("t1.exr", "t2.exr").returncode, 0)
+        self.assertNotEqual(same("q.exr", "t1.exr").returncode, 0)  # the table is not the quadrature
+        cache = self.path("cache")
+        os.mkdir(cache)
+        r = run(hair, "-o", self.path("c1.exr"), *sizes, "--hair-table-cache", cache, *base)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        files = sorted(os.listdir(cache))
+        self.assertEqual(len(files), 2, files)  # brown and blond
+        for name in files:
+            self.assertRegex(name, r"^huang-[0-9a-f]{16}-6x3x8x1\.table$")
+            self.assertEqual(os.path.getsize(os.path.join(cache, name)), 8 * (8 + 3 * 6 * 3 * 6 * 8))
+        self.assertEqual(same("t1.exr", "c1.exr").returncode, 0)
+        # read back: the same image; then one file cut short and the other replaced by the first's
+        # bytes (another material's table under this one's name): both rebuilt, the same image
+        r = run(hair, "-o", self.path("c2.exr"), *sizes, "--hair-table-cache", cache, *base)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(same("t1.exr", "c2.exr").returncode, 0)
+        a, b = (os.path.join(cache, n) for n in files)
+        with open(a, "rb") as f:
+            first = f.read()
+        with open(a, "wb") as f:
+            f.write(first[:1000])
+        with open(b, "wb") as f:
+            f.write(first)
+        r = run(hair, "-o", self.path("c3.exr"), *sizes, "--hair-table-cache", cache, *base)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(same("t1.exr", "c3.exr").returncode, 0)
+        self.assertEqual(os.path.getsize(a), len(first))
+        with open(b, "rb") as f:
+            self.assertNotEqual(f.read(), first)
+        # bad input: one line, exit 2, nothing written
+        for args, msg in ((["--hair-table-sizes", "6,3,8"], "--hair-table-sizes needs NT,NV,NP,SETS"),
+                          (["--hair-table-cache", self.path("none")], "not a directory")):
+            r = run(hair, "-o", self.path("x.exr"), *args)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn(msg, r.stderr)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertFalse(os.path.exists(self.path("x.exr")))
+        r = run(hair, "-o", self.path("x.exr"), "--hair-table-sizes", "6,1,8,1")
+        self.assertEqual(r.returncode, 1, r.stderr)  # the scene's material refuses the sizes
+        self.assertIn("material 'brown' (line 3): huang table 6,1,8,1: ", r.stderr)
+        self.assertFalse(os.path.exists(self.path("x.exr")))
+
     def test_parse_error_names_file_and_line(self):
         bad = self.path("bad.scene")
         with open(bad, "w") as f:

@@ -4,6 +4,7 @@
 #                    (and a program that includes the selection header, abrdf_select.h)
 #   2. find_package: abrdf::abrdf         (shared; its NEEDED entries must name libabrdf)
 #   3. find_package: abrdf::abrdf_static  (static; must not need libabrdf.so at run time)
+# and runs examples/hair_table.c (find_package, shared).
 # Each build must print the line README.md quotes as the example's output.
 #   cmake -DBUILD_DIR=.. -DEXAMPLES=.. -DWORK=.. -DCC=.. -DPKG_CONFIG=.. -DOBJDUMP=.. -DREADME=..
 #         [-DEXTRA_FLAGS="-fsanitize=..."] -P install_consumer.cmake
@@ -99,6 +100,14 @@ step("quickstart (find_package, shared)" "${WORK}/consumer/quickstart")
 expect_output("find_package abrdf::abrdf")
 step("quickstart (find_package, static)" "${WORK}/consumer/quickstart_static")
 expect_output("find_package abrdf::abrdf_static")
+# examples/hair_table.c: a huang table built, prepared on and read (abrdf.h, "huang
+# tabulated"), beside the quadrature
+step("hair_table (find_package, shared)" "${WORK}/consumer/hair_table")
+if(NOT step_out MATCHES "huang f_r, tabulated \\([0-9]+ values\\): [0-9.]+ [0-9.]+ [0-9.]+\n"
+   OR NOT step_out MATCHES "huang f_r, integrated per call: +[0-9.]+ [0-9.]+ [0-9.]+\n")
+  message(FATAL_ERROR "install_consumer: hair_table printed '${step_out}'")
+endif()
+message(STATUS "install_consumer: hair_table: ${step_out}")
 
 # Shared really links the shared library; static really does not.
 if(OBJDUMP)

@@ -1,9 +1,9 @@
 """hair_doc.py BIN SRC - docs/MODELS.md, "Hair models", quotes what its programs print now
 (BIN holds test_hair_marschner, test_hair_huang, test_invariants, measure_hair, gen_hair_tables,
-hair_convergence): the fibre albedos, lobes and reciprocity, Huang's convergence (and what a
-converged reference costs), white furnace and R limit, the surface albedos, the continuity and
-stability figures, the table convergence. The costs are
-one-off timings, marked so on the page."""
+hair_convergence): the fibre albedos, lobes and reciprocity, Huang's convergence (what a
+converged reference costs, and the tabulated huang at its default sizes), white furnace and R
+limit, the surface albedos, the continuity and stability figures, the table convergence. The
+costs are one-off timings, marked so on the page."""
 import os
 import re
 
@@ -179,6 +179,25 @@ def body():
         for quoted, grid in ((dflt, "6, 3"), (dense, "16, 6"), (denser, "16, 7")):
             got = grab(r"grids \(%s\), Simpson x1: work \S+, NMSE vs the reference (\S+)" % grid, out, f"r {r}")[1]
             require_number(DOC, doc, quoted, got, f"convergence at r {r}, grids ({grid})")
+    # A tabulated huang: the row of the default sizes (abrdf.h, ABRDF_HUANG_TABLE_SIZES), on the
+    # cylinder and the backlit cylinder; the other rows are one-off figures.
+    i = next(i for i, l in enumerate(lines) if l.strip().startswith("| table (NT, NV, NP), sets |"))
+    _, rows, _ = parse_table([l.strip() for l in lines], i)
+    row = next((r for r in rows if "default" in r[0]), None)
+    if not row:
+        fail(f"{DOC}: the tabulated huang's table has no row of the default sizes")
+    sizes = tuple(re.findall(r"\d+", row[0])[:4])
+    hdr = read(os.path.join(src, "libabrdf/include/abrdf.h"))
+    want = grab(r"#define ABRDF_HUANG_TABLE_SIZES \{(\d+), (\d+), (\d+), (\d+)\}", hdr, "abrdf.h").groups()
+    if sizes != want:
+        fail(f"{DOC}: the tabulated huang's default row is {sizes}, abrdf.h's sizes {want}")
+    for col, extra in ((3, []), (4, ["--backlit"])):
+        out = prog("hair_convergence", *extra, "--table", ",".join(sizes))
+        m = grab(r"table \(\d+, \d+, \d+\), \d+ shift sets of grids \(6, 3\): NMSE vs the reference (\S+); "
+                 r"built in \S+ s \((\d+) values\)", out, "hair_convergence --table")
+        require_number(DOC, doc, row[col], m[1], f"the tabulated huang {sizes} {' '.join(extra)}")
+        if int(row[1].replace(" ", "")) != int(m[2]):
+            fail(f"{DOC}: the tabulated huang {sizes} has {row[1]} values on the page, {m[2]} now")
     lob = grab(r"R (\S+) \(\d+ %\), TT \S+ \(\d+ %\), TRT (\S+) \(\d+ %\), TRRT\+ (\S+)",
                prog("hair_convergence", "--lobes", "6,3,1"), "hair_convergence --lobes")
     q = grab(r"against \(16, 8, ×4\): R (%s), TRT (%s), TRRT\+ (%s)\)" % (NUM, NUM, NUM), ft, DOC)

@@ -6,7 +6,7 @@
  * its work per evaluation relative to the default's, n1^2 (1 + n2^2) refine / (6^2 (1 + 3^2)).
  *
  *   hair_convergence [--lobes] [--backlit] [--r R] [--shifts K] [--reference N1,N2,REFINE]
- *                    [N1,N2,REFINE ...]
+ *                    [--table NT,NV,NP,SETS] [N1,N2,REFINE ...]
  *
  * The reference defaults to 16,8,4 (185 times the default's work: a few seconds at r = 0.3,
  * about 15 at r = 0.1, as the Simpson steps shrink with r); the grids to the table of the page.
@@ -18,10 +18,17 @@
  * ABRDF__HUANG_SHIFT_SETS), their mean and range, the error of the sets' mean image and the
  * nearest set: the model's grids are shifted by one fixed set (set 0), and its error on this
  * image depends on where those shifts fall; the mean over the sets tells the rule's error from
- * that luck. The reference keeps set 0. */
+ * that luck. The reference keeps set 0. --table adds the tabulated huang (hair.h,
+ * abrdf__huang_table_rows) built from the default grids with NT theta nodes, NV view azimuths,
+ * NP light azimuths and the mean of SETS shift sets per node: its image's NMSE, the seconds
+ * its table took to build (one thread), and the microseconds per evaluation of the image's
+ * pairs, the table's beside the quadrature's, measured in this run. */
+
+#define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "hair.h"
 #include "hair_test_util.h"
@@ -61,14 +68,20 @@ static void eval_fn(const void *l, const double wi[3], const double wo[3], doubl
 
 static int backlit; /* --backlit: the image's second light behind the cylinder */
 
-static void image(const grids *g, double r, unsigned lobes, int set, double img[HTU_CYL_SAMPLES][3])
+/* The model of hair_brown at roughness r (grids: the model's defaults). */
+static void model(double r, abrdf__huang *m)
 {
     abrdf_params p;
     abrdf_params_init(ABRDF_HUANG, &p);
     p.melanin = 0.73; /* hair_brown */
     p.r = r;
+    abrdf__huang_setup(&p, m);
+}
+
+static void image(const grids *g, double r, unsigned lobes, int set, double img[HTU_CYL_SAMPLES][3])
+{
     lobed x;
-    abrdf__huang_setup(&p, &x.m);
+    model(r, &x.m);
     x.m.n1 = g->n1, x.m.n2 = g->n2, x.m.refine = g->refine;
     x.m.shift_set = set;
     x.lobes = lobes;
@@ -124,12 +137,78 @@ static void by_shifts(const grids *g, double r, int k, const double want[HTU_CYL
     printf("); their mean image %.1e; nearest: set %d\n", htu_image_nmse(want, avg), best);
 }
 
+static double seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+typedef struct tabled {
+    abrdf__huang m;
+    abrdf__huang_table t;
+} tabled;
+
+static void eval_table(const void *l, const double wi[3], const double wo[3], double f[3])
+{
+    const tabled *x = l;
+    double fl[1][3];
+    abrdf__huang_table_eval_run(&x->m, &x->t, 1, (const double(*)[3])wi, wo, fl);
+    for (int c = 0; c < 3; ++c) f[c] = fl[0][c];
+}
+
+static void eval_model(const void *m, const double wi[3], const double wo[3], double f[3])
+{
+    abrdf__huang_eval(m, wi, wo, f);
+}
+
+/* Microseconds per evaluation of eval over the image's pairs (two lights per pixel, the
+ * unlit ones skipped), the image rendered reps times. */
+static double image_us(htu_eval_fn eval, const void *m, int reps)
+{
+    static double img[HTU_CYL_SAMPLES][3];
+    double t0 = seconds();
+    for (int i = 0; i < reps; ++i) htu_cylinder_image_lit(eval, m, backlit, img);
+    return (seconds() - t0) * 1e6 / (reps * 2.0 * HTU_CYL_SAMPLES);
+}
+
+/* --table: the tabulated huang's image against the reference, its build and its cost. */
+static int table_row(const int dims[4], double r, const double want[HTU_CYL_SAMPLES][3])
+{
+    tabled x;
+    model(r, &x.m);
+    if (!abrdf__huang_table_check(&x.m, dims[0], dims[1], dims[2], dims[3])) {
+        fprintf(stderr, "hair_convergence: --table %d,%d,%d,%d is out of range (hair.h)\n", dims[0],
+                dims[1], dims[2], dims[3]);
+        return 0;
+    }
+    long count = abrdf__huang_table_count(dims[0], dims[1], dims[2]);
+    double *v = malloc((size_t)count * sizeof *v);
+    if (!v) {
+        fprintf(stderr, "hair_convergence: no memory for a table of %ld values\n", count);
+        return 0;
+    }
+    x.t = (abrdf__huang_table){dims[0], dims[1], dims[2], dims[3], v};
+    double t0 = seconds();
+    abrdf__huang_table_rows(&x.m, &x.t, 0, dims[0] * dims[1], v);
+    double build = seconds() - t0;
+    static double img[HTU_CYL_SAMPLES][3];
+    htu_cylinder_image_lit(eval_table, &x, backlit, img);
+    double us_table = image_us(eval_table, &x, 200), us_model = image_us(eval_model, &x.m, 4);
+    printf("table (%d, %d, %d), %d shift sets of grids (%d, %d): NMSE vs the reference %.1e; "
+           "built in %.1f s (%ld values); %.2f us per evaluation, the quadrature's %.1f (%.0fx)\n",
+           dims[0], dims[1], dims[2], dims[3], x.m.n1, x.m.n2, htu_image_nmse(want, img), build,
+           count, us_table, us_model, us_model / us_table);
+    free(v);
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     static const grids table[] = {{6, 3, 1},  {6, 3, 2},  {8, 3, 2},  {10, 3, 2}, {8, 4, 2},
                                   {12, 3, 2}, {10, 4, 2}, {12, 4, 2}, {12, 6, 1}, {12, 6, 2}};
     grids ref = {16, 8, 4}, list[64];
-    int n = 0, lobes = 0, shifts = 0;
+    int n = 0, lobes = 0, shifts = 0, table_dims[4] = {0, 0, 0, 0};
     double r = 0.3; /* hair_brown's, the model's default */
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--lobes")) {
@@ -163,6 +242,15 @@ int main(int argc, char **argv)
                 return 2;
             }
             shifts = (int)k;
+        } else if (!strcmp(argv[i], "--table")) {
+            char tail;
+            if (i + 1 >= argc ||
+                sscanf(argv[i + 1], "%d,%d,%d,%d%c", &table_dims[0], &table_dims[1], &table_dims[2],
+                       &table_dims[3], &tail) != 4) {
+                fprintf(stderr, "hair_convergence: --table needs NT,NV,NP,SETS\n");
+                return 2;
+            }
+            ++i;
         } else if (!strcmp(argv[i], "--reference")) {
             if (i + 1 >= argc) {
                 fprintf(stderr, "hair_convergence: --reference needs N1,N2,REFINE\n");
@@ -176,7 +264,7 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if (n == 0)
+    if (n == 0 && !table_dims[0])
         for (n = 0; n < (int)(sizeof table / sizeof table[0]); ++n) list[n] = table[n];
     static double want[HTU_CYL_SAMPLES][3], img[HTU_CYL_SAMPLES][3];
     image(&ref, r, 15u, 0, want);
@@ -194,5 +282,6 @@ int main(int argc, char **argv)
         if (lobes) by_lobe(&list[k], r, want, ref_lobe);
         if (shifts) by_shifts(&list[k], r, shifts, want);
     }
+    if (table_dims[0] && !table_row(table_dims, r, want)) return 2;
     return 0;
 }

@@ -10,6 +10,10 @@
 #     CPU is the difference.
 # The CPU is divided by the hair's lit (hit, light) pairs, the render's "integration evals"
 # counter (on mixed.scene: its difference with and without the lock): nanoseconds per light.
+# AFTER_ARGS (environment) adds render options to AFTER's renders, e.g. AFTER_ARGS=--hair-table
+# (huang tabulated once per material, docs/MODELS.md, "A tabulated huang"): the table's build
+# is part of the scene's preparation, which is not ray tracing, so each binary's preparation
+# time (wall, one thread) is printed below the table.
 # BEFORE is typically an `abrdf` built from an older commit in a scratch directory:
 #   git archive e929a63 | tar -x -C /tmp/before
 #   cmake -S /tmp/before -B /tmp/before/b -DCMAKE_BUILD_TYPE=Release -DABRDF_BUILD_TESTS=OFF
@@ -27,24 +31,28 @@ if cmp -s "$mixed" "$nohair"; then
   exit 1
 fi
 
-run() { # BIN SCENE W H -> "CPU_SECONDS INTEGRATION_EVALS" of one render, or one line naming
-  # what failed and exit 1
-  local s n
-  if ! "$1" render "$2" -o "$out/r.exr" --no-preview --stats --threads 1 --width "$3" \
-    --height "$4" >"$out/stdout" 2>"$out/err"; then
-    echo "$0: $1 render $2 failed: $(tail -n 1 "$out/err")" >&2
+read -r -a after_args <<<"${AFTER_ARGS:-}"
+run() { # BIN SCENE W H [ARGS...] -> "CPU_SECONDS INTEGRATION_EVALS PREPARE_SECONDS" of one
+  # render, or one line naming what failed and exit 1
+  local s n p bin=$1 scene=$2 w=$3 h=$4
+  shift 4
+  if ! "$bin" render "$scene" -o "$out/r.exr" --no-preview --stats --threads 1 --width "$w" \
+    --height "$h" "$@" >"$out/stdout" 2>"$out/err"; then
+    echo "$0: $bin render $scene failed: $(tail -n 1 "$out/err")" >&2
     exit 1
   fi
   s=$(sed -n 's/.*: \([0-9.]*\) s wall, \([0-9.]*\) s CPU.*/\2/p' "$out/err")
   n=$(sed -n 's/^ *integration evals *\([0-9]*\).*/\1/p' "$out/stdout" "$out/err" | head -n 1)
-  if [[ -z $s || -z $n ]]; then
-    echo "$0: $1 render $2: no CPU time or 'integration evals' counter in its --stats" >&2
+  p=$(sed -n 's/.*prepared in \([0-9.]*\) s wall.*/\1/p' "$out/err")
+  if [[ -z $s || -z $n || -z $p ]]; then
+    echo "$0: $bin render $scene: no CPU time, preparation time or 'integration evals'" \
+      "counter in its --stats" >&2
     exit 1
   fi
-  echo "$s $n"
+  echo "$s $n $p"
 }
 
-declare -A t n
+declare -A t n prep
 cases=(robot mixed nohair)
 for ((i = 0; i < repeats; ++i)); do
   for c in "${cases[@]}"; do
@@ -54,10 +62,13 @@ for ((i = 0; i < repeats; ++i)); do
       nohair) scene=$nohair w=160 h=120 ;;
     esac
     for b in before after; do
-      bin=$before
-      [[ $b == after ]] && bin=$after
-      read -r s k < <(run "$bin" "$scene" "$w" "$h")
+      if [[ $b == after ]]; then
+        read -r s k p < <(run "$after" "$scene" "$w" "$h" "${after_args[@]}")
+      else
+        read -r s k p < <(run "$before" "$scene" "$w" "$h")
+      fi
       t[$c,$b]+="$s "
+      prep[$c,$b]=$p
       n[$c,$b]=$k
     done
   done
@@ -88,3 +99,6 @@ row "mixed, the lock (160 x 120)" "$pairs" \
 echo
 echo "median of $repeats runs per cell, interleaved; 1 thread, 4 spp; CPU of ray tracing;" \
   "load average $(cut -d' ' -f1-3 /proc/loadavg) on $(nproc) cores"
+echo "scene preparation (last run, s wall, one thread): hair_robot ${prep[robot,before]} before," \
+  "${prep[robot,after]} after; mixed ${prep[mixed,before]} before, ${prep[mixed,after]} after" \
+  "${AFTER_ARGS:+(after with $AFTER_ARGS)}"

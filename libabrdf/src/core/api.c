@@ -140,6 +140,67 @@ int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared *prepared
     return ABRDF_OK;
 }
 
+/* ---- huang tabulated (hair_huang_table.c) ---------------------------------------------- */
+
+/* The model's setup at params into pr, and the table's sizes (t->v NULL). */
+static int huang_table_args(const abrdf_params *params, const int sizes[4], abrdf__prep *pr,
+                            abrdf__huang_table *t)
+{
+    if (!params || !sizes) return ABRDF_E_NULL;
+    int st = abrdf__prep_checked(ABRDF_HUANG, params, pr, ABRDF__PREP_DOUBLE | ABRDF__PREP_FLOAT);
+    if (st != ABRDF_OK) return st;
+    if (!abrdf__huang_table_check(&pr->special.huang, sizes[0], sizes[1], sizes[2], sizes[3]))
+        return ABRDF_E_TABLE;
+    *t = (abrdf__huang_table){sizes[0], sizes[1], sizes[2], sizes[3], NULL};
+    return ABRDF_OK;
+}
+
+int abrdf_huang_table_size(const abrdf_params *params, const int sizes[4], long *values, int *rows)
+{
+    if (!values || !rows) return ABRDF_E_NULL;
+    abrdf__prep pr;
+    abrdf__huang_table t;
+    int st = huang_table_args(params, sizes, &pr, &t);
+    if (st != ABRDF_OK) return st;
+    *values = ABRDF__HUANG_TABLE_HEADER + abrdf__huang_table_count(t.nt, t.nv, t.np);
+    *rows = t.nt * t.nv;
+    return ABRDF_OK;
+}
+
+int abrdf_huang_table_build(const abrdf_params *params, const int sizes[4], int row0, int row1,
+                            double *values)
+{
+    if (!values) return ABRDF_E_NULL;
+    abrdf__prep pr;
+    abrdf__huang_table t;
+    int st = huang_table_args(params, sizes, &pr, &t);
+    if (st != ABRDF_OK) return st;
+    if (row0 < 0 || row1 < row0 || row1 > t.nt * t.nv) return ABRDF_E_RANGE;
+    if (row0 == 0) abrdf__huang_table_header(&pr.special.huang, &t, values);
+    abrdf__huang_table_rows(&pr.special.huang, &t, row0, row1, values + ABRDF__HUANG_TABLE_HEADER);
+    return ABRDF_OK;
+}
+
+int abrdf_prepare_huang_table(const abrdf_params *params, const int sizes[4], const double *values,
+                              abrdf_prepared *prepared)
+{
+    if (!prepared) return ABRDF_E_NULL;
+    memset(prepared, 0, sizeof *prepared); /* not prepared, and no stale bytes in a copy */
+    abrdf__prep *pr = (abrdf__prep *)(void *)prepared;
+    abrdf__huang_table t;
+    int st = huang_table_args(params, sizes, pr, &t);
+    if (st == ABRDF_OK && !values) st = ABRDF_E_NULL;
+    if (st == ABRDF_OK && !abrdf__huang_table_header_ok(&pr->special.huang, &t, values))
+        st = ABRDF_E_TABLE;
+    if (st != ABRDF_OK) {
+        memset(prepared, 0, sizeof *prepared);
+        return st;
+    }
+    t.v = values + ABRDF__HUANG_TABLE_HEADER;
+    pr->special.huang.table = t;
+    return ABRDF_OK;
+}
+
 abrdf_model abrdf_prepared_model(const abrdf_prepared *prepared)
 {
     const abrdf__prep *pr = abrdf__prep_of(prepared);

@@ -235,7 +235,7 @@ static void abrdf__batch_huang(const abrdf__prep *pr, const abrdf_batch *b)
             live[l] = abrdf__normalise3(wi, ui[l]);
             if (!live[l]) ui[l][0] = ui[l][1] = 0.0, ui[l][2] = -1.0; /* gives 0 */
         }
-        if (ok) abrdf__huang_eval_run(&pr->special.huang, n, (const double(*)[3])ui, uo, f);
+        if (ok) abrdf__huang_prepared_run(&pr->special.huang, n, (const double(*)[3])ui, uo, f);
         for (int l = 0; l < n; ++l) {
             int good = ok && live[l];
             b->f_r[i + l] = good ? abrdf__to_float(abrdf__nonneg(f[l][0])) : 0.0f;

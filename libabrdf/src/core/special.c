@@ -34,7 +34,12 @@ void abrdf__eval_special_prepared(const abrdf__prep *pr, const double wi[3], con
     f[0] = f[1] = f[2] = 0.0;
     switch (pr->model) {
     case ABRDF_MARSCHNER: abrdf__marschner_eval(&pr->special.marschner, wi, wo, f); break;
-    case ABRDF_HUANG: abrdf__huang_eval(&pr->special.huang, wi, wo, f); break;
+    case ABRDF_HUANG: { /* a table's, if prepared on one (abrdf_prepare_huang_table) */
+        double fl[1][3];
+        abrdf__huang_prepared_run(&pr->special.huang, 1, (const double(*)[3])wi, wo, fl);
+        f[0] = fl[0][0], f[1] = fl[0][1], f[2] = fl[0][2];
+        break;
+    }
     case ABRDF_BELCOUR: abrdf__eval_belcour(&pr->special.belcour, &pr->params, wi, wo, f); break;
     case ABRDF_MEASURED: abrdf__measured_eval(&pr->special.measured, wi, wo, f); break;
     default: break;

@@ -115,6 +115,12 @@ extern const double abrdf__hair_glass_inv_e[ABRDF__HAIR_E_N * ABRDF__HAIR_E_N * 
 /* The albedo the tables hold, by an n x n midpoint rule over the GGX VNDF square. */
 double abrdf__ggx_glass_albedo(double alpha, double mu, double eta, int n);
 
+/* A tabulated residual (hair_huang_table.c, below): its sizes and the caller's values. */
+typedef struct abrdf__huang_table {
+    int nt, nv, np, sets;
+    const double *v; /* abrdf__huang_table_count(nt, nv, np) values; NULL: no table */
+} abrdf__huang_table;
+
 typedef struct abrdf__huang {
     double eta;        /* index of refraction */
     double alpha;      /* GGX roughness (not squared), [0.001, 1] */
@@ -136,14 +142,19 @@ typedef struct abrdf__huang {
      * dgamma/dh, R's visibility tested per node (steps divided by refine). ABRDF__HUANG_CYCLES_TRRT:
      * TRRT+ weighted by the constant 2/pi. 0 (setup's value): the model. */
     unsigned cycles_nodes;
-    /* Tests only (tools/bench/hair_convergence.c, --shifts; test_hair_huang, shift_sets):
-     * which set of grid shifts. Set k adds ABRDF__HUANG_SHIFT_SET_STEP k to every grid's
-     * index into the R2 sequence, after the index's own wrap at 2^15. The sequence is additive
+    /* Tests (tools/bench/hair_convergence.c, --shifts; test_hair_huang, shift_sets) and the
+     * table's build (abrdf__huang_table_rows): which set of grid shifts. Set k adds
+     * ABRDF__HUANG_SHIFT_SET_STEP k to every grid's index into the R2 sequence, after the
+     * index's own wrap at 2^15. The sequence is additive
      * (shift(i + D) = shift(i) + shift(D) modulo 1, exactly in its 16-bit fixed point), so this
      * turns every shift of an evaluation by one vector: a Cranley-Patterson rotation of the
      * whole rule, which tells the error of the rule from the luck of where its shifts fall.
-     * 0 (setup's value): the model. */
+     * 0 (setup's value): the model. The tabulated huang averages sets 0 to sets - 1. */
     int shift_set;
+    /* The residual read from a table (abrdf_prepare_huang_table) instead of integrated:
+     * abrdf__huang_prepared_run reads it when table.v is set (setup: NULL); every other
+     * function of hair_huang.c integrates. */
+    abrdf__huang_table table;
 } abrdf__huang;
 /* The step 4111 turns the 8 sets by 8 different vectors in both coordinates (a step of 4096
  * would turn d2 alone: 4096 ABRDF__HUANG_R2_A1 is a multiple of 2^16). */
@@ -153,8 +164,9 @@ typedef struct abrdf__huang {
 #define ABRDF__HUANG_CYCLES_TRRT 2u
 
 /* Lights per run: abrdf__huang_fibre_run and abrdf__huang_eval_run take up to this many
- * lights of one view (a shading point's lights; the batch path hands them over as runs). */
-#define ABRDF__HUANG_RUN_MAX 8
+ * lights of one view (a shading point's lights; the batch path hands them over as runs; a
+ * table's build, its lights of one view 32 at a time: 1.4 times faster than 8 at a time). */
+#define ABRDF__HUANG_RUN_MAX 32
 
 void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m);
 /* Fill m->e_in and m->e_out from m->alpha and m->eta (abrdf__huang_setup calls it). */
@@ -167,10 +179,46 @@ void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double 
  * once (hair_huang.c, "the view's paths, then each light's exit"). */
 void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi)[3],
                             const double wo[3], unsigned lobes, double (*s)[3]);
-/* f_r for the surface from the model's setup (the dispatch entry, special.c), one pair or a
- * run of count lights of one view. */
+/* f_r for the surface from the model's setup, one pair or a run of count lights of one view,
+ * integrated (hair_huang_surface.c). */
 void abrdf__huang_eval(const abrdf__huang *m, const double wi[3], const double wo[3], double f[3]);
 void abrdf__huang_eval_run(const abrdf__huang *m, int count, const double (*wi)[3],
                            const double wo[3], double (*f)[3]);
+
+/* ---- huang tabulated (hair_huang_table.c; docs/MODELS.md, "A tabulated huang") --------
+ * The residual TT + TRT + TRRT+ of a prepared huang on a grid of directions, each node the
+ * mean of `sets` shift sets (shift_set 0 to sets - 1), read by cubic interpolation; R stays
+ * the model's quadrature. The table is the caller's memory, abrdf__huang_table_count doubles
+ * for nt theta nodes (view and light), nv azimuths of the view on [0, pi/2] (1: a round
+ * fibre only) and np relative azimuths of the light. Rows (one per view node, nt nv of them)
+ * are independent: abrdf__huang_table_rows fills [row0, row1), so a caller may split them
+ * over threads. */
+#define ABRDF__HUANG_TABLE_NT_MIN 4
+#define ABRDF__HUANG_TABLE_NP_MIN 4
+#define ABRDF__HUANG_TABLE_AXIS_MAX 256
+#define ABRDF__HUANG_TABLE_SETS_MAX 64
+
+/* The public table's header (abrdf_huang_table_build): ABRDF__HUANG_TABLE_HEADER doubles
+ * before the values, holding the sizes and two keys of m's setup; _ok: 1 if h is t's for m. */
+#define ABRDF__HUANG_TABLE_HEADER 8
+void abrdf__huang_table_header(const abrdf__huang *m, const abrdf__huang_table *t, double *h);
+int abrdf__huang_table_header_ok(const abrdf__huang *m, const abrdf__huang_table *t,
+                                 const double *h);
+/* 1 if the sizes are in range for m (nv = 1 needs b = 1), else 0. */
+int abrdf__huang_table_check(const abrdf__huang *m, int nt, int nv, int np, int sets);
+long abrdf__huang_table_count(int nt, int nv, int np);
+/* Fill rows row0 to row1 - 1 of v (t's sizes; t->v is not read). */
+void abrdf__huang_table_rows(const abrdf__huang *m, const abrdf__huang_table *t, int row0, int row1,
+                             double *v);
+/* abrdf__huang_fibre_run and abrdf__huang_eval_run with the residual read from the table. */
+void abrdf__huang_table_fibre_run(const abrdf__huang *m, const abrdf__huang_table *t, int count,
+                                  const double (*wi)[3], const double wo[3], unsigned lobes,
+                                  double (*s)[3]);
+void abrdf__huang_table_eval_run(const abrdf__huang *m, const abrdf__huang_table *t, int count,
+                                 const double (*wi)[3], const double wo[3], double (*f)[3]);
+/* f_r of a prepared huang (the dispatch entries, special.c and eval_float.c): from m->table
+ * when it is set, else abrdf__huang_eval_run (hair_huang_surface.c). */
+void abrdf__huang_prepared_run(const abrdf__huang *m, int count, const double (*wi)[3],
+                               const double wo[3], double (*f)[3]);
 
 #endif /* ABRDF_HAIR_H */

@@ -459,6 +459,7 @@ void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m)
     m->compensate = 1;
     m->cycles_nodes = 0;
     m->shift_set = 0;
+    m->table = (abrdf__huang_table){0, 0, 0, 0, NULL};
     abrdf__huang_tables(m);
 }
 
@@ -1249,29 +1250,4 @@ void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double 
     double si[1][3];
     abrdf__huang_fibre_run(m, 1, (const double(*)[3])wi, wo, lobes, si);
     for (int c = 0; c < 3; ++c) s[c] = si[0][c];
-}
-
-void abrdf__huang_eval_run(const abrdf__huang *m, int count, const double (*wi)[3],
-                           const double wo[3], double (*f)[3])
-{
-    double s[ABRDF__HUANG_RUN_MAX][3], lit[ABRDF__HUANG_RUN_MAX][3];
-    int slot[ABRDF__HUANG_RUN_MAX], n = 0;
-    for (int l = 0; l < count; ++l) f[l][0] = f[l][1] = f[l][2] = 0.0;
-    if (count < 1 || count > ABRDF__HUANG_RUN_MAX || !(wo[2] > 0.0)) return;
-    for (int l = 0; l < count; ++l) /* lights above the ribbon; the others keep f_r = 0 */
-        if (wi[l][2] > 0.0) {
-            for (int c = 0; c < 3; ++c) lit[n][c] = wi[l][c];
-            slot[n++] = l;
-        }
-    if (n == 0) return;
-    abrdf__huang_fibre_run(m, n, (const double(*)[3])lit, wo, 15u, s);
-    for (int l = 0; l < n; ++l)
-        for (int c = 0; c < 3; ++c) f[slot[l]][c] = s[l][c] / lit[l][2]; /* f_r = S / |N.wi| */
-}
-
-void abrdf__huang_eval(const abrdf__huang *m, const double wi[3], const double wo[3], double f[3])
-{
-    double fl[1][3];
-    abrdf__huang_eval_run(m, 1, (const double(*)[3])wi, wo, fl);
-    for (int c = 0; c < 3; ++c) f[c] = fl[0][c];
 }

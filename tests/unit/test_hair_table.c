@@ -1,0 +1,363 @@
+/* test_hair_table.c - huang tabulated (hair_huang_table.c): the table holds the mean of its
+ * shift sets at every node and reads it back there, its rows are independent, the ellipse's
+ * mirror symmetries fold the view's azimuth, and between the nodes it is a cubic in each
+ * axis. How near it is to the converged model: docs/MODELS.md, "A tabulated huang" (hair_doc
+ * checks the figures). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hair.h"
+#include "hair_test_util.h"
+#include "test_util.h"
+
+static const double PI = 3.14159265358979323846;
+
+/* hair_brown (data/materials.csv) with the given aspect ratio */
+static void setup(abrdf__huang *m, double aspect)
+{
+    abrdf_params p;
+    abrdf_params_init(ABRDF_HUANG, &p);
+    p.melanin = 0.73;
+    p.aspect_ratio = aspect;
+    abrdf__huang_setup(&p, m);
+}
+
+/* A table of m at the sizes, built whole (the caller frees t->v). */
+static void build(const abrdf__huang *m, int nt, int nv, int np, int sets, abrdf__huang_table *t)
+{
+    ck_assert(abrdf__huang_table_check(m, nt, nv, np, sets));
+    long n = abrdf__huang_table_count(nt, nv, np);
+    double *v = malloc((size_t)n * sizeof *v);
+    ck_assert_ptr_nonnull(v);
+    *t = (abrdf__huang_table){nt, nv, np, sets, v};
+    abrdf__huang_table_rows(m, t, 0, nt * nv, v);
+}
+
+/* Four numbers in [0, 1) from a linear congruential sequence (the tests' own, repeatable). */
+static void uniforms(unsigned *seed, double a[4])
+{
+    for (int k = 0; k < 4; ++k) {
+        *seed = *seed * 1664525u + 1013904223u;
+        a[k] = (*seed >> 8) / 16777216.0;
+    }
+}
+
+/* The direction (theta, phi) in the fibre frame of hair_huang_table.c */
+static void dir_of(double theta, double phi, double w[3])
+{
+    w[0] = sin(theta);
+    w[1] = cos(theta) * sin(phi);
+    w[2] = cos(theta) * cos(phi);
+}
+
+START_TEST(sizes_checked)
+{
+    abrdf__huang m;
+    setup(&m, 0.85);
+    ck_assert(abrdf__huang_table_check(&m, 16, 9, 32, 8));
+    ck_assert(!abrdf__huang_table_check(&m, 16, 1, 32, 8)); /* an elliptical fibre needs nv >= 2 */
+    ck_assert(!abrdf__huang_table_check(&m, ABRDF__HUANG_TABLE_NT_MIN - 1, 9, 32, 8));
+    ck_assert(!abrdf__huang_table_check(&m, 16, 9, ABRDF__HUANG_TABLE_NP_MIN - 1, 8));
+    ck_assert(!abrdf__huang_table_check(&m, 16, 9, ABRDF__HUANG_TABLE_AXIS_MAX + 1, 8));
+    ck_assert(!abrdf__huang_table_check(&m, 16, 9, 32, 0));
+    ck_assert(!abrdf__huang_table_check(&m, 16, 9, 32, ABRDF__HUANG_TABLE_SETS_MAX + 1));
+    ck_assert_int_eq(abrdf__huang_table_count(16, 9, 32), 3L * 16 * 9 * 16 * 32);
+    setup(&m, 1.0);
+    ck_assert(abrdf__huang_table_check(&m, 16, 1, 32, 8)); /* a round fibre: one azimuth */
+}
+END_TEST
+
+/* At a node the table reads the mean of its shift sets' residuals exactly (the cubic's
+ * weights are 0 0 1 0 there), R is the model's own, and both halves of the rows built apart
+ * are the same bits as the whole. */
+START_TEST(nodes_read_back)
+{
+    abrdf__huang m;
+    setup(&m, 0.85);
+    const int nt = 6, nv = 3, np = 8, sets = 3;
+    abrdf__huang_table t;
+    build(&m, nt, nv, np, sets, &t);
+    long n = abrdf__huang_table_count(nt, nv, np);
+    double *w = malloc((size_t)n * sizeof *w);
+    ck_assert_ptr_nonnull(w);
+    abrdf__huang_table_rows(&m, &t, 7, nt * nv, w);
+    abrdf__huang_table_rows(&m, &t, 0, 7, w);
+    ck_assert_mem_eq(w, t.v, (size_t)n * sizeof *w);
+    free(w);
+    int checked = 0;
+    for (int iv = 0; iv < nt; iv += 2)
+        for (int jv = 0; jv < nv; ++jv)
+            for (int il = 1; il < nt; il += 2)
+                for (int k = 0; k < np; k += 3) {
+                    double tv = -PI / 2 + (iv + 0.5) * PI / nt, pv = jv * 0.5 * PI / (nv - 1);
+                    double tl = -PI / 2 + (il + 0.5) * PI / nt, d = -PI + k * 2.0 * PI / np;
+                    double wo[3], wi[1][3], s[1][3], r[3], mean[3] = {0, 0, 0};
+                    dir_of(tv, pv, wo);
+                    dir_of(tl, pv + d, wi[0]);
+                    for (int q = 0; q < sets; ++q) {
+                        abrdf__huang ms = m;
+                        ms.shift_set = q;
+                        double x[3];
+                        abrdf__huang_fibre(&ms, wi[0], wo, 14u, x);
+                        for (int c = 0; c < 3; ++c) mean[c] += x[c] / sets;
+                    }
+                    abrdf__huang_fibre(&m, wi[0], wo, 1u, r);
+                    abrdf__huang_table_fibre_run(&m, &t, 1, (const double(*)[3])wi, wo, 15u, s);
+                    for (int c = 0; c < 3; ++c) {
+                        double want = r[c] + mean[c];
+                        ck_assert_msg(fabs(s[0][c] - want) <= 1e-12 * (1e-3 + want),
+                                      "node (%d %d %d %d) channel %d: %.15g, built %.15g", iv, jv,
+                                      il, k, c, s[0][c], want);
+                    }
+                    checked += mean[0] > 0.0;
+                }
+    ck_assert_int_gt(checked, 20);
+    free((void *)t.v);
+}
+END_TEST
+
+/* Between the nodes: the mirror images y -> -y and z -> -z of a pair read the same value
+ * (the fold is exact up to rounding), every value is finite and non-negative, and a run of
+ * lights reads what single calls read. */
+START_TEST(mirrors_fold)
+{
+    abrdf__huang m;
+    setup(&m, 0.85);
+    abrdf__huang_table t;
+    build(&m, 6, 4, 8, 1, &t);
+    unsigned seed = 12345u;
+    int lit = 0;
+    for (int i = 0; i < 400; ++i) {
+        double a[4];
+        uniforms(&seed, a);
+        double wo[3], wi[3][3];
+        dir_of((a[0] - 0.5) * 3.1, a[1] * 2.0 * PI, wo);
+        dir_of((a[2] - 0.5) * 3.1, a[3] * 2.0 * PI, wi[0]);
+        double s[3][3], mo[3] = {wo[0], -wo[1], wo[2]}, mz[3] = {wo[0], wo[1], -wo[2]};
+        double in[1][3] = {{wi[0][0], -wi[0][1], wi[0][2]}},
+               iz[1][3] = {{wi[0][0], wi[0][1], -wi[0][2]}};
+        abrdf__huang_table_fibre_run(&m, &t, 1, (const double(*)[3])wi, wo, 14u, &s[0]);
+        abrdf__huang_table_fibre_run(&m, &t, 1, (const double(*)[3])in, mo, 14u, &s[1]);
+        abrdf__huang_table_fibre_run(&m, &t, 1, (const double(*)[3])iz, mz, 14u, &s[2]);
+        for (int c = 0; c < 3; ++c) {
+            ck_assert(isfinite(s[0][c]) && s[0][c] >= 0.0);
+            ck_assert_msg(fabs(s[1][c] - s[0][c]) <= 1e-12 * s[0][c] + 1e-300 &&
+                              fabs(s[2][c] - s[0][c]) <= 1e-12 * s[0][c] + 1e-300,
+                          "pair %d: %.15g, mirrored %.15g and %.15g", i, s[0][c], s[1][c], s[2][c]);
+        }
+        lit += s[0][0] > 0.0;
+        /* three lights of one view in a run */
+        dir_of(a[3] - 0.5, a[0] * 6.0, wi[1]);
+        dir_of(-a[1], a[2] * 6.0, wi[2]);
+        double run[3][3];
+        abrdf__huang_table_fibre_run(&m, &t, 3, (const double(*)[3])wi, wo, 15u, run);
+        for (int l = 0; l < 3; ++l) {
+            double one[1][3];
+            abrdf__huang_table_fibre_run(&m, &t, 1, (const double(*)[3])wi + l, wo, 15u, one);
+            ck_assert_mem_eq(one[0], run[l], sizeof one[0]);
+        }
+    }
+    ck_assert_int_gt(lit, 300);
+    free((void *)t.v);
+}
+END_TEST
+
+/* Between the nodes the table is a cubic in each axis: filled with a smooth function that
+ * has the ellipse's symmetries, it reads that function back within the cubic's error at
+ * random directions (away from the theta axes' ends, where the end value repeats). A wrong
+ * fold, axis or stride would be off by the function's own size. */
+static double smooth(double tv, double tl, double pv, double d)
+{
+    return (1.5 + cos(tv) * sin(tl + 0.3)) * (2.0 + cos(d) + 0.3 * sin(d) * sin(2.0 * pv)) *
+           (1.2 + cos(2.0 * pv)) * (1.0 + 0.2 * sin(tv - 2.0 * tl));
+}
+
+START_TEST(cubic_between_the_nodes)
+{
+    abrdf__huang m;
+    setup(&m, 0.85);
+    m.tilt = 0.0; /* no direction hidden by the tilt */
+    const int nt = 24, nv = 9, np = 32;
+    long n = abrdf__huang_table_count(nt, nv, np);
+    double *v = malloc((size_t)n * sizeof *v);
+    ck_assert_ptr_nonnull(v);
+    for (int iv = 0; iv < nt; ++iv)
+        for (int jv = 0; jv < nv; ++jv)
+            for (int il = 0; il < nt; ++il)
+                for (int k = 0; k < np; ++k) {
+                    double g =
+                        smooth(-PI / 2 + (iv + 0.5) * PI / nt, -PI / 2 + (il + 0.5) * PI / nt,
+                               jv * 0.5 * PI / (nv - 1), -PI + k * 2.0 * PI / np);
+                    for (int c = 0; c < 3; ++c)
+                        v[((((long)iv * nv + jv) * nt + il) * np + k) * 3 + c] = g * (c + 1);
+                }
+    abrdf__huang_table t = {nt, nv, np, 1, v};
+    unsigned seed = 777u;
+    double worst = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+        double a[4];
+        uniforms(&seed, a);
+        double tv = (a[0] - 0.5) * PI * (nt - 4.0) / nt, tl = (a[1] - 0.5) * PI * (nt - 4.0) / nt;
+        double pv = (a[2] - 0.5) * 2.0 * PI, pl = a[3] * 2.0 * PI;
+        double wo[3], wi[1][3], s[1][3];
+        dir_of(tv, pv, wo);
+        dir_of(tl, pl, wi[0]);
+        abrdf__huang_table_fibre_run(&m, &t, 1, (const double(*)[3])wi, wo, 14u, s);
+        /* the function at the folded azimuths: the ellipse's mirrors leave it unchanged */
+        double want = smooth(tv, tl, pv, remainder(pl - pv, 2.0 * PI));
+        for (int c = 0; c < 3; ++c) {
+            double got = s[0][c] * cos(tv) / (c + 1);
+            double e = fabs(got - want) / want;
+            worst = e > worst ? e : worst;
+        }
+    }
+    printf("a smooth function read between the nodes: worst relative error %.2e\n", worst);
+    ck_assert_double_lt(worst, 1e-2);
+    free(v);
+}
+END_TEST
+
+/* The public form (abrdf.h, "huang tabulated"): a table built in parts is the table built
+ * whole; every prepared path reads it (scalar, float batch, sample weights) and the pdf is
+ * huang's; a table of another material, one not built, and bad sizes or rows are refused,
+ * leaving the object not prepared. */
+static void brown(abrdf_params *p, double melanin)
+{
+    abrdf_params_init(ABRDF_HUANG, p);
+    p->melanin = melanin;
+}
+
+START_TEST(public_table)
+{
+    abrdf_params p;
+    brown(&p, 0.73);
+    const int sizes[4] = {6, 3, 8, 2};
+    long n = 0;
+    int rows = 0;
+    ck_assert_int_eq(abrdf_huang_table_size(&p, sizes, &n, &rows), ABRDF_OK);
+    ck_assert_int_eq(rows, 18);
+    ck_assert_int_eq(n, ABRDF__HUANG_TABLE_HEADER + 3L * 6 * 3 * 6 * 8);
+    double *v = calloc((size_t)n, sizeof *v), *w = calloc((size_t)n, sizeof *w);
+    ck_assert(v && w);
+    abrdf_prepared tab, quad;
+    /* not built: refused */
+    ck_assert_int_eq(abrdf_prepare_huang_table(&p, sizes, v, &tab), ABRDF_E_TABLE);
+    ck_assert_int_eq(abrdf_prepared_model(&tab), ABRDF_MODEL_NONE);
+    ck_assert_int_eq(abrdf_huang_table_build(&p, sizes, 0, rows, v), ABRDF_OK);
+    ck_assert_int_eq(abrdf_huang_table_build(&p, sizes, 11, rows, w), ABRDF_OK);
+    ck_assert_int_eq(abrdf_huang_table_build(&p, sizes, 4, 11, w), ABRDF_OK);
+    ck_assert_int_eq(abrdf_huang_table_build(&p, sizes, 0, 4, w), ABRDF_OK);
+    ck_assert_mem_eq(v, w, (size_t)n * sizeof *v);
+    ck_assert_int_eq(abrdf_huang_table_build(&p, sizes, 3, 2, w), ABRDF_E_RANGE);
+    ck_assert_int_eq(abrdf_huang_table_build(&p, sizes, 0, rows + 1, w), ABRDF_E_RANGE);
+    ck_assert_int_eq(abrdf_huang_table_build(&p, sizes, -1, 2, w), ABRDF_E_RANGE);
+    ck_assert_int_eq(abrdf_huang_table_build(&p, sizes, 0, 1, NULL), ABRDF_E_NULL);
+    const int round_only[4] = {6, 1, 8, 2}, few_sets[4] = {6, 3, 8, 0};
+    ck_assert_int_eq(abrdf_huang_table_size(&p, round_only, &n, &rows), ABRDF_E_TABLE);
+    ck_assert_int_eq(abrdf_huang_table_size(&p, few_sets, &n, &rows), ABRDF_E_TABLE);
+    ck_assert_int_eq(abrdf_huang_table_size(&p, NULL, &n, &rows), ABRDF_E_NULL);
+    abrdf_params bad = p;
+    bad.eta = -1.0;
+    ck_assert_int_eq(abrdf_huang_table_size(&bad, sizes, &n, &rows), ABRDF_E_RANGE);
+    /* another material, or other sizes: the header tells */
+    abrdf_params blond;
+    brown(&blond, 0.26);
+    ck_assert_int_eq(abrdf_prepare_huang_table(&blond, sizes, v, &tab), ABRDF_E_TABLE);
+    ck_assert_int_eq(abrdf_prepared_model(&tab), ABRDF_MODEL_NONE);
+    const int other[4] = {6, 3, 8, 1};
+    ck_assert_int_eq(abrdf_prepare_huang_table(&p, other, v, &tab), ABRDF_E_TABLE);
+    ck_assert_int_eq(abrdf_prepare_huang_table(&p, sizes, NULL, &tab), ABRDF_E_NULL);
+    ck_assert_int_eq(abrdf_prepare_huang_table(&p, sizes, v, &tab), ABRDF_OK);
+    ck_assert_int_eq(abrdf_prepared_model(&tab), ABRDF_HUANG);
+    ck_assert_int_eq(abrdf_prepare(ABRDF_HUANG, &p, &quad), ABRDF_OK);
+
+    /* the same setup with the internal table: what the prepared paths must read */
+    abrdf__huang m;
+    abrdf__huang_setup(&p, &m);
+    abrdf__huang_table t = {6, 3, 8, 2, v + ABRDF__HUANG_TABLE_HEADER};
+    enum { N = 64 };
+    float ix[N], iy[N], iz[N], ox[N], oy[N], oz[N], fr[N], fg[N], fb[N];
+    double want[N][3];
+    unsigned seed = 99u;
+    int differs = 0;
+    for (int i = 0; i < N; ++i) {
+        double a[4];
+        uniforms(&seed, a);
+        double wi[3], wo[3];
+        htu_fdir((a[0] - 0.5) * 2.8, a[1] * 6.2, wi);
+        htu_fdir((a[2] - 0.5) * 2.8, a[3] * 6.2, wo);
+        wi[2] = fabs(wi[2]) + 0.05, wo[2] = fabs(wo[2]) + 0.05;
+        double li = sqrt(wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2]);
+        double lo = sqrt(wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2]);
+        for (int c = 0; c < 3; ++c) wi[c] /= li, wo[c] /= lo;
+        /* float directions, so that the batch reads the same ones (normalised here and in the
+         * library with different roundings: 1e-8 below) */
+        ix[i] = (float)wi[0], iy[i] = (float)wi[1], iz[i] = (float)wi[2];
+        ox[i] = (float)wo[0], oy[i] = (float)wo[1], oz[i] = (float)wo[2];
+        double fi[1][3] = {{ix[i], iy[i], iz[i]}}, fo[3] = {ox[i], oy[i], oz[i]}, f[3], q[3];
+        li = sqrt(fi[0][0] * fi[0][0] + fi[0][1] * fi[0][1] + fi[0][2] * fi[0][2]);
+        lo = sqrt(fo[0] * fo[0] + fo[1] * fo[1] + fo[2] * fo[2]);
+        for (int c = 0; c < 3; ++c) fi[0][c] /= li, fo[c] /= lo;
+        abrdf__huang_table_eval_run(&m, &t, 1, (const double(*)[3])fi, fo, &want[i]);
+        ck_assert_int_eq(abrdf_eval_prepared(&tab, NULL, fi[0], fo, f), ABRDF_OK);
+        for (int c = 0; c < 3; ++c)
+            ck_assert_msg(fabs(f[c] - want[i][c]) <= 1e-8 * want[i][c], "pair %d: %.15g %.15g", i,
+                          f[c], want[i][c]);
+        ck_assert_int_eq(abrdf_eval_prepared(&quad, NULL, fi[0], fo, q), ABRDF_OK);
+        differs += fabs(q[0] - f[0]) > 1e-9 * q[0];
+    }
+    ck_assert_int_gt(differs, N / 2); /* the quadrature is not what the table reads */
+    abrdf_batch b = {N, ix, iy, iz, ox, oy, oz, fr, fg, fb};
+    ck_assert_int_eq(abrdf_eval_prepared_batch(&tab, &b), ABRDF_OK);
+    for (int i = 0; i < N; ++i) {
+        const float got[3] = {fr[i], fg[i], fb[i]};
+        for (int c = 0; c < 3; ++c)
+            ck_assert_msg(fabs(got[c] - want[i][c]) <= 1e-5 * want[i][c] + 1e-30,
+                          "batch pair %d: %g, scalar %g", i, got[c], want[i][c]);
+    }
+    /* sampling: huang's proposal and pdf, weight from the table's f_r */
+    abrdf_sample_result r, rq;
+    abrdf_sample_result_init(&r);
+    abrdf_sample_result_init(&rq);
+    const double wo[3] = {0.3, -0.2, 0.93};
+    int sampled = 0;
+    for (int k = 0; k < 16; ++k) {
+        double u1 = (k + 0.5) / 16.0, u2 = fmod(0.618 * k + 0.1, 1.0);
+        ck_assert_int_eq(abrdf_sample_prepared(&tab, NULL, wo, u1, u2, &r), ABRDF_OK);
+        ck_assert_int_eq(abrdf_sample_prepared(&quad, NULL, wo, u1, u2, &rq), ABRDF_OK);
+        ck_assert_mem_eq(r.wi, rq.wi, sizeof r.wi);
+        ck_assert(r.pdf == rq.pdf);
+        if (!(r.pdf > 0.0) || !(r.wi[2] > 0.0)) continue;
+        double f[3];
+        abrdf_eval_prepared(&tab, NULL, r.wi, wo, f);
+        for (int c = 0; c < 3; ++c)
+            ck_assert(fabs(r.weight[c] - f[c] * r.wi[2] / r.pdf) <= 1e-9 * r.weight[c] + 1e-300);
+        ++sampled;
+    }
+    ck_assert_int_gt(sampled, 8);
+    free(v);
+    free(w);
+}
+END_TEST
+
+static Suite *suite(void)
+{
+    Suite *s = suite_create("hair_table");
+    TCase *tc = tcase_create("table");
+    tcase_set_timeout(tc, 600);
+    tcase_add_test(tc, sizes_checked);
+    tcase_add_test(tc, nodes_read_back);
+    tcase_add_test(tc, mirrors_fold);
+    tcase_add_test(tc, cubic_between_the_nodes);
+    tcase_add_test(tc, public_table);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+int main(void)
+{
+    setvbuf(stdout, NULL, _IONBF, 0); /* measurements print even if a check aborts */
+    return tu_run(suite());
+}
