@@ -506,10 +506,13 @@ ABRDF_API int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared
  * on [0, 90] degrees (the elliptical section's mirror symmetries give the rest; 1 only for a
  * round fibre, aspect_ratio 1), sizes[2] azimuths of the light relative to the view's
  * (periodic), each node the mean of sizes[3] shift sets. The values are the table's own
- * format: a header (the sizes and two 32-bit keys of the material's parameters) and then the
- * nodes, in native doubles. A table is valid only for the parameters it was built from:
- * abrdf_prepare_huang_table compares the keys and returns ABRDF_E_TABLE for another material
- * or a table not built (so a table kept in a file cannot be read for the wrong hair).
+ * format, native doubles: a header of 8 (a mark, the format 1, the four sizes, and two
+ * 32-bit keys of the material's parameters and of the library's quadrature), then the
+ * nodes. A table is valid only for the parameters and the library it was built by:
+ * abrdf_prepare_huang_table compares the header and returns ABRDF_E_TABLE for another
+ * material, other sizes, a table kept in a file by a library whose quadrature gave other
+ * values, memory with no header, or a value no build gives (NaN, infinite, negative). It
+ * cannot tell rows that were never built from built ones: build them all first.
  *
  * LIFETIME as abrdf_prepare_measured: the prepared object points at `values`, which must
  * stay valid and unchanged while it (or a copy) is evaluated or sampled. Every prepared path
@@ -522,11 +525,13 @@ ABRDF_API int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared
 /* The number of doubles of the table (header included) and its rows (one per view node: the
  * unit abrdf_huang_table_build fills). ABRDF_E_NULL, an error of abrdf_params_check for
  * ABRDF_HUANG, or ABRDF_E_TABLE (sizes out of range: theta nodes [4, 256], view azimuths
- * [2, 256] or 1 for a round fibre, light azimuths [4, 256], sets [1, 64]). */
+ * [2, 256] or 1 for a round fibre, light azimuths [4, 256], sets [1, 64], and at most 2^28
+ * values in all). */
 ABRDF_API int abrdf_huang_table_size(const abrdf_params *params, const int sizes[4], long *values,
                                      int *rows);
 /* Fill rows [row0, row1) of the table (and its header when row0 is 0: rows [0, 0) write the
- * header alone, which a caller that keeps tables in files can name them by). Calls with
+ * header alone, whose keys, values[6] and values[7], a caller that keeps tables in files can
+ * name them by). Calls with
  * disjoint rows may run at once on one table; the rows' values do not depend on how they are
  * split. A row has sizes[0] sizes[2] nodes, each about 50 us per shift set on one core at
  * the default grids (about 2 minutes for the default sizes). The errors of
@@ -535,8 +540,8 @@ ABRDF_API int abrdf_huang_table_build(const abrdf_params *params, const int size
                                       int row1, double *values);
 /* Prepare ABRDF_HUANG at params with its residual read from the table (LIFETIME above): the
  * errors of abrdf_prepare and abrdf_huang_table_size, ABRDF_E_NULL for values, and
- * ABRDF_E_TABLE if the table's header does not match params and sizes. *prepared is then
- * "not prepared". */
+ * ABRDF_E_TABLE if the table's header does not match params, sizes and this library, or a
+ * value is not finite and >= 0 (THE GRID). *prepared is then "not prepared". */
 ABRDF_API int abrdf_prepare_huang_table(const abrdf_params *params, const int sizes[4],
                                         const double *values, abrdf_prepared *prepared);
 

@@ -86,11 +86,15 @@ class Render(TempDirCase):
             self.assertRegex(name, r"^huang-[0-9a-f]{16}-6x3x8x1\.table$")
             self.assertEqual(os.path.getsize(os.path.join(cache, name)), 8 * (8 + 3 * 6 * 3 * 6 * 8))
         self.assertEqual(same("t1.exr", "c1.exr").returncode, 0)
-        # read back: the same image; then one file cut short and the other replaced by the first's
-        # bytes (another material's table under this one's name): both rebuilt, the same image
+        # read back: the same image, the files not written again (a write renames a new file
+        # over the old one: another inode); then one file cut short and the other replaced by
+        # the first's bytes (another material's table under this one's name): both rebuilt,
+        # the same image
+        ino = {n: os.stat(os.path.join(cache, n)).st_ino for n in files}
         r = run(hair, "-o", self.path("c2.exr"), *sizes, "--hair-table-cache", cache, *base)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(same("t1.exr", "c2.exr").returncode, 0)
+        self.assertEqual(ino, {n: os.stat(os.path.join(cache, n)).st_ino for n in files})
         a, b = (os.path.join(cache, n) for n in files)
         with open(a, "rb") as f:
             first = f.read()
@@ -105,7 +109,10 @@ class Render(TempDirCase):
         with open(b, "rb") as f:
             self.assertNotEqual(f.read(), first)
         # bad input: one line, exit 2, nothing written
-        for args, msg in ((["--hair-table-sizes", "6,3,8"], "--hair-table-sizes needs NT,NV,NP,SETS"),
+        for args, msg in ((["--hair-table-sizes", "6,3,8"], "is not NT,NV,NP,SETS"),
+                          (["--hair-table-sizes", "6,3,8,1x"], "is not NT,NV,NP,SETS"),
+                          (["--hair-table-sizes", "0,3,8,1"], "theta nodes NT is 0, not in [4, 256]"),
+                          (["--hair-table-sizes", "6,3,8,99999999999"], "shift sets SETS is 99999999999"),
                           (["--hair-table-cache", self.path("none")], "not a directory")):
             r = run(hair, "-o", self.path("x.exr"), *args)
             self.assertEqual(r.returncode, 2, r.stderr)

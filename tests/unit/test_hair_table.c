@@ -166,11 +166,13 @@ END_TEST
 
 /* Between the nodes the table is a cubic in each axis: filled with a smooth function that
  * has the ellipse's symmetries, it reads that function back within the cubic's error at
- * random directions (away from the theta axes' ends, where the end value repeats). A wrong
- * fold, axis or stride would be off by the function's own size. */
+ * random directions (away from the theta axes' ends, where the end value repeats). Its odd
+ * part, sin(d) sin(2 phi_v), is as large as its even part in d, so that a fold which keeps
+ * d's sign across phi_v = 0 or pi/2 reads it with the wrong sign (measured while this was
+ * written: the correct fold's worst error 7.3e-3, each broken one 2.6e-2 and 3.0e-2). */
 static double smooth(double tv, double tl, double pv, double d)
 {
-    return (1.5 + cos(tv) * sin(tl + 0.3)) * (2.0 + cos(d) + 0.3 * sin(d) * sin(2.0 * pv)) *
+    return (1.5 + cos(tv) * sin(tl + 0.3)) * (2.5 + cos(d) + sin(d) * sin(2.0 * pv)) *
            (1.2 + cos(2.0 * pv)) * (1.0 + 0.2 * sin(tv - 2.0 * tl));
 }
 
@@ -214,7 +216,7 @@ START_TEST(cubic_between_the_nodes)
         }
     }
     printf("a smooth function read between the nodes: worst relative error %.2e\n", worst);
-    ck_assert_double_lt(worst, 1e-2);
+    ck_assert_double_lt(worst, 1.5e-2);
     free(v);
 }
 END_TEST
@@ -268,6 +270,23 @@ START_TEST(public_table)
     ck_assert_int_eq(abrdf_prepared_model(&tab), ABRDF_MODEL_NONE);
     const int other[4] = {6, 3, 8, 1};
     ck_assert_int_eq(abrdf_prepare_huang_table(&p, other, v, &tab), ABRDF_E_TABLE);
+    abrdf_params grids = p; /* another quadrature: another table */
+    grids.internal_grid = 4;
+    ck_assert_int_eq(abrdf_prepare_huang_table(&grids, sizes, v, &tab), ABRDF_E_TABLE);
+    abrdf_params zero = p, minus_zero = p; /* but -0 is 0 */
+    zero.cuticle_tilt = 0.0, minus_zero.cuticle_tilt = -0.0;
+    ck_assert_int_eq(abrdf_huang_table_build(&zero, sizes, 0, 0, w), ABRDF_OK); /* header only */
+    ck_assert_int_eq(abrdf_huang_table_build(&minus_zero, sizes, 0, 0, v), ABRDF_OK);
+    ck_assert_mem_eq(w, v, ABRDF__HUANG_TABLE_HEADER * sizeof *v);
+    /* a header over memory no build filled: a NaN or a negative value is refused */
+    for (long i = ABRDF__HUANG_TABLE_HEADER; i < n; ++i) w[i] = 0.5;
+    w[n / 2] = NAN;
+    ck_assert_int_eq(abrdf_prepare_huang_table(&zero, sizes, w, &tab), ABRDF_E_TABLE);
+    w[n / 2] = -1e-300;
+    ck_assert_int_eq(abrdf_prepare_huang_table(&zero, sizes, w, &tab), ABRDF_E_TABLE);
+    w[n / 2] = 0.5;
+    ck_assert_int_eq(abrdf_prepare_huang_table(&zero, sizes, w, &tab), ABRDF_OK);
+    ck_assert_int_eq(abrdf_huang_table_build(&p, sizes, 0, 0, v), ABRDF_OK); /* p's header again */
     ck_assert_int_eq(abrdf_prepare_huang_table(&p, sizes, NULL, &tab), ABRDF_E_NULL);
     ck_assert_int_eq(abrdf_prepare_huang_table(&p, sizes, v, &tab), ABRDF_OK);
     ck_assert_int_eq(abrdf_prepared_model(&tab), ABRDF_HUANG);

@@ -1,6 +1,7 @@
 /* cmd_render.c - `abrdf render SCENE -o OUT.exr`: render a scene with the built-in ray
  * tracer, write linear EXR and a display-referred PNG preview beside it. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -60,7 +61,7 @@ static int usage(void)
         "                    default 256 (docs/GLTF.md, \"Textures\")\n"
         "  --hair-table      tabulate each huang material's residual lobes once (the rows over\n"
         "                    the threads; ~2 min of one core per material at the default sizes)\n"
-        "                    and read them by interpolation: ~150x cheaper per evaluation and\n"
+        "                    and read them by interpolation: ~150x cheaper per call and\n"
         "                    nearer the converged model (docs/MODELS.md, \"A tabulated huang\")\n"
         "  --hair-table-sizes NT,NV,NP,SETS   the table's theta nodes, view azimuths, light\n"
         "                    azimuths and shift sets (default 24,9,32,16); implies --hair-table\n"
@@ -137,6 +138,31 @@ static int take_named(render_args *ra, const char *a, const char *val)
 
 static const int hair_table_default[4] = ABRDF_HUANG_TABLE_SIZES;
 
+/* --hair-table-sizes NT,NV,NP,SETS into v, each in the range abrdf.h gives (the material
+ * checks the rest: one view azimuth only for a round fibre). 0, or the exit status after the
+ * message. */
+static int hair_table_sizes(const char *val, int v[4])
+{
+    static const char *name[4] = {"theta nodes NT", "view azimuths NV", "light azimuths NP",
+                                  "shift sets SETS"};
+    static const long lo[4] = {4, 1, 4, 1}, hi[4] = {256, 256, 256, 64};
+    const char *p = val;
+    for (int k = 0; k < 4; ++k) {
+        char *end;
+        errno = 0;
+        long x = strtol(p, &end, 10);
+        if (end == p || errno || (k < 3 && *end != ',') || (k == 3 && *end))
+            return cli_fail(CMD, "--hair-table-sizes '%s' is not NT,NV,NP,SETS (four integers)",
+                            val);
+        if (x < lo[k] || x > hi[k])
+            return cli_fail(CMD, "--hair-table-sizes '%s': %s is %ld, not in [%ld, %ld]", val,
+                            name[k], x, lo[k], hi[k]);
+        v[k] = (int)x;
+        p = end + (k < 3);
+    }
+    return 0;
+}
+
 /* One option at argv[*i] (its value taken, *i advanced): 0, or the exit status after the
  * message. */
 static int take_option(render_args *ra, int argc, char **argv, int *i)
@@ -153,14 +179,9 @@ static int take_option(render_args *ra, int argc, char **argv, int *i)
         return 0;
     }
     if (!strcmp(a, "--hair-table-sizes")) {
-        int v[4];
-        char tail;
-        if (!val || sscanf(val, "%d,%d,%d,%d%c", &v[0], &v[1], &v[2], &v[3], &tail) != 4)
-            return cli_fail(CMD, "--hair-table-sizes needs NT,NV,NP,SETS (four integers)%s%s",
-                            val ? ", not " : "", val ? val : "");
+        if (!val) return cli_fail(CMD, "--hair-table-sizes needs NT,NV,NP,SETS");
         ++*i;
-        memcpy(ra->opt.hair_table, v, sizeof v);
-        return 0;
+        return hair_table_sizes(val, ra->opt.hair_table);
     }
     const cli_flag flags[] = {{"--explain", &ra->explain, 1},
                               {"--stats", &ra->stats, 1},

@@ -187,11 +187,17 @@ int abrdf_prepare_huang_table(const abrdf_params *params, const int sizes[4], co
     if (!prepared) return ABRDF_E_NULL;
     memset(prepared, 0, sizeof *prepared); /* not prepared, and no stale bytes in a copy */
     abrdf__prep *pr = (abrdf__prep *)(void *)prepared;
-    abrdf__huang_table t;
+    abrdf__huang_table t = {0, 0, 0, 0, NULL};
     int st = huang_table_args(params, sizes, pr, &t);
     if (st == ABRDF_OK && !values) st = ABRDF_E_NULL;
     if (st == ABRDF_OK && !abrdf__huang_table_header_ok(&pr->special.huang, &t, values))
         st = ABRDF_E_TABLE;
+    /* a value no build gives (NaN, infinite, negative): memory that is not the table's */
+    long n = st == ABRDF_OK ? abrdf__huang_table_count(t.nt, t.nv, t.np) : 0;
+    for (long i = 0; st == ABRDF_OK && i < n; ++i) {
+        double x = values[ABRDF__HUANG_TABLE_HEADER + i];
+        if (!(x >= 0.0 && x <= DBL_MAX)) st = ABRDF_E_TABLE;
+    }
     if (st != ABRDF_OK) {
         memset(prepared, 0, sizeof *prepared);
         return st;

@@ -43,13 +43,15 @@ int abrdf__huang_table_check(const abrdf__huang *m, int nt, int nv, int np, int 
     if (nt < ABRDF__HUANG_TABLE_NT_MIN || nt > ABRDF__HUANG_TABLE_AXIS_MAX) return 0;
     if (np < ABRDF__HUANG_TABLE_NP_MIN || np > ABRDF__HUANG_TABLE_AXIS_MAX) return 0;
     if (nv < 1 || nv > ABRDF__HUANG_TABLE_AXIS_MAX || (nv == 1 && m->b != 1.0)) return 0;
+    /* every index fits a 32-bit long (wasm32, LLP64) */
+    if (3.0 * nt * nv * nt * np + ABRDF__HUANG_TABLE_HEADER > ABRDF__HUANG_TABLE_VALUES_MAX)
+        return 0;
     return sets >= 1 && sets <= ABRDF__HUANG_TABLE_SETS_MAX;
 }
 
 long abrdf__huang_table_count(int nt, int nv, int np) { return 3L * nt * nv * nt * np; }
 
-/* FNV-1a (32 bits) over the bytes of what the residual depends on: the setup's eta, alpha,
- * tilt, b, sigma_a, grids, Simpson refinement and compensation (not the test-only fields). */
+/* FNV-1a (32 bits) over bytes. */
 static unsigned fnv(unsigned h, const void *p, size_t n)
 {
     const unsigned char *b = p;
@@ -57,15 +59,22 @@ static unsigned fnv(unsigned h, const void *p, size_t n)
     return h;
 }
 
-/* Two 32-bit keys of the setup (FNV-1a from two offset bases): 64 bits between two
- * materials' tables. */
+/* Two 32-bit keys (FNV-1a from two offset bases: 64 bits between two tables) of what the
+ * residual depends on: the setup's eta, alpha, tilt, b, sigma_a (each + 0.0, so that -0 is 0),
+ * grids, Simpson refinement, compensation and energy tables, and the quadrature's revision
+ * (ABRDF__HUANG_REVISION), so that a table kept in a file by an older library, whose
+ * quadrature gave other values, is refused. Not the test-only fields. */
 static void table_keys(const abrdf__huang *m, double key[2])
 {
-    const double d[7] = {m->eta,        m->alpha,      m->tilt,      m->b,
-                         m->sigma_a[0], m->sigma_a[1], m->sigma_a[2]};
-    const int k[4] = {m->n1, m->n2, m->refine, m->compensate};
+    const double d[7] = {m->eta + 0.0,        m->alpha + 0.0,      m->tilt + 0.0,      m->b + 0.0,
+                         m->sigma_a[0] + 0.0, m->sigma_a[1] + 0.0, m->sigma_a[2] + 0.0};
+    const int k[5] = {m->n1, m->n2, m->refine, m->compensate, ABRDF__HUANG_REVISION};
     const unsigned basis[2] = {2166136261u, 3735928559u};
-    for (int i = 0; i < 2; ++i) key[i] = (double)fnv(fnv(basis[i], d, sizeof d), k, sizeof k);
+    for (int i = 0; i < 2; ++i) {
+        unsigned h = fnv(fnv(basis[i], d, sizeof d), k, sizeof k);
+        h = fnv(fnv(h, m->e_in, sizeof m->e_in), m->e_out, sizeof m->e_out);
+        key[i] = (double)h;
+    }
 }
 
 /* The header: a mark, the format, the sizes and the two keys. */
