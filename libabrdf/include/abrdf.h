@@ -507,11 +507,12 @@ ABRDF_API int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared
  * round fibre, aspect_ratio 1), sizes[2] azimuths of the light relative to the view's
  * (periodic), each node the mean of sizes[3] shift sets. The values are the table's own
  * format, native doubles: a header of 8 (a mark, the format 1, the four sizes, and two
- * 32-bit keys of the material's parameters and of the library's quadrature), then the
- * nodes. A table is valid only for the parameters and the library it was built by:
- * abrdf_prepare_huang_table compares the header and returns ABRDF_E_TABLE for another
- * material, other sizes, a table kept in a file by a library whose quadrature gave other
- * values, memory with no header, or a value no build gives (NaN, infinite, negative). It
+ * 32-bit keys of the material's parameters and of the revision of the library's quadrature
+ * and table build), then the nodes. A table is valid only for the parameters and the
+ * library it was built by: abrdf_prepare_huang_table compares the header and returns
+ * ABRDF_E_TABLE for another material, other sizes, a table kept in a file by a library of
+ * another revision, memory with no header, or a value no build gives (NaN, infinite,
+ * negative). It
  * cannot tell rows that were never built from built ones: build them all first.
  *
  * LIFETIME as abrdf_prepare_measured: the prepared object points at `values`, which must

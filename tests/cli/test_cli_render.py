@@ -113,6 +113,8 @@ class Render(TempDirCase):
                           (["--hair-table-sizes", "6,3,8,1x"], "is not NT,NV,NP,SETS"),
                           (["--hair-table-sizes", "0,3,8,1"], "theta nodes NT is 0, not in [4, 256]"),
                           (["--hair-table-sizes", "6,3,8,99999999999"], "shift sets SETS is 99999999999"),
+                          (["--hair-table-sizes", "+6,3,8,1"], "is not NT,NV,NP,SETS"),
+                          (["--hair-table-sizes", "256,256,256,1"], "more than 2^28"),
                           (["--hair-table-cache", self.path("none")], "not a directory")):
             r = run(hair, "-o", self.path("x.exr"), *args)
             self.assertEqual(r.returncode, 2, r.stderr)

@@ -138,9 +138,9 @@ static int take_named(render_args *ra, const char *a, const char *val)
 
 static const int hair_table_default[4] = ABRDF_HUANG_TABLE_SIZES;
 
-/* --hair-table-sizes NT,NV,NP,SETS into v, each in the range abrdf.h gives (the material
- * checks the rest: one view azimuth only for a round fibre). 0, or the exit status after the
- * message. */
+/* --hair-table-sizes NT,NV,NP,SETS into v, each in the range abrdf.h gives and at most 2^28
+ * values in all (the material checks the rest: one view azimuth only for a round fibre). 0,
+ * or the exit status after the message. */
 static int hair_table_sizes(const char *val, int v[4])
 {
     static const char *name[4] = {"theta nodes NT", "view azimuths NV", "light azimuths NP",
@@ -148,18 +148,21 @@ static int hair_table_sizes(const char *val, int v[4])
     static const long lo[4] = {4, 1, 4, 1}, hi[4] = {256, 256, 256, 64};
     const char *p = val;
     for (int k = 0; k < 4; ++k) {
-        char *end;
-        errno = 0;
-        long x = strtol(p, &end, 10);
-        if (end == p || errno || (k < 3 && *end != ',') || (k == 3 && *end))
+        size_t len = strspn(p, "0123456789");
+        if (len == 0 || (k < 3 && p[len] != ',') || (k == 3 && p[len]))
             return cli_fail(CMD, "--hair-table-sizes '%s' is not NT,NV,NP,SETS (four integers)",
                             val);
-        if (x < lo[k] || x > hi[k])
-            return cli_fail(CMD, "--hair-table-sizes '%s': %s is %ld, not in [%ld, %ld]", val,
-                            name[k], x, lo[k], hi[k]);
+        errno = 0;
+        long x = strtol(p, NULL, 10);
+        if (errno || x < lo[k] || x > hi[k])
+            return cli_fail(CMD, "--hair-table-sizes '%s': %s is %.*s, not in [%ld, %ld]", val,
+                            name[k], (int)len, p, lo[k], hi[k]);
         v[k] = (int)x;
-        p = end + (k < 3);
+        p += len + (k < 3);
     }
+    double values = 3.0 * v[0] * v[1] * v[0] * v[2] + 8.0;
+    if (values > 268435456.0)
+        return cli_fail(CMD, "--hair-table-sizes '%s': %.0f values, more than 2^28", val, values);
     return 0;
 }
 

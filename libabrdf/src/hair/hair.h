@@ -198,9 +198,10 @@ void abrdf__huang_eval_run(const abrdf__huang *m, int count, const double (*wi)[
 #define ABRDF__HUANG_TABLE_AXIS_MAX 256
 #define ABRDF__HUANG_TABLE_SETS_MAX 64
 #define ABRDF__HUANG_TABLE_VALUES_MAX 268435456.0 /* 2^28 values (2 GiB), header included */
-/* The quadrature's revision, in the table's keys: raise it with any change of the values
- * abrdf__huang_fibre_run gives (its rule, constants, Simpson steps), so that a table kept in a
- * file by a library before the change is refused (abrdf_prepare_huang_table). */
+/* The revision of what a table holds, in the table's keys: raise it with any change of the
+ * values abrdf__huang_fibre_run gives (its rule, constants, Simpson steps) or of how
+ * abrdf__huang_table_rows builds a table (its nodes, what it stores, how it averages), so that
+ * a table kept in a file by a library before the change is refused (abrdf_prepare_huang_table). */
 #define ABRDF__HUANG_REVISION 1
 
 /* The public table's header (abrdf_huang_table_build): ABRDF__HUANG_TABLE_HEADER doubles
