@@ -18,6 +18,13 @@ def run(*args, preview=False, cwd=None):
     return subprocess.run([ABRDF, "render", *args, *extra], capture_output=True, text=True, cwd=cwd)
 
 
+def same_pixels(a, b):
+    """idiff of two images with zero tolerance (their DateTime headers differ; the pixels are
+    compared): the finished process, returncode 0 when every pixel is the same."""
+    return subprocess.run(["idiff", "-fail", "0", "-failpercent", "0", "-warn", "0", a, b],
+                          capture_output=True, text=True)
+
+
 def counter(out, name):
     m = re.search(r"^\s+%s\s+(\d+)" % re.escape(name), out, re.M)
     if not m:
@@ -44,16 +51,14 @@ class Render(TempDirCase):
             self.assertEqual(r.returncode, 0, r.stderr)
             outs.append(r.stdout)
             self.assertFalse(os.path.exists(self.path("r%s.png" % t)))
-        # The files differ in their DateTime header; idiff with zero tolerance compares pixels.
-        d = subprocess.run(["idiff", "-fail", "0", "-failpercent", "0", "-warn", "0",
-                            self.path("r1.exr"), self.path("r2.exr")], capture_output=True, text=True)
+        d = same_pixels(self.path("r1.exr"), self.path("r2.exr"))
         self.assertEqual(d.returncode, 0, d.stdout + d.stderr)
         self.assertEqual(outs[0], outs[1])
 
     def test_hair_table_cache(self):
         """--hair-table: the hair read from tables (small ones here: the default takes minutes),
         not the per-call image; the same image for one and two threads; --hair-table-cache keeps
-        a table per material and reads it back (the same image, no "tabulating"); a file there
+        a table per material and reads it back (the same image, the files not rewritten); a file there
         of another material or cut short is replaced; bad sizes or a missing directory are one
         line and exit 2, before any output."""
         hair = self.path("hair.scene")
@@ -67,13 +72,10 @@ class Render(TempDirCase):
         base = ["--stats", "--precision", "double"]
         r = run(hair, "-o", self.path("q.exr"), *base)
         self.assertEqual(r.returncode, 0, r.stderr)
-        imgs = {}
         for t in ("1", "2"):
             r = run(hair, "-o", self.path("t%s.exr" % t), "--threads", t, *sizes, *base)
             self.assertEqual(r.returncode, 0, r.stderr)
-            imgs[t] = r.stdout
-        same = lambda a, b: subprocess.run(["idiff", "-fail", "0", "-failpercent", "0", "-warn", "0",
-                                            self.path(a), self.path(b)], capture_output=True, text=True)
+        same = lambda a, b: same_pixels(self.path(a), self.path(b))
         self.assertEqual(same("t1.exr", "t2.exr").returncode, 0)
         self.assertNotEqual(same("q.exr", "t1.exr").returncode, 0)  # the table is not the quadrature
         cache = self.path("cache")

@@ -205,16 +205,17 @@ static void residual(const abrdf__huang_table *t, const double wi[3], const doub
 }
 
 /* Where the model's S is 0 whatever the quadrature (abrdf__huang_fibre_run): the view along
- * the fibre, or a mesonormal the cuticle tilt hides from the view or the light. */
-static int view_lit(const abrdf__huang *m, const double wo[3])
+ * the fibre, or a mesonormal the cuticle tilt (its tangent tan_tilt) hides from the view or
+ * the light. */
+static int view_lit(double tan_tilt, const double wo[3])
 {
     double c = sqrt(wo[1] * wo[1] + wo[2] * wo[2]);
-    return c > ABRDF__HAIR_COS_MIN && !(-tan(m->tilt) * wo[0] / c > 1.0);
+    return c > ABRDF__HAIR_COS_MIN && !(-tan_tilt * wo[0] / c > 1.0);
 }
-static int light_lit(const abrdf__huang *m, const double wi[3])
+static int light_lit(double tan_tilt, const double wi[3])
 {
     double c = sqrt(wi[1] * wi[1] + wi[2] * wi[2]);
-    return c > 0.0 && !(tan(m->tilt) * wi[0] / c < -1.0);
+    return c > 0.0 && !(tan_tilt * wi[0] / c < -1.0);
 }
 
 void abrdf__huang_table_fibre_run(const abrdf__huang *m, const abrdf__huang_table *t, int count,
@@ -222,11 +223,12 @@ void abrdf__huang_table_fibre_run(const abrdf__huang *m, const abrdf__huang_tabl
                                   double (*s)[3])
 {
     for (int l = 0; l < count; ++l) s[l][0] = s[l][1] = s[l][2] = 0.0;
-    if (count < 1 || count > ABRDF__HUANG_RUN_MAX || !view_lit(m, wo)) return;
+    const double tan_tilt = tan(m->tilt); /* once per view, not per light */
+    if (count < 1 || count > ABRDF__HUANG_RUN_MAX || !view_lit(tan_tilt, wo)) return;
     if (lobes & 1u) abrdf__huang_fibre_run(m, count, wi, wo, 1u, s);
     if (!(lobes & 14u)) return;
     for (int l = 0; l < count; ++l) {
-        if (!light_lit(m, wi[l])) continue;
+        if (!light_lit(tan_tilt, wi[l])) continue;
         double r[3];
         residual(t, wi[l], wo, r);
         for (int c = 0; c < 3; ++c) s[l][c] += r[c];
