@@ -251,6 +251,17 @@ typedef struct abrdf_budget {
     abrdf_fit_metric metric; /* metric of the candidates' fits; default ABRDF_FIT_AUTO */
     int resolution;          /* direction-set density of the fits (abrdf_fit_options) */
     const abrdf_view *view;  /* image of the predictions; NULL = the default sphere */
+    /* (added after 0.2.0) The reference as the caller evaluates it, or NULL: a prepared object of
+     * the photoreal choice's one model with the photoreal choice's parameters (ABRDF_E_MODEL
+     * otherwise, with a message naming the difference), e.g. huang tabulated
+     * (abrdf_prepare_huang_table), much nearer the converged integral than the per-call
+     * quadrature (docs/MODELS.md, "A tabulated huang"). Every candidate is predicted against it, and it
+     * is candidate 0 at reference_cost. A choice with the reference's models and parameters
+     * is this object: render it as prepared. The coarser quadratures of huang are offered as
+     * without it. NULL: the photoreal choice evaluated by abrdf_prepare. */
+    const abrdf_prepared *reference;
+    double reference_cost; /* cost of one evaluation of `reference`, in the costs' unit;
+                              < 0 (the default, -1): unknown, so it cannot win */
 } abrdf_budget;
 
 ABRDF_API int abrdf_budget_init_sized(abrdf_budget *b, size_t struct_size);

@@ -25,6 +25,14 @@ def same_pixels(a, b):
                           capture_output=True, text=True)
 
 
+# Two huang materials side by side, lit from one direction (the tests of --hair-table).
+HAIR_SCENE = ("camera position=0,0,6 look_at=0,0,0 up=0,1,0 fov=30 resolution=24,24\n"
+              "light directional direction=-0.45,0.75,0.55 color=1,1,1 intensity=2.5\n"
+              "material brown table=hair_brown\nmaterial blond table=hair_blond\n"
+              "capsule material=brown radius=0.6 height=1.4 tangent=v translate=-0.7,0,0\n"
+              "sphere material=blond radius=0.6 tangent=v translate=0.8,0,0\n")
+
+
 def counter(out, name):
     m = re.search(r"^\s+%s\s+(\d+)" % re.escape(name), out, re.M)
     if not m:
@@ -63,11 +71,7 @@ class Render(TempDirCase):
         line and exit 2, before any output."""
         hair = self.path("hair.scene")
         with open(hair, "w") as f:
-            f.write("camera position=0,0,6 look_at=0,0,0 up=0,1,0 fov=30 resolution=24,24\n"
-                    "light directional direction=-0.45,0.75,0.55 color=1,1,1 intensity=2.5\n"
-                    "material brown table=hair_brown\nmaterial blond table=hair_blond\n"
-                    "capsule material=brown radius=0.6 height=1.4 tangent=v translate=-0.7,0,0\n"
-                    "sphere material=blond radius=0.6 tangent=v translate=0.8,0,0\n")
+            f.write(HAIR_SCENE)
         sizes = ["--hair-table-sizes", "6,3,8,1"]
         base = ["--stats", "--precision", "double"]
         r = run(hair, "-o", self.path("q.exr"), *base)
@@ -127,6 +131,39 @@ class Render(TempDirCase):
         self.assertEqual(r.returncode, 1, r.stderr)  # the scene's material refuses the sizes
         self.assertIn("material 'brown' (line 3): huang table 6,1,8,1: ", r.stderr)
         self.assertFalse(os.path.exists(self.path("x.exr")))
+
+    def test_budget_against_hair_table(self):
+        """--adaptive --budget with --hair-table: each huang material's budget is predicted
+        against its table (the trace says so), the table wins (its cost is a fraction of any
+        quadrature's, its error 0) and renders from the table the prediction used, built once:
+        the image is --goal photoreal's with the same tables. --explain says what the render
+        reads from a table."""
+        hair = self.path("hair.scene")
+        with open(hair, "w") as f:
+            f.write(HAIR_SCENE)
+        sizes = ["--hair-table-sizes", "6,3,8,1", "--precision", "double", "--stats"]
+        r = run(hair, "-o", self.path("b.exr"), "--adaptive", "--budget", "slight", "--explain",
+                *sizes)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.count("(the photoreal choice, as the caller prepared it)"), 2,
+                         r.stdout)
+        chosen = re.findall(r"^\s+\d+\. huang: the cheapest within .*predicted NMSE 0 \(none\)$",
+                            r.stdout, re.M)
+        self.assertEqual(len(chosen), 2, r.stdout)
+        costs = [float(c) for c in re.findall(r"(\S+) ns/eval: ", r.stdout)]
+        ref = [float(c) for c in re.findall(r"huang \(reference\): .* (\S+) ns/eval", r.stdout)]
+        self.assertEqual(len(ref), 2, r.stdout)
+        quad = [float(c) for c in re.findall(r"entry_grid [2-5], .* (\S+) ns/eval", r.stdout)]
+        self.assertEqual(len(quad), 8, r.stdout)
+        self.assertLess(max(ref), min(quad))  # any quadrature costs more than a table
+        self.assertTrue(all(c > 0 for c in costs))
+        self.assertEqual(r.stdout.count("TT, TRT and TRRT+ read from its table (6 theta, 3 view "
+                                        "azimuth and 8 light azimuth nodes, 1 shift sets)"), 2)
+        self.assertIn("huang tables 6,3,8,1: 2 built, 0 read from the cache (none given)",
+                      r.stderr)
+        r = run(hair, "-o", self.path("p.exr"), "--adaptive", "--goal", "photoreal", *sizes)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(same_pixels(self.path("b.exr"), self.path("p.exr")).returncode, 0)
 
     def test_parse_error_names_file_and_line(self):
         bad = self.path("bad.scene")

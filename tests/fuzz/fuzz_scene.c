@@ -114,9 +114,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     /* With the effect plan, and without it (every effect everywhere). */
     for (int full = 0; full < 4; ++full) { /* and each precision */
-        render_options opt = {
-            3,   2, 1, 1, 1, 0, full >= 2 ? RENDER_DOUBLE : RENDER_FLOAT, 0, 0, 0, 0, {0, 0, 0, 0},
-            NULL};
+        render_options opt = {3, 2, 1, 1, 1,   0, full >= 2 ? RENDER_DOUBLE : RENDER_FLOAT,
+                              0, 0, 0, 0, NULL};
         render_scene rs;
         if (render_prepare(&s, &opt, &rs, err, sizeof err) == 0) {
             if ((full & 1) && render_plan_ignore(&rs) != 0) abort();

@@ -51,14 +51,19 @@ static void keep(void *user, const abrdf_select_step *s)
  * The sanitizer build (BUDGET_QUICK) fits on the coarsest direction set and predicts on a
  * sphere 16 samples across: the same code on a fraction of the work (minutes otherwise); the
  * Release build runs the defaults, whose values the checks were written for. */
-static run *budget_run(const abrdf_material *m, double max_nmse, abrdf_fit_metric metric,
-                       const abrdf_costs *costs)
+static run *budget_run_to(const abrdf_material *m, double max_nmse, abrdf_fit_metric metric,
+                          const abrdf_costs *costs, const abrdf_prepared *reference,
+                          double reference_cost)
 {
     run *r = calloc(1, sizeof *r);
     abrdf_budget b;
     abrdf_budget_init(&b);
+    ck_assert_ptr_null(b.reference);
+    ck_assert_double_eq(b.reference_cost, -1.0);
     b.max_nmse = max_nmse;
     b.metric = metric;
+    b.reference = reference;
+    b.reference_cost = reference_cost;
 #ifdef BUDGET_QUICK
     b.resolution = 1;
     abrdf_view v;
@@ -73,6 +78,12 @@ static run *budget_run(const abrdf_material *m, double max_nmse, abrdf_fit_metri
     r->status = abrdf_select_budget(m, &b, costs, &r->sel, &r->params, keep, r, w, ws);
     free(w);
     return r;
+}
+
+static run *budget_run(const abrdf_material *m, double max_nmse, abrdf_fit_metric metric,
+                       const abrdf_costs *costs)
+{
+    return budget_run_to(m, max_nmse, metric, costs, NULL, -1.0);
 }
 
 static run *budget_metric(const abrdf_material *m, double max_nmse, abrdf_fit_metric metric)
@@ -306,6 +317,109 @@ START_TEST(hair_offers_coarser_quadratures)
 }
 END_TEST
 
+/* Hair's photoreal choice tabulated (a small table: the checks are the budget's, not the
+ * table's accuracy) and prepared, in values (n doubles, the caller frees) and *pr; *block
+ * receives the choice's parameters. */
+static double *hair_table(const abrdf_material *m, abrdf_params *block, abrdf_prepared *pr)
+{
+    abrdf_selection sel;
+    abrdf_selection_init(&sel);
+    abrdf_params_init(ABRDF_MODEL_NONE, block);
+    ck_assert_int_eq(abrdf_select(m, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &sel, block, NULL, NULL),
+                     ABRDF_OK);
+    ck_assert_int_eq(sel.specular, ABRDF_HUANG);
+    const int sizes[4] = {6, 2, 8, 1};
+    long n = 0;
+    int rows = 0;
+    ck_assert_int_eq(abrdf_huang_table_size(block, sizes, &n, &rows), ABRDF_OK);
+    double *v = malloc((size_t)n * sizeof *v);
+    ck_assert_int_eq(abrdf_huang_table_build(block, sizes, 0, rows, v), ABRDF_OK);
+    ck_assert_int_eq(abrdf_prepare_huang_table(block, sizes, v, pr), ABRDF_OK);
+    return v;
+}
+
+/* abrdf_budget.reference: a caller's prepared form of the photoreal choice (here huang from
+ * a table) is what every candidate is predicted against, and candidate 0 at the caller's
+ * cost. A coarser quadrature's trace value is its abrdf_predict_nmse_to against the table
+ * (so the table, not the per-call quadrature, is the reference); at a cost below every other
+ * candidate's the table itself wins, with NMSE 0 and the photoreal block; at an unknown cost
+ * it cannot. A prepared object of another material or model is refused, naming why. */
+START_TEST(caller_prepared_reference)
+{
+    abrdf_material m = hair_brown();
+    abrdf_params block;
+    abrdf_prepared table;
+    double *v = hair_table(&m, &block, &table);
+    run *r = budget_run_to(&m, 1.0, ABRDF_FIT_L2, NULL, &table, 1.0);
+    ck_assert_int_eq(r->status, ABRDF_OK);
+    ck_assert_int_eq(r->sel.specular, ABRDF_HUANG);
+    ck_assert_int_eq(r->sel.diffuse, ABRDF_MODEL_NONE);
+    ck_assert_double_eq(r->sel.err_nmse, 0.0);
+    ck_assert_double_eq(r->sel.cost_total, 1.0);
+    ck_assert_int_eq(r->params.entry_grid, block.entry_grid);
+    ck_assert_double_eq(r->params.melanin, block.melanin);
+    int coarser = 0;
+    abrdf_budget b;
+    abrdf_budget_init(&b);
+#ifdef BUDGET_QUICK
+    abrdf_view view;
+    abrdf_view_init(&view);
+    view.resolution = 16;
+    b.view = &view;
+#endif
+    size_t ws = abrdf_fit_workspace_size(NULL, b.view);
+    void *w = malloc(ws);
+    for (int i = 0; i < r->count; ++i) {
+        const kept *k = &r->steps[i];
+        if (k->kind != ABRDF_STEP_FIT || k->model != ABRDF_HUANG ||
+            k->params.entry_grid == block.entry_grid)
+            continue;
+        double nmse = -1.0;
+        ck_assert_int_eq(abrdf_predict_nmse_to(&table, ABRDF_MODEL_NONE, ABRDF_HUANG, &k->params,
+                                               b.view, &nmse, w, ws),
+                         ABRDF_OK);
+        ck_assert_double_eq(k->value, nmse);
+        ck_assert_double_gt(k->value, 0.0);
+        ++coarser;
+    }
+    ck_assert_int_eq(coarser, 4);
+    free(r);
+    /* an unknown cost: some other candidate, with a cost and an error */
+    r = budget_run_to(&m, 1.0, ABRDF_FIT_L2, NULL, &table, -1.0);
+    ck_assert_int_eq(r->status, ABRDF_OK);
+    ck_assert_double_gt(r->sel.err_nmse, 0.0);
+    ck_assert_double_ge(r->sel.cost_total, 0.0);
+    free(r);
+    /* another material's table */
+    abrdf_material other = hair_brown();
+    other.melanin = 0.2;
+    abrdf_params other_block;
+    abrdf_prepared other_table;
+    double *v2 = hair_table(&other, &other_block, &other_table);
+    r = budget_run_to(&m, 1.0, ABRDF_FIT_L2, NULL, &other_table, 1.0);
+    ck_assert_int_eq(r->status, ABRDF_E_MODEL);
+    ck_assert_ptr_nonnull(strstr(r->sel.message, "melanin"));
+    free(r);
+    /* another model, and a photoreal pair */
+    abrdf_params lp;
+    abrdf_params_init(ABRDF_LAMBERT, &lp);
+    abrdf_prepared lambert;
+    ck_assert_int_eq(abrdf_prepare(ABRDF_LAMBERT, &lp, &lambert), ABRDF_OK);
+    r = budget_run_to(&m, 1.0, ABRDF_FIT_L2, NULL, &lambert, 1.0);
+    ck_assert_int_eq(r->status, ABRDF_E_MODEL);
+    ck_assert_ptr_nonnull(strstr(r->sel.message, "prepared for lambert"));
+    free(r);
+    abrdf_material pm = plastic();
+    r = budget_run_to(&pm, 1.0, ABRDF_FIT_L2, NULL, &lambert, 1.0);
+    ck_assert_int_eq(r->status, ABRDF_E_MODEL);
+    ck_assert_ptr_nonnull(strstr(r->sel.message, "disney_diffuse + disney_specular"));
+    free(r);
+    free(w);
+    free(v);
+    free(v2);
+}
+END_TEST
+
 /* The tie rule on a cost table of its own: with every model at one cost the reference itself
  * (NMSE 0) wins; with the pairs on a cheaper diffuse lobe 12 % cheaper than the reference it
  * still does (a saving below COST_TIE is not one); at 20 % cheaper such a pair wins. */
@@ -377,6 +491,7 @@ int main(void)
     tcase_add_test(tc, looser_budget_never_costs_more);
     tcase_add_test(tc, candidates_follow_the_class);
     tcase_add_test(tc, hair_offers_coarser_quadratures);
+    tcase_add_test(tc, caller_prepared_reference);
     tcase_add_test(tc, costs_within_the_tie_are_one_cost);
     tcase_add_test(tc, bad_budget);
     suite_add_tcase(s, tc);

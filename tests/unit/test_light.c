@@ -77,8 +77,8 @@ START_TEST(sphere_light_closed_form)
     for (int k = 0; k < 3; ++k) d2 += (c[k] - p[k]) * (c[k] - p[k]);
     double want = 0.5 * 2.0 * r * r / d2 * (4.9 - 1.0) / sqrt(d2); /* E = pi L r^2 cos / d^2 */
     for (int e = RENDER_EST_MIS; e <= RENDER_EST_BRDF; ++e) {
-        render_options opt = {
-            0, 0, 1, 0, 1, 0, RENDER_DOUBLE, 0, e, QUICK ? 16384 : 65536, 0, {0, 0, 0, 0}, NULL};
+        render_options opt = {0, 0,   1, 0, 1, 0, RENDER_DOUBLE, 0, e, QUICK ? 16384 : 65536,
+                              0, NULL};
         setup u;
         setup_text(&u, "t", text, &opt);
         render_stats st;
@@ -135,8 +135,7 @@ START_TEST(light_sizes_and_intensities_sweep)
                      light);
             double want = sphere ? 0.5 * L * (size / d) * (size / d) : 0.0, bound = 0.5 * L;
             for (int e = RENDER_EST_MIS; e <= RENDER_EST_BRDF; ++e) {
-                render_options opt = {0,   0, 1, 0, 1, 0, RENDER_DOUBLE, 0, e, 64, 0, {0, 0, 0, 0},
-                                      NULL};
+                render_options opt = {0, 0, 1, 0, 1, 0, RENDER_DOUBLE, 0, e, 64, 0, NULL};
                 setup u;
                 setup_text(&u, "t", text, &opt);
                 render_stats st;
@@ -193,7 +192,7 @@ START_TEST(rect_sampler_is_uniform_in_solid_angle)
     const char *text = "camera position=0,0,4 look_at=0,0,0 resolution=1,1\n"
                        "light rect center=0.4,2,0.3 u=1.5,0,0.2 v=-0.1,0,0.75 intensity=1\n"
                        "material m model=lambert\nsphere material=m radius=1\n";
-    render_options opt = {0, 0, 1, 0, 1, 0, RENDER_DOUBLE, 0, 0, 0, 0, {0, 0, 0, 0}, NULL};
+    render_options opt = {0, 0, 1, 0, 1, 0, RENDER_DOUBLE, 0, 0, 0, 0, NULL};
     setup u;
     setup_text(&u, "t", text, &opt);
     const render_light *lt = &u.rs.lights[0];
@@ -245,7 +244,7 @@ START_TEST(sphere_sampler_is_uniform_in_the_cone)
     const char *text = "camera position=0,0,4 look_at=0,0,0 resolution=1,1\n"
                        "light sphere center=1,2,-0.5 radius=0.7 intensity=1\n"
                        "material m model=lambert\nsphere material=m radius=1\n";
-    render_options opt = {0, 0, 1, 0, 1, 0, RENDER_DOUBLE, 0, 0, 0, 0, {0, 0, 0, 0}, NULL};
+    render_options opt = {0, 0, 1, 0, 1, 0, RENDER_DOUBLE, 0, 0, 0, 0, NULL};
     setup u;
     setup_text(&u, "t", text, &opt);
     const render_light *lt = &u.rs.lights[0];
@@ -392,8 +391,8 @@ static double mean(const float *a, size_t n)
 START_TEST(estimators_converge_to_one_image)
 {
     write_env("test_light_conv.exr", 32, 16);
-    render_options opt = {0, 0, QUICK ? 256 : 1024, 1,   2, 0, RENDER_FLOAT, 0, RENDER_EST_MIS,
-                          1, 0, {0, 0, 0, 0},       NULL};
+    render_options opt = {0, 0,   QUICK ? 256 : 1024, 1, 2, 0, RENDER_FLOAT, 0, RENDER_EST_MIS, 1,
+                          0, NULL};
     setup u;
     setup_text(&u, "t", AREA_SCENE, &opt);
     size_t n = (size_t)u.rs.width * u.rs.height * 3;
@@ -440,7 +439,7 @@ START_TEST(exact_lights_ignore_the_estimator)
         "material m diffuse=lambert specular=cook_torrance kd=0.3 ks=1 r=0.4\n"
         "sphere material=m radius=1\nbox material=m size=6,0.2,6 translate=0,-1.1,0\n";
     for (int prec = RENDER_FLOAT; prec <= RENDER_DOUBLE; ++prec) {
-        render_options base = {0, 0, 4, 1, 2, 0, prec, 0, RENDER_EST_MIS, 1, 0, {0, 0, 0, 0}, NULL};
+        render_options base = {0, 0, 4, 1, 2, 0, prec, 0, RENDER_EST_MIS, 1, 0, NULL};
         setup u;
         setup_text(&u, "t", text, &base);
         ck_assert_int_eq(u.rs.sampled_lights, 0);

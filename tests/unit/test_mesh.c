@@ -428,7 +428,7 @@ static float *render_square(const char *tangent, render_stats *st)
     scene s;
     char err[512];
     ck_assert_msg(parse_scene(body, &s, err, sizeof err) == 0, "%s", err);
-    render_options opt = {24, 24, 1, 0, 1, 0, RENDER_DOUBLE, 0, 0, 0, 0, {0, 0, 0, 0}, NULL};
+    render_options opt = {24, 24, 1, 0, 1, 0, RENDER_DOUBLE, 0, 0, 0, 0, NULL};
     render_scene rs;
     ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
     float *rgb = malloc(24 * 24 * 3 * sizeof *rgb);

@@ -31,8 +31,7 @@ static result render_text_at(const char *text, int spp, int threads, int size, i
     scene s;
     char err[512];
     ck_assert_msg(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0, "%s", err);
-    render_options opt = {size, size, spp, 0, threads,      0,   precision,
-                          0,    0,    0,   0, {0, 0, 0, 0}, NULL};
+    render_options opt = {size, size, spp, 0, threads, 0, precision, 0, 0, 0, 0, NULL};
     render_scene rs;
     ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
     if (full) ck_assert_int_eq(render_plan_ignore(&rs), 0);
@@ -164,8 +163,8 @@ START_TEST(strata_centres_equal_block_average_of_larger_image)
     scene s;
     char err[256];
     ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
-    render_options small = {7, 5, 9, 0, 2, 0, precision, 0, 0, 0, 0, {0, 0, 0, 0}, NULL},
-                   big = {21, 15, 1, 0, 2, 0, precision, 0, 0, 0, 0, {0, 0, 0, 0}, NULL};
+    render_options small = {7, 5, 9, 0, 2, 0, precision, 0, 0, 0, 0, NULL},
+                   big = {21, 15, 1, 0, 2, 0, precision, 0, 0, 0, 0, NULL};
     float a[7 * 5 * 3], b[21 * 15 * 3];
     render_scene rs;
     ck_assert(render_prepare(&s, &small, &rs, err, sizeof err) == 0);
@@ -217,8 +216,7 @@ START_TEST(bit_identical_for_any_thread_count)
     render_stats st[3];
     int threads[3] = {1, 2, 2};
     for (int k = 0; k < 3; ++k) {
-        render_options opt = {64, 64, 4, k == 2, threads[k],   0,   precision,
-                              0,  0,  0, 0,      {0, 0, 0, 0}, NULL};
+        render_options opt = {64, 64, 4, k == 2, threads[k], 0, precision, 0, 0, 0, 0, NULL};
         render_scene rs;
         ck_assert(render_prepare(&s, &opt, &rs, err, sizeof err) == 0);
         img[k] = malloc(64 * 64 * 3 * sizeof(float));
@@ -242,9 +240,8 @@ static double nmse_fast_vs_double(const scene *s, int size)
 {
     float *img[2];
     for (int k = 0; k < 2; ++k) {
-        render_options opt = {
-            size, size,         1,   0, 2, 0, k ? RENDER_DOUBLE : RENDER_FLOAT, 0, 0, 0,
-            0,    {0, 0, 0, 0}, NULL};
+        render_options opt = {size, size, 1, 0, 2,   0, k ? RENDER_DOUBLE : RENDER_FLOAT,
+                              0,    0,    0, 0, NULL};
         render_scene rs;
         char err[512];
         ck_assert_msg(render_prepare(s, &opt, &rs, err, sizeof err) == 0, "%s", err);
@@ -448,7 +445,7 @@ START_TEST(unresolvable_materials_are_refused)
     scene s;
     char err[512];
     ck_assert(scene_parse_text("t", text, strlen(text), &s, err, sizeof err) == 0);
-    render_options opt = {8, 8, 1, 0, 1, 0, RENDER_FLOAT, 0, 0, 0, 0, {0, 0, 0, 0}, NULL};
+    render_options opt = {8, 8, 1, 0, 1, 0, RENDER_FLOAT, 0, 0, 0, 0, NULL};
     render_scene rs;
     ck_assert_int_eq(render_prepare(&s, &opt, &rs, err, sizeof err), -1);
     ck_assert_ptr_nonnull(strstr(err, "adaptive"));

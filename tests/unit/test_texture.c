@@ -88,7 +88,7 @@ static result render_file(const char *name, int precision, int threads)
     scene s;
     char err[1024];
     ck_assert_msg(scene_parse_file(in_dir(name), &s, err, sizeof err) == 0, "%s", err);
-    render_options opt = {0, 0, 1, 0, threads, 0, precision, 0, 0, 0, 8, {0, 0, 0, 0}, NULL};
+    render_options opt = {0, 0, 1, 0, threads, 0, precision, 0, 0, 0, 8, NULL};
     render_scene rs;
     ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
     result r = {rs.width, rs.height, malloc((size_t)rs.width * rs.height * 3 * sizeof(float)), {0}};
@@ -244,8 +244,7 @@ START_TEST(footprint_filters_a_fine_checker)
         char err[1024];
         ck_assert_msg(scene_parse_file(in_dir("occ.scene"), &s, err, sizeof err) == 0, "%s", err);
         int size = spp == 1 ? 15 : 7;
-        render_options opt = {size, size, spp,          0,   1, 0, RENDER_FLOAT, 0, 0,
-                              0,    0,    {0, 0, 0, 0}, NULL};
+        render_options opt = {size, size, spp, 0, 1, 0, RENDER_FLOAT, 0, 0, 0, 0, NULL};
         render_scene rs;
         ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
         float rgb[16 * 16 * 3];
@@ -276,7 +275,7 @@ START_TEST(texture_transform_moves_texels)
     ck_assert_msg(scene_parse_file(in_dir("occ.scene"), &s, err, sizeof err) == 0, "%s", err);
     scene_map *mp = &s.materials[0].maps[SCENE_MAP_OCCLUSION];
     mp->rotation = acos(-1.0) / 2, mp->offset[0] = 0.25;
-    render_options opt = {0, 0, 1, 0, 2, 0, RENDER_DOUBLE, 0, 0, 0, 0, {0, 0, 0, 0}, NULL};
+    render_options opt = {0, 0, 1, 0, 2, 0, RENDER_DOUBLE, 0, 0, 0, 0, NULL};
     render_scene rs;
     ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
     float *rgb = malloc((size_t)rs.width * rs.height * 3 * sizeof *rgb);
@@ -438,7 +437,7 @@ START_TEST(scene_points_see_the_normal_map)
         scene s;
         char err[1024];
         ck_assert_msg(scene_parse_file(in_dir(names[k]), &s, err, sizeof err) == 0, "%s", err);
-        render_options opt = {0, 0, 4, 0, 2, 0, RENDER_DOUBLE, 0, 0, 0, 8, {0, 0, 0, 0}, NULL};
+        render_options opt = {0, 0, 4, 0, 2, 0, RENDER_DOUBLE, 0, 0, 0, 8, NULL};
         render_scene rs;
         ck_assert_msg(render_prepare(&s, &opt, &rs, err, sizeof err) == 0, "%s", err);
         r[k] = (result){
@@ -572,7 +571,7 @@ START_TEST(refusals_at_prepare)
         write_text("bad.scene", text);
         scene s;
         ck_assert_msg(scene_parse_file(in_dir("bad.scene"), &s, err, sizeof err) == 0, "%s", err);
-        render_options opt = {0, 0, 1, 0, 1, 0, RENDER_FLOAT, 0, 0, 0, 0, {0, 0, 0, 0}, NULL};
+        render_options opt = {0, 0, 1, 0, 1, 0, RENDER_FLOAT, 0, 0, 0, 0, NULL};
         render_scene rs;
         ck_assert_int_eq(render_prepare(&s, &opt, &rs, err, sizeof err), -1);
         ck_assert_msg(strstr(err, cases[c].want) && !strchr(err, '\n'), "%s", err);

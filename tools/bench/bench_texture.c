@@ -211,7 +211,7 @@ int main(int argc, char **argv)
            "extra ns/sample");
     double extra[2] = {0, 0};
     for (int prec = 0; prec < 2; ++prec) {
-        render_options opt = {size, size, spp, 0, 1, 0, prec, 0, 0, 0, 0, {0, 0, 0, 0}, NULL};
+        render_options opt = {size, size, spp, 0, 1, 0, prec, 0, 0, 0, 0, NULL};
         timing c, t;
         if (render_best("constant.scene", &opt, reps, &c, 0) ||
             render_best("textured.scene", &opt, reps, &t, 0))
@@ -243,7 +243,7 @@ int main(int argc, char **argv)
     printf("a textured sample's 2 lookups (base colour; metallic and roughness from one file) + "
            "prepare, scanline order: %.1f ns of the extra %.1f (float), %.1f (double)\n",
            c3 + c2 + prep, extra[0], extra[1]);
-    render_options opt = {size, size, spp, 0, 1, 0, RENDER_FLOAT, 0, 0, 0, 0, {0, 0, 0, 0}, NULL};
+    render_options opt = {size, size, spp, 0, 1, 0, RENDER_FLOAT, 0, 0, 0, 0, NULL};
     timing t;
     if (render_best("textured.scene", &opt, 1, &t, 1)) goto done;
     rc = 0;

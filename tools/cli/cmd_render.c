@@ -1,15 +1,14 @@
 /* cmd_render.c - `abrdf render SCENE -o OUT.exr`: render a scene with the built-in ray
  * tracer, write linear EXR and a display-referred PNG preview beside it. */
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
+#include "hair_table_args.h"
 #include "scene_choice.h"
 #include "budget_run.h"
 #include "data_path.h"
@@ -67,6 +66,8 @@ static int usage(void)
         "                    azimuths and shift sets (default 24,9,32,16); implies --hair-table\n"
         "  --hair-table-cache DIR   keep each table in DIR (a file per material and sizes) and\n"
         "                    read it there instead of building it again; implies --hair-table\n"
+        "                    With --budget, a huang material's budget is predicted against its\n"
+        "                    table (the converged model), which it renders if chosen\n"
         "  --full            ignore the effect plan: shadow rays at every lit point, tangent\n"
         "                    frames and ambient everywhere (to measure what the plan saves)\n"
         "  --config/--display/--view   OpenColorIO preview transform (default: built-in sRGB)\n");
@@ -111,6 +112,7 @@ typedef struct render_args {
     int full, explain, stats, preview;
     int texture_cache; /* --texture-cache MB, 0: not given */
     render_options opt;
+    hair_table_args hair; /* --hair-table, --hair-table-sizes, --hair-table-cache */
 } render_args;
 
 /* --precision and --estimator: a name from a list. 0, or the exit status after the message. */
@@ -136,36 +138,6 @@ static int take_named(render_args *ra, const char *a, const char *val)
     return 0;
 }
 
-static const int hair_table_default[4] = ABRDF_HUANG_TABLE_SIZES;
-
-/* --hair-table-sizes NT,NV,NP,SETS into v, each in the range abrdf.h gives and at most 2^28
- * values in all (the material checks the rest: one view azimuth only for a round fibre). 0,
- * or the exit status after the message. */
-static int hair_table_sizes(const char *val, int v[4])
-{
-    static const char *name[4] = {"theta nodes NT", "view azimuths NV", "light azimuths NP",
-                                  "shift sets SETS"};
-    static const long lo[4] = {4, 1, 4, 1}, hi[4] = {256, 256, 256, 64};
-    const char *p = val;
-    for (int k = 0; k < 4; ++k) {
-        size_t len = strspn(p, "0123456789");
-        if (len == 0 || (k < 3 && p[len] != ',') || (k == 3 && p[len]))
-            return cli_fail(CMD, "--hair-table-sizes '%s' is not NT,NV,NP,SETS (four integers)",
-                            val);
-        errno = 0;
-        long x = strtol(p, NULL, 10);
-        if (errno || x < lo[k] || x > hi[k])
-            return cli_fail(CMD, "--hair-table-sizes '%s': %s is %.*s, not in [%ld, %ld]", val,
-                            name[k], (int)len, p, lo[k], hi[k]);
-        v[k] = (int)x;
-        p += len + (k < 3);
-    }
-    double values = 3.0 * v[0] * v[1] * v[0] * v[2] + 8.0;
-    if (values > 268435456.0)
-        return cli_fail(CMD, "--hair-table-sizes '%s': %.0f values, more than 2^28", val, values);
-    return 0;
-}
-
 /* One option at argv[*i] (its value taken, *i advanced): 0, or the exit status after the
  * message. */
 static int take_option(render_args *ra, int argc, char **argv, int *i)
@@ -176,16 +148,8 @@ static int take_option(render_args *ra, int argc, char **argv, int *i)
         ++*i;
         return take_named(ra, a, val);
     }
-    if (!strcmp(a, "--hair-table")) {
-        if (!ra->opt.hair_table[0])
-            memcpy(ra->opt.hair_table, hair_table_default, sizeof hair_table_default);
-        return 0;
-    }
-    if (!strcmp(a, "--hair-table-sizes")) {
-        if (!val) return cli_fail(CMD, "--hair-table-sizes needs NT,NV,NP,SETS");
-        ++*i;
-        return hair_table_sizes(val, ra->opt.hair_table);
-    }
+    int hair = hair_table_option(&ra->hair, CMD, argc, argv, i);
+    if (hair) return hair < 0 ? -hair : 0;
     const cli_flag flags[] = {{"--explain", &ra->explain, 1},
                               {"--stats", &ra->stats, 1},
                               {"--jitter", &ra->opt.jitter, 1},
@@ -194,8 +158,7 @@ static int take_option(render_args *ra, int argc, char **argv, int *i)
     const cli_string strings[] = {{"-o", &ra->out},
                                   {"--config", &ra->config},
                                   {"--display", &ra->display},
-                                  {"--view", &ra->view},
-                                  {"--hair-table-cache", &ra->opt.hair_table_cache}};
+                                  {"--view", &ra->view}};
     const cli_number numbers[] = {
         {"--light-samples", 4096, &ra->opt.light_samples},
         {"--width", SCENE_MAX_RESOLUTION, &ra->opt.width},
@@ -233,7 +196,6 @@ static int render_args_parse(int argc, char **argv, render_args *ra)
                                RENDER_EST_MIS,
                                1,
                                TEXTURE_CACHE_MB_DEFAULT,
-                               {0, 0, 0, 0},
                                NULL};
     for (int i = 1; i < argc; ++i) {
         if (cli_is_help(argv[i])) {
@@ -253,14 +215,8 @@ static int render_args_parse(int argc, char **argv, render_args *ra)
                         ra->opt.spp);
     if (scene_choice_check(&ra->choice, CMD)) return CLI_EXIT_USAGE;
     if (ra->texture_cache) ra->opt.texture_cache_mb = ra->texture_cache;
-    if (ra->opt.hair_table_cache) {
-        struct stat st;
-        if (stat(ra->opt.hair_table_cache, &st) || !S_ISDIR(st.st_mode))
-            return cli_fail(CMD, "--hair-table-cache %s: not a directory",
-                            ra->opt.hair_table_cache);
-        if (!ra->opt.hair_table[0])
-            memcpy(ra->opt.hair_table, hair_table_default, sizeof hair_table_default);
-    }
+    int rc = hair_table_check(&ra->hair, CMD);
+    if (rc) return rc;
     ra->opt.progress = isatty(2) && !ra->explain;
     return 0;
 }
@@ -312,6 +268,13 @@ static void print_times(const render_args *ra, const render_scene *rs, const str
             "abrdf render: scene read in %.3f s, prepared in %.3f s wall (materials, Embree "
             "scene, effect plan); Embree holds %zu bytes\n",
             seconds(t[0], t[1]), seconds(t[1], t[2]), accel_bytes(rs->accel));
+    const hair_store *h = ra->opt.hair_tables;
+    if (h)
+        fprintf(stderr,
+                "abrdf render: huang tables %d,%d,%d,%d: %d built, %d read from the cache%s (the "
+                "budget's predictions and the render share them)\n",
+                h->sizes[0], h->sizes[1], h->sizes[2], h->sizes[3], h->built, h->read,
+                h->cache ? "" : " (none given)");
 }
 
 /* The preview (png, if any) and the linear image encoded into their open output files, then
@@ -455,10 +418,18 @@ int cmd_render(int argc, char **argv)
     }
     clock_gettime(CLOCK_MONOTONIC, &t[1]);
     const char *outs[2] = {ra.out, png}, *out_roles[2] = {"output", "preview"};
+    /* one store of huang tables for the budget's predictions and the render */
+    hair_store tables;
+    if (ra.hair.sizes[0]) {
+        hair_store_init(&tables, ra.hair.sizes, ra.hair.cache, ra.opt.threads);
+        tables.progress = ra.opt.progress;
+        ra.opt.hair_tables = ra.choice.how.hair_tables = &tables;
+    }
     if (scene_outputs_distinct(&s, outs, out_roles, 2, err, sizeof err))
         rc = cli_fail(CMD, "%s", err);
     else
         rc = render_to_files(&ra, &s, png, t);
+    if (ra.hair.sizes[0]) hair_store_free(&tables);
     scene_free(&s);
     free(png);
     return rc;

@@ -40,6 +40,13 @@ int budget_run_at(const abrdf_material *m, double max_nmse, int resolution,
                   const abrdf_costs *costs, const abrdf_view *view, budget_result *out, char *err,
                   size_t err_size)
 {
+    return budget_run_to(m, max_nmse, resolution, costs, view, NULL, -1.0, out, err, err_size);
+}
+
+int budget_run_to(const abrdf_material *m, double max_nmse, int resolution,
+                  const abrdf_costs *costs, const abrdf_view *view, const abrdf_prepared *reference,
+                  double reference_cost, budget_result *out, char *err, size_t err_size)
+{
     memset(out, 0, sizeof *out);
     out->trace = (select_trace)SELECT_TRACE_INIT;
     abrdf_selection_init(&out->sel);
@@ -49,6 +56,8 @@ int budget_run_at(const abrdf_material *m, double max_nmse, int resolution,
     b.max_nmse = max_nmse;
     b.resolution = resolution;
     b.view = view;
+    b.reference = reference;
+    b.reference_cost = reference_cost;
     size_t ws = abrdf_fit_workspace_size(NULL, view);
     if (!ws) {
         snprintf(err, err_size, "the prediction's view is invalid");

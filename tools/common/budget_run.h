@@ -31,6 +31,11 @@ int budget_run(const abrdf_material *m, double max_nmse, const abrdf_costs *cost
 int budget_run_at(const abrdf_material *m, double max_nmse, int resolution,
                   const abrdf_costs *costs, const abrdf_view *view, budget_result *out, char *err,
                   size_t err_size);
+/* The same against a caller's prepared reference (abrdf_budget.reference, reference_cost;
+ * reference NULL: budget_run_at). */
+int budget_run_to(const abrdf_material *m, double max_nmse, int resolution,
+                  const abrdf_costs *costs, const abrdf_view *view, const abrdf_prepared *reference,
+                  double reference_cost, budget_result *out, char *err, size_t err_size);
 void budget_result_free(budget_result *r);
 
 /* The ABRDF_STEP_FIT steps of a result: *count candidates, their steps in trace order (the

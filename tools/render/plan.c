@@ -256,8 +256,16 @@ void render_explain(const render_scene *rs, const render_options *opt, FILE *f)
                                                  : "no - no lobe has a Fresnel term");
         fprintf(f, "    layers: %s\n",
                 (m->needs & ABRDF_NEEDS_LAYERS) ? "yes - layer stack evaluated" : "no");
-        fprintf(f, "    numerical integration: %s\n",
-                (m->needs & ABRDF_NEEDS_INTEGRATION) ? "yes (slow lobe)" : "no");
+        if (m->tabulated)
+            fprintf(f,
+                    "    numerical integration: huang's R only; TT, TRT and TRRT+ read from its "
+                    "table (%d theta, %d view azimuth and %d light azimuth nodes, %d shift "
+                    "sets)\n",
+                    opt->hair_tables->sizes[0], opt->hair_tables->sizes[1],
+                    opt->hair_tables->sizes[2], opt->hair_tables->sizes[3]);
+        else
+            fprintf(f, "    numerical integration: %s\n",
+                    (m->needs & ABRDF_NEEDS_INTEGRATION) ? "yes (slow lobe)" : "no");
         fprintf(f, "    ambient: %s\n", m->use_ambient ? "yes - ka * Ia > 0" : "no - ka * Ia = 0");
         if (s->materials[i].measured >= 0)
             explain_measured(f, &s->measured[s->materials[i].measured]);

@@ -13,10 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "in_file.h"
 #include "light.h"
 #include "map_range.h"
-#include "out_file.h"
 #include "plan.h"
 
 static const double DEG = 3.14159265358979323846 / 180.0;
@@ -39,8 +37,6 @@ static int textures_open(const scene *s, const render_options *opt, render_scene
 
 void render_release(render_scene *rs)
 {
-    for (int i = 0; rs->materials && i < rs->material_count; ++i)
-        for (int k = 0; k < SCENE_MAX_LOBES; ++k) free(rs->materials[i].huang_table[k]);
     texture_system_free(rs->textures);
     free(rs->objects);
     free(rs->materials);
@@ -48,134 +44,6 @@ void render_release(render_scene *rs)
     free(rs->shadow);
     accel_release(rs->accel);
     memset(rs, 0, sizeof *rs);
-}
-
-/* ---- huang tables (render_options.hair_table) ---------------------------------------- */
-
-typedef struct table_job {
-    const abrdf_params *params;
-    const int *sizes;
-    double *values;
-    int rows, next, status;
-    pthread_mutex_t lock;
-} table_job;
-
-static void *table_worker(void *arg)
-{
-    table_job *j = arg;
-    for (;;) {
-        pthread_mutex_lock(&j->lock);
-        int row = j->status == ABRDF_OK && j->next < j->rows ? j->next++ : -1;
-        pthread_mutex_unlock(&j->lock);
-        if (row < 0) return NULL;
-        int st = abrdf_huang_table_build(j->params, j->sizes, row, row + 1, j->values);
-        if (st != ABRDF_OK) {
-            pthread_mutex_lock(&j->lock);
-            j->status = st;
-            pthread_mutex_unlock(&j->lock);
-        }
-    }
-}
-
-/* The file of a table in the cache directory: named by its header's keys and sizes
- * (abrdf_huang_table_build of rows [0, 0) writes the header alone). 0, or -1 if the name does
- * not fit. */
-static int table_file(const char *dir, const double *header, char *buf, size_t size)
-{
-    int n = snprintf(buf, size, "%s/huang-%08lx%08lx-%dx%dx%dx%d.table", dir,
-                     (unsigned long)header[6], (unsigned long)header[7], (int)header[2],
-                     (int)header[3], (int)header[4], (int)header[5]);
-    return n > 0 && (size_t)n < size ? 0 : -1;
-}
-
-/* The cached table into v (n doubles) if there is one that abrdf_prepare_huang_table takes:
- * 1, else 0 (no file, another size, another material: then it is rebuilt and replaced). */
-static int table_read(const char *path, double *v, long n, const abrdf_params *p,
-                      const int sizes[4], abrdf_prepared *out)
-{
-    char err[512];
-    FILE *f = in_file_open(path, err, sizeof err);
-    if (!f) return 0;
-    int ok = fread(v, sizeof *v, (size_t)n, f) == (size_t)n && fgetc(f) == EOF && !ferror(f);
-    fclose(f);
-    return ok && abrdf_prepare_huang_table(p, sizes, v, out) == ABRDF_OK;
-}
-
-/* Write the table whole (out_file.h); a failure is a warning on stderr, the render goes on. */
-static void table_write(const char *path, const double *v, long n, const char *material)
-{
-    char err[1024];
-    out_file o = OUT_FILE_INIT, *list[1] = {&o};
-    if (out_file_open(&o, path, err, sizeof err) == 0) {
-        out_file_write(&o, v, (size_t)n * sizeof *v);
-        if (out_file_close(&o, err, sizeof err) == 0 &&
-            out_file_commit(list, 1, err, sizeof err) == 0) {
-            out_file_discard(&o);
-            return;
-        }
-    }
-    out_file_discard(&o);
-    fprintf(stderr, "abrdf render: warning: material '%s': its huang table is not cached: %s\n",
-            material, err);
-}
-
-/* Material m's huang lobe k tabulated and prepared on its table (kept in m->huang_table[k]),
- * the rows over opt->threads threads; with opt->hair_table_cache, read from the cache
- * directory if it holds this material's table at these sizes, else built and written there.
- * 0, or -1 with one line in err. */
-static int huang_table_make(const scene_material *sm, render_material *m, int k,
-                            const render_options *opt, char *err, size_t err_size)
-{
-    long n = 0;
-    int rows = 0, st = abrdf_huang_table_size(&m->params, opt->hair_table, &n, &rows);
-    if (st != ABRDF_OK) {
-        snprintf(err, err_size, "material '%s' (line %d): huang table %d,%d,%d,%d: %s", sm->name,
-                 sm->line, opt->hair_table[0], opt->hair_table[1], opt->hair_table[2],
-                 opt->hair_table[3], abrdf_strerror(st));
-        return -1;
-    }
-    double *v = malloc((size_t)n * sizeof *v);
-    if (!v) {
-        snprintf(err, err_size, "material '%s' (line %d): no memory for its huang table (%ld MB)",
-                 sm->name, sm->line, (long)(n * 8 / 1000000));
-        return -1;
-    }
-    char path[4096] = "";
-    if (opt->hair_table_cache) {
-        abrdf_huang_table_build(&m->params, opt->hair_table, 0, 0, v); /* the header alone */
-        if (table_file(opt->hair_table_cache, v, path, sizeof path)) {
-            free(v);
-            snprintf(err, err_size, "--hair-table-cache %s: the directory's name is too long",
-                     opt->hair_table_cache);
-            return -1;
-        }
-        if (table_read(path, v, n, &m->params, opt->hair_table, &m->prepared[k])) {
-            m->huang_table[k] = v;
-            return 0;
-        }
-    }
-    if (opt->progress)
-        fprintf(stderr,
-                "tabulating huang of material '%s': %d x %d x %d x %d nodes, %d shift sets\n",
-                sm->name, opt->hair_table[0], opt->hair_table[1], opt->hair_table[0],
-                opt->hair_table[2], opt->hair_table[3]);
-    table_job j = {&m->params, opt->hair_table, v, rows, 0, ABRDF_OK, PTHREAD_MUTEX_INITIALIZER};
-    int nt = opt->threads > 1 ? (opt->threads < 64 ? opt->threads : 64) : 1, started = 0;
-    pthread_t th[64];
-    for (int t = 1; t < nt; ++t) started += !pthread_create(&th[started], NULL, table_worker, &j);
-    table_worker(&j);
-    for (int t = 0; t < started; ++t) pthread_join(th[t], NULL);
-    if (j.status == ABRDF_OK)
-        j.status = abrdf_prepare_huang_table(&m->params, opt->hair_table, v, &m->prepared[k]);
-    if (j.status != ABRDF_OK) {
-        free(v);
-        snprintf(err, err_size, "material '%s' (line %d): huang table: %s", sm->name, sm->line,
-                 abrdf_strerror(j.status));
-        return -1;
-    }
-    if (path[0]) table_write(path, v, n, sm->name);
-    m->huang_table[k] = v;
-    return 0;
 }
 
 int render_prepare(const scene *s, const render_options *opt, render_scene *rs, char *err,
@@ -259,10 +127,16 @@ int render_prepare(const scene *s, const render_options *opt, render_scene *rs, 
                 return -1;
             }
             m->lobe_needs[k] = abrdf_model_get(m->lobes[k])->needs;
-            if (m->lobes[k] == ABRDF_HUANG && opt->hair_table[0] > 0 && m->used && !sm->textured &&
-                huang_table_make(sm, m, k, opt, err, err_size)) {
-                render_release(rs);
-                return -1;
+            if (m->lobes[k] == ABRDF_HUANG && opt->hair_tables && m->used && !sm->textured &&
+                !sm->huang_per_call) {
+                char what[160];
+                snprintf(what, sizeof what, "material '%s' (line %d)", sm->name, sm->line);
+                if (hair_store_get(opt->hair_tables, &m->params, what, &m->prepared[k], err,
+                                   err_size)) {
+                    render_release(rs);
+                    return -1;
+                }
+                m->tabulated = 1;
             }
         }
         plan_material(m, s->ambient, sm->ka);

@@ -45,6 +45,7 @@
 #include "accel.h"
 #include "envmap.h"
 #include "geom.h"
+#include "hair_store.h"
 #include "texture.h"
 
 /* Work counters: what the renderer actually did. A "test" is one exact double-precision
@@ -84,8 +85,8 @@ typedef struct render_material {
     int lobe_count;
     abrdf_model lobes[SCENE_MAX_LOBES];
     abrdf_prepared prepared[SCENE_MAX_LOBES]; /* each lobe validated and precomputed at load */
-    unsigned lobe_needs[SCENE_MAX_LOBES];     /* ABRDF_NEEDS_* of each lobe (counters) */
-    double *huang_table[SCENE_MAX_LOBES];     /* a huang lobe's table (render_options.hair_table) */
+    int tabulated; /* a huang lobe is prepared on its table (render_options.hair_tables) */
+    unsigned lobe_needs[SCENE_MAX_LOBES]; /* ABRDF_NEEDS_* of each lobe (counters) */
     abrdf_params params;
     double ambient[3]; /* ka * Ia */
     int use_ambient;   /* ka * Ia is non-zero */
@@ -143,13 +144,12 @@ typedef struct render_options {
     int estimator;     /* render_estimator: how sampled (area, environment) lights are estimated */
     int light_samples; /* per hit, sampled light and strategy; < 1 means 1 */
     double texture_cache_mb; /* textures' cache bound, MB; 0: TEXTURE_CACHE_MB_DEFAULT */
-    /* hair_table[0] > 0: every huang lobe of a material without texture maps has its
-     * residual tabulated at these sizes (abrdf_huang_table_build, the rows over the threads)
-     * and is prepared on it (abrdf_prepare_huang_table); 0: huang integrates per call. */
-    int hair_table[4];
-    /* With hair_table: a directory where each table is kept in a file named by its material's
-     * keys and sizes, read instead of built when it is there (NULL: none). */
-    const char *hair_table_cache;
+    /* Not NULL: every huang lobe of a material without texture maps has its residual
+     * tabulated at the store's sizes (hair_store_get: a table the store holds already, e.g.
+     * the one the budget mode predicted against, else the cache's, else built over the
+     * store's threads) and is prepared on it (abrdf_prepare_huang_table); the tables stay the
+     * store's. NULL: huang integrates per call. */
+    hair_store *hair_tables;
 } render_options;
 
 /* Estimators of the sampled lights (sphere, rectangle, environment; light.h). Point and

@@ -148,6 +148,9 @@ typedef struct scene_material {
     abrdf_params fit_params[PBR_BUDGET_GROUPS];
     scene_map maps[SCENE_MAP_COUNT];
     int textured;
+    /* The budget mode, predicting against huang's table (scene_selection.hair_tables), chose a
+     * quadrature of huang: render it per call as chosen, not from a table. */
+    int huang_per_call;
 } scene_material;
 
 typedef enum scene_shape {

@@ -222,13 +222,49 @@ static int entry_of(const scene_material *sm, const mat_table *table, const char
     return -1;
 }
 
+/* The budget mode for am against huang's table when the photoreal choice is huang alone
+ * (scene_selection.hair_tables), else against the photoreal choice as abrdf_prepare makes
+ * it; budget_run's contract. */
+static int choose_to_table(const abrdf_material *am, const select_request *rq,
+                           const abrdf_view *view, hair_store *tables, budget_result *out,
+                           char *msg, size_t msg_size)
+{
+    abrdf_selection ps;
+    abrdf_params pp;
+    abrdf_selection_init(&ps);
+    abrdf_params_init(ABRDF_MODEL_NONE, &pp);
+    abrdf_prepared ref;
+    if (abrdf_select(am, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &ps, &pp, NULL, NULL) != ABRDF_OK ||
+        ps.diffuse != ABRDF_MODEL_NONE || ps.specular != ABRDF_HUANG)
+        return budget_run(am, rq->max_nmse, NULL, view, out, msg, msg_size);
+    memset(out, 0, sizeof *out); /* budget_result_free's contract on failure */
+    out->trace = (select_trace)SELECT_TRACE_INIT;
+    if (hair_store_get(tables, &pp, "the budget's reference", &ref, msg, msg_size)) return -1;
+    return budget_run_to(am, rq->max_nmse, 0, NULL, view, &ref, hair_store_cost(&ref, &pp, NULL),
+                         out, msg, msg_size);
+}
+
+/* Whether the budget's choice c is its reference (abrdf_budget.reference: a choice with the
+ * reference's models and parameters is it). */
+static int chose_reference(const budget_result *c)
+{
+    const abrdf_select_step *ref = budget_reference_step(c);
+    if (!ref || !ref->params || c->sel.specular != ref->model || c->sel.diffuse != ref->diffuse)
+        return 0;
+    abrdf_params a = *ref->params, b = c->params;
+    a.struct_size = b.struct_size = sizeof a;
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
 /* What the selection chooses for am as rq asks: the flowchart's choice for a goal (its trace
  * kept with keep_trace), the budget mode's, predicted on view, for a budget (its trace always:
  * the reference's step is in it). 0, or -1 with the reason in msg; out is freed by
  * budget_result_free either way. */
 static int choose(const abrdf_material *am, const select_request *rq, const abrdf_view *view,
-                  int keep_trace, budget_result *out, char *msg, size_t msg_size)
+                  int keep_trace, hair_store *tables, budget_result *out, char *msg,
+                  size_t msg_size)
 {
+    if (rq->by_budget && tables) return choose_to_table(am, rq, view, tables, out, msg, msg_size);
     if (rq->by_budget) return budget_run(am, rq->max_nmse, NULL, view, out, msg, msg_size);
     memset(out, 0, sizeof *out);
     out->trace = (select_trace)SELECT_TRACE_INIT;
@@ -355,7 +391,7 @@ static int select_pbr(scene_material *sm, const char *scene_name, const select_r
         goto fail;
     }
     am.name = sm->name;
-    if (choose(&am, rq, view, explain != NULL, &c, msg, sizeof msg)) goto fail;
+    if (choose(&am, rq, view, explain != NULL, NULL, &c, msg, sizeof msg)) goto fail;
     sm->kind = SCENE_MAT_MODELS;
     sm->lobe_count = 0;
     if (c.sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = c.sel.diffuse;
@@ -402,7 +438,12 @@ static int select_material(scene_material *sm, const char *scene_name, const sel
                          sizeof msg))
         goto fail;
     budget_result c;
-    if (choose(&am, rq, view, explain != NULL, &c, msg, sizeof msg)) goto fail;
+    hair_store *tables = how->hair_tables && !sm->textured ? how->hair_tables : NULL;
+    if (choose(&am, rq, view, explain != NULL, tables, &c, msg, sizeof msg)) goto fail;
+    /* a budget against the table that chose huang other than the reference itself (a coarser
+     * quadrature) renders what it chose */
+    sm->huang_per_call =
+        tables && rq->by_budget && c.sel.specular == ABRDF_HUANG && !chose_reference(&c);
     sm->kind = SCENE_MAT_MODELS;
     sm->lobe_count = 0;
     if (c.sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = c.sel.diffuse;

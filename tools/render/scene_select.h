@@ -6,6 +6,7 @@
 
 #include <stdio.h>
 #include "abrdf_fit.h"
+#include "hair_store.h"
 #include "materials.h"
 #include "pbr_select.h"
 #include "scene.h"
@@ -33,13 +34,18 @@ typedef struct scene_selection {
      * camera's pixels, each material's visible hits and the lights that reach them), falling
      * back to scene_budget_view's sphere for a material with none; 0: on the sphere */
     int points;
+    /* Not NULL: a budget whose reference is huang alone (a material without texture maps) is
+     * predicted against huang's table from this store (hair_store_get; abrdf_budget.reference,
+     * its cost hair_store_cost), so that the render reads the same table; NULL: against the
+     * per-call quadrature. */
+    hair_store *hair_tables;
 } scene_selection;
 
 /* A selection that forces nothing, reads no extra table, predicts on the sphere at 4
  * samples/pixel and reads no texture. */
 #define SCENE_SELECTION_INIT                                                                       \
     {                                                                                              \
-        0, {0, ABRDF_GOAL_PHOTOREAL, 0.0}, NULL, 0, 4, NULL, NULL, 0                               \
+        0, {0, ABRDF_GOAL_PHOTOREAL, 0.0}, NULL, 0, 4, NULL, NULL, 0, NULL                         \
     }
 
 /* Every SCENE_MAT_TABLE / SCENE_MAT_ADAPTIVE material of s (every material, forced) becomes

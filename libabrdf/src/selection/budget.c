@@ -189,6 +189,7 @@ static void budget_defaults(abrdf_budget *b)
     b->struct_size = sizeof *b;
     b->max_nmse = abrdf_select_rules_get()->nmse_class_max[1];
     b->metric = ABRDF_FIT_AUTO;
+    b->reference_cost = -1.0;
 }
 
 int abrdf_budget_init_sized(abrdf_budget *b, size_t struct_size)
@@ -352,6 +353,7 @@ static int coarser_quadrature(const abrdf__brdf *ref, int i, abrdf__brdf *out)
     int n1 = ref->p.entry_grid - i;
     if (n1 < 2) return 0;
     *out = *ref;
+    out->prepared = NULL; /* a caller's reference (a table) is not a quadrature */
     out->p.entry_grid = n1;
     return 1;
 }
@@ -412,6 +414,38 @@ static int budget_read(const abrdf_budget *budget, abrdf_budget *b, abrdf_select
     return ABRDF_OK;
 }
 
+/* The caller's prepared reference (abrdf_budget.reference) in place of the photoreal choice
+ * bs->ref, once it is known to be that choice: the same one model, every parameter the model
+ * reads the same. ABRDF_OK, or ABRDF_E_MODEL (ABRDF_E_NULL: not prepared) with the
+ * difference named in sel. */
+static int reference_adopt(budget_state *bs, abrdf_selection *sel)
+{
+    char msg[ABRDF_FIT_MESSAGE_MAX];
+    abrdf__brdf given;
+    int st = abrdf__brdf_from_prepared(&given, bs->b.reference, msg, sizeof msg);
+    if (st != ABRDF_OK) return abrdf__selection_fail(sel, st, "abrdf_budget.reference: %s", msg);
+    if (bs->ref.lobe[0] != NONE || given.lobe[1] != bs->ref.lobe[1])
+        return abrdf__selection_fail(
+            sel, ABRDF_E_MODEL,
+            "abrdf_budget.reference is prepared for %s, the photoreal choice is %s%s%s",
+            mname(given.lobe[1]), bs->ref.lobe[0] != NONE ? mname(bs->ref.lobe[0]) : "",
+            bs->ref.lobe[0] != NONE ? " + " : "", mname(bs->ref.lobe[1]));
+    const abrdf_model_info *mi = abrdf_model_get(given.lobe[1]);
+    for (int k = 0; k < mi->param_count; ++k) {
+        double a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
+        int id = mi->params[k].id, n = abrdf_param_read(&bs->ref.p, id, a);
+        abrdf_param_read(&given.p, id, b);
+        for (int c = 0; c < n; ++c)
+            if (a[c] != b[c])
+                return abrdf__selection_fail(
+                    sel, ABRDF_E_MODEL,
+                    "abrdf_budget.reference has %s %g where the photoreal choice has %g",
+                    abrdf_param_get(id)->name, b[c], a[c]);
+    }
+    bs->ref = given;
+    return ABRDF_OK;
+}
+
 /* The reference (the flowchart's photoreal choice, its steps traced first), its class's
  * candidates, its predicted image and the fit's direction set, in the workspace: ABRDF_OK, or
  * the status with its message in sel. */
@@ -427,6 +461,7 @@ static int reference_prepare(budget_state *bs, const abrdf_material *m, abrdf_se
     if ((st = abrdf__brdf_make(&bs->ref, sel->diffuse, sel->specular, &ref_block, msg,
                                sizeof msg)) != ABRDF_OK)
         return abrdf__selection_fail(sel, st, "%s", msg);
+    if (bs->b.reference && (st = reference_adopt(bs, sel)) != ABRDF_OK) return st;
     class_of(m, sel, &bs->cc, &bs->no_diffuse);
     int integrating = (abrdf__brdf_needs(&bs->ref) & ABRDF_NEEDS_INTEGRATION) != 0;
     abrdf__arena_init(&bs->a, work, work_size);
@@ -460,9 +495,9 @@ static void trace_reference(budget_state *bs)
                            &bs->ref.p};
     pair_text(bs->ref.lobe, names, sizeof names);
     emit(&bs->w, s,
-         "budget: image NMSE < %s against the reference %s (the photoreal choice), "
+         "budget: image NMSE < %s against the reference %s (the photoreal choice%s), "
          "predicted on %s; fits by the %s metric on %d direction pairs",
-         bs->bt, names,
+         bs->bt, names, bs->ref.prepared ? ", as the caller prepared it" : "",
          bs->pr.samples && bs->b.view && bs->b.view->term_count ? "the caller's image"
                                                                 : "an analytic sphere",
          abrdf_fit_metric_name(bs->b.metric), bs->set.n);
@@ -590,7 +625,7 @@ static int candidates_run(budget_state *bs, budget_best *best, abrdf_selection *
                 sel, ABRDF_E_SIZE, "abrdf_select_budget: more than %d candidates", MAX_CANDIDATES);
         abrdf_fit_result r;
         if ((st = candidate_measure(bs, &cand, fitted, &r, sel)) != ABRDF_OK) return st;
-        double cost = pair_cost(bs->costs, cand.lobe, &cand.p);
+        double cost = cand.prepared ? bs->ref_cost : pair_cost(bs->costs, cand.lobe, &cand.p);
         trace_candidate(bs, k == 0, &cand, &r, cost);
         mark[n] =
             (candidate_mark){k, at, r.nmse_pred < bs->b.max_nmse && cost >= 0.0, cost, r.nmse_pred};
@@ -663,7 +698,7 @@ static void selection_fill(abrdf_selection *sel, const budget_best *best, const 
     if (pair_reads(b->lobe, "n")) sel->n = b->p.n;
     if (pair_reads(b->lobe, "r")) sel->r = b->p.r;
     sel->cost_diffuse = b->lobe[0] == NONE ? 0.0 : lobe_cost(costs, b->lobe[0], &b->p);
-    sel->cost_specular = lobe_cost(costs, b->lobe[1], &b->p);
+    sel->cost_specular = b->prepared ? best->cost : lobe_cost(costs, b->lobe[1], &b->p);
     sel->cost_total = best->cost >= 0.0 && isfinite(best->cost) ? best->cost : -1.0;
     sel->cost_unit = costs->unit;
 }
@@ -708,7 +743,8 @@ int abrdf_select_budget(const abrdf_material *m, const abrdf_budget *budget,
     }
     if ((st = reference_prepare(&bs, m, &sel, work, work_size)) != ABRDF_OK) goto done;
     budget_text(bs.b.max_nmse, bs.bt, sizeof bs.bt);
-    bs.ref_cost = pair_cost(bs.costs, bs.ref.lobe, &bs.ref.p);
+    bs.ref_cost = bs.ref.prepared ? (bs.b.reference_cost >= 0.0 ? bs.b.reference_cost : -1.0)
+                                  : pair_cost(bs.costs, bs.ref.lobe, &bs.ref.p);
     trace_reference(&bs);
     strcpy(bs.unit, "units");
     if (bs.costs->unit) sscanf(bs.costs->unit, "%31s", bs.unit);

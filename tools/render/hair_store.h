@@ -1,0 +1,43 @@
+/* hair_store.h - huang tables as the tools make them (abrdf.h, "huang tabulated"): built with
+ * their rows over threads, kept in and read back from a cache directory, and held in one
+ * store for a whole command, so that a table the budget mode predicted against (scene_select)
+ * is the one the render reads, built once. The store owns its tables; the prepared objects it
+ * hands out point into them and are valid until hair_store_free. */
+#ifndef ABRDF_HAIR_STORE_H
+#define ABRDF_HAIR_STORE_H
+
+#include <stddef.h>
+#include "abrdf.h"
+#include "abrdf_fit.h"
+
+typedef struct hair_store {
+    int sizes[4];      /* every table's sizes (abrdf_huang_table_size) */
+    const char *cache; /* a directory keeping each table in a file named by its keys; NULL: none */
+    int threads;       /* a build's rows over this many threads (>= 1) */
+    int progress;      /* a line on stderr before each build */
+    int count, cap;    /* tables held */
+    double **values;   /* each table's doubles, header first */
+    int built, read;   /* how many were built here, read from the cache */
+} hair_store;
+
+/* An empty store for tables of these sizes. */
+void hair_store_init(hair_store *t, const int sizes[4], const char *cache, int threads);
+void hair_store_free(hair_store *t);
+
+/* huang at parameters p prepared on its table into *out: a table this store holds for p, else
+ * the cache's file, else built (and written to the cache, whole or not at all; a failure to
+ * write is a warning on stderr). `what` names the material in messages ("material 'hair'
+ * (line 9)"). 0, or -1 with one line in err (sizes out of range, out of memory). */
+int hair_store_get(hair_store *t, const abrdf_params *p, const char *what, abrdf_prepared *out,
+                   char *err, size_t err_size);
+
+/* What one evaluation of the prepared table costs in the unit of costs (NULL: the built-in
+ * table) for the budget mode (abrdf_budget.reference_cost): huang's entry there times the
+ * ratio of the table's time to the quadrature's at the same parameters and the default
+ * grids, both timed here on the float batch path (fixed pairs, one light per view, the
+ * median of 3 runs on this thread's CPU clock) so that the ratio, not this machine's speed,
+ * carries over. < 0 if either cannot be timed. */
+double hair_store_cost(const abrdf_prepared *table, const abrdf_params *p,
+                       const abrdf_costs *costs);
+
+#endif
