@@ -174,11 +174,50 @@ class RenderBench(unittest.TestCase):
                 self.assertTrue(math.isfinite(e["nmse_time_ratio"]))
 
 
+class BudgetBench(unittest.TestCase):
+    def test_against_the_hair_table(self):
+        """bench --budget --hair-table-sizes: photoreal renders its hair from the table and
+        is every NMSE's reference; each budget predicts the hair against the same table, which
+        wins (NMSE exactly 0: the same table rendered); photoreal with huang per call is a
+        fifth variant, off the table by the quadrature's error; one table built (the lock)."""
+        rc, out, err = run("bench", "--budget", "--quick", "--json", "--hair-table-sizes",
+                           "6,3,8,1")
+        self.assertEqual(rc, 0, err)
+        d = json.loads(out)
+        self.assertEqual(d["reference"], "photoreal, huang from its table")
+        names = [v["name"] for v in d["variants"]]
+        self.assertEqual(names, ["photoreal", "budget none", "budget slight",
+                                 "budget noticeable", "photoreal per call"])
+        self.assertEqual(d["hair_tables"]["sizes"], [6, 3, 8, 1])
+        self.assertEqual((d["hair_tables"]["built"], d["hair_tables"]["read"]), (1, 0))
+        for v in d["variants"]:
+            self.assertTrue(math.isfinite(v["time_ratio"]) and v["time_ratio"] > 0)
+            hair = [m for m in v["materials"] if m["material"] == "hair"]
+            self.assertEqual(len(hair), 1)
+            self.assertEqual(hair[0]["models"], "huang")
+            if v["name"] == "photoreal per call":
+                self.assertGreater(hair[0]["nmse"], 0)
+                self.assertTrue(all(m["nmse"] == 0 for m in v["materials"] if m is not hair[0]))
+            else:
+                self.assertEqual(hair[0]["nmse"], 0, v["name"])
+        self.assertGreater(d["speedup_slight_per_call"], 0)
+        self.assertIn(d["goal"]["met"], (True, False))
+
+
 class Errors(unittest.TestCase):
     def test_unknown_option(self):
         rc, _, err = run("bench", "--nope")
         self.assertEqual(rc, 2)
         self.assertIn("unknown argument", err)
+
+    def test_hair_table_needs_budget(self):
+        rc, _, err = run("bench", "--hair-table")
+        self.assertEqual(rc, 2)
+        self.assertIn("--hair-table goes with --budget", err)
+        self.assertEqual(len(err.strip().splitlines()), 1, err)
+        rc, _, err = run("bench", "--budget", "--hair-table-sizes", "6,3,8")
+        self.assertEqual(rc, 2)
+        self.assertIn("is not NT,NV,NP,SETS", err)
 
     def test_bad_size(self):
         rc, _, _ = run("bench", "--size", "3")

@@ -12,6 +12,7 @@
 #include "bench.h"
 #include "bench_budget.h"
 #include "cli.h"
+#include "hair_table_args.h"
 #include "measure.h"
 #include "metrics.h"
 #include "out_file.h"
@@ -81,6 +82,10 @@ static int usage(void)
            "                 beside its per-eval cost, and the BRDFs' share of render time\n"
            "  --budget       instead: the mixed scene, photoreal vs the budget mode per\n"
            "                 Table-8 class: time ratios, image and per-material NMSE\n"
+           "  --hair-table [--hair-table-sizes NT,NV,NP,SETS] [--hair-table-cache DIR]\n"
+           "                 with --budget: huang from its table (built before the renders),\n"
+           "                 photoreal's hair and the budgets' reference, beside photoreal\n"
+           "                 with huang per call\n"
            "  --size N       image size of the renders (default 128; --render: the scene's)\n"
            "  --threads N    render threads (default: online CPUs)\n"
            "  --reps N       timed repetitions (default 7, quick 3)\n");
@@ -512,6 +517,7 @@ static void write_plot(FILE *f, const row *rows, int count, double unit_ns)
 typedef struct bench_args {
     int help; /* --help given: print the usage and stop */
     int json, quick, render, budget;
+    hair_table_args hair;     /* --hair-table[-sizes, -cache] (with --budget) */
     const char *plot;         /* --plot FILE, or NULL */
     long size, threads, reps; /* 0: the defaults (threads: online CPUs, after parsing) */
 } bench_args;
@@ -527,6 +533,9 @@ static int bench_args_parse(int argc, char **argv, bench_args *ba)
             ba->help = 1;
             return 0;
         }
+        int hair = hair_table_option(&ba->hair, CMD, argc, argv, &i);
+        if (hair < 0) return -hair;
+        if (hair) continue;
         if (!strcmp(a, "--json"))
             ba->json = 1;
         else if (!strcmp(a, "--quick"))
@@ -550,12 +559,17 @@ static int bench_args_parse(int argc, char **argv, bench_args *ba)
         } else {
             return cli_fail(CMD,
                             "unknown argument '%s'; options: --json --plot FILE --quick --render "
-                            "--budget --size N --threads N --reps N",
+                            "--budget --size N --threads N --reps N --hair-table "
+                            "--hair-table-sizes S --hair-table-cache DIR",
                             a);
         }
     }
     if (ba->render && ba->plot)
         return cli_fail(CMD, "--plot draws the model benchmark; it does not go with --render");
+    int rc = hair_table_check(&ba->hair, CMD);
+    if (rc) return rc;
+    if (ba->hair.sizes[0] && !ba->budget)
+        return cli_fail(CMD, "--hair-table goes with --budget (abrdf render takes it too)");
     if (ba->threads == 0) {
         long cpus = sysconf(_SC_NPROCESSORS_ONLN);
         ba->threads = cpus > 0 ? (cpus < 64 ? cpus : 64) : 1;
@@ -689,16 +703,22 @@ int cmd_bench(int argc, char **argv)
     if (rc || ba.help) return ba.help ? usage() : rc;
     int quick = ba.quick;
     long size = ba.size, reps = ba.reps;
-    if (ba.budget) /* bench_budget.c: the budget mode on the mixed scene */
-        return bench_budget_report(stdout, ba.json,
-                                   (int)(size    ? size
-                                         : quick ? 128
-                                                 : 0),
-                                   1,
-                                   (int)(reps    ? reps
-                                         : quick ? 1
-                                                 : 3),
-                                   (int)ba.threads);
+    if (ba.budget) { /* bench_budget.c: the budget mode on the mixed scene */
+        hair_store tables;
+        if (ba.hair.sizes[0])
+            hair_store_init(&tables, ba.hair.sizes, ba.hair.cache, (int)ba.threads);
+        rc = bench_budget_report(stdout, ba.json,
+                                 (int)(size    ? size
+                                       : quick ? 128
+                                               : 0),
+                                 1,
+                                 (int)(reps    ? reps
+                                       : quick ? 1
+                                               : 3),
+                                 (int)ba.threads, ba.hair.sizes[0] ? &tables : NULL);
+        if (ba.hair.sizes[0]) hair_store_free(&tables);
+        return rc;
+    }
     if (ba.render)
         return bench_render_report(stdout, ba.json,
                                    (int)(size    ? size

@@ -271,10 +271,10 @@ static void print_times(const render_args *ra, const render_scene *rs, const str
     const hair_store *h = ra->opt.hair_tables;
     if (h)
         fprintf(stderr,
-                "abrdf render: huang tables %d,%d,%d,%d: %d built, %d read from the cache%s (the "
-                "budget's predictions and the render share them)\n",
-                h->sizes[0], h->sizes[1], h->sizes[2], h->sizes[3], h->built, h->read,
-                h->cache ? "" : " (none given)");
+                "abrdf render: huang tables %d,%d,%d,%d: %d built in %.3f s wall, %d read from "
+                "the cache%s (the budget's predictions and the render share them)\n",
+                h->sizes[0], h->sizes[1], h->sizes[2], h->sizes[3], h->built, h->build_seconds,
+                h->read, h->cache ? "" : " (none given)");
 }
 
 /* The preview (png, if any) and the linear image encoded into their open output files, then

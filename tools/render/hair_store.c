@@ -161,7 +161,11 @@ int hair_store_get(hair_store *t, const abrdf_params *p, const char *what, abrdf
     if (t->progress)
         fprintf(stderr, "tabulating huang of %s: %d x %d x %d x %d nodes, %d shift sets\n", what,
                 t->sizes[0], t->sizes[1], t->sizes[0], t->sizes[2], t->sizes[3]);
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     st = table_build(t, p, rows, v);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    t->build_seconds += (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
     if (st == ABRDF_OK) st = abrdf_prepare_huang_table(p, t->sizes, v, out);
     if (st != ABRDF_OK) {
         v[0] = 0.0; /* no header: never prepared for anyone */

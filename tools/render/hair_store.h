@@ -18,6 +18,7 @@ typedef struct hair_store {
     int count, cap;    /* tables held */
     double **values;   /* each table's doubles, header first */
     int built, read;   /* how many were built here, read from the cache */
+    double build_seconds; /* wall time of the builds */
 } hair_store;
 
 /* An empty store for tables of these sizes. */
