@@ -621,9 +621,10 @@ color abrdf_huang_lobes_residual(abrdf_huang_m m, float te[], float tie[], vecto
                 if (l2 > ABRDF_HUANG_HALF_LEN2_MIN) {
                     float rn = 1.0 / sqrt(l2);
                     wh2 = wh2 * rn;
-                    float cos_mh2 = dot(wmt, wh2);
-                    if (cos_mh2 >= 0.0) {
-                        float cos_hi2 = dot(-wt, wh2), cos_ho2 = dot(-wo, wh2);
+                    float cos_mh2 = dot(wmt, wh2), cos_ho2 = dot(-wo, wh2);
+                    // cos_ho2 = wo.wt - 1/eta <= 0 within the tolerance above: no exit
+                    if (cos_mh2 >= 0.0 && cos_ho2 > 0.0) {
+                        float cos_hi2 = dot(-wt, wh2);
                         float t2 = (1.0 - abrdf_huang_fresnel(cos_hi2, inv_eta, unused)) * scale2;
                         float v = wgt * t1 * scale1 * t2 * abrdf_huang_ggx_d(a2, cos_mh2) * g1o *
                                   abrdf_huang_ggx_g(a2, cos_mi2, dot(-wo, wmt)) / cos_mo1 * cos_mi1 *

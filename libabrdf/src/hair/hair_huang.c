@@ -803,10 +803,13 @@ static void tt_add(residual_ctx *c, const entry_path *e)
         v3 wh2 = add(neg(wt), c->lr->wos[l]); /* not normalised: l2 = |wh2|^2 */
         double l2 = dot(wh2, wh2);
         if (!(l2 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
-        double u_mh = dot(e->wmt, wh2);
+        double u_mh = dot(e->wmt, wh2), u_o = dot(neg(wo), wh2);
         if (!(u_mh > 0.0)) continue; /* D = 0 at 90 degrees and beyond */
-        double v = e->tt_pre * exit_factor(dot(neg(wt), wh2), dot(neg(wo), wh2), u_mh, l2,
-                                           c->inv_eta2, a2, e->c2, e->s2, dot(neg(wo), e->wmt));
+        /* u_o = wo.wt - 1/eta: below 0 within the tolerance above, where no light exits (its
+         * term would be negative) */
+        if (!(u_o > 0.0)) continue;
+        double v = e->tt_pre * exit_factor(dot(neg(wt), wh2), u_o, u_mh, l2, c->inv_eta2, a2, e->c2,
+                                           e->s2, dot(neg(wo), e->wmt));
         if (isfinite(v))
             for (int k = 0; k < 3; ++k) c->s_tt[l][k] += v * e->at[k]; /* Eq. 13 */
     }

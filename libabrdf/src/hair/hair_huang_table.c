@@ -125,9 +125,9 @@ void abrdf__huang_table_rows(const abrdf__huang *m, const abrdf__huang_table *t,
                         for (int c = 0; c < 3; ++c) out[(il * np + k0 + j) * 3 + c] += sr[j][c] * k;
                 }
         }
-        /* TT lets a light exit within ABRDF__HUANG_CRITICAL_TOL of the critical cone, where its
-         * exit factor is slightly negative (down to -7.7e-12 where it was measured); the table
-         * holds S >= 0, as the reader returns it. */
+        /* Every lobe's term is >= 0 (TT's exits within ABRDF__HUANG_CRITICAL_TOL below the
+         * critical cone gave negative terms until revision 2); the table holds S >= 0 whatever
+         * the quadrature gives, so that prepare never refuses a table this build wrote. */
         for (long i = 0; i < row_len; ++i) out[i] = out[i] > 0.0 ? out[i] : 0.0;
     }
 }
