@@ -188,6 +188,27 @@ class Advise(unittest.TestCase):
             self.assertGreaterEqual(len([e for e in root.iter() if e.tag.endswith("circle")]),
                                     len(d["candidates"]) - 1)
 
+    def test_hair_against_its_table(self):
+        """--hair-table: the hair's reference is its table (the trace says so), which wins at
+        error 0 and the cost the trace gives it, below every coarser quadrature's; a material
+        that is not hair ignores it; without --budget or --pareto it is refused."""
+        table = ["--hair-table-sizes", "6,3,8,1"]
+        d = json.loads(run("advise", "hair_brown", "--budget", "slight", "--json", *table).stdout)
+        self.assertEqual((d["specular"], d["error"]["nmse_pred"]), ("huang", 0))
+        texts = [s["text"] for s in d["trace"]]
+        self.assertTrue(any("(the photoreal choice, as the caller prepared it)" in t
+                            for t in texts), texts)
+        huang = [c for c in d["candidates"] if c["specular"] == "huang"]
+        self.assertEqual(len(huang), 5)  # the table, entry grids 5 to 2
+        self.assertEqual(d["cost"]["total"], huang[0]["cost"])
+        self.assertLess(huang[0]["cost"], min(c["cost"] for c in huang[1:]))
+        self.assertTrue(all(c["nmse_pred"] > 0 for c in huang[1:]))
+        plain = json.loads(run("advise", "gold", "--budget", "slight", "--json").stdout)
+        other = json.loads(run("advise", "gold", "--budget", "slight", "--json", *table).stdout)
+        self.assertEqual((other["diffuse"], other["specular"], other["params"]),
+                         (plain["diffuse"], plain["specular"], plain["params"]))
+        one_line_error(self, run("advise", "hair_brown", *table, code=2), "--hair-table goes with")
+
     def test_bad_budgets(self):
         one_line_error(self, run("advise", "gold", "--budget", "slite", code=2),
                        "unknown budget class 'slite'")

@@ -164,6 +164,21 @@ class Render(TempDirCase):
         r = run(hair, "-o", self.path("p.exr"), "--adaptive", "--goal", "photoreal", *sizes)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(same_pixels(self.path("b.exr"), self.path("p.exr")).returncode, 0)
+        # A material no object shows builds no table; one whose line sets a parameter of
+        # huang's that its table entry does not describe (cuticle_tilt) renders other
+        # parameters than the photoreal choice's: its budget is predicted against the per-call
+        # quadrature, as without tables, and the render tabulates what it renders.
+        with open(hair, "w") as f:
+            f.write(HAIR_SCENE.replace("material blond table=hair_blond",
+                                       "material blond table=hair_blond cuticle_tilt=3\n"
+                                       "material spare table=hair_red"))
+        r = run(hair, "-o", self.path("u.exr"), "--adaptive", "--budget", "slight", "--explain",
+                *sizes)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.count("(the photoreal choice, as the caller prepared it)"), 1,
+                         r.stdout)
+        self.assertEqual(r.stdout.count("(the photoreal choice),"), 2, r.stdout)  # blond, spare
+        self.assertRegex(r.stderr, r"huang tables 6,3,8,1: 2 built in")  # brown, blond
 
     def test_parse_error_names_file_and_line(self):
         bad = self.path("bad.scene")

@@ -329,7 +329,7 @@ static int advise_one(const char *path, const scene *s, const scene_material *sm
     entry_of(sm, path, &m, &e);
     if (sm->maps[SCENE_MAP_ROUGHNESS].path)
         return advise_map(path, s, sm, &e, rq, tol, costs, json, print);
-    if (rq->by_budget) return advise_budget(&e.m, &e, rq->max_nmse, costs, json, 0, NULL);
+    if (rq->by_budget) return advise_budget(&e.m, &e, rq->max_nmse, costs, json, 0, NULL, NULL);
     abrdf_selection sel;
     abrdf_params params;
     select_trace trace = SELECT_TRACE_INIT;

@@ -141,7 +141,8 @@ static void write_plot(FILE *f, const char *title, const abrdf_select_step *cons
 }
 
 int advise_budget(const abrdf_material *m, const mat_entry *e, double max_nmse,
-                  const abrdf_costs *costs, int json, int pareto, const char *plot)
+                  const abrdf_costs *costs, int json, int pareto, const char *plot,
+                  hair_store *tables)
 {
     budget_result r;
     char err[1024];
@@ -155,7 +156,13 @@ int advise_budget(const abrdf_material *m, const mat_entry *e, double max_nmse,
     }
     /* the front lists every candidate at its best fit (abrdf_select_budget refits every one
      * with every metric); a budget of 1 lets every candidate pass */
-    if (budget_run(m, pareto ? 1.0 : max_nmse, costs, NULL, &r, err, sizeof err)) {
+    char what[160];
+    snprintf(what, sizeof what, "material '%s'", e ? e->name : "given by values");
+    int done = tables ? hair_store_budget(tables, m, pareto ? 1.0 : max_nmse, costs, NULL, what, &r,
+                                          err, sizeof err)
+                      : 0;
+    if (done < 0 ||
+        (!done && budget_run(m, pareto ? 1.0 : max_nmse, costs, NULL, &r, err, sizeof err))) {
         out_file_discard(&plot_out);
         return cli_fail(CMD, "%s", err);
     }

@@ -4,9 +4,11 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "advise_asset.h"
 #include "advise_budget.h"
+#include "hair_table_args.h"
 #include "measured_ref.h"
 #include "cli.h"
 #include "cost_file.h"
@@ -99,6 +101,10 @@ static void usage(FILE *f)
            "                         FILE.bsdf) as the photoreal reference: every general\n"
            "                         candidate fitted to it\n"
            "                         (docs/MEASURED.md, \"Fitting measured data\")\n"
+           "  --hair-table [--hair-table-sizes NT,NV,NP,SETS] [--hair-table-cache DIR]\n"
+           "                         with --budget/--pareto: a hair material's reference is its\n"
+           "                         huang table, the converged model (~2 min of one core;\n"
+           "                         docs/SELECTION.md, \"A converged reference for hair\")\n"
            "  --pareto               every candidate's cost and predicted NMSE: the front\n"
            "  --plot FILE.svg        with --pareto: draw the cost/error plane\n"
            "  --list                 list the materials\n"
@@ -358,6 +364,7 @@ typedef struct advise_args {
     select_request rq;   /* --goal, or --budget (rq.by_budget) */
     abrdf_tolerance tol; /* --max-rel-error, --max-abs-error */
     advise_overrides o;
+    hair_table_args hair; /* --hair-table[-sizes, -cache]: hair's budget against its table */
 } advise_args;
 
 /* A material value at `a` (--n, --kd, --type, ...) with its value v: 1 if it is one (*st: 0,
@@ -467,6 +474,9 @@ static int advise_args_parse(int argc, char **argv, advise_args *aa)
             aa->help = 1;
             return 0;
         }
+        int hair = hair_table_option(&aa->hair, CMD, argc, argv, &i);
+        if (hair < 0) return -hair;
+        if (hair) continue;
         int takes, st = take_option(aa, a, v, &takes);
         if (st) return st;
         i += takes;
@@ -480,6 +490,12 @@ static int advise_args_parse(int argc, char **argv, advise_args *aa)
                         "photoreal choice",
                         aa->pareto ? "pareto" : "budget");
     if (aa->plot && !aa->pareto) return cli_fail(CMD, "--plot draws the front of --pareto");
+    int hrc = hair_table_check(&aa->hair, CMD);
+    if (hrc) return hrc;
+    if (aa->hair.sizes[0] &&
+        (!(rq->by_budget || aa->pareto) || aa->measured || (aa->name && advise_is_asset(aa->name))))
+        return cli_fail(CMD, "--hair-table goes with --budget or --pareto for one material of the "
+                             "table (or given by values)");
     if (aa->measured) {
         const advise_overrides *o = &aa->o;
         int material = aa->name || o->has_n || o->has_r || o->has_kd || o->has_ks || o->has_f0 ||
@@ -607,9 +623,17 @@ static int advise_material(const advise_args *aa, const mat_table *table)
             return cli_fail(CMD, "%s", err);
     }
     const abrdf_costs *c = aa->costs_file ? &costs : NULL;
-    if (aa->rq.by_budget || aa->pareto)
-        return advise_budget(&m, e, aa->rq.max_nmse, c, aa->json, aa->pareto, aa->plot);
-    return advise_flowchart(aa, &m, e, c);
+    if (!(aa->rq.by_budget || aa->pareto)) return advise_flowchart(aa, &m, e, c);
+    hair_store tables;
+    if (aa->hair.sizes[0]) {
+        long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+        hair_store_init(&tables, aa->hair.sizes, aa->hair.cache,
+                        cpus > 0 ? (int)(cpus < 64 ? cpus : 64) : 1);
+    }
+    rc = advise_budget(&m, e, aa->rq.max_nmse, c, aa->json, aa->pareto, aa->plot,
+                       aa->hair.sizes[0] ? &tables : NULL);
+    if (aa->hair.sizes[0]) hair_store_free(&tables);
+    return rc;
 }
 
 /* `abrdf advise FILE.gltf|.glb|.mtlx|.scene`: every pbr material of the file. Returns the

@@ -1,6 +1,7 @@
 /* budget_run.c - the budget mode as the tools run it (budget_run.h). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -193,4 +194,77 @@ void budget_params_text(FILE *f, abrdf_model diffuse, abrdf_model specular, cons
             fprintf(f, "%.4g", v[0]);
         first = 0;
     }
+}
+
+/* ---- what a prepared form costs ----------------------------------------------------------- */
+
+#define COST_PAIRS 256
+#define COST_RUNS 3
+#define COST_RUN_SECONDS 0.01
+
+static double cpu_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* A fixed-seed unit direction on the upper hemisphere. */
+static void hemisphere(uint64_t *s, float *x, float *y, float *z)
+{
+    double u[2];
+    for (int k = 0; k < 2; ++k) {
+        *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+        u[k] = (double)(*s >> 11) * (1.0 / 9007199254740992.0);
+    }
+    double ct = u[0], st = sqrt(1.0 - ct * ct), ph = 6.283185307179586 * u[1];
+    *x = (float)(st * cos(ph)), *y = (float)(st * sin(ph)), *z = (float)ct;
+}
+
+/* The median ns per pair of pr on the float batch path over COST_PAIRS fixed pairs; < 0 if
+ * it cannot be evaluated. */
+static double time_prepared(const abrdf_prepared *pr)
+{
+    uint64_t seed = 0x2545F4914F6CDD1DULL;
+    float d[9][COST_PAIRS];
+    for (int i = 0; i < COST_PAIRS; ++i) {
+        hemisphere(&seed, &d[0][i], &d[1][i], &d[2][i]);
+        hemisphere(&seed, &d[3][i], &d[4][i], &d[5][i]);
+    }
+    abrdf_batch batch = {COST_PAIRS, d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8]};
+    if (abrdf_eval_prepared_batch(pr, &batch) != ABRDF_OK) return -1.0;
+    double ns[COST_RUNS];
+    for (int r = 0; r < COST_RUNS; ++r) {
+        long calls = 0;
+        double t0 = cpu_seconds(), t;
+        do {
+            abrdf_eval_prepared_batch(pr, &batch);
+            ++calls;
+        } while ((t = cpu_seconds() - t0) < COST_RUN_SECONDS);
+        ns[r] = 1e9 * t / ((double)calls * COST_PAIRS);
+    }
+    for (int a = 1; a < COST_RUNS; ++a) /* sort the three */
+        for (int c = a; c > 0 && ns[c] < ns[c - 1]; --c) {
+            double x = ns[c];
+            ns[c] = ns[c - 1], ns[c - 1] = x;
+        }
+    return ns[COST_RUNS / 2];
+}
+
+double budget_prepared_cost(const abrdf_prepared *prepared, abrdf_model model,
+                            const abrdf_params *p, const abrdf_costs *costs)
+{
+    abrdf_costs builtin;
+    if (!costs) {
+        abrdf_costs_builtin(&builtin);
+        costs = &builtin;
+    }
+    double entry = abrdf_costs_get(costs, model);
+    abrdf_params d, q = *p;
+    if (abrdf_params_init(model, &d) != ABRDF_OK) return -1.0;
+    q.entry_grid = d.entry_grid, q.internal_grid = d.internal_grid; /* huang's as measured */
+    abrdf_prepared per_call;
+    if (!(entry >= 0.0) || abrdf_prepare(model, &q, &per_call) != ABRDF_OK) return -1.0;
+    double tt = time_prepared(prepared), tq = time_prepared(&per_call);
+    return tt > 0.0 && tq > 0.0 ? entry * tt / tq : -1.0;
 }

@@ -38,6 +38,16 @@ int budget_run_to(const abrdf_material *m, double max_nmse, int resolution,
                   double reference_cost, budget_result *out, char *err, size_t err_size);
 void budget_result_free(budget_result *r);
 
+/* The cost of one evaluation of `prepared`, a form of `model` at parameters p (huang from its
+ * table), in the unit of costs (NULL: the built-in table), for abrdf_budget.reference_cost:
+ * the model's entry there times the ratio of prepared's time to the time of
+ * abrdf_prepare(model, p) with huang's grids at their defaults (as the entries are measured),
+ * both timed here on the float batch path (fixed pairs, one light per view, the median of 3
+ * runs on this thread's CPU clock) so that the ratio, not this machine's speed, carries over.
+ * < 0 if either cannot be timed or the model has no entry. */
+double budget_prepared_cost(const abrdf_prepared *prepared, abrdf_model model,
+                            const abrdf_params *p, const abrdf_costs *costs);
+
 /* The ABRDF_STEP_FIT steps of a result: *count candidates, their steps in trace order (the
  * first is the reference). The pointers stay valid until budget_result_free. */
 int budget_candidates(const budget_result *r, const abrdf_select_step **out, int max);

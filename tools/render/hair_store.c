@@ -149,6 +149,7 @@ int hair_store_get(hair_store *t, const abrdf_params *p, const char *what, abrdf
     if (t->cache) {
         abrdf_huang_table_build(p, t->sizes, 0, 0, v); /* the header alone */
         if (table_file(t->cache, v, path, sizeof path)) {
+            v[0] = 0.0; /* no header: never prepared for anyone */
             snprintf(err, err_size, "--hair-table-cache %s: the directory's name is too long",
                      t->cache);
             return -1;
@@ -179,72 +180,31 @@ int hair_store_get(hair_store *t, const abrdf_params *p, const char *what, abrdf
 
 /* ---- what an evaluation costs ----------------------------------------------------------- */
 
-#define COST_PAIRS 256
-#define COST_RUNS 3
-#define COST_RUN_SECONDS 0.01
-
-static double cpu_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* A fixed-seed unit direction on the upper hemisphere. */
-static void hemisphere(uint64_t *s, float *x, float *y, float *z)
-{
-    double u[2];
-    for (int k = 0; k < 2; ++k) {
-        *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
-        u[k] = (double)(*s >> 11) * (1.0 / 9007199254740992.0);
-    }
-    double ct = u[0], st = sqrt(1.0 - ct * ct), ph = 6.283185307179586 * u[1];
-    *x = (float)(st * cos(ph)), *y = (float)(st * sin(ph)), *z = (float)ct;
-}
-
-/* The median ns per pair of pr on the float batch path over COST_PAIRS fixed pairs; < 0 if
- * it cannot be evaluated. */
-static double time_prepared(const abrdf_prepared *pr)
-{
-    uint64_t seed = 0x2545F4914F6CDD1DULL;
-    float d[9][COST_PAIRS];
-    for (int i = 0; i < COST_PAIRS; ++i) {
-        hemisphere(&seed, &d[0][i], &d[1][i], &d[2][i]);
-        hemisphere(&seed, &d[3][i], &d[4][i], &d[5][i]);
-    }
-    abrdf_batch batch = {COST_PAIRS, d[0], d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8]};
-    if (abrdf_eval_prepared_batch(pr, &batch) != ABRDF_OK) return -1.0;
-    double ns[COST_RUNS];
-    for (int r = 0; r < COST_RUNS; ++r) {
-        long calls = 0;
-        double t0 = cpu_seconds(), t;
-        do {
-            abrdf_eval_prepared_batch(pr, &batch);
-            ++calls;
-        } while ((t = cpu_seconds() - t0) < COST_RUN_SECONDS);
-        ns[r] = 1e9 * t / ((double)calls * COST_PAIRS);
-    }
-    for (int a = 1; a < COST_RUNS; ++a) /* sort the three */
-        for (int c = a; c > 0 && ns[c] < ns[c - 1]; --c) {
-            double x = ns[c];
-            ns[c] = ns[c - 1], ns[c - 1] = x;
-        }
-    return ns[COST_RUNS / 2];
-}
-
 double hair_store_cost(const abrdf_prepared *table, const abrdf_params *p, const abrdf_costs *costs)
 {
-    abrdf_costs builtin;
-    if (!costs) {
-        abrdf_costs_builtin(&builtin);
-        costs = &builtin;
+    return budget_prepared_cost(table, ABRDF_HUANG, p, costs);
+}
+
+/* ---- the budget against a table -------------------------------------------------------- */
+
+int hair_store_budget(hair_store *t, const abrdf_material *m, double max_nmse,
+                      const abrdf_costs *costs, const abrdf_view *view, const char *what,
+                      budget_result *out, char *err, size_t err_size)
+{
+    abrdf_selection ps;
+    abrdf_params pp;
+    abrdf_selection_init(&ps);
+    abrdf_params_init(ABRDF_MODEL_NONE, &pp);
+    if (abrdf_select(m, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &ps, &pp, NULL, NULL) != ABRDF_OK ||
+        ps.diffuse != ABRDF_MODEL_NONE || ps.specular != ABRDF_HUANG)
+        return 0;
+    abrdf_prepared ref;
+    if (hair_store_get(t, &pp, what, &ref, err, err_size)) {
+        memset(out, 0, sizeof *out); /* budget_result_free's contract */
+        out->trace = (select_trace)SELECT_TRACE_INIT;
+        return -1;
     }
-    double entry = abrdf_costs_get(costs, ABRDF_HUANG);
-    abrdf_params d, q = *p;
-    abrdf_params_init(ABRDF_HUANG, &d);
-    q.entry_grid = d.entry_grid, q.internal_grid = d.internal_grid;
-    abrdf_prepared quad;
-    if (!(entry >= 0.0) || abrdf_prepare(ABRDF_HUANG, &q, &quad) != ABRDF_OK) return -1.0;
-    double tt = time_prepared(table), tq = time_prepared(&quad);
-    return tt > 0.0 && tq > 0.0 ? entry * tt / tq : -1.0;
+    double cost = hair_store_cost(&ref, &pp, costs);
+    if (!(cost >= 0.0)) return 0;
+    return budget_run_to(m, max_nmse, 0, costs, view, &ref, cost, out, err, err_size) ? -1 : 1;
 }

@@ -9,6 +9,7 @@
 #include <stddef.h>
 #include "abrdf.h"
 #include "abrdf_fit.h"
+#include "budget_run.h"
 
 typedef struct hair_store {
     int sizes[4];      /* every table's sizes (abrdf_huang_table_size) */
@@ -33,12 +34,19 @@ int hair_store_get(hair_store *t, const abrdf_params *p, const char *what, abrdf
                    char *err, size_t err_size);
 
 /* What one evaluation of the prepared table costs in the unit of costs (NULL: the built-in
- * table) for the budget mode (abrdf_budget.reference_cost): huang's entry there times the
- * ratio of the table's time to the quadrature's at the same parameters and the default
- * grids, both timed here on the float batch path (fixed pairs, one light per view, the
- * median of 3 runs on this thread's CPU clock) so that the ratio, not this machine's speed,
- * carries over. < 0 if either cannot be timed. */
+ * table) for the budget mode (abrdf_budget.reference_cost): budget_prepared_cost of huang,
+ * its entry times the ratio of the table's time to the quadrature's at the default grids.
+ * < 0 if either cannot be timed. */
 double hair_store_cost(const abrdf_prepared *table, const abrdf_params *p,
                        const abrdf_costs *costs);
+
+/* The budget mode for material m (budget_run_to) against huang's table from this store, when
+ * m's photoreal choice is huang alone: the table got as hair_store_get gets it (`what` names
+ * the material in messages), handed over at hair_store_cost's cost. 1 when done (out filled),
+ * 0 when m's photoreal choice is another model or the table cannot be timed (nothing done: the
+ * caller runs the budget as without tables), -1 with one line in err (out empty). */
+int hair_store_budget(hair_store *t, const abrdf_material *m, double max_nmse,
+                      const abrdf_costs *costs, const abrdf_view *view, const char *what,
+                      budget_result *out, char *err, size_t err_size);
 
 #endif

@@ -148,8 +148,8 @@ typedef struct scene_material {
     abrdf_params fit_params[PBR_BUDGET_GROUPS];
     scene_map maps[SCENE_MAP_COUNT];
     int textured;
-    /* The budget mode, predicting against huang's table (scene_selection.hair_tables), chose a
-     * quadrature of huang: render it per call as chosen, not from a table. */
+    /* Render huang per call even with render_options.hair_tables (abrdf bench --budget's
+     * photoreal without tables, beside its tables). */
     int huang_per_call;
 } scene_material;
 

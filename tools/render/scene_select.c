@@ -160,6 +160,20 @@ static int file_params(const scene_material *sm, abrdf_params *chosen, int stric
     return 0;
 }
 
+/* Whether a and b agree on every parameter model reads. */
+static int same_params(abrdf_model model, const abrdf_params *a, const abrdf_params *b)
+{
+    const abrdf_model_info *mi = abrdf_model_get(model);
+    for (int k = 0; k < mi->param_count; ++k) {
+        double x[3] = {0, 0, 0}, y[3] = {0, 0, 0};
+        int n = abrdf_param_read(a, mi->params[k].id, x);
+        abrdf_param_read(b, mi->params[k].id, y);
+        for (int c = 0; c < n; ++c)
+            if (!(x[c] == y[c])) return 0;
+    }
+    return 1;
+}
+
 void scene_budget_view(const scene *s, int spp, abrdf_view *v, abrdf_light_dir *lights)
 {
     abrdf_view_init(v);
@@ -223,48 +237,44 @@ static int entry_of(const scene_material *sm, const mat_table *table, const char
 }
 
 /* The budget mode for am against huang's table when the photoreal choice is huang alone
- * (scene_selection.hair_tables), else against the photoreal choice as abrdf_prepare makes
- * it; budget_run's contract. */
-static int choose_to_table(const abrdf_material *am, const select_request *rq,
-                           const abrdf_view *view, hair_store *tables, budget_result *out,
-                           char *msg, size_t msg_size)
+ * (scene_selection.hair_tables; hair_store_budget) and sm's line sets no parameter of huang's
+ * beyond what am describes (file_params would make the rendered block another than the
+ * table's), else against the photoreal choice as abrdf_prepare makes it; budget_run's
+ * contract. */
+static int choose_to_table(const scene_material *sm, const abrdf_material *am,
+                           const select_request *rq, const abrdf_view *view, hair_store *tables,
+                           budget_result *out, char *msg, size_t msg_size)
 {
     abrdf_selection ps;
-    abrdf_params pp;
+    abrdf_params pp, with_file;
     abrdf_selection_init(&ps);
     abrdf_params_init(ABRDF_MODEL_NONE, &pp);
-    abrdf_prepared ref;
-    if (abrdf_select(am, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &ps, &pp, NULL, NULL) != ABRDF_OK ||
-        ps.diffuse != ABRDF_MODEL_NONE || ps.specular != ABRDF_HUANG)
-        return budget_run(am, rq->max_nmse, NULL, view, out, msg, msg_size);
-    memset(out, 0, sizeof *out); /* budget_result_free's contract on failure */
-    out->trace = (select_trace)SELECT_TRACE_INIT;
-    if (hair_store_get(tables, &pp, "the budget's reference", &ref, msg, msg_size)) return -1;
-    return budget_run_to(am, rq->max_nmse, 0, NULL, view, &ref, hair_store_cost(&ref, &pp, NULL),
-                         out, msg, msg_size);
-}
-
-/* Whether the budget's choice c is its reference (abrdf_budget.reference: a choice with the
- * reference's models and parameters is it). */
-static int chose_reference(const budget_result *c)
-{
-    const abrdf_select_step *ref = budget_reference_step(c);
-    if (!ref || !ref->params || c->sel.specular != ref->model || c->sel.diffuse != ref->diffuse)
-        return 0;
-    abrdf_params a = *ref->params, b = c->params;
-    a.struct_size = b.struct_size = sizeof a;
-    return memcmp(&a, &b, sizeof a) == 0;
+    scene_material as_chosen = *sm; /* file_params reads the lobes it is given */
+    as_chosen.lobe_count = 1;
+    as_chosen.lobes[0] = ABRDF_HUANG;
+    int photoreal_ok = abrdf_select(am, ABRDF_GOAL_PHOTOREAL, NULL, NULL, &ps, &pp, NULL, NULL);
+    with_file = pp;
+    if (photoreal_ok == ABRDF_OK && !file_params(&as_chosen, &with_file, 0, msg, msg_size) &&
+        same_params(ABRDF_HUANG, &pp, &with_file)) {
+        char what[160];
+        snprintf(what, sizeof what, "material '%s' (line %d)", sm->name, sm->line);
+        int done =
+            hair_store_budget(tables, am, rq->max_nmse, NULL, view, what, out, msg, msg_size);
+        if (done) return done > 0 ? 0 : -1;
+    }
+    return budget_run(am, rq->max_nmse, NULL, view, out, msg, msg_size);
 }
 
 /* What the selection chooses for am as rq asks: the flowchart's choice for a goal (its trace
  * kept with keep_trace), the budget mode's, predicted on view, for a budget (its trace always:
  * the reference's step is in it). 0, or -1 with the reason in msg; out is freed by
  * budget_result_free either way. */
-static int choose(const abrdf_material *am, const select_request *rq, const abrdf_view *view,
-                  int keep_trace, hair_store *tables, budget_result *out, char *msg,
-                  size_t msg_size)
+static int choose(const scene_material *sm, const abrdf_material *am, const select_request *rq,
+                  const abrdf_view *view, int keep_trace, hair_store *tables, budget_result *out,
+                  char *msg, size_t msg_size)
 {
-    if (rq->by_budget && tables) return choose_to_table(am, rq, view, tables, out, msg, msg_size);
+    if (rq->by_budget && tables)
+        return choose_to_table(sm, am, rq, view, tables, out, msg, msg_size);
     if (rq->by_budget) return budget_run(am, rq->max_nmse, NULL, view, out, msg, msg_size);
     memset(out, 0, sizeof *out);
     out->trace = (select_trace)SELECT_TRACE_INIT;
@@ -391,7 +401,7 @@ static int select_pbr(scene_material *sm, const char *scene_name, const select_r
         goto fail;
     }
     am.name = sm->name;
-    if (choose(&am, rq, view, explain != NULL, NULL, &c, msg, sizeof msg)) goto fail;
+    if (choose(sm, &am, rq, view, explain != NULL, NULL, &c, msg, sizeof msg)) goto fail;
     sm->kind = SCENE_MAT_MODELS;
     sm->lobe_count = 0;
     if (c.sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = c.sel.diffuse;
@@ -407,10 +417,10 @@ fail:
 }
 
 /* Material sm as rq asks (scene_select): 0, or -1 with the message in err. */
-static int select_material(scene_material *sm, const char *scene_name, const select_request *rq,
-                           const scene_selection *how, const mat_table *table,
-                           const abrdf_view *view, const char *pred, FILE *explain, char *err,
-                           size_t err_size)
+static int select_material(scene_material *sm, int used, const char *scene_name,
+                           const select_request *rq, const scene_selection *how,
+                           const mat_table *table, const abrdf_view *view, const char *pred,
+                           FILE *explain, char *err, size_t err_size)
 {
     const mat_entry *e;
     if (sm->measured >= 0) {
@@ -438,12 +448,8 @@ static int select_material(scene_material *sm, const char *scene_name, const sel
                          sizeof msg))
         goto fail;
     budget_result c;
-    hair_store *tables = how->hair_tables && !sm->textured ? how->hair_tables : NULL;
-    if (choose(&am, rq, view, explain != NULL, tables, &c, msg, sizeof msg)) goto fail;
-    /* a budget against the table that chose huang other than the reference itself (a coarser
-     * quadrature) renders what it chose */
-    sm->huang_per_call =
-        tables && rq->by_budget && c.sel.specular == ABRDF_HUANG && !chose_reference(&c);
+    hair_store *tables = how->hair_tables && used && !sm->textured ? how->hair_tables : NULL;
+    if (choose(sm, &am, rq, view, explain != NULL, tables, &c, msg, sizeof msg)) goto fail;
     sm->kind = SCENE_MAT_MODELS;
     sm->lobe_count = 0;
     if (c.sel.diffuse != ABRDF_MODEL_NONE) sm->lobes[sm->lobe_count++] = c.sel.diffuse;
@@ -550,7 +556,10 @@ int scene_select(scene *s, const char *scene_name, const scene_selection *how,
         const select_request *rq = request_of(sm, how);
         char pred[512];
         const abrdf_view *v = view_for(s, i, traced ? &pts : NULL, &view, &own, pred, sizeof pred);
-        if (rq && select_material(sm, scene_name, rq, how, table, v, pred, explain, err, err_size))
+        int used = 0; /* an object shows it: only then is a huang table worth its build */
+        for (int j = 0; j < s->object_count && !used; ++j) used = s->objects[j].material == i;
+        if (rq &&
+            select_material(sm, used, scene_name, rq, how, table, v, pred, explain, err, err_size))
             rc = -1;
     }
     if (traced) scene_points_free(&pts);
