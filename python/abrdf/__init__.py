@@ -29,6 +29,9 @@ Functions:
     load_measured(path)          a measured BRDF file (MERL .binary, RGL .bsdf) as a Measured
     measured_from_array(a)       a Measured from a NumPy table on MERL's grid
     Measured                     a measured table: .table, .grid, .unmeasured, .eval(wi, wo)
+    huang_table(brdf, sizes)     huang's residual lobes tabulated once (a HuangTable): nearer
+                                 the converged model and ~150x cheaper per call; select's
+                                 budget reference=
     sweep(materials, models)     every material fitted by every candidate, with the NMSE, cost
                                  and budget verdict, on dask.distributed or in a loop
     surfaces(), goals()          the flowchart's surface classes and goals
@@ -52,6 +55,7 @@ from ._brdf import BRDF, Model, Parameter, model, models
 from ._eval import Lobes, eval
 from ._compare import Comparison, compare, read_image
 from ._fit import Fit, fit
+from ._hair import HuangTable, huang_table
 from ._measured import Measured, load_measured, measured_from_array
 from ._pbr import Pbr, PbrMaterial, TextureRef, pbr_lobes, pbr_material
 from ._gltf import load_gltf
@@ -69,6 +73,7 @@ __all__ = [
     "Comparison",
     "Error",
     "Fit",
+    "HuangTable",
     "Layer",
     "Lobes",
     "MAX_LAYERS",
@@ -88,6 +93,7 @@ __all__ = [
     "compare",
     "fit",
     "goals",
+    "huang_table",
     "load_gltf",
     "load_materialx",
     "load_measured",

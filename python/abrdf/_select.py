@@ -12,6 +12,7 @@ from typing import Any, Literal, Mapping, Sequence, Union
 from . import _abrdf
 from ._arrays import real_number
 from ._brdf import BRDF
+from ._hair import HuangTable
 
 RGB = tuple[float, float, float]
 PathLike = Union[str, "os.PathLike[str]"]
@@ -206,7 +207,8 @@ def select(material: str | Material | Mapping[str, object] | Any, goal: Goal | N
            max_rel_error: float | None = None, max_abs_error: float | None = None,
            costs: PathLike | Mapping[str, float] | None = None, cost_unit: str | None = None,
            extra: PathLike | Sequence[PathLike] | None = None,
-           budget: Budget | None = None) -> Selection:
+           budget: Budget | None = None, reference: HuangTable | None = None,
+           reference_cost: float | None = None) -> Selection:
     """The paper's flowchart (Fig. 2; abrdf_select) for a material and a goal, or the
     selection's budget mode (abrdf_select_budget, docs/SELECTION.md, "The budget mode").
 
@@ -221,8 +223,12 @@ def select(material: str | Material | Mapping[str, object] | Any, goal: Goal | N
     fitted to the photoreal choice and the cheapest whose predicted image NMSE is below the
     budget wins (costs within 15 % of it count as equal: of those, the smallest predicted
     NMSE); the trace has one "fit" step per candidate. budget excludes goal and the
-    tolerances. Invalid values raise abrdf.Error with the library's message. The same
-    choice as `abrdf advise` (`--budget`) with the same inputs."""
+    tolerances. reference (with budget): the photoreal choice as a HuangTable of its block
+    (abrdf.huang_table(select(material).specular_brdf)), the converged model every candidate
+    is then predicted against, candidate 0 at reference_cost (None: reference.cost(costs,
+    cost_unit)); a table of another block raises abrdf.Error (docs/SELECTION.md, "A converged
+    reference for hair"). Invalid values raise abrdf.Error with the library's message. The
+    same choice as `abrdf advise` (`--budget`, `--hair-table`) with the same inputs."""
     if isinstance(material, str):
         mat = _lookup(material, extra)
     elif isinstance(material, Material):
@@ -232,11 +238,22 @@ def select(material: str | Material | Mapping[str, object] | Any, goal: Goal | N
     else:
         mat = _material_of(material)
     table, unit = _costs(costs, cost_unit)
+    if reference is not None and budget is None:
+        raise _error("reference goes with budget: it is the budget's reference")
     if budget is not None:
         if goal is not None or max_rel_error is not None or max_abs_error is not None:
             raise _error("budget excludes goal and the tolerances: the budget's reference is "
                          "the photoreal choice")
-        d = _abrdf.select_budget(mat._fields(), budget_nmse(budget), table, unit)
+        if reference is None:
+            d = _abrdf.select_budget(mat._fields(), budget_nmse(budget), table, unit)
+        else:
+            if not isinstance(reference, HuangTable):
+                raise TypeError("reference: a HuangTable (abrdf.huang_table) or None, not %r"
+                                % (reference,))
+            cost = (reference.cost(table, unit) if reference_cost is None
+                    else real_number(reference_cost, "reference_cost"))
+            d = _abrdf.select_budget(mat._fields(), budget_nmse(budget), table, unit,
+                                     reference.block, cost)
     else:
         rules = _abrdf.rules()
         rel = (rules["default_max_rel_pct"] if max_rel_error is None

@@ -51,6 +51,8 @@ int abrdf_py_rows3(PyObject *obj, const char *what, int want, int writable, Py_b
 int abrdf_py_float_image(PyObject *obj, const char *what, Py_buffer *view, Py_ssize_t shape[3]);
 /* The same for a C-contiguous float32 buffer of any shape, read only; view->len is its bytes. */
 int abrdf_py_float_buffer(PyObject *obj, const char *what, Py_buffer *view);
+/* The same for a C-contiguous float64 buffer, writable if asked. 0 or -1 (TypeError). */
+int abrdf_py_double_buffer(PyObject *obj, const char *what, int writable, Py_buffer *view);
 
 /* ---- Params (py_params.c) ------------------------------------------------------------ */
 typedef struct abrdf_py_params {
@@ -74,9 +76,11 @@ PyObject *abrdf_py_param_value(const abrdf_params *params, int id);
 /* ---- Table (py_measured.c) ------------------------------------------------------------ */
 typedef struct abrdf_py_table {
     PyObject ob_base;        /* what PyObject_HEAD declares */
-    Py_buffer data;          /* the table's floats, exported to this object while it lives */
-    int grid[3];             /* n_theta_h, n_theta_d, n_phi_d */
-    abrdf_prepared prepared; /* ABRDF_MEASURED prepared on data.buf */
+    Py_buffer data;          /* the table's values, exported to this object while it lives */
+    int grid[3];             /* measured: n_theta_h, n_theta_d, n_phi_d; huang: NT, NV, NP */
+    int sets;                /* huang: the shift sets per node; measured: 0 */
+    abrdf_prepared prepared; /* ABRDF_MEASURED on data.buf (float32), or ABRDF_HUANG on its
+                                table (float64, huang_table) */
 } abrdf_py_table;
 
 extern PyTypeObject abrdf_py_table_type;

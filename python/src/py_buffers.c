@@ -89,3 +89,13 @@ int abrdf_py_float_buffer(PyObject *obj, const char *what, Py_buffer *view)
     PyBuffer_Release(view);
     return -1;
 }
+
+int abrdf_py_double_buffer(PyObject *obj, const char *what, int writable, Py_buffer *view)
+{
+    if (acquire(obj, what, writable, view)) return -1;
+    if (real_kind(view) == ABRDF_PY_F64) return 0;
+    PyErr_Format(PyExc_TypeError, "%s: float64 needed, got format '%s'", what,
+                 view->format ? view->format : "B");
+    PyBuffer_Release(view);
+    return -1;
+}

@@ -194,13 +194,25 @@ static PyObject *py_budget_class(PyObject *self, PyObject *args)
 static PyObject *py_select_budget(PyObject *self, PyObject *args, PyObject *kwargs)
 {
     (void)self;
-    static char *kw[] = {"material", "max_nmse", "costs", "cost_unit", NULL};
-    PyObject *mat, *costs = Py_None;
+    static char *kw[] = {"material",  "max_nmse",       "costs", "cost_unit",
+                         "reference", "reference_cost", NULL};
+    PyObject *mat, *costs = Py_None, *reference = Py_None;
     const char *unit = NULL;
-    double max_nmse;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O!d|Oz:select_budget", kw, &PyDict_Type, &mat,
-                                     &max_nmse, &costs, &unit))
+    double max_nmse, reference_cost = -1.0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O!d|OzOd:select_budget", kw, &PyDict_Type, &mat,
+                                     &max_nmse, &costs, &unit, &reference, &reference_cost))
         return NULL;
+    abrdf_prepared ref;
+    if (reference != Py_None) {
+        if (!PyObject_TypeCheck(reference, &abrdf_py_table_type)) {
+            PyErr_Format(PyExc_TypeError,
+                         "select_budget: reference must be a Table (huang_table) or None, not "
+                         "%.100s",
+                         Py_TYPE(reference)->tp_name);
+            return NULL;
+        }
+        ref = ((const abrdf_py_table *)reference)->prepared; /* plain data: a copy is valid */
+    }
     abrdf_material m;
     abrdf_costs c;
     PyObject *name_ref;
@@ -209,7 +221,8 @@ static PyObject *py_select_budget(PyObject *self, PyObject *args, PyObject *kwar
     char err[512];
     int rc;
     Py_BEGIN_ALLOW_THREADS;
-    rc = budget_run(&m, max_nmse, costs == Py_None ? NULL : &c, NULL, &r, err, sizeof err);
+    rc = budget_run_to(&m, max_nmse, 0, costs == Py_None ? NULL : &c, NULL,
+                       reference == Py_None ? NULL : &ref, reference_cost, &r, err, sizeof err);
     Py_END_ALLOW_THREADS;
     Py_XDECREF(name_ref);
     if (rc) return abrdf_py_fail(ABRDF_E_RANGE, "%s", err);
@@ -217,6 +230,30 @@ static PyObject *py_select_budget(PyObject *self, PyObject *args, PyObject *kwar
         r.trace.lost ? PyErr_NoMemory() : abrdf_py_selection_dict(&r.sel, &r.params, &r.trace);
     budget_result_free(&r);
     return out;
+}
+
+/* prepared_cost(prepared, params, costs=None, cost_unit=None) -> float: budget_prepared_cost of
+ * a Table (huang_table) whose model's block is params. */
+static PyObject *py_prepared_cost(PyObject *self, PyObject *args, PyObject *kwargs)
+{
+    (void)self;
+    static char *kw[] = {"prepared", "params", "costs", "cost_unit", NULL};
+    PyObject *prepared, *params, *costs = Py_None;
+    const char *unit = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O!O|Oz:prepared_cost", kw, &abrdf_py_table_type,
+                                     &prepared, &params, &costs, &unit))
+        return NULL;
+    const abrdf_py_params *p = abrdf_py_params_arg(params, "prepared_cost");
+    if (!p) return NULL;
+    abrdf_costs c;
+    if (costs != Py_None && abrdf_py_costs_from(costs, unit, &c)) return NULL;
+    abrdf_prepared obj = ((const abrdf_py_table *)prepared)->prepared;
+    abrdf_params block = p->params;
+    double v;
+    Py_BEGIN_ALLOW_THREADS;
+    v = budget_prepared_cost(&obj, p->model, &block, costs == Py_None ? NULL : &c);
+    Py_END_ALLOW_THREADS;
+    return PyFloat_FromDouble(v);
 }
 
 PyMethodDef abrdf_py_fit_methods[] = {
@@ -231,9 +268,16 @@ PyMethodDef abrdf_py_fit_methods[] = {
      "None) to a prepared reference: a Table (a measured table) or a Params; fit()'s dict. "
      "Releases the GIL."},
     {"select_budget", (PyCFunction)(void (*)(void))py_select_budget, METH_VARARGS | METH_KEYWORDS,
-     "select_budget(material, max_nmse, costs=None, cost_unit=None) -> dict: "
-     "abrdf_select_budget on a material dict (abrdf.Material's fields), with the trace; costs "
-     "None: the built-in table. Releases the GIL."},
+     "select_budget(material, max_nmse, costs=None, cost_unit=None, reference=None, "
+     "reference_cost=-1) -> dict: abrdf_select_budget on a material dict (abrdf.Material's "
+     "fields), with the trace; costs None: the built-in table; reference: a Table of the "
+     "photoreal choice (huang_table; abrdf_budget.reference) at reference_cost (< 0: unknown). "
+     "Releases the GIL."},
+    {"prepared_cost", (PyCFunction)(void (*)(void))py_prepared_cost, METH_VARARGS | METH_KEYWORDS,
+     "prepared_cost(prepared, params, costs=None, cost_unit=None) -> float: the cost of one "
+     "evaluation of a Table (huang_table) of params' model, in the unit of costs (None: the "
+     "built-in table): the model's entry times the Table's time over the per-call form's, "
+     "both timed now; < 0 if it cannot be timed. Releases the GIL."},
     {"budget_class", py_budget_class, METH_VARARGS,
      "budget_class(name) -> float: the largest NMSE of a Table-8 class (none, slight, "
      "noticeable)"},

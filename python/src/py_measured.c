@@ -1,9 +1,13 @@
-/* py_measured.c - measured materials (docs/MEASURED.md) from Python:
+/* py_measured.c - models read from tables, from Python:
  *   Table          the library's `measured` model prepared once (abrdf_prepare_measured) on
- *                  a float32 buffer the object holds for as long as it lives: the evaluation
- *                  functions take a Table wherever they take a Params
+ *                  a float32 buffer the object holds for as long as it lives (docs/MEASURED.md),
+ *                  or huang prepared on its table (huang_table): the evaluation functions take
+ *                  a Table wherever they take a Params
  *   read_measured  a MERL .binary or RGL .bsdf file through the readers `abrdf inspect` uses
  *                  (tools/measured: the format by the extension, then its reader)
+ *   huang_table_size, huang_table_build, huang_table   huang tabulated (abrdf.h, "huang
+ *                  tabulated"): its size, rows of it built into a float64 buffer (the GIL
+ *                  released, so that threads build rows at once), a Table prepared on it
  * The library only points at a table (abrdf.h, "LIFETIME"): a Table keeps its buffer exported
  * (PyObject_GetBuffer) until it is freed, so the memory stays where the prepared object points
  * and NumPy refuses to resize it; the package hands it an immutable bytes object. */
@@ -75,7 +79,8 @@ static PyObject *table_grid(PyObject *self, void *closure)
 }
 
 static PyGetSetDef table_getset[] = {
-    {"grid", table_grid, NULL, "(n_theta_h, n_theta_d, n_phi_d)", NULL},
+    {"grid", table_grid, NULL, "(n_theta_h, n_theta_d, n_phi_d); huang_table's: (NT, NV, NP)",
+     NULL},
     {NULL, NULL, NULL, NULL, NULL}};
 
 PyTypeObject abrdf_py_table_type = {
@@ -139,10 +144,137 @@ static PyObject *py_read_measured(PyObject *self, PyObject *args)
     return out;
 }
 
+/* ---- huang tabulated ------------------------------------------------------------------ */
+
+/* The Params of huang and the four sizes of a call's first two arguments: 0, or -1 with the
+ * error set. */
+static int huang_args(PyObject *params, const int sizes[4], const char *name,
+                      const abrdf_py_params **out, long *values, int *rows)
+{
+    const abrdf_py_params *p = abrdf_py_params_arg(params, name);
+    if (!p) return -1;
+    if (p->model != ABRDF_HUANG) {
+        abrdf_py_fail(ABRDF_E_MODEL, "%s: the params are %s's, not huang's", name,
+                      abrdf_model_get(p->model)->name);
+        return -1;
+    }
+    int st = abrdf_huang_table_size(&p->params, sizes, values, rows);
+    if (st != ABRDF_OK) {
+        abrdf_py_fail(st,
+                      "%s: sizes (%d, %d, %d, %d): %s (theta nodes [4, 256], view azimuths "
+                      "[2, 256] or 1 for a round fibre, light azimuths [4, 256], sets [1, 64], "
+                      "at most 2^28 values)",
+                      name, sizes[0], sizes[1], sizes[2], sizes[3], abrdf_strerror(st));
+        return -1;
+    }
+    *out = p;
+    return 0;
+}
+
+/* huang_table_size(params, sizes) -> (values, rows) */
+static PyObject *py_huang_table_size(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *params;
+    int s[4];
+    if (!PyArg_ParseTuple(args, "O(iiii):huang_table_size", &params, &s[0], &s[1], &s[2], &s[3]))
+        return NULL;
+    const abrdf_py_params *p;
+    long values;
+    int rows;
+    if (huang_args(params, s, "huang_table_size", &p, &values, &rows)) return NULL;
+    return Py_BuildValue("(li)", values, rows);
+}
+
+/* huang_table_build(params, sizes, row0, row1, data): rows [row0, row1) of the table (and its
+ * header when row0 is 0) into data, a writable C-contiguous float64 buffer of the table's
+ * size; the GIL is released while it builds. */
+static PyObject *py_huang_table_build(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *params, *data;
+    int s[4], row0, row1;
+    if (!PyArg_ParseTuple(args, "O(iiii)iiO:huang_table_build", &params, &s[0], &s[1], &s[2], &s[3],
+                          &row0, &row1, &data))
+        return NULL;
+    const abrdf_py_params *p;
+    long values;
+    int rows;
+    if (huang_args(params, s, "huang_table_build", &p, &values, &rows)) return NULL;
+    Py_buffer view;
+    if (abrdf_py_double_buffer(data, "data", 1, &view)) return NULL;
+    if (view.len != (Py_ssize_t)values * (Py_ssize_t)sizeof(double)) {
+        PyBuffer_Release(&view);
+        return abrdf_py_fail(ABRDF_E_TABLE,
+                             "huang_table_build: the table holds %ld values, got %zd", values,
+                             view.len / (Py_ssize_t)sizeof(double));
+    }
+    abrdf_params block = p->params; /* the Params may change while the GIL is released */
+    int st;
+    Py_BEGIN_ALLOW_THREADS;
+    st = abrdf_huang_table_build(&block, s, row0, row1, view.buf);
+    Py_END_ALLOW_THREADS;
+    PyBuffer_Release(&view);
+    if (st != ABRDF_OK)
+        return abrdf_py_fail(st, "huang_table_build: rows [%d, %d) of %d: %s", row0, row1, rows,
+                             abrdf_strerror(st));
+    Py_RETURN_NONE;
+}
+
+/* huang_table(params, sizes, data) -> Table: huang prepared on the table in data (a
+ * C-contiguous float64 buffer, held while the Table lives). */
+static PyObject *py_huang_table(PyObject *self, PyObject *args)
+{
+    (void)self;
+    PyObject *params, *data;
+    int s[4];
+    if (!PyArg_ParseTuple(args, "O(iiii)O:huang_table", &params, &s[0], &s[1], &s[2], &s[3], &data))
+        return NULL;
+    const abrdf_py_params *p;
+    long values;
+    int rows;
+    if (huang_args(params, s, "huang_table", &p, &values, &rows)) return NULL;
+    Py_buffer view;
+    if (abrdf_py_double_buffer(data, "data", 0, &view)) return NULL;
+    if (view.len != (Py_ssize_t)values * (Py_ssize_t)sizeof(double)) {
+        PyBuffer_Release(&view);
+        return abrdf_py_fail(ABRDF_E_TABLE, "huang_table: the table holds %ld values, got %zd",
+                             values, view.len / (Py_ssize_t)sizeof(double));
+    }
+    abrdf_py_table *t = (abrdf_py_table *)abrdf_py_table_type.tp_alloc(&abrdf_py_table_type, 0);
+    if (!t) {
+        PyBuffer_Release(&view);
+        return NULL;
+    }
+    int st = abrdf_prepare_huang_table(&p->params, s, view.buf, &t->prepared);
+    if (st != ABRDF_OK) {
+        PyBuffer_Release(&view);
+        Py_DECREF(t);
+        return abrdf_py_fail(st,
+                             "abrdf_prepare_huang_table: %s (a table of other parameters, other "
+                             "sizes, another library, or rows never built)",
+                             abrdf_strerror(st));
+    }
+    t->data = view;
+    memcpy(t->grid, s, sizeof t->grid);
+    t->sets = s[3];
+    return (PyObject *)t;
+}
+
 PyMethodDef abrdf_py_measured_methods[] = {
     {"read_measured", py_read_measured, METH_VARARGS,
      "read_measured(path) -> dict: a measured BRDF file (MERL .binary; RGL .bsdf, resampled "
      "onto 90 x 90 x 180) by the readers of `abrdf inspect`: data (bytes: float32 f_r in 1/sr, "
      "abrdf_measured's layout, < 0 = not measured), grid, unmeasured (cells), format; "
      "abrdf.Error with the reader's line. Releases the GIL while reading."},
+    {"huang_table_size", py_huang_table_size, METH_VARARGS,
+     "huang_table_size(params, sizes) -> (values, rows): abrdf_huang_table_size of huang's "
+     "Params at sizes (theta nodes, view azimuths, light azimuths, shift sets)"},
+    {"huang_table_build", py_huang_table_build, METH_VARARGS,
+     "huang_table_build(params, sizes, row0, row1, data): rows [row0, row1) of the table into "
+     "a writable C-contiguous float64 buffer of its size (abrdf_huang_table_build; row0 0 "
+     "writes the header too). Releases the GIL: threads build disjoint rows at once."},
+    {"huang_table", py_huang_table, METH_VARARGS,
+     "huang_table(params, sizes, data) -> Table: huang prepared on the table in a C-contiguous "
+     "float64 buffer (abrdf_prepare_huang_table), held while the Table lives"},
     {NULL, NULL, 0, NULL}};
