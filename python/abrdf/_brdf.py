@@ -112,18 +112,23 @@ def _out(out: object, shape: tuple[int, ...], dtype: type, precision: str,
     return out
 
 
+def threads_arg(threads: object) -> int:
+    """`threads` as an int in [0, 64] (0 = one per core); ValueError for anything else."""
+    try:
+        t = -1 if isinstance(threads, bool) else operator.index(threads)  # type: ignore[arg-type]
+    except TypeError:
+        t = -1
+    if not 0 <= t <= 64:
+        raise ValueError("threads: an int in [0, 64] (0 = one per core), got %r" % (threads,))
+    return t
+
+
 def eval_block(block: Block | tuple[Block, ...], wi: npt.ArrayLike, wo: npt.ArrayLike,
                precision: Precision, threads: int, out: np.ndarray | None = None) -> np.ndarray:
     """f_r of a C block (a Params, or a measured Table), or the sum of a tuple of them (one
     pass over the rows on the float path), over broadcast direction arrays, into `out` when
     given: what BRDF.eval, Measured.eval and Lobes.eval share."""
-    try:
-        t = -1 if isinstance(threads, bool) else operator.index(threads)
-    except TypeError:
-        t = -1
-    if not 0 <= t <= 64:
-        raise ValueError("threads: an int in [0, 64] (0 = one per core), got %r" % (threads,))
-    threads = t
+    threads = threads_arg(threads)
     if precision not in ("float", "double"):
         raise ValueError("precision: 'float' or 'double', got %r" % (precision,))
     a, b = np.broadcast_arrays(_rows(wi, "wi"), _rows(wo, "wo"))

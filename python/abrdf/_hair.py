@@ -10,7 +10,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _abrdf
-from ._brdf import BRDF, Precision, eval_block
+from ._brdf import BRDF, Precision, eval_block, threads_arg
 
 # ABRDF_HUANG_TABLE_SIZES: the sizes docs/MODELS.md measures (about 2 minutes of one core).
 DEFAULT_SIZES = (24, 9, 32, 16)
@@ -107,12 +107,7 @@ def huang_table(brdf: BRDF, sizes: tuple[int, int, int, int] = DEFAULT_SIZES,
     if not isinstance(brdf, BRDF):
         raise TypeError("huang_table: a BRDF('huang', ...) is needed, not %r" % (brdf,))
     s = _sizes(sizes)
-    try:
-        t = -1 if isinstance(threads, bool) else operator.index(threads)
-    except TypeError:
-        t = -1
-    if not 0 <= t <= 64:
-        raise ValueError("threads: an int in [0, 64] (0 = one per core), got %r" % (threads,))
+    t = threads_arg(threads)
     count, rows = _abrdf.huang_table_size(brdf.block, s)
     values = np.empty(count, np.float64)
     workers = min(t or (os.cpu_count() or 1), rows)

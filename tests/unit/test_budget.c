@@ -51,6 +51,20 @@ static void keep(void *user, const abrdf_select_step *s)
  * The sanitizer build (BUDGET_QUICK) fits on the coarsest direction set and predicts on a
  * sphere 16 samples across: the same code on a fraction of the work (minutes otherwise); the
  * Release build runs the defaults, whose values the checks were written for. */
+/* The sanitizer build's quicker prediction (BUDGET_QUICK: budget_run_to says why) into b,
+ * its view in v; the Release build keeps b's defaults. */
+static void quick_view(abrdf_budget *b, abrdf_view *v)
+{
+#ifdef BUDGET_QUICK
+    b->resolution = 1;
+    abrdf_view_init(v);
+    v->resolution = 16;
+    b->view = v;
+#else
+    (void)b, (void)v;
+#endif
+}
+
 static run *budget_run_to(const abrdf_material *m, double max_nmse, abrdf_fit_metric metric,
                           const abrdf_costs *costs, const abrdf_prepared *reference,
                           double reference_cost)
@@ -64,13 +78,8 @@ static run *budget_run_to(const abrdf_material *m, double max_nmse, abrdf_fit_me
     b.metric = metric;
     b.reference = reference;
     b.reference_cost = reference_cost;
-#ifdef BUDGET_QUICK
-    b.resolution = 1;
     abrdf_view v;
-    abrdf_view_init(&v);
-    v.resolution = 16;
-    b.view = &v;
-#endif
+    quick_view(&b, &v);
     size_t ws = abrdf_fit_workspace_size(NULL, b.view);
     void *w = malloc(ws);
     abrdf_selection_init(&r->sel);
@@ -361,12 +370,8 @@ START_TEST(caller_prepared_reference)
     int coarser = 0;
     abrdf_budget b;
     abrdf_budget_init(&b);
-#ifdef BUDGET_QUICK
     abrdf_view view;
-    abrdf_view_init(&view);
-    view.resolution = 16;
-    b.view = &view;
-#endif
+    quick_view(&b, &view);
     size_t ws = abrdf_fit_workspace_size(NULL, b.view);
     void *w = malloc(ws);
     for (int i = 0; i < r->count; ++i) {
