@@ -81,7 +81,8 @@ class HuangTable:
         """What one evaluation costs in the unit of `costs` (None: the budget mode's built-in
         table): huang's entry times the ratio of the table's time to the per-call
         quadrature's, both timed now on the float batch path, so that the ratio carries over
-        from this machine (select's reference_cost). The GIL is released while it times."""
+        from this machine (select's reference_cost); -1 if it cannot be timed (costs without a
+        huang entry). The GIL is released while it times."""
         return float(_abrdf.prepared_cost(self._block, self._brdf.block, costs, cost_unit))
 
 
@@ -110,7 +111,8 @@ def huang_table(brdf: BRDF, sizes: tuple[int, int, int, int] = DEFAULT_SIZES,
     t = threads_arg(threads)
     count, rows = _abrdf.huang_table_size(brdf.block, s)
     values = np.empty(count, np.float64)
-    workers = min(t or (os.cpu_count() or 1), rows)
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    workers = min(t or (cores or 1), rows)
     _abrdf.huang_table_build(brdf.block, s, 0, 0, values)  # the header
     if workers <= 1:
         _abrdf.huang_table_build(brdf.block, s, 0, rows, values)

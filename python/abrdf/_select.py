@@ -240,6 +240,8 @@ def select(material: str | Material | Mapping[str, object] | Any, goal: Goal | N
     table, unit = _costs(costs, cost_unit)
     if reference is not None and budget is None:
         raise _error("reference goes with budget: it is the budget's reference")
+    if reference_cost is not None and reference is None:
+        raise _error("reference_cost goes with reference: it is the reference's cost")
     if budget is not None:
         if goal is not None or max_rel_error is not None or max_abs_error is not None:
             raise _error("budget excludes goal and the tolerances: the budget's reference is "
@@ -252,6 +254,10 @@ def select(material: str | Material | Mapping[str, object] | Any, goal: Goal | N
                                 % (reference,))
             cost = (reference.cost(table, unit) if reference_cost is None
                     else real_number(reference_cost, "reference_cost"))
+            if not (0 <= cost < float("inf")):
+                raise _error("reference_cost %r: a finite cost >= 0 is needed%s"
+                             % (cost, " (the table could not be timed against the costs: give "
+                                      "reference_cost)" if reference_cost is None else ""))
             d = _abrdf.select_budget(mat._fields(), budget_nmse(budget), table, unit,
                                      reference.block, cost)
     else:

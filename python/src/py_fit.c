@@ -245,6 +245,9 @@ static PyObject *py_prepared_cost(PyObject *self, PyObject *args, PyObject *kwar
         return NULL;
     const abrdf_py_params *p = abrdf_py_params_arg(params, "prepared_cost");
     if (!p) return NULL;
+    if (((const abrdf_py_table *)prepared)->sets == 0 || p->model != ABRDF_HUANG)
+        return abrdf_py_fail(ABRDF_E_MODEL, "prepared_cost: a huang_table Table and its huang "
+                                            "Params are needed");
     abrdf_costs c;
     if (costs != Py_None && abrdf_py_costs_from(costs, unit, &c)) return NULL;
     abrdf_prepared obj = ((const abrdf_py_table *)prepared)->prepared;
@@ -275,9 +278,9 @@ PyMethodDef abrdf_py_fit_methods[] = {
      "Releases the GIL."},
     {"prepared_cost", (PyCFunction)(void (*)(void))py_prepared_cost, METH_VARARGS | METH_KEYWORDS,
      "prepared_cost(prepared, params, costs=None, cost_unit=None) -> float: the cost of one "
-     "evaluation of a Table (huang_table) of params' model, in the unit of costs (None: the "
-     "built-in table): the model's entry times the Table's time over the per-call form's, "
-     "both timed now; < 0 if it cannot be timed. Releases the GIL."},
+     "evaluation of a huang_table Table made from params (huang's), in the unit of costs "
+     "(None: the built-in table): huang's entry times the Table's time over the per-call "
+     "quadrature's, both timed now; < 0 if it cannot be timed. Releases the GIL."},
     {"budget_class", py_budget_class, METH_VARARGS,
      "budget_class(name) -> float: the largest NMSE of a Table-8 class (none, slight, "
      "noticeable)"},

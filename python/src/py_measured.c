@@ -236,6 +236,12 @@ static PyObject *py_huang_table(PyObject *self, PyObject *args)
     if (huang_args(params, s, "huang_table", &p, &values, &rows)) return NULL;
     Py_buffer view;
     if (abrdf_py_double_buffer(data, "data", 0, &view)) return NULL;
+    if (!view.readonly) { /* prepare checks the values once: they must not change after */
+        PyBuffer_Release(&view);
+        PyErr_SetString(PyExc_TypeError, "huang_table: data must be read-only (bytes, or a "
+                                         "read-only array): the Table reads it while it lives");
+        return NULL;
+    }
     if (view.len != (Py_ssize_t)values * (Py_ssize_t)sizeof(double)) {
         PyBuffer_Release(&view);
         return abrdf_py_fail(ABRDF_E_TABLE, "huang_table: the table holds %ld values, got %zd",

@@ -195,6 +195,7 @@ class Advise(unittest.TestCase):
         table = ["--hair-table-sizes", "6,3,8,1"]
         d = json.loads(run("advise", "hair_brown", "--budget", "slight", "--json", *table).stdout)
         self.assertEqual((d["specular"], d["error"]["nmse_pred"]), ("huang", 0))
+        self.assertIs(d["reference"]["prepared"], True)
         texts = [s["text"] for s in d["trace"]]
         self.assertTrue(any("(the photoreal choice, as the caller prepared it)" in t
                             for t in texts), texts)
@@ -204,9 +205,14 @@ class Advise(unittest.TestCase):
         self.assertLess(huang[0]["cost"], min(c["cost"] for c in huang[1:]))
         self.assertTrue(all(c["nmse_pred"] > 0 for c in huang[1:]))
         plain = json.loads(run("advise", "gold", "--budget", "slight", "--json").stdout)
-        other = json.loads(run("advise", "gold", "--budget", "slight", "--json", *table).stdout)
+        self.assertIs(plain["reference"]["prepared"], False)
+        p = run("advise", "gold", "--budget", "slight", "--json", *table)
+        other = json.loads(p.stdout)
         self.assertEqual((other["diffuse"], other["specular"], other["params"]),
                          (plain["diffuse"], plain["specular"], plain["params"]))
+        self.assertIn("note: --hair-table: gold's photoreal choice is not huang", p.stderr)
+        human = run("advise", "hair_brown", "--budget", "slight", *table).stdout
+        self.assertIn("(the flowchart's photoreal choice, from its huang table)", human)
         one_line_error(self, run("advise", "hair_brown", *table, code=2), "--hair-table goes with")
 
     def test_bad_budgets(self):

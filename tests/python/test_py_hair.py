@@ -70,6 +70,10 @@ def test_budget_against_the_table(brown):
     assert s.cost_total == fits[0].cost < min(x.cost for x in coarser)
     s2 = abrdf.select("hair_brown", budget="slight", reference=t, reference_cost=1.5)
     assert s2.cost_total == 1.5 and s2.specular == "huang"
+    # costs without huang: the table cannot be costed; a cost must then be given
+    with pytest.raises(abrdf.Error, match="could not be timed"):
+        abrdf.select("hair_brown", budget="slight", reference=t, costs={"lambert": 1.0},
+                     cost_unit="ns")
 
 
 def test_refusals(brown):
@@ -78,6 +82,15 @@ def test_refusals(brown):
         abrdf.select("hair_blond", budget="slight", reference=t)
     with pytest.raises(abrdf.Error, match="goes with budget"):
         abrdf.select("hair_brown", reference=t)
+    with pytest.raises(abrdf.Error, match="goes with reference"):
+        abrdf.select("hair_brown", budget="slight", reference_cost=1.0)
+    for bad in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(abrdf.Error, match="finite cost"):
+            abrdf.select("hair_brown", budget="slight", reference=t, reference_cost=bad)
+    with pytest.raises(TypeError, match="read-only"):
+        abrdf._abrdf.huang_table(brdf.block, SMALL, t.values.copy())
+    with pytest.raises(abrdf.Error, match="huang_table Table"):
+        abrdf._abrdf.prepared_cost(t.block, abrdf.BRDF("lambert").block)
     with pytest.raises(TypeError):
         abrdf.select("hair_brown", budget="slight", reference=brdf)
     with pytest.raises(abrdf.Error, match="not huang's"):

@@ -33,8 +33,8 @@ static void print_human(const budget_result *r, const mat_entry *e, double max_n
         printf("material   explicit values (%s)\n", abrdf_surface_name(r->sel.type));
     budget_pair_name(ref ? ref->diffuse : ABRDF_MODEL_NONE, ref ? ref->model : ABRDF_MODEL_NONE,
                      ref ? ref->params : NULL, nm, sizeof nm);
-    printf("reference  %s (the flowchart's photoreal choice), %.3g %s\n", nm,
-           ref ? ref->cost : -1.0, unit);
+    printf("reference  %s (the flowchart's photoreal choice%s), %.3g %s\n", nm,
+           r->prepared ? ", from its huang table" : "", ref ? ref->cost : -1.0, unit);
     if (!pareto) {
         const char *bc = budget_class_name(max_nmse);
         printf("budget     predicted image NMSE < %g%s%s%s\n", max_nmse, bc ? " (" : "",
@@ -161,6 +161,12 @@ int advise_budget(const abrdf_material *m, const mat_entry *e, double max_nmse,
     int done = tables ? hair_store_budget(tables, m, pareto ? 1.0 : max_nmse, costs, NULL, what, &r,
                                           err, sizeof err)
                       : 0;
+    if (tables && !done) /* the option asked for a table: say why there is none */
+        fprintf(stderr,
+                "abrdf advise: note: --hair-table: %s's photoreal choice is not huang, or its "
+                "table cannot be timed (no huang cost in the costs): the budget's reference is "
+                "the per-call choice\n",
+                e ? e->name : "the material");
     if (done < 0 ||
         (!done && budget_run(m, pareto ? 1.0 : max_nmse, costs, NULL, &r, err, sizeof err))) {
         out_file_discard(&plot_out);

@@ -69,6 +69,7 @@ void budget_json(FILE *f, const budget_result *r, const char *material, double m
     json_model(f, ref ? ref->model : ABRDF_MODEL_NONE);
     fprintf(f, ", \"cost\": ");
     json_num(f, ref ? ref->cost : NAN);
+    fprintf(f, ", \"prepared\": %s", r->prepared ? "true" : "false");
     fprintf(f, "},\n \"diffuse\": ");
     json_model(f, r->sel.diffuse);
     fprintf(f, ", \"specular\": ");

@@ -75,6 +75,7 @@ int budget_run_to(const abrdf_material *m, double max_nmse, int resolution,
                                  &out->trace, work, ws);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     out->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    out->prepared = reference != NULL;
     free(work);
     if (st != ABRDF_OK) {
         snprintf(err, err_size, "%s", out->sel.message);

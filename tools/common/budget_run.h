@@ -20,6 +20,7 @@ typedef struct budget_result {
     abrdf_params params; /* its fitted block */
     select_trace trace;  /* every step: the flowchart's, the reference, each fit, the winner */
     double seconds;      /* wall time of abrdf_select_budget */
+    int prepared;        /* the reference was the caller's prepared object (budget_run_to) */
 } budget_result;
 
 /* Run the budget mode for m. view NULL: the default sphere; costs NULL: the built-in table.
