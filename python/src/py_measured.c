@@ -171,6 +171,34 @@ static int huang_args(PyObject *params, const int sizes[4], const char *name,
     return 0;
 }
 
+/* huang_args, then data as the table's buffer in *view: C-contiguous float64 of the table's
+ * size, writable for a build (writable 1), read-only for a Table (writable 0: prepare checks
+ * the values once, so they must not change after). 0, or -1 with the error set (nothing
+ * held). */
+static int huang_buffer_args(PyObject *params, const int sizes[4], PyObject *data, int writable,
+                             const char *name, const abrdf_py_params **out, int *rows,
+                             Py_buffer *view)
+{
+    long values;
+    if (huang_args(params, sizes, name, out, &values, rows)) return -1;
+    if (abrdf_py_double_buffer(data, "data", writable, view)) return -1;
+    if (!writable && !view->readonly) {
+        PyBuffer_Release(view);
+        PyErr_Format(PyExc_TypeError,
+                     "%s: data must be read-only (bytes, or a read-only array): the Table reads "
+                     "it while it lives",
+                     name);
+        return -1;
+    }
+    if (view->len != (Py_ssize_t)values * (Py_ssize_t)sizeof(double)) {
+        Py_ssize_t got = view->len / (Py_ssize_t)sizeof(double);
+        PyBuffer_Release(view);
+        abrdf_py_fail(ABRDF_E_TABLE, "%s: the table holds %ld values, got %zd", name, values, got);
+        return -1;
+    }
+    return 0;
+}
+
 /* huang_table_size(params, sizes) -> (values, rows) */
 static PyObject *py_huang_table_size(PyObject *self, PyObject *args)
 {
@@ -198,17 +226,9 @@ static PyObject *py_huang_table_build(PyObject *self, PyObject *args)
                           &row0, &row1, &data))
         return NULL;
     const abrdf_py_params *p;
-    long values;
     int rows;
-    if (huang_args(params, s, "huang_table_build", &p, &values, &rows)) return NULL;
     Py_buffer view;
-    if (abrdf_py_double_buffer(data, "data", 1, &view)) return NULL;
-    if (view.len != (Py_ssize_t)values * (Py_ssize_t)sizeof(double)) {
-        PyBuffer_Release(&view);
-        return abrdf_py_fail(ABRDF_E_TABLE,
-                             "huang_table_build: the table holds %ld values, got %zd", values,
-                             view.len / (Py_ssize_t)sizeof(double));
-    }
+    if (huang_buffer_args(params, s, data, 1, "huang_table_build", &p, &rows, &view)) return NULL;
     abrdf_params block = p->params; /* the Params may change while the GIL is released */
     int st;
     Py_BEGIN_ALLOW_THREADS;
@@ -231,22 +251,9 @@ static PyObject *py_huang_table(PyObject *self, PyObject *args)
     if (!PyArg_ParseTuple(args, "O(iiii)O:huang_table", &params, &s[0], &s[1], &s[2], &s[3], &data))
         return NULL;
     const abrdf_py_params *p;
-    long values;
     int rows;
-    if (huang_args(params, s, "huang_table", &p, &values, &rows)) return NULL;
     Py_buffer view;
-    if (abrdf_py_double_buffer(data, "data", 0, &view)) return NULL;
-    if (!view.readonly) { /* prepare checks the values once: they must not change after */
-        PyBuffer_Release(&view);
-        PyErr_SetString(PyExc_TypeError, "huang_table: data must be read-only (bytes, or a "
-                                         "read-only array): the Table reads it while it lives");
-        return NULL;
-    }
-    if (view.len != (Py_ssize_t)values * (Py_ssize_t)sizeof(double)) {
-        PyBuffer_Release(&view);
-        return abrdf_py_fail(ABRDF_E_TABLE, "huang_table: the table holds %ld values, got %zd",
-                             values, view.len / (Py_ssize_t)sizeof(double));
-    }
+    if (huang_buffer_args(params, s, data, 0, "huang_table", &p, &rows, &view)) return NULL;
     abrdf_py_table *t = (abrdf_py_table *)abrdf_py_table_type.tp_alloc(&abrdf_py_table_type, 0);
     if (!t) {
         PyBuffer_Release(&view);
