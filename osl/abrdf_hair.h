@@ -623,7 +623,7 @@ color abrdf_huang_lobes_residual(abrdf_huang_m m, float te[], float tie[], vecto
                     wh2 = wh2 * rn;
                     float cos_mh2 = dot(wmt, wh2), cos_ho2 = dot(-wo, wh2);
                     // cos_ho2 = wo.wt - 1/eta <= 0 within the tolerance above: no exit
-                    if (cos_mh2 >= 0.0 && cos_ho2 > 0.0) {
+                    if (cos_mh2 > 0.0 && cos_ho2 > 0.0) {
                         float cos_hi2 = dot(-wt, wh2);
                         float t2 = (1.0 - abrdf_huang_fresnel(cos_hi2, inv_eta, unused)) * scale2;
                         float v = wgt * t1 * scale1 * t2 * abrdf_huang_ggx_d(a2, cos_mh2) * g1o *
@@ -666,7 +666,7 @@ color abrdf_huang_lobes_residual(abrdf_huang_m m, float te[], float tie[], vecto
                 float rn3 = 1.0 / sqrt(l3);
                 wh3 = wh3 * rn3;
                 float cos_mh3 = dot(wmtr, wh3);
-                if (cos_mh3 < 0.0 || !abrdf_huang_visible2(wtr, -wo, wmtr, wh3) ||
+                if (!(cos_mh3 > 0.0) || !abrdf_huang_visible2(wtr, -wo, wmtr, wh3) ||
                     !abrdf_huang_visible2(wtr, -wo, wmtr_, wh3)) {
                     s_trrt += rr;
                     continue;

@@ -804,7 +804,7 @@ static void tt_add(residual_ctx *c, const entry_path *e)
         double l2 = dot(wh2, wh2);
         if (!(l2 > ABRDF__HUANG_HALF_LEN2_MIN)) continue;
         double u_mh = dot(e->wmt, wh2), u_o = dot(neg(wo), wh2);
-        if (!(u_mh > 0.0)) continue; /* D = 0 at 90 degrees and beyond */
+        if (!(u_mh > 0.0)) continue; /* a microfacet at 90 degrees or beyond faces away (chi+) */
         /* u_o = wo.wt - 1/eta: below 0 within the tolerance above, where no light exits (its
          * term would be negative) */
         if (!(u_o > 0.0)) continue;
