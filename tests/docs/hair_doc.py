@@ -191,13 +191,23 @@ def body():
     want = grab(r"#define ABRDF_HUANG_TABLE_SIZES \{(\d+), (\d+), (\d+), (\d+)\}", hdr, "abrdf.h").groups()
     if sizes != want:
         fail(f"{DOC}: the tabulated huang's default row is {sizes}, abrdf.h's sizes {want}")
-    for col, extra in ((3, []), (4, ["--backlit"])):
+    for col, extra in ((3, []), (4, ["--backlit", "--parts"])):
         out = prog("hair_convergence", *extra, "--table", ",".join(sizes))
         m = grab(r"table \(\d+, \d+, \d+\), \d+ shift sets of grids \(6, 3\): NMSE vs the reference (\S+); "
                  r"built in \S+ s \((\d+) values\)", out, "hair_convergence --table")
         require_number(DOC, doc, row[col], m[1], f"the tabulated huang {sizes} {' '.join(extra)}")
         if int(row[1].replace(" ", "")) != int(m[2]):
             fail(f"{DOC}: the tabulated huang {sizes} has {row[1]} values on the page, {m[2]} now")
+    # The backlit table's error in parts (--parts, the last run): its nodes' rule at the
+    # image's own directions, and each axis read alone between its nodes.
+    node = grab(r"own directions: NMSE vs the reference (\S+)", out, "hair_convergence --parts")[1]
+    require_number(DOC, doc, grab(r"evaluated at the image's own directions\s+\(no table\), is already (%s)" % NUM,
+                                  ft, DOC)[1], node, "the backlit table's nodes' rule")
+    axes = grab(r"theta_v (\S+), theta_l (\S+), phi_v (\S+), d (\S+)", out, "hair_convergence --parts")
+    quoted = grab(r"three exact: θ of the view (%s), the light's relative azimuth d (%s), the view's\s+"
+                  r"azimuth (%s), θ of the light (%s)\." % (NUM, NUM, NUM, NUM), ft, DOC)
+    for q, g, name in zip(quoted.groups(), (axes[1], axes[4], axes[3], axes[2]), ("theta_v", "d", "phi_v", "theta_l")):
+        require_number(DOC, doc, q, g, f"the backlit table's interpolation along {name}")
     lob = grab(r"R (\S+) \(\d+ %\), TT \S+ \(\d+ %\), TRT (\S+) \(\d+ %\), TRRT\+ (\S+)",
                prog("hair_convergence", "--lobes", "6,3,1"), "hair_convergence --lobes")
     q = grab(r"against \(16, 8, ×4\): R (%s), TRT (%s), TRRT\+ (%s)\)" % (NUM, NUM, NUM), ft, DOC)

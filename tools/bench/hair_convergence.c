@@ -6,7 +6,7 @@
  * its work per evaluation relative to the default's, n1^2 (1 + n2^2) refine / (6^2 (1 + 3^2)).
  *
  *   hair_convergence [--lobes] [--backlit] [--r R] [--shifts K] [--reference N1,N2,REFINE]
- *                    [--table NT,NV,NP,SETS] [N1,N2,REFINE ...]
+ *                    [--table NT,NV,NP,SETS [--parts]] [N1,N2,REFINE ...]
  *
  * The reference defaults to 16,8,4 (185 times the default's work: a few seconds at r = 0.3,
  * about 15 at r = 0.1, as the Simpson steps shrink with r); the grids to the table of the page.
@@ -22,9 +22,14 @@
  * abrdf__huang_table_rows) built from the default grids with NT theta nodes, NV view azimuths,
  * NP light azimuths and the mean of SETS shift sets per node: its image's NMSE, the seconds
  * its table took to build (one thread), and the microseconds per evaluation of the image's
- * pairs, the table's beside the quadrature's, measured in this run. */
+ * pairs, the table's beside the quadrature's, measured in this run. --parts adds, under the
+ * table, where its error comes from: the NMSE of the rule its nodes hold (the mean of the SETS
+ * shift sets) at the image's own directions, no interpolation; and, on that same mean, the
+ * NMSE of the Catmull-Rom interpolation along each axis alone (theta_v, theta_l, phi_v, d),
+ * the other three exact, between nodes placed as hair_huang_table.c places them. */
 
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -172,6 +177,89 @@ static double image_us(htu_eval_fn eval, const void *m, int reps)
     return (seconds() - t0) * 1e6 / (reps * 2.0 * HTU_CYL_SAMPLES);
 }
 
+/* --parts: the rule a table's nodes hold, the mean of shift sets 0 to sets - 1 of the model's
+ * grids, as a function of (theta_v, theta_l, phi_v, d) (hair_huang_table.c's axes): the
+ * residual lobes' S cos(theta_v), as the table stores it, and R. One axis (0-3) is read by
+ * Catmull-Rom between the table's nodes of that axis; axis -1 reads none. */
+typedef struct parted {
+    abrdf__huang m;
+    int sets, axis, dims[3]; /* NT, NV, NP */
+} parted;
+
+static void fdir(double theta, double phi, double w[3])
+{
+    w[0] = sin(theta), w[1] = cos(theta) * sin(phi), w[2] = cos(theta) * cos(phi);
+}
+
+/* The residual's S cos(theta_v) and R's S at the angles a, the mean of the sets. */
+static void mean_at(const parted *x, const double a[4], double res[3], double r[3])
+{
+    double wo[3], wi[1][3], s[1][3];
+    fdir(a[0], a[2], wo);
+    fdir(a[1], a[2] + a[3], wi[0]);
+    abrdf__huang m = x->m;
+    for (int c = 0; c < 3; ++c) res[c] = r[c] = 0.0;
+    for (int k = 0; k < x->sets; ++k) {
+        m.shift_set = k;
+        abrdf__huang_fibre_run(&m, 1, (const double(*)[3])wi, wo, 14u, s);
+        for (int c = 0; c < 3; ++c) res[c] += s[0][c] * cos(a[0]) / x->sets;
+        abrdf__huang_fibre_run(&m, 1, (const double(*)[3])wi, wo, 1u, s);
+        for (int c = 0; c < 3; ++c) r[c] += s[0][c] / x->sets;
+    }
+}
+
+/* f_r of the mean of the sets, one axis read between its nodes (x->axis) or none (-1). */
+static void eval_parted(const void *l, const double wi[3], const double wo[3], double f[3])
+{
+    const parted *x = l;
+    f[0] = f[1] = f[2] = 0.0;
+    if (!(wi[2] > 0.0) || !(wo[2] > 0.0)) return;
+    const double a[4] = {asin(wo[0]), asin(wi[0]), atan2(wo[1], wo[2]),
+                         remainder(atan2(wi[1], wi[2]) - atan2(wo[1], wo[2]), 2.0 * ABRDF__PI)};
+    double res[3] = {0.0, 0.0, 0.0}, r[3];
+    if (x->axis < 0) {
+        mean_at(x, a, res, r);
+    } else {
+        const int ax = x->axis;
+        /* the axis' node spacing h and its first node o (hair_huang_table.c) */
+        double h = ax < 2    ? ABRDF__PI / x->dims[0]
+                   : ax == 2 ? 0.5 * ABRDF__PI / (x->dims[1] - 1)
+                             : 2.0 * ABRDF__PI / x->dims[2];
+        double o = ax < 2 ? -0.5 * ABRDF__PI + 0.5 * h : ax == 2 ? 0.0 : -ABRDF__PI;
+        double t = (a[ax] - o) / h, i = floor(t), u = t - i, u2 = u * u, u3 = u2 * u;
+        const double w[4] = {0.5 * (-u3 + 2.0 * u2 - u), 0.5 * (3.0 * u3 - 5.0 * u2 + 2.0),
+                             0.5 * (-3.0 * u3 + 4.0 * u2 + u), 0.5 * (u3 - u2)};
+        for (int q = 0; q < 4; ++q) {
+            double b[4] = {a[0], a[1], a[2], a[3]}, v[3];
+            b[ax] = o + (i - 1 + q) * h;
+            mean_at(x, b, v, r);
+            for (int c = 0; c < 3; ++c) res[c] += w[q] * v[c];
+        }
+        mean_at(x, a, (double[3]){0.0, 0.0, 0.0}, r); /* R is never read from the table */
+    }
+    for (int c = 0; c < 3; ++c) f[c] = (res[c] / cos(a[0]) + r[c]) / wi[2];
+}
+
+/* --parts: the table's error in parts (above). */
+static void table_parts(const int dims[4], double r, const double want[HTU_CYL_SAMPLES][3])
+{
+    static const char *name[4] = {"theta_v", "theta_l", "phi_v", "d"};
+    static double img[HTU_CYL_SAMPLES][3], mean[HTU_CYL_SAMPLES][3];
+    parted x = {.sets = dims[3], .axis = -1, .dims = {dims[0], dims[1], dims[2]}};
+    model(r, &x.m);
+    htu_cylinder_image_lit(eval_parted, &x, backlit, mean);
+    printf("  its nodes' rule (the mean of %d shift sets) at the image's own directions: NMSE vs "
+           "the reference %.1e\n",
+           dims[3], htu_image_nmse(want, mean));
+    printf("  each axis alone read between its nodes, on that mean: NMSE vs the mean");
+    for (x.axis = 0; x.axis < 4; ++x.axis) {
+        if (x.axis == 2 && dims[1] == 1) continue; /* a round fibre: no phi_v axis */
+        htu_cylinder_image_lit(eval_parted, &x, backlit, img);
+        printf("%s %s %.1e", x.axis ? "," : "", name[x.axis], htu_image_nmse(mean, img));
+    }
+    printf("\n");
+}
+
 /* --table: the tabulated huang's image against the reference, its build and its cost. */
 static int table_row(const int dims[4], double r, const double want[HTU_CYL_SAMPLES][3])
 {
@@ -208,11 +296,13 @@ int main(int argc, char **argv)
     static const grids table[] = {{6, 3, 1},  {6, 3, 2},  {8, 3, 2},  {10, 3, 2}, {8, 4, 2},
                                   {12, 3, 2}, {10, 4, 2}, {12, 4, 2}, {12, 6, 1}, {12, 6, 2}};
     grids ref = {16, 8, 4}, list[64];
-    int n = 0, lobes = 0, shifts = 0, table_dims[4] = {0, 0, 0, 0};
+    int n = 0, lobes = 0, shifts = 0, parts = 0, table_dims[4] = {0, 0, 0, 0};
     double r = 0.3; /* hair_brown's, the model's default */
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--lobes")) {
             lobes = 1;
+        } else if (!strcmp(argv[i], "--parts")) {
+            parts = 1;
         } else if (!strcmp(argv[i], "--backlit")) {
             backlit = 1;
         } else if (!strcmp(argv[i], "--r")) {
@@ -282,6 +372,11 @@ int main(int argc, char **argv)
         if (lobes) by_lobe(&list[k], r, want, ref_lobe);
         if (shifts) by_shifts(&list[k], r, shifts, want);
     }
+    if (parts && !table_dims[0]) {
+        fprintf(stderr, "hair_convergence: --parts needs --table NT,NV,NP,SETS\n");
+        return 2;
+    }
     if (table_dims[0] && !table_row(table_dims, r, want)) return 2;
+    if (parts) table_parts(table_dims, r, want);
     return 0;
 }
