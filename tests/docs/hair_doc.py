@@ -203,10 +203,12 @@ def body():
     node = grab(r"own directions: NMSE vs the reference (\S+)", out, "hair_convergence --parts")[1]
     require_number(DOC, doc, grab(r"evaluated at the image's own directions\s+\(no table\), is already (%s)" % NUM,
                                   ft, DOC)[1], node, "the backlit table's nodes' rule")
-    axes = grab(r"theta_v (\S+), theta_l (\S+), phi_v (\S+), d (\S+)", out, "hair_convergence --parts")
-    quoted = grab(r"three exact: θ of the view (%s), the light's relative azimuth d (%s), the view's\s+"
-                  r"azimuth (%s), θ of the light (%s)\." % (NUM, NUM, NUM, NUM), ft, DOC)
-    for q, g, name in zip(quoted.groups(), (axes[1], axes[4], axes[3], axes[2]), ("theta_v", "d", "phi_v", "theta_l")):
+    axes = grab(r"theta_v along the ridge (\S+), theta_v \+ theta_l (\S+), phi_v (\S+), d (\S+)", out,
+                "hair_convergence --parts")
+    quoted = grab(r"three exact: θ_view \+ θ_light, across the ridge, (%s); the light's relative azimuth d (%s); "
+                  r"the view's azimuth (%s); θ_view along the ridge (%s)\." % (NUM, NUM, NUM, NUM), ft, DOC)
+    for q, g, name in zip(quoted.groups(), (axes[2], axes[4], axes[3], axes[1]),
+                          ("theta_v + theta_l", "d", "phi_v", "theta_v along the ridge")):
         require_number(DOC, doc, q, g, f"the backlit table's interpolation along {name}")
     lob = grab(r"R (\S+) \(\d+ %\), TT \S+ \(\d+ %\), TRT (\S+) \(\d+ %\), TRRT\+ (\S+)",
                prog("hair_convergence", "--lobes", "6,3,1"), "hair_convergence --lobes")

@@ -6,7 +6,7 @@
  * its work per evaluation relative to the default's, n1^2 (1 + n2^2) refine / (6^2 (1 + 3^2)).
  *
  *   hair_convergence [--lobes] [--backlit] [--r R] [--shifts K] [--reference N1,N2,REFINE]
- *                    [--table NT,NV,NP,SETS [--parts]] [N1,N2,REFINE ...]
+ *                    [--table NT,NV,NP,SETS [--parts] [--pairs N]] [N1,N2,REFINE ...]
  *
  * The reference defaults to 16,8,4 (185 times the default's work: a few seconds at r = 0.3,
  * about 15 at r = 0.1, as the Simpson steps shrink with r); the grids to the table of the page.
@@ -25,8 +25,11 @@
  * pairs, the table's beside the quadrature's, measured in this run. --parts adds, under the
  * table, where its error comes from: the NMSE of the rule its nodes hold (the mean of the SETS
  * shift sets) at the image's own directions, no interpolation; and, on that same mean, the
- * NMSE of the Catmull-Rom interpolation along each axis alone (theta_v, theta_l, phi_v, d),
- * the other three exact, between nodes placed as hair_huang_table.c places them. */
+ * NMSE of the Catmull-Rom interpolation along each axis the table reads along, alone (theta_v
+ * along the lobes' ridge, theta_v + theta_l across it, phi_v, d), the other three exact,
+ * between nodes placed as hair_huang_table.c places them (away from the theta ends, where the
+ * table blends into reading along theta_v and theta_l). --pairs N adds the table's residual
+ * lobes against the reference's at N random direction pairs (table_pairs). */
 
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -178,9 +181,9 @@ static double image_us(htu_eval_fn eval, const void *m, int reps)
 }
 
 /* --parts: the rule a table's nodes hold, the mean of shift sets 0 to sets - 1 of the model's
- * grids, as a function of (theta_v, theta_l, phi_v, d) (hair_huang_table.c's axes): the
- * residual lobes' S cos(theta_v), as the table stores it, and R. One axis (0-3) is read by
- * Catmull-Rom between the table's nodes of that axis; axis -1 reads none. */
+ * grids, as a function of (theta_v, theta_l, phi_v, d): the residual lobes' S cos(theta_v),
+ * as the table stores it, and R. One of the axes the table reads along (0-3, below) is read
+ * by Catmull-Rom between the table's nodes; axis -1 reads none. */
 typedef struct parted {
     abrdf__huang m;
     int sets, axis, dims[3]; /* NT, NV, NP */
@@ -221,17 +224,29 @@ static void eval_parted(const void *l, const double wi[3], const double wo[3], d
         mean_at(x, a, res, r);
     } else {
         const int ax = x->axis;
-        /* the axis' node spacing h and its first node o (hair_huang_table.c) */
-        double h = ax < 2    ? ABRDF__PI / x->dims[0]
-                   : ax == 2 ? 0.5 * ABRDF__PI / (x->dims[1] - 1)
-                             : 2.0 * ABRDF__PI / x->dims[2];
-        double o = ax < 2 ? -0.5 * ABRDF__PI + 0.5 * h : ax == 2 ? 0.0 : -ABRDF__PI;
-        double t = (a[ax] - o) / h, i = floor(t), u = t - i, u2 = u * u, u3 = u2 * u;
+        /* The axis' coordinate at a, its node spacing h and its first node o, as
+         * hair_huang_table.c reads it: theta_v along the ridge (at fixed theta_v + theta_l),
+         * theta_v + theta_l across it (at fixed theta_v), phi_v, d. */
+        const double c = ax == 1 ? a[0] + a[1] : a[ax];
+        const double h = ax < 2    ? ABRDF__PI / x->dims[0]
+                         : ax == 2 ? 0.5 * ABRDF__PI / (x->dims[1] - 1)
+                                   : 2.0 * ABRDF__PI / x->dims[2];
+        const double o = ax == 0   ? -0.5 * ABRDF__PI + 0.5 * h
+                         : ax == 1 ? -ABRDF__PI + h
+                         : ax == 2 ? 0.0
+                                   : -ABRDF__PI;
+        double t = (c - o) / h, i = floor(t), u = t - i, u2 = u * u, u3 = u2 * u;
         const double w[4] = {0.5 * (-u3 + 2.0 * u2 - u), 0.5 * (3.0 * u3 - 5.0 * u2 + 2.0),
                              0.5 * (-3.0 * u3 + 4.0 * u2 + u), 0.5 * (u3 - u2)};
         for (int q = 0; q < 4; ++q) {
             double b[4] = {a[0], a[1], a[2], a[3]}, v[3];
-            b[ax] = o + (i - 1 + q) * h;
+            const double node = o + (i - 1 + q) * h;
+            if (ax == 0)
+                b[0] = node, b[1] = a[0] + a[1] - node;
+            else if (ax == 1)
+                b[1] = node - a[0];
+            else
+                b[ax] = node;
             mean_at(x, b, v, r);
             for (int c = 0; c < 3; ++c) res[c] += w[q] * v[c];
         }
@@ -243,7 +258,7 @@ static void eval_parted(const void *l, const double wi[3], const double wo[3], d
 /* --parts: the table's error in parts (above). */
 static void table_parts(const int dims[4], double r, const double want[HTU_CYL_SAMPLES][3])
 {
-    static const char *name[4] = {"theta_v", "theta_l", "phi_v", "d"};
+    static const char *name[4] = {"theta_v along the ridge", "theta_v + theta_l", "phi_v", "d"};
     static double img[HTU_CYL_SAMPLES][3], mean[HTU_CYL_SAMPLES][3];
     parted x = {.sets = dims[3], .axis = -1, .dims = {dims[0], dims[1], dims[2]}};
     model(r, &x.m);
@@ -261,7 +276,45 @@ static void table_parts(const int dims[4], double r, const double want[HTU_CYL_S
 }
 
 /* --table: the tabulated huang's image against the reference, its build and its cost. */
-static int table_row(const int dims[4], double r, const double want[HTU_CYL_SAMPLES][3])
+/* --pairs: the table's residual lobes (TT + TRT + TRRT+) against the reference grids' at
+ * random direction pairs, both uniform on the sphere within 85 degrees of the fibre's normal
+ * plane: the NMSE over all of them, over those with both theta within 60 degrees and over the
+ * others. */
+static void table_pairs(const tabled *x, const grids *ref, int pairs)
+{
+    abrdf__huang rm = x->m;
+    rm.n1 = ref->n1, rm.n2 = ref->n2, rm.refine = ref->refine;
+    unsigned seed = 12345u;
+    double num[2] = {0.0, 0.0}, den[2] = {0.0, 0.0};
+    for (int i = 0; i < pairs;) {
+        double a[4];
+        for (int k = 0; k < 4; ++k) {
+            seed = seed * 1664525u + 1013904223u;
+            a[k] = (seed >> 8) / 16777216.0;
+        }
+        double zo = 2.0 * a[0] - 1.0, zi = 2.0 * a[2] - 1.0;
+        if (fabs(zo) > sin(85.0 * ABRDF__PI / 180.0) || fabs(zi) > sin(85.0 * ABRDF__PI / 180.0))
+            continue;
+        double wo[3], wi[1][3], s[1][3], sr[1][3];
+        fdir(asin(zo), 2.0 * ABRDF__PI * a[1], wo);
+        fdir(asin(zi), 2.0 * ABRDF__PI * a[3], wi[0]);
+        abrdf__huang_table_fibre_run(&x->m, &x->t, 1, (const double(*)[3])wi, wo, 14u, s);
+        abrdf__huang_fibre_run(&rm, 1, (const double(*)[3])wi, wo, 14u, sr);
+        int far = fabs(zo) > sin(ABRDF__PI / 3.0) || fabs(zi) > sin(ABRDF__PI / 3.0);
+        for (int c = 0; c < 3; ++c) {
+            num[far] += (s[0][c] - sr[0][c]) * (s[0][c] - sr[0][c]);
+            den[far] += sr[0][c] * sr[0][c];
+        }
+        ++i;
+    }
+    printf(
+        "  its residual lobes at %d random direction pairs (theta within 85 degrees) against the "
+        "reference's: NMSE %.1e; both theta within 60 degrees %.1e, the others %.1e\n",
+        pairs, (num[0] + num[1]) / (den[0] + den[1]), num[0] / den[0], num[1] / den[1]);
+}
+
+static int table_row(const int dims[4], double r, const grids *ref, int pairs,
+                     const double want[HTU_CYL_SAMPLES][3])
 {
     tabled x;
     model(r, &x.m);
@@ -287,6 +340,7 @@ static int table_row(const int dims[4], double r, const double want[HTU_CYL_SAMP
            "built in %.1f s (%ld values); %.2f us per evaluation, the quadrature's %.1f (%.0fx)\n",
            dims[0], dims[1], dims[2], dims[3], x.m.n1, x.m.n2, htu_image_nmse(want, img), build,
            count, us_table, us_model, us_model / us_table);
+    if (pairs > 0) table_pairs(&x, ref, pairs);
     free(v);
     return 1;
 }
@@ -296,11 +350,21 @@ int main(int argc, char **argv)
     static const grids table[] = {{6, 3, 1},  {6, 3, 2},  {8, 3, 2},  {10, 3, 2}, {8, 4, 2},
                                   {12, 3, 2}, {10, 4, 2}, {12, 4, 2}, {12, 6, 1}, {12, 6, 2}};
     grids ref = {16, 8, 4}, list[64];
-    int n = 0, lobes = 0, shifts = 0, parts = 0, table_dims[4] = {0, 0, 0, 0};
+    int n = 0, lobes = 0, shifts = 0, parts = 0, pairs = 0, table_dims[4] = {0, 0, 0, 0};
     double r = 0.3; /* hair_brown's, the model's default */
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--lobes")) {
             lobes = 1;
+        } else if (!strcmp(argv[i], "--pairs")) {
+            char *end = NULL;
+            long k = i + 1 < argc ? strtol(argv[i + 1], &end, 10) : 0;
+            if (i + 1 >= argc || *end || end == argv[i + 1] || k < 1 || k > 1000000) {
+                fprintf(stderr, "hair_convergence: --pairs needs a count of direction pairs, "
+                                "1-1000000\n");
+                return 2;
+            }
+            pairs = (int)k;
+            ++i;
         } else if (!strcmp(argv[i], "--parts")) {
             parts = 1;
         } else if (!strcmp(argv[i], "--backlit")) {
@@ -372,11 +436,11 @@ int main(int argc, char **argv)
         if (lobes) by_lobe(&list[k], r, want, ref_lobe);
         if (shifts) by_shifts(&list[k], r, shifts, want);
     }
-    if (parts && !table_dims[0]) {
-        fprintf(stderr, "hair_convergence: --parts needs --table NT,NV,NP,SETS\n");
+    if ((parts || pairs) && !table_dims[0]) {
+        fprintf(stderr, "hair_convergence: --parts and --pairs need --table NT,NV,NP,SETS\n");
         return 2;
     }
-    if (table_dims[0] && !table_row(table_dims, r, want)) return 2;
+    if (table_dims[0] && !table_row(table_dims, r, &ref, pairs, want)) return 2;
     if (parts) table_parts(table_dims, r, want);
     return 0;
 }

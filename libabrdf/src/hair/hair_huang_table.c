@@ -20,9 +20,11 @@
  *   d:                np nodes -pi + k 2 pi / np, periodic.
  * The table holds the residual S times cos(theta_v) (S has 1/cos(theta_v) from the fibre's
  * projected width, hair_huang.c), as v[((((iv nv + jv) nt + il) np + k) 3 + channel], one
- * row (iv, jv) per view node. Catmull-Rom in each axis (exact at the nodes); beyond the end
- * theta nodes the end value repeats; across phi_v's ends the stencil reads the mirrored
- * node with d's sign turned; a negative result (the cubic's overshoot) reads as 0. */
+ * row (iv, jv) per view node. Catmull-Rom (exact at the nodes) along theta_v at fixed
+ * theta_v + theta_l, along theta_v + theta_l, and in each azimuth (theta_stencil says why and
+ * how the theta ends are read); beyond the end theta nodes the end value repeats; across
+ * phi_v's ends the stencil reads the mirrored node with d's sign turned; a negative result
+ * (the cubic's overshoot) reads as 0. */
 #include <math.h>
 
 #include "hair.h"
@@ -142,17 +144,49 @@ static void catmull_rom(double t, double w[4])
     w[3] = 0.5 * (t3 - t2);
 }
 
-/* A theta axis' stencil: its four node indices (the ends repeated) and weights. */
-static void theta_stencil(int n, double theta, int idx[4], double w[4])
+static int clamp_node(int j, int n) { return j < 0 ? 0 : j > n - 1 ? n - 1 : j; }
+
+/* A theta's position in node units: node k at k. */
+static double theta_x(int n, double theta)
 {
-    double x = (theta + 0.5 * ABRDF__PI) * n / ABRDF__PI - 0.5;
-    double f = floor(x);
-    int i = (int)f;
-    catmull_rom(x - f, w);
-    for (int k = 0; k < 4; ++k) {
-        int j = i - 1 + k;
-        idx[k] = j < 0 ? 0 : j > n - 1 ? n - 1 : j;
-    }
+    return (theta + 0.5 * ABRDF__PI) * n / ABRDF__PI - 0.5;
+}
+
+/* The two theta axes' stencil: up to 32 (view node, light node, weight) triples.
+ *
+ * Every lobe is a ridge along theta_v + theta_l = const (a specular cone: theta_l near
+ * -theta_v, shifted by the cuticle tilt), sharp across it and smooth along it. The view and
+ * light nodes have one spacing, so node (iv, il) lies on the sheared grid (iv, j = iv + il),
+ * and the table is read by Catmull-Rom along theta_v at fixed theta_v + theta_l (along the
+ * ridge) and along j: at (iv, j) it reads the light node j - iv. Within two nodes of an end of
+ * either axis, where the sheared stencil would reach three nodes beyond the end and read held
+ * end values, the read blends linearly (over two nodes) into the axis-aligned one (Catmull-
+ * Rom along theta_v and theta_l). Both are exact at the nodes and continuous, and so is the
+ * blend. */
+static int theta_stencil(int nt, double tv, double tl, int iv[32], int il[32], double w[32])
+{
+    const double xv = theta_x(nt, tv), xl = theta_x(nt, tl), xj = xv + xl;
+    const double fv = floor(xv), fl = floor(xl), fj = floor(xj);
+    double wv[4], wl[4], wj[4];
+    catmull_rom(xv - fv, wv);
+    catmull_rom(xl - fl, wl);
+    catmull_rom(xj - fj, wj);
+    double e = fmin(fmin(xv, nt - 1 - xv), fmin(xl, nt - 1 - xl)); /* nodes from an end */
+    double s = fmin(fmax(0.5 * (e - 2.0), 0.0), 1.0);              /* the sheared read's share */
+    int n = 0;
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) {
+            const int v = (int)fv - 1 + a;
+            if (s > 0.0) {
+                iv[n] = clamp_node(v, nt), il[n] = clamp_node((int)fj - 1 + b - v, nt);
+                w[n++] = s * wv[a] * wj[b];
+            }
+            if (s < 1.0) {
+                iv[n] = clamp_node(v, nt), il[n] = clamp_node((int)fl - 1 + b, nt);
+                w[n++] = (1.0 - s) * wv[a] * wl[b];
+            }
+        }
+    return n;
 }
 
 /* The residual S of one light wi seen from wo, from the table. */
@@ -168,10 +202,9 @@ static void residual(const abrdf__huang_table *t, const double wi[3], const doub
     double d = remainder(atan2(wi[1], wi[2]) - pv, 2.0 * ABRDF__PI);
     if (pv < 0.0) pv = -pv, d = -d;                        /* y -> -y */
     if (pv > 0.5 * ABRDF__PI) pv = ABRDF__PI - pv, d = -d; /* z -> -z */
-    int iv[4], il[4];
-    double wv[4], wl[4], wp[4] = {0.0, 1.0, 0.0, 0.0};
-    theta_stencil(nt, tv, iv, wv);
-    theta_stencil(nt, tl, il, wl);
+    int iv[32], il[32];
+    double wt[32], wp[4] = {0.0, 1.0, 0.0, 0.0};
+    const int nth = theta_stencil(nt, tv, tl, iv, il, wt);
     int ip = 0;
     if (nv > 1) {
         double x = pv * (nv - 1) / (0.5 * ABRDF__PI), f = floor(x);
@@ -190,16 +223,15 @@ static void residual(const abrdf__huang_table *t, const double wi[3], const doub
         catmull_rom(x - f, wd);
         int kd[4];
         for (int k = 0; k < 4; ++k) kd[k] = (((int)f - 1 + k) % np + np) % np;
-        for (int a = 0; a < 4; ++a)
-            for (int b = 0; b < 4; ++b) {
-                const double *row = t->v + (((long)iv[a] * nv + jv) * nt + il[b]) * np * 3;
-                double w = wp[q] * wv[a] * wl[b];
-                for (int k = 0; k < 4; ++k) {
-                    const double *x3 = row + kd[k] * 3;
-                    double ww = w * wd[k];
-                    acc[0] += ww * x3[0], acc[1] += ww * x3[1], acc[2] += ww * x3[2];
-                }
+        for (int a = 0; a < nth; ++a) {
+            const double *row = t->v + (((long)iv[a] * nv + jv) * nt + il[a]) * np * 3;
+            double w = wp[q] * wt[a];
+            for (int k = 0; k < 4; ++k) {
+                const double *x3 = row + kd[k] * 3;
+                double ww = w * wd[k];
+                acc[0] += ww * x3[0], acc[1] += ww * x3[1], acc[2] += ww * x3[2];
             }
+        }
     }
     for (int c = 0; c < 3; ++c) s[c] = acc[c] > 0.0 ? acc[c] / cv : 0.0;
 }
