@@ -230,11 +230,11 @@ START_TEST(cubic_between_the_nodes)
 END_TEST
 
 /* Every lobe is a ridge along theta_v + theta_l = const, and the table reads its theta axes
- * along it (hair_huang_table.c, theta_stencil). A ridge about as narrow as TT's (a half-width of
- * 0.2 rad in either theta, 1.5 node spacings at NT = 24), at 45 degrees to both axes, reads back at random
- * directions with both theta within 60 degrees within RIDGE_RMS of its peak (RMS); the
- * axis-aligned cubic, Catmull-Rom along theta_v and theta_l on the same nodes, was measured at
- * 5.7e-3 while this was written (it fails), this read at 3.5e-3. */
+ * along it (hair_huang_table.c, theta_stencil). A ridge about as narrow as TT's (a half-width
+ * of 0.2 rad in either theta, 1.5 node spacings at NT = 24), at 45 degrees to both axes, reads
+ * back at random directions with both theta within 60 degrees within RIDGE_RMS of its peak
+ * (RMS); the axis-aligned cubic, Catmull-Rom along theta_v and theta_l on the same nodes, was
+ * measured at 5.7e-3 while this was written (it fails), this read at 3.5e-3. */
 #define RIDGE_RMS 4.5e-3
 static double ridge(double tv, double tl, double pv, double d)
 {

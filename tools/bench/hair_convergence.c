@@ -275,7 +275,6 @@ static void table_parts(const int dims[4], double r, const double want[HTU_CYL_S
     printf("\n");
 }
 
-/* --table: the tabulated huang's image against the reference, its build and its cost. */
 /* --pairs: the table's residual lobes (TT + TRT + TRRT+) against the reference grids' at
  * random direction pairs, both uniform on the sphere within 85 degrees of the fibre's normal
  * plane: the NMSE over all of them, over those with both theta within 60 degrees and over the
@@ -307,12 +306,19 @@ static void table_pairs(const tabled *x, const grids *ref, int pairs)
         }
         ++i;
     }
+    char part[2][32];
+    for (int k = 0; k < 2; ++k) /* a bucket with no pair (or no residual) has no NMSE */
+        if (den[k] > 0.0)
+            snprintf(part[k], sizeof part[k], "%.1e", num[k] / den[k]);
+        else
+            snprintf(part[k], sizeof part[k], "none");
     printf(
         "  its residual lobes at %d random direction pairs (theta within 85 degrees) against the "
-        "reference's: NMSE %.1e; both theta within 60 degrees %.1e, the others %.1e\n",
-        pairs, (num[0] + num[1]) / (den[0] + den[1]), num[0] / den[0], num[1] / den[1]);
+        "reference's: NMSE %.1e; both theta within 60 degrees %s, the others %s\n",
+        pairs, (num[0] + num[1]) / (den[0] + den[1]), part[0], part[1]);
 }
 
+/* --table: the tabulated huang's image against the reference, its build and its cost. */
 static int table_row(const int dims[4], double r, const grids *ref, int pairs,
                      const double want[HTU_CYL_SAMPLES][3])
 {
@@ -420,6 +426,10 @@ int main(int argc, char **argv)
     }
     if (n == 0 && !table_dims[0])
         for (n = 0; n < (int)(sizeof table / sizeof table[0]); ++n) list[n] = table[n];
+    if ((parts || pairs) && !table_dims[0]) {
+        fprintf(stderr, "hair_convergence: --parts and --pairs need --table NT,NV,NP,SETS\n");
+        return 2;
+    }
     static double want[HTU_CYL_SAMPLES][3], img[HTU_CYL_SAMPLES][3];
     image(&ref, r, 15u, 0, want);
     static double ref_lobe[4][HTU_CYL_SAMPLES][3];
@@ -435,10 +445,6 @@ int main(int argc, char **argv)
                list[k].n2, list[k].refine, work, htu_image_nmse(want, img));
         if (lobes) by_lobe(&list[k], r, want, ref_lobe);
         if (shifts) by_shifts(&list[k], r, shifts, want);
-    }
-    if ((parts || pairs) && !table_dims[0]) {
-        fprintf(stderr, "hair_convergence: --parts and --pairs need --table NT,NV,NP,SETS\n");
-        return 2;
     }
     if (table_dims[0] && !table_row(table_dims, r, &ref, pairs, want)) return 2;
     if (parts) table_parts(table_dims, r, want);

@@ -158,11 +158,13 @@ static double theta_x(int n, double theta)
  * -theta_v, shifted by the cuticle tilt), sharp across it and smooth along it. The view and
  * light nodes have one spacing, so node (iv, il) lies on the sheared grid (iv, j = iv + il),
  * and the table is read by Catmull-Rom along theta_v at fixed theta_v + theta_l (along the
- * ridge) and along j: at (iv, j) it reads the light node j - iv. Within two nodes of an end of
- * either axis, where the sheared stencil would reach three nodes beyond the end and read held
- * end values, the read blends linearly (over two nodes) into the axis-aligned one (Catmull-
- * Rom along theta_v and theta_l). Both are exact at the nodes and continuous, and so is the
- * blend. */
+ * ridge) and along j: at (iv, j) it reads the light node j - iv. That stencil reaches two
+ * nodes further along theta_l than the axis-aligned one (Catmull-Rom along theta_v and
+ * theta_l), so near the theta ends the two are blended: e is the distance, in nodes, to the
+ * nearest end node of either axis; e <= 2 reads along the axes alone, e >= 4 along the ridge
+ * alone, and between them the weight moves linearly (where 2 < e < 3 the ridge read's share,
+ * below a half, still reads held end values). Both reads are exact at the nodes and
+ * continuous, and so is the blend. */
 static int theta_stencil(int nt, double tv, double tl, int iv[32], int il[32], double w[32])
 {
     const double xv = theta_x(nt, tv), xl = theta_x(nt, tl), xj = xv + xl;
