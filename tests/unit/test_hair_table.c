@@ -197,6 +197,24 @@ static abrdf__huang_table filled(int nt, int nv, int np, angles_fn g)
     return (abrdf__huang_table){nt, nv, np, 1, v};
 }
 
+/* The table t read at a random direction pair with both theta within span / 2 of the normal
+ * plane: S cos(theta_v) per channel into got (as the table stores it), and g at the pair's
+ * angles (the folded azimuths: the ellipse's mirrors leave g unchanged). */
+static double read_random(const abrdf__huang *m, const abrdf__huang_table *t, unsigned *seed,
+                          double span, angles_fn g, double got[3])
+{
+    double a[4];
+    uniforms(seed, a);
+    double tv = (a[0] - 0.5) * span, tl = (a[1] - 0.5) * span;
+    double pv = (a[2] - 0.5) * 2.0 * PI, pl = a[3] * 2.0 * PI;
+    double wo[3], wi[1][3], s[1][3];
+    dir_of(tv, pv, wo);
+    dir_of(tl, pl, wi[0]);
+    abrdf__huang_table_fibre_run(m, t, 1, (const double(*)[3])wi, wo, 14u, s);
+    for (int c = 0; c < 3; ++c) got[c] = s[0][c] * cos(tv);
+    return g(tv, tl, pv, remainder(pl - pv, 2.0 * PI));
+}
+
 START_TEST(cubic_between_the_nodes)
 {
     abrdf__huang m;
@@ -207,19 +225,9 @@ START_TEST(cubic_between_the_nodes)
     unsigned seed = 777u;
     double worst = 0.0;
     for (int i = 0; i < 2000; ++i) {
-        double a[4];
-        uniforms(&seed, a);
-        double tv = (a[0] - 0.5) * PI * (nt - 4.0) / nt, tl = (a[1] - 0.5) * PI * (nt - 4.0) / nt;
-        double pv = (a[2] - 0.5) * 2.0 * PI, pl = a[3] * 2.0 * PI;
-        double wo[3], wi[1][3], s[1][3];
-        dir_of(tv, pv, wo);
-        dir_of(tl, pl, wi[0]);
-        abrdf__huang_table_fibre_run(&m, &t, 1, (const double(*)[3])wi, wo, 14u, s);
-        /* the function at the folded azimuths: the ellipse's mirrors leave it unchanged */
-        double want = smooth(tv, tl, pv, remainder(pl - pv, 2.0 * PI));
+        double got[3], want = read_random(&m, &t, &seed, PI * (nt - 4.0) / nt, smooth, got);
         for (int c = 0; c < 3; ++c) {
-            double got = s[0][c] * cos(tv) / (c + 1);
-            double e = fabs(got - want) / want;
+            double e = fabs(got[c] / (c + 1) - want) / want;
             worst = e > worst ? e : worst;
         }
     }
@@ -251,17 +259,8 @@ START_TEST(ridges_read_along_them)
     unsigned seed = 4242u;
     double e2 = 0.0, peak = 0.0;
     for (int i = 0; i < 4000; ++i) {
-        double a[4];
-        uniforms(&seed, a);
-        double tv = (a[0] - 0.5) * PI * 2.0 / 3.0, tl = (a[1] - 0.5) * PI * 2.0 / 3.0;
-        double pv = (a[2] - 0.5) * 2.0 * PI, pl = a[3] * 2.0 * PI;
-        double wo[3], wi[1][3], s[1][3];
-        dir_of(tv, pv, wo);
-        dir_of(tl, pl, wi[0]);
-        abrdf__huang_table_fibre_run(&m, &t, 1, (const double(*)[3])wi, wo, 14u, s);
-        double want = ridge(tv, tl, pv, remainder(pl - pv, 2.0 * PI));
-        double got = s[0][0] * cos(tv);
-        e2 += (got - want) * (got - want);
+        double got[3], want = read_random(&m, &t, &seed, PI * 2.0 / 3.0, ridge, got);
+        e2 += (got[0] - want) * (got[0] - want);
         peak = want > peak ? want : peak;
     }
     double rms = sqrt(e2 / 4000.0) / peak;
