@@ -4,6 +4,21 @@
 
 static const double PI = 3.14159265358979323846;
 
+void htu_table_dir(double theta, double phi, double w[3])
+{
+    w[0] = sin(theta);
+    w[1] = cos(theta) * sin(phi);
+    w[2] = cos(theta) * cos(phi);
+}
+
+void htu_uniforms(unsigned *seed, double a[4])
+{
+    for (int k = 0; k < 4; ++k) {
+        *seed = *seed * 1664525u + 1013904223u;
+        a[k] = (*seed >> 8) / 16777216.0;
+    }
+}
+
 void htu_fdir(double theta, double phi, double w[3])
 {
     w[0] = sin(theta);

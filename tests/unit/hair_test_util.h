@@ -5,6 +5,13 @@
 /* Fibre direction from longitudinal angle theta and azimuth phi (radians), hair.h frame. */
 void htu_fdir(double theta, double phi, double w[3]);
 
+/* The direction (theta, phi) in the frame of huang's table (hair_huang_table.c: phi about
+ * the fibre, 0 along local z). */
+void htu_table_dir(double theta, double phi, double w[3]);
+
+/* Four numbers in [0, 1) from a linear congruential sequence (the tests' own, repeatable). */
+void htu_uniforms(unsigned *seed, double a[4]);
+
 /* A fibre scattering function S (hair.h convention) of model state m. */
 typedef void (*htu_fibre_fn)(const void *m, const double wi[3], const double wo[3], unsigned lobes,
                              double s[3]);

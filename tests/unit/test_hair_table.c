@@ -35,23 +35,6 @@ static void build(const abrdf__huang *m, int nt, int nv, int np, int sets, abrdf
     abrdf__huang_table_rows(m, t, 0, nt * nv, v);
 }
 
-/* Four numbers in [0, 1) from a linear congruential sequence (the tests' own, repeatable). */
-static void uniforms(unsigned *seed, double a[4])
-{
-    for (int k = 0; k < 4; ++k) {
-        *seed = *seed * 1664525u + 1013904223u;
-        a[k] = (*seed >> 8) / 16777216.0;
-    }
-}
-
-/* The direction (theta, phi) in the fibre frame of hair_huang_table.c */
-static void dir_of(double theta, double phi, double w[3])
-{
-    w[0] = sin(theta);
-    w[1] = cos(theta) * sin(phi);
-    w[2] = cos(theta) * cos(phi);
-}
-
 START_TEST(sizes_checked)
 {
     abrdf__huang m;
@@ -94,8 +77,8 @@ START_TEST(nodes_read_back)
                     double tv = -PI / 2 + (iv + 0.5) * PI / nt, pv = jv * 0.5 * PI / (nv - 1);
                     double tl = -PI / 2 + (il + 0.5) * PI / nt, d = -PI + k * 2.0 * PI / np;
                     double wo[3], wi[1][3], s[1][3], r[3], mean[3] = {0, 0, 0};
-                    dir_of(tv, pv, wo);
-                    dir_of(tl, pv + d, wi[0]);
+                    htu_table_dir(tv, pv, wo);
+                    htu_table_dir(tl, pv + d, wi[0]);
                     for (int q = 0; q < sets; ++q) {
                         abrdf__huang ms = m;
                         ms.shift_set = q;
@@ -131,10 +114,10 @@ START_TEST(mirrors_fold)
     int lit = 0;
     for (int i = 0; i < 400; ++i) {
         double a[4];
-        uniforms(&seed, a);
+        htu_uniforms(&seed, a);
         double wo[3], wi[3][3];
-        dir_of((a[0] - 0.5) * 3.1, a[1] * 2.0 * PI, wo);
-        dir_of((a[2] - 0.5) * 3.1, a[3] * 2.0 * PI, wi[0]);
+        htu_table_dir((a[0] - 0.5) * 3.1, a[1] * 2.0 * PI, wo);
+        htu_table_dir((a[2] - 0.5) * 3.1, a[3] * 2.0 * PI, wi[0]);
         double s[3][3], mo[3] = {wo[0], -wo[1], wo[2]}, mz[3] = {wo[0], wo[1], -wo[2]};
         double in[1][3] = {{wi[0][0], -wi[0][1], wi[0][2]}},
                iz[1][3] = {{wi[0][0], wi[0][1], -wi[0][2]}};
@@ -149,8 +132,8 @@ START_TEST(mirrors_fold)
         }
         lit += s[0][0] > 0.0;
         /* three lights of one view in a run */
-        dir_of(a[3] - 0.5, a[0] * 6.0, wi[1]);
-        dir_of(-a[1], a[2] * 6.0, wi[2]);
+        htu_table_dir(a[3] - 0.5, a[0] * 6.0, wi[1]);
+        htu_table_dir(-a[1], a[2] * 6.0, wi[2]);
         double run[3][3];
         abrdf__huang_table_fibre_run(&m, &t, 3, (const double(*)[3])wi, wo, 15u, run);
         for (int l = 0; l < 3; ++l) {
@@ -204,12 +187,12 @@ static double read_random(const abrdf__huang *m, const abrdf__huang_table *t, un
                           double span, angles_fn g, double got[3])
 {
     double a[4];
-    uniforms(seed, a);
+    htu_uniforms(seed, a);
     double tv = (a[0] - 0.5) * span, tl = (a[1] - 0.5) * span;
     double pv = (a[2] - 0.5) * 2.0 * PI, pl = a[3] * 2.0 * PI;
     double wo[3], wi[1][3], s[1][3];
-    dir_of(tv, pv, wo);
-    dir_of(tl, pl, wi[0]);
+    htu_table_dir(tv, pv, wo);
+    htu_table_dir(tl, pl, wi[0]);
     abrdf__huang_table_fibre_run(m, t, 1, (const double(*)[3])wi, wo, 14u, s);
     for (int c = 0; c < 3; ++c) got[c] = s[0][c] * cos(tv);
     return g(tv, tl, pv, remainder(pl - pv, 2.0 * PI));
@@ -353,7 +336,7 @@ START_TEST(public_table)
     int differs = 0;
     for (int i = 0; i < N; ++i) {
         double a[4];
-        uniforms(&seed, a);
+        htu_uniforms(&seed, a);
         double wi[3], wo[3];
         htu_fdir((a[0] - 0.5) * 2.8, a[1] * 6.2, wi);
         htu_fdir((a[2] - 0.5) * 2.8, a[3] * 6.2, wo);

@@ -189,25 +189,18 @@ typedef struct parted {
     int sets, axis, dims[3]; /* NT, NV, NP */
 } parted;
 
-static void fdir(double theta, double phi, double w[3])
-{
-    w[0] = sin(theta), w[1] = cos(theta) * sin(phi), w[2] = cos(theta) * cos(phi);
-}
-
-/* The residual's S cos(theta_v) and R's S at the angles a, the mean of the sets. */
-static void mean_at(const parted *x, const double a[4], double res[3], double r[3])
+/* S of the lobes (hair.h bits) at the angles a, the mean of the sets, times k. */
+static void mean_at(const parted *x, const double a[4], unsigned lobes, double k, double out[3])
 {
     double wo[3], wi[1][3], s[1][3];
-    fdir(a[0], a[2], wo);
-    fdir(a[1], a[2] + a[3], wi[0]);
+    htu_table_dir(a[0], a[2], wo);
+    htu_table_dir(a[1], a[2] + a[3], wi[0]);
     abrdf__huang m = x->m;
-    for (int c = 0; c < 3; ++c) res[c] = r[c] = 0.0;
-    for (int k = 0; k < x->sets; ++k) {
-        m.shift_set = k;
-        abrdf__huang_fibre_run(&m, 1, (const double(*)[3])wi, wo, 14u, s);
-        for (int c = 0; c < 3; ++c) res[c] += s[0][c] * cos(a[0]) / x->sets;
-        abrdf__huang_fibre_run(&m, 1, (const double(*)[3])wi, wo, 1u, s);
-        for (int c = 0; c < 3; ++c) r[c] += s[0][c] / x->sets;
+    for (int c = 0; c < 3; ++c) out[c] = 0.0;
+    for (int j = 0; j < x->sets; ++j) {
+        m.shift_set = j;
+        abrdf__huang_fibre_run(&m, 1, (const double(*)[3])wi, wo, lobes, s);
+        for (int c = 0; c < 3; ++c) out[c] += s[0][c] * k / x->sets;
     }
 }
 
@@ -221,7 +214,7 @@ static void eval_parted(const void *l, const double wi[3], const double wo[3], d
                          remainder(atan2(wi[1], wi[2]) - atan2(wo[1], wo[2]), 2.0 * ABRDF__PI)};
     double res[3] = {0.0, 0.0, 0.0}, r[3];
     if (x->axis < 0) {
-        mean_at(x, a, res, r);
+        mean_at(x, a, 14u, cos(a[0]), res);
     } else {
         const int ax = x->axis;
         /* The axis' coordinate at a, its node spacing h and its first node o, as
@@ -247,11 +240,11 @@ static void eval_parted(const void *l, const double wi[3], const double wo[3], d
                 b[1] = node - a[0];
             else
                 b[ax] = node;
-            mean_at(x, b, v, r);
+            mean_at(x, b, 14u, cos(b[0]), v);
             for (int c = 0; c < 3; ++c) res[c] += w[q] * v[c];
         }
-        mean_at(x, a, (double[3]){0.0, 0.0, 0.0}, r); /* R is never read from the table */
     }
+    mean_at(x, a, 1u, 1.0, r); /* R is never read from the table */
     for (int c = 0; c < 3; ++c) f[c] = (res[c] / cos(a[0]) + r[c]) / wi[2];
 }
 
@@ -287,16 +280,13 @@ static void table_pairs(const tabled *x, const grids *ref, int pairs)
     double num[2] = {0.0, 0.0}, den[2] = {0.0, 0.0};
     for (int i = 0; i < pairs;) {
         double a[4];
-        for (int k = 0; k < 4; ++k) {
-            seed = seed * 1664525u + 1013904223u;
-            a[k] = (seed >> 8) / 16777216.0;
-        }
+        htu_uniforms(&seed, a);
         double zo = 2.0 * a[0] - 1.0, zi = 2.0 * a[2] - 1.0;
         if (fabs(zo) > sin(85.0 * ABRDF__PI / 180.0) || fabs(zi) > sin(85.0 * ABRDF__PI / 180.0))
             continue;
         double wo[3], wi[1][3], s[1][3], sr[1][3];
-        fdir(asin(zo), 2.0 * ABRDF__PI * a[1], wo);
-        fdir(asin(zi), 2.0 * ABRDF__PI * a[3], wi[0]);
+        htu_table_dir(asin(zo), 2.0 * ABRDF__PI * a[1], wo);
+        htu_table_dir(asin(zi), 2.0 * ABRDF__PI * a[3], wi[0]);
         abrdf__huang_table_fibre_run(&x->m, &x->t, 1, (const double(*)[3])wi, wo, 14u, s);
         abrdf__huang_fibre_run(&rm, 1, (const double(*)[3])wi, wo, 14u, sr);
         int far = fabs(zo) > sin(ABRDF__PI / 3.0) || fabs(zi) > sin(ABRDF__PI / 3.0);
