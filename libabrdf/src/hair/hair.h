@@ -202,7 +202,7 @@ void abrdf__huang_eval_run(const abrdf__huang *m, int count, const double (*wi)[
  * values abrdf__huang_fibre_run gives (its rule, constants, Simpson steps) or of how
  * abrdf__huang_table_rows builds a table (its nodes, what it stores, how it averages), so that
  * a table kept in a file by a library before the change is refused (abrdf_prepare_huang_table). */
-#define ABRDF__HUANG_REVISION 2
+#define ABRDF__HUANG_REVISION 3
 
 /* The public table's header (abrdf_huang_table_build): ABRDF__HUANG_TABLE_HEADER doubles
  * before the values, holding the sizes and two keys of m's setup; _ok: 1 if h is t's for m. */

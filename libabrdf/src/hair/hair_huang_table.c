@@ -127,6 +127,16 @@ void abrdf__huang_table_rows(const abrdf__huang *m, const abrdf__huang_table *t,
                         for (int c = 0; c < 3; ++c) out[(il * np + k0 + j) * 3 + c] += sr[j][c] * k;
                 }
         }
+        /* The view azimuths 0 and pi/2 lie on the ellipse's mirror lines: there the model is
+         * the same at d and -d, and the read folds across them onto -d (residual), so it is
+         * continuous only if these rows are. The shift sets' noise is not symmetric; the mean
+         * of the two is the model's symmetry kept (and twice the nodes' samples). */
+        if (jv == 0 || jv == nv - 1)
+            for (int il = 0; il < nt; ++il)
+                for (int k = 1; 2 * k < np; ++k) {
+                    double *a = out + (il * np + k) * 3, *b = out + (il * np + np - k) * 3;
+                    for (int c = 0; c < 3; ++c) a[c] = b[c] = 0.5 * (a[c] + b[c]);
+                }
         /* Every lobe's term is >= 0 (TT's exits within ABRDF__HUANG_CRITICAL_TOL below the
          * critical cone gave negative terms until revision 2); the table holds S >= 0 whatever
          * the quadrature gives, so that prepare never refuses a table this build wrote. */
