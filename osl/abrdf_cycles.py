@@ -132,6 +132,25 @@ def mesh_for(o, segments):
     return me
 
 
+def write_huang_tables(s, workdir):
+    """The eval shader's text with its huang tables in place: each tabulated material's table
+    (SCENE["materials"][m]["huang_table"], float32 RGB, the first row at the top) written as
+    workdir/abrdf_huang_<m>.pfm, a float image Cycles' OSL texture() reads texel for texel,
+    and the shader's @ABRDF_TABLES@ turned into workdir (docs/OSL.md, "huang from a table")."""
+    for k, m in enumerate(s["materials"]):
+        t = m.get("huang_table")
+        if not t:
+            continue
+        v = np.frombuffer(base64.b64decode(t["data"]), dtype="<f4")
+        v = v.reshape(t["height"], t["width"], 3)
+        with open(os.path.join(workdir, "abrdf_huang_%d.pfm" % k), "wb") as f:
+            # PFM: negative scale for little-endian, rows from the bottom up
+            f.write(b"PF\n%d %d\n-1.0\n" % (t["width"], t["height"]))
+            f.write(np.ascontiguousarray(v[::-1]).tobytes())
+    where = os.path.abspath(workdir).replace("\\", "\\\\").replace('"', '\\"')
+    return s["osl"].replace("@ABRDF_TABLES@", where)
+
+
 def mesh_from_data(m, smooth, name="mesh"):
     """A `mesh` object's triangles (SCENE["meshes"] entry, object space) with the scene's
     corner normals. Blender 4.5+ keeps them exactly as a float custom_normal attribute on
@@ -381,7 +400,7 @@ def build(s, mode, workdir, osl_dir, segments=64):
     if mode == "eval":
         path = os.path.join(workdir, s["osl_name"] + ".osl")
         with open(path, "w") as f:
-            f.write(s["osl"])
+            f.write(write_huang_tables(s, workdir))
         mats = [eval_material(path)]
         sc.cycles.max_bounces = 0  # emission seen by the camera only
     elif mode == "generic":

@@ -698,8 +698,9 @@ color abrdf_huang_lobes_residual(abrdf_huang_m m, float te[], float tie[], vecto
     return ((s_tt + s_trt) * inv_eta * inv_eta + s_trrt * mlong / (2.0 * ABRDF_PI)) * k;
 }
 
-// The fibre function S (all lobes) for local wi, wo (hair.h convention).
-color abrdf_huang_fibre(abrdf_huang_m m, vector wi_, vector wo_)
+// The fibre function S for local wi, wo (hair.h convention): R, plus TT + TRT + TRRT+ when
+// residual is 1.
+color abrdf_huang_fibre_lobes(abrdf_huang_m m, vector wi_, vector wo_, int residual)
 {
     // Cycles' convention: its "wi" is the viewer (our wo), its "wo" the light (our wi).
     vector wi = vector(wo_[1], wo_[0], wo_[2]), wo = vector(wi_[1], wi_[0], wi_[2]);
@@ -726,8 +727,15 @@ color abrdf_huang_fibre(abrdf_huang_m m, vector wi_, vector wo_)
     float te[ABRDF_HAIR_E_N3] = ABRDF_HAIR_GLASS_E;
     float tie[ABRDF_HAIR_E_N3] = ABRDF_HAIR_GLASS_INV_E;
     float r = abrdf_huang_lobe_r(m, te, tie, wi, wo, g0, g1 - g0);
+    if (!residual) return color(r / area);
     color res = abrdf_huang_lobes_residual(m, te, tie, wi, wo, g0, g1 - g0, sp_i, cp_i);
     return (r + res) / area;
+}
+
+// The fibre function S (all lobes) for local wi, wo (hair.h convention).
+color abrdf_huang_fibre(abrdf_huang_m m, vector wi_, vector wo_)
+{
+    return abrdf_huang_fibre_lobes(m, wi_, wo_, 1);
 }
 
 // Huang, Hullin, Hanika 2022, far field (Eqs. 12-14) with Cycles' TRRT+ and energy
@@ -740,6 +748,164 @@ color abrdf_huang(vector wi, vector wo, float eta, float melanin, float redness,
     abrdf_huang_m m = abrdf_huang_setup(eta, melanin, redness, cuticle_tilt, aspect_ratio, r,
                                         entry_grid, internal_grid);
     color s = abrdf_huang_fibre(m, wi, wo);
+    return s / wi[2]; // f_r = S / |N.wi|
+}
+
+// ---- huang tabulated (hair_huang_table.c) -------------------------------------------------
+// The residual lobes (TT + TRT + TRRT+) read from a table the library built
+// (abrdf_huang_table_build) and `abrdf export --cycles --hair-table` wrote as a float RGB image:
+// the values after the header in their own order, nt * np texels wide (light theta node, light
+// azimuth node) and nt * nv high (view theta node, view azimuth node), the first row at the
+// top. Read texel by texel (no filtering) and interpolated as the library does: Catmull-Rom
+// along the lobes' ridges in theta, blended into the read along the theta axes near their
+// ends, and in each azimuth (hair_huang_table.c, theta_stencil and residual, says why). R
+// keeps the quadrature. Local directions, hair.h convention: the fibre along +x.
+
+void abrdf_huang_table_cr(float t, output float w[4])
+{
+    float t2 = t * t, t3 = t2 * t;
+    w[0] = 0.5 * (-t3 + 2.0 * t2 - t);
+    w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0);
+    w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t);
+    w[3] = 0.5 * (t3 - t2);
+}
+
+int abrdf_huang_table_clamp(int j, int n) { return j < 0 ? 0 : (j > n - 1 ? n - 1 : j); }
+
+// The two theta axes' stencil (hair_huang_table.c, theta_stencil): up to 32 (view node, light
+// node, weight) triples; returns their count.
+int abrdf_huang_table_theta(int nt, float tv, float tl, output int iv[32], output int il[32],
+                            output float w[32])
+{
+    float xv = (tv + 0.5 * ABRDF_PI) * nt / ABRDF_PI - 0.5;
+    float xl = (tl + 0.5 * ABRDF_PI) * nt / ABRDF_PI - 0.5, xj = xv + xl;
+    float fv = floor(xv), fl = floor(xl), fj = floor(xj);
+    float wv[4], wl[4], wj[4];
+    abrdf_huang_table_cr(xv - fv, wv);
+    abrdf_huang_table_cr(xl - fl, wl);
+    abrdf_huang_table_cr(xj - fj, wj);
+    float e = min(min(xv, nt - 1 - xv), min(xl, nt - 1 - xl)); // nodes from an end
+    float s = min(max(0.5 * (e - 2.0), 0.0), 1.0);             // the ridge read's share
+    int n = 0;
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) {
+            int v = (int)fv - 1 + a;
+            if (s > 0.0) {
+                iv[n] = abrdf_huang_table_clamp(v, nt);
+                il[n] = abrdf_huang_table_clamp((int)fj - 1 + b - v, nt);
+                w[n] = s * wv[a] * wj[b];
+                n += 1;
+            }
+            if (s < 1.0) {
+                iv[n] = abrdf_huang_table_clamp(v, nt);
+                il[n] = abrdf_huang_table_clamp((int)fl - 1 + b, nt);
+                w[n] = (1.0 - s) * wv[a] * wl[b];
+                n += 1;
+            }
+        }
+    return n;
+}
+
+// A host may take asin and atan2 from fast approximations (Cycles does: measured errors up to
+// 4.5e-5 and 9e-6 rad), which the read across the table's sharp ridges turns into errors of
+// 1e-4 of the value. One Newton step on each, with sin and cos, brings them to float rounding
+// (measured: 2.6e-7 rad).
+float abrdf_huang_table_asin(float x_in)
+{
+    float x = clamp(x_in, -1.0, 1.0), t = asin(x), c = cos(t);
+    return c > 1e-3 ? t - (sin(t) - x) / c : t;
+}
+
+float abrdf_huang_table_atan2(float y, float x)
+{
+    float a = atan2(y, x), c = cos(a), s = sin(a), r = x * c + y * s;
+    return r > 0.0 ? a + (y * c - x * s) / r : a;
+}
+
+// The residual S of one light wi seen from wo, from the table.
+color abrdf_huang_table_residual(string table, int nt, int nv, int np, vector wi, vector wo)
+{
+    float cv = sqrt(max(1.0 - wo[0] * wo[0], 0.0));
+    if (!(cv > ABRDF_HAIR_COS_MIN)) return color(0);
+    float tv = abrdf_huang_table_asin(wo[0]), tl = abrdf_huang_table_asin(wi[0]);
+    float pv = abrdf_huang_table_atan2(wo[1], wo[2]);
+    float d = abrdf_huang_table_atan2(wi[1], wi[2]) - pv;
+    d -= 2.0 * ABRDF_PI * round(d / (2.0 * ABRDF_PI));
+    if (pv < 0.0) { // y -> -y
+        pv = -pv;
+        d = -d;
+    }
+    if (pv > 0.5 * ABRDF_PI) { // z -> -z
+        pv = ABRDF_PI - pv;
+        d = -d;
+    }
+    pv = clamp(pv, 0.0, 0.5 * ABRDF_PI); // the steps may cross pi by a rounding
+    int iv[32], il[32];
+    float wt[32], wp[4] = {0.0, 1.0, 0.0, 0.0};
+    int nth = abrdf_huang_table_theta(nt, tv, tl, iv, il, wt);
+    int ip = 0;
+    if (nv > 1) {
+        float x = pv * (nv - 1) / (0.5 * ABRDF_PI);
+        ip = min((int)floor(x), nv - 2);
+        abrdf_huang_table_cr(x - ip, wp);
+    }
+    float width = nt * np, height = nt * nv;
+    color acc = color(0);
+    for (int q = 0; q < 4; ++q) {
+        if (wp[q] == 0.0) continue;
+        int jv = nv > 1 ? ip - 1 + q : 0;
+        float dd = d;
+        if (jv < 0) { // across phi_v = 0
+            jv = -jv;
+            dd = -dd;
+        }
+        if (jv > nv - 1) { // across phi_v = pi/2
+            jv = 2 * (nv - 1) - jv;
+            dd = -dd;
+        }
+        float x = (dd + ABRDF_PI) * np / (2.0 * ABRDF_PI), f = floor(x);
+        float wd[4];
+        abrdf_huang_table_cr(x - f, wd);
+        for (int a = 0; a < nth; ++a) {
+            float t = (iv[a] * nv + jv + 0.5) / height;
+            for (int k = 0; k < 4; ++k) {
+                int kd = (((int)f - 1 + k) % np + np) % np;
+                color c = texture(table, (il[a] * np + kd + 0.5) / width, t, 0, 0, 0, 0, "interp",
+                                  "closest", "wrap", "clamp");
+                acc += wp[q] * wt[a] * wd[k] * c;
+            }
+        }
+    }
+    color s = color(0);
+    for (int c = 0; c < 3; ++c) s[c] = acc[c] > 0.0 ? acc[c] / cv : 0.0;
+    return s;
+}
+
+// huang with its residual read from a table (the texture `table`, nt theta nodes, nv view
+// azimuths, np light azimuths, as abrdf_huang_table_size gives them): the library's prepared
+// huang on abrdf_prepare_huang_table. A table whose resolution is not (nt np, nt nv) is an
+// error, and the lobe is 0.
+color abrdf_huang_tabulated(vector wi, vector wo, float eta, float melanin, float redness,
+                            float cuticle_tilt, float aspect_ratio, float r, int entry_grid,
+                            int internal_grid, string table, int nt, int nv, int np)
+{
+    int res[2] = {0, 0};
+    if (!gettextureinfo(table, "resolution", res) || res[0] != nt * np || res[1] != nt * nv) {
+        error("abrdf: huang table %s: %d x %d texels, not %d x %d", table, res[0], res[1], nt * np,
+              nt * nv);
+        return color(0);
+    }
+    if (!(wi[2] > 0.0 && wo[2] > 0.0)) return color(0);
+    abrdf_huang_m m = abrdf_huang_setup(eta, melanin, redness, cuticle_tilt, aspect_ratio, r,
+                                        entry_grid, internal_grid);
+    // where S is 0 whatever the table: the view along the fibre, or a mesonormal the cuticle
+    // tilt hides from the view or the light (hair_huang_table.c, view_lit and light_lit)
+    float tan_tilt = tan(m.tilt);
+    float c_o = sqrt(wo[1] * wo[1] + wo[2] * wo[2]), c_i = sqrt(wi[1] * wi[1] + wi[2] * wi[2]);
+    if (!(c_o > ABRDF_HAIR_COS_MIN) || -tan_tilt * wo[0] / c_o > 1.0) return color(0);
+    color s = abrdf_huang_fibre_lobes(m, wi, wo, 0);
+    if (c_i > 0.0 && !(tan_tilt * wi[0] / c_i < -1.0))
+        s += abrdf_huang_table_residual(table, nt, nv, np, wi, wo);
     return s / wi[2]; // f_r = S / |N.wi|
 }
 

@@ -519,7 +519,8 @@ ABRDF_API int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared
  * LIFETIME as abrdf_prepare_measured: the prepared object points at `values`, which must
  * stay valid and unchanged while it (or a copy) is evaluated or sampled. Every prepared path
  * reads the table (eval, batch, sample weights); abrdf_eval and abrdf_prepare of ABRDF_HUANG
- * keep the quadrature, and so do the OSL and POV-Ray ports (docs/MODELS.md says why). */
+ * keep the quadrature, and so does the POV-Ray port; the OSL port reads the tables that
+ * `abrdf export --cycles --hair-table` writes (docs/OSL.md, "huang from a table"). */
 /* clang-format off */
 #define ABRDF_HUANG_TABLE_SIZES {24, 9, 32, 16} /* the sizes docs/MODELS.md measures */
 /* clang-format on */

@@ -70,9 +70,72 @@ class Export(unittest.TestCase):
         self.assertEqual(m["lobes"], ["huang"])
         self.assertEqual((m["melanin"], m["eta"]), (0.3, 1.55))
         self.assertIn("float melanin[1] = {\n        0.29999999999999999};", s["osl"])
-        self.assertIn("redness[m], cuticle_tilt[m], aspect_ratio[m],\n", s["osl"])
-        self.assertIn("entry_grid[m], internal_grid[m]);", s["osl"])
+        self.assertIn("melanin[m], redness[m], cuticle_tilt[m],\n", s["osl"])
+        self.assertIn("aspect_ratio[m], entry_grid[m], internal_grid[m]);", s["osl"])
         self.assertEqual((m["entry_grid"], m["internal_grid"]), (6, 3))
+        # per call: no table
+        self.assertNotIn("huang_table", m)
+        self.assertIn('string huang_table[1] = {\n        ""};', s["osl"])
+
+    def test_huang_tables_are_exported(self):
+        """--hair-table (--cycles, eval mode): every tabulated material's table in the script,
+        the very table abrdf render reads (its cache file's values, as float32), named in the
+        shader's huang_table array; the other formats and modes refuse it, as do bad sizes:
+        one line, exit 2, nothing written."""
+        hair = os.path.join(self.tmp.name, "hair.scene")
+        with open(hair, "w") as f:
+            f.write("camera position=0,0,6 look_at=0,0,0 resolution=24,24\n"
+                    "light directional direction=-0.45,0.75,0.55 intensity=2.5\n"
+                    "material brown table=hair_brown\nmaterial blond table=hair_blond\n"
+                    "material grey model=lambert kd=0.5\n"
+                    "capsule material=brown radius=0.6 height=1.4 tangent=v translate=-0.7,0,0\n"
+                    "sphere material=blond radius=0.6 tangent=v translate=0.8,0,0\n"
+                    "box material=grey size=4,4,0.1 translate=0,0,-1\n")
+        cache = os.path.join(self.tmp.name, "cache")
+        os.mkdir(cache)
+        s = self.scene("--hair-table-sizes", "6,3,8,1", "--hair-table-cache", cache, name=hair)
+        self.assertEqual([m["name"] for m in s["materials"]], ["brown", "blond", "grey"])
+        self.assertNotIn("huang_table", s["materials"][2])
+        cached = []
+        for name in sorted(os.listdir(cache)):
+            with open(os.path.join(cache, name), "rb") as f:
+                v = struct.unpack("<%dd" % (8 + 3 * 6 * 3 * 6 * 8), f.read())
+            cached.append(struct.pack("<%df" % (len(v) - 8), *v[8:]))
+        self.assertEqual(len(cached), 2)
+        exported = []
+        for m in s["materials"][:2]:
+            t = m["huang_table"]
+            self.assertEqual((t["width"], t["height"]), (6 * 8, 6 * 3))
+            exported.append(base64.b64decode(t["data"]))
+        self.assertEqual(sorted(exported), sorted(cached))
+        self.assertNotEqual(exported[0], exported[1])
+        self.assertIn('string huang_table[3] = {\n        "@ABRDF_TABLES@/abrdf_huang_0.pfm",\n'
+                      '        "@ABRDF_TABLES@/abrdf_huang_1.pfm",\n        ""};', s["osl"])
+        self.assertIn("int table_nt = 6, table_nv = 3, table_np = 8;", s["osl"])
+        pov = os.path.join(self.tmp.name, "x.pov")
+        for args, msg in [(("--pov", hair, "-o", pov, "--hair-table"),
+                           "--hair-table is an option of --cycles"),
+                          (("--cycles", hair, "-o", self.out, "--mode", "closure",
+                            "--hair-table"), "not by --mode closure"),
+                          (("--cycles", hair, "-o", self.out, "--hair-table-sizes", "6,3,8"),
+                           "is not NT,NV,NP,SETS"),
+                          (("--cycles", hair, "-o", self.out, "--hair-table-cache",
+                            os.path.join(self.tmp.name, "none")), "not a directory")]:
+            with open(self.out, "w") as f:
+                f.write("kept")
+            r = run(*args)
+            self.assertEqual(r.returncode, 2, (args, r.stderr))
+            self.assertIn(msg, r.stderr)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertFalse(os.path.exists(pov))
+            with open(self.out) as f:
+                self.assertEqual(f.read(), "kept")
+        # sizes the scene's material refuses (one view azimuth: a round fibre's): exit 1
+        r = run("--cycles", hair, "-o", self.out, "--hair-table-sizes", "6,1,8,1")
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("material 'brown' (line 3): huang table 6,1,8,1: ", r.stderr)
+        with open(self.out) as f:
+            self.assertEqual(f.read(), "kept")
 
     def test_huang_quadrature_grids_are_exported(self):
         # huang's grids (a budget choice coarsens entry_grid) reach both ports.

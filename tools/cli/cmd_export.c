@@ -9,6 +9,7 @@
 #define _POSIX_C_SOURCE 200809L /* open_memstream */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h> /* sysconf, isatty */
 
 #include "budget_run.h"
 #include "cli.h"
@@ -18,6 +19,7 @@
 #include "export.h"
 #include "export_pov.h"
 #include "gltf.h"
+#include "hair_table_args.h"
 #include "measured_standin.h"
 #include "out_file.h"
 #include "scene_load.h"
@@ -38,7 +40,8 @@ static int usage(void)
            "       abrdf export --cycles SCENE -o OUT.py [--model NAME [--set NAME=VALUE ...]]\n"
            "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
            "                    [--width W] [--height H] [--spp N] [--mode eval|closure|generic]\n"
-           "                    [--osl-dir DIR]\n"
+           "                    [--osl-dir DIR] [--hair-table [--hair-table-sizes S]\n"
+           "                    [--hair-table-cache DIR]]\n"
            "       abrdf export --gltf SCENE -o OUT.gltf|OUT.glb [--model NAME [--set ...]]\n"
            "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
            "                    [--width W] [--height H]\n\n"
@@ -70,7 +73,14 @@ static int usage(void)
            "  --mode M           (cycles) the script's default mode: eval (exact, default),\n"
            "                     closure (Cycles' closures and lights), generic (abrdf_eval.osl)\n"
            "  --osl-dir DIR      (cycles) abrdf's osl/ directory the script uses; default\n"
-           "                     $ABRDF_OSL_DIR, else the source tree's, else the installed one\n");
+           "                     $ABRDF_OSL_DIR, else the source tree's, else the installed one\n"
+           "  --hair-table       (cycles, eval mode) tabulate every huang material as abrdf\n"
+           "                     render --hair-table does (~2 min of one core per material at\n"
+           "                     the default sizes, over the online CPUs); the script holds\n"
+           "                     the tables and its shader reads them\n"
+           "                     (docs/OSL.md, \"huang from a table\")\n"
+           "  --hair-table-sizes NT,NV,NP,SETS   at these sizes (implies --hair-table)\n"
+           "  --hair-table-cache DIR   keep the tables in DIR (implies --hair-table)\n");
     return 0;
 }
 
@@ -112,6 +122,7 @@ typedef struct export_args {
     int pov, cycles, gltf, no_shadows, native; /* the format and --pov's lighting */
     int spp;                                   /* --cycles: 0 for the default */
     render_options opt;                        /* --width, --height */
+    hair_table_args hair; /* --hair-table, --hair-table-sizes, --hair-table-cache */
 } export_args;
 
 /* One option at argv[*i] (its value taken, *i advanced): 0, or the exit status after the
@@ -119,6 +130,8 @@ typedef struct export_args {
 static int take_option(export_args *ea, int argc, char **argv, int *i)
 {
     const char *a = argv[*i];
+    int hair = hair_table_option(&ea->hair, CMD, argc, argv, i);
+    if (hair) return hair < 0 ? -hair : 0;
     const cli_flag flags[] = {{"--pov", &ea->pov, 1},
                               {"--cycles", &ea->cycles, 1},
                               {"--gltf", &ea->gltf, 1},
@@ -176,6 +189,14 @@ static int export_args_parse(int argc, char **argv, export_args *ea)
         strcmp(ea->mode, "generic"))
         return cli_fail(CMD, "--mode is eval, closure or generic, not '%s'", ea->mode);
     if (scene_choice_check(&ea->choice, CMD)) return CLI_EXIT_USAGE;
+    int rc = hair_table_check(&ea->hair, CMD);
+    if (rc) return rc;
+    if (ea->hair.sizes[0] && !ea->cycles)
+        return cli_fail(CMD, "--hair-table is an option of --cycles (the other formats' "
+                             "models integrate huang per call)");
+    if (ea->hair.sizes[0] && ea->mode && strcmp(ea->mode, "eval"))
+        return cli_fail(CMD, "--hair-table is read by the eval mode's shader, not by --mode %s",
+                        ea->mode);
     return 0;
 }
 
@@ -208,8 +229,12 @@ static int export_write(const export_args *ea, const render_scene *rs, out_file 
                                  ea->native, ea->path, note};
         failed = export_pov_write(rs, &eo, o->f, err, sizeof err);
     } else {
-        export_options eo = {ea->path, ea->osl_dir ? ea->osl_dir : osl_dir_default(),
-                             ea->spp ? ea->spp : 4, ea->mode ? ea->mode : "eval", note};
+        export_options eo = {ea->path,
+                             ea->osl_dir ? ea->osl_dir : osl_dir_default(),
+                             ea->spp ? ea->spp : 4,
+                             ea->mode ? ea->mode : "eval",
+                             note,
+                             ea->opt.hair_tables};
         failed = export_cycles(o->f, rs, &eo, err, sizeof err);
     }
     if (failed) export_failed(o, ea->path, err, sizeof err);
@@ -318,11 +343,22 @@ int cmd_export(int argc, char **argv)
         fprintf(stderr, "abrdf export: %s\n", err);
         return 1;
     }
+    /* one store of huang tables for the budget's predictions and the script, built over the
+     * online CPUs */
+    hair_store tables;
+    if (ea.hair.sizes[0]) {
+        long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+        hair_store_init(&tables, ea.hair.sizes, ea.hair.cache,
+                        cpus > 1 ? (cpus < 64 ? (int)cpus : 64) : 1);
+        tables.progress = isatty(2);
+        ea.opt.hair_tables = ea.choice.how.hair_tables = &tables;
+    }
     const char *out_role = "output";
     if (scene_outputs_distinct(&s, &ea.out, &out_role, 1, err, sizeof err))
         rc = cli_fail(CMD, "%s", err);
     else
         rc = export_scene(&ea, &s);
+    if (ea.hair.sizes[0]) hair_store_free(&tables);
     scene_free(&s);
     return rc;
 }

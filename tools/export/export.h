@@ -18,6 +18,8 @@ typedef struct export_options {
     int spp;                /* samples per pixel of the host renderer */
     const char *mode;       /* default mode of the script: "eval" or "closure" */
     const char *notes;      /* NULL, or lines written as comments (the selection's trace) */
+    const hair_store *hair_tables; /* the huang tables render_prepare read (the materials it
+                                    * tabulated), written beside the script; NULL: none */
 } export_options;
 
 /* Write the script to f; returns 0, or -1 with a message in err. */

@@ -129,8 +129,9 @@ static void write_osl_objects(FILE *f, const render_scene *rs)
     OSL_ARRAY(f, "int", "material", no, fprintf(f, "%d", s->objects[i_].material));
 }
 
-/* The materials' arrays: lobes, every parameter, the layer stack and the ambient term. */
-static void write_osl_materials(FILE *f, const render_scene *rs)
+/* The materials' arrays: lobes, every parameter, the layer stack, the ambient term and the
+ * huang tables' files. */
+static void write_osl_materials(FILE *f, const render_scene *rs, const hair_store *tables)
 {
     int nm = rs->material_count;
     OSL_ARRAY(f, "int", "lobe_count", nm, fprintf(f, "%d", rs->materials[i_].lobe_count));
@@ -173,6 +174,14 @@ static void write_osl_materials(FILE *f, const render_scene *rs)
     OSL_ARRAY(f, "float", "layer_depth", 4 * nm,
               fprintf(f, G, rs->materials[i_ / 4].params.layers[i_ % 4].depth));
     OSL_ARRAY(f, "color", "ambient", nm, osl_vec(f, "color", rs->materials[i_].ambient));
+    /* huang's tables (docs/OSL.md, "huang from a table"): the file the script writes into its
+     * work directory, "" where the material integrates per call */
+    OSL_ARRAY(
+        f, "string", "huang_table", nm,
+        fprintf(f, rs->materials[i_].tabulated ? "\"@ABRDF_TABLES@/abrdf_huang_%d.pfm\"" : "\"\"",
+                i_));
+    const int *ts = tables ? tables->sizes : (const int[4]){0, 0, 0, 0};
+    fprintf(f, "    int table_nt = %d, table_nv = %d, table_np = %d;\n", ts[0], ts[1], ts[2]);
 }
 
 /* The lights' arrays (point or directional, position, direction, irradiance). */
@@ -261,17 +270,23 @@ static void write_osl_shading(FILE *f)
         "reach);\n"
         "            if (blocked) continue;\n"
         "            vector li = abrdf_to_local(wi, T, B, nrm);\n"
-        "            color f = abrdf_eval(lobe0[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
-        "                                 anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m],\n"
-        "                                 layer_count[m], le, lk, lr, ls, ld, eta[m], melanin[m],\n"
-        "                                 redness[m], cuticle_tilt[m], aspect_ratio[m],\n"
-        "                                 entry_grid[m], internal_grid[m]);\n"
-        "            if (lobe_count[m] > 1)\n"
-        "                f += abrdf_eval(lobe1[m], li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
-        "                                anisotropic[m], sigma[m], clearcoat_gloss[m], k_amp[m],\n"
-        "                                layer_count[m], le, lk, lr, ls, ld, eta[m], melanin[m],\n"
-        "                                redness[m], cuticle_tilt[m], aspect_ratio[m],\n"
-        "                                entry_grid[m], internal_grid[m]);\n"
+        "            color f = 0;\n"
+        "            for (int k = 0; k < (lobe_count[m] > 1 ? 2 : 1); ++k) {\n"
+        "                string lobe = k ? lobe1[m] : lobe0[m];\n"
+        "                if (lobe == \"huang\" && huang_table[m] != \"\")\n"
+        "                    f += abrdf_huang_tabulated(li, lo, eta[m], melanin[m], redness[m],\n"
+        "                                               cuticle_tilt[m], aspect_ratio[m], r[m],\n"
+        "                                               entry_grid[m], internal_grid[m],\n"
+        "                                               huang_table[m], table_nt, table_nv,\n"
+        "                                               table_np);\n"
+        "                else\n"
+        "                    f += abrdf_eval(lobe, li, lo, kd[m], ks[m], f0[m], n[m], r[m],\n"
+        "                                    anisotropic[m], sigma[m], clearcoat_gloss[m],\n"
+        "                                    k_amp[m], layer_count[m], le, lk, lr, ls, ld, "
+        "eta[m],\n"
+        "                                    melanin[m], redness[m], cuticle_tilt[m],\n"
+        "                                    aspect_ratio[m], entry_grid[m], internal_grid[m]);\n"
+        "            }\n"
         "            L += light_e[l] * falloff * ci * f;\n"
         "        }\n"
         "    }\n"
@@ -281,11 +296,11 @@ static void write_osl_shading(FILE *f)
 }
 
 /* The generated shader: the built-in renderer's direct lighting of this scene. */
-static void write_osl(FILE *f, const render_scene *rs)
+static void write_osl(FILE *f, const render_scene *rs, const hair_store *tables)
 {
     write_osl_head(f, rs);
     write_osl_objects(f, rs);
-    write_osl_materials(f, rs);
+    write_osl_materials(f, rs, tables);
     write_osl_lights(f, rs);
     write_osl_shading(f);
 }
@@ -456,8 +471,42 @@ static void py_lights(FILE *f, const scene *s, char *env_path[SCENE_MAX_LIGHTS])
     fputs("    ],\n", f);
 }
 
-/* SCENE["materials"]: the prepared models and parameters, the layer stack whole. */
-static void py_materials(FILE *f, const render_scene *rs)
+/* The doubles before a huang table's nodes (abrdf.h, "huang tabulated": a header of 8). */
+#define TABLE_HEADER 8
+
+/* A tabulated material's "huang_table": the table's values after its header as float32 (the
+ * texture abrdf_cycles.py writes, osl/abrdf_hair.h reads), nt np wide and nt nv high. 0, or -1
+ * with the reason in err. */
+static int py_huang_table(FILE *f, const hair_store *tables, const abrdf_params *p,
+                          const char *name, char *err, size_t err_size)
+{
+    const double *v = tables ? hair_store_table(tables, p) : NULL;
+    long n = 0;
+    int rows = 0;
+    if (!v || abrdf_huang_table_size(p, tables->sizes, &n, &rows) != ABRDF_OK) {
+        snprintf(err, err_size, "material '%s': no huang table to export", name);
+        return -1;
+    }
+    n -= TABLE_HEADER;
+    float *x = malloc((size_t)n * sizeof *x);
+    if (!x) {
+        snprintf(err, err_size, "material '%s': no memory for its huang table", name);
+        return -1;
+    }
+    for (long i = 0; i < n; ++i) x[i] = (float)v[TABLE_HEADER + i];
+    const int *sz = tables->sizes;
+    fprintf(f, ",\n         \"huang_table\": {\"width\": %d, \"height\": %d, \"data\": ",
+            sz[0] * sz[2], sz[0] * sz[1]);
+    py_floats(f, x, (size_t)n);
+    fputs("}", f);
+    free(x);
+    return 0;
+}
+
+/* SCENE["materials"]: the prepared models and parameters, the layer stack whole, and the
+ * huang table of a tabulated material. 0, or -1 with the reason in err. */
+static int py_materials(FILE *f, const render_scene *rs, const hair_store *tables, char *err,
+                        size_t err_size)
 {
     const scene *s = rs->src;
     fputs("    \"materials\": [\n", f);
@@ -494,9 +543,14 @@ static void py_materials(FILE *f, const render_scene *rs)
             vec3(f, ly->sigma_a);
             fprintf(f, ", \"depth\": " G "}", ly->depth);
         }
-        fputs("]},\n", f);
+        fputs("]", f);
+        if (m->tabulated &&
+            py_huang_table(f, tables, &m->params, s->materials[i].name, err, err_size))
+            return -1;
+        fputs("},\n", f);
     }
     fputs("    ],\n", f);
+    return 0;
 }
 
 /* SCENE["objects"]: shape, size and transform as the scene file gives them. */
@@ -564,11 +618,11 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
         return -1;
     py_head(f, rs, opt);
     py_lights(f, s, env_path);
-    py_materials(f, rs);
+    if (py_materials(f, rs, opt->hair_tables, err, err_size)) return -1;
     py_objects(f, s);
     py_meshes(f, s);
     fputs("    \"osl\": r\"\"\"", f);
-    write_osl(f, rs);
+    write_osl(f, rs, opt->hair_tables);
     fputs("\"\"\",\n}\n\n"
           "if __name__ == \"__main__\":\n"
           "    sys.path.insert(0, SCENE[\"osl_dir\"])\n"

@@ -178,6 +178,15 @@ int hair_store_get(hair_store *t, const abrdf_params *p, const char *what, abrdf
     return 0;
 }
 
+const double *hair_store_table(const hair_store *t, const abrdf_params *p)
+{
+    abrdf_prepared unused;
+    for (int i = 0; i < t->count; ++i)
+        if (abrdf_prepare_huang_table(p, t->sizes, t->values[i], &unused) == ABRDF_OK)
+            return t->values[i];
+    return NULL;
+}
+
 /* ---- what an evaluation costs ----------------------------------------------------------- */
 
 double hair_store_cost(const abrdf_prepared *table, const abrdf_params *p, const abrdf_costs *costs)

@@ -33,6 +33,10 @@ void hair_store_free(hair_store *t);
 int hair_store_get(hair_store *t, const abrdf_params *p, const char *what, abrdf_prepared *out,
                    char *err, size_t err_size);
 
+/* The table this store holds for parameters p (its doubles, header first; they stay the
+ * store's), or NULL if it holds none: a table hair_store_get built or read for p. */
+const double *hair_store_table(const hair_store *t, const abrdf_params *p);
+
 /* What one evaluation of the prepared table costs in the unit of costs (NULL: the built-in
  * table) for the budget mode (abrdf_budget.reference_cost): budget_prepared_cost of huang,
  * its entry times the ratio of the table's time to the quadrature's at the default grids.

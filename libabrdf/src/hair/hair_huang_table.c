@@ -20,7 +20,8 @@
  *   d:                np nodes -pi + k 2 pi / np, periodic.
  * The table holds the residual S times cos(theta_v) (S has 1/cos(theta_v) from the fibre's
  * projected width, hair_huang.c), as v[((((iv nv + jv) nt + il) np + k) 3 + channel], one
- * row (iv, jv) per view node. Catmull-Rom (exact at the nodes) along theta_v at fixed
+ * row (iv, jv) per view node; in the rows at phi_v = 0 and pi/2 (the mirror lines) the mean
+ * at d and -d. osl/abrdf_hair.h (abrdf_huang_tabulated) reads the same table as an image. Catmull-Rom (exact at the nodes) along theta_v at fixed
  * theta_v + theta_l, along theta_v + theta_l, and in each azimuth (theta_stencil says why and
  * how the theta ends are read); beyond the end theta nodes the end value repeats; across
  * phi_v's ends the stencil reads the mirrored node with d's sign turned; a negative result
