@@ -132,11 +132,23 @@ def mesh_for(o, segments):
     return me
 
 
+# What a huang table depends on of a material's entry, in the order its "params" lists them.
+HUANG_TABLE_PARAMS = ("eta", "melanin", "redness", "cuticle_tilt", "aspect_ratio", "r",
+                      "entry_grid", "internal_grid")
+
+
 def write_huang_tables(s, workdir):
     """The eval shader's text with its huang tables in place: each tabulated material's table
     (SCENE["materials"][m]["huang_table"], float32 RGB, the first row at the top) written as
     workdir/abrdf_huang_<m>.pfm, a float image Cycles' OSL texture() reads texel for texel,
-    and the shader's @ABRDF_TABLES@ turned into workdir (docs/OSL.md, "huang from a table")."""
+    and the shader's @ABRDF_TABLES@ turned into workdir (docs/OSL.md, "huang from a table").
+    A material whose parameters differ from those its table was built for is refused."""
+    for m in s["materials"]:  # every one checked before any file is written
+        t = m.get("huang_table")
+        if t and [m[p] for p in HUANG_TABLE_PARAMS] != list(t["params"]):
+            raise SystemExit("abrdf_cycles: material '%s': its huang table was built for %s, "
+                             "not %s; export the scene again" % (
+                                 m["name"], t["params"], [m[p] for p in HUANG_TABLE_PARAMS]))
     for k, m in enumerate(s["materials"]):
         t = m.get("huang_table")
         if not t:
@@ -384,6 +396,9 @@ def eval_inputs(s, m):
 
 def build(s, mode, workdir, osl_dir, segments=64):
     """Build the scene in an empty file; return the scene datablock."""
+    if '"' in os.path.abspath(workdir):
+        raise SystemExit("abrdf_cycles: work directory %r: its path has a double quote, and the "
+                         "shaders compiled there would not load" % workdir)
     bpy.ops.wm.read_factory_settings(use_empty=True)
     sc = bpy.context.scene
     setup_render(sc, s, s["samples"])

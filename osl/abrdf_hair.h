@@ -889,13 +889,13 @@ color abrdf_huang_tabulated(vector wi, vector wo, float eta, float melanin, floa
                             float cuticle_tilt, float aspect_ratio, float r, int entry_grid,
                             int internal_grid, string table, int nt, int nv, int np)
 {
+    if (!(wi[2] > 0.0 && wo[2] > 0.0)) return color(0);
     int res[2] = {0, 0};
     if (!gettextureinfo(table, "resolution", res) || res[0] != nt * np || res[1] != nt * nv) {
         error("abrdf: huang table %s: %d x %d texels, not %d x %d", table, res[0], res[1], nt * np,
               nt * nv);
         return color(0);
     }
-    if (!(wi[2] > 0.0 && wo[2] > 0.0)) return color(0);
     abrdf_huang_m m = abrdf_huang_setup(eta, melanin, redness, cuticle_tilt, aspect_ratio, r,
                                         entry_grid, internal_grid);
     // where S is 0 whatever the table: the view along the fibre, or a mesonormal the cuticle

@@ -506,9 +506,9 @@ ABRDF_API int abrdf_prepare_measured(const abrdf_measured *table, abrdf_prepared
  * on [0, 90] degrees (the elliptical section's mirror symmetries give the rest; 1 only for a
  * round fibre, aspect_ratio 1), sizes[2] azimuths of the light relative to the view's
  * (periodic), each node the mean of sizes[3] shift sets (at the view azimuths 0 and 90
- * degrees, the mirror lines, the mean at the light azimuths d and -d). The values are the table's own
- * format, native doubles: a header of 8 (a mark, the format 1, the four sizes, and two
- * 32-bit keys of the material's parameters and of the revision of the library's quadrature
+ * degrees, the mirror lines, the mean at the light azimuths d and -d). The values are the
+ * table's own format, native doubles: a header of 8 (a mark, the format 1, the four sizes,
+ * and two 32-bit keys of the material's parameters and of the revision of the library's quadrature
  * and table build), then the nodes. A table is valid only for the parameters and the
  * library it was built by: abrdf_prepare_huang_table compares the header and returns
  * ABRDF_E_TABLE for another material, other sizes, a table kept in a file by a library of

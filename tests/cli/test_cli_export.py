@@ -117,6 +117,10 @@ class Export(unittest.TestCase):
                            "--hair-table is an option of --cycles"),
                           (("--cycles", hair, "-o", self.out, "--mode", "closure",
                             "--hair-table"), "not by --mode closure"),
+                          (("--cycles", hair, "-o", self.out, "--mode", "generic",
+                            "--hair-table"), "not by --mode generic"),
+                          (("--gltf", hair, "-o", os.path.join(self.tmp.name, "x.gltf"),
+                            "--hair-table"), "--hair-table is an option of --cycles"),
                           (("--cycles", hair, "-o", self.out, "--hair-table-sizes", "6,3,8"),
                            "is not NT,NV,NP,SETS"),
                           (("--cycles", hair, "-o", self.out, "--hair-table-cache",
@@ -127,7 +131,8 @@ class Export(unittest.TestCase):
             self.assertEqual(r.returncode, 2, (args, r.stderr))
             self.assertIn(msg, r.stderr)
             self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
-            self.assertFalse(os.path.exists(pov))
+            self.assertFalse(os.path.exists(pov) or
+                             os.path.exists(os.path.join(self.tmp.name, "x.gltf")))
             with open(self.out) as f:
                 self.assertEqual(f.read(), "kept")
         # sizes the scene's material refuses (one view azimuth: a round fibre's): exit 1

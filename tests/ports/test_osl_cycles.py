@@ -266,6 +266,16 @@ class CrossCheck(unittest.TestCase):
                          "%.1e)\n" % (nmse, far))
         self.assertLess(nmse, 1e-9)
         self.assertGreater(far, 1e-5)
+        # a material edited in the script since: its table no longer describes it, refused
+        s = runpy.run_path(os.path.join(WORK, "eval_hair_scene_table_1", "scene.py"),
+                           run_name="abrdf_scene")["SCENE"]
+        s["materials"][1]["melanin"] += 0.1
+        edited = os.path.join(WORK, "hair_edited")
+        os.makedirs(edited, exist_ok=True)
+        with self.assertRaises(SystemExit) as e:
+            abrdf_cycles.write_huang_tables(s, edited)
+        self.assertIn("material 'blond': its huang table was built for", str(e.exception))
+        self.assertEqual(os.listdir(edited), [])  # nothing written
 
     def test_generic_shader_on_a_box(self):
         # abrdf_eval.osl, lights as parameters, on the mesh itself (no re-trace): exact

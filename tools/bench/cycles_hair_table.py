@@ -8,7 +8,8 @@ The scene (default tools/bench/hair_robot.scene: three hair materials under four
 exported by `abrdf export --cycles` in evaluation mode (one sample per pixel) in three forms:
 huang integrated per call; huang read from its tables (--hair-table; built first, or read
 from --hair-table-cache); and, for scale, every material as lambert. Each form is rendered at
-the size given and at twice it in each dimension, all in this one process: each built once,
+the size given and at twice it in each dimension (the tables built once, into a cache of
+its own if none is given), all in this one process: each built once,
 rendered once untimed, then --reps times, timed (the wall time of bpy.ops.render.render; a
 line "cycles_hair_table FORM WxH render_seconds S" per render). A render's fixed costs
 (the scene's sync, the shader's JIT compilation, which Cycles repeats per render) are the
@@ -48,10 +49,6 @@ def main():
     sys.path.insert(0, OSL_DIR)
     import abrdf_cycles  # bpy with it
 
-    table = (["--hair-table-cache", a.hair_table_cache] if a.hair_table_cache else []) + \
-            (["--hair-table-sizes", a.hair_table_sizes] if a.hair_table_sizes else []) or \
-            ["--hair-table"]
-    forms = {"per_call": [], "table": table, "lambert": ["--model", "lambert"]}
     sizes = [(a.width, a.height), (2 * a.width, 2 * a.height)]
 
     def abrdf(*args):
@@ -62,6 +59,12 @@ def main():
 
     best, evals, nmse = {}, {}, {}
     with tempfile.TemporaryDirectory(prefix="abrdf_hair_table_") as d:
+        # without a cache of the caller's, one here: each table built once for the four uses
+        cache = a.hair_table_cache or os.path.join(d, "cache")
+        os.makedirs(cache, exist_ok=True)
+        table = ["--hair-table-cache", cache] + (
+            ["--hair-table-sizes", a.hair_table_sizes] if a.hair_table_sizes else [])
+        forms = {"per_call": [], "table": table, "lambert": ["--model", "lambert"]}
         for form, extra in forms.items():
             for w, h in sizes:
                 key, tag = (form, w), "%s_%dx%d" % (form, w, h)

@@ -1,5 +1,6 @@
 /* hair_table_args.h - the options of huang tables (abrdf.h, "huang tabulated") that `abrdf
- * render` and `abrdf bench --budget` share, parsed and checked in one place:
+ * render`, `abrdf bench --budget`, `abrdf advise` and `abrdf export --cycles` share, parsed and
+ * checked in one place:
  *
  *   --hair-table                       tabulate every huang material at the default sizes
  *   --hair-table-sizes NT,NV,NP,SETS   at these sizes (implies --hair-table)

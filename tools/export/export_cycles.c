@@ -176,10 +176,10 @@ static void write_osl_materials(FILE *f, const render_scene *rs, const hair_stor
     OSL_ARRAY(f, "color", "ambient", nm, osl_vec(f, "color", rs->materials[i_].ambient));
     /* huang's tables (docs/OSL.md, "huang from a table"): the file the script writes into its
      * work directory, "" where the material integrates per call */
-    OSL_ARRAY(
-        f, "string", "huang_table", nm,
-        fprintf(f, rs->materials[i_].tabulated ? "\"@ABRDF_TABLES@/abrdf_huang_%d.pfm\"" : "\"\"",
-                i_));
+    OSL_ARRAY(f, "string", "huang_table", nm,
+              rs->materials[i_].tabulated
+                  ? (void)fprintf(f, "\"@ABRDF_TABLES@/abrdf_huang_%d.pfm\"", i_)
+                  : (void)fputs("\"\"", f));
     const int *ts = tables ? tables->sizes : (const int[4]){0, 0, 0, 0};
     fprintf(f, "    int table_nt = %d, table_nv = %d, table_np = %d;\n", ts[0], ts[1], ts[2]);
 }
@@ -330,30 +330,21 @@ static void py_b64(FILE *f, const void *data, size_t bytes)
     fputc('"', f);
 }
 
-/* Little-endian copies (the script reads "<f4" and "<i4" whatever the host). */
-static void py_floats(FILE *f, const float *v, size_t n)
+/* n 32-bit words (float or int, as v holds them) as base64 of their little-endian bytes (the
+ * script reads "<f4" and "<i4" whatever the host). 0, or -1 if out of memory (nothing
+ * written). */
+static int py_words(FILE *f, const void *v, size_t n)
 {
     unsigned char *b = malloc(4 * n + 1);
-    if (!b) return; /* ferror-free truncation is caught by the caller's size check */
+    if (!b) return -1;
     for (size_t i = 0; i < n; ++i) {
         uint32_t u;
-        memcpy(&u, &v[i], 4);
+        memcpy(&u, (const unsigned char *)v + 4 * i, 4);
         for (int k = 0; k < 4; ++k) b[4 * i + (size_t)k] = (unsigned char)(u >> (8 * k));
     }
     py_b64(f, b, 4 * n);
     free(b);
-}
-
-static void py_ints(FILE *f, const int *v, size_t n)
-{
-    unsigned char *b = malloc(4 * n + 1);
-    if (!b) return;
-    for (size_t i = 0; i < n; ++i) {
-        uint32_t u = (uint32_t)v[i];
-        for (int k = 0; k < 4; ++k) b[4 * i + (size_t)k] = (unsigned char)(u >> (8 * k));
-    }
-    py_b64(f, b, 4 * n);
-    free(b);
+    return 0;
 }
 
 /* A mesh object's own fields in SCENE["objects"]. */
@@ -364,8 +355,9 @@ static void py_mesh_object(FILE *f, const scene_object *o)
 }
 
 /* SCENE["meshes"]: every mesh file, object space, the normals the built-in renderer
- * interpolates (corner normals: tri_normal indexes normals). */
-static void py_meshes(FILE *f, const scene *s)
+ * interpolates (corner normals: tri_normal indexes normals). 0, or -1 with the reason in err
+ * (out of memory). */
+static int py_meshes(FILE *f, const scene *s, char *err, size_t err_size)
 {
     fputs("    \"meshes\": [\n", f);
     for (int i = 0; i < s->mesh_count; ++i) {
@@ -375,16 +367,21 @@ static void py_meshes(FILE *f, const scene *s)
         fprintf(f,
                 ", \"vertices\": %d, \"triangles\": %d,\n         \"positions\": ", m->vertex_count,
                 m->triangle_count);
-        py_floats(f, m->position, 3 * (size_t)m->vertex_count);
+        int failed = py_words(f, m->position, 3 * (size_t)m->vertex_count);
         fputs(",\n         \"normals\": ", f);
-        py_floats(f, m->normal, 3 * (size_t)m->normal_count);
+        failed |= py_words(f, m->normal, 3 * (size_t)m->normal_count);
         fputs(",\n         \"tri\": ", f);
-        py_ints(f, m->tri, 3 * (size_t)m->triangle_count);
+        failed |= py_words(f, m->tri, 3 * (size_t)m->triangle_count);
         fputs(",\n         \"tri_normal\": ", f);
-        py_ints(f, m->tri_normal, 3 * (size_t)m->triangle_count);
+        failed |= py_words(f, m->tri_normal, 3 * (size_t)m->triangle_count);
         fputs("},\n", f);
+        if (failed) {
+            snprintf(err, err_size, "mesh '%s': no memory to write its arrays", m->path);
+            return -1;
+        }
     }
     fputs("    ],\n", f);
+    return 0;
 }
 
 /* What Cycles cannot be given as the built-in renderer has it: tangent=uv, and in eval and
@@ -495,12 +492,17 @@ static int py_huang_table(FILE *f, const hair_store *tables, const abrdf_params 
     }
     for (long i = 0; i < n; ++i) x[i] = (float)v[TABLE_HEADER + i];
     const int *sz = tables->sizes;
-    fprintf(f, ",\n         \"huang_table\": {\"width\": %d, \"height\": %d, \"data\": ",
-            sz[0] * sz[2], sz[0] * sz[1]);
-    py_floats(f, x, (size_t)n);
+    /* the parameters it was built for: the script refuses it for a material edited since */
+    fprintf(f,
+            ",\n         \"huang_table\": {\"params\": [" G ", " G ", " G ", " G ", " G ", " G
+            ", %d, %d], \"width\": %d, \"height\": %d, \"data\": ",
+            p->eta, p->melanin, p->redness, p->cuticle_tilt, p->aspect_ratio, p->r, p->entry_grid,
+            p->internal_grid, sz[0] * sz[2], sz[0] * sz[1]);
+    int failed = py_words(f, x, (size_t)n);
     fputs("}", f);
     free(x);
-    return 0;
+    if (failed) snprintf(err, err_size, "material '%s': no memory for its huang table", name);
+    return failed ? -1 : 0;
 }
 
 /* SCENE["materials"]: the prepared models and parameters, the layer stack whole, and the
@@ -620,7 +622,7 @@ int export_cycles(FILE *f, const render_scene *rs, const export_options *opt, ch
     py_lights(f, s, env_path);
     if (py_materials(f, rs, opt->hair_tables, err, err_size)) return -1;
     py_objects(f, s);
-    py_meshes(f, s);
+    if (py_meshes(f, s, err, err_size)) return -1;
     fputs("    \"osl\": r\"\"\"", f);
     write_osl(f, rs, opt->hair_tables);
     fputs("\"\"\",\n}\n\n"

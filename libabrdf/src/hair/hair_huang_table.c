@@ -21,8 +21,9 @@
  * The table holds the residual S times cos(theta_v) (S has 1/cos(theta_v) from the fibre's
  * projected width, hair_huang.c), as v[((((iv nv + jv) nt + il) np + k) 3 + channel], one
  * row (iv, jv) per view node; in the rows at phi_v = 0 and pi/2 (the mirror lines) the mean
- * at d and -d. osl/abrdf_hair.h (abrdf_huang_tabulated) reads the same table as an image. Catmull-Rom (exact at the nodes) along theta_v at fixed
- * theta_v + theta_l, along theta_v + theta_l, and in each azimuth (theta_stencil says why and
+ * at d and -d. osl/abrdf_hair.h (abrdf_huang_tabulated) reads the same table as an image.
+ * Catmull-Rom (exact at the nodes) along theta_v at fixed theta_v + theta_l, along
+ * theta_v + theta_l, and in each azimuth (theta_stencil says why and
  * how the theta ends are read); beyond the end theta nodes the end value repeats; across
  * phi_v's ends the stencil reads the mirrored node with d's sign turned; a negative result
  * (the cubic's overshoot) reads as 0. */
@@ -131,7 +132,8 @@ void abrdf__huang_table_rows(const abrdf__huang *m, const abrdf__huang_table *t,
         /* The view azimuths 0 and pi/2 lie on the ellipse's mirror lines: there the model is
          * the same at d and -d, and the read folds across them onto -d (residual), so it is
          * continuous only if these rows are. The shift sets' noise is not symmetric; the mean
-         * of the two is the model's symmetry kept (and twice the nodes' samples). */
+         * of the two is the model's symmetry kept (and twice the nodes' samples, but at d = 0
+         * and pi, their own mirror images). */
         if (jv == 0 || jv == nv - 1)
             for (int il = 0; il < nt; ++il)
                 for (int k = 1; 2 * k < np; ++k) {
