@@ -376,12 +376,18 @@ def material_inputs(m):
     return d
 
 
-def eval_inputs(s, m):
-    """abrdf_eval.osl's inputs: one lobe, the scene's first four lights, the ambient term."""
+def eval_inputs(s, m, table=None):
+    """abrdf_eval.osl's inputs: one lobe, the scene's first four lights, the ambient term, and
+    the path of the material's huang table when it has one."""
     if len(m["lobes"]) != 1 or len(s["lights"]) > 4:
         raise ValueError("generic mode: one lobe per material and at most 4 lights")
     d = material_inputs(m)
     del d["model2"]
+    d["entry_grid"], d["internal_grid"] = m["entry_grid"], m["internal_grid"]
+    if table:
+        d["huang_table"] = table
+        sizes = m["huang_table"]["sizes"]
+        d["huang_table_nt"], d["huang_table_nv"], d["huang_table_np"] = sizes[:3]
     d["ka"] = m["ambient"]
     d["ambient"] = (1.0, 1.0, 1.0)  # ka * Ia is already in "ambient" of the material
     for k, l in enumerate(s["lights"]):
@@ -421,6 +427,7 @@ def build(s, mode, workdir, osl_dir, segments=64):
     elif mode == "generic":
         path = os.path.join(workdir, "abrdf_eval.osl")
         shutil.copy2(os.path.join(osl_dir, "abrdf_eval.osl"), path)
+        write_huang_tables(s, workdir)
         sc.cycles.max_bounces = 0
     else:
         path = os.path.join(workdir, "abrdf_material.osl")
@@ -452,7 +459,9 @@ def build(s, mode, workdir, osl_dir, segments=64):
             key = (o["material"], o.get("tangent", "u"), tuple(o.get("tangent_axis", (1, 0, 0))))
             if key not in variants:
                 m = s["materials"][o["material"]]
-                inputs = eval_inputs(s, m) if mode == "generic" else material_inputs(m)
+                table = os.path.abspath(os.path.join(workdir, "abrdf_huang_%d.pfm" % o["material"]))
+                inputs = (eval_inputs(s, m, table if m.get("huang_table") else None)
+                          if mode == "generic" else material_inputs(m))
                 inputs["tangent_rule"], inputs["tangent_axis"] = key[1], key[2]
                 variants[key] = shader_material("%s.%d" % (m["name"], len(variants)), path, inputs)
             mat = variants[key]

@@ -106,19 +106,24 @@ class Export(unittest.TestCase):
         for m in s["materials"][:2]:
             t = m["huang_table"]
             self.assertEqual((t["width"], t["height"]), (6 * 8, 6 * 3))
+            self.assertEqual(t["sizes"], [6, 3, 8, 1])
             exported.append(base64.b64decode(t["data"]))
         self.assertEqual(sorted(exported), sorted(cached))
         self.assertNotEqual(exported[0], exported[1])
         self.assertIn('string huang_table[3] = {\n        "@ABRDF_TABLES@/abrdf_huang_0.pfm",\n'
                       '        "@ABRDF_TABLES@/abrdf_huang_1.pfm",\n        ""};', s["osl"])
         self.assertIn("int table_nt = 6, table_nv = 3, table_np = 8;", s["osl"])
+        # the generic mode's shader reads them too (abrdf_cycles.eval_inputs)
+        g = self.scene("--mode", "generic", "--hair-table-sizes", "6,3,8,1",
+                       "--hair-table-cache", cache, name=hair)
+        self.assertEqual(g["mode"], "generic")
+        self.assertEqual(g["materials"][0]["huang_table"]["data"],
+                         s["materials"][0]["huang_table"]["data"])
         pov = os.path.join(self.tmp.name, "x.pov")
         for args, msg in [(("--pov", hair, "-o", pov, "--hair-table"),
                            "--hair-table is an option of --cycles"),
                           (("--cycles", hair, "-o", self.out, "--mode", "closure",
                             "--hair-table"), "not by --mode closure"),
-                          (("--cycles", hair, "-o", self.out, "--mode", "generic",
-                            "--hair-table"), "not by --mode generic"),
                           (("--gltf", hair, "-o", os.path.join(self.tmp.name, "x.gltf"),
                             "--hair-table"), "--hair-table is an option of --cycles"),
                           (("--cycles", hair, "-o", self.out, "--hair-table-sizes", "6,3,8"),

@@ -286,11 +286,11 @@ class CrossCheck(unittest.TestCase):
         # by sampling alone (NMSE 4e-2 measured), so that lobe is checked at a gloss whose
         # highlight spans pixels. The exact check of every default is test_models_on_scenes.
         sets = {"disney_clearcoat": ("clearcoat_gloss=0.3",)}
-        # huang is not rendered here: 64 samples per pixel of its quadrature take the C
-        # renderer 293 s on this box (2 threads). Its twin is checked exactly by
-        # test_models_on_scenes, and the generic shader's hair parameters (eta, melanin,
-        # redness, cuticle_tilt, aspect_ratio, r) by marschner, which reads all of them; its
-        # quadrature grids by a VARIANTS row.
+        # huang is rendered from a table (12, 3, 8, 1; the shader's huang_table input): 64
+        # samples per pixel of its quadrature take the C renderer 293 s on this box (2
+        # threads). Its quadrature twin is checked exactly by test_models_on_scenes, and the
+        # generic shader's hair parameters (eta, melanin, redness, cuticle_tilt,
+        # aspect_ratio, r) by marschner, which reads all of them; its grids by a VARIANTS row.
         skip = {"huang"}
         failures = []
         for model in [m for m in self.rendered if m not in skip]:
@@ -300,7 +300,15 @@ class CrossCheck(unittest.TestCase):
             self.table[(model, "box_point (abrdf_eval.osl)")] = nmse
             if not nmse < NMSE_MAX:
                 failures.append("%s: NMSE %.3g" % (model, nmse))
-        print_table([m for m in self.rendered if m not in skip], self.table, 0,
+        if "huang" in self.rendered:
+            nmse = render_pair("box_point", "tests/data/scenes/box_point.scene", 48, 48, "huang",
+                               samples=64, mode="generic", c_spp=64, variant="_table",
+                               both_args=("--hair-table-sizes", "12,3,8,1"))
+            self.table[("huang", "box_point (abrdf_eval.osl)")] = nmse
+            if not nmse < NMSE_MAX:
+                failures.append("huang from a table: NMSE %.3g" % nmse)
+        print_table([m for m in self.rendered if m not in skip] +
+                    (["huang"] if "huang" in self.rendered else []), self.table, 0,
                     ["box_point (abrdf_eval.osl)"])
         self.assertEqual(failures, [])
 

@@ -74,10 +74,10 @@ static int usage(void)
            "                     closure (Cycles' closures and lights), generic (abrdf_eval.osl)\n"
            "  --osl-dir DIR      (cycles) abrdf's osl/ directory the script uses; default\n"
            "                     $ABRDF_OSL_DIR, else the source tree's, else the installed one\n"
-           "  --hair-table       (cycles, eval mode) tabulate every huang material as abrdf\n"
-           "                     render --hair-table does (~2 min of one core per material at\n"
-           "                     the default sizes, over the online CPUs); the script holds\n"
-           "                     the tables and its shader reads them\n"
+           "  --hair-table       (cycles, eval and generic modes) tabulate every huang\n"
+           "                     material as abrdf render --hair-table does (~2 min of one\n"
+           "                     core per material at the default sizes, over the online\n"
+           "                     CPUs); the script holds the tables and its shaders read them\n"
            "                     (docs/OSL.md, \"huang from a table\")\n"
            "  --hair-table-sizes NT,NV,NP,SETS   at these sizes (implies --hair-table)\n"
            "  --hair-table-cache DIR   keep the tables in DIR (implies --hair-table)\n");
@@ -194,9 +194,9 @@ static int export_args_parse(int argc, char **argv, export_args *ea)
     if (ea->hair.sizes[0] && !ea->cycles)
         return cli_fail(CMD, "--hair-table is an option of --cycles (the other formats' "
                              "models integrate huang per call)");
-    if (ea->hair.sizes[0] && ea->mode && strcmp(ea->mode, "eval"))
-        return cli_fail(CMD, "--hair-table is read by the eval mode's shader, not by --mode %s",
-                        ea->mode);
+    if (ea->hair.sizes[0] && ea->mode && !strcmp(ea->mode, "closure"))
+        return cli_fail(CMD, "--hair-table is read by the eval and generic modes' shaders, not "
+                             "by --mode closure (Cycles' own hair closures)");
     return 0;
 }
 

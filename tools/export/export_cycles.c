@@ -495,9 +495,10 @@ static int py_huang_table(FILE *f, const hair_store *tables, const abrdf_params 
     /* the parameters it was built for: the script refuses it for a material edited since */
     fprintf(f,
             ",\n         \"huang_table\": {\"params\": [" G ", " G ", " G ", " G ", " G ", " G
-            ", %d, %d], \"width\": %d, \"height\": %d, \"data\": ",
+            ", %d, %d],\n          \"sizes\": [%d, %d, %d, %d], \"width\": %d, \"height\": %d, "
+            "\"data\": ",
             p->eta, p->melanin, p->redness, p->cuticle_tilt, p->aspect_ratio, p->r, p->entry_grid,
-            p->internal_grid, sz[0] * sz[2], sz[0] * sz[1]);
+            p->internal_grid, sz[0], sz[1], sz[2], sz[3], sz[0] * sz[2], sz[0] * sz[1]);
     int failed = py_words(f, x, (size_t)n);
     fputs("}", f);
     free(x);
