@@ -459,7 +459,7 @@ def build(s, mode, workdir, osl_dir, segments=64):
             key = (o["material"], o.get("tangent", "u"), tuple(o.get("tangent_axis", (1, 0, 0))))
             if key not in variants:
                 m = s["materials"][o["material"]]
-                table = os.path.abspath(os.path.join(workdir, "abrdf_huang_%d.pfm" % o["material"]))
+                table = os.path.join(os.path.abspath(workdir), "abrdf_huang_%d.pfm" % o["material"])
                 inputs = (eval_inputs(s, m, table if m.get("huang_table") else None)
                           if mode == "generic" else material_inputs(m))
                 inputs["tangent_rule"], inputs["tangent_axis"] = key[1], key[2]

@@ -70,7 +70,7 @@ class Export(unittest.TestCase):
         self.assertEqual(m["lobes"], ["huang"])
         self.assertEqual((m["melanin"], m["eta"]), (0.3, 1.55))
         self.assertIn("float melanin[1] = {\n        0.29999999999999999};", s["osl"])
-        self.assertIn("melanin[m], redness[m], cuticle_tilt[m],\n", s["osl"])
+        self.assertIn("eta[m], melanin[m], redness[m], cuticle_tilt[m],\n", s["osl"])
         self.assertIn("aspect_ratio[m], entry_grid[m], internal_grid[m]);", s["osl"])
         self.assertEqual((m["entry_grid"], m["internal_grid"]), (6, 3))
         # per call: no table

@@ -7,11 +7,11 @@
 The scene (default tools/bench/hair_robot.scene: three hair materials under four lights) is
 exported by `abrdf export --cycles` in evaluation mode (one sample per pixel) in three forms:
 huang integrated per call; huang read from its tables (--hair-table; built first, or read
-from --hair-table-cache); and, for scale, every material as lambert. Each form is rendered at
-the size given and at twice it in each dimension (the tables built once, into a cache of
-its own if none is given), all in this one process: each built once,
-rendered once untimed, then --reps times, timed (the wall time of bpy.ops.render.render; a
-line "cycles_hair_table FORM WxH render_seconds S" per render). A render's fixed costs
+from --hair-table-cache, else into a cache of its own, once); and, for scale, every material
+as lambert. Each form is rendered at the size given and at twice it in each dimension, all
+in this one process: each built once, rendered once untimed, then --reps times, timed (the
+wall time of bpy.ops.render.render; a line "cycles_hair_table FORM WxH render_seconds S" per
+render). A render's fixed costs
 (the scene's sync, the shader's JIT compilation, which Cycles repeats per render) are the
 same at both sizes, so the shading's cost is the difference of the two sizes' fastest
 renders; per evaluation, that time on all threads over the difference of the lobe
