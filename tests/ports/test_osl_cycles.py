@@ -100,14 +100,18 @@ def compile_osl(path, oso):
     return ok, out["text"]
 
 
+def pair_dir(scene, model=None, samples=1, mode="eval", variant=""):
+    """The directory render_pair works in (c.exr, cycles.exr, scene.py)."""
+    return os.path.join(WORK, "%s_%s_%s%s_%d" % (mode, scene, model or "scene", variant, samples))
+
+
 def render_pair(scene, path, w, h, model=None, samples=1, mode="eval", c_spp=1, sets=(),
                 variant="", prepare=None, c_args=(), both_args=()):
     """`abrdf render` and Cycles on the exported scene (abrdf_cycles.build in `mode`); the NMSE
     of the Cycles image against the C one. prepare(sc, s), if given, changes the built scene
     before it renders (tests/ports/test_blender_extension.py puts its materials on it). c_args
     go to the render, both_args to the render and the export."""
-    tag = "%s_%s_%s%s_%d" % (mode, scene, model or "scene", variant, samples)
-    d = os.path.join(WORK, tag)
+    d = pair_dir(scene, model, samples, mode, variant)
     os.makedirs(d, exist_ok=True)
     extra = ["--model", model] if model else []
     for a in sets:
@@ -259,16 +263,15 @@ class CrossCheck(unittest.TestCase):
         per_call = os.path.join(WORK, "hair_per_call.exr")
         run("render", path, "-o", per_call, "--spp", "1", "--precision", "double",
             "--no-preview")
-        far = json.loads(run("compare", per_call, os.path.join(WORK, "eval_hair_scene_table_1",
-                                                               "cycles.exr"),
-                             "--json", check=False))["nmse"]
+        d = pair_dir("hair", variant="_table")
+        far = json.loads(run("compare", per_call, os.path.join(d, "cycles.exr"), "--json",
+                             check=False))["nmse"]
         sys.stdout.write("\nhuang from a table, OSL against abrdf render: NMSE %.1e (per call: "
                          "%.1e)\n" % (nmse, far))
         self.assertLess(nmse, 1e-9)
         self.assertGreater(far, 1e-5)
         # a material edited in the script since: its table no longer describes it, refused
-        s = runpy.run_path(os.path.join(WORK, "eval_hair_scene_table_1", "scene.py"),
-                           run_name="abrdf_scene")["SCENE"]
+        s = runpy.run_path(os.path.join(d, "scene.py"), run_name="abrdf_scene")["SCENE"]
         s["materials"][1]["melanin"] += 0.1
         edited = os.path.join(WORK, "hair_edited")
         os.makedirs(edited, exist_ok=True)
@@ -291,25 +294,16 @@ class CrossCheck(unittest.TestCase):
         # threads). Its quadrature twin is checked exactly by test_models_on_scenes, and the
         # generic shader's hair parameters (eta, melanin, redness, cuticle_tilt,
         # aspect_ratio, r) by marschner, which reads all of them; its grids by a VARIANTS row.
-        skip = {"huang"}
+        both = {"huang": ("--hair-table-sizes", "12,3,8,1")}
         failures = []
-        for model in [m for m in self.rendered if m not in skip]:
+        for model in self.rendered:
             nmse = render_pair("box_point", "tests/data/scenes/box_point.scene", 48, 48, model,
-                                    samples=64, mode="generic", c_spp=64,
-                                    sets=sets.get(model, ()))
+                               samples=64, mode="generic", c_spp=64, sets=sets.get(model, ()),
+                               both_args=both.get(model, ()))
             self.table[(model, "box_point (abrdf_eval.osl)")] = nmse
             if not nmse < NMSE_MAX:
                 failures.append("%s: NMSE %.3g" % (model, nmse))
-        if "huang" in self.rendered:
-            nmse = render_pair("box_point", "tests/data/scenes/box_point.scene", 48, 48, "huang",
-                               samples=64, mode="generic", c_spp=64, variant="_table",
-                               both_args=("--hair-table-sizes", "12,3,8,1"))
-            self.table[("huang", "box_point (abrdf_eval.osl)")] = nmse
-            if not nmse < NMSE_MAX:
-                failures.append("huang from a table: NMSE %.3g" % nmse)
-        print_table([m for m in self.rendered if m not in skip] +
-                    (["huang"] if "huang" in self.rendered else []), self.table, 0,
-                    ["box_point (abrdf_eval.osl)"])
+        print_table(self.rendered, self.table, 0, ["box_point (abrdf_eval.osl)"])
         self.assertEqual(failures, [])
 
     def test_closure_mode_renders(self):
