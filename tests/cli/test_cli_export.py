@@ -80,8 +80,9 @@ class Export(unittest.TestCase):
     def test_huang_tables_are_exported(self):
         """--hair-table (--cycles, eval mode): every tabulated material's table in the script,
         the very table abrdf render reads (its cache file's values, as float32), named in the
-        shader's huang_table array; the other formats and modes refuse it, as do bad sizes:
-        one line, exit 2, nothing written."""
+        shader's huang_table array; --pov writes each as an image beside the .pov; glTF,
+        --native and closure mode refuse it, as do bad sizes: one line, exit 2, nothing
+        written."""
         hair = os.path.join(self.tmp.name, "hair.scene")
         with open(hair, "w") as f:
             f.write("camera position=0,0,6 look_at=0,0,0 resolution=24,24\n"
@@ -119,13 +120,39 @@ class Export(unittest.TestCase):
         self.assertEqual(g["mode"], "generic")
         self.assertEqual(g["materials"][0]["huang_table"]["data"],
                          s["materials"][0]["huang_table"]["data"])
+        # --pov: one image per tabulated material, named OUT.huang<i>.exr, beside OUT, named
+        # in the file by its name alone (test_pov_hair_table.py renders them)
         pov = os.path.join(self.tmp.name, "x.pov")
-        for args, msg in [(("--pov", hair, "-o", pov, "--hair-table"),
-                           "--hair-table is an option of --cycles"),
+        r = run("--pov", hair, "-o", pov, "--hair-table-sizes", "6,3,8,1", "--hair-table-cache",
+                cache)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(pov) as f:
+            text = f.read()
+        for i, melanin in enumerate(("0.72999999999999998", "0.26000000000000001")):
+            self.assertIn("#declare Abrdf_Mat_%d_Built = array[8] {1.55, %s, 0, 2, "
+                          "0.84999999999999998, 0.29999999999999999, 6, 3}\n"
+                          "#declare Abrdf_Mat_%d = Abrdf_Huang_Table(Abrdf_Mat_%d, "
+                          "\"x.huang%d.exr\", 6, 3, 8, " % (i, melanin, i, i, i), text)
+            self.assertTrue(os.path.isfile(os.path.join(self.tmp.name, "x.huang%d.exr" % i)))
+        self.assertNotIn("Abrdf_Mat_2 = Abrdf_Huang_Table", text)
+        self.assertFalse(os.path.exists(os.path.join(self.tmp.name, "x.huang2.exr")))
+        os.remove(pov)
+        # a table's name that is a directory: refused before anything is written
+        os.remove(os.path.join(self.tmp.name, "x.huang1.exr"))
+        os.mkdir(os.path.join(self.tmp.name, "x.huang1.exr"))
+        r = run("--pov", hair, "-o", pov, "--hair-table-sizes", "6,3,8,1", "--hair-table-cache",
+                cache)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("x.huang1.exr: is a directory, not a file", r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+        self.assertFalse(os.path.exists(pov))
+        os.rmdir(os.path.join(self.tmp.name, "x.huang1.exr"))
+        for args, msg in [(("--pov", hair, "-o", pov, "--native", "--hair-table"),
+                           "not by --native"),
                           (("--cycles", hair, "-o", self.out, "--mode", "closure",
                             "--hair-table"), "not by --mode closure"),
                           (("--gltf", hair, "-o", os.path.join(self.tmp.name, "x.gltf"),
-                            "--hair-table"), "--hair-table is an option of --cycles"),
+                            "--hair-table"), "--hair-table is an option of --cycles and --pov"),
                           (("--cycles", hair, "-o", self.out, "--hair-table-sizes", "6,3,8"),
                            "is not NT,NV,NP,SETS"),
                           (("--cycles", hair, "-o", self.out, "--hair-table-cache",

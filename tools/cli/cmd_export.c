@@ -20,6 +20,7 @@
 #include "export_pov.h"
 #include "gltf.h"
 #include "hair_table_args.h"
+#include "image_io.h"
 #include "measured_standin.h"
 #include "out_file.h"
 #include "scene_load.h"
@@ -37,6 +38,7 @@ static int usage(void)
     printf("usage: abrdf export --pov SCENE -o OUT.pov [--model NAME [--set NAME=VALUE ...]]\n"
            "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
            "                    [--width W] [--height H] [--no-shadows | --native]\n"
+           "                    [--hair-table [--hair-table-sizes S] [--hair-table-cache DIR]]\n"
            "       abrdf export --cycles SCENE -o OUT.py [--model NAME [--set NAME=VALUE ...]]\n"
            "                    [--adaptive --goal G|--budget B] [--materials FILE ...]\n"
            "                    [--width W] [--height H] [--spp N] [--mode eval|closure|generic]\n"
@@ -74,11 +76,13 @@ static int usage(void)
            "                     closure (Cycles' closures and lights), generic (abrdf_eval.osl)\n"
            "  --osl-dir DIR      (cycles) abrdf's osl/ directory the script uses; default\n"
            "                     $ABRDF_OSL_DIR, else the source tree's, else the installed one\n"
-           "  --hair-table       (cycles, eval and generic modes) tabulate every huang\n"
+           "  --hair-table       (cycles eval and generic modes, pov) tabulate every huang\n"
            "                     material as abrdf render --hair-table does (~2 min of one\n"
            "                     core per material at the default sizes, over the online\n"
            "                     CPUs); the script holds the tables and its shaders read them\n"
-           "                     (docs/OSL.md, \"huang from a table\")\n"
+           "                     (docs/OSL.md, \"huang from a table\"); --pov writes each\n"
+           "                     as OUT.huang<i>.exr beside OUT, which its macros read\n"
+           "                     (docs/POVRAY.md, \"huang from a table\")\n"
            "  --hair-table-sizes NT,NV,NP,SETS   at these sizes (implies --hair-table)\n"
            "  --hair-table-cache DIR   keep the tables in DIR (implies --hair-table)\n");
     return 0;
@@ -191,9 +195,12 @@ static int export_args_parse(int argc, char **argv, export_args *ea)
     if (scene_choice_check(&ea->choice, CMD)) return CLI_EXIT_USAGE;
     int rc = hair_table_check(&ea->hair, CMD);
     if (rc) return rc;
-    if (ea->hair.sizes[0] && !ea->cycles)
-        return cli_fail(CMD, "--hair-table is an option of --cycles (the other formats' "
-                             "models integrate huang per call)");
+    if (ea->hair.sizes[0] && ea->gltf)
+        return cli_fail(CMD, "--hair-table is an option of --cycles and --pov (glTF's "
+                             "materials hold no tables)");
+    if (ea->hair.sizes[0] && ea->native)
+        return cli_fail(CMD, "--hair-table is read by the function pigments, not by --native "
+                             "(POV-Ray's own finishes)");
     if (ea->hair.sizes[0] && ea->mode && !strcmp(ea->mode, "closure"))
         return cli_fail(CMD, "--hair-table is read by the eval and generic modes' shaders, not "
                              "by --mode closure (Cycles' own hair closures)");
@@ -215,18 +222,112 @@ static int output_refuse(const export_args *ea)
     return 0;
 }
 
+/* The huang tables of a POV-Ray export (abrdf_huang.inc, Abrdf_Huang_Table): one EXR image
+ * per tabulated material i beside OUT, named OUT less its ".pov" and ".huang<i>.exr". */
+typedef struct pov_tables {
+    int n;             /* images */
+    char **paths;      /* per material: the image's path, or NULL */
+    const char **name; /* per material: its file name, as the .pov names it, or NULL */
+    out_file *files;   /* n outputs */
+} pov_tables;
+
+static void pov_tables_free(pov_tables *t, int materials)
+{
+    for (int i = 0; t->files && i < t->n; ++i) out_file_discard(&t->files[i]);
+    for (int i = 0; t->paths && i < materials; ++i) free(t->paths[i]);
+    free(t->paths), free(t->name), free(t->files);
+}
+
+/* Names, checks and writes (not yet committed) the tables of rs's tabulated materials: 0, or
+ * 1 after the message. */
+static int pov_tables_write(const export_args *ea, const scene *s, const render_scene *rs,
+                            pov_tables *t)
+{
+    char err[1024];
+    int nm = rs->material_count;
+    t->paths = calloc((size_t)nm, sizeof *t->paths);
+    t->name = calloc((size_t)nm, sizeof *t->name);
+    t->files = calloc((size_t)nm, sizeof *t->files);
+    const char **roles = calloc((size_t)nm + 1, sizeof *roles),
+               **outs = calloc((size_t)nm + 1, sizeof *outs);
+    int rc = 1;
+    if (!t->paths || !t->name || !t->files || !roles || !outs) {
+        fprintf(stderr, "abrdf export: out of memory\n");
+        goto done;
+    }
+    size_t len = strlen(ea->out);
+    if (len >= 4 && !strcmp(ea->out + len - 4, ".pov")) len -= 4;
+    const char *slash = strrchr(ea->out, '/');
+    size_t base = slash ? (size_t)(slash + 1 - ea->out) : 0;
+    int n = 0;
+    outs[n] = ea->out, roles[n] = "output";
+    for (int i = 0; i < nm; ++i) {
+        if (!rs->materials[i].used || !rs->materials[i].tabulated) continue;
+        size_t size = len + 32;
+        if (!(t->paths[i] = malloc(size))) {
+            fprintf(stderr, "abrdf export: out of memory\n");
+            goto done;
+        }
+        snprintf(t->paths[i], size, "%.*s.huang%d.exr", (int)len, ea->out, i);
+        t->name[i] = t->paths[i] + base;
+        outs[++n] = t->paths[i], roles[n] = "huang table";
+    }
+    const char *ins[1] = {ea->path}, *in_roles[1] = {"scene"};
+    if (out_files_distinct(outs, roles, n + 1, ins, in_roles, 1, err, sizeof err) ||
+        scene_outputs_distinct(s, outs, roles, n + 1, err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s\n", err);
+        goto done;
+    }
+    for (int i = 0; i < nm; ++i) {
+        if (!t->paths[i]) continue;
+        const double *v = hair_store_table(ea->opt.hair_tables, &rs->materials[i].params);
+        float *rgb = NULL;
+        int w, h;
+        abrdf_bytes bytes = {NULL, 0};
+        out_file *o = &t->files[t->n];
+        if (!v || export_pov_table_image(v, ea->opt.hair_tables->sizes, &rgb, &w, &h)) {
+            fprintf(stderr, "abrdf export: %s: no memory for its huang table\n", t->paths[i]);
+            goto done;
+        }
+        *o = (out_file)OUT_FILE_INIT;
+        t->n += 1;
+        int failed = abrdf_image_encode_linear(t->paths[i], w, h, rgb, &bytes, err, sizeof err) ||
+                     out_file_open(o, t->paths[i], err, sizeof err);
+        if (!failed) {
+            out_file_write(o, bytes.data, bytes.size);
+            failed = out_file_close(o, err, sizeof err);
+        }
+        free(rgb);
+        abrdf_bytes_free(&bytes);
+        if (failed) {
+            fprintf(stderr, "abrdf export: %s\n", err);
+            goto done;
+        }
+    }
+    rc = 0;
+done:
+    free(roles), free(outs);
+    return rc;
+}
+
 /* The prepared scene in the chosen format into the open output o; note: the selection's
- * trace for the file's comments, or NULL. 0, or 1 after the message. */
+ * trace for the file's comments, or NULL; tables: a POV-Ray export's huang tables. 0, or 1
+ * after the message. */
 static int export_write(const export_args *ea, const render_scene *rs, out_file *o,
-                        const char *note)
+                        const char *note, const pov_tables *tables)
 {
     char err[1024];
     int failed;
     if (ea->pov) {
         int eval_lit =
             !ea->native && !ea->no_shadows; /* function pigments under POV-Ray's lights */
-        export_pov_options eo = {eval_lit && rs->light_count == 1, eval_lit && rs->light_count > 1,
-                                 ea->native, ea->path, note};
+        export_pov_options eo = {eval_lit && rs->light_count == 1,
+                                 eval_lit && rs->light_count > 1,
+                                 ea->native,
+                                 ea->path,
+                                 note,
+                                 ea->opt.hair_tables,
+                                 tables->name};
         failed = export_pov_write(rs, &eo, o->f, err, sizeof err);
     } else {
         export_options eo = {ea->path,
@@ -277,7 +378,8 @@ static int export_scene(export_args *ea, scene *s)
     int rc = 1, prepared = 0;
     render_scene rs;
     out_file o = OUT_FILE_INIT;
-    out_file *const files[1] = {&o};
+    out_file **files = NULL;
+    pov_tables tables = {0, NULL, NULL, NULL};
     char *notes = NULL;
     size_t notes_len = 0;
     FILE *trace = open_memstream(&notes, &notes_len);
@@ -314,18 +416,29 @@ static int export_scene(export_args *ea, scene *s)
         goto done;
     }
     prepared = 1;
+    if (ea->pov && ea->opt.hair_tables && pov_tables_write(ea, s, &rs, &tables)) goto done;
+    /* the tables, then the file that names them */
+    if (!(files = malloc(((size_t)tables.n + 1) * sizeof *files))) {
+        fprintf(stderr, "abrdf export: out of memory\n");
+        goto done;
+    }
+    for (int i = 0; i < tables.n; ++i) files[i] = &tables.files[i];
+    files[tables.n] = &o;
     if (out_file_open(&o, ea->out, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;
     }
-    if (export_write(ea, &rs, &o, notes_len ? notes : NULL)) goto done;
-    if (out_file_close(&o, err, sizeof err) || out_file_commit(files, 1, err, sizeof err)) {
+    if (export_write(ea, &rs, &o, notes_len ? notes : NULL, &tables)) goto done;
+    if (out_file_close(&o, err, sizeof err) ||
+        out_file_commit(files, tables.n + 1, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;
     }
     rc = 0;
 done:
     out_file_discard(&o); /* committed: nothing left; else OUT stays as it was */
+    pov_tables_free(&tables, prepared ? rs.material_count : 0);
+    free(files);
     free(notes);
     if (prepared) render_release(&rs);
     return rc;

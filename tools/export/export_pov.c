@@ -1,6 +1,7 @@
 /* export_pov.c - the scene as POV-Ray SDL through abrdf.inc (export_pov.h). */
 #include <ctype.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "export_pov.h"
@@ -55,6 +56,76 @@ static int material(FILE *f, int index, const scene_material *sm, const render_m
         return -1;
     }
     fputs(")\n", f);
+    return 0;
+}
+
+/* The doubles before a huang table's nodes (abrdf.h, "huang tabulated": a header of 8). */
+#define TABLE_HEADER 8
+
+/* A tabulated material reads its table (abrdf_huang.inc, Abrdf_Huang_Table), which refuses
+ * it for a material edited since the table was built: the parameters it was built for. */
+static int material_table(FILE *f, int index, const render_material *m,
+                          const export_pov_options *opt, char *err, size_t err_size)
+{
+    const double *v = opt->hair_tables ? hair_store_table(opt->hair_tables, &m->params) : NULL;
+    const char *name = opt->table_files ? opt->table_files[index] : NULL;
+    if (!v || !name) {
+        snprintf(err, err_size, "material %d: no huang table to export", index);
+        return -1;
+    }
+    const abrdf_params *p = &m->params;
+    const int *sz = opt->hair_tables->sizes;
+    fprintf(f,
+            "#declare Abrdf_Mat_%d_Built = array[8] {%.17g, %.17g, %.17g, %.17g, %.17g, %.17g, "
+            "%d, %d}\n#declare Abrdf_Mat_%d = Abrdf_Huang_Table(Abrdf_Mat_%d, ",
+            index, p->eta, p->melanin, p->redness, p->cuticle_tilt, p->aspect_ratio, p->r,
+            p->entry_grid, p->internal_grid, index, index);
+    if (pov_string(f, name)) {
+        snprintf(err, err_size, "huang table '%s' cannot be a POV-Ray string: printable ASCII only",
+                 name);
+        return -1;
+    }
+    fprintf(f, ", %d, %d, %d, %.17g, Abrdf_Mat_%d_Built)\n", sz[0], sz[1], sz[2],
+            export_pov_table_scale(v, sz), index);
+    return 0;
+}
+
+/* The half float nearest x (|x| below 65504): 11 significant bits, or multiples of 2^-24
+ * below 2^-14; ties to even, as rint rounds. */
+static double half_nearest(double x)
+{
+    int e;
+    frexp(x, &e); /* |x| in [2^(e-1), 2^e) */
+    double q = ldexp(1.0, (e - 1 >= -14 ? e : -13) - 11);
+    return q * rint(x / q);
+}
+
+double export_pov_table_scale(const double *values, const int sizes[4])
+{
+    const long n = 3L * sizes[0] * sizes[1] * sizes[0] * sizes[2];
+    double top = 0.0;
+    for (long i = 0; i < n; ++i) top = fmax(top, values[TABLE_HEADER + i]);
+    int e = 0;
+    if (top > 0.0) frexp(32768.0 / top, &e); /* 32768 / top in [2^(e-1), 2^e) */
+    return ldexp(1.0, top > 0.0 ? e - 1 : 0);
+}
+
+int export_pov_table_image(const double *values, const int sizes[4], float **rgb, int *width,
+                           int *height)
+{
+    const int nt = sizes[0], nv = sizes[1], np = sizes[2];
+    const long n = (long)nt * nv * nt * np;
+    const double *v = values + TABLE_HEADER, scale = export_pov_table_scale(values, sizes);
+    *width = nt * np, *height = 3 * nt * nv;
+    float *x = malloc((size_t)n * 9 * sizeof *x);
+    if (!(*rgb = x)) return -1;
+    /* node (row r = iv nv + jv, column il np + kd) at r * width + column: the table's order */
+    for (int c = 0; c < 3; ++c)
+        for (long i = 0; i < n; ++i) {
+            double s = v[3 * i + c] * scale, hi = half_nearest(s);
+            float *t = x + 3 * ((long)c * n + i);
+            t[0] = (float)hi, t[1] = (float)half_nearest(s - hi), t[2] = 0.0f;
+        }
     return 0;
 }
 
@@ -321,6 +392,11 @@ static void pov_head(FILE *f, const render_scene *rs, const export_pov_options *
               "(no shadows).");
     if (opt->passes)
         fprintf(f, "// Passes: k = 0 .. %d (%d lights).\n", rs->light_count - 1, rs->light_count);
+    if (opt->hair_tables)
+        fputs(
+            "// huang tables: the .exr files this file names (Abrdf_Huang_Table), written beside\n"
+            "// it: render from its directory, or add +L<its directory>.\n",
+            f);
     if (opt->notes) pov_comment_lines(f, opt->notes);
     fprintf(
         f,
@@ -407,7 +483,9 @@ int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE
     fprintf(f, "\n");
     for (int i = 0; i < rs->material_count; ++i)
         if (rs->materials[i].used &&
-            material(f, i, &s->materials[i], &rs->materials[i], err, err_size))
+            (material(f, i, &s->materials[i], &rs->materials[i], err, err_size) ||
+             (rs->materials[i].tabulated &&
+              material_table(f, i, &rs->materials[i], opt, err, err_size))))
             return -1;
     fprintf(f, "\n");
     pov_meshes(f, s, !opt->native);

@@ -12,6 +12,7 @@
 #define ABRDF_EXPORT_POV_H
 
 #include <stdio.h>
+#include "hair_store.h"
 #include "render.h"
 
 typedef struct export_pov_options {
@@ -24,6 +25,11 @@ typedef struct export_pov_options {
                          every light a light_source (shadows), directional lights only */
     const char *source; /* scene file name for the header comment */
     const char *notes;  /* NULL, or lines written as comments (the selection's trace) */
+    /* huang tables (render_options.hair_tables; NULL: none): a tabulated material i reads
+     * the image table_files[i] (a name POV-Ray finds: a file name beside the .pov) that
+     * export_pov_table_image's pixels are written to */
+    const hair_store *hair_tables;
+    const char *const *table_files;
 } export_pov_options;
 
 /* Returns 0, or -1 with a message in err (e.g. lit with more than one light, passes with
@@ -31,5 +37,16 @@ typedef struct export_pov_options {
  * a path or a name never becomes SDL. */
 int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE *f, char *err,
                      size_t err_size);
+
+/* The image abrdf_huang.inc's Abrdf_Huang_Table reads for a huang table (values: its doubles,
+ * header first; sizes: its sizes): width nt np, height 3 nt nv, channel c's block from row
+ * c nt nv, the first row at the top, RGB per texel: hi = the half float nearest v s, lo = the
+ * half nearest v s - hi, 0, with s = export_pov_table_scale (POV-Ray reads EXR as half
+ * floats; hi + lo keeps 22 significant bits). *rgb is malloc'd (width height 3 floats, each a
+ * half's value). 0, or -1 when out of memory. */
+int export_pov_table_image(const double *values, const int sizes[4], float **rgb, int *width,
+                           int *height);
+/* The power of two the image's values are multiplied by: the largest at most 2^15. */
+double export_pov_table_scale(const double *values, const int sizes[4]);
 
 #endif

@@ -49,6 +49,13 @@ def params_inc(reg, rules, fkub_src, models_inc):
                 sigs[m["name"]] = found[m["name"]]
                 own.add(m["name"])
     kernels = set(sigs)
+    # A model whose include defines Abrdf__<Model>_Table_Fn(D, C) can read a table the host
+    # loaded (its slot ABRDF_SLOT_TABLE, -1 for none): huang's tabulated residual lobes.
+    tabled = set()
+    for path in sorted(os.listdir(os.path.dirname(models_inc))):
+        if path.endswith(".inc"):
+            text = open(os.path.join(os.path.dirname(models_inc), path)).read()
+            tabled |= {n.lower() for n in re.findall(r"^#macro Abrdf__(\w+)_Table_Fn\(D, C\)", text, re.M)}
     # A kernel whose last parameter is `chan` gets the channel C (models with per-channel
     # quantities derived from scalar parameters, e.g. marschner's sigma_a).
     wants_chan = {k for k, a in sigs.items() if a.split(",")[-1].strip() == "chan"}
@@ -75,7 +82,8 @@ def params_inc(reg, rules, fkub_src, models_inc):
     for s in slots:
         first[s] = pos
         pos += 3 if kind[s] == "rgb" else 1
-    size = pos
+    table_slot = pos  # after every parameter: the index of a host table, -1 for none
+    size = pos + 1
     fallback = {}
     for m in models:
         for p in m["params"]:
@@ -87,7 +95,9 @@ def params_inc(reg, rules, fkub_src, models_inc):
     w("// (abrdf %s) and libabrdf/src/kernels/fkub_table.c; do not edit, re-run the script." % reg["version"])
     w("//")
     w("// A material descriptor is an array[ABRDF_DESC_SIZE]: [0] the first lobe's model id,")
-    w("// [1] the second lobe's id or -1, then the parameter slots below (RGB: 3 slots).")
+    w("// [1] the second lobe's id or -1, then the parameter slots below (RGB: 3 slots), then")
+    w("// ABRDF_SLOT_TABLE: -1, or the table a model's include loaded for the lobe (huang:")
+    w("// Abrdf_Huang_Table, abrdf_huang.inc).")
     w("// Constructors, one per model, with the registry's parameters in its order; each")
     w("// parameter is range-checked with the model's own range and #error names the macro:")
     for m in models:
@@ -113,6 +123,7 @@ def params_inc(reg, rules, fkub_src, models_inc):
     for s in slots:
         w("#declare ABRDF_SLOT_%s = %d;%s" % (s.upper(), first[s],
                                               "  // R, G, B" if kind[s] == "rgb" else ""))
+    w("#declare ABRDF_SLOT_TABLE = %d;" % table_slot)
     w("")
     w("// fkub (Table 1): coefficients (a, b, d) of the cubic about c = 1, linear in ln n between")
     w("// the fitted exponents and held at the ends (fkub_table.c, abrdf__fkub_coeffs).")
@@ -157,6 +168,11 @@ def params_inc(reg, rules, fkub_src, models_inc):
     w("    #end")
     w("    #local Lobe = Lobe + 1;")
     w("  #end")
+    w("  #local T = D[ABRDF_SLOT_TABLE];")
+    w("  #if (T != -1 & (T < 0 | T != int(T) | (%s)))" % " & ".join(
+        ["D[0] != %d & D[1] != %d" % (i, i) for i, m in enumerate(models) if m["name"] in tabled] or ["true"]))
+    w("    #error concat(Caller, \": table \", str(T, 0, -1), \" is not -1 or a table of a lobe that reads one\\n\")")
+    w("  #end")
     w("#end")
     w("")
 
@@ -165,6 +181,7 @@ def params_inc(reg, rules, fkub_src, models_inc):
     w("  #local D = array[ABRDF_DESC_SIZE];")
     w("  #local D[0] = Id;")
     w("  #local D[1] = -1;")
+    w("  #local D[%d] = -1;" % table_slot)
     for s in slots:
         for c in range(3 if kind[s] == "rgb" else 1):
             w("  #local D[%d] = %s;" % (first[s] + c, num(fallback[s])))
@@ -213,6 +230,8 @@ def params_inc(reg, rules, fkub_src, models_inc):
         for p in m["params"]:
             for c in range(3 if p["kind"] == "rgb" else 1):
                 w("      #local U[%d] = true;" % (first[p["name"]] + c))
+        if m["name"] in tabled:
+            w("      #local U[%d] = true;" % table_slot)
         w("    #break")
     w("    #else")
     w("      #error concat(\"Abrdf__Slots_Used: unknown model id \", str(Id, 0, 0), \"\\n\")")
@@ -245,8 +264,16 @@ def params_inc(reg, rules, fkub_src, models_inc):
             args.append("C")
         if m["name"] in own:
             w("      #ifndef(abrdf_%s) #include \"abrdf_%s.inc\" #end" % (m["name"], m["name"]))
-        w("      #local F = function(ix, iy, iz, ox, oy, oz) { abrdf_%s(ix, iy, iz, ox, oy, oz, %s) }"
-          % (m["name"], ", ".join(args)))
+        fn = ("#local F = function(ix, iy, iz, ox, oy, oz) { abrdf_%s(ix, iy, iz, ox, oy, oz, %s) }"
+              % (m["name"], ", ".join(args)))
+        if m["name"] in tabled:
+            w("      #if (D[ABRDF_SLOT_TABLE] >= 0)")
+            w("        #local F = Abrdf__%s_Table_Fn(D, C);" % cap(m["name"]))
+            w("      #else")
+            w("        " + fn)
+            w("      #end")
+        else:
+            w("      " + fn)
         w("    #break")
     w("    #else")
     w("      #error concat(\"Abrdf_Lobe_Fn: unknown model id \", str(Id, 0, 0), \"\\n\")")
