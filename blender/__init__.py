@@ -9,14 +9,19 @@ flowchart (the abrdf Python package, bundled as a wheel) and applies its choice.
 Principled materials" gives the choice for every Principled BSDF material of the file.
 docs/OSL.md, "The Blender extension".
 """
-from . import abrdf_ext_props, abrdf_ext_ui
+import bpy
+
+from . import abrdf_ext_material, abrdf_ext_props, abrdf_ext_ui
 
 
 def register():
     abrdf_ext_props.register()
     abrdf_ext_ui.register()
+    bpy.app.handlers.load_post.append(abrdf_ext_material.refresh_tables)
 
 
 def unregister():
+    if abrdf_ext_material.refresh_tables in bpy.app.handlers.load_post:
+        bpy.app.handlers.load_post.remove(abrdf_ext_material.refresh_tables)
     abrdf_ext_ui.unregister()
     abrdf_ext_props.unregister()

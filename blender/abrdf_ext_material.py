@@ -8,8 +8,10 @@ parameters (sync_lights), with the conventions of `abrdf export --cycles`: a poi
 power P has intensity P / (4 pi), a sun's strength is the irradiance, its direction the
 light object's +z axis.
 """
+import hashlib
 import math
 import os
+import re
 
 import bpy
 
@@ -19,6 +21,9 @@ OSL_DIR = os.path.join(os.path.dirname(__file__), "osl")
 SHADERS = {"CLOSURE": "abrdf_material.osl", "EVALUATION": "abrdf_eval.osl"}
 NODE = "abrdf"
 MAX_LIGHTS = 4  # abrdf_eval.osl's light0 ... light3
+# What a huang table is built for (abrdf_cycles.HUANG_TABLE_PARAMS): a table holds only for them.
+HUANG_TABLE_PARAMS = ("eta", "melanin", "redness", "cuticle_tilt", "aspect_ratio", "r",
+                      "entry_grid", "internal_grid")
 
 
 def _osl():
@@ -84,9 +89,67 @@ def rebuild(mat):
     push(mat)
 
 
+def huang_table_key(s):
+    """The parameters and sizes a huang table of settings s is built for, as a string."""
+    return repr(tuple(getattr(s, p) for p in HUANG_TABLE_PARAMS) + tuple(s.hair_table_sizes))
+
+
+def huang_table_state(s):
+    """The material's huang table: "none", "current" (read by the evaluation shader),
+    "stale" (built for other parameters: the shader integrates per call) or "missing" (its
+    file is gone)."""
+    if not s.hair_table:
+        return "none"
+    if s.hair_table_key != huang_table_key(s):
+        return "stale"
+    return "current" if os.path.isfile(bpy.path.abspath(s.hair_table)) else "missing"
+
+
+def build_huang_table(mat, threads=0):
+    """Tabulate the material's huang (abrdf.huang_table at its settings' sizes, rows over
+    `threads` threads, 0: every core) and write the table as a PFM image that the evaluation
+    shader reads (docs/OSL.md, "huang from a table"): into abrdf_tables/ beside the .blend,
+    or Blender's temporary directory for an unsaved file. Returns the file's path; ValueError
+    when the model is not huang, abrdf.Error for sizes the material refuses."""
+    s = mat.abrdf
+    if s.model != "huang":
+        raise ValueError("the model is %s, not huang" % s.model)
+    sizes = tuple(s.hair_table_sizes)
+    brdf = abrdf.BRDF("huang", **{p: getattr(s, p) for p in HUANG_TABLE_PARAMS})
+    table = abrdf.huang_table(brdf, sizes, threads)
+    key = huang_table_key(s)
+    where = (os.path.join(os.path.dirname(bpy.data.filepath), "abrdf_tables")
+             if bpy.data.filepath else os.path.join(bpy.app.tempdir, "abrdf_tables"))
+    os.makedirs(where, exist_ok=True)
+    name = "%s_%s_%s.pfm" % (re.sub(r"[^A-Za-z0-9_-]", "_", mat.name)[:40],
+                             "x".join(str(n) for n in sizes),
+                             hashlib.sha1(key.encode()).hexdigest()[:12])
+    path = os.path.join(where, name)
+    from .osl import abrdf_cycles
+    abrdf_cycles.write_pfm(path, abrdf_cycles.huang_table_image(table.values, sizes))
+    s.hair_table_key = key
+    s.hair_table = bpy.path.relpath(path) if bpy.data.filepath else path
+    push(mat)
+    return path
+
+
+@bpy.app.handlers.persistent
+def refresh_tables(*_):
+    """After a .blend loads: every abrdf material with a hair table pushes its settings
+    again, so that a table whose file is gone (or a .blend opened where its relative path
+    leads elsewhere) leaves the shader integrating per call instead of reading nothing."""
+    for mat in bpy.data.materials:
+        if getattr(mat, "abrdf", None) is not None and mat.abrdf.enabled and mat.abrdf.hair_table:
+            push(mat)
+
+
 def socket_values(s):
     """The shader's inputs from the settings s, by socket identifier (the OSL names)."""
-    v = {"model": s.model, "model2": "" if s.model2 == "NONE" else s.model2,
+    current = s.model == "huang" and huang_table_state(s) == "current"
+    v = {"huang_table": bpy.path.abspath(s.hair_table) if current else "",
+         "huang_table_nt": s.hair_table_sizes[0], "huang_table_nv": s.hair_table_sizes[1],
+         "huang_table_np": s.hair_table_sizes[2],
+         "model": s.model, "model2": "" if s.model2 == "NONE" else s.model2,
          "adaptive": s.adaptive, "goal": s.goal, "surface": s.surface, "n_from_r": s.n_from_r,
          "max_rel_error": s.max_rel_error, "max_abs_error": s.max_abs_error,
          "tangent_rule": s.tangent_rule, "tangent_axis": tuple(s.tangent_axis),

@@ -7,7 +7,8 @@ Script node (abrdf_ext_material.push). Scene.abrdf_advice: the advisor of the fi
 Principled materials (abrdf_ext_advise), its goal or budget and its last results."""
 import bpy
 from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty,
-                       FloatVectorProperty, IntProperty, PointerProperty, StringProperty)
+                       FloatVectorProperty, IntProperty, IntVectorProperty, PointerProperty,
+                       StringProperty)
 
 import abrdf
 from abrdf import _abrdf
@@ -110,6 +111,16 @@ def settings_class():
         "preset": EnumProperty(name="Material", items=_items["preset"],
                                description="what the selection starts from: a material of "
                                "the table (data/materials.csv) or this material's values"),
+        "hair_table": StringProperty(
+            name="Hair table", default="", subtype="FILE_PATH", update=_update,
+            description="evaluation mode, huang: the table image abrdf.tabulate_hair wrote "
+            "(docs/OSL.md, huang from a table); read only while the parameters are those it "
+            "was built for"),
+        "hair_table_key": StringProperty(name="Hair table built for", default=""),
+        "hair_table_sizes": IntVectorProperty(
+            name="Table sizes", size=4, min=1, max=256, default=(24, 9, 32, 16),
+            update=_update, description="theta nodes, view azimuths (1 for a round fibre), "
+            "light azimuths, shift sets; the default takes about 2 minutes of one core"),
         "choice": StringProperty(name="Choice", default=""),
         "trace": StringProperty(name="Trace", default=""),
     }

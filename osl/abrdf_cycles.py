@@ -137,6 +137,30 @@ HUANG_TABLE_PARAMS = ("eta", "melanin", "redness", "cuticle_tilt", "aspect_ratio
                       "entry_grid", "internal_grid")
 
 
+def huang_table_image(values, sizes):
+    """A huang table's texture (osl/abrdf_hair.h, abrdf_huang_tabulated): the library's values
+    after its header of 8 as float32 RGB, nt np texels wide and nt nv high, the first row at
+    the top."""
+    nt, nv, np_ = sizes[:3]
+    return np.asarray(values[8:], dtype="<f4").reshape(nt * nv, nt * np_, 3)
+
+
+def write_pfm(path, rgb):
+    """rgb (height, width, 3; the first row at the top) as a PFM image at path, whole or not
+    at all: a float image Cycles' OSL texture() reads texel for texel."""
+    h, w = rgb.shape[:2]
+    tmp = path + ".part"
+    try:
+        with open(tmp, "wb") as f:
+            # PFM: negative scale for little-endian, rows from the bottom up
+            f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
+            f.write(np.ascontiguousarray(np.asarray(rgb, dtype="<f4")[::-1]).tobytes())
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
 def write_huang_tables(s, workdir):
     """The eval shader's text with its huang tables in place: each tabulated material's table
     (SCENE["materials"][m]["huang_table"], float32 RGB, the first row at the top) written as
@@ -154,11 +178,8 @@ def write_huang_tables(s, workdir):
         if not t:
             continue
         v = np.frombuffer(base64.b64decode(t["data"]), dtype="<f4")
-        v = v.reshape(t["height"], t["width"], 3)
-        with open(os.path.join(workdir, "abrdf_huang_%d.pfm" % k), "wb") as f:
-            # PFM: negative scale for little-endian, rows from the bottom up
-            f.write(b"PF\n%d %d\n-1.0\n" % (t["width"], t["height"]))
-            f.write(np.ascontiguousarray(v[::-1]).tobytes())
+        write_pfm(os.path.join(workdir, "abrdf_huang_%d.pfm" % k),
+                  v.reshape(t["height"], t["width"], 3))
     where = os.path.abspath(workdir).replace("\\", "\\\\").replace('"', '\\"')
     return s["osl"].replace("@ABRDF_TABLES@", where)
 

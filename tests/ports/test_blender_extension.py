@@ -77,8 +77,9 @@ def set_settings(mat, o, m, mode):
         st.ambient = tuple(m["ambient"])
 
 
-def use_extension(mode):
-    """A render_pair `prepare`: every object gets the extension's material in `mode`."""
+def use_extension(mode, hair_table=None):
+    """A render_pair `prepare`: every object gets the extension's material in `mode`; with
+    hair_table (sizes), its huang tabulated by the extension's operator."""
     def prepare(sc, s):
         enable()
         if mode == "EVALUATION":
@@ -90,6 +91,9 @@ def use_extension(mode):
             if mode == "EVALUATION":
                 with bpy.context.temp_override(object=ob, active_object=ob, material=mat):
                     assert bpy.ops.abrdf.sync_lights() == {"FINISHED"}
+                    if hair_table:
+                        mat.abrdf.hair_table_sizes = hair_table
+                        assert bpy.ops.abrdf.tabulate_hair() == {"FINISHED"}
     return prepare
 
 
@@ -177,6 +181,47 @@ class Install(unittest.TestCase):
                 sys.stdout.write("\nextension, evaluation mode, %s on the box: NMSE %.1e\n"
                                  % (model, nmse))
                 self.assertLess(nmse, NMSE_MAX)
+
+    def test_4b_evaluation_mode_reads_a_hair_table(self):
+        # The extension's operator tabulates a huang material (abrdf.huang_table) and the
+        # evaluation shader reads the table, as abrdf render --hair-table reads the same one;
+        # a parameter changed since makes it stale (per call), and changing it back reads it
+        # again.
+        sizes = (12, 3, 8, 1)
+        seen = {}
+
+        def prepare(sc, s):
+            use_extension("EVALUATION", sizes)(sc, s)
+            mat = next(objects(s))[0].active_material
+            node, st = mat.node_tree.nodes["abrdf"], mat.abrdf
+            path = node.inputs["huang_table"].default_value
+            seen["path"] = path
+            self.assertTrue(os.path.isfile(path), path)
+            self.assertEqual([node.inputs["huang_table_n" + a].default_value for a in "tvp"],
+                             list(sizes[:3]))
+            with open(path, "rb") as f:  # a float RGB image, nt np x nt nv texels
+                self.assertEqual(f.read(14), b"PF\n96 36\n-1.0\n")
+            st.melanin += 0.1
+            self.assertEqual(node.inputs["huang_table"].default_value, "")
+            st.melanin -= 0.1
+            self.assertEqual(node.inputs["huang_table"].default_value, path)
+            # a .blend loaded where the table's file is gone: per call, not a black lobe
+            mats = enable().abrdf_ext_material
+            os.rename(path, path + ".away")
+            mats.refresh_tables()
+            self.assertEqual((mats.huang_table_state(st), node.inputs["huang_table"].default_value),
+                             ("missing", ""))
+            os.rename(path + ".away", path)
+            mats.refresh_tables()
+            self.assertEqual(node.inputs["huang_table"].default_value, path)
+
+        nmse = render_pair("box_point", "tests/data/scenes/box_point.scene", 48, 48, "huang",
+                           samples=64, mode="generic", c_spp=64, variant="_extension_table",
+                           prepare=prepare, c_args=("--hair-table-sizes", "12,3,8,1"))
+        sys.stdout.write("\nextension, evaluation mode, huang from its table on the box: "
+                         "NMSE %.1e\n" % nmse)
+        self.assertIn("path", seen)
+        self.assertLess(nmse, NMSE_MAX)
 
     def test_5_selection_applies_advise(self):
         bpy.ops.wm.read_factory_settings(use_empty=True)

@@ -78,8 +78,10 @@ class PovHairTable(unittest.TestCase):
 
     def test_the_tables_are_written_beside_the_file(self):
         calls = re.findall(r'^#declare Abrdf_Mat_(\d) = Abrdf_Huang_Table\(Abrdf_Mat_\1, '
-                           r'"([^"]+)", 12, 3, 8, ([0-9.e+]+), Abrdf_Mat_\1_Built\)$', self.pov, re.M)
-        self.assertEqual([c[:2] for c in calls], [("0", "hair.huang0.exr"), ("1", "hair.huang1.exr")])
+                           r'"([^"]+)", 12, 3, 8, ([0-9.e+]+), Abrdf_Mat_\1_Built\)$',
+                           self.pov, re.M)
+        self.assertEqual([c[:2] for c in calls],
+                         [("0", "hair.huang0.exr"), ("1", "hair.huang1.exr")])
         for _, name, scale in calls:
             self.assertTrue(os.path.isfile(path(name)))
             s = float(scale)
