@@ -223,7 +223,8 @@ static int output_refuse(const export_args *ea)
 }
 
 /* The huang tables of a POV-Ray export (abrdf_huang.inc, Abrdf_Huang_Table): one EXR image
- * per tabulated material i beside OUT, named OUT less its ".pov" and ".huang<i>.exr". */
+ * per distinct table beside OUT, named OUT less its ".pov" and ".huang<i>.exr" for the first
+ * tabulated material i that reads it; materials of the same parameters share it. */
 typedef struct pov_tables {
     int n;             /* images */
     char **paths;      /* per material: the image's path, or NULL */
@@ -248,10 +249,11 @@ static int pov_tables_write(const export_args *ea, const scene *s, const render_
     t->paths = calloc((size_t)nm, sizeof *t->paths);
     t->name = calloc((size_t)nm, sizeof *t->name);
     t->files = calloc((size_t)nm, sizeof *t->files);
+    const double **vals = calloc((size_t)nm, sizeof *vals);
     const char **roles = calloc((size_t)nm + 1, sizeof *roles),
                **outs = calloc((size_t)nm + 1, sizeof *outs);
     int rc = 1;
-    if (!t->paths || !t->name || !t->files || !roles || !outs) {
+    if (!t->paths || !t->name || !t->files || !vals || !roles || !outs) {
         fprintf(stderr, "abrdf export: out of memory\n");
         goto done;
     }
@@ -263,6 +265,13 @@ static int pov_tables_write(const export_args *ea, const scene *s, const render_
     outs[n] = ea->out, roles[n] = "output";
     for (int i = 0; i < nm; ++i) {
         if (!rs->materials[i].used || !rs->materials[i].tabulated) continue;
+        vals[i] = hair_store_table(ea->opt.hair_tables, &rs->materials[i].params);
+        int j = 0;
+        while (j < i && !(t->paths[j] && vals[j] == vals[i])) ++j;
+        if (j < i) { /* the same table: the same image */
+            t->name[i] = t->name[j];
+            continue;
+        }
         size_t size = len + 32;
         if (!(t->paths[i] = malloc(size))) {
             fprintf(stderr, "abrdf export: out of memory\n");
@@ -280,7 +289,7 @@ static int pov_tables_write(const export_args *ea, const scene *s, const render_
     }
     for (int i = 0; i < nm; ++i) {
         if (!t->paths[i]) continue;
-        const double *v = hair_store_table(ea->opt.hair_tables, &rs->materials[i].params);
+        const double *v = vals[i];
         float *rgb = NULL;
         int w, h;
         abrdf_bytes bytes = {NULL, 0};
@@ -306,7 +315,7 @@ static int pov_tables_write(const export_args *ea, const scene *s, const render_
     }
     rc = 0;
 done:
-    free(roles), free(outs);
+    free(vals), free(roles), free(outs);
     return rc;
 }
 

@@ -59,6 +59,9 @@ static int material(FILE *f, int index, const scene_material *sm, const render_m
     return 0;
 }
 
+/* A scene's materials each have at most one table, and the macros hold this many. */
+typedef char export_pov_tables_fit[EXPORT_POV_HUANG_TABLES_MAX >= SCENE_MAX_MATERIALS ? 1 : -1];
+
 /* The doubles before a huang table's nodes (abrdf.h, "huang tabulated": a header of 8). */
 #define TABLE_HEADER 8
 
@@ -392,7 +395,10 @@ static void pov_head(FILE *f, const render_scene *rs, const export_pov_options *
               "(no shadows).");
     if (opt->passes)
         fprintf(f, "// Passes: k = 0 .. %d (%d lights).\n", rs->light_count - 1, rs->light_count);
-    if (opt->hair_tables)
+    int tables = 0;
+    for (int i = 0; opt->table_files && i < rs->material_count; ++i)
+        tables |= !!opt->table_files[i];
+    if (tables)
         fputs(
             "// huang tables: the .exr files this file names (Abrdf_Huang_Table), written beside\n"
             "// it: render from its directory, or add +L<its directory>.\n",

@@ -38,11 +38,16 @@ typedef struct export_pov_options {
 int export_pov_write(const render_scene *rs, const export_pov_options *opt, FILE *f, char *err,
                      size_t err_size);
 
+/* The distinct huang tables a .pov may read (abrdf_huang.inc, ABRDF__HU_TABLE_MAX): one per
+ * material at most, so every scene fits (checked at compile time in export_pov.c). */
+#define EXPORT_POV_HUANG_TABLES_MAX 256
+
 /* The image abrdf_huang.inc's Abrdf_Huang_Table reads for a huang table (values: its doubles,
  * header first; sizes: its sizes): width nt np, height 3 nt nv, channel c's block from row
  * c nt nv, the first row at the top, RGB per texel: hi = the half float nearest v s, lo = the
  * half nearest v s - hi, 0, with s = export_pov_table_scale (POV-Ray reads EXR as half
- * floats; hi + lo keeps 22 significant bits). *rgb is malloc'd (width height 3 floats, each a
+ * floats; hi + lo keeps 22 significant bits where lo is a normal half, else an absolute error
+ * of at most 2^-25 / s). *rgb is malloc'd (width height 3 floats, each a
  * half's value). 0, or -1 when out of memory. */
 int export_pov_table_image(const double *values, const int sizes[4], float **rgb, int *width,
                            int *height);
