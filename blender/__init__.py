@@ -14,14 +14,24 @@ import bpy
 from . import abrdf_ext_material, abrdf_ext_props, abrdf_ext_ui
 
 
+def _handlers():
+    """The hair tables' file handlers (abrdf_ext_material): kept beside a saved .blend,
+    found again after one loads."""
+    return ((bpy.app.handlers.save_pre, abrdf_ext_material.keep_tables),
+            (bpy.app.handlers.load_post, abrdf_ext_material.refresh_tables))
+
+
 def register():
     abrdf_ext_props.register()
     abrdf_ext_ui.register()
-    bpy.app.handlers.load_post.append(abrdf_ext_material.refresh_tables)
+    for handlers, f in _handlers():
+        if f not in handlers:
+            handlers.append(f)
 
 
 def unregister():
-    if abrdf_ext_material.refresh_tables in bpy.app.handlers.load_post:
-        bpy.app.handlers.load_post.remove(abrdf_ext_material.refresh_tables)
+    for handlers, f in _handlers():
+        if f in handlers:
+            handlers.remove(f)
     abrdf_ext_ui.unregister()
     abrdf_ext_props.unregister()

@@ -12,6 +12,7 @@ import hashlib
 import math
 import os
 import re
+import shutil
 
 import bpy
 
@@ -90,37 +91,60 @@ def rebuild(mat):
 
 
 def huang_table_key(s):
-    """The parameters and sizes a huang table of settings s is built for, as a string."""
-    return repr(tuple(getattr(s, p) for p in HUANG_TABLE_PARAMS) + tuple(s.hair_table_sizes))
+    """What a huang table of settings s is built for, as a string: the parameters, the sizes
+    and the library's version (a table holds only for the library that built it)."""
+    return repr(tuple(getattr(s, p) for p in HUANG_TABLE_PARAMS) + tuple(s.hair_table_sizes)
+                + (abrdf.__version__,))
+
+
+def tables_dir(blend):
+    """Where the tables of the .blend at path `blend` live: abrdf_tables/ beside it."""
+    return os.path.join(os.path.dirname(os.path.abspath(blend)), "abrdf_tables")
+
+
+def huang_table_file(s):
+    """The file of the material's table: its path, else the file of its name in
+    abrdf_tables/ beside the .blend (a .blend moved with its tables), else None."""
+    if not s.hair_table:
+        return None
+    if os.path.isfile(s.hair_table):
+        return s.hair_table
+    if bpy.data.filepath:
+        moved = os.path.join(tables_dir(bpy.data.filepath), os.path.basename(s.hair_table))
+        if os.path.isfile(moved):
+            return moved
+    return None
 
 
 def huang_table_state(s):
     """The material's huang table: "none", "current" (read by the evaluation shader),
-    "stale" (built for other parameters: the shader integrates per call) or "missing" (its
-    file is gone)."""
+    "stale" (built for other parameters, sizes or library: the shader integrates per call)
+    or "missing" (its file is gone: per call too)."""
     if not s.hair_table:
         return "none"
     if s.hair_table_key != huang_table_key(s):
         return "stale"
-    return "current" if os.path.isfile(bpy.path.abspath(s.hair_table)) else "missing"
+    return "current" if huang_table_file(s) else "missing"
 
 
 def build_huang_table(mat, threads=0):
     """Tabulate the material's huang (abrdf.huang_table at its settings' sizes, rows over
     `threads` threads, 0: every core) and write the table as a PFM image that the evaluation
     shader reads (docs/OSL.md, "huang from a table"): into abrdf_tables/ beside the .blend,
-    or Blender's temporary directory for an unsaved file. Returns the file's path; ValueError
-    when the model is not huang, abrdf.Error for sizes the material refuses."""
+    or Blender's temporary directory for an unsaved file (keep_tables copies it beside the
+    file when it is saved). Returns the file's path; ValueError when the model is not huang,
+    abrdf.Error for sizes the material refuses, OSError when the directory cannot be made
+    (before the build)."""
     s = mat.abrdf
     if s.model != "huang":
         raise ValueError("the model is %s, not huang" % s.model)
+    where = (tables_dir(bpy.data.filepath) if bpy.data.filepath
+             else os.path.join(bpy.app.tempdir, "abrdf_tables"))
+    os.makedirs(where, exist_ok=True)
     sizes = tuple(s.hair_table_sizes)
     brdf = abrdf.BRDF("huang", **{p: getattr(s, p) for p in HUANG_TABLE_PARAMS})
     table = abrdf.huang_table(brdf, sizes, threads)
     key = huang_table_key(s)
-    where = (os.path.join(os.path.dirname(bpy.data.filepath), "abrdf_tables")
-             if bpy.data.filepath else os.path.join(bpy.app.tempdir, "abrdf_tables"))
-    os.makedirs(where, exist_ok=True)
     name = "%s_%s_%s.pfm" % (re.sub(r"[^A-Za-z0-9_-]", "_", mat.name)[:40],
                              "x".join(str(n) for n in sizes),
                              hashlib.sha1(key.encode()).hexdigest()[:12])
@@ -128,25 +152,51 @@ def build_huang_table(mat, threads=0):
     from .osl import abrdf_cycles
     abrdf_cycles.write_pfm(path, abrdf_cycles.huang_table_image(table.values, sizes))
     s.hair_table_key = key
-    s.hair_table = bpy.path.relpath(path) if bpy.data.filepath else path
+    s.hair_table = path
     push(mat)
     return path
+
+
+def _tabled():
+    return [m for m in bpy.data.materials
+            if getattr(m, "abrdf", None) is not None and m.abrdf.enabled and m.abrdf.hair_table]
+
+
+@bpy.app.handlers.persistent
+def keep_tables(*args):
+    """Before a .blend is saved: every table not yet in abrdf_tables/ beside the file it is
+    saved as (built before the first save, in Blender's temporary directory, or saved as
+    another file) is copied there, and the material points at the copy."""
+    blend = args[0] if args and isinstance(args[0], str) and args[0] else bpy.data.filepath
+    if not blend:
+        return
+    where = tables_dir(blend)
+    for mat in _tabled():
+        src = huang_table_file(mat.abrdf)
+        if not src or os.path.dirname(os.path.abspath(src)) == where:
+            if src and src != mat.abrdf.hair_table:
+                mat.abrdf.hair_table = src
+            continue
+        os.makedirs(where, exist_ok=True)
+        dst = os.path.join(where, os.path.basename(src))
+        shutil.copyfile(src, dst + ".part")
+        os.replace(dst + ".part", dst)
+        mat.abrdf.hair_table = dst
 
 
 @bpy.app.handlers.persistent
 def refresh_tables(*_):
     """After a .blend loads: every abrdf material with a hair table pushes its settings
-    again, so that a table whose file is gone (or a .blend opened where its relative path
-    leads elsewhere) leaves the shader integrating per call instead of reading nothing."""
-    for mat in bpy.data.materials:
-        if getattr(mat, "abrdf", None) is not None and mat.abrdf.enabled and mat.abrdf.hair_table:
-            push(mat)
+    again, so that the shader reads the table where it is now (abrdf_tables/ beside a moved
+    .blend), or integrates per call when its file is gone, instead of reading nothing."""
+    for mat in _tabled():
+        push(mat)
 
 
 def socket_values(s):
     """The shader's inputs from the settings s, by socket identifier (the OSL names)."""
     current = s.model == "huang" and huang_table_state(s) == "current"
-    v = {"huang_table": bpy.path.abspath(s.hair_table) if current else "",
+    v = {"huang_table": huang_table_file(s) if current else "",
          "huang_table_nt": s.hair_table_sizes[0], "huang_table_nv": s.hair_table_sizes[1],
          "huang_table_np": s.hair_table_sizes[2],
          "model": s.model, "model2": "" if s.model2 == "NONE" else s.model2,

@@ -112,10 +112,10 @@ def settings_class():
                                description="what the selection starts from: a material of "
                                "the table (data/materials.csv) or this material's values"),
         "hair_table": StringProperty(
-            name="Hair table", default="", subtype="FILE_PATH", update=_update,
-            description="evaluation mode, huang: the table image abrdf.tabulate_hair wrote "
-            "(docs/OSL.md, huang from a table); read only while the parameters are those it "
-            "was built for"),
+            name="Hair table", default="", update=_update,
+            description="evaluation mode, huang: the table image Tabulate hair wrote "
+            "(docs/OSL.md, huang from a table); read only while the parameters, sizes and "
+            "library are those it was built for"),
         "hair_table_key": StringProperty(name="Hair table built for", default=""),
         "hair_table_sizes": IntVectorProperty(
             name="Table sizes", size=4, min=1, max=256, default=(24, 9, 32, 16),

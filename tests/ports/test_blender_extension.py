@@ -26,6 +26,8 @@ import tempfile
 import unittest
 import zipfile
 
+import numpy as np
+
 if len(sys.argv) < 5:
     sys.exit(__doc__)
 ZIP = os.path.abspath(sys.argv[4])
@@ -201,6 +203,13 @@ class Install(unittest.TestCase):
                              list(sizes[:3]))
             with open(path, "rb") as f:  # a float RGB image, nt np x nt nv texels
                 self.assertEqual(f.read(14), b"PF\n96 36\n-1.0\n")
+                got = np.frombuffer(f.read(), "<f4").reshape(36, 96, 3)[::-1]  # bottom row first
+            import abrdf
+            table = abrdf.huang_table(abrdf.BRDF("huang", **{
+                p: getattr(st, p) for p in enable().abrdf_ext_material.HUANG_TABLE_PARAMS}), sizes)
+            # the library's values after its header, a row per view node, in float32
+            self.assertTrue(np.array_equal(
+                got, np.asarray(table.values[8:], "<f4").reshape(12 * 3, 12 * 8, 3)))
             st.melanin += 0.1
             self.assertEqual(node.inputs["huang_table"].default_value, "")
             st.melanin -= 0.1
@@ -222,6 +231,40 @@ class Install(unittest.TestCase):
                          "NMSE %.1e\n" % nmse)
         self.assertIn("path", seen)
         self.assertLess(nmse, NMSE_MAX)
+
+    def test_4c_hair_tables_follow_the_blend(self):
+        # A table built before the first save (Blender's temporary directory) is copied into
+        # abrdf_tables/ beside the .blend when it is saved; a .blend moved with that folder
+        # reads it from there.
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+        mats = enable().abrdf_ext_material
+        bpy.ops.mesh.primitive_cube_add()
+        ob = bpy.context.object
+        mat = add_material(ob, "EVALUATION")
+        st = mat.abrdf
+        st.model, st.aspect_ratio, st.hair_table_sizes = "huang", 1.0, (4, 1, 4, 1)
+        with bpy.context.temp_override(object=ob, active_object=ob, material=mat):
+            self.assertEqual(bpy.ops.abrdf.tabulate_hair(), {"FINISHED"})
+        name, mat_name = os.path.basename(st.hair_table), mat.name
+        self.assertTrue(st.hair_table.startswith(bpy.app.tempdir), st.hair_table)
+        a, b = os.path.join(WORK, "blend_a"), os.path.join(WORK, "blend_b")
+        for d in (a, b):
+            shutil.rmtree(d, ignore_errors=True)
+        os.makedirs(a)
+        with captured_fds():
+            bpy.ops.wm.save_as_mainfile(filepath=os.path.join(a, "hair.blend"))
+        kept = os.path.join(a, "abrdf_tables", name)
+        self.assertEqual(st.hair_table, kept)
+        self.assertTrue(os.path.isfile(kept))
+        self.assertEqual(mat.node_tree.nodes["abrdf"].inputs["huang_table"].default_value, kept)
+        shutil.copytree(a, b)
+        shutil.rmtree(a)
+        with captured_fds():
+            bpy.ops.wm.open_mainfile(filepath=os.path.join(b, "hair.blend"))
+        mat = bpy.data.materials[mat_name]
+        self.assertEqual(mats.huang_table_state(mat.abrdf), "current")
+        self.assertEqual(mat.node_tree.nodes["abrdf"].inputs["huang_table"].default_value,
+                         os.path.join(b, "abrdf_tables", name))
 
     def test_5_selection_applies_advise(self):
         bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -257,6 +300,8 @@ class Install(unittest.TestCase):
         bpy.ops.preferences.addon_disable(module=MODULE)
         self.assertNotIn(MODULE, bpy.context.preferences.addons)
         self.assertFalse(hasattr(bpy.types.Material, "abrdf"))
+        self.assertEqual([f.__name__ for f in bpy.app.handlers.save_pre + bpy.app.handlers.load_post
+                          if f.__name__ in ("keep_tables", "refresh_tables")], [])
         enable()
         self.assertTrue(hasattr(bpy.types.Material, "abrdf"))
 
