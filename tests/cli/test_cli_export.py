@@ -147,6 +147,16 @@ class Export(unittest.TestCase):
         self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
         self.assertFalse(os.path.exists(pov))
         os.rmdir(os.path.join(self.tmp.name, "x.huang1.exr"))
+        # an output in a directory that does not exist: refused before any table is built
+        fresh = os.path.join(self.tmp.name, "fresh")
+        os.mkdir(fresh)
+        for fmt, name in (("--pov", "x.pov"), ("--cycles", "x.py")):
+            r = run(fmt, hair, "-o", os.path.join(self.tmp.name, "none", name),
+                    "--hair-table-sizes", "6,3,8,1", "--hair-table-cache", fresh)
+            self.assertEqual(r.returncode, 1, r.stderr)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertIn(os.path.join("none", name), r.stderr)
+            self.assertEqual(os.listdir(fresh), [])
         for args, msg in [(("--pov", hair, "-o", pov, "--native", "--hair-table"),
                            "not by --native"),
                           (("--cycles", hair, "-o", self.out, "--mode", "closure",

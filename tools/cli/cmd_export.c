@@ -391,6 +391,12 @@ static int export_scene(export_args *ea, scene *s)
     pov_tables tables = {0, NULL, NULL, NULL};
     char *notes = NULL;
     size_t notes_len = 0;
+    /* The output exists (as a temporary file) before the work: a directory that is missing or
+     * cannot be written fails now, not after the tables are built (minutes per material). */
+    if (!ea->gltf && out_file_open(&o, ea->out, err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s\n", err);
+        goto done;
+    }
     FILE *trace = open_memstream(&notes, &notes_len);
     if (!trace) {
         fprintf(stderr, "abrdf export: out of memory\n");
@@ -433,10 +439,6 @@ static int export_scene(export_args *ea, scene *s)
     }
     for (int i = 0; i < tables.n; ++i) files[i] = &tables.files[i];
     files[tables.n] = &o;
-    if (out_file_open(&o, ea->out, err, sizeof err)) {
-        fprintf(stderr, "abrdf export: %s\n", err);
-        goto done;
-    }
     if (export_write(ea, &rs, &o, notes_len ? notes : NULL, &tables)) goto done;
     if (out_file_close(&o, err, sizeof err) ||
         out_file_commit(files, tables.n + 1, err, sizeof err)) {
