@@ -114,6 +114,15 @@ class Render(TempDirCase):
         self.assertEqual(os.path.getsize(a), len(first))
         with open(b, "rb") as f:
             self.assertNotEqual(f.read(), first)
+        # an output in a directory that does not exist: refused before any table is built
+        fresh = self.path("fresh")
+        os.mkdir(fresh)
+        r = run(hair, "-o", self.path(os.path.join("none", "x.exr")), *sizes,
+                "--hair-table-cache", fresh)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+        self.assertIn(os.path.join("none", "x.exr"), r.stderr)
+        self.assertEqual(os.listdir(fresh), [])
         # bad input: one line, exit 2, nothing written
         for args, msg in ((["--hair-table-sizes", "6,3,8"], "is not NT,NV,NP,SETS"),
                           (["--hair-table-sizes", "6,3,8,1x"], "is not NT,NV,NP,SETS"),

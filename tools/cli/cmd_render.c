@@ -321,6 +321,14 @@ static int render_to_files(render_args *ra, scene *s, const char *png, struct ti
     float *rgb = NULL;
     render_scene rs;
     out_file exr_out = OUT_FILE_INIT, png_out = OUT_FILE_INIT;
+    /* The outputs exist (as temporary files) before the work: a directory that is missing or
+     * cannot be written fails now, not after the materials' choices, huang tables (minutes
+     * per material) and the render. */
+    if (out_file_open(&exr_out, ra->out, err, sizeof err) ||
+        (png && out_file_open(&png_out, png, err, sizeof err))) {
+        fprintf(stderr, "abrdf render: %s\n", err);
+        goto done;
+    }
     /* a budget's prediction samples the image the scene file describes (its resolution, the
      * default 4 samples per pixel), so abrdf export makes the same choices */
     int applied = scene_choice_apply(&ra->choice, CMD, s, ra->path, 4, ra->explain ? stdout : NULL);
@@ -336,13 +344,6 @@ static int render_to_files(render_args *ra, scene *s, const char *png, struct ti
     prepared = 1;
     if (ra->full && render_plan_ignore(&rs)) {
         fprintf(stderr, "abrdf render: out of memory\n");
-        goto done;
-    }
-    /* The outputs exist (as temporary files) before the render: a directory that is missing
-     * or cannot be written fails now, not after the work. */
-    if (out_file_open(&exr_out, ra->out, err, sizeof err) ||
-        (png && out_file_open(&png_out, png, err, sizeof err))) {
-        fprintf(stderr, "abrdf render: %s\n", err);
         goto done;
     }
     if (ra->explain) {
