@@ -18,18 +18,18 @@ import bpy
 
 import abrdf
 
+from .osl import abrdf_cycles
+
 OSL_DIR = os.path.join(os.path.dirname(__file__), "osl")
 SHADERS = {"CLOSURE": "abrdf_material.osl", "EVALUATION": "abrdf_eval.osl"}
 NODE = "abrdf"
 MAX_LIGHTS = 4  # abrdf_eval.osl's light0 ... light3
-# What a huang table is built for (abrdf_cycles.HUANG_TABLE_PARAMS): a table holds only for them.
-HUANG_TABLE_PARAMS = ("eta", "melanin", "redness", "cuticle_tilt", "aspect_ratio", "r",
-                      "entry_grid", "internal_grid")
+# What a huang table is built for: a table holds only for them.
+HUANG_TABLE_PARAMS = abrdf_cycles.HUANG_TABLE_PARAMS
 
 
 def _osl():
     """Cycles' OSL helpers (compile, sockets from the compiled shader's parameters)."""
-    from .osl import abrdf_cycles
     return abrdf_cycles.cycles_osl()
 
 
@@ -149,7 +149,6 @@ def build_huang_table(mat, threads=0):
                              "x".join(str(n) for n in sizes),
                              hashlib.sha1(key.encode()).hexdigest()[:12])
     path = os.path.join(where, name)
-    from .osl import abrdf_cycles
     abrdf_cycles.write_pfm(path, abrdf_cycles.huang_table_image(table.values, sizes))
     s.hair_table_key = key
     s.hair_table = path

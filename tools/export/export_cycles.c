@@ -467,9 +467,6 @@ static void py_lights(FILE *f, const scene *s, char *env_path[SCENE_MAX_LIGHTS])
     fputs("    ],\n", f);
 }
 
-/* The doubles before a huang table's nodes (abrdf.h, "huang tabulated": a header of 8). */
-#define TABLE_HEADER 8
-
 /* A tabulated material's "huang_table": the table's values after its header as float32 (the
  * texture abrdf_cycles.py writes, osl/abrdf_hair.h reads), nt np wide and nt nv high. 0, or -1
  * with the reason in err. */
@@ -483,13 +480,13 @@ static int py_huang_table(FILE *f, const hair_store *tables, const abrdf_params 
         snprintf(err, err_size, "material '%s': no huang table to export", name);
         return -1;
     }
-    n -= TABLE_HEADER;
+    n -= HAIR_STORE_HEADER;
     float *x = malloc((size_t)n * sizeof *x);
     if (!x) {
         snprintf(err, err_size, "material '%s': no memory for its huang table", name);
         return -1;
     }
-    for (long i = 0; i < n; ++i) x[i] = (float)v[TABLE_HEADER + i];
+    for (long i = 0; i < n; ++i) x[i] = (float)v[HAIR_STORE_HEADER + i];
     const int *sz = tables->sizes;
     /* the parameters it was built for: the script refuses it for a material edited since */
     fprintf(f,

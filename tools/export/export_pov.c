@@ -62,9 +62,6 @@ static int material(FILE *f, int index, const scene_material *sm, const render_m
 /* A scene's materials each have at most one table, and the macros hold this many. */
 typedef char export_pov_tables_fit[EXPORT_POV_HUANG_TABLES_MAX >= SCENE_MAX_MATERIALS ? 1 : -1];
 
-/* The doubles before a huang table's nodes (abrdf.h, "huang tabulated": a header of 8). */
-#define TABLE_HEADER 8
-
 /* A tabulated material reads its table (abrdf_huang.inc, Abrdf_Huang_Table), which refuses
  * it for a material edited since the table was built: the parameters it was built for. */
 static int material_table(FILE *f, int index, const render_material *m,
@@ -107,7 +104,7 @@ double export_pov_table_scale(const double *values, const int sizes[4])
 {
     const long n = 3L * sizes[0] * sizes[1] * sizes[0] * sizes[2];
     double top = 0.0;
-    for (long i = 0; i < n; ++i) top = fmax(top, values[TABLE_HEADER + i]);
+    for (long i = 0; i < n; ++i) top = fmax(top, values[HAIR_STORE_HEADER + i]);
     int e = 0;
     if (top > 0.0) frexp(32768.0 / top, &e); /* 32768 / top in [2^(e-1), 2^e) */
     return ldexp(1.0, top > 0.0 ? e - 1 : 0);
@@ -118,7 +115,7 @@ int export_pov_table_image(const double *values, const int sizes[4], float **rgb
 {
     const int nt = sizes[0], nv = sizes[1], np = sizes[2];
     const long n = (long)nt * nv * nt * np;
-    const double *v = values + TABLE_HEADER, scale = export_pov_table_scale(values, sizes);
+    const double *v = values + HAIR_STORE_HEADER, scale = export_pov_table_scale(values, sizes);
     *width = nt * np, *height = 3 * nt * nv;
     float *x = malloc((size_t)n * 9 * sizeof *x);
     if (!(*rgb = x)) return -1;

@@ -11,6 +11,9 @@
 #include "abrdf_fit.h"
 #include "budget_run.h"
 
+/* The doubles before a table's nodes (abrdf.h, "huang tabulated": a header of 8). */
+#define HAIR_STORE_HEADER 8
+
 typedef struct hair_store {
     int sizes[4];      /* every table's sizes (abrdf_huang_table_size) */
     const char *cache; /* a directory keeping each table in a file named by its keys; NULL: none */
