@@ -120,7 +120,7 @@ def settings_class():
         "hair_table_sizes": IntVectorProperty(
             name="Table sizes", size=4, min=1, max=256, default=(24, 9, 32, 16),
             update=_update, description="theta nodes, view azimuths (1 for a round fibre), "
-            "light azimuths, shift sets; the default takes about 2 minutes of one core"),
+            "light azimuths, shift sets; the default takes about a minute of one core"),
         "choice": StringProperty(name="Choice", default=""),
         "trace": StringProperty(name="Trace", default=""),
     }

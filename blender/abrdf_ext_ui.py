@@ -125,7 +125,7 @@ class ABRDF_OT_sync_lights(bpy.types.Operator):
 
 
 class ABRDF_OT_tabulate_hair(bpy.types.Operator):
-    """Tabulate this huang material's residual lobes once (about 2 minutes of one core at the
+    """Tabulate this huang material's residual lobes once (about a minute of one core at the
     default sizes, over every core): the evaluation shader then reads them, nearer the
     converged model than the per-call quadrature and far faster (14 times on the hair robot
     in Cycles, docs/OSL.md)"""

@@ -3,7 +3,7 @@
  * let the budget mode measure its stand-ins against it (abrdf_fit.h, abrdf_budget.reference).
  *   cc hair_table.c $(pkg-config --cflags --libs abrdf) -o hair_table
  * The sizes here are small, for a quick run; ABRDF_HUANG_TABLE_SIZES are the ones measured
- * in docs/MODELS.md ("A tabulated huang"), about 2 minutes of one core to build. */
+ * in docs/MODELS.md ("A tabulated huang"), about a minute of one core to build. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <abrdf.h>

@@ -536,8 +536,8 @@ ABRDF_API int abrdf_huang_table_size(const abrdf_params *params, const int sizes
  * header alone, whose keys, values[6] and values[7], a caller that keeps tables in files can
  * name them by). Calls with
  * disjoint rows may run at once on one table; the rows' values do not depend on how they are
- * split. A row has sizes[0] sizes[2] nodes, each about 50 us per shift set on one core at
- * the default grids (about 2 minutes for the default sizes). The errors of
+ * split. A row has sizes[0] sizes[2] nodes, each about 22 us per shift set on one core at
+ * the default grids (about a minute for the default sizes). The errors of
  * abrdf_huang_table_size, and ABRDF_E_RANGE for rows outside [0, rows]. */
 ABRDF_API int abrdf_huang_table_build(const abrdf_params *params, const int sizes[4], int row0,
                                       int row1, double *values);

@@ -12,7 +12,7 @@ import numpy.typing as npt
 from . import _abrdf
 from ._brdf import BRDF, Precision, eval_block, threads_arg
 
-# ABRDF_HUANG_TABLE_SIZES: the sizes docs/MODELS.md measures (about 2 minutes of one core).
+# ABRDF_HUANG_TABLE_SIZES: the sizes docs/MODELS.md measures (about a minute of one core).
 DEFAULT_SIZES = (24, 9, 32, 16)
 
 
@@ -102,7 +102,7 @@ def huang_table(brdf: BRDF, sizes: tuple[int, int, int, int] = DEFAULT_SIZES,
     """huang's residual lobes tabulated for one parameter block (abrdf_huang_table_build):
     sizes = (theta nodes [4, 256], view azimuths [2, 256] or 1 for a round fibre, light
     azimuths [4, 256], shift sets [1, 64]); the default, DEFAULT_SIZES, is what
-    docs/MODELS.md measures and takes about 2 minutes of one core. The table's rows are built
+    docs/MODELS.md measures and takes about a minute of one core. The table's rows are built
     over `threads` threads (0: one per core), the GIL released. Sizes out of range or a BRDF
     that is not huang raise abrdf.Error with the library's message."""
     if not isinstance(brdf, BRDF):

@@ -453,8 +453,10 @@ static void lcg_dir(unsigned long long *seed, double w[3])
 
 /* A run of lights sharing one view (abrdf__huang_fibre_run, and the batch path that hands
  * runs of equal wo to it) gives each light what a call of its own gives: lobe by lobe in
- * double, the same bits (runs of 1, 2, 5 and ABRDF__HUANG_RUN_MAX lights), and through
- * abrdf_eval_prepared_batch against abrdf_eval_prepared in float, with lights below the
+ * double, the same bits (runs of 1, 2, 5, 7 and ABRDF__HUANG_RUN_MAX lights, and through
+ * abrdf__huang_fibre_wide, which a table's build calls, of 13, 100 and ABRDF__HUANG_WIDE_MAX:
+ * below and above hair_huang.c's LIGHT_MAJOR_MIN, whose two loops give the same bits), and
+ * through abrdf_eval_prepared_batch against abrdf_eval_prepared in float, with lights below the
  * ribbon, lights the tilt hides and a degenerate vector inside the runs, and runs longer
  * than ABRDF__HUANG_RUN_MAX (split). */
 START_TEST(light_runs_match_single_calls)
@@ -468,18 +470,22 @@ START_TEST(light_runs_match_single_calls)
     unsigned long long seed = 7;
     double worst = 0.0;
     for (int v = 0; v < 6; ++v) {
-        double wo[3], wi[ABRDF__HUANG_RUN_MAX][3], s_run[ABRDF__HUANG_RUN_MAX][3];
+        double wo[3], wi[ABRDF__HUANG_WIDE_MAX][3], s_run[ABRDF__HUANG_WIDE_MAX][3];
         lcg_dir(&seed, wo);
         wo[2] = fabs(wo[2]) + 0.05;
-        for (int l = 0; l < ABRDF__HUANG_RUN_MAX; ++l) {
+        for (int l = 0; l < ABRDF__HUANG_WIDE_MAX; ++l) {
             lcg_dir(&seed, wi[l]);
             if (l == 2) wi[l][2] = -fabs(wi[l][2]);                          /* below the ribbon */
             if (l == 5) wi[l][0] = 0.999, wi[l][1] = 0.0, wi[l][2] = 0.0447; /* grazing, along T */
         }
         for (unsigned lobes = 1; lobes < 16; lobes = lobes * 2 + 1)
-            for (int k = 0; k < 4; ++k) {
-                const int n = (int[]){1, 2, 5, ABRDF__HUANG_RUN_MAX}[k];
-                abrdf__huang_fibre_run(&m, n, (const double(*)[3])wi, wo, lobes, s_run);
+            for (int k = 0; k < (v < 2 ? 8 : 5); ++k) { /* the wide runs from two views */
+                const int n =
+                    (int[]){1, 2, 5, 7, ABRDF__HUANG_RUN_MAX, 13, 100, ABRDF__HUANG_WIDE_MAX}[k];
+                if (k < 5)
+                    abrdf__huang_fibre_run(&m, n, (const double(*)[3])wi, wo, lobes, s_run);
+                else
+                    abrdf__huang_fibre_wide(&m, n, (const double(*)[3])wi, wo, lobes, s_run);
                 for (int l = 0; l < n; ++l) {
                     double s1[3];
                     abrdf__huang_fibre(&m, wi[l], wo, lobes, s1);

@@ -103,7 +103,7 @@ static void usage(FILE *f)
            "                         (docs/MEASURED.md, \"Fitting measured data\")\n"
            "  --hair-table [--hair-table-sizes NT,NV,NP,SETS] [--hair-table-cache DIR]\n"
            "                         with --budget/--pareto: a hair material's reference is its\n"
-           "                         huang table, the converged model (~2 min of one core;\n"
+           "                         huang table, the converged model (~1 min of one core;\n"
            "                         docs/SELECTION.md, \"A converged reference for hair\")\n"
            "  --pareto               every candidate's cost and predicted NMSE: the front\n"
            "  --plot FILE.svg        with --pareto: draw the cost/error plane\n"

@@ -77,7 +77,7 @@ static int usage(void)
            "  --osl-dir DIR      (cycles) abrdf's osl/ directory the script uses; default\n"
            "                     $ABRDF_OSL_DIR, else the source tree's, else the installed one\n"
            "  --hair-table       (cycles eval and generic modes, pov) tabulate every huang\n"
-           "                     material as abrdf render --hair-table does (~2 min of one\n"
+           "                     material as abrdf render --hair-table does (~1 min of one\n"
            "                     core per material at the default sizes, over the online\n"
            "                     CPUs); the script holds the tables and its shaders read them\n"
            "                     (docs/OSL.md, \"huang from a table\"); --pov writes each\n"

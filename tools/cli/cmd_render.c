@@ -59,7 +59,7 @@ static int usage(void)
         "  --texture-cache MB  memory of the textures' tile cache (OpenImageIO TextureSystem);\n"
         "                    default 256 (docs/GLTF.md, \"Textures\")\n"
         "  --hair-table      tabulate each huang material's residual lobes once (the rows over\n"
-        "                    the threads; ~2 min of one core per material at the default sizes)\n"
+        "                    the threads; ~1 min of one core per material at the default sizes)\n"
         "                    and read them by interpolation: ~150x cheaper per call and\n"
         "                    nearer the converged model (docs/MODELS.md, \"A tabulated huang\")\n"
         "  --hair-table-sizes NT,NV,NP,SETS   the table's theta nodes, view azimuths, light\n"

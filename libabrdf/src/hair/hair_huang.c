@@ -39,6 +39,7 @@
  *  - cuticle_tilt is Blender's "offset" (degrees); the model's tilt is its negative.
  * For the tests only, cycles_nodes (hair.h) switches to Cycles' quadrature, so that a Cycles
  * render can be checked against the same integrand (docs/MODELS.md, "Cycles as an oracle"). */
+#include <float.h>
 #include <math.h>
 
 #include "hair.h"
@@ -251,6 +252,20 @@ static void grid_points(const grid_angles *a, long k, long set, double *p0, doub
         }
     }
 }
+
+/* An evaluation's disc points and column angles, in one block whose layout is fixed. Each
+ * row of points is 8 KiB (ABRDF__HUANG_NODES_MAX doubles), so every row starts at the same
+ * address modulo 4 KiB; the angles lie 2 KiB past it, beyond the points of any grid up to
+ * 16 x 16. grid_points reads the angles while it stores points: an angle 4 KiB (or a
+ * multiple) from a point stored just before waits for that store (the processor compares
+ * the addresses' low 12 bits first), which made huang's per-call evaluation 25 % slower
+ * on the mixed scene's lock when another change moved the angles to such a place. */
+typedef struct grid_block {
+    double p1s[3][ABRDF__HUANG_NODES_MAX], p2s[2][ABRDF__HUANG_NODES_MAX];
+    char gap[2048];
+    grid_angles ang1, ang2;
+} grid_block;
+typedef char grid_rows_are_4k[(ABRDF__HUANG_NODES_MAX * sizeof(double)) % 4096 == 0 ? 1 : -1];
 
 static void vndf_frame_make(double alpha, v3 wi, v3 wm, vndf_frame *f)
 {
@@ -602,15 +617,54 @@ static double lobe_r_cycles(const abrdf__huang *m, v3 wi, v3 wo, double h0, doub
  * c + t))^2, over one denominator; total internal reflection gives 1 and the refracted
  * cosine -t / eta (0 under total internal reflection). */
 
-/* The lights of a run, in the fibre frame, with what their exits reuse. */
+/* The lights of a run, in the fibre frame, with what their exits reuse and their sums: the
+ * caller's arrays (LIGHT_STORE), room for as many lights as the run has. Each light's
+ * directions are held twice: as vectors (R, TT) and as one array per component, which the
+ * light-major loops (internal_lights) read. */
 typedef struct light_run {
     int n;
-    v3 wo[ABRDF__HUANG_RUN_MAX];  /* light directions (Cycles' "wo") */
-    v3 wos[ABRDF__HUANG_RUN_MAX]; /* wo / eta: the light's part of the exit half vectors */
+    v3 *wo;               /* light directions (Cycles' "wo") */
+    v3 *wos;              /* wo / eta: the light's part of the exit half vectors */
+    double *x, *y, *z;    /* wo, per component */
+    double *sx, *sy, *sz; /* wo / eta, per component */
+    double *s_tt[3], *s_trt[3], *s_trrt[3]; /* each light's sums of TT, TRT and TRRT+, one
+                                             * array per channel */
+    double *fl, *v; /* a chunk's internal nodes' values for every light (trt_add): node j's
+                     * from j * cap on */
+    int cap;        /* room for lights */
 } light_run;
 
-/* What the terms share: the fibre, the view, the run's lights, per-evaluation constants,
- * and each light's sums. */
+/* Runs of LIGHT_MAJOR_MIN lights and more take the light-major loops (internal_lights,
+ * lights_add), whose lanes run over the lights: a table's build hands over
+ * hundreds. lights_add takes them LIGHTS_BLOCK at a time (a vector's lanes with AVX-512, two
+ * with AVX2), and the room for lights is whole blocks. */
+#define LIGHT_MAJOR_MIN 8
+#define LIGHTS_BLOCK 8
+typedef char light_room_is_blocks[ABRDF__HUANG_RUN_MAX % LIGHTS_BLOCK == 0 &&
+                                          ABRDF__HUANG_WIDE_MAX % LIGHTS_BLOCK == 0
+                                      ? 1
+                                      : -1];
+
+/* The arrays of a light_run for up to N lights, with fibre_run's own (slot, res), and
+ * LIGHT_BIND(lr, st, N) pointing lr at them: a run of ABRDF__HUANG_RUN_MAX lights takes 14 KiB
+ * of stack, a wide one (abrdf__huang_fibre_wide) 57 KiB. */
+#define LIGHT_STORE(N)                                                                             \
+    struct {                                                                                       \
+        v3 wo[N], wos[N];                                                                          \
+        double x[N], y[N], z[N], sx[N], sy[N], sz[N], s_tt[3][N], s_trt[3][N], s_trrt[3][N];       \
+        double fl[INTERNAL_CHUNK * (N)], v[INTERNAL_CHUNK * (N)], res[N][3];                       \
+        int slot[N];                                                                               \
+    }
+#define LIGHT_BIND(lr, st, N)                                                                      \
+    ((lr).n = 0, (lr).wo = (st).wo, (lr).wos = (st).wos, (lr).x = (st).x, (lr).y = (st).y,         \
+     (lr).z = (st).z, (lr).sx = (st).sx, (lr).sy = (st).sy, (lr).sz = (st).sz,                     \
+     (lr).s_tt[0] = (st).s_tt[0], (lr).s_tt[1] = (st).s_tt[1], (lr).s_tt[2] = (st).s_tt[2],        \
+     (lr).s_trt[0] = (st).s_trt[0], (lr).s_trt[1] = (st).s_trt[1], (lr).s_trt[2] = (st).s_trt[2],  \
+     (lr).s_trrt[0] = (st).s_trrt[0], (lr).s_trrt[1] = (st).s_trrt[1],                             \
+     (lr).s_trrt[2] = (st).s_trrt[2], (lr).fl = (st).fl, (lr).v = (st).v, (lr).cap = (N))
+
+/* What the terms share: the fibre, the view, the run's lights (and their sums),
+ * per-evaluation constants. */
 typedef struct residual_ctx {
     const abrdf__huang *m;
     v3 wi;
@@ -619,8 +673,6 @@ typedef struct residual_ctx {
     double st, ct;      /* sin and cos of the cuticle tilt; the exit's: -st, ct */
     energy_axes ax_out; /* the energy table leaving the fibre (m->e_out) */
     unsigned lobes;
-    double s_tt[ABRDF__HUANG_RUN_MAX][3], s_trt[ABRDF__HUANG_RUN_MAX][3];
-    double s_trrt[ABRDF__HUANG_RUN_MAX][3];
 } residual_ctx;
 
 /* A Simpson node on the fibre's cross-section: the entry mesonormals at gamma gmi. */
@@ -811,7 +863,7 @@ static void tt_add(residual_ctx *c, const entry_path *e)
         double v = e->tt_pre * exit_factor(dot(neg(wt), wh2), u_o, u_mh, l2, c->inv_eta2, a2, e->c2,
                                            e->s2, dot(neg(wo), e->wmt));
         if (isfinite(v))
-            for (int k = 0; k < 3; ++k) c->s_tt[l][k] += v * e->at[k]; /* Eq. 13 */
+            for (int k = 0; k < 3; ++k) c->lr->s_tt[k][l] += v * e->at[k]; /* Eq. 13 */
     }
 }
 
@@ -973,29 +1025,40 @@ typedef struct light_consts {
     double cut, e2, a2;            /* the critical cosine (1/eta less a tolerance), (1/eta)^2 */
 } light_consts;
 
+/* One node's exit toward one light, for both loops below (the same arithmetic, so the same
+ * bits, whichever runs): *fl and the returned v as above. The node: its reflected ray t, its
+ * cos_hi2 ci, refl, pre, the exit mesonormals m and f (y = 0), c3 and s3. */
+static inline double light_exit(double tx, double ty, double tz, double ci, double refl, double pre,
+                                double mx, double my, double mz, double fx, double fz, double c3,
+                                double s3, double wx, double wy, double wz, double sx, double sy,
+                                double sz, double cut, double e2, double a2, double *fl)
+{
+    int in = ci > 0.0, tir = -(tx * wx + ty * wy + tz * wz) < cut;
+    double hx = tx + sx, hy = ty + sy, hz = tz + sz;
+    double l3 = hx * hx + hy * hy + hz * hz;
+    int pass = (refl > 0.0) & (l3 > ABRDF__HUANG_HALF_LEN2_MIN);
+    *fl = (in & (tir | pass)) ? 1.0 : 0.0;
+    double com = -(mx * wx + my * wy + mz * wz), cof = -(fx * wx + fz * wz);
+    double umh = mx * hx + my * hy + mz * hz, uhi = hx * tx + hy * ty + hz * tz;
+    double uho = -(hx * wx + hy * wy + hz * wz);
+    int ok = in & !tir & pass & (pre > 0.0) & (com > 0.0) & (cof > 0.0) & (umh > 0.0) &
+             (uhi > 0.0) & (uho > 0.0);
+    double f = pre * exit_factor(uhi, uho, umh, l3, e2, a2, c3, s3, com);
+    return ok ? f : 0.0;
+}
+
+/* Node-major: one light, every node of the chunk (the loop runs over the nodes). */
 #define INTERNAL_LIGHT(L)                                                                          \
     ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void internal_light_##L(                            \
         const internal_nodes *restrict o, int n, const light_consts *restrict lc,                  \
         double *restrict fl, double *restrict v)                                                   \
     {                                                                                              \
-        const double wx = lc->wx, wy = lc->wy, wz = lc->wz;                                        \
-        for (int j = 0; j < n; ++j) {                                                              \
-            double tx = o->tx[j], ty = o->ty[j], tz = o->tz[j];                                    \
-            int in = o->ci[j] > 0.0, tir = -(tx * wx + ty * wy + tz * wz) < lc->cut;               \
-            double hx = tx + lc->sx, hy = ty + lc->sy, hz = tz + lc->sz;                           \
-            double l3 = hx * hx + hy * hy + hz * hz;                                               \
-            int pass = (o->refl[j] > 0.0) & (l3 > ABRDF__HUANG_HALF_LEN2_MIN);                     \
-            fl[j] = (in & (tir | pass)) ? 1.0 : 0.0;                                               \
-            double mx = o->mx[j], my = o->my[j], mz = o->mz[j];                                    \
-            double com = -(mx * wx + my * wy + mz * wz), cof = -(o->fx[j] * wx + o->fz[j] * wz);   \
-            double umh = mx * hx + my * hy + mz * hz, uhi = hx * tx + hy * ty + hz * tz;           \
-            double uho = -(hx * wx + hy * wy + hz * wz);                                           \
-            int ok = in & !tir & pass & (o->pre[j] > 0.0) & (com > 0.0) & (cof > 0.0) &            \
-                     (umh > 0.0) & (uhi > 0.0) & (uho > 0.0);                                      \
-            double f = o->pre[j] *                                                                 \
-                       exit_factor(uhi, uho, umh, l3, lc->e2, lc->a2, o->c3[j], o->s3[j], com);    \
-            v[j] = ok ? f : 0.0;                                                                   \
-        }                                                                                          \
+        const double wx = lc->wx, wy = lc->wy, wz = lc->wz, sx = lc->sx, sy = lc->sy;              \
+        const double sz = lc->sz, cut = lc->cut, e2 = lc->e2, a2 = lc->a2;                         \
+        for (int j = 0; j < n; ++j)                                                                \
+            v[j] = light_exit(o->tx[j], o->ty[j], o->tz[j], o->ci[j], o->refl[j], o->pre[j],       \
+                              o->mx[j], o->my[j], o->mz[j], o->fx[j], o->fz[j], o->c3[j],          \
+                              o->s3[j], wx, wy, wz, sx, sy, sz, cut, e2, a2, fl + j);              \
     }
 ABRDF__ISA_LEVELS(INTERNAL_LIGHT)
 
@@ -1009,27 +1072,134 @@ static internal_light_fn internal_light_at(int level)
     return fns[level < 0 ? 0 : level < n ? level : n - 1];
 }
 
+/* Light-major: node j of the chunk toward every light of the run (the loop runs over the
+ * lights, whose number fills the vector lanes where a chunk's n2^2 = 9 nodes do not), the
+ * same light_exit; fl and v are 0 from the last light to the end of its block. Returns how
+ * many lights leave through the node (v finite and not 0). */
+#define INTERNAL_LIGHTS(L)                                                                         \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static int internal_lights_##L(                            \
+        const internal_nodes *restrict o, int j, const light_run *restrict lr, double cut,         \
+        double e2, double a2, double *restrict fl, double *restrict v)                             \
+    {                                                                                              \
+        const double tx = o->tx[j], ty = o->ty[j], tz = o->tz[j], ci = o->ci[j];                   \
+        const double refl = o->refl[j], pre = o->pre[j], mx = o->mx[j], my = o->my[j];             \
+        const double mz = o->mz[j], fx = o->fx[j], fz = o->fz[j], c3 = o->c3[j], s3 = o->s3[j];    \
+        const double *restrict x = lr->x, *restrict y = lr->y, *restrict z = lr->z;                \
+        const double *restrict sx = lr->sx, *restrict sy = lr->sy, *restrict sz = lr->sz;          \
+        const int n = lr->n;                                                                       \
+        int out = 0;                                                                               \
+        for (int l = 0; l < n; ++l) {                                                              \
+            double vl = light_exit(tx, ty, tz, ci, refl, pre, mx, my, mz, fx, fz, c3, s3, x[l],    \
+                                   y[l], z[l], sx[l], sy[l], sz[l], cut, e2, a2, fl + l);          \
+            v[l] = vl;                                                                             \
+            out += (vl != 0.0) & (fabs(vl) <= DBL_MAX);                                            \
+        }                                                                                          \
+        for (int l = n; l % LIGHTS_BLOCK; ++l) fl[l] = v[l] = 0.0; /* the last block's rest */     \
+        return out;                                                                                \
+    }
+ABRDF__ISA_LEVELS(INTERNAL_LIGHTS)
+
+typedef int (*internal_lights_fn)(const internal_nodes *restrict, int, const light_run *restrict,
+                                  double, double, double, double *restrict, double *restrict);
+#define INTERNAL_LIGHTS_ENTRY(L) internal_lights_##L,
+static internal_lights_fn internal_lights_at(int level)
+{
+    static const internal_lights_fn fns[] = {ABRDF__ISA_LEVELS(INTERNAL_LIGHTS_ENTRY)};
+    const int n = (int)(sizeof fns / sizeof fns[0]);
+    return fns[level < 0 ? 0 : level < n ? level : n - 1];
+}
+
+/* Light-major: the chunk's n nodes, in their order, to every light: node j's TRRT+ rr[.][j]
+ * (RGB) where its fl lets the light through, and its TRT v times its absorption att[j]
+ * where the light leaves (v finite and not 0); fl and v of node j from j * cap on. Each
+ * light's six sums stay in registers over the chunk. A skipped term adds +0, which leaves a
+ * sum as it is (the sums start at +0), so these are the node-major loop's bits. */
+#define LIGHTS_ADD(L)                                                                              \
+    ABRDF__NOINLINE ABRDF__ISA_ATTR_##L static void lights_add_##L(                                \
+        const light_run *restrict lr, int n, const double(*restrict rr)[INTERNAL_CHUNK],           \
+        const double(*restrict att)[3])                                                            \
+    {                                                                                              \
+        double *const *s = lr->s_trrt, *const *t = lr->s_trt;                                      \
+        const double *restrict fl = lr->fl, *restrict v = lr->v;                                   \
+        const int nl = lr->n, cap = lr->cap;                                                       \
+        for (int l0 = 0; l0 < nl; l0 += LIGHTS_BLOCK) {                                            \
+            const int m = nl - l0 < LIGHTS_BLOCK ? nl - l0 : LIGHTS_BLOCK;                         \
+            double q[3][LIGHTS_BLOCK], u[3][LIGHTS_BLOCK];                                         \
+            for (int k = 0; k < 3; ++k)                                                            \
+                for (int i = 0; i < LIGHTS_BLOCK; ++i)                                             \
+                    q[k][i] = i < m ? s[k][l0 + i] : 0.0, u[k][i] = i < m ? t[k][l0 + i] : 0.0;    \
+            for (int j = 0; j < n; ++j) {                                                          \
+                const double *fj = fl + (long)j * cap + l0, *vj = v + (long)j * cap + l0;          \
+                const double p0 = rr[0][j], p1 = rr[1][j], p2 = rr[2][j];                          \
+                const double a0 = att[j][0], a1 = att[j][1], a2 = att[j][2];                       \
+                for (int i = 0; i < LIGHTS_BLOCK; ++i) {                                           \
+                    int f = fj[i] > 0.0;                                                           \
+                    double vl = vj[i];                                                             \
+                    int ok = (vl != 0.0) & (fabs(vl) <= DBL_MAX);                                  \
+                    q[0][i] += f ? p0 : 0.0, q[1][i] += f ? p1 : 0.0, q[2][i] += f ? p2 : 0.0;     \
+                    u[0][i] += ok ? vl * a0 : 0.0, u[1][i] += ok ? vl * a1 : 0.0;                  \
+                    u[2][i] += ok ? vl * a2 : 0.0;                                                 \
+                }                                                                                  \
+            }                                                                                      \
+            for (int k = 0; k < 3; ++k) /* a whole block: the room is blocks (below) */            \
+                for (int i = 0; i < LIGHTS_BLOCK; ++i)                                             \
+                    s[k][l0 + i] = q[k][i], t[k][l0 + i] = u[k][i];                                \
+        }                                                                                          \
+    }
+ABRDF__ISA_LEVELS(LIGHTS_ADD)
+
+typedef void (*lights_add_fn)(const light_run *restrict, int,
+                              const double (*restrict)[INTERNAL_CHUNK],
+                              const double (*restrict)[3]);
+#define LIGHTS_ADD_ENTRY(L) lights_add_##L,
+static lights_add_fn lights_add_at(int level)
+{
+    static const lights_add_fn fns[] = {ABRDF__ISA_LEVELS(LIGHTS_ADD_ENTRY)};
+    const int n = (int)(sizeof fns / sizeof fns[0]);
+    return fns[level < 0 ? 0 : level < n ? level : n - 1];
+}
+
+/* The light loops of one evaluation, at the CPU's level. */
+typedef struct light_fns {
+    internal_light_fn one;
+    internal_lights_fn many;
+    lights_add_fn add;
+} light_fns;
+
 /* TRT (Eq. 14) and TRRT+ of a chunk's nodes for every light of the run, in the order of the
  * nodes; each node's absorption along its second chord is taken once, if some light leaves
- * through it. */
+ * through it. Runs of LIGHT_MAJOR_MIN lights and more take the light-major loops. */
 static void trt_add(residual_ctx *c, const entry_path *e, const internal_nodes *in, int n,
-                    internal_light_fn light)
+                    const light_fns *lf)
 {
-    const int nl = c->lr->n;
-    double fl[ABRDF__HUANG_RUN_MAX][INTERNAL_CHUNK], v[ABRDF__HUANG_RUN_MAX][INTERNAL_CHUNK];
+    const light_run *lr = c->lr;
+    const int nl = lr->n;
+    const double cut = c->inv_eta - ABRDF__HUANG_CRITICAL_TOL;
+    if (nl >= LIGHT_MAJOR_MIN) {
+        double att[INTERNAL_CHUNK][3];
+        for (int j = 0; j < n; ++j) {
+            const long o = (long)j * lr->cap;
+            int out = lf->many(in, j, lr, cut, c->inv_eta2, c->a2, lr->fl + o, lr->v + o);
+            for (int k = 0; k < 3; ++k) {
+                double s = c->m->sigma_a[k];
+                att[j][k] = !out ? 0.0 : e->at[k] * (s > 0.0 ? exp(-s * in->kab[j]) : 1.0);
+            }
+        }
+        lf->add(lr, n, (const double(*)[INTERNAL_CHUNK])in->rr, (const double(*)[3])att);
+        return;
+    }
+    double fl[LIGHT_MAJOR_MIN][INTERNAL_CHUNK], v[LIGHT_MAJOR_MIN][INTERNAL_CHUNK];
     for (int l = 0; l < nl; ++l) {
-        v3 wo = c->lr->wo[l], ws = c->lr->wos[l];
-        light_consts lc = {
-            wo.x,        wo.y, wo.z, ws.x, ws.y, ws.z, c->inv_eta - ABRDF__HUANG_CRITICAL_TOL,
-            c->inv_eta2, c->a2};
-        light(in, n, &lc, fl[l], v[l]);
+        v3 wo = lr->wo[l], ws = lr->wos[l];
+        light_consts lc = {wo.x, wo.y, wo.z, ws.x, ws.y, ws.z, cut, c->inv_eta2, c->a2};
+        lf->one(in, n, &lc, fl[l], v[l]);
     }
     for (int j = 0; j < n; ++j) {
         double att[3] = {0, 0, 0};
         int att_made = 0;
         for (int l = 0; l < nl; ++l) {
             if (fl[l][j] > 0.0)
-                for (int k = 0; k < 3; ++k) c->s_trrt[l][k] += in->rr[k][j];
+                for (int k = 0; k < 3; ++k) lr->s_trrt[k][l] += in->rr[k][j];
             double vj = v[l][j];
             if (!(vj != 0.0) || !isfinite(vj)) continue;
             if (!att_made) { /* once per node, for the first light that leaves */
@@ -1039,7 +1209,7 @@ static void trt_add(residual_ctx *c, const entry_path *e, const internal_nodes *
                 }
                 att_made = 1;
             }
-            for (int k = 0; k < 3; ++k) c->s_trt[l][k] += vj * att[k];
+            for (int k = 0; k < 3; ++k) lr->s_trt[k][l] += vj * att[k];
         }
     }
 }
@@ -1054,18 +1224,23 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
     const int n1 = m->n1, n2 = m->n2;
     const double w1 = 1.0 / (n1 * n1), w2 = 1.0 / (n2 * n2);
     const long set = ABRDF__HUANG_SHIFT_SET_STEP * m->shift_set; /* 0 but in the tests (hair.h) */
-    for (int l = 0; l < lr->n; ++l) out[l][0] = out[l][1] = out[l][2] = 0.0;
+    for (int l = 0; l < lr->n; ++l) {
+        out[l][0] = out[l][1] = out[l][2] = 0.0;
+        for (int k = 0; k < 3; ++k) lr->s_tt[k][l] = lr->s_trt[k][l] = lr->s_trrt[k][l] = 0.0;
+    }
     if (n1 * n1 > ABRDF__HUANG_NODES_MAX || n2 * n2 > ABRDF__HUANG_NODES_MAX) return;
     /* The VNDF grids' column angles once per evaluation; each grid's disc points (as arrays,
      * for the vectorised loop: 40 KiB of stack at the largest grids) per Simpson node (entry)
      * and per path (internal) */
-    double p1s[3][ABRDF__HUANG_NODES_MAX], p2s[2][ABRDF__HUANG_NODES_MAX];
-    grid_angles ang1, ang2;
-    grid_angles_make(n1, &ang1);
-    grid_angles_make(n2, &ang2);
+    grid_block g;
+    double(*p1s)[ABRDF__HUANG_NODES_MAX] = g.p1s, (*p2s)[ABRDF__HUANG_NODES_MAX] = g.p2s;
+    grid_angles *ang1 = &g.ang1, *ang2 = &g.ang2;
+    grid_angles_make(n1, ang1);
+    grid_angles_make(n2, ang2);
     const internal_base_fn base = internal_base_at(abrdf__isa_best());
     const internal_exit_fn exit_view = internal_exit_at(abrdf__isa_best());
-    const internal_light_fn light = internal_light_at(abrdf__isa_best());
+    const light_fns lf = {internal_light_at(abrdf__isa_best()),
+                          internal_lights_at(abrdf__isa_best()), lights_add_at(abrdf__isa_best())};
     const entry_base_fn entry = entry_base_at(abrdf__isa_best());
     energy_axes ax_in = m->e_in;
     residual_ctx c = {.m = m,
@@ -1104,7 +1279,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
         r.lam1 = ggx_lambda(c.a2, r.cos_mi1);
         vndf_frame f1;
         vndf_frame_make(al, wi, r.wmi, &f1);
-        grid_points(&ang1, i, set, p1s[0], p1s[1], p1s[2]);
+        grid_points(ang1, i, set, p1s[0], p1s[1], p1s[2]);
         const entry_consts ec = {.f = &f1,
                                  .wx = wi.x,
                                  .wy = wi.y,
@@ -1141,7 +1316,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
             /* TRT and TRRT+: internal reflection at wh2 (n2 x n2 VNDF nodes) */
             vndf_frame f2;
             vndf_frame_make(al, neg(e.wt), e.wmt, &f2);
-            grid_points(&ang2, (long)i * n1 * n1 + j1, set, p2s[0], p2s[1], NULL);
+            grid_points(ang2, (long)i * n1 * n1 + j1, set, p2s[0], p2s[1], NULL);
             internal_path ip = {.f = &f2,
                                 .wx = e.wt.x,
                                 .wy = e.wt.y,
@@ -1173,7 +1348,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
                 internal_nodes in;
                 base(&ip, p2s[0] + j0, p2s[1] + j0, nc, &in);
                 exit_view(&ip, nc, &in);
-                trt_add(&c, &e, &in, nc, light);
+                trt_add(&c, &e, &in, nc, &lf);
             }
         }
     }
@@ -1184,17 +1359,18 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
                                                      cos_theta(wo), 4.0 * al)
                                     : 0.0;
         for (int i = 0; i < 3; ++i) {
-            double trrt_term = (lobes & 8u) ? c.s_trrt[l][i] * mlong / (2.0 * ABRDF__PI) : 0.0;
-            out[l][i] = ((c.s_tt[l][i] + c.s_trt[l][i]) * inv_eta * inv_eta + trrt_term) * k;
+            double trrt_term = (lobes & 8u) ? lr->s_trrt[i][l] * mlong / (2.0 * ABRDF__PI) : 0.0;
+            out[l][i] = ((lr->s_tt[i][l] + lr->s_trt[i][l]) * inv_eta * inv_eta + trrt_term) * k;
         }
     }
 }
 
-void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi_)[3],
-                            const double wo_[3], unsigned lobes, double (*s)[3])
+/* S of a run of count lights (at most the room of lr's arrays; slot and res as long): the
+ * lights that can be lit at all go into lr, the others keep S = 0. */
+static void fibre_run(const abrdf__huang *m, int count, const double (*wi_)[3], const double wo_[3],
+                      unsigned lobes, double (*s)[3], light_run lr, int *slot, double (*res)[3])
 {
     for (int l = 0; l < count; ++l) s[l][0] = s[l][1] = s[l][2] = 0.0;
-    if (count < 1 || count > ABRDF__HUANG_RUN_MAX) return;
     /* Cycles' convention: its "wi" is the viewer (our wo), its "wo" the light (our wi). */
     v3 wi = mk(wo_[1], wo_[0], wo_[2]);
     double ci = cos_theta(wi);
@@ -1202,15 +1378,15 @@ void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi_
     double b = m->b, e2 = 1.0 - b * b;
     double tan_tilt = tan(m->tilt);
     /* The lights that can be lit at all; the others keep S = 0. */
-    light_run lr = {0};
-    int slot[ABRDF__HUANG_RUN_MAX];
     for (int l = 0; l < count; ++l) {
         v3 wo = mk(wi_[l][1], wi_[l][0], wi_[l][2]);
         if (!(cos_theta(wo) > 0.0)) continue;
         if (tan_tilt * sin_theta(wo) / cos_theta(wo) < -1.0) continue; /* exit mesonormal hidden */
         slot[lr.n] = l;
-        lr.wo[lr.n] = wo;
-        lr.wos[lr.n] = scl(wo, 1.0 / m->eta);
+        v3 ws = scl(wo, 1.0 / m->eta);
+        lr.wo[lr.n] = wo, lr.wos[lr.n] = ws;
+        lr.x[lr.n] = wo.x, lr.y[lr.n] = wo.y, lr.z[lr.n] = wo.z;
+        lr.sx[lr.n] = ws.x, lr.sy[lr.n] = ws.y, lr.sz[lr.n] = ws.z;
         ++lr.n;
     }
     if (lr.n == 0) return;
@@ -1235,7 +1411,6 @@ void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi_
     if (!(g1 > g0)) return;
     double area =
         ci * 2.0 * radius; /* projected width 2 (far field) times cos(theta_i), radius from dh */
-    double res[ABRDF__HUANG_RUN_MAX][3];
     for (int l = 0; l < lr.n; ++l) res[l][0] = res[l][1] = res[l][2] = 0.0;
     if (lobes & 14u) lobes_residual(m, wi, &lr, g0, g1 - g0, hmin, hmax, sp_i, cp_i, lobes, res);
     for (int l = 0; l < lr.n; ++l) {
@@ -1245,6 +1420,32 @@ void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi_
                        : lobe_r(m, wi, lr.wo[l], g0, g1 - g0);
         for (int c = 0; c < 3; ++c) s[slot[l]][c] = (r + res[l][c]) / area;
     }
+}
+
+void abrdf__huang_fibre_run(const abrdf__huang *m, int count, const double (*wi)[3],
+                            const double wo[3], unsigned lobes, double (*s)[3])
+{
+    if (count < 1 || count > ABRDF__HUANG_RUN_MAX) {
+        for (int l = 0; l < count; ++l) s[l][0] = s[l][1] = s[l][2] = 0.0;
+        return;
+    }
+    LIGHT_STORE(ABRDF__HUANG_RUN_MAX) st;
+    light_run lr;
+    LIGHT_BIND(lr, st, ABRDF__HUANG_RUN_MAX);
+    fibre_run(m, count, wi, wo, lobes, s, lr, st.slot, st.res);
+}
+
+void abrdf__huang_fibre_wide(const abrdf__huang *m, int count, const double (*wi)[3],
+                             const double wo[3], unsigned lobes, double (*s)[3])
+{
+    if (count < 1 || count > ABRDF__HUANG_WIDE_MAX) {
+        for (int l = 0; l < count; ++l) s[l][0] = s[l][1] = s[l][2] = 0.0;
+        return;
+    }
+    LIGHT_STORE(ABRDF__HUANG_WIDE_MAX) st;
+    light_run lr;
+    LIGHT_BIND(lr, st, ABRDF__HUANG_WIDE_MAX);
+    fibre_run(m, count, wi, wo, lobes, s, lr, st.slot, st.res);
 }
 
 void abrdf__huang_fibre(const abrdf__huang *m, const double wi[3], const double wo[3],

@@ -118,16 +118,17 @@ void abrdf__huang_table_rows(const abrdf__huang *m, const abrdf__huang_table *t,
         for (long i = 0; i < row_len; ++i) out[i] = 0.0;
         for (int s = 0; s < t->sets; ++s) {
             ms.shift_set = s;
-            for (int il = 0; il < nt; ++il)
-                for (int k0 = 0; k0 < np; k0 += ABRDF__HUANG_RUN_MAX) {
-                    const int n = np - k0 < ABRDF__HUANG_RUN_MAX ? np - k0 : ABRDF__HUANG_RUN_MAX;
-                    double wi[ABRDF__HUANG_RUN_MAX][3], sr[ABRDF__HUANG_RUN_MAX][3];
-                    for (int j = 0; j < n; ++j)
-                        dir_of(theta_node(nt, il), pv + d_node(np, k0 + j), wi[j]);
-                    abrdf__huang_fibre_run(&ms, n, (const double(*)[3])wi, wo, 14u, sr);
-                    for (int j = 0; j < n; ++j)
-                        for (int c = 0; c < 3; ++c) out[(il * np + k0 + j) * 3 + c] += sr[j][c] * k;
-                }
+            /* the row's lights (il, kd), il * np + kd, up to ABRDF__HUANG_WIDE_MAX at once */
+            for (int k0 = 0; k0 < nt * np; k0 += ABRDF__HUANG_WIDE_MAX) {
+                const int n =
+                    nt * np - k0 < ABRDF__HUANG_WIDE_MAX ? nt * np - k0 : ABRDF__HUANG_WIDE_MAX;
+                double wi[ABRDF__HUANG_WIDE_MAX][3], sr[ABRDF__HUANG_WIDE_MAX][3];
+                for (int j = 0; j < n; ++j)
+                    dir_of(theta_node(nt, (k0 + j) / np), pv + d_node(np, (k0 + j) % np), wi[j]);
+                abrdf__huang_fibre_wide(&ms, n, (const double(*)[3])wi, wo, 14u, sr);
+                for (int j = 0; j < n; ++j)
+                    for (int c = 0; c < 3; ++c) out[(k0 + j) * 3 + c] += sr[j][c] * k;
+            }
         }
         /* The view azimuths 0 and pi/2 lie on the ellipse's mirror lines: there the model is
          * the same at d and -d, and the read folds across them onto -d (residual), so it is
