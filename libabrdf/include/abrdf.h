@@ -537,7 +537,9 @@ ABRDF_API int abrdf_huang_table_size(const abrdf_params *params, const int sizes
  * name them by). Calls with
  * disjoint rows may run at once on one table; the rows' values do not depend on how they are
  * split. A row has sizes[0] sizes[2] nodes, each about 22 us per shift set on one core at
- * the default grids (about a minute for the default sizes). The errors of
+ * the default grids (about a minute for the default sizes). A call takes about 128 KiB of
+ * stack: on threads of your own, give them at least 256 KiB (musl's default, 128 KiB, is
+ * too little; glibc's is 8 MiB). The errors of
  * abrdf_huang_table_size, and ABRDF_E_RANGE for rows outside [0, rows]. */
 ABRDF_API int abrdf_huang_table_build(const abrdf_params *params, const int sizes[4], int row0,
                                       int row1, double *values);

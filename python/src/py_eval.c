@@ -388,6 +388,11 @@ static int pool_grow(void)
     pthread_attr_t attr;
     int ok = pthread_attr_init(&attr) == 0;
     if (ok) {
+        /* huang's table build takes about 128 KiB of stack (abrdf.h): at least 1 MiB
+         * whatever the platform's default (musl's is 128 KiB) */
+        size_t stack = 0;
+        if (!pthread_attr_getstacksize(&attr, &stack) && stack < (1u << 20))
+            pthread_attr_setstacksize(&attr, 1u << 20);
         ok = pthread_attr_setdetachstate(&attr, PTHREAD_CREATE_DETACHED) == 0 &&
              pthread_create(tid, &attr, pool_worker, (void *)(intptr_t)spins) == 0;
         pthread_attr_destroy(&attr);

@@ -64,7 +64,7 @@ class Render(TempDirCase):
         self.assertEqual(outs[0], outs[1])
 
     def test_hair_table_cache(self):
-        """--hair-table: the hair read from tables (small ones here: the default takes minutes),
+        """--hair-table: the hair read from tables (small ones here: the default takes about a minute),
         not the per-call image; the same image for one and two threads; --hair-table-cache keeps
         a table per material and reads it back (the same image, the files not rewritten); a file there
         of another material or cut short is replaced; bad sizes or a missing directory are one

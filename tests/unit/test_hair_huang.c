@@ -453,10 +453,11 @@ static void lcg_dir(unsigned long long *seed, double w[3])
 
 /* A run of lights sharing one view (abrdf__huang_fibre_run, and the batch path that hands
  * runs of equal wo to it) gives each light what a call of its own gives: lobe by lobe in
- * double, the same bits (runs of 1, 2, 5, 7 and ABRDF__HUANG_RUN_MAX lights, and through
- * abrdf__huang_fibre_wide, which a table's build calls, of 13, 100 and ABRDF__HUANG_WIDE_MAX:
- * below and above hair_huang.c's LIGHT_MAJOR_MIN, whose two loops give the same bits), and
- * through abrdf_eval_prepared_batch against abrdf_eval_prepared in float, with lights below the
+ * double, the same bits (runs of 1, 2, 5, 7 and ABRDF__HUANG_RUN_MAX lights, of which light
+ * 5 is hidden by the tilt, and of 7, 8 and 16 lit ones: hair_huang.c's two loops over the
+ * lights, below and from LIGHT_MAJOR_MIN = 8 lit lights on, and a last block of LIGHTS_BLOCK
+ * that is full; through abrdf__huang_fibre_wide, which a table's build calls, of 5, 13, 100
+ * and ABRDF__HUANG_WIDE_MAX), and through abrdf_eval_prepared_batch against abrdf_eval_prepared in float, with lights below the
  * ribbon, lights the tilt hides and a degenerate vector inside the runs, and runs longer
  * than ABRDF__HUANG_RUN_MAX (split). */
 START_TEST(light_runs_match_single_calls)
@@ -477,18 +478,39 @@ START_TEST(light_runs_match_single_calls)
             lcg_dir(&seed, wi[l]);
             if (l == 2) wi[l][2] = -fabs(wi[l][2]);                          /* below the ribbon */
             if (l == 5) wi[l][0] = 0.999, wi[l][1] = 0.0, wi[l][2] = 0.0447; /* grazing, along T */
-        }
-        for (unsigned lobes = 1; lobes < 16; lobes = lobes * 2 + 1)
-            for (int k = 0; k < (v < 2 ? 8 : 5); ++k) { /* the wide runs from two views */
-                const int n =
-                    (int[]){1, 2, 5, 7, ABRDF__HUANG_RUN_MAX, 13, 100, ABRDF__HUANG_WIDE_MAX}[k];
-                if (k < 5)
-                    abrdf__huang_fibre_run(&m, n, (const double(*)[3])wi, wo, lobes, s_run);
+            double yz = hypot(wi[l][1], wi[l][2]);
+            if (l > 5 && fabs(wi[l][0]) > 0.9) { /* from light 6 on, every light is lit */
+                wi[l][0] = copysign(0.9, wi[l][0]);
+                if (yz > 0.0)
+                    wi[l][1] *= sqrt(0.19) / yz, wi[l][2] *= sqrt(0.19) / yz;
                 else
-                    abrdf__huang_fibre_wide(&m, n, (const double(*)[3])wi, wo, lobes, s_run);
+                    wi[l][1] = sqrt(0.19);
+            }
+        }
+        /* runs: (first light, lights, wide) */
+        static const int runs[][3] = {{0, 1, 0},
+                                      {0, 2, 0},
+                                      {0, 5, 0},
+                                      {0, 7, 0},
+                                      {0, ABRDF__HUANG_RUN_MAX, 0},
+                                      {6, 7, 0},
+                                      {6, 8, 0},
+                                      {6, 16, 0},
+                                      {0, 5, 1},
+                                      {0, 13, 1},
+                                      {0, 100, 1},
+                                      {0, ABRDF__HUANG_WIDE_MAX, 1}};
+        for (unsigned lobes = 1; lobes < 16; lobes = lobes * 2 + 1)
+            for (int k = 0; k < (v < 2 ? 12 : 8); ++k) { /* the wide runs from two views */
+                const int n = runs[k][1];
+                const double(*w)[3] = (const double(*)[3])wi + runs[k][0];
+                if (runs[k][2])
+                    abrdf__huang_fibre_wide(&m, n, w, wo, lobes, s_run);
+                else
+                    abrdf__huang_fibre_run(&m, n, w, wo, lobes, s_run);
                 for (int l = 0; l < n; ++l) {
                     double s1[3];
-                    abrdf__huang_fibre(&m, wi[l], wo, lobes, s1);
+                    abrdf__huang_fibre(&m, w[l], wo, lobes, s1);
                     for (int c = 0; c < 3; ++c) {
                         double d = fabs(s_run[l][c] - s1[c]) / fmax(fabs(s1[c]), 1e-300);
                         worst = fmax(worst, s1[c] == 0.0 ? (s_run[l][c] != 0.0) : d);

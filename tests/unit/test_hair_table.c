@@ -107,6 +107,49 @@ START_TEST(nodes_read_back)
 }
 END_TEST
 
+/* A row's nodes are its shift sets' mean, S cos(theta_view), the same bits as single calls
+ * give, however the build groups a row's lights into runs: here 12 x 12 = 144 lights a row,
+ * a run of ABRDF__HUANG_WIDE_MAX = 128 and one of 16 (the view azimuth between the mirror
+ * lines, whose rows are not folded). */
+START_TEST(rows_are_the_sets_mean)
+{
+    abrdf__huang m;
+    setup(&m, 0.85);
+    const int nt = 12, nv = 3, np = 12, sets = 2, jv = 1;
+    ck_assert_int_gt(nt * np, ABRDF__HUANG_WIDE_MAX);
+    abrdf__huang_table t;
+    build(&m, nt, nv, np, sets, &t);
+    int lit = 0;
+    for (int iv = 2; iv < nt; iv += 3) {
+        const double tv = -PI / 2 + (iv + 0.5) * PI / nt, pv = jv * 0.5 * PI / (nv - 1);
+        const double k = cos(tv) / sets, *row = t.v + (long)(iv * nv + jv) * nt * np * 3;
+        double wo[3];
+        htu_table_dir(tv, pv, wo);
+        for (int il = 0; il < nt; ++il)
+            for (int kd = 0; kd < np; ++kd) {
+                double wi[3], want[3] = {0, 0, 0};
+                htu_table_dir(-PI / 2 + (il + 0.5) * PI / nt, pv + (-PI + kd * 2.0 * PI / np), wi);
+                for (int q = 0; q < sets; ++q) {
+                    abrdf__huang ms = m;
+                    ms.shift_set = q;
+                    double x[3];
+                    abrdf__huang_fibre(&ms, wi, wo, 14u, x);
+                    for (int c = 0; c < 3; ++c) want[c] += x[c] * k;
+                }
+                for (int c = 0; c < 3; ++c) {
+                    const double w = want[c] > 0.0 ? want[c] : 0.0,
+                                 got = row[(il * np + kd) * 3 + c];
+                    ck_assert_msg(got == w, "row %d, node (%d, %d), channel %d: %.17g, calls %.17g",
+                                  iv, il, kd, c, got, w);
+                    lit += c == 0 && w > 0.0 && il * np + kd >= ABRDF__HUANG_WIDE_MAX;
+                }
+            }
+    }
+    ck_assert_int_gt(lit, 10); /* the second run has nodes that are not 0 */
+    free((void *)t.v);
+}
+END_TEST
+
 /* Between the nodes: the mirror images y -> -y and z -> -z of a pair read the same value
  * (the fold is exact up to rounding), every value is finite and non-negative, and a run of
  * lights reads what single calls read. */
@@ -474,6 +517,7 @@ static Suite *suite(void)
     tcase_set_timeout(tc, 600);
     tcase_add_test(tc, sizes_checked);
     tcase_add_test(tc, nodes_read_back);
+    tcase_add_test(tc, rows_are_the_sets_mean);
     tcase_add_test(tc, mirrors_fold);
     tcase_add_test(tc, fold_is_seamless);
     tcase_add_test(tc, cubic_between_the_nodes);

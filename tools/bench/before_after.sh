@@ -1,7 +1,13 @@
 # before_after.sh - sourced by the benchmarks that run two builds of `abrdf` side by side
-# (selection_render.sh, hair_cost.sh): checks "BEFORE_ABRDF AFTER_ABRDF [REPEATS]" and sets
-# before, after, repeats (default $1 of before_after_args) and here (the caller's folder).
+# (selection_render.sh, hair_cost.sh, hair_table_build.sh): checks "BEFORE_ABRDF AFTER_ABRDF
+# [REPEATS]" and sets before, after, repeats (default $1 of before_after_args) and here (the
+# caller's folder); `median` prints the median of the numbers on its input (blank- or
+# line-separated; of an even count, the mean of the two middle ones).
 #   . "$(dirname "$0")/before_after.sh"; before_after_args DEFAULT_REPEATS "$@"
+median() {
+  tr ' ' '\n' | sed '/^$/d' | sort -g |
+    awk '{v[NR] = $1} END {print NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'
+}
 before_after_args() {
   local default=$1
   shift

@@ -73,7 +73,6 @@ for ((i = 0; i < repeats; ++i)); do
     done
   done
 done
-median() { tr ' ' '\n' | sed '/^$/d' | sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
 declare -A m
 for c in "${cases[@]}"; do
   for b in before after; do m[$c,$b]=$(echo "${t[$c,$b]}" | median); done

@@ -39,7 +39,6 @@ for ((i = 0; i < repeats; ++i)); do
   t_before+="$(prepare "$before") "
   t_after+="$(prepare "$after") "
 done
-median() { tr ' ' '\n' | sed '/^$/d' | sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
 b=$(echo "$t_before" | median) a=$(echo "$t_after" | median)
 echo "| huang table ($sizes), one thread | before, s | after, s | before / after |"
 echo "|---|---:|---:|---:|"

@@ -46,7 +46,6 @@ for ((i = 0; i < repeats; ++i)); do
     done
   done
 done
-median() { tr ' ' '\n' | sed '/^$/d' | sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
 
 echo "| scene | goal | before, CPU s | after, CPU s | after / before |"
 echo "|---|---|---:|---:|---:|"

@@ -322,8 +322,8 @@ static int render_to_files(render_args *ra, scene *s, const char *png, struct ti
     render_scene rs;
     out_file exr_out = OUT_FILE_INIT, png_out = OUT_FILE_INIT;
     /* The outputs exist (as temporary files) before the work: a directory that is missing or
-     * cannot be written fails now, not after the materials' choices, huang tables (minutes
-     * per material) and the render. */
+     * cannot be written fails now, not after the materials' choices, huang tables (about a
+     * minute per material) and the render. */
     if (out_file_open(&exr_out, ra->out, err, sizeof err) ||
         (png && out_file_open(&png_out, png, err, sizeof err))) {
         fprintf(stderr, "abrdf render: %s\n", err);

@@ -60,7 +60,16 @@ static int table_build(const hair_store *t, const abrdf_params *p, int rows, dou
     table_job j = {p, t->sizes, v, rows, 0, ABRDF_OK, PTHREAD_MUTEX_INITIALIZER};
     int nt = t->threads < 64 ? t->threads : 64, started = 0;
     pthread_t th[64];
-    for (int i = 1; i < nt; ++i) started += !pthread_create(&th[started], NULL, table_worker, &j);
+    /* a build takes about 128 KiB of stack (abrdf.h): at least 1 MiB whatever the
+     * platform's default (musl's is 128 KiB) */
+    pthread_attr_t attr;
+    size_t stack = 0;
+    int attr_ok = pthread_attr_init(&attr) == 0;
+    if (attr_ok && !pthread_attr_getstacksize(&attr, &stack) && stack < (1u << 20))
+        pthread_attr_setstacksize(&attr, 1u << 20);
+    for (int i = 1; i < nt; ++i)
+        started += !pthread_create(&th[started], attr_ok ? &attr : NULL, table_worker, &j);
+    if (attr_ok) pthread_attr_destroy(&attr);
     table_worker(&j);
     for (int i = 0; i < started; ++i) pthread_join(th[i], NULL);
     return j.status;

@@ -168,8 +168,9 @@ typedef struct abrdf__huang {
 #define ABRDF__HUANG_RUN_MAX 32
 /* abrdf__huang_fibre_wide takes up to this many: a table's build hands over its lights of one
  * view this many at a time, so the view's paths are built once for them (hair_huang_table.c;
- * at the default sizes a sixth as often as with runs of 32). Their arrays take 57 KiB of
- * stack (256 lights: 3 % faster than 128 and twice the stack; 64: 12 % slower). */
+ * at the default sizes 6 runs per row and shift set instead of 24 runs of 32). Their arrays
+ * take 57 KiB of stack, a build about 124 KiB in all (256 lights were 3 % faster than 128
+ * and take twice the arrays; 64, 12 % slower: one-off, the default table's build). */
 #define ABRDF__HUANG_WIDE_MAX 128
 
 void abrdf__huang_setup(const abrdf_params *p, abrdf__huang *m);

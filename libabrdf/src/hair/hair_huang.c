@@ -829,7 +829,7 @@ static int entry_path_at(const residual_ctx *c, const entry_nodes *o, int j, dou
  * mesonormal and s = sqrt(c^2 + alpha^2 (1 - c^2)): G2 = 2 c_in c_o / (s_in c_o + s_o c_in).
  * c_in, s_in: the ray inside's (c_in = |cosine|); cos_om: the light's cosine. 0 when the light
  * is totally reflected there or either direction grazes the mesonormal. Two roots and one
- * division, and no branch: it is inlined into internal_light's vectorised loop. */
+ * division, and no branch: it is inlined into the vectorised loops (light_exit). */
 static inline double exit_factor(double u_i, double u_o, double u_m, double l, double e2, double a2,
                                  double c_in, double s_in, double cos_om)
 {
@@ -1230,7 +1230,7 @@ static void lobes_residual(const abrdf__huang *m, v3 wi, const light_run *lr, do
     }
     if (n1 * n1 > ABRDF__HUANG_NODES_MAX || n2 * n2 > ABRDF__HUANG_NODES_MAX) return;
     /* The VNDF grids' column angles once per evaluation; each grid's disc points (as arrays,
-     * for the vectorised loop: 40 KiB of stack at the largest grids) per Simpson node (entry)
+     * for the vectorised loop: 43 KiB of stack, grid_block) per Simpson node (entry)
      * and per path (internal) */
     grid_block g;
     double(*p1s)[ABRDF__HUANG_NODES_MAX] = g.p1s, (*p2s)[ABRDF__HUANG_NODES_MAX] = g.p2s;
