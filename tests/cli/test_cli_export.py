@@ -24,6 +24,30 @@ def run(*args):
     return subprocess.run([ABRDF, "export", *args], capture_output=True, text=True)
 
 
+def exr_channels(path):
+    """An EXR file's channels and their pixel types (0 uint, 1 half, 2 float), from its
+    header's chlist attribute."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:4] != b"\x76\x2f\x31\x01":
+        raise ValueError("%s: not an EXR file" % path)
+    at = 8
+    while data[at] != 0:
+        name_end = data.index(b"\0", at)
+        type_end = data.index(b"\0", name_end + 1)
+        (size,) = struct.unpack_from("<i", data, type_end + 1)
+        value = data[type_end + 5:type_end + 5 + size]
+        if data[at:name_end] == b"channels":
+            out, k = {}, 0
+            while value[k] != 0:
+                end = value.index(b"\0", k)
+                (out[value[k:end].decode()],) = struct.unpack_from("<i", value, end + 1)
+                k = end + 17
+            return out
+        at = type_end + 5 + size
+    raise ValueError("%s: no channels attribute" % path)
+
+
 class Export(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
@@ -134,6 +158,9 @@ class Export(unittest.TestCase):
                           "#declare Abrdf_Mat_%d = Abrdf_Huang_Table(Abrdf_Mat_%d, "
                           "\"x.huang%d.exr\", 6, 3, 8, " % (i, melanin, i, i, i), text)
             self.assertTrue(os.path.isfile(os.path.join(self.tmp.name, "x.huang%d.exr" % i)))
+            # stored as half floats, which every value is (test_pov_hair_table.py: exact)
+            self.assertEqual(exr_channels(os.path.join(self.tmp.name, "x.huang%d.exr" % i)),
+                             {"R": 1, "G": 1, "B": 1})
         self.assertNotIn("Abrdf_Mat_2 = Abrdf_Huang_Table", text)
         self.assertFalse(os.path.exists(os.path.join(self.tmp.name, "x.huang2.exr")))
         os.remove(pov)

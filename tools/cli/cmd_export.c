@@ -300,8 +300,9 @@ static int pov_tables_write(const export_args *ea, const scene *s, const render_
         }
         *o = (out_file)OUT_FILE_INIT;
         t->n += 1;
-        int failed = abrdf_image_encode_linear(t->paths[i], w, h, rgb, &bytes, err, sizeof err) ||
-                     out_file_open(o, t->paths[i], err, sizeof err);
+        int failed =
+            abrdf_image_encode_linear_half(t->paths[i], w, h, rgb, &bytes, err, sizeof err) ||
+            out_file_open(o, t->paths[i], err, sizeof err);
         if (!failed) {
             out_file_write(o, bytes.data, bytes.size);
             failed = out_file_close(o, err, sizeof err);
@@ -392,7 +393,7 @@ static int export_scene(export_args *ea, scene *s)
     char *notes = NULL;
     size_t notes_len = 0;
     /* The output exists (as a temporary file) before the work: a directory that is missing or
-     * cannot be written fails now, not after the tables are built (minutes per material). */
+     * cannot be written fails now, not after the tables are built (about a minute per material). */
     if (!ea->gltf && out_file_open(&o, ea->out, err, sizeof err)) {
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;

@@ -322,6 +322,34 @@ extern "C" int abrdf_image_encode_linear(const char *name, int width, int height
     return -1;
 }
 
+extern "C" int abrdf_image_encode_linear_half(const char *name, int width, int height,
+                                              const float *rgb, abrdf_bytes *out, char *err,
+                                              int err_size)
+{
+    if (!out) return -1;
+    out->data = nullptr;
+    out->size = 0;
+    try {
+        if (!name || !valid_size(width, height, rgb, err, err_size)) {
+            if (!name) set_err(err, err_size, "no output name");
+            return -1;
+        }
+        if (lower_ext(name) != "exr") {
+            set_err_path(err, err_size, name, "half floats are written as .exr only");
+            return -1;
+        }
+        if (abrdf_image_check_output(name, 1, err, err_size)) return -1;
+        return encode(name, width, height, 3, rgb, OIIO::TypeDesc::HALF, "Linear", out, err,
+                      err_size);
+    } catch (const std::exception &e) {
+        set_err_path(err, err_size, name, e.what());
+    } catch (...) {
+        set_err(err, err_size, "unexpected error encoding an image");
+    }
+    abrdf_bytes_free(out);
+    return -1;
+}
+
 extern "C" int abrdf_image_encode_preview(const char *name, int width, int height, const float *rgb,
                                           const char *config, const char *display, const char *view,
                                           abrdf_bytes *out, char *err, int err_size)

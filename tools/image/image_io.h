@@ -44,6 +44,11 @@ typedef struct abrdf_bytes {
  * refused: use abrdf_image_encode_preview. */
 int abrdf_image_encode_linear(const char *name, int width, int height, const float *rgb,
                               abrdf_bytes *out, char *err, int err_size);
+/* The same as an EXR of half floats (`name` must end in .exr): each value rounded to the
+ * nearest half, so exact for values that are halves already (abrdf export --pov's huang
+ * tables, half the size of float32). */
+int abrdf_image_encode_linear_half(const char *name, int width, int height, const float *rgb,
+                                   abrdf_bytes *out, char *err, int err_size);
 /* Encode a display-referred 8-bit preview (.png, .jpg): the OpenColorIO display/view
  * transform from the scene_linear role of `config` (a .ocio file; NULL: the built-in config,
  * scene-linear Rec.709 -> display "sRGB", view "Standard" = piecewise sRGB encoding, no tone

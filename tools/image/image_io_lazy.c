@@ -38,7 +38,7 @@ typedef int (*is_display_fn)(const char *);
 static struct {
     int tried;
     char error[512];
-    encode_linear_fn encode_linear;
+    encode_linear_fn encode_linear, encode_linear_half;
     encode_preview_fn encode_preview;
     encode_heatmap_fn encode_heatmap;
     bytes_free_fn bytes_free;
@@ -62,6 +62,7 @@ static int load(char *err, int err_size)
         } else {
             /* POSIX: dlsym's void * converts to a function pointer through this idiom. */
             *(void **)&mod.encode_linear = dlsym(h, "abrdf_image_encode_linear");
+            *(void **)&mod.encode_linear_half = dlsym(h, "abrdf_image_encode_linear_half");
             *(void **)&mod.encode_preview = dlsym(h, "abrdf_image_encode_preview");
             *(void **)&mod.encode_heatmap = dlsym(h, "abrdf_image_encode_heatmap");
             *(void **)&mod.bytes_free = dlsym(h, "abrdf_bytes_free");
@@ -70,9 +71,9 @@ static int load(char *err, int err_size)
             *(void **)&mod.read = dlsym(h, "abrdf_image_read");
             *(void **)&mod.free_image = dlsym(h, "abrdf_image_free");
             *(void **)&mod.is_display = dlsym(h, "abrdf_image_is_display_format");
-            if (!mod.encode_linear || !mod.encode_preview || !mod.encode_heatmap ||
-                !mod.bytes_free || !mod.check_output || !mod.check_preview || !mod.read ||
-                !mod.free_image || !mod.is_display) {
+            if (!mod.encode_linear || !mod.encode_linear_half || !mod.encode_preview ||
+                !mod.encode_heatmap || !mod.bytes_free || !mod.check_output || !mod.check_preview ||
+                !mod.read || !mod.free_image || !mod.is_display) {
                 snprintf(mod.error, sizeof mod.error, "the image I/O module lacks an entry point");
                 mod.read = NULL;
             }
@@ -94,6 +95,14 @@ int abrdf_image_encode_linear(const char *name, int width, int height, const flo
     no_bytes(out);
     if (load(err, err_size)) return -1;
     return mod.encode_linear(name, width, height, rgb, out, err, err_size);
+}
+
+int abrdf_image_encode_linear_half(const char *name, int width, int height, const float *rgb,
+                                   abrdf_bytes *out, char *err, int err_size)
+{
+    no_bytes(out);
+    if (load(err, err_size)) return -1;
+    return mod.encode_linear_half(name, width, height, rgb, out, err, err_size);
 }
 
 int abrdf_image_encode_preview(const char *name, int width, int height, const float *rgb,
