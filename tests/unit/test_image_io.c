@@ -88,6 +88,45 @@ START_TEST(exr_round_trip_is_exact)
 }
 END_TEST
 
+/* Half floats: values that are halves come back exactly (the file is an EXR of half
+ * channels, half the bytes of float32), others rounded to the nearest half; a name that is
+ * not .exr is refused, naming the file. */
+START_TEST(exr_half_round_trip)
+{
+    int w = 17, h = 9;
+    float *p = ramp(w, h);
+    for (int i = 0; i < w * h * 3; i += 2) { /* every other value a half: 11 significant bits */
+        int e;
+        float m = frexpf(p[i], &e);
+        p[i] = ldexpf(roundf(ldexpf(m, 11)), e - 11);
+    }
+    char err[512];
+    abrdf_bytes b, f;
+    const char *path = tmp_path("half.exr");
+    ck_assert_msg(abrdf_image_encode_linear_half(path, w, h, p, &b, err, sizeof err) == 0, "%s",
+                  err);
+    ck_assert_msg(abrdf_image_encode_linear(path, w, h, p, &f, err, sizeof err) == 0, "%s", err);
+    ck_assert_uint_lt(b.size, f.size);
+    abrdf_bytes_free(&f);
+    save(path, &b);
+    abrdf_image img;
+    ck_assert_msg(abrdf_image_read(path, &img, err, sizeof err) == 0, "%s", err);
+    ck_assert_int_eq(img.width, w);
+    ck_assert_int_eq(img.height, h);
+    for (int i = 0; i < w * h * 3; ++i)
+        if (i % 2 == 0)
+            ck_assert_float_eq(img.pixels[i], p[i]);
+        else
+            ck_assert(fabsf(img.pixels[i] - p[i]) <= ldexpf(fabsf(p[i]), -11));
+    abrdf_image_free(&img);
+    const char *tif = tmp_path("half.tif");
+    ck_assert_int_eq(abrdf_image_encode_linear_half(tif, w, h, p, &b, err, sizeof err), -1);
+    ck_assert_ptr_null(b.data);
+    ck_assert_msg(strstr(err, "half.tif") && strstr(err, ".exr only"), "%s", err);
+    free(p);
+}
+END_TEST
+
 START_TEST(hdr_round_trip_is_close)
 {
     int w = 8, h = 4;
@@ -231,6 +270,7 @@ static Suite *suite(void)
     Suite *s = suite_create("image_io");
     TCase *t = tcase_create("files");
     tcase_add_test(t, exr_round_trip_is_exact);
+    tcase_add_test(t, exr_half_round_trip);
     tcase_add_test(t, hdr_round_trip_is_close);
     tcase_add_test(t, preview_is_srgb_encoded);
     tcase_add_test(t, preview_rejects_unknown_view);

@@ -398,6 +398,12 @@ static int export_scene(export_args *ea, scene *s)
         fprintf(stderr, "abrdf export: %s\n", err);
         goto done;
     }
+    /* and the image module that writes the POV-Ray tables loads now (the same reason) */
+    if (ea->pov && ea->opt.hair_tables &&
+        abrdf_image_check_output("table.exr", 1, err, sizeof err)) {
+        fprintf(stderr, "abrdf export: %s\n", err);
+        goto done;
+    }
     FILE *trace = open_memstream(&notes, &notes_len);
     if (!trace) {
         fprintf(stderr, "abrdf export: out of memory\n");

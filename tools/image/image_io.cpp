@@ -298,20 +298,29 @@ extern "C" int abrdf_image_check_preview(const char *config, const char *display
     return -1;
 }
 
-extern "C" int abrdf_image_encode_linear(const char *name, int width, int height, const float *rgb,
-                                         abrdf_bytes *out, char *err, int err_size)
+namespace
+{
+
+// A scene-linear file of `name`'s format: 32-bit float where the format has it (EXR, TIFF;
+// .hdr stores its own RGBE encoding), or half floats (EXR only).
+int encode_linear(const char *name, int width, int height, const float *rgb, bool half,
+                  abrdf_bytes *out, char *err, int err_size)
 {
     if (!out) return -1;
     out->data = nullptr;
     out->size = 0;
     try {
-        if (!name || !valid_size(width, height, rgb, err, err_size)) {
-            if (!name) set_err(err, err_size, "no output name");
+        if (!name || !*name || !valid_size(width, height, rgb, err, err_size)) {
+            if (!name || !*name) set_err(err, err_size, "no output name");
+            return -1;
+        }
+        if (half && lower_ext(name) != "exr") {
+            set_err_path(err, err_size, name, "half floats are written as .exr only");
             return -1;
         }
         if (abrdf_image_check_output(name, 1, err, err_size)) return -1;
-        // 32-bit float where the format has it (EXR, TIFF); .hdr stores its own RGBE encoding.
-        return encode(name, width, height, 3, rgb, OIIO::TypeDesc::FLOAT, "Linear", out, err,
+        return encode(name, width, height, 3, rgb,
+                      half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT, "Linear", out, err,
                       err_size);
     } catch (const std::exception &e) {
         set_err_path(err, err_size, name, e.what());
@@ -322,32 +331,19 @@ extern "C" int abrdf_image_encode_linear(const char *name, int width, int height
     return -1;
 }
 
+} // namespace
+
+extern "C" int abrdf_image_encode_linear(const char *name, int width, int height, const float *rgb,
+                                         abrdf_bytes *out, char *err, int err_size)
+{
+    return encode_linear(name, width, height, rgb, false, out, err, err_size);
+}
+
 extern "C" int abrdf_image_encode_linear_half(const char *name, int width, int height,
                                               const float *rgb, abrdf_bytes *out, char *err,
                                               int err_size)
 {
-    if (!out) return -1;
-    out->data = nullptr;
-    out->size = 0;
-    try {
-        if (!name || !valid_size(width, height, rgb, err, err_size)) {
-            if (!name) set_err(err, err_size, "no output name");
-            return -1;
-        }
-        if (lower_ext(name) != "exr") {
-            set_err_path(err, err_size, name, "half floats are written as .exr only");
-            return -1;
-        }
-        if (abrdf_image_check_output(name, 1, err, err_size)) return -1;
-        return encode(name, width, height, 3, rgb, OIIO::TypeDesc::HALF, "Linear", out, err,
-                      err_size);
-    } catch (const std::exception &e) {
-        set_err_path(err, err_size, name, e.what());
-    } catch (...) {
-        set_err(err, err_size, "unexpected error encoding an image");
-    }
-    abrdf_bytes_free(out);
-    return -1;
+    return encode_linear(name, width, height, rgb, true, out, err, err_size);
 }
 
 extern "C" int abrdf_image_encode_preview(const char *name, int width, int height, const float *rgb,

@@ -4,6 +4,7 @@
  * row first, 3 floats per pixel.
  *
  *   abrdf_image_encode_linear   scene-linear float file (.exr, .hdr, .tif), in memory
+ *   abrdf_image_encode_linear_half  the same as an EXR of half floats
  *   abrdf_image_encode_preview  8-bit display file (.png, .jpg) through an OpenColorIO view
  *   abrdf_image_encode_heatmap  false-colour map of one value per pixel (.png)
  *   abrdf_bytes_free            release what an encoder allocated
@@ -46,7 +47,8 @@ int abrdf_image_encode_linear(const char *name, int width, int height, const flo
                               abrdf_bytes *out, char *err, int err_size);
 /* The same as an EXR of half floats (`name` must end in .exr): each value rounded to the
  * nearest half, so exact for values that are halves already (abrdf export --pov's huang
- * tables, half the size of float32). */
+ * tables, about half the size of float32); beyond half's range (65504) a value becomes
+ * infinite. */
 int abrdf_image_encode_linear_half(const char *name, int width, int height, const float *rgb,
                                    abrdf_bytes *out, char *err, int err_size);
 /* Encode a display-referred 8-bit preview (.png, .jpg): the OpenColorIO display/view

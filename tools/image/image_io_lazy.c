@@ -61,22 +61,30 @@ static int load(char *err, int err_size)
                      env && *env ? env : MODULE_NAME, e ? e : "not found");
         } else {
             /* POSIX: dlsym's void * converts to a function pointer through this idiom. */
-            *(void **)&mod.encode_linear = dlsym(h, "abrdf_image_encode_linear");
-            *(void **)&mod.encode_linear_half = dlsym(h, "abrdf_image_encode_linear_half");
-            *(void **)&mod.encode_preview = dlsym(h, "abrdf_image_encode_preview");
-            *(void **)&mod.encode_heatmap = dlsym(h, "abrdf_image_encode_heatmap");
-            *(void **)&mod.bytes_free = dlsym(h, "abrdf_bytes_free");
-            *(void **)&mod.check_output = dlsym(h, "abrdf_image_check_output");
-            *(void **)&mod.check_preview = dlsym(h, "abrdf_image_check_preview");
-            *(void **)&mod.read = dlsym(h, "abrdf_image_read");
-            *(void **)&mod.free_image = dlsym(h, "abrdf_image_free");
-            *(void **)&mod.is_display = dlsym(h, "abrdf_image_is_display_format");
-            if (!mod.encode_linear || !mod.encode_linear_half || !mod.encode_preview ||
-                !mod.encode_heatmap || !mod.bytes_free || !mod.check_output || !mod.check_preview ||
-                !mod.read || !mod.free_image || !mod.is_display) {
-                snprintf(mod.error, sizeof mod.error, "the image I/O module lacks an entry point");
-                mod.read = NULL;
-            }
+            const struct {
+                const char *name;
+                void **fn;
+            } entry[] = {
+                {"abrdf_image_encode_linear", (void **)&mod.encode_linear},
+                {"abrdf_image_encode_linear_half", (void **)&mod.encode_linear_half},
+                {"abrdf_image_encode_preview", (void **)&mod.encode_preview},
+                {"abrdf_image_encode_heatmap", (void **)&mod.encode_heatmap},
+                {"abrdf_bytes_free", (void **)&mod.bytes_free},
+                {"abrdf_image_check_output", (void **)&mod.check_output},
+                {"abrdf_image_check_preview", (void **)&mod.check_preview},
+                {"abrdf_image_free", (void **)&mod.free_image},
+                {"abrdf_image_is_display_format", (void **)&mod.is_display},
+                {"abrdf_image_read", (void **)&mod.read}, /* last: set means loaded */
+            };
+            for (size_t i = 0; i < sizeof entry / sizeof entry[0]; ++i)
+                if (!(*entry[i].fn = dlsym(h, entry[i].name))) {
+                    snprintf(mod.error, sizeof mod.error,
+                             "the image I/O module %s lacks %s (a module of another abrdf "
+                             "build: build or install the two together)",
+                             env && *env ? env : MODULE_NAME, entry[i].name);
+                    mod.read = NULL;
+                    break;
+                }
         }
     }
     if (mod.read) return 0;
