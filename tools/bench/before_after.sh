@@ -4,6 +4,18 @@
 # caller's folder); `median` prints the median of the numbers on its input (blank- or
 # line-separated; of an even count, the mean of the two middle ones).
 #   . "$(dirname "$0")/before_after.sh"; before_after_args DEFAULT_REPEATS "$@"
+# stats_render BIN SCENE [ARGS...]: one render of SCENE by BIN with --stats, one thread, no
+# preview, in the caller's scratch folder $out: its stdout in $out/stdout and its --stats in
+# $out/err; or one line naming what failed and exit 1.
+stats_render() {
+  local bin=$1 scene=$2
+  shift 2
+  if ! "$bin" render "$scene" -o "$out/r.exr" --no-preview --stats --threads 1 "$@" \
+    >"$out/stdout" 2>"$out/err"; then
+    echo "$0: $bin render $scene $* failed: $(tail -n 1 "$out/err")" >&2
+    exit 1
+  fi
+}
 median() {
   tr ' ' '\n' | sed '/^$/d' | sort -g |
     awk '{v[NR] = $1} END {print NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}'

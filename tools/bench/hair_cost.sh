@@ -36,11 +36,7 @@ run() { # BIN SCENE W H [ARGS...] -> "CPU_SECONDS INTEGRATION_EVALS PREPARE_SECO
   # render, or one line naming what failed and exit 1
   local s n p bin=$1 scene=$2 w=$3 h=$4
   shift 4
-  if ! "$bin" render "$scene" -o "$out/r.exr" --no-preview --stats --threads 1 --width "$w" \
-    --height "$h" "$@" >"$out/stdout" 2>"$out/err"; then
-    echo "$0: $bin render $scene failed: $(tail -n 1 "$out/err")" >&2
-    exit 1
-  fi
+  stats_render "$bin" "$scene" --width "$w" --height "$h" "$@"
   s=$(sed -n 's/.*: \([0-9.]*\) s wall, \([0-9.]*\) s CPU.*/\2/p' "$out/err")
   n=$(sed -n 's/^ *integration evals *\([0-9]*\).*/\1/p' "$out/stdout" "$out/err" | head -n 1)
   p=$(sed -n 's/.*prepared in \([0-9.]*\) s wall.*/\1/p' "$out/err")

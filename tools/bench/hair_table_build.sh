@@ -21,11 +21,7 @@ sizes=${SIZES:-24,9,32,16}
 
 prepare() { # BIN -> the preparation's wall seconds of one render, or one line and exit 1
   local p bin=$1
-  if ! "$bin" render "$scene" -o "$out/r.exr" --no-preview --stats --threads 1 --width 8 \
-    --height 6 --hair-table-sizes "$sizes" >"$out/stdout" 2>"$out/err"; then
-    echo "$0: $bin render $scene failed: $(tail -n 1 "$out/err")" >&2
-    exit 1
-  fi
+  stats_render "$bin" "$scene" --width 8 --height 6 --hair-table-sizes "$sizes"
   p=$(sed -n 's/.*prepared in \([0-9.]*\) s wall.*/\1/p' "$out/err")
   if [[ -z $p ]]; then
     echo "$0: $bin render $scene: no preparation time in its --stats" >&2

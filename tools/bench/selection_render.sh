@@ -21,11 +21,7 @@ trap 'rm -rf "$out"' EXIT
 cpu() { # BIN SCENE GOAL -> ray-tracing CPU seconds of one render (the scene's resolution,
   # the default 4 spp), or one line naming what failed and exit 1
   local s
-  if ! "$1" render "$2" -o "$out/r.exr" --no-preview --stats --threads 1 --adaptive \
-    --goal "$3" 2>"$out/err" >/dev/null; then
-    echo "$0: $1 render $2 --goal $3 failed: $(tail -n 1 "$out/err")" >&2
-    exit 1
-  fi
+  stats_render "$1" "$2" --adaptive --goal "$3"
   s=$(sed -n 's/.*: \([0-9.]*\) s wall, \([0-9.]*\) s CPU.*/\2/p' "$out/err")
   if [[ -z $s ]]; then
     echo "$0: $1 render $2: no 'N s wall, N s CPU' line in its --stats" >&2
