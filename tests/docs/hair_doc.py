@@ -191,13 +191,25 @@ def body():
     want = grab(r"#define ABRDF_HUANG_TABLE_SIZES \{(\d+), (\d+), (\d+), (\d+)\}", hdr, "abrdf.h").groups()
     if sizes != want:
         fail(f"{DOC}: the tabulated huang's default row is {sizes}, abrdf.h's sizes {want}")
+    # Against the mean of eight shift sets of (16, 8, x4), with the quadrature (6, 3, x1) and
+    # set 0 of (16, 8, x4) beside the table on the same reference.
+    quad = grab(r"The quadrature it replaces, on the same images: (%s) with its own shifts on the cylinder"
+                r"\s+\(\S+ on average over rotations of them\), (%s) backlit" % (NUM, NUM), ft, DOC)
+    own = grab(r"Its set 0, the reference of the other figures of these sections, is (%s)\s+from the mean "
+               r"of its sets 0 to 7 on the cylinder and (%s) backlit" % (NUM, NUM), ft, DOC)
     for col, extra in ((3, []), (4, ["--backlit", "--parts"])):
-        out = prog("hair_convergence", *extra, "--table", ",".join(sizes))
+        out = prog("hair_convergence", *extra, "--reference-sets", "8", "--table", ",".join(sizes),
+                   "6,3,1", "16,8,4")
         m = grab(r"table \(\d+, \d+, \d+\), \d+ shift sets of grids \(6, 3\): NMSE vs the reference (\S+); "
                  r"built in \S+ s \((\d+) values\)", out, "hair_convergence --table")
         require_number(DOC, doc, row[col], m[1], f"the tabulated huang {sizes} {' '.join(extra)}")
         if int(row[1].replace(" ", "")) != int(m[2]):
             fail(f"{DOC}: the tabulated huang {sizes} has {row[1]} values on the page, {m[2]} now")
+        image = "backlit" if extra else "cylinder"
+        for q, (n1, n2, k) in ((quad[col - 2], (6, 3, 1)), (own[col - 2], (16, 8, 4))):
+            got = grab(r"grids \(%d, %d\), Simpson x%d: work \S+, NMSE vs the reference (\S+)" % (n1, n2, k),
+                       out, "hair_convergence --reference-sets 8")[1]
+            require_number(DOC, doc, q, got, f"against the mean of eight sets, {image}, grids ({n1}, {n2}, x{k})")
     # The backlit table's error in parts (--parts, the last run): its nodes' rule at the
     # image's own directions, and each axis read alone between its nodes.
     node = grab(r"own directions: NMSE vs the reference (\S+)", out, "hair_convergence --parts")[1]
