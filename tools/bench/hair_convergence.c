@@ -13,8 +13,8 @@
  * about 15 at r = 0.1, as the Simpson steps shrink with r); the grids to the table of the page.
  * The reference is its grids with shift set 0 (the model's shifts), or with --reference-sets K
  * the mean image of its shift sets 0 to K - 1 (K <= ABRDF__HUANG_SHIFT_SETS, K times the
- * time): one set of (16, 8, x4) is itself a few 1e-6 from the converged model (docs/MODELS.md,
- * "A tabulated huang"), which matters only where the error measured is near that.
+ * time): one set of (16, 8, x4) is itself a few 1e-6 from the converged model, and correlated
+ * with the model's own set 0 (docs/MODELS.md, "A tabulated huang", "The reference").
  * REFINE divides the Simpson steps (not a parameter of the model). --lobes adds, under each
  * grid, each lobe's part of its error (R, TT, TRT, TRRT+); --r sets the fibre's roughness, in
  * [0.05, 1] (default 0.3, hair_brown's). --backlit moves the second light behind the cylinder
@@ -23,9 +23,10 @@
  * ABRDF__HUANG_SHIFT_SETS), their mean and range, the error of the sets' mean image and the
  * nearest set: the model's grids are shifted by one fixed set (set 0), and its error on this
  * image depends on where those shifts fall; the mean over the sets tells the rule's error from
- * that luck. The reference keeps set 0. --table adds the tabulated huang (hair.h,
- * abrdf__huang_table_rows) built from the default grids with NT theta nodes, NV view azimuths,
- * NP light azimuths and the mean of SETS shift sets per node: its image's NMSE, the seconds
+ * that luck. The reference keeps its own (set 0, or the mean of --reference-sets). --table
+ * adds the tabulated huang (hair.h, abrdf__huang_table_rows) built from the default grids with
+ * NT theta nodes, NV view azimuths, NP light azimuths and the mean of SETS shift sets per
+ * node: its image's NMSE, the seconds
  * its table took to build (one thread), and the microseconds per evaluation of the image's
  * pairs, the table's beside the quadrature's, measured in this run. --parts adds, under the
  * table, where its error comes from: the NMSE of the rule its nodes hold (the mean of the SETS
@@ -34,7 +35,8 @@
  * along the lobes' ridge, theta_v + theta_l across it, phi_v, d), the other three exact,
  * between nodes placed as hair_huang_table.c places them (away from the theta ends, where the
  * table blends into reading along theta_v and theta_l). --pairs N adds the table's residual
- * lobes against the reference's at N random direction pairs (table_pairs). */
+ * lobes against the reference grids' at N random direction pairs (table_pairs; with their set
+ * 0 whatever --reference-sets). */
 
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
