@@ -26,9 +26,9 @@
  * that luck. The reference keeps its own (set 0, or the mean of --reference-sets). --table
  * adds the tabulated huang (hair.h, abrdf__huang_table_rows) built from the default grids with
  * NT theta nodes, NV view azimuths, NP light azimuths and the mean of SETS shift sets per
- * node: its image's NMSE, the seconds
- * its table took to build (one thread), and the microseconds per evaluation of the image's
- * pairs, the table's beside the quadrature's, measured in this run. --parts adds, under the
+ * node: its image's NMSE, the seconds its table took to build (one thread), and the
+ * microseconds per evaluation of the image's pairs, the table's beside the quadrature's,
+ * measured in this run. --parts adds, under the
  * table, where its error comes from: the NMSE of the rule its nodes hold (the mean of the SETS
  * shift sets) at the image's own directions, no interpolation; and, on that same mean, the
  * NMSE of the Catmull-Rom interpolation along each axis the table reads along, alone (theta_v
