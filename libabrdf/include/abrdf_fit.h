@@ -254,7 +254,7 @@ typedef struct abrdf_budget {
     /* (added after 0.2.0) The reference as the caller evaluates it, or NULL: a prepared object of
      * the photoreal choice's one model with the photoreal choice's parameters (ABRDF_E_MODEL
      * otherwise, with a message naming the difference), e.g. huang tabulated
-     * (abrdf_prepare_huang_table), much nearer the converged integral than the per-call
+     * (abrdf_prepare_huang_table), nearer the converged integral than the per-call
      * quadrature (docs/MODELS.md, "A tabulated huang"). Every candidate is predicted against it, and it
      * is candidate 0 at reference_cost. A choice with the reference's models and parameters
      * is this object: render it as prepared. The coarser quadratures of huang are offered as

@@ -224,11 +224,12 @@ def select(material: str | Material | Mapping[str, object] | Any, goal: Goal | N
     budget wins (costs within 15 % of it count as equal: of those, the smallest predicted
     NMSE); the trace has one "fit" step per candidate. budget excludes goal and the
     tolerances. reference (with budget): the photoreal choice as a HuangTable of its block
-    (abrdf.huang_table(select(material).specular_brdf)), the converged model every candidate
-    is then predicted against, candidate 0 at reference_cost (None: reference.cost(costs,
-    cost_unit)); a table of another block raises abrdf.Error (docs/SELECTION.md, "A converged
-    reference for hair"). Invalid values raise abrdf.Error with the library's message. The
-    same choice as `abrdf advise` (`--budget`, `--hair-table`) with the same inputs."""
+    (abrdf.huang_table(select(material).specular_brdf)), nearer the converged model than the
+    quadrature: every candidate is then predicted against it, candidate 0 at reference_cost
+    (None: reference.cost(costs, cost_unit)); a table of another block raises abrdf.Error
+    (docs/SELECTION.md, "A converged reference for hair"). Invalid values raise abrdf.Error
+    with the library's message. The same choice as `abrdf advise` (`--budget`,
+    `--hair-table`) with the same inputs."""
     if isinstance(material, str):
         mat = _lookup(material, extra)
     elif isinstance(material, Material):
