@@ -255,10 +255,10 @@ typedef struct abrdf_budget {
      * the photoreal choice's one model with the photoreal choice's parameters (ABRDF_E_MODEL
      * otherwise, with a message naming the difference), e.g. huang tabulated
      * (abrdf_prepare_huang_table), nearer the converged integral than the per-call
-     * quadrature (docs/MODELS.md, "A tabulated huang"). Every candidate is predicted against it, and it
-     * is candidate 0 at reference_cost. A choice with the reference's models and parameters
-     * is this object: render it as prepared. The coarser quadratures of huang are offered as
-     * without it. NULL: the photoreal choice evaluated by abrdf_prepare. */
+     * quadrature (docs/MODELS.md, "A tabulated huang"). Every candidate is predicted against
+     * it, and it is candidate 0 at reference_cost. A choice with the reference's models and
+     * parameters is this object: render it as prepared. The coarser quadratures of huang are
+     * offered as without it. NULL: the photoreal choice evaluated by abrdf_prepare. */
     const abrdf_prepared *reference;
     double reference_cost; /* cost of one evaluation of `reference`, in the costs' unit;
                               < 0 (the default, -1): unknown, so it cannot win */

@@ -457,9 +457,9 @@ static void lcg_dir(unsigned long long *seed, double w[3])
  * 5 is hidden by the tilt, and of 7, 8 and 16 lit ones: hair_huang.c's two loops over the
  * lights, below and from LIGHT_MAJOR_MIN = 8 lit lights on, and a last block of LIGHTS_BLOCK
  * that is full; through abrdf__huang_fibre_wide, which a table's build calls, of 5, 13, 100
- * and ABRDF__HUANG_WIDE_MAX), and through abrdf_eval_prepared_batch against abrdf_eval_prepared in float, with lights below the
- * ribbon, lights the tilt hides and a degenerate vector inside the runs, and runs longer
- * than ABRDF__HUANG_RUN_MAX (split). */
+ * and ABRDF__HUANG_WIDE_MAX), and through abrdf_eval_prepared_batch against
+ * abrdf_eval_prepared in float, with lights below the ribbon, lights the tilt hides and a
+ * degenerate vector inside the runs, and runs longer than ABRDF__HUANG_RUN_MAX (split). */
 START_TEST(light_runs_match_single_calls)
 {
     abrdf_params p;
